@@ -1,0 +1,98 @@
+#pragma once
+// Granule flight after launch-off (seed 000, Sect. 2.4): gravity always, and the effects a caller turns
+// on — drag (Eq. 27, C_D from Eq. 32), Magnus lift (Eqs. 28–30), spin decay (Eqs. 34–36), wind (the
+// relative air velocity replaces v_p in every air term). An effect that is off is not evaluated: the
+// right-hand side is a template instantiated per effect combination and picked from a table.
+//
+// Integrators: fixed-step RK4 (Eqs. 44–48) and adaptive Dormand–Prince 5(4); both locate the ground
+// crossing exactly (dense output / final partial step). No heap allocation in fly_to_ground().
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "libspread/core/vec3.hpp"
+
+namespace spread::flight {
+
+// Bit set of in-flight effects. Gravity is not an effect: it always acts.
+enum Effect : std::uint32_t {
+  kDrag = 1u << 0,       // Eq. 27 with the Haider–Levenspiel C_D, Eq. 32
+  kMagnus = 1u << 1,     // Eq. 28; C_L from the selected LiftModel
+  kSpinDecay = 1u << 2,  // Eqs. 34–36; without it ω stays constant in flight
+  kWind = 1u << 3,       // Air::wind_m_s; without it the air is still
+};
+using EffectSet = std::uint32_t;
+inline constexpr EffectSet kAllEffects = kDrag | kMagnus | kSpinDecay | kWind;
+
+// "drag,magnus,spin_decay,wind" (any order; "" or "none" → no effects). Throws std::invalid_argument
+// naming the unknown effect.
+EffectSet parse_effects(std::string_view comma_separated);
+std::string effects_to_string(EffectSet effects);  // canonical order, comma separated
+
+enum class LiftModel : std::uint8_t {
+  // C_L = 0.45 tanh(2Ω / 0.45): slope 2Ω at small spin ratio (Rubinow–Keller), saturating at the
+  // Oesterle & Bui Dinh high-Re value 0.45. Vanishes smoothly as ω → 0. Default (see docs/physics.md).
+  kSmoothSaturating,
+  // Oesterle & Bui Dinh (1998), seed Eq. 29 with the exponent Ω^0.4 of the original paper.
+  kOesterleBuiDinh,
+  // Seed Eq. 29 exactly as printed (Ω^0.04) — kept to show the difference, not for use.
+  kOesterleBuiDinhAsPrinted,
+};
+
+struct Air {
+  double density_kg_m3 = 1.225;
+  double viscosity_pa_s = 1.81e-5;     // dynamic viscosity
+  Vec3 wind_m_s = Vec3::Zero();        // used only when kWind is on (z component normally 0)
+};
+
+struct Granule {
+  double diameter_m = 3e-3;
+  double density_kg_m3 = 1500.0;
+};
+
+struct State {
+  Vec3 position_m = Vec3::Zero();
+  Vec3 velocity_m_s = Vec3::Zero();
+  Vec3 spin_rad_s = Vec3::Zero();
+};
+
+enum class Scheme : std::uint8_t { kRk4, kDormandPrince45 };
+
+struct Settings {
+  Scheme scheme = Scheme::kDormandPrince45;
+  double dt_s = 1e-3;          // RK4: the fixed step. Dormand–Prince: the first trial step.
+  double rel_tol = 1e-6;       // Dormand–Prince only: relative error per step
+  double abs_tol = 1e-7;       // Dormand–Prince only: absolute error per step (m, m/s, rad/s)
+  double max_time_s = 60.0;    // a flight longer than this stops with landed = false
+  int max_steps = 1'000'000;
+  LiftModel lift = LiftModel::kSmoothSaturating;
+  double gravity_m_s2 = kStandardGravity_m_s2;
+};
+
+struct Landing {
+  State state;                 // at the ground crossing (position z == ground_z_m when landed)
+  double flight_time_s = 0.0;
+  int steps = 0;               // accepted steps
+  int rejected_steps = 0;      // Dormand–Prince only
+  bool landed = false;         // false: max_time_s / max_steps reached first
+};
+
+// Flies one granule from `launch` until z crosses ground_z_m (downward). Gravity is -z.
+// Preconditions (checked, std::invalid_argument): finite inputs, diameter > 0, density > 0,
+// air density >= 0, viscosity > 0, dt > 0.
+Landing fly_to_ground(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                      EffectSet effects, const Settings& settings);
+
+// Batch of independent flights, split over `threads` worker threads (<= 0: hardware concurrency).
+// Results are identical for any thread count.
+void fly_batch(std::span<const Granule> granules, std::span<const State> launches, double ground_z_m,
+               const Air& air, EffectSet effects, const Settings& settings, std::span<Landing> out,
+               int threads);
+
+// Coefficients, exposed for tests and tools.
+double drag_coefficient(double reynolds);                                  // Eq. 32
+double lift_coefficient(LiftModel model, double spin_ratio, double reynolds);  // Eq. 29 / smooth model
+double spin_decay_alpha(double spin_reynolds);                             // Eq. 35
+
+}  // namespace spread::flight

@@ -1,0 +1,98 @@
+#pragma once
+// Launch tables in SQLite (DESIGN.md §4): one file per machine; per (material, rpm) run the launch
+// samples as a little-endian float32 BLOB with an explicit record layout, plus provenance.
+// docs/table-format.md describes the schema for people writing their own readers.
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace spread::tables {
+
+inline constexpr std::int32_t kApplicationId = 0x53505244;  // 'SPRD' in PRAGMA application_id
+inline constexpr std::int32_t kFormatVersion = 1;           // PRAGMA user_version
+
+// One launch-off state. Stored as kSampleFloats little-endian float32 in this order; the layout string
+// kSampleLayout is stored with every run and checked on read.
+// Velocities are normalised by the rim speed ω·R and spins by the disc speed ω, so rows of one material
+// interpolate well in rpm (DESIGN.md §4). Positions are relative to the disc centre (inertial frame,
+// z up, disc surface at the rim = 0 for a flat disc).
+struct LaunchSample {
+  float x_m, y_m, z_m;
+  float t_s;                          // launch time after the granule was fed
+  float vx_norm, vy_norm, vz_norm;    // velocity / (ω R)
+  float wx_norm, wy_norm, wz_norm;    // spin / ω
+  float diameter_m;
+  float mass_kg;
+};
+inline constexpr int kSampleFloats = 12;
+inline constexpr const char* kSampleLayout =
+    "x_m,y_m,z_m,t_s,vx_per_rim_speed,vy_per_rim_speed,vz_per_rim_speed,"
+    "wx_per_disc_speed,wy_per_disc_speed,wz_per_disc_speed,diameter_m,mass_kg";
+
+// Machine geometry, one row per file.
+struct Machine {
+  std::string name;
+  double disc_radius_m = 0.0;     // R, for ω R
+  double disc_height_m = 0.0;     // default height of the disc above the ground
+  double disc_spacing_m = 0.0;    // centre to centre, lateral (two discs)
+  int disc_count = 2;             // 1 or 2
+  int vane_count = 0;
+  double cone_angle_rad = 0.0;
+  // +1: the (left) disc turns counter-clockwise seen from above; the right disc turns the other way.
+  int rotation_sense = 1;
+};
+
+struct Material {
+  std::string name;
+  double density_kg_m3 = 0.0;
+  double diameter_mean_m = 0.0;        // lognormal feed (Sect. 3.2)
+  double diameter_sd_m = 0.0;
+  double friction_wall = 0.0;          // particle–disc/vane sliding friction
+  double friction_particle = 0.0;
+  double restitution = 0.0;
+  double youngs_modulus_pa = 0.0;
+  double poisson_ratio = 0.0;
+  double rolling_friction = 0.0;
+};
+
+// Provenance and content of one (material, rpm) run.
+struct Run {
+  std::string material;
+  double rpm = 0.0;
+  std::string source;                  // "analytic" or "dem"
+  std::vector<LaunchSample> samples;
+  std::string scene_hash;              // hex FNV-1a 64 of scene_text
+  std::string scene_text;
+  std::string effects;                 // comma list of the effects that ran
+  double dt_contact_s = 0.0;           // 0 for analytic runs
+  double dt_flight_s = 0.0;
+  std::int64_t particle_count = 0;
+  std::string software_version;
+  std::string created_utc;             // ISO 8601
+  std::string stats_json;              // summary statistics (speed mean/sd, angles, R̄, ξ, ...)
+  std::string convergence_json;        // convergence history, "[]" when none
+};
+
+// Why a table file could not be used. Each has its own C API status code.
+enum class TableErrorKind {
+  kMissing,        // no such file
+  kNotOurs,        // not SQLite, or application_id differs
+  kCorrupt,        // PRAGMA quick_check fails, or a record is malformed (bad BLOB size, bad layout)
+  kWrongVersion,   // user_version differs from kFormatVersion
+  kEmpty,          // no runs
+  kIo,             // any other SQLite failure (locked, read-only, disk full)
+};
+const char* to_string(TableErrorKind kind);
+
+class TableError : public std::runtime_error {
+ public:
+  TableError(TableErrorKind kind, const std::string& what) : std::runtime_error(what), kind_(kind) {}
+  TableErrorKind kind() const { return kind_; }
+
+ private:
+  TableErrorKind kind_;
+};
+
+}  // namespace spread::tables

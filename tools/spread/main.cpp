@@ -1,0 +1,26 @@
+// spread: command-line front end of libspread. Subcommands live in cmd_*.cpp.
+#include <algorithm>
+#include <exception>
+#include <iostream>
+
+#include "tools/spread/command_registry.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"spread: centrifugal fertiliser spreader prediction (libspread " SPREAD_VERSION_STRING ")"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", SPREAD_VERSION_STRING);
+  int exit_code = spread::cli::kExitOk;
+  auto& commands = spread::cli::registered_commands();
+  // Static-initialisation order across files is unspecified; sort for a stable --help.
+  std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  for (auto& command : commands) command.setup(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? spread::cli::kExitOk : spread::cli::kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "spread: error: " << e.what() << "\n";
+    return spread::cli::kExitFailure;
+  }
+  return exit_code;
+}
