@@ -1,0 +1,155 @@
+#pragma once
+// A scene: everything one run or one table sweep needs — machine, inlet, materials, air, effects,
+// numerics, sweep, outputs (docs/scene-format.md lists every key with its unit and default).
+// Read from TOML by load_scene_file()/parse_scene(); `--set key=value` overrides are applied to the TOML
+// tree before validation, so an override is checked exactly like a value in the file.
+// The struct is plain data: modules map it to their own settings (the DEM engine, flight, lookup_builder).
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "libspread/tables/table_format.hpp"
+
+namespace spread::scene {
+
+// Same fields as the table's material rows; one type so a scene material goes into a table unchanged.
+using Material = tables::Material;
+
+enum class DiscModel { kAnalytic, kMesh };            // "analytic" | "mesh"
+enum class Integrator { kSymplecticEuler, kVelocityVerlet };  // "symplectic_euler" | "velocity_verlet"
+enum class ContactModel { kHertzMindlin, kLinear };   // "hertz_mindlin" | "linear"
+enum class FlightScheme { kRk4, kDopri5 };            // "rk4" | "dopri5"
+enum class LaunchSource { kAnalytic, kDem };          // "analytic" | "dem"
+// Spin of analytic launch samples (see libspread/launch/analytic_launch.hpp):
+// "sliding": zero spin (the Patterson–Reece law assumes pure sliding);
+// "rolling": |ω| = v_rel/(d/2) about the horizontal axis ⟂ to the motion relative to the disc.
+enum class SpinModel { kSliding, kRolling };
+
+struct Machine {
+  std::string name = "machine";
+  double disc_radius_m = 0.29;        // R: rim radius (horizontal)
+  double disc_height_m = 0.28;        // height of the disc rim above the ground
+  int disc_count = 2;                 // 1 or 2
+  double disc_spacing_m = 0.8;        // centre to centre, lateral (two discs)
+  int rotation_sense = 1;             // +1: left disc counter-clockwise seen from above; -1: clockwise
+  double cone_angle_rad = 0.0;        // surface rises outward at this angle (0 = flat)
+  int vane_count = 2;
+  double vane_start_radius_m = 0.0;   // inner end of the vanes
+  double vane_end_radius_m = 0.0;     // outer end; 0 in the file = disc_radius_m (resolved on load)
+  double vane_height_m = 0.036;
+  double vane_pitch_rad = 0.0;        // 0 = radial vanes; > 0 leans the vane backwards
+  DiscModel disc_model = DiscModel::kAnalytic;
+  double mesh_size_m = 0.005;         // ξ, triangle size of the generated mesh (disc_model = "mesh")
+  double rpm = 500.0;                 // disc speed of a `simulate` run (rev/min)
+};
+
+struct Inlet {
+  double radius_m = 0.0145;           // radius of the inlet circle
+  double offset_m = 0.1;              // distance of the inlet centre from the disc centre
+  double angle_rad = 0.0;             // angle of the inlet centre, from +x, counter-clockwise
+  double drop_height_m = 0.05;        // release height above the disc surface
+  double mass_flow_kg_s = 0.11;
+};
+
+struct Air {
+  double density_kg_m3 = 1.225;
+  double viscosity_pa_s = 1.81e-5;    // dynamic viscosity
+  std::array<double, 2> wind_m_s{0.0, 0.0};  // horizontal wind (x, y)
+};
+
+// Exactly the effects that run (DESIGN.md §7). Names as in the TOML list.
+struct Effects {
+  bool particle_contact = true;
+  bool wall_contact = true;
+  bool rotation = true;
+  bool rolling = false;
+  bool drag = true;
+  bool magnus = true;
+  bool spin_decay = true;
+  bool wind = false;
+};
+inline constexpr std::array<const char*, 8> kEffectNames{
+    "particle_contact", "wall_contact", "rotation", "rolling", "drag", "magnus", "spin_decay", "wind"};
+// Comma list in the canonical order of kEffectNames, e.g. "wall_contact,drag"; "" when none.
+std::string effects_to_string(const Effects& effects);
+// Only the in-flight subset, in the syntax of flight::parse_effects ("drag,magnus,spin_decay,wind").
+std::string flight_effects_to_string(const Effects& effects);
+
+struct Numerics {
+  std::uint64_t seed = 1;
+  double duration_s = 0.4;            // simulated time of a DEM run
+  double dt_contact_s = 0.0;          // 0 = automatic, t_c / steps_per_contact (DESIGN.md §2)
+  int steps_per_contact = 15;         // N_c
+  Integrator integrator = Integrator::kSymplecticEuler;
+  ContactModel contact_model = ContactModel::kHertzMindlin;
+  FlightScheme flight_scheme = FlightScheme::kDopri5;
+  double flight_dt_s = 1e-3;          // RK4 step, or first trial step of dopri5
+  double flight_tolerance = 1e-6;     // dopri5 relative tolerance
+  double collector_radius_m = 0.0;    // 0 = disc_radius_m (resolved on load)
+  int threads = 0;                    // 0 = all hardware threads
+};
+
+struct Sweep {
+  std::vector<double> rpm;                 // table rows (rev/min); empty = [machine.rpm]
+  std::vector<std::string> materials;      // empty = every material of the scene
+  LaunchSource source = LaunchSource::kAnalytic;
+  int samples_per_run = 512;
+  std::string output = "tables.sqlite";    // relative paths are relative to the working directory
+  SpinModel spin_model = SpinModel::kSliding;  // analytic source only
+};
+
+struct Outputs {
+  std::string directory = ".";
+  int vtk_every_steps = 0;            // 0 = no VTK output
+  bool launch_csv = false;
+  bool pattern_png = false;
+};
+
+struct Scene {
+  std::string source_name;            // file path (or a label) used in every error message
+  std::string text;                   // the TOML text as read
+  std::vector<std::string> overrides; // "key=value" as given, in order
+  Machine machine;
+  Inlet inlet;
+  std::vector<Material> materials;    // in file order, names unique
+  std::string simulate_material;      // [simulate] material; default = first material
+  Air air;
+  Effects effects;
+  Numerics numerics;
+  Sweep sweep;
+  Outputs outputs;
+
+  const Material* find_material(const std::string& name) const;  // nullptr when absent
+  // The text plus the overrides (as trailing comment lines): what provenance records.
+  std::string provenance_text() const;
+  // tables::fnv1a64_hex(provenance_text()).
+  std::string hash() const;
+  // The sweep's materials resolved (all scene materials when the list is empty).
+  std::vector<const Material*> sweep_materials() const;
+  // The sweep's rpm list resolved ([machine.rpm] when the list is empty).
+  std::vector<double> sweep_rpms() const;
+};
+
+// Bad scene: the message reads "<source>: <dotted.key>: <problem>".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// overrides: "dotted.key=value", the value parsed as a TOML value (a bare word that is not valid TOML
+// is taken as a string, so `--set simulate.material=Urea` works). Array elements by index:
+// "materials.0.density_kg_m3=1800".
+Scene parse_scene(const std::string& toml_text, const std::string& source_name,
+                  const std::vector<std::string>& overrides = {});
+Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides = {});
+
+const char* to_string(DiscModel value);
+const char* to_string(Integrator value);
+const char* to_string(ContactModel value);
+const char* to_string(FlightScheme value);
+const char* to_string(LaunchSource value);
+const char* to_string(SpinModel value);
+
+}  // namespace spread::scene

@@ -1,0 +1,170 @@
+#include "libspread/tables/table_reader.hpp"
+
+#include <filesystem>
+#include <system_error>
+
+#include "libspread/tables/sample_codec.hpp"
+#include "libspread/tables/sqlite_connection.hpp"
+
+namespace spread::tables {
+
+using detail::Connection;
+using detail::Statement;
+
+namespace {
+
+[[noreturn]] void raise(TableErrorKind kind, const std::string& path, const std::string& problem) {
+  throw TableError(kind, path + ": " + problem);
+}
+
+// SQLite opens any file without complaint; the first read of the header is where garbage shows.
+std::int64_t read_application_id(Connection& db) {
+  try {
+    return db.pragma_int("application_id");
+  } catch (const TableError& e) {
+    if (e.kind() == TableErrorKind::kNotOurs) raise(TableErrorKind::kNotOurs, db.path(), "not an SQLite file");
+    throw;
+  }
+}
+
+void run_quick_check(Connection& db) {
+  Statement check(db, "PRAGMA quick_check(1)");
+  if (!check.step()) raise(TableErrorKind::kCorrupt, db.path(), "PRAGMA quick_check returned nothing");
+  const std::string verdict = check.column_text(0);
+  if (verdict != "ok") raise(TableErrorKind::kCorrupt, db.path(), "PRAGMA quick_check: " + verdict);
+}
+
+void require_tables(Connection& db) {
+  for (const char* table : {"machine", "materials", "runs", "meta"}) {
+    Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
+    query.bind(1, std::string(table));
+    if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), std::string("table `") + table + "` is missing");
+  }
+}
+
+Machine read_machine(Connection& db) {
+  Statement query(db,
+                  "SELECT name, disc_radius_m, disc_height_m, disc_spacing_m, disc_count, vane_count, "
+                  "cone_angle_rad, rotation_sense FROM machine WHERE id = 1");
+  if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row is missing");
+  Machine m;
+  m.name = query.column_text(0);
+  m.disc_radius_m = query.column_double(1);
+  m.disc_height_m = query.column_double(2);
+  m.disc_spacing_m = query.column_double(3);
+  m.disc_count = static_cast<int>(query.column_int(4));
+  m.vane_count = static_cast<int>(query.column_int(5));
+  m.cone_angle_rad = query.column_double(6);
+  m.rotation_sense = static_cast<int>(query.column_int(7));
+  if (!(m.disc_radius_m > 0.0) || (m.disc_count != 1 && m.disc_count != 2) ||
+      (m.rotation_sense != 1 && m.rotation_sense != -1)) {
+    raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row has impossible values");
+  }
+  return m;
+}
+
+std::vector<Material> read_materials(Connection& db) {
+  Statement query(db,
+                  "SELECT name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, friction_particle, "
+                  "restitution, youngs_modulus_pa, poisson_ratio, rolling_friction FROM materials ORDER BY name");
+  std::vector<Material> materials;
+  while (query.step()) {
+    Material m;
+    m.name = query.column_text(0);
+    m.density_kg_m3 = query.column_double(1);
+    m.diameter_mean_m = query.column_double(2);
+    m.diameter_sd_m = query.column_double(3);
+    m.friction_wall = query.column_double(4);
+    m.friction_particle = query.column_double(5);
+    m.restitution = query.column_double(6);
+    m.youngs_modulus_pa = query.column_double(7);
+    m.poisson_ratio = query.column_double(8);
+    m.rolling_friction = query.column_double(9);
+    materials.push_back(std::move(m));
+  }
+  return materials;
+}
+
+std::vector<Run> read_runs(Connection& db) {
+  Statement query(db,
+                  "SELECT material, rpm, source, sample_count, record_layout, record_bytes, samples, scene_hash, "
+                  "scene_text, effects, dt_contact_s, dt_flight_s, particle_count, software_version, created_utc, "
+                  "stats_json, convergence_json FROM runs ORDER BY material, rpm");
+  std::vector<Run> runs;
+  while (query.step()) {
+    Run run;
+    run.material = query.column_text(0);
+    run.rpm = query.column_double(1);
+    run.source = query.column_text(2);
+    const std::int64_t sample_count = query.column_int(3);
+    const std::string layout = query.column_text(4);
+    const std::int64_t record_bytes = query.column_int(5);
+    const std::vector<std::uint8_t> blob = query.column_blob(6);
+    const std::string which = "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: ";
+    if (layout != kSampleLayout) {
+      raise(TableErrorKind::kCorrupt, db.path(), which + "record layout \"" + layout + "\" differs from \"" +
+                                                     kSampleLayout + "\"");
+    }
+    if (record_bytes != static_cast<std::int64_t>(kSampleBytes)) {
+      raise(TableErrorKind::kCorrupt, db.path(), which + "record size " + std::to_string(record_bytes) +
+                                                     " bytes, expected " + std::to_string(kSampleBytes));
+    }
+    if (sample_count <= 0 || blob.size() != static_cast<std::size_t>(sample_count) * kSampleBytes) {
+      raise(TableErrorKind::kCorrupt, db.path(),
+            which + "sample BLOB has " + std::to_string(blob.size()) + " bytes, expected sample_count " +
+                std::to_string(sample_count) + " x " + std::to_string(kSampleBytes));
+    }
+    run.samples = decode_samples(blob);
+    run.scene_hash = query.column_text(7);
+    run.scene_text = query.column_text(8);
+    run.effects = query.column_text(9);
+    run.dt_contact_s = query.column_double(10);
+    run.dt_flight_s = query.column_double(11);
+    run.particle_count = query.column_int(12);
+    run.software_version = query.column_text(13);
+    run.created_utc = query.column_text(14);
+    run.stats_json = query.column_text(15);
+    run.convergence_json = query.column_text(16);
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace
+
+TableContents read_table_file(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) raise(TableErrorKind::kMissing, path, "no such file");
+  if (std::filesystem::is_directory(status)) raise(TableErrorKind::kNotOurs, path, "is a directory, not a table file");
+  if (std::filesystem::file_size(path, ec) == 0 && !ec) raise(TableErrorKind::kNotOurs, path, "empty file (0 bytes), not a table file");
+
+  Connection db(path, Connection::Mode::kReadOnly);
+  const std::int64_t application_id = read_application_id(db);
+  if (application_id != kApplicationId) {
+    raise(TableErrorKind::kNotOurs, path,
+          "SQLite file but not a libspread table (application_id " + std::to_string(application_id) + ", expected " +
+              std::to_string(kApplicationId) + ")");
+  }
+  run_quick_check(db);
+  const std::int64_t version = db.pragma_int("user_version");
+  if (version != kFormatVersion) {
+    raise(TableErrorKind::kWrongVersion, path,
+          "table format version " + std::to_string(version) + ", this build reads version " +
+              std::to_string(kFormatVersion));
+  }
+  require_tables(db);
+  TableContents contents;
+  contents.machine = read_machine(db);
+  contents.materials = read_materials(db);
+  contents.runs = read_runs(db);
+  if (contents.runs.empty()) raise(TableErrorKind::kEmpty, path, "no runs (the table has no launch data)");
+  for (const Run& run : contents.runs) {
+    bool known = false;
+    for (const Material& m : contents.materials) known = known || m.name == run.material;
+    if (!known) raise(TableErrorKind::kCorrupt, path, "run material \"" + run.material + "\" is not in `materials`");
+  }
+  return contents;
+}
+
+}  // namespace spread::tables

@@ -1,0 +1,225 @@
+#include "libspread/tables/table_writer.hpp"
+
+#include <ctime>
+#include <filesystem>
+#include <system_error>
+
+#include "libspread/tables/sample_codec.hpp"
+#include "libspread/tables/sqlite_connection.hpp"
+#include "libspread/tables/table_schema.hpp"
+
+namespace spread::tables {
+
+using detail::Connection;
+using detail::Statement;
+
+namespace {
+
+// Checks an existing non-empty file before anything opens it for writing: it must be SQLite, ours and
+// of this format version. Read-only, so a refused file stays byte-identical.
+void check_existing_file_is_ours(const std::string& path) {
+  std::int64_t application_id = 0;
+  std::int64_t version = 0;
+  try {
+    Connection probe(path, Connection::Mode::kReadOnly);
+    application_id = probe.pragma_int("application_id");
+    version = probe.pragma_int("user_version");
+  } catch (const TableError& e) {
+    if (e.kind() == TableErrorKind::kNotOurs) {
+      throw TableError(TableErrorKind::kNotOurs,
+                       path + ": exists and is not an SQLite file; refusing to write into it");
+    }
+    throw;
+  }
+  if (application_id != kApplicationId) {
+    throw TableError(TableErrorKind::kNotOurs, path + ": exists and is not a libspread table (application_id " +
+                                                   std::to_string(application_id) + "); refusing to write into it");
+  }
+  if (version != kFormatVersion) {
+    throw TableError(TableErrorKind::kWrongVersion, path + ": table format version " + std::to_string(version) +
+                                                        ", this build writes version " +
+                                                        std::to_string(kFormatVersion) + "; refusing to write");
+  }
+}
+
+// Commits on success, rolls back when an exception leaves the scope.
+class Transaction {
+ public:
+  explicit Transaction(Connection& connection) : connection_(connection) { connection_.exec("BEGIN IMMEDIATE"); }
+  ~Transaction() {
+    if (!committed_) {
+      try {
+        connection_.exec("ROLLBACK");
+      } catch (...) {  // NOLINT: a destructor must not throw; the original error is what matters
+      }
+    }
+  }
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  void commit() {
+    connection_.exec("COMMIT");
+    committed_ = true;
+  }
+
+ private:
+  Connection& connection_;
+  bool committed_ = false;
+};
+
+}  // namespace
+
+struct TableWriter::Impl {
+  std::unique_ptr<Connection> connection;
+};
+
+TableWriter::TableWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(path, ec);
+  const bool has_content = exists && std::filesystem::file_size(path, ec) > 0 && !ec;
+  if (has_content) {
+    check_existing_file_is_ours(path);
+    impl_->connection = std::make_unique<Connection>(path, Connection::Mode::kReadWrite);
+    return;
+  }
+  impl_->connection = std::make_unique<Connection>(path, Connection::Mode::kReadWriteCreate);
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  db.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+  db.exec("PRAGMA user_version = " + std::to_string(kFormatVersion));
+  db.exec(detail::kSchemaSql);
+  transaction.commit();
+}
+
+TableWriter::~TableWriter() = default;
+TableWriter::TableWriter(TableWriter&&) noexcept = default;
+TableWriter& TableWriter::operator=(TableWriter&&) noexcept = default;
+
+const std::string& TableWriter::path() const { return impl_->connection->path(); }
+
+void TableWriter::write_machine(const Machine& machine) {
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  Statement insert(db,
+                   "INSERT OR REPLACE INTO machine (id, name, disc_radius_m, disc_height_m, disc_spacing_m, "
+                   "disc_count, vane_count, cone_angle_rad, rotation_sense) VALUES (1, ?, ?, ?, ?, ?, ?, ?, ?)");
+  insert.bind(1, machine.name);
+  insert.bind(2, machine.disc_radius_m);
+  insert.bind(3, machine.disc_height_m);
+  insert.bind(4, machine.disc_spacing_m);
+  insert.bind(5, static_cast<std::int64_t>(machine.disc_count));
+  insert.bind(6, static_cast<std::int64_t>(machine.vane_count));
+  insert.bind(7, machine.cone_angle_rad);
+  insert.bind(8, static_cast<std::int64_t>(machine.rotation_sense));
+  insert.step();
+  transaction.commit();
+}
+
+void TableWriter::write_materials(const std::vector<Material>& materials) {
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  Statement upsert(db,
+                   "INSERT INTO materials (name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, "
+                   "friction_particle, restitution, youngs_modulus_pa, poisson_ratio, rolling_friction) "
+                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (name) DO UPDATE SET "
+                   "density_kg_m3 = excluded.density_kg_m3, diameter_mean_m = excluded.diameter_mean_m, "
+                   "diameter_sd_m = excluded.diameter_sd_m, friction_wall = excluded.friction_wall, "
+                   "friction_particle = excluded.friction_particle, restitution = excluded.restitution, "
+                   "youngs_modulus_pa = excluded.youngs_modulus_pa, poisson_ratio = excluded.poisson_ratio, "
+                   "rolling_friction = excluded.rolling_friction");
+  for (const Material& m : materials) {
+    upsert.reset();
+    upsert.bind(1, m.name);
+    upsert.bind(2, m.density_kg_m3);
+    upsert.bind(3, m.diameter_mean_m);
+    upsert.bind(4, m.diameter_sd_m);
+    upsert.bind(5, m.friction_wall);
+    upsert.bind(6, m.friction_particle);
+    upsert.bind(7, m.restitution);
+    upsert.bind(8, m.youngs_modulus_pa);
+    upsert.bind(9, m.poisson_ratio);
+    upsert.bind(10, m.rolling_friction);
+    upsert.step();
+  }
+  transaction.commit();
+}
+
+void TableWriter::write_meta(const std::string& key, const std::string& value) {
+  Connection& db = *impl_->connection;
+  Statement upsert(db, "INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
+  upsert.bind(1, key);
+  upsert.bind(2, value);
+  upsert.step();
+}
+
+bool TableWriter::has_run(const std::string& material, double rpm) {
+  Statement query(*impl_->connection, "SELECT 1 FROM runs WHERE material = ? AND rpm = ?");
+  query.bind(1, material);
+  query.bind(2, rpm);
+  return query.step();
+}
+
+void TableWriter::write_run(const Run& run, bool replace) {
+  if (run.samples.empty()) {
+    throw std::invalid_argument(path() + ": run " + run.material + " @ " + std::to_string(run.rpm) +
+                                " rpm has no samples");
+  }
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  {
+    Statement material(db, "SELECT 1 FROM materials WHERE name = ?");
+    material.bind(1, run.material);
+    if (!material.step()) {
+      throw std::invalid_argument(path() + ": run for material \"" + run.material +
+                                  "\", which is not in the materials table (write_materials first)");
+    }
+  }
+  Statement existing(db, "SELECT 1 FROM runs WHERE material = ? AND rpm = ?");
+  existing.bind(1, run.material);
+  existing.bind(2, run.rpm);
+  if (existing.step()) {
+    if (!replace) {
+      throw RunExistsError(path() + ": run " + run.material + " @ " + std::to_string(run.rpm) +
+                           " rpm already exists (pass replace to rebuild it)");
+    }
+    Statement remove(db, "DELETE FROM runs WHERE material = ? AND rpm = ?");
+    remove.bind(1, run.material);
+    remove.bind(2, run.rpm);
+    remove.step();
+  }
+  const std::vector<std::uint8_t> blob = encode_samples(run.samples);
+  Statement insert(db,
+                   "INSERT INTO runs (material, rpm, source, sample_count, record_layout, record_bytes, samples, "
+                   "scene_hash, scene_text, effects, dt_contact_s, dt_flight_s, particle_count, software_version, "
+                   "created_utc, stats_json, convergence_json) "
+                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  insert.bind(1, run.material);
+  insert.bind(2, run.rpm);
+  insert.bind(3, run.source);
+  insert.bind(4, static_cast<std::int64_t>(run.samples.size()));
+  insert.bind(5, std::string(kSampleLayout));
+  insert.bind(6, static_cast<std::int64_t>(kSampleBytes));
+  insert.bind_blob(7, blob);
+  insert.bind(8, run.scene_hash);
+  insert.bind(9, run.scene_text);
+  insert.bind(10, run.effects);
+  insert.bind(11, run.dt_contact_s);
+  insert.bind(12, run.dt_flight_s);
+  insert.bind(13, run.particle_count);
+  insert.bind(14, run.software_version);
+  insert.bind(15, run.created_utc);
+  insert.bind(16, run.stats_json.empty() ? std::string("{}") : run.stats_json);
+  insert.bind(17, run.convergence_json.empty() ? std::string("[]") : run.convergence_json);
+  insert.step();
+  transaction.commit();
+}
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+}  // namespace spread::tables

@@ -1,0 +1,143 @@
+// Every TableErrorKind produced by a real file, and the reader leaves each file byte-identical.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <filesystem>
+
+#include "libspread/tables/table_reader.hpp"
+#include "libspread/tables/table_writer.hpp"
+#include "table_fixtures.hpp"
+#include "temp_file.hpp"
+
+namespace spread::tables {
+namespace {
+
+using spread::testing::file_bytes;
+using spread::testing::TempFile;
+
+// Runs SQL on a file with the plain sqlite3 API, as a foreign tool (or a vandal) would.
+void raw_exec(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  char* error = nullptr;
+  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
+  EXPECT_EQ(rc, SQLITE_OK) << (error != nullptr ? error : "");
+  sqlite3_free(error);
+  sqlite3_close(db);
+}
+
+// Reads the file, expects a TableError of `kind` whose message names the file, and checks the file
+// was not modified.
+void expect_read_error(const std::string& path, TableErrorKind kind, const std::string& message_part = "") {
+  const bool existed = std::filesystem::exists(path);
+  const std::vector<char> before = existed ? file_bytes(path) : std::vector<char>{};
+  try {
+    read_table_file(path);
+    ADD_FAILURE() << "read_table_file accepted " << path;
+  } catch (const TableError& e) {
+    EXPECT_EQ(e.kind(), kind) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    if (!message_part.empty()) {
+      EXPECT_NE(what.find(message_part), std::string::npos) << what;
+    }
+  }
+  EXPECT_EQ(std::filesystem::exists(path), existed);
+  if (existed) {
+    EXPECT_EQ(file_bytes(path), before) << "the reader modified " << path;
+  }
+  EXPECT_FALSE(std::filesystem::exists(path + "-journal"));
+}
+
+TEST(TableErrors, MissingFile) {
+  TempFile file("missing");
+  expect_read_error(file.path(), TableErrorKind::kMissing, "no such file");
+}
+
+TEST(TableErrors, GarbageBytesAreNotOurs) {
+  TempFile file("garbage");
+  std::vector<char> garbage(5000);
+  for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 37 + 11) % 256);
+  spread::testing::write_bytes(file.path(), garbage);
+  expect_read_error(file.path(), TableErrorKind::kNotOurs, "not an SQLite file");
+}
+
+TEST(TableErrors, ForeignSqliteDatabaseIsNotOurs) {
+  TempFile file("foreign");
+  raw_exec(file.path(), "CREATE TABLE runs (x INTEGER); INSERT INTO runs VALUES (1);");
+  expect_read_error(file.path(), TableErrorKind::kNotOurs, "application_id");
+  // The writer refuses it too, and leaves it as it was.
+  const std::vector<char> before = file_bytes(file.path());
+  try {
+    TableWriter writer(file.path());
+    ADD_FAILURE() << "writer accepted a foreign database";
+  } catch (const TableError& e) {
+    EXPECT_EQ(e.kind(), TableErrorKind::kNotOurs);
+  }
+  EXPECT_EQ(file_bytes(file.path()), before);
+}
+
+TEST(TableErrors, BumpedUserVersionIsWrongVersion) {
+  TempFile file("version");
+  spread::testing::write_sample_table(file.path());
+  raw_exec(file.path(), "PRAGMA user_version = " + std::to_string(kFormatVersion + 1));
+  expect_read_error(file.path(), TableErrorKind::kWrongVersion, "version");
+  const std::vector<char> before = file_bytes(file.path());
+  try {
+    TableWriter writer(file.path());
+    ADD_FAILURE() << "writer accepted a file of another version";
+  } catch (const TableError& e) {
+    EXPECT_EQ(e.kind(), TableErrorKind::kWrongVersion);
+  }
+  EXPECT_EQ(file_bytes(file.path()), before);
+}
+
+TEST(TableErrors, TruncatedFileIsCorrupt) {
+  TempFile file("truncated");
+  spread::testing::write_sample_table(file.path(), 2000);  // several pages of BLOB overflow
+  std::vector<char> bytes = file_bytes(file.path());
+  ASSERT_GT(bytes.size(), 4u * 4096u);
+  bytes.resize(bytes.size() / 2);
+  spread::testing::write_bytes(file.path(), bytes);
+  expect_read_error(file.path(), TableErrorKind::kCorrupt);
+}
+
+TEST(TableErrors, BlobOfWrongSizeIsCorrupt) {
+  TempFile file("blob");
+  spread::testing::write_sample_table(file.path());
+  raw_exec(file.path(), "UPDATE runs SET samples = substr(samples, 1, 100) WHERE material = 'B'");
+  expect_read_error(file.path(), TableErrorKind::kCorrupt, "BLOB");
+}
+
+TEST(TableErrors, DifferentRecordLayoutIsCorrupt) {
+  TempFile file("layout");
+  spread::testing::write_sample_table(file.path());
+  raw_exec(file.path(), "UPDATE runs SET record_layout = 'x_m,y_m' WHERE material = 'A' AND rpm = 600");
+  expect_read_error(file.path(), TableErrorKind::kCorrupt, "layout");
+}
+
+TEST(TableErrors, TableWithoutRunsIsEmpty) {
+  TempFile file("empty");
+  {
+    TableWriter writer(file.path());
+    writer.write_machine(spread::testing::sample_machine());
+    writer.write_materials({spread::testing::sample_material("A", 0.4)});
+  }
+  expect_read_error(file.path(), TableErrorKind::kEmpty, "no runs");
+}
+
+TEST(TableErrors, ZeroByteFileIsNotOurs) {
+  TempFile file("zero");
+  spread::testing::write_bytes(file.path(), {});
+  expect_read_error(file.path(), TableErrorKind::kNotOurs);
+}
+
+TEST(TableErrors, KindsHaveNames) {
+  for (TableErrorKind kind : {TableErrorKind::kMissing, TableErrorKind::kNotOurs, TableErrorKind::kCorrupt,
+                              TableErrorKind::kWrongVersion, TableErrorKind::kEmpty, TableErrorKind::kIo}) {
+    EXPECT_STRNE(to_string(kind), "unknown");
+  }
+}
+
+}  // namespace
+}  // namespace spread::tables

@@ -1,0 +1,124 @@
+// Writer → reader round trip, the record codec, and the writer's rules (replace flag, foreign files).
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+
+#include "libspread/tables/sample_codec.hpp"
+#include "libspread/tables/table_reader.hpp"
+#include "libspread/tables/table_writer.hpp"
+#include "table_fixtures.hpp"
+#include "temp_file.hpp"
+
+namespace spread::tables {
+namespace {
+
+using spread::testing::TempFile;
+
+bool same_bits(const LaunchSample& a, const LaunchSample& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(TableFormat, SampleIsTwelvePackedFloats) {
+  static_assert(sizeof(LaunchSample) == kSampleFloats * sizeof(float));
+  EXPECT_EQ(kSampleBytes, 48u);
+}
+
+TEST(TableFormat, EncodesLittleEndianExplicitly) {
+  LaunchSample s{};
+  s.x_m = 1.0f;  // 0x3f800000 → bytes 00 00 80 3f
+  s.mass_kg = -2.0f;  // 0xc0000000
+  const std::vector<std::uint8_t> bytes = encode_samples(std::span<const LaunchSample>(&s, 1));
+  ASSERT_EQ(bytes.size(), kSampleBytes);
+  EXPECT_EQ(bytes[0], 0x00);
+  EXPECT_EQ(bytes[2], 0x80);
+  EXPECT_EQ(bytes[3], 0x3f);
+  EXPECT_EQ(bytes[47], 0xc0);
+  const std::vector<LaunchSample> back = decode_samples(bytes);
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_TRUE(same_bits(back[0], s));
+}
+
+TEST(TableRoundTrip, EverythingWrittenIsReadBack) {
+  TempFile file("roundtrip");
+  spread::testing::write_sample_table(file.path(), 100);
+  const TableContents contents = read_table_file(file.path());
+
+  const Machine expected_machine = spread::testing::sample_machine();
+  EXPECT_EQ(contents.machine.name, expected_machine.name);
+  EXPECT_EQ(contents.machine.disc_radius_m, expected_machine.disc_radius_m);
+  EXPECT_EQ(contents.machine.disc_height_m, expected_machine.disc_height_m);
+  EXPECT_EQ(contents.machine.disc_spacing_m, expected_machine.disc_spacing_m);
+  EXPECT_EQ(contents.machine.disc_count, expected_machine.disc_count);
+  EXPECT_EQ(contents.machine.vane_count, expected_machine.vane_count);
+  EXPECT_EQ(contents.machine.cone_angle_rad, expected_machine.cone_angle_rad);
+  EXPECT_EQ(contents.machine.rotation_sense, expected_machine.rotation_sense);
+
+  ASSERT_EQ(contents.materials.size(), 2u);
+  EXPECT_EQ(contents.materials[0].name, "A");
+  EXPECT_EQ(contents.materials[1].name, "B");
+  EXPECT_EQ(contents.materials[1].friction_wall, 0.6);
+  EXPECT_EQ(contents.materials[0].youngs_modulus_pa, 5e7);
+  EXPECT_EQ(contents.materials[0].rolling_friction, 0.05);
+
+  ASSERT_EQ(contents.runs.size(), 3u);  // sorted by (material, rpm)
+  EXPECT_EQ(contents.runs[0].material, "A");
+  EXPECT_EQ(contents.runs[0].rpm, 450.0);
+  EXPECT_EQ(contents.runs[1].rpm, 600.0);
+  EXPECT_EQ(contents.runs[2].material, "B");
+  const tables::Run expected = spread::testing::sample_run("A", 600.0, 100);
+  const tables::Run& run = contents.runs[1];
+  ASSERT_EQ(run.samples.size(), expected.samples.size());
+  for (std::size_t k = 0; k < run.samples.size(); ++k) EXPECT_TRUE(same_bits(run.samples[k], expected.samples[k])) << k;
+  EXPECT_EQ(run.source, expected.source);
+  EXPECT_EQ(run.scene_hash, expected.scene_hash);
+  EXPECT_EQ(run.scene_text, expected.scene_text);
+  EXPECT_EQ(run.effects, expected.effects);
+  EXPECT_EQ(run.dt_contact_s, expected.dt_contact_s);
+  EXPECT_EQ(run.dt_flight_s, expected.dt_flight_s);
+  EXPECT_EQ(run.particle_count, expected.particle_count);
+  EXPECT_EQ(run.software_version, expected.software_version);
+  EXPECT_EQ(run.created_utc, expected.created_utc);
+  EXPECT_EQ(run.stats_json, expected.stats_json);
+  EXPECT_EQ(run.convergence_json, expected.convergence_json);
+}
+
+TEST(TableWriter, SecondWriteOfARunNeedsReplace) {
+  TempFile file("replace");
+  spread::testing::write_sample_table(file.path(), 8);
+  TableWriter writer(file.path());  // reopen an existing table of ours
+  EXPECT_TRUE(writer.has_run("A", 450.0));
+  EXPECT_FALSE(writer.has_run("A", 500.0));
+  tables::Run changed = spread::testing::sample_run("A", 450.0, 5);
+  EXPECT_THROW(writer.write_run(changed), RunExistsError);
+  EXPECT_EQ(read_table_file(file.path()).runs[0].samples.size(), 8u);  // untouched
+  writer.write_run(changed, /*replace=*/true);
+  const TableContents contents = read_table_file(file.path());
+  ASSERT_EQ(contents.runs.size(), 3u);
+  EXPECT_EQ(contents.runs[0].samples.size(), 5u);
+}
+
+TEST(TableWriter, RefusesRunOfUnknownMaterialAndEmptyRun) {
+  TempFile file("unknown_material");
+  spread::testing::write_sample_table(file.path(), 4);
+  TableWriter writer(file.path());
+  EXPECT_THROW(writer.write_run(spread::testing::sample_run("C", 450.0, 4)), std::invalid_argument);
+  EXPECT_THROW(writer.write_run(spread::testing::sample_run("A", 700.0, 0)), std::invalid_argument);
+  EXPECT_EQ(read_table_file(file.path()).runs.size(), 3u);
+}
+
+TEST(TableWriter, RefusesGarbageFileAndLeavesItByteIdentical) {
+  TempFile file("writer_garbage");
+  std::vector<char> garbage(3000);
+  for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 131 + 7) % 251);
+  spread::testing::write_bytes(file.path(), garbage);
+  try {
+    TableWriter writer(file.path());
+    FAIL() << "writer accepted a garbage file";
+  } catch (const TableError& e) {
+    EXPECT_EQ(e.kind(), TableErrorKind::kNotOurs);
+    EXPECT_NE(std::string(e.what()).find(file.path()), std::string::npos);
+  }
+  EXPECT_EQ(spread::testing::file_bytes(file.path()), garbage);
+}
+
+}  // namespace
+}  // namespace spread::tables

@@ -1,0 +1,150 @@
+// spread inspect FILE [--json]: what a launch-table file holds — machine, materials with their rpm
+// rows and sample counts, provenance and statistics of every run. A file that cannot be used gets one
+// clear message per TableErrorKind (exit 2).
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "libspread/tables/table_reader.hpp"
+#include "tools/spread/command_registry.hpp"
+
+namespace {
+
+using nlohmann::json;
+using spread::tables::TableErrorKind;
+
+// The user-facing explanation of each kind, after the reader's own message (which names the file).
+const char* advice(TableErrorKind kind) {
+  switch (kind) {
+    case TableErrorKind::kMissing: return "check the path";
+    case TableErrorKind::kNotOurs: return "this is not a launch-table file written by lookup_builder";
+    case TableErrorKind::kCorrupt: return "the file is damaged; rebuild it with lookup_builder --rebuild";
+    case TableErrorKind::kWrongVersion: return "written by another libspread format version; rebuild it with this version";
+    case TableErrorKind::kEmpty: return "no runs yet; run lookup_builder on the scene";
+    case TableErrorKind::kIo: return "the file could not be read (locked, permissions)";
+  }
+  return "";
+}
+
+const char* kind_code(TableErrorKind kind) {
+  switch (kind) {
+    case TableErrorKind::kMissing: return "missing";
+    case TableErrorKind::kNotOurs: return "not_ours";
+    case TableErrorKind::kCorrupt: return "corrupt";
+    case TableErrorKind::kWrongVersion: return "wrong_version";
+    case TableErrorKind::kEmpty: return "empty";
+    case TableErrorKind::kIo: return "io";
+  }
+  return "unknown";
+}
+
+json parse_or_text(const std::string& text) {
+  json parsed = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  return parsed.is_discarded() ? json(text) : parsed;
+}
+
+json to_json(const spread::tables::TableContents& c, const std::string& path) {
+  json out;
+  out["file"] = path;
+  out["format_version"] = spread::tables::kFormatVersion;
+  out["record_layout"] = spread::tables::kSampleLayout;
+  const auto& m = c.machine;
+  out["machine"] = {{"name", m.name},
+                    {"disc_radius_m", m.disc_radius_m},
+                    {"disc_height_m", m.disc_height_m},
+                    {"disc_spacing_m", m.disc_spacing_m},
+                    {"disc_count", m.disc_count},
+                    {"vane_count", m.vane_count},
+                    {"cone_angle_rad", m.cone_angle_rad},
+                    {"rotation_sense", m.rotation_sense}};
+  json materials = json::array();
+  for (const auto& mat : c.materials) {
+    json rpm = json::array(), counts = json::array();
+    for (const auto& run : c.runs) {
+      if (run.material != mat.name) continue;
+      rpm.push_back(run.rpm);
+      counts.push_back(run.samples.size());
+    }
+    materials.push_back({{"name", mat.name},
+                         {"density_kg_m3", mat.density_kg_m3},
+                         {"diameter_mean_m", mat.diameter_mean_m},
+                         {"diameter_sd_m", mat.diameter_sd_m},
+                         {"friction_wall", mat.friction_wall},
+                         {"friction_particle", mat.friction_particle},
+                         {"restitution", mat.restitution},
+                         {"youngs_modulus_pa", mat.youngs_modulus_pa},
+                         {"poisson_ratio", mat.poisson_ratio},
+                         {"rolling_friction", mat.rolling_friction},
+                         {"rpm", rpm},
+                         {"sample_counts", counts}});
+  }
+  out["materials"] = materials;
+  json runs = json::array();
+  for (const auto& run : c.runs) {
+    runs.push_back({{"material", run.material},
+                    {"rpm", run.rpm},
+                    {"sample_count", run.samples.size()},
+                    {"source", run.source},
+                    {"effects", run.effects},
+                    {"dt_contact_s", run.dt_contact_s},
+                    {"dt_flight_s", run.dt_flight_s},
+                    {"particle_count", run.particle_count},
+                    {"scene_hash", run.scene_hash},
+                    {"software_version", run.software_version},
+                    {"created_utc", run.created_utc},
+                    {"stats", parse_or_text(run.stats_json)},
+                    {"convergence", parse_or_text(run.convergence_json)}});
+  }
+  out["runs"] = runs;
+  return out;
+}
+
+void print_text(const spread::tables::TableContents& c, const std::string& path) {
+  const auto& m = c.machine;
+  std::cout << path << ": launch table, format version " << spread::tables::kFormatVersion << "\n"
+            << "machine " << m.name << ": R " << m.disc_radius_m << " m, height " << m.disc_height_m << " m, "
+            << m.disc_count << " disc(s) " << m.disc_spacing_m << " m apart, " << m.vane_count << " vanes, cone "
+            << m.cone_angle_rad << " rad, rotation sense " << (m.rotation_sense > 0 ? "+1" : "-1") << "\n";
+  for (const auto& mat : c.materials) {
+    std::cout << "material \"" << mat.name << "\": " << mat.density_kg_m3 << " kg/m3, d " << mat.diameter_mean_m
+              << " m (sd " << mat.diameter_sd_m << "), mu_wall " << mat.friction_wall << "\n";
+    for (const auto& run : c.runs) {
+      if (run.material != mat.name) continue;
+      std::cout << "  " << std::setw(7) << run.rpm << " rpm  " << std::setw(6) << run.samples.size()
+                << " samples  " << run.source << "  scene " << run.scene_hash << "  v" << run.software_version
+                << "  " << run.created_utc << "\n    stats " << run.stats_json << "\n";
+    }
+  }
+}
+
+spread::cli::CommandRegistration reg{"inspect", [](CLI::App& app, int& exit_code) {
+  struct Options {
+    std::string file;
+    bool json = false;
+  };
+  static Options options;
+  auto* sub = app.add_subcommand("inspect", "show what a launch-table file holds (machine, materials, rpm rows, provenance)");
+  sub->add_option("file", options.file, "table file (SQLite) written by lookup_builder")->required();
+  sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  sub->callback([&exit_code] {
+    try {
+      const auto contents = spread::tables::read_table_file(options.file);
+      if (options.json) {
+        std::cout << to_json(contents, options.file).dump(2) << "\n";
+      } else {
+        print_text(contents, options.file);
+      }
+      exit_code = spread::cli::kExitOk;
+    } catch (const spread::tables::TableError& e) {
+      std::cerr << "spread inspect: error: " << e.what() << " (" << advice(e.kind()) << ")\n";
+      if (options.json) {
+        std::cout << json{{"error", {{"kind", kind_code(e.kind())}, {"message", e.what()}, {"file", options.file}}}}.dump(2)
+                  << "\n";
+      }
+      exit_code = e.kind() == TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
+    }
+  });
+}};
+
+}  // namespace
