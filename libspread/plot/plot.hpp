@@ -1,0 +1,53 @@
+#pragma once
+// PNG plots of spread results (cairo): the ground pattern as a heat map, the transverse distribution in
+// trays (optionally with a second series and the overlapped profile at a bout width), and the CV(W)
+// curves with the target line and the effective working widths. Every writer throws
+// std::runtime_error naming the path when the file cannot be written, and std::invalid_argument naming
+// the offending input when the data cannot be plotted (empty, mismatched sizes, non-finite).
+#include <span>
+#include <string>
+
+#include "libspread/metrics/metrics.hpp"
+
+namespace spread::plot {
+
+// Every PNG is this size (pixels), so callers and tests know what to expect.
+inline constexpr int kImageWidth_px = 1000;
+inline constexpr int kImageHeight_px = 650;
+
+// What the masses handed to a writer are: kilograms, or fractions of the total mass (the axis then
+// shows percent of the mass instead of kg/g/mg).
+enum class MassUnits { kKilograms, kFraction };
+
+// Heat map of mass per area (kg/m²) with a colour bar, axes in metres (x lateral, y driving
+// direction), and the disc centres of `machine` marked (two discs at x = ∓spacing/2, one at x = 0,
+// all at y = 0 — the frame ground_pattern() uses).
+void write_ground_pattern_png(const metrics::GroundPattern& pattern, const std::string& path,
+                              const std::string& title,
+                              const metrics::MachineLayout& machine = metrics::MachineLayout{},
+                              MassUnits units = MassUnits::kKilograms);
+
+// Optional extras for the transverse-distribution plot.
+struct TransverseOptions {
+  std::string series_label = "predicted";          // legend entry of the main series
+  std::span<const double> second_tray_mass_kg{};   // e.g. a tray test; empty = none; same layout
+  std::string second_label = "measured";
+  double bout_width_m = 0.0;                       // > 0: also draw the overlapped profile over one bout
+  metrics::Overlap overlap = metrics::Overlap::kToAndFro;  // how that profile is overlapped
+  MassUnits units = MassUnits::kKilograms;         // of both series
+};
+// Bars per tray (mass per tray; the unit — kg, g or mg — is picked from the data and named on the axis),
+// x in metres.
+void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::TrayLayout& trays,
+                          const std::string& path, const std::string& title,
+                          const TransverseOptions& options = TransverseOptions{});
+
+// CV(W) in percent against bout width W (m) for to-and-fro and racetrack, the target line, and each
+// curve's effective working width (largest W with CV <= target) marked. `cv_*` are fractions
+// (0.1 = 10 %), the same size as `widths_m`; infinite CV values (empty bouts) are clipped to the top.
+// Either curve may be empty (not drawn).
+void write_cv_curve_png(std::span<const double> widths_m, std::span<const double> cv_to_and_fro,
+                        std::span<const double> cv_racetrack, double cv_target, const std::string& path,
+                        const std::string& title);
+
+}  // namespace spread::plot

@@ -1,0 +1,108 @@
+// Tray layout, accumulation into trays, and the twin-disc mirror (DESIGN.md §3).
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "libspread/metrics/metrics.hpp"
+
+namespace sm = spread::metrics;
+
+TEST(TrayLayout, CoversTheExtentSymmetrically) {
+  const sm::TrayLayout t = sm::tray_layout_covering(12.0, 0.5);
+  EXPECT_EQ(t.tray_count, 48);
+  EXPECT_DOUBLE_EQ(t.left_edge_m(), -12.0);
+  EXPECT_DOUBLE_EQ(t.centre_m(0), -11.75);
+  EXPECT_EQ(sm::tray_layout_covering(12.1, 0.5).tray_count, 49);
+  EXPECT_EQ(sm::tray_layout_covering(0.0, 0.5).tray_count, 0);
+  EXPECT_THROW(sm::tray_layout_covering(12.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(sm::tray_layout_covering(-1.0, 0.5), std::invalid_argument);
+}
+
+TEST(Accumulate, OneDiscPutsMassInItsTrayAndCountsLoss) {
+  sm::TrayLayout trays;
+  trays.tray_count = 4;  // edges -1, -0.5, 0, 0.5, 1
+  const sm::MachineLayout one{1, 0.0};
+  const std::vector<double> x{-0.9, -0.5, 0.0, 0.99, 1.0, -1.2, std::nan("")};
+  const std::vector<double> m{1, 2, 3, 4, 5, 6, 7};
+  std::vector<double> tray(4, 0.0);
+  const double lost = sm::accumulate_transverse(x, m, one, trays, tray);
+  EXPECT_EQ(tray, (std::vector<double>{1, 2, 3, 4}));  // half-open trays: -0.5 → tray 1, 0 → tray 2
+  EXPECT_DOUBLE_EQ(lost, 5 + 6 + 7);                  // x = 1 is outside, x = -1.2 too, NaN too
+  // Accumulates (does not clear).
+  sm::accumulate_transverse(x, m, one, trays, tray);
+  EXPECT_EQ(tray, (std::vector<double>{2, 4, 6, 8}));
+}
+
+TEST(Accumulate, TwinDiscMirrorsTheLeftDiscAtTheSpacing) {
+  // A left-disc sample at +a relative to its centre (at -s/2) lands at a - s/2; the right disc's
+  // mirror image lands at s/2 - a.
+  sm::TrayLayout trays;
+  trays.tray_count = 40;  // [-10, 10] m
+  const double s = 1.0;
+  const sm::MachineLayout twin{2, s};
+  const std::vector<double> x{4.2};
+  const std::vector<double> m{1.0};
+  std::vector<double> tray(40, 0.0);
+  EXPECT_EQ(sm::accumulate_transverse(x, m, twin, trays, tray), 0.0);
+  const int left = static_cast<int>(std::floor((4.2 - 0.5 + 10.0) / 0.5));
+  const int right = static_cast<int>(std::floor((0.5 - 4.2 + 10.0) / 0.5));
+  for (int k = 0; k < 40; ++k) {
+    EXPECT_DOUBLE_EQ(tray[static_cast<std::size_t>(k)], (k == left || k == right) ? 1.0 : 0.0) << k;
+  }
+}
+
+TEST(Accumulate, TwinDiscEqualsOneDiscWithBothImages) {
+  sm::TrayLayout trays;
+  trays.tray_count = 60;
+  const double s = 0.9;
+  std::vector<double> x, m, x_both, m_both;
+  for (int i = 0; i < 200; ++i) {
+    const double xi = -3.0 + 0.061 * i;  // left-disc samples, relative to that disc's centre
+    x.push_back(xi);
+    m.push_back(0.001 * (1 + i % 7));
+    x_both.push_back(xi - 0.5 * s);
+    x_both.push_back(0.5 * s - xi);
+    m_both.push_back(m.back());
+    m_both.push_back(m.back());
+  }
+  std::vector<double> twin(60, 0.0), one(60, 0.0);
+  sm::accumulate_transverse(x, m, sm::MachineLayout{2, s}, trays, twin);
+  sm::accumulate_transverse(x_both, m_both, sm::MachineLayout{1, 0.0}, trays, one);
+  EXPECT_EQ(twin, one);
+  // The machine pattern is symmetric, so its two overlaps agree.
+  for (int k = 0; k < 60; ++k) {
+    EXPECT_NEAR(twin[static_cast<std::size_t>(k)], twin[static_cast<std::size_t>(59 - k)], 1e-15) << k;
+  }
+  // Widening the spacing by 2 trays moves the left image one tray left and the right one tray right.
+  std::vector<double> wider(60, 0.0), left_only(60, 0.0), left_wider(60, 0.0);
+  sm::accumulate_transverse(x, m, sm::MachineLayout{2, s + 1.0}, trays, wider);
+  std::vector<double> x_left, x_left_wider;
+  for (double xi : x) {
+    x_left.push_back(xi - 0.5 * s);
+    x_left_wider.push_back(xi - 0.5 * s - 0.5);
+  }
+  sm::accumulate_transverse(x_left, m, sm::MachineLayout{1, 0.0}, trays, left_only);
+  sm::accumulate_transverse(x_left_wider, m, sm::MachineLayout{1, 0.0}, trays, left_wider);
+  for (int k = 1; k < 60; ++k) {
+    EXPECT_NEAR(left_wider[static_cast<std::size_t>(k - 1)], left_only[static_cast<std::size_t>(k)], 1e-15) << k;
+  }
+  for (int k = 0; k < 60; ++k) {
+    EXPECT_NEAR(wider[static_cast<std::size_t>(k)],
+                left_wider[static_cast<std::size_t>(k)] + left_wider[static_cast<std::size_t>(59 - k)], 1e-15);
+  }
+}
+
+TEST(Accumulate, RejectsBadInput) {
+  sm::TrayLayout trays;
+  trays.tray_count = 4;
+  std::vector<double> tray(4), x(3), m(2);
+  EXPECT_THROW(sm::accumulate_transverse(x, m, sm::MachineLayout{}, trays, tray), std::invalid_argument);
+  std::vector<double> m3(3);
+  EXPECT_THROW(sm::accumulate_transverse(x, m3, sm::MachineLayout{3, 0.0}, trays, tray), std::invalid_argument);
+  std::vector<double> tray5(5);
+  EXPECT_THROW(sm::accumulate_transverse(x, m3, sm::MachineLayout{}, trays, tray5), std::invalid_argument);
+  // Empty spans: nothing added, nothing lost.
+  EXPECT_EQ(sm::accumulate_transverse({}, {}, sm::MachineLayout{}, trays, tray), 0.0);
+}

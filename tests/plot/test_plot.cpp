@@ -1,0 +1,154 @@
+// Each PNG writer produces a PNG cairo can read back at the documented size, and an unwritable path
+// throws with the path in the message. Set SPREAD_PLOT_KEEP_DIR to keep the images for a look.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+#include "libspread/metrics/metrics.hpp"
+#include "libspread/plot/plot.hpp"
+
+namespace sm = spread::metrics;
+namespace sp = spread::plot;
+
+namespace {
+
+std::string output_path(const std::string& name) {
+  const char* keep = std::getenv("SPREAD_PLOT_KEEP_DIR");
+  const std::filesystem::path dir = keep ? std::filesystem::path(keep) : std::filesystem::path(::testing::TempDir());
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+void expect_png(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path;
+  unsigned char signature[8] = {};
+  in.read(reinterpret_cast<char*>(signature), 8);
+  const unsigned char expected[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(signature[i], expected[i]) << path << " byte " << i;
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS) << path;
+  EXPECT_EQ(cairo_image_surface_get_width(s), sp::kImageWidth_px);
+  EXPECT_EQ(cairo_image_surface_get_height(s), sp::kImageHeight_px);
+  cairo_surface_destroy(s);
+}
+
+// A plausible left-disc throw: landings on a ring sector behind and to the left of the disc.
+struct Landings {
+  std::vector<double> x, y, m;
+};
+Landings synthetic_landings() {
+  std::mt19937_64 rng(42);
+  auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  Landings l;
+  for (int i = 0; i < 4000; ++i) {
+    const double r = 9.0 + 4.0 * (uniform() + uniform() + uniform() - 1.5);
+    const double a = (150.0 + 100.0 * (uniform() + uniform()) / 2.0 + 20.0 * (uniform() - 0.5)) * 3.14159265358979 / 180.0;
+    l.x.push_back(r * std::cos(a));
+    l.y.push_back(r * std::sin(a));
+    l.m.push_back(2e-4);
+  }
+  return l;
+}
+
+void expect_throws_naming(const std::string& path, const std::function<void()>& write) {
+  try {
+    write();
+    FAIL() << "no exception for " << path;
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+const std::string kBadPath = "/nonexistent-dir-for-spread-tests/sub/plot.png";
+
+}  // namespace
+
+TEST(Plot, GroundPatternPng) {
+  const Landings l = synthetic_landings();
+  const sm::MachineLayout twin{2, 0.9};
+  const sm::GroundPattern g = sm::ground_pattern(l.x, l.y, l.m, twin, 0.25);
+  const std::string path = output_path("ground_pattern.png");
+  sp::write_ground_pattern_png(g, path, "Ground pattern (synthetic twin disc)", twin);
+  expect_png(path);
+  expect_throws_naming(kBadPath, [&] { sp::write_ground_pattern_png(g, kBadPath, "x", twin); });
+  EXPECT_THROW(sp::write_ground_pattern_png(sm::GroundPattern{}, path, "empty"), std::invalid_argument);
+  // Mass fractions instead of kilograms.
+  std::vector<double> fractions(l.m.size(), 1.0 / static_cast<double>(l.m.size()));
+  const sm::GroundPattern gf = sm::ground_pattern(l.x, l.y, fractions, twin, 0.25);
+  const std::string fpath = output_path("ground_pattern_fraction.png");
+  sp::write_ground_pattern_png(gf, fpath, "Ground pattern (fractions)", twin, sp::MassUnits::kFraction);
+  expect_png(fpath);
+}
+
+TEST(Plot, TransversePng) {
+  const Landings l = synthetic_landings();
+  const sm::MachineLayout twin{2, 0.9};
+  const sm::TrayLayout trays = sm::tray_layout_covering(15.0, 0.5);
+  std::vector<double> tray(static_cast<std::size_t>(trays.tray_count), 0.0);
+  sm::accumulate_transverse(l.x, l.m, twin, trays, tray);
+  std::vector<double> measured(tray);
+  for (std::size_t k = 0; k < measured.size(); ++k) measured[k] *= 1.0 + 0.1 * std::sin(0.7 * static_cast<double>(k));
+
+  const std::string plain = output_path("transverse.png");
+  sp::write_transverse_png(tray, trays, plain, "Transverse distribution");
+  expect_png(plain);
+
+  sp::TransverseOptions options;
+  options.second_tray_mass_kg = measured;
+  options.bout_width_m = sm::effective_working_width(tray, trays, sm::Overlap::kToAndFro, 0.15);
+  ASSERT_GT(options.bout_width_m, 0.0);
+  const std::string full = output_path("transverse_overlap.png");
+  sp::write_transverse_png(tray, trays, full, "Transverse distribution and overlap", options);
+  expect_png(full);
+
+  options.units = sp::MassUnits::kFraction;
+  std::vector<double> share(tray), measured_share(measured);
+  double total = 0.0;
+  for (double v : tray) total += v;
+  for (double& v : share) v /= total;
+  for (double& v : measured_share) v /= total;
+  options.second_tray_mass_kg = measured_share;
+  const std::string fractions = output_path("transverse_fraction.png");
+  sp::write_transverse_png(share, trays, fractions, "Transverse distribution (fractions)", options);
+  expect_png(fractions);
+
+  expect_throws_naming(kBadPath, [&] { sp::write_transverse_png(tray, trays, kBadPath, "x"); });
+  std::vector<double> wrong(3);
+  EXPECT_THROW(sp::write_transverse_png(wrong, trays, plain, "x"), std::invalid_argument);
+}
+
+TEST(Plot, CvCurvePng) {
+  const Landings l = synthetic_landings();
+  const sm::TrayLayout trays = sm::tray_layout_covering(15.0, 0.5);
+  std::vector<double> tray(static_cast<std::size_t>(trays.tray_count), 0.0);
+  sm::accumulate_transverse(l.x, l.m, sm::MachineLayout{2, 0.9}, trays, tray);
+  std::vector<double> widths;
+  for (int n = 2; n <= trays.tray_count; ++n) widths.push_back(0.5 * n);
+  std::vector<double> tf(widths.size()), rt(widths.size());
+  sm::cv_curve(tray, trays, widths, sm::Overlap::kToAndFro, tf);
+  sm::cv_curve(tray, trays, widths, sm::Overlap::kRacetrack, rt);
+  const std::string path = output_path("cv_curve.png");
+  sp::write_cv_curve_png(widths, tf, rt, 0.15, path, "CV against bout width");
+  expect_png(path);
+  // One curve only, and infinite CVs (empty bouts) are drawable.
+  std::vector<double> with_inf(tf);
+  with_inf.back() = std::numeric_limits<double>::infinity();
+  const std::string one = output_path("cv_curve_one.png");
+  sp::write_cv_curve_png(widths, with_inf, {}, 0.1, one, "to-and-fro only");
+  expect_png(one);
+  expect_throws_naming(kBadPath, [&] { sp::write_cv_curve_png(widths, tf, rt, 0.15, kBadPath, "x"); });
+  std::vector<double> short_cv(2);
+  EXPECT_THROW(sp::write_cv_curve_png(widths, short_cv, rt, 0.15, path, "x"), std::invalid_argument);
+}
