@@ -1,0 +1,330 @@
+#include "firmware_sim/can/can_ecu_link.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "firmware_sim/can/ddi.hpp"
+#include "firmware_sim/can/isobus_id.hpp"
+#include "firmware_sim/can/speed_messages.hpp"
+#include "firmware_sim/ecu/metering.hpp"
+
+namespace spread::firmware::can {
+namespace {
+
+std::int32_t to_int32(double value) {
+  if (!std::isfinite(value)) return 0;
+  const double r = std::round(value);
+  if (r >= static_cast<double>(std::numeric_limits<std::int32_t>::max())) {
+    return std::numeric_limits<std::int32_t>::max();
+  }
+  if (r <= static_cast<double>(std::numeric_limits<std::int32_t>::min())) {
+    return std::numeric_limits<std::int32_t>::min();
+  }
+  return static_cast<std::int32_t>(r);
+}
+
+std::uint8_t pdack_bits_for(Fault fault) {
+  switch (fault) {
+    case Fault::kSetpointOutOfRange: return kPdackValueOutOfRange;
+    case Fault::kNotANumber: return kPdackValueNotConform;
+    case Fault::kCanNotSettable: return kPdackNotSettable;
+    case Fault::kCanUnknownDdi: return kPdackDdiNotSupported;
+    case Fault::kCanUnsupportedCommand: return kPdackCommandNotSupported;
+    default: return kPdackValueNotConform;
+  }
+}
+
+// Condensed work state: 2 bits per section, section 1 in bits 0-1 (00 off, 01 on, 11 not installed).
+std::int32_t condensed_work_state(std::uint16_t mask, std::int32_t section_count) {
+  std::uint32_t value = 0;
+  for (int i = 0; i < kMaxSections; ++i) {
+    std::uint32_t state = 3;  // not installed
+    if (i < section_count) state = ((mask >> i) & 1u) != 0 ? 1u : 0u;
+    value |= state << (2 * i);
+  }
+  return static_cast<std::int32_t>(value);
+}
+
+ProcessDataBytes frame_bytes(const can_frame& frame) {
+  ProcessDataBytes b{};
+  std::copy(frame.data, frame.data + 8, b.begin());
+  return b;
+}
+
+}  // namespace
+
+CanEcuProcessor::CanEcuProcessor(Ecu& ecu, const Clock& clock, CanFrameSink& tx, const CanEcuSettings& settings)
+    : ecu_(ecu), clock_(clock), tx_(tx), settings_(settings) {}
+
+void CanEcuProcessor::send(std::uint32_t pgn, std::uint8_t destination, std::uint8_t priority,
+                           const std::uint8_t* data) {
+  const IsobusId id{priority, pgn, destination, settings_.address};
+  if (tx_.send(make_frame(encode_id(id), data, 8))) {
+    ++counters_.responses_sent;
+  } else {
+    ++counters_.send_failures;
+  }
+}
+
+void CanEcuProcessor::send_address_claim() {
+  std::uint8_t name[8];
+  for (int i = 0; i < 8; ++i) name[i] = static_cast<std::uint8_t>(settings_.name >> (8 * i));
+  send(kAddressClaimedPgn, kGlobalAddress, 6, name);
+}
+
+void CanEcuProcessor::handle_read_outcome(ReadOutcome outcome) {
+  if (outcome == ReadOutcome::kTruncated || outcome == ReadOutcome::kOversized) {
+    ++counters_.frames_received;
+    ecu_.record_fault(Fault::kCanMalformedFrame);
+  }
+}
+
+void CanEcuProcessor::handle_frame(const can_frame& frame) {
+  ++counters_.frames_received;
+  // ISOBUS uses only extended data frames; anything else on the bus is not a valid message for us.
+  if ((frame.can_id & (CAN_ERR_FLAG | CAN_RTR_FLAG)) != 0 || (frame.can_id & CAN_EFF_FLAG) == 0 ||
+      frame.len > CAN_MAX_DLEN) {
+    ecu_.record_fault(Fault::kCanMalformedFrame);
+    return;
+  }
+  const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
+  if (id.source == settings_.address) {
+    ++counters_.frames_not_for_us;  // our own transmission echoed back by the bus
+    return;
+  }
+  const bool to_us = id.destination == settings_.address;
+  const bool to_all = id.destination == kGlobalAddress;
+  if (!to_us && !to_all) {
+    ++counters_.frames_not_for_us;
+    return;
+  }
+  switch (id.pgn) {
+    case kProcessDataPgn:
+      if (frame.len != 8) {
+        ecu_.record_fault(Fault::kCanMalformedFrame);
+        return;
+      }
+      handle_process_data(frame, id.source, to_us);
+      return;
+    case kWheelBasedSpeedPgn:
+    case kGroundBasedSpeedPgn:
+      if (frame.len != 8) {
+        ecu_.record_fault(Fault::kCanMalformedFrame);
+        return;
+      }
+      handle_speed(frame, id.pgn == kGroundBasedSpeedPgn);
+      return;
+    case kRequestPgn:
+      if (frame.len < 3) {
+        ecu_.record_fault(Fault::kCanMalformedFrame);
+        return;
+      }
+      handle_request(frame);
+      return;
+    default:
+      ++counters_.frames_not_for_us;
+      return;
+  }
+}
+
+void CanEcuProcessor::handle_request(const can_frame& frame) {
+  const std::uint32_t pgn = std::uint32_t{frame.data[0]} | (std::uint32_t{frame.data[1]} << 8) |
+                            (std::uint32_t{frame.data[2]} << 16);
+  if (pgn == kAddressClaimedPgn) {
+    send_address_claim();
+  } else {
+    ++counters_.frames_not_for_us;
+  }
+}
+
+void CanEcuProcessor::handle_speed(const can_frame& frame, bool ground_based) {
+  const Nanoseconds now = clock_.now();
+  std::array<std::uint8_t, 8> bytes{};
+  std::copy(frame.data, frame.data + 8, bytes.begin());
+  const auto speed = decode_speed(bytes);
+  if (!speed) {
+    ++counters_.speed_not_available;
+    return;
+  }
+  if (ground_based) {
+    last_ground_speed_ = now;
+  } else if (last_ground_speed_ && now - *last_ground_speed_ < settings_.ground_speed_precedence) {
+    return;  // wheels slip; the ground-based speed is fresher and better
+  }
+  ++counters_.speed_messages;
+  ecu_.set_ground_speed(speed->speed_m_s);  // out of range is counted by the ECU
+}
+
+std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, const EcuStatus& s) const {
+  switch (static_cast<Ddi>(ddi)) {
+    case Ddi::kSetpointMassPerArea: return to_int32(s.rate_setpoint_kg_ha * kMilligramPerSquareMetrePerKgPerHa);
+    case Ddi::kActualMassPerArea: return to_int32(s.rate_actual_kg_ha * kMilligramPerSquareMetrePerKgPerHa);
+    case Ddi::kSetpointWorkingWidth: return to_int32(s.width_setpoint_m * 1000.0);
+    case Ddi::kActualWorkingWidth: return to_int32(s.width_actual_m * 1000.0);
+    case Ddi::kMaximumWorkingWidth: return to_int32(ecu_.parameters().width_max_m * 1000.0);
+    case Ddi::kActualWorkState: return s.work_state_actual ? 1 : 0;
+    case Ddi::kSetpointWorkState: return s.work_state_setpoint ? 1 : 0;
+    case Ddi::kActualCondensedWorkState1_16: {
+      const auto open = static_cast<std::uint16_t>(s.work_state_actual ? s.section_mask : 0u);
+      return condensed_work_state(open, s.section_count);
+    }
+    case Ddi::kSetpointCondensedWorkState1_16: return condensed_work_state(s.section_mask, s.section_count);
+    case Ddi::kSetpointRevolutions: return to_int32(s.rpm_target * kRevolutionsScale);
+    case Ddi::kActualRevolutions: return to_int32(s.rpm_actual * kRevolutionsScale);
+    case Ddi::kActualSpeed: return to_int32(s.ground_speed_m_s * 1000.0);
+  }
+  return std::nullopt;
+}
+
+std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
+  Rejection rejection;
+  switch (static_cast<Ddi>(m.ddi)) {
+    case Ddi::kSetpointMassPerArea:
+      rejection = ecu_.set_rate_setpoint(m.value / kMilligramPerSquareMetrePerKgPerHa);
+      break;
+    case Ddi::kSetpointWorkingWidth:
+      rejection = ecu_.set_width_setpoint(m.value / 1000.0);
+      break;
+    case Ddi::kSetpointWorkState:
+      if (m.value != 0 && m.value != 1) {
+        ecu_.record_fault(Fault::kSetpointOutOfRange);
+        return kPdackValueOutOfRange;
+      }
+      rejection = ecu_.set_work_state(m.value == 1);
+      break;
+    case Ddi::kSetpointCondensedWorkState1_16: {
+      const EcuStatus s = ecu_.status();
+      std::uint32_t mask = s.section_mask;
+      const auto value = static_cast<std::uint32_t>(m.value);
+      for (int i = 0; i < kMaxSections; ++i) {
+        const std::uint32_t state = (value >> (2 * i)) & 3u;
+        if (state == 3u) continue;  // not installed / leave unchanged
+        if (i >= s.section_count && state == 0u) continue;  // "off" for a section that does not exist
+        if (state == 2u || i >= s.section_count) {
+          // "error" is not a set-point; switching on a section that does not exist is out of range.
+          ecu_.record_fault(Fault::kSetpointOutOfRange);
+          return kPdackValueOutOfRange;
+        }
+        mask = state == 1u ? (mask | (1u << i)) : (mask & ~(1u << i));
+      }
+      rejection = ecu_.set_section_mask(mask);
+      break;
+    }
+    case Ddi::kSetpointRevolutions:
+      rejection = ecu_.set_rpm_setpoint(m.value / kRevolutionsScale);
+      break;
+    case Ddi::kActualMassPerArea:
+    case Ddi::kActualWorkingWidth:
+    case Ddi::kMaximumWorkingWidth:
+    case Ddi::kActualWorkState:
+    case Ddi::kActualCondensedWorkState1_16:
+    case Ddi::kActualRevolutions:
+    case Ddi::kActualSpeed:
+      ecu_.record_fault(Fault::kCanNotSettable);
+      return kPdackNotSettable;
+    default:
+      ecu_.record_fault(Fault::kCanUnknownDdi);
+      return kPdackDdiNotSupported;
+  }
+  return rejection ? pdack_bits_for(*rejection) : std::uint8_t{kPdackNoError};
+}
+
+void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t source, bool addressed_to_us) {
+  ++counters_.process_data_handled;
+  const ProcessData m = decode_process_data(frame_bytes(frame));
+  const auto command = static_cast<ProcessDataCommand>(m.command);
+  // A negative acknowledge is only sent to a specific requester, never in answer to a broadcast.
+  auto nack = [&](std::uint8_t bits) {
+    if (!addressed_to_us) return;
+    const ProcessDataBytes out = encode_pdack(m, bits);
+    send(kProcessDataPgn, source, kProcessDataPriority, out.data());
+  };
+  if (command == ProcessDataCommand::kTaskControllerStatus || command == ProcessDataCommand::kAcknowledge) {
+    ++counters_.frames_not_for_us;  // TC status broadcasts and acks need no answer from a simulator
+    return;
+  }
+  const bool is_request = command == ProcessDataCommand::kRequestValue;
+  const bool is_set = command == ProcessDataCommand::kValue || command == ProcessDataCommand::kSetValueAndAcknowledge;
+  if (!is_request && !is_set) {
+    ecu_.record_fault(Fault::kCanUnsupportedCommand);
+    nack(kPdackCommandNotSupported);
+    return;
+  }
+  if (m.element != settings_.element) {
+    ecu_.record_fault(Fault::kCanUnknownDdi);
+    nack(kPdackInvalidElement);
+    return;
+  }
+  if (is_request) {
+    const auto value = actual_value(m.ddi, ecu_.status());
+    if (!value) {
+      ecu_.record_fault(Fault::kCanUnknownDdi);
+      nack(kPdackDdiNotSupported);
+      return;
+    }
+    ProcessData answer = m;
+    answer.command = static_cast<std::uint8_t>(ProcessDataCommand::kValue);
+    answer.value = *value;
+    const ProcessDataBytes out = encode_process_data(answer);
+    // A request to the global address is answered to the global address (ISO 11783-10).
+    send(kProcessDataPgn, addressed_to_us ? source : kGlobalAddress, kProcessDataPriority, out.data());
+    return;
+  }
+  const std::uint8_t errors = apply_set_value(m);
+  if (errors != kPdackNoError) {
+    nack(errors);
+  } else if (command == ProcessDataCommand::kSetValueAndAcknowledge && addressed_to_us) {
+    const ProcessDataBytes out = encode_pdack(m, kPdackNoError);
+    send(kProcessDataPgn, source, kProcessDataPriority, out.data());
+  }
+}
+
+CanPortIo::CanPortIo(CanFramePort& port, Ecu& ecu, const Clock& clock, const CanEcuSettings& settings,
+                     CanFrameSink* recorder)
+    : port_(port), recorder_(recorder), tx_(port, recorder), processor_(ecu, clock, tx_, settings) {}
+
+void CanPortIo::pump(Nanoseconds max_wait) {
+  if (max_wait > Nanoseconds::zero() && !port_.wait_readable(max_wait)) return;
+  can_frame frame{};
+  for (;;) {
+    const ReadOutcome outcome = port_.read(frame);
+    if (outcome == ReadOutcome::kFrame) {
+      if (recorder_ != nullptr) recorder_->send(frame);
+      processor_.handle_frame(frame);
+    } else if (outcome == ReadOutcome::kTruncated || outcome == ReadOutcome::kOversized) {
+      processor_.handle_read_outcome(outcome);
+    } else {
+      return;  // nothing pending, peer closed or error: the loop goes on
+    }
+  }
+}
+
+CandumpReplayIo::CandumpReplayIo(const CandumpLog& log, CanEcuProcessor& processor, const Clock& clock,
+                                 CanFrameSink* recorder)
+    : log_(log), processor_(processor), clock_(clock), recorder_(recorder), start_(clock.now()) {}
+
+Nanoseconds CandumpReplayIo::span() const {
+  if (log_.records.empty()) return Nanoseconds::zero();
+  return log_.records.back().time - log_.records.front().time;
+}
+
+void CandumpReplayIo::pump(Nanoseconds max_wait) {
+  if (finished()) return;
+  const Nanoseconds first = log_.records.front().time;
+  auto due = [&](std::size_t i) { return start_ + (log_.records[i].time - first); };
+  if (max_wait > Nanoseconds::zero()) {
+    // Real-time replay: sleep until the next record is due, but no longer than the loop allows.
+    const Nanoseconds wait = std::min(max_wait, due(next_) - clock_.now());
+    if (wait > Nanoseconds::zero()) std::this_thread::sleep_for(wait);
+  }
+  while (!finished() && due(next_) <= clock_.now()) {
+    const can_frame& frame = log_.records[next_].frame;
+    if (recorder_ != nullptr) recorder_->send(frame);
+    processor_.handle_frame(frame);
+    ++next_;
+  }
+}
+
+}  // namespace spread::firmware::can

@@ -1,0 +1,106 @@
+#pragma once
+// The ECU on an ISOBUS: turns received frames into ECU set-points and answers, and drives the
+// transport from the fixed-rate loop. Answers go to whatever CanFrameSink is given (a bus port, a
+// recording, both), so the same code runs on can0, on the virtual bus and in log replay.
+#include <cstdint>
+#include <optional>
+
+#include "firmware_sim/can/can_frame_port.hpp"
+#include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/can/process_data.hpp"
+#include "firmware_sim/ecu/fixed_rate_loop.hpp"
+
+namespace spread::firmware::can {
+
+inline constexpr std::uint32_t kRequestPgn = 0xEA00;         // request for a PGN (3 data bytes)
+inline constexpr std::uint32_t kAddressClaimedPgn = 0xEE00;  // address claimed, data = 64-bit NAME
+
+struct CanEcuSettings {
+  std::uint8_t address = 0x80;   // this ECU's source address
+  std::uint16_t element = 0;     // device element number all DDIs live on
+  // ISO 11783-5 NAME: self-configurable 0, industry group 2 (agriculture), device class 5
+  // (fertilisers), function 0, identity 0x1234, manufacturer 0 (simulator).
+  std::uint64_t name = (std::uint64_t{2} << 60) | (std::uint64_t{5} << 49) | 0x1234u;
+  // Ground-based speed (radar/GNSS) wins over wheel-based speed for this long after it was seen.
+  Nanoseconds ground_speed_precedence = std::chrono::seconds(1);
+};
+
+struct CanLinkCounters {
+  std::uint64_t frames_received = 0;
+  std::uint64_t frames_not_for_us = 0;     // other destinations, our own echo, PGNs we do not use
+  std::uint64_t process_data_handled = 0;  // PGN 0xCB00 frames addressed to us or global
+  std::uint64_t responses_sent = 0;
+  std::uint64_t send_failures = 0;
+  std::uint64_t speed_messages = 0;        // accepted speed broadcasts
+  std::uint64_t speed_not_available = 0;   // speed broadcasts saying "error" / "not available"
+};
+
+class CanEcuProcessor {
+ public:
+  CanEcuProcessor(Ecu& ecu, const Clock& clock, CanFrameSink& tx, const CanEcuSettings& settings = {});
+
+  // Reports a read that did not yield a frame: truncated/oversized records are malformed input.
+  void handle_read_outcome(ReadOutcome outcome);
+  void handle_frame(const can_frame& frame);
+  // Broadcasts this ECU's address claim (sent at start and on request).
+  void send_address_claim();
+
+  const CanLinkCounters& counters() const { return counters_; }
+  const CanEcuSettings& settings() const { return settings_; }
+
+ private:
+  void handle_process_data(const can_frame& frame, std::uint8_t source, bool addressed_to_us);
+  void handle_speed(const can_frame& frame, bool ground_based);
+  void handle_request(const can_frame& frame);
+  std::optional<std::int32_t> actual_value(std::uint16_t ddi, const EcuStatus& status) const;
+  // Applies a set-value; returns the PDACK error bits (0 = accepted).
+  std::uint8_t apply_set_value(const ProcessData& message);
+  void send(std::uint32_t pgn, std::uint8_t destination, std::uint8_t priority, const std::uint8_t* data);
+
+  Ecu& ecu_;
+  const Clock& clock_;
+  CanFrameSink& tx_;
+  CanEcuSettings settings_;
+  CanLinkCounters counters_;
+  std::optional<Nanoseconds> last_ground_speed_;
+};
+
+// Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).
+class CanPortIo final : public LoopIo {
+ public:
+  CanPortIo(CanFramePort& port, Ecu& ecu, const Clock& clock, const CanEcuSettings& settings = {},
+            CanFrameSink* recorder = nullptr);
+  void pump(Nanoseconds max_wait) override;
+  void after_step(const EcuStatus&) override {}
+  int wait_fd() const override { return port_.fd(); }
+  CanEcuProcessor& processor() { return processor_; }
+
+ private:
+  CanFramePort& port_;
+  CanFrameSink* recorder_;
+  TeeSink tx_;
+  CanEcuProcessor processor_;
+};
+
+// Loop I/O replaying a candump log: each record is delivered once the clock has advanced past its
+// time offset from the first record (replay start = the clock's time at construction).
+class CandumpReplayIo final : public LoopIo {
+ public:
+  CandumpReplayIo(const CandumpLog& log, CanEcuProcessor& processor, const Clock& clock,
+                  CanFrameSink* recorder = nullptr);
+  void pump(Nanoseconds max_wait) override;
+  void after_step(const EcuStatus&) override {}
+  bool finished() const { return next_ >= log_.records.size(); }
+  // Time from replay start to the last record.
+  Nanoseconds span() const;
+
+ private:
+  const CandumpLog& log_;
+  CanEcuProcessor& processor_;
+  const Clock& clock_;
+  CanFrameSink* recorder_;
+  Nanoseconds start_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace spread::firmware::can

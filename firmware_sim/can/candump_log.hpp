@@ -1,0 +1,65 @@
+#pragma once
+// candump log files (can-utils `candump -L` / `canplayer` format), one frame a line:
+//   (1700000000.123456) can0 0CCB8081#0306000064000000
+// 8 hex digits = 29-bit extended id, 3 = 11-bit standard id; `#R` = remote frame. CAN FD (`##`) is
+// not supported and reported as a bad line.
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "firmware_sim/can/can_frame_port.hpp"
+#include "firmware_sim/ecu/clock.hpp"
+
+namespace spread::firmware::can {
+
+struct CandumpRecord {
+  Nanoseconds time{};     // timestamp of the line (resolution 1 us)
+  std::string interface;  // e.g. "can0"
+  can_frame frame{};
+  int line = 0;           // 1-based line number in its file
+};
+
+// nullopt with `error` describing what is wrong (for an empty/comment line: nullopt, empty error).
+std::optional<CandumpRecord> parse_candump_line(std::string_view line, std::string& error);
+std::string format_candump_line(Nanoseconds time, std::string_view interface, const can_frame& frame);
+
+struct CandumpLog {
+  std::vector<CandumpRecord> records;
+  std::vector<std::string> errors;  // "line N: what"
+};
+CandumpLog read_candump_log(std::istream& in);
+// Throws std::runtime_error when the file cannot be opened.
+CandumpLog read_candump_file(const std::string& path);
+
+// Appends every frame sent through it to a log, stamped with the injected clock.
+class CandumpWriter final : public CanFrameSink {
+ public:
+  CandumpWriter(std::ostream& out, const Clock& clock, std::string interface);
+  bool send(const can_frame& frame) override;
+  std::uint64_t lines_written() const { return lines_; }
+
+ private:
+  std::ostream& out_;
+  const Clock& clock_;
+  std::string interface_;
+  std::uint64_t lines_ = 0;
+};
+
+// Sends every frame to two sinks (the bus and a recording); true when the first accepted it.
+class TeeSink final : public CanFrameSink {
+ public:
+  TeeSink(CanFrameSink& primary, CanFrameSink* copy) : primary_(primary), copy_(copy) {}
+  bool send(const can_frame& frame) override {
+    if (copy_ != nullptr) copy_->send(frame);
+    return primary_.send(frame);
+  }
+
+ private:
+  CanFrameSink& primary_;
+  CanFrameSink* copy_;
+};
+
+}  // namespace spread::firmware::can

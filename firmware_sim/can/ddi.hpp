@@ -1,0 +1,24 @@
+#pragma once
+// ISO 11783-11 data dictionary identifiers this ECU implements (DESIGN.md §6), with their units.
+#include <cstdint>
+
+namespace spread::firmware::can {
+
+enum class Ddi : std::uint16_t {
+  kSetpointMassPerArea = 6,          // [mg/m²] = kg/ha * 100, settable
+  kActualMassPerArea = 7,            // [mg/m²]
+  kSetpointWorkingWidth = 66,        // [mm], settable
+  kActualWorkingWidth = 67,          // [mm] width of the open sections
+  kMaximumWorkingWidth = 70,         // [mm]
+  kActualWorkState = 141,            // 0 off, 1 on
+  kSetpointWorkState = 289,          // 0 off, 1 on, settable
+  kActualCondensedWorkState1_16 = 161,    // 2 bits per section, section 1 in bits 0-1: 00 off 01 on 11 n/a
+  kSetpointCondensedWorkState1_16 = 290,  // same layout, settable; 11 = leave unchanged / not installed
+  kSetpointRevolutions = 389,        // [r/min * 1e-4] (value = rpm * 10000), settable in manual mode
+  kActualRevolutions = 390,          // [r/min * 1e-4]
+  kActualSpeed = 397,                // [mm/s]
+};
+
+inline constexpr double kRevolutionsScale = 1e4;  // counts per r/min for DDI 389/390
+
+}  // namespace spread::firmware::can

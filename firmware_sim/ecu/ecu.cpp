@@ -1,0 +1,277 @@
+#include "firmware_sim/ecu/ecu.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "firmware_sim/ecu/metering.hpp"
+
+namespace spread::firmware {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+const EcuParameters& validated(const EcuParameters& p) {
+  validate(p);
+  return p;
+}
+
+}  // namespace
+
+Ecu::Ecu(const Clock& clock, const EcuParameters& parameters, SpreadPredictor* predictor)
+    : clock_(clock),
+      parameters_(validated(parameters)),
+      predictor_(predictor),
+      solver_(parameters.solver),
+      faults_(parameters.fault_hold),
+      disc_(parameters.disc_time_constant_s),
+      section_count_(parameters.section_count) {
+  material_.reserve(kMaxMaterialNameLength);  // later assignments never allocate
+  // Sections start open and the master switch closed, as on a machine just switched on: the work
+  // state set-point (LCM command or DDI 289) alone then starts spreading.
+  section_mask_ = installed_mask();
+  if (predictor_ != nullptr) {
+    for (std::size_t i = 0; i < predictor_->material_count(); ++i) {
+      const std::string_view name = predictor_->material_name(i);
+      RpmRange range = predictor_->rpm_range(name);
+      // Search the overlap of what the machine allows and what the tables cover.
+      range.min_rpm = std::max(range.min_rpm, parameters_.auto_rpm_min);
+      range.max_rpm = std::min(range.max_rpm, parameters_.auto_rpm_max);
+      if (range.max_rpm >= range.min_rpm) {
+        curves_.push_back(sample_width_curve(*predictor_, name, range, parameters_.solver.curve_rpm_step));
+      } else {
+        curves_.push_back(WidthCurve{std::string(name), {}, {}});  // no overlap: never reachable
+      }
+    }
+  }
+}
+
+const WidthCurve* Ecu::curve_for(std::string_view material) const {
+  for (const WidthCurve& c : curves_) {
+    if (c.material == material) return &c;
+  }
+  return nullptr;
+}
+
+Rejection Ecu::reject(Fault fault) {
+  faults_.record(fault, clock_.now());
+  return fault;
+}
+
+Rejection Ecu::check_finite(double value) {
+  if (!std::isfinite(value)) return Fault::kNotANumber;
+  return std::nullopt;
+}
+
+Rejection Ecu::check_range(double value, double min, double max) {
+  if (!std::isfinite(value)) return Fault::kNotANumber;
+  if (value < min || value > max) return Fault::kSetpointOutOfRange;
+  return std::nullopt;
+}
+
+Rejection Ecu::check_material(std::string_view material, Mode mode) const {
+  if (material.size() > kMaxMaterialNameLength) return Fault::kUnknownMaterial;
+  if (material.empty()) {
+    // Manual mode may run without naming the material (no prediction then); automatic cannot.
+    return mode == Mode::kAutomatic ? Rejection{Fault::kUnknownMaterial} : std::nullopt;
+  }
+  if (predictor_ != nullptr && !predictor_->has_material(material)) return Fault::kUnknownMaterial;
+  return std::nullopt;
+}
+
+void Ecu::accept_input() { last_input_time_ = clock_.now(); }
+
+std::uint32_t Ecu::installed_mask() const { return (std::uint32_t{1} << section_count_) - 1u; }
+
+Rejection Ecu::apply_command(const EcuCommand& c) {
+  // A replayed or reordered old command must not roll the state back.
+  if (has_sequence_ && c.sequence <= last_sequence_ &&
+      last_sequence_ - c.sequence <= parameters_.sequence_reorder_window) {
+    return reject(Fault::kStaleSequence);
+  }
+  for (const double v : {c.rate_setpoint_kg_ha, c.width_setpoint_m, c.ground_speed_m_s, c.rpm_setpoint}) {
+    if (auto bad = check_finite(v)) return reject(*bad);
+  }
+  if (c.mode != static_cast<std::int32_t>(Mode::kManual) && c.mode != static_cast<std::int32_t>(Mode::kAutomatic)) {
+    return reject(Fault::kUnknownMode);
+  }
+  const auto mode = static_cast<Mode>(c.mode);
+  if (auto bad = check_range(c.rate_setpoint_kg_ha, 0.0, parameters_.rate_max_kg_ha)) return reject(*bad);
+  if (auto bad = check_range(c.width_setpoint_m, 0.0, parameters_.width_max_m)) return reject(*bad);
+  if (auto bad = check_range(c.ground_speed_m_s, 0.0, parameters_.speed_max_m_s)) return reject(*bad);
+  if (auto bad = check_range(c.rpm_setpoint, 0.0, parameters_.rpm_max)) return reject(*bad);
+  if (c.section_count < 1 || c.section_count > kMaxSections) return reject(Fault::kSetpointOutOfRange);
+  if (mode == Mode::kAutomatic && predictor_ == nullptr) return reject(Fault::kAutomaticUnavailable);
+  // Automatic mode solves for a width: zero width has no disc speed.
+  if (mode == Mode::kAutomatic && !(c.width_setpoint_m > 0.0)) return reject(Fault::kSetpointOutOfRange);
+  if (auto bad = check_material(c.material, mode)) return reject(*bad);
+
+  const bool material_changed = c.material != material_;
+  const bool width_changed = c.width_setpoint_m != width_setpoint_m_;
+  if (mode == Mode::kAutomatic && (mode_ != Mode::kAutomatic || material_changed || width_changed)) {
+    solve_pending_ = true;
+  }
+  if (material_changed || width_changed) prediction_pending_ = true;
+  mode_ = mode;
+  rate_setpoint_kg_ha_ = c.rate_setpoint_kg_ha;
+  width_setpoint_m_ = c.width_setpoint_m;
+  ground_speed_m_s_ = c.ground_speed_m_s;
+  rpm_setpoint_manual_ = c.rpm_setpoint;
+  material_.assign(c.material);
+  section_count_ = c.section_count;
+  section_mask_ = 0;
+  for (int i = 0; i < c.section_count; ++i) {
+    if (c.section_on[static_cast<std::size_t>(i)]) section_mask_ |= std::uint32_t{1} << i;
+  }
+  work_state_setpoint_ = true;
+  if (mode_ == Mode::kManual) {
+    width_reachable_ = true;
+    faults_.set_state(Fault::kWidthOutOfReach, false, clock_.now());
+  }
+  last_sequence_ = c.sequence;
+  has_sequence_ = true;
+  accept_input();
+  return std::nullopt;
+}
+
+Rejection Ecu::set_rate_setpoint(double rate_kg_ha) {
+  if (auto bad = check_range(rate_kg_ha, 0.0, parameters_.rate_max_kg_ha)) return reject(*bad);
+  rate_setpoint_kg_ha_ = rate_kg_ha;
+  accept_input();
+  return std::nullopt;
+}
+
+Rejection Ecu::set_width_setpoint(double width_m) {
+  if (auto bad = check_range(width_m, 0.0, parameters_.width_max_m)) return reject(*bad);
+  if (mode_ == Mode::kAutomatic && !(width_m > 0.0)) return reject(Fault::kSetpointOutOfRange);
+  if (width_m != width_setpoint_m_) {
+    prediction_pending_ = true;
+    if (mode_ == Mode::kAutomatic) solve_pending_ = true;
+  }
+  width_setpoint_m_ = width_m;
+  accept_input();
+  return std::nullopt;
+}
+
+Rejection Ecu::set_rpm_setpoint(double rpm) {
+  if (auto bad = check_range(rpm, 0.0, parameters_.rpm_max)) return reject(*bad);
+  // In automatic mode the ECU owns the disc speed: a manual set-point would be silently overridden.
+  if (mode_ == Mode::kAutomatic) return reject(Fault::kCanNotSettable);
+  rpm_setpoint_manual_ = rpm;
+  accept_input();
+  return std::nullopt;
+}
+
+Rejection Ecu::set_work_state(bool on) {
+  work_state_setpoint_ = on;
+  accept_input();
+  return std::nullopt;
+}
+
+Rejection Ecu::set_section_mask(std::uint32_t mask) {
+  if ((mask & ~installed_mask()) != 0) return reject(Fault::kSetpointOutOfRange);
+  section_mask_ = mask;
+  accept_input();
+  return std::nullopt;
+}
+
+Rejection Ecu::set_ground_speed(double speed_m_s) {
+  if (auto bad = check_range(speed_m_s, 0.0, parameters_.speed_max_m_s)) return reject(*bad);
+  ground_speed_m_s_ = speed_m_s;
+  accept_input();
+  return std::nullopt;
+}
+
+void Ecu::record_fault(Fault fault) { faults_.record(fault, clock_.now()); }
+
+void Ecu::solve_rpm_for_width() {
+  solve_pending_ = false;
+  const WidthCurve* curve = curve_for(material_);
+  if (curve == nullptr || curve->rpm.empty()) {
+    // The machine's speed range and the tables do not overlap for this material.
+    width_reachable_ = false;
+    faults_.set_state(Fault::kWidthOutOfReach, true, clock_.now());
+    return;
+  }
+  const RpmSolution solution = solver_.solve(*predictor_, *curve, width_setpoint_m_);
+  // A failed refinement still leaves a curve sample known to reach the width: use it, but say so.
+  if (solution.prediction_failed) faults_.record(Fault::kPredictionFailed, clock_.now());
+  rpm_target_ = solution.rpm;
+  width_reachable_ = solution.reachable;
+  faults_.set_state(Fault::kWidthOutOfReach, !solution.reachable, clock_.now());
+}
+
+void Ecu::predict_pattern() {
+  prediction_valid_ = false;
+  if (predictor_ == nullptr || material_.empty()) return;
+  const double rpm = disc_.rpm();
+  predicted_at_rpm_ = rpm;
+  prediction_pending_ = false;
+  const RpmRange range = predictor_->rpm_range(material_);
+  // Outside the tables (e.g. while the disc spins up) there is simply no prediction: not a fault.
+  if (rpm < range.min_rpm || rpm > range.max_rpm) return;
+  const double bout_width_m = width_setpoint_m_ > 0.0 ? width_setpoint_m_ : parameters_.width_max_m;
+  const PredictionOutcome outcome = predictor_->predict(material_, rpm, bout_width_m, prediction_);
+  if (outcome == PredictionOutcome::kOk) {
+    prediction_valid_ = true;
+  } else if (outcome == PredictionOutcome::kFailed) {
+    faults_.record(Fault::kPredictionFailed, clock_.now());
+  }
+}
+
+void Ecu::step(double dt_s) {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) return;
+  ++steps_;
+  const Nanoseconds now = clock_.now();
+  if (mode_ == Mode::kAutomatic && solve_pending_ && predictor_ != nullptr) solve_rpm_for_width();
+  if (mode_ == Mode::kManual) rpm_target_ = rpm_setpoint_manual_;
+  disc_.step(rpm_target_, dt_s);
+
+  const bool timed_out = parameters_.command_timeout > Nanoseconds::zero() && last_input_time_.has_value() &&
+                         now - *last_input_time_ > parameters_.command_timeout;
+  faults_.set_state(Fault::kCommandTimeout, timed_out, now);
+
+  const std::uint32_t active = section_mask_ & installed_mask();
+  const double width_on_m = width_setpoint_m_ * std::popcount(active) / static_cast<double>(section_count_);
+  metering_open_ = work_state_setpoint_ && active != 0 && !timed_out && ground_speed_m_s_ > 0.0 &&
+                   rate_setpoint_kg_ha_ > 0.0;
+  mass_flow_kg_s_ = metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_on_m, ground_speed_m_s_) : 0.0;
+
+  if (prediction_pending_ || std::abs(disc_.rpm() - predicted_at_rpm_) >= parameters_.reprediction_rpm_step) {
+    predict_pattern();
+  }
+}
+
+EcuStatus Ecu::status() const {
+  EcuStatus s;
+  s.time = clock_.now();
+  s.steps = steps_;
+  s.mode = mode_;
+  s.rpm_actual = disc_.rpm();
+  s.rpm_target = mode_ == Mode::kManual ? rpm_setpoint_manual_ : rpm_target_;
+  s.rate_setpoint_kg_ha = rate_setpoint_kg_ha_;
+  s.rate_actual_kg_ha = metering_open_ ? rate_setpoint_kg_ha_ : 0.0;
+  s.width_setpoint_m = width_setpoint_m_;
+  const std::uint32_t active = section_mask_ & installed_mask();
+  s.width_actual_m = work_state_setpoint_
+                         ? width_setpoint_m_ * std::popcount(active) / static_cast<double>(section_count_)
+                         : 0.0;
+  s.ground_speed_m_s = ground_speed_m_s_;
+  s.mass_flow_kg_s = mass_flow_kg_s_;
+  s.throw_width_m = prediction_valid_ ? prediction_.throw_width_m : kNaN;
+  s.effective_width_m = prediction_valid_ ? prediction_.effective_width_m : kNaN;
+  s.cv_percent = prediction_valid_ ? prediction_.cv_percent : kNaN;
+  s.width_reachable = width_reachable_;
+  s.work_state_setpoint = work_state_setpoint_;
+  s.work_state_actual = metering_open_;
+  s.section_count = section_count_;
+  s.section_mask = static_cast<std::uint16_t>(section_mask_);
+  s.material = material_;
+  s.last_command_sequence = has_sequence_ ? last_sequence_ : -1;
+  s.fault_codes = faults_.active_mask(s.time);
+  for (std::size_t i = 0; i < kFaultCount; ++i) s.fault_counts[i] = faults_.count(static_cast<Fault>(i));
+  return s;
+}
+
+}  // namespace spread::firmware

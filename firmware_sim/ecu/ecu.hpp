@@ -1,0 +1,103 @@
+#pragma once
+// The simulated spreader ECU without any I/O: set-points in (validated, counted when bad), one loop
+// step at a time (disc dynamics, automatic rpm solving, metering, pattern prediction), a status out.
+// Transports (LCM, CAN) translate their messages into these calls and nothing else.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "firmware_sim/ecu/clock.hpp"
+#include "firmware_sim/ecu/disc_speed_model.hpp"
+#include "firmware_sim/ecu/ecu_command.hpp"
+#include "firmware_sim/ecu/ecu_parameters.hpp"
+#include "firmware_sim/ecu/ecu_status.hpp"
+#include "firmware_sim/ecu/fault.hpp"
+#include "firmware_sim/ecu/rpm_for_width_solver.hpp"
+#include "firmware_sim/ecu/spread_predictor.hpp"
+
+namespace spread::firmware {
+
+// nullopt: accepted and applied. A Fault: rejected, counted, state unchanged.
+using Rejection = std::optional<Fault>;
+
+inline constexpr std::size_t kMaxMaterialNameLength = 63;  // bytes
+
+class Ecu {
+ public:
+  // `clock` and `predictor` (may be null: no tables, no automatic mode) must outlive the ECU. With a
+  // predictor, the constructor samples each material's width curve (the automatic mode's search space):
+  // materials x (range / curve_rpm_step) predictions, done once here rather than in the loop.
+  Ecu(const Clock& clock, const EcuParameters& parameters, SpreadPredictor* predictor = nullptr);
+
+  // A whole command: applied entirely or not at all.
+  Rejection apply_command(const EcuCommand& command);
+
+  // Single set-values (ISOBUS process data); each validated on its own.
+  Rejection set_rate_setpoint(double rate_kg_ha);
+  Rejection set_width_setpoint(double width_m);
+  Rejection set_rpm_setpoint(double rpm);
+  Rejection set_work_state(bool on);
+  Rejection set_section_mask(std::uint32_t mask);  // bit i = section i+1; only installed sections
+  Rejection set_ground_speed(double speed_m_s);
+
+  // Faults found by a transport before anything reached the ECU (undecodable frames, ...).
+  void record_fault(Fault fault);
+
+  // One loop step of dt_s [s] (> 0). Allocation-free.
+  void step(double dt_s);
+
+  // Current state; cheap, allocation-free. `material` views the ECU's own string.
+  EcuStatus status() const;
+
+  const EcuParameters& parameters() const { return parameters_; }
+  const FaultLog& faults() const { return faults_; }
+  bool has_predictor() const { return predictor_ != nullptr; }
+
+ private:
+  Rejection reject(Fault fault);
+  Rejection check_finite(double value);
+  Rejection check_range(double value, double min, double max);
+  Rejection check_material(std::string_view material, Mode mode) const;
+  void accept_input();
+  void solve_rpm_for_width();
+  void predict_pattern();
+  std::uint32_t installed_mask() const;
+  const WidthCurve* curve_for(std::string_view material) const;
+
+  const Clock& clock_;
+  EcuParameters parameters_;
+  SpreadPredictor* predictor_;
+  RpmForWidthSolver solver_;
+  std::vector<WidthCurve> curves_;  // one per predictor material, sampled at construction
+  FaultLog faults_;
+  DiscSpeedModel disc_;
+
+  // Commanded state.
+  Mode mode_ = Mode::kManual;
+  double rate_setpoint_kg_ha_ = 0.0;
+  double width_setpoint_m_ = 0.0;
+  double ground_speed_m_s_ = 0.0;
+  double rpm_setpoint_manual_ = 0.0;
+  std::string material_;
+  std::int32_t section_count_;
+  std::uint32_t section_mask_ = 0;  // set to all installed sections by the constructor
+  bool work_state_setpoint_ = false;
+  std::int64_t last_sequence_ = -1;
+  bool has_sequence_ = false;
+  std::optional<Nanoseconds> last_input_time_;
+
+  // Derived state, updated by step().
+  double rpm_target_ = 0.0;
+  bool solve_pending_ = false;
+  bool width_reachable_ = true;
+  bool metering_open_ = false;
+  double mass_flow_kg_s_ = 0.0;
+  bool prediction_pending_ = true;
+  double predicted_at_rpm_ = 0.0;
+  SpreadPrediction prediction_{};
+  bool prediction_valid_ = false;
+  std::int64_t steps_ = 0;
+};
+
+}  // namespace spread::firmware

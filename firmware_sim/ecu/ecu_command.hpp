@@ -1,0 +1,26 @@
+#pragma once
+// A complete command as received (LCM command_t), before validation: raw values, so that the ECU
+// itself decides what is out of range and counts it.
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "firmware_sim/ecu/ecu_parameters.hpp"
+
+namespace spread::firmware {
+
+enum class Mode : std::int8_t { kManual = 0, kAutomatic = 1 };
+
+struct EcuCommand {
+  std::int64_t sequence = 0;          // strictly increasing per sender
+  std::int32_t mode = 0;              // 0 manual, 1 automatic (raw: validated by the ECU)
+  double rate_setpoint_kg_ha = 0.0;   // application rate [kg/ha]
+  double width_setpoint_m = 0.0;      // working (bout) width [m]
+  double ground_speed_m_s = 0.0;      // forward speed [m/s]
+  double rpm_setpoint = 0.0;          // disc speed in manual mode [r/min]; ignored in automatic
+  std::string_view material;          // material name as in the tables
+  std::int32_t section_count = 0;     // sections in use, 1..16
+  std::array<bool, kMaxSections> section_on{};  // first section_count entries are meaningful
+};
+
+}  // namespace spread::firmware

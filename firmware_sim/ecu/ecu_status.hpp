@@ -1,0 +1,38 @@
+#pragma once
+// Snapshot of the ECU after a loop step: what status_t and the CAN actual values report.
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "firmware_sim/ecu/ecu_command.hpp"
+#include "firmware_sim/ecu/fault.hpp"
+
+namespace spread::firmware {
+
+struct EcuStatus {
+  Nanoseconds time{};                  // ECU clock at the snapshot
+  std::int64_t steps = 0;              // loop steps since start
+  Mode mode = Mode::kManual;
+  double rpm_actual = 0.0;             // disc speed [r/min]
+  double rpm_target = 0.0;             // set-point the disc drive follows (manual or solved) [r/min]
+  double rate_setpoint_kg_ha = 0.0;    // [kg/ha]
+  double rate_actual_kg_ha = 0.0;      // rate delivered to the ground now [kg/ha] (0 while not metering)
+  double width_setpoint_m = 0.0;       // [m]
+  double width_actual_m = 0.0;         // width of the sections switched on [m]
+  double ground_speed_m_s = 0.0;       // [m/s]
+  double mass_flow_kg_s = 0.0;         // metered mass flow, all sections [kg/s]
+  double throw_width_m = 0.0;          // predicted at rpm_actual [m]; NaN when no prediction
+  double effective_width_m = 0.0;      // predicted at rpm_actual and the CV target [m]; NaN when none
+  double cv_percent = 0.0;             // predicted CV at the set-point width [%]; NaN when none
+  bool width_reachable = true;         // automatic mode: set-point width reachable at the CV target
+  bool work_state_setpoint = false;    // master switch as commanded
+  bool work_state_actual = false;      // actually spreading (master on, a section on, metering open)
+  std::int32_t section_count = 0;
+  std::uint16_t section_mask = 0;      // bit i = section i+1 on
+  std::string_view material;           // valid until the next command
+  std::int64_t last_command_sequence = -1;
+  std::uint32_t fault_codes = 0;       // active faults, bit = Fault value
+  std::array<std::uint64_t, kFaultCount> fault_counts{};
+};
+
+}  // namespace spread::firmware

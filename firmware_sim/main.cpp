@@ -1,0 +1,216 @@
+// firmware_sim: the simulated spreader ECU. Talks LCM (command_t / status_t / heartbeat_t) and ISOBUS
+// process data over SocketCAN, or replays a candump log deterministically. See docs/messages.md and
+// docs/can-integration.md.
+#include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "firmware_sim/can/can_ecu_link.hpp"
+#include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/can/socketcan.hpp"
+#include "firmware_sim/ecu/ecu.hpp"
+#include "firmware_sim/ecu/fixed_rate_loop.hpp"
+#include "firmware_sim/lcm/lcm_ecu_link.hpp"
+#ifdef SPREAD_FIRMWARE_HAS_CAPI
+#include "firmware_sim/ecu/capi_spread_predictor.hpp"
+#endif
+
+namespace {
+
+using namespace spread::firmware;
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop.store(true); }
+
+// Prints one status line a second for a person watching the terminal.
+class StatusPrinter final : public LoopIo {
+ public:
+  void pump(Nanoseconds) override {}
+  void after_step(const EcuStatus& s) override {
+    if (last_ && s.time - *last_ < std::chrono::seconds(1)) return;
+    last_ = s.time;
+    std::printf("t=%8.2f s  mode=%s  rpm=%7.1f->%7.1f  rate=%6.1f kg/ha  W=%5.2f m  v=%5.2f m/s  Q=%6.3f kg/s  "
+                "throw=%5.2f m  eff=%5.2f m  CV=%5.1f %%  faults=0x%05X\n",
+                to_seconds(s.time - start_), s.mode == Mode::kAutomatic ? "auto" : "manual", s.rpm_actual,
+                s.rpm_target, s.rate_setpoint_kg_ha, s.width_setpoint_m, s.ground_speed_m_s, s.mass_flow_kg_s,
+                s.throw_width_m, s.effective_width_m, s.cv_percent, s.fault_codes);
+    std::fflush(stdout);
+  }
+  void start_at(Nanoseconds t) { start_ = t; }
+
+ private:
+  std::optional<Nanoseconds> last_;
+  Nanoseconds start_{};
+};
+
+void print_fault_summary(const Ecu& ecu) {
+  std::fprintf(stderr, "firmware_sim: fault counts:");
+  bool any = false;
+  for (std::size_t i = 0; i < kFaultCount; ++i) {
+    const auto f = static_cast<Fault>(i);
+    if (ecu.faults().count(f) == 0) continue;
+    any = true;
+    std::fprintf(stderr, " %.*s=%llu", static_cast<int>(fault_name(f).size()), fault_name(f).data(),
+                 static_cast<unsigned long long>(ecu.faults().count(f)));
+  }
+  std::fprintf(stderr, "%s\n", any ? "" : " none");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"firmware_sim: simulated centrifugal spreader ECU (LCM + ISOBUS/CAN)"};
+  std::string lcm_url;
+  bool no_lcm = false;
+  std::string channel_prefix(lcm_link::kDefaultChannelPrefix);
+  std::string can_interface;
+  int can_address = 0x80;
+  std::string tables_path;
+  double cv_target_percent = 15.0;
+  double rate_hz = 20.0;
+  std::string replay_path;
+  std::string record_path;
+  double duration_s = 0.0;
+  bool print_status = false;
+  EcuParameters parameters;
+  double command_timeout_s = 2.0;
+
+  app.add_option("--lcm-url", lcm_url, "LCM provider URL (default: LCM's default udpm://239.255.76.67:7667?ttl=0)");
+  app.add_flag("--no-lcm", no_lcm, "do not use LCM at all");
+  app.add_option("--channel-prefix", channel_prefix, "prefix of the LCM channels <P>COMMAND, <P>STATUS, <P>HEARTBEAT")
+      ->capture_default_str();
+  app.add_option("--can", can_interface, "SocketCAN interface (e.g. can0) for ISOBUS process data");
+  app.add_option("--can-address", can_address, "this ECU's ISOBUS source address (0..253)")
+      ->check(CLI::Range(0, 253))
+      ->capture_default_str();
+  app.add_option("--tables", tables_path, "launch-table file (lookup_builder output); enables automatic mode")
+      ->check(CLI::ExistingFile);
+  app.add_option("--cv-target", cv_target_percent, "CV target of the effective working width [%]")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
+  app.add_option("--rate-hz", rate_hz, "loop frequency [Hz]")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
+  app.add_option("--replay", replay_path, "replay a candump log into the ECU (simulated time) and print answers")
+      ->check(CLI::ExistingFile);
+  app.add_option("--record", record_path, "write every CAN frame received and sent to this candump log");
+  app.add_option("--duration", duration_s, "stop after this many seconds (0: until Ctrl-C; replay: log length + 1 s)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--print-status", print_status, "print a status line once a second");
+  app.add_option("--disc-time-constant", parameters.disc_time_constant_s, "disc drive first-order lag [s]")
+      ->capture_default_str();
+  app.add_option("--sections", parameters.section_count, "sections installed (1..16)")->capture_default_str();
+  app.add_option("--max-width", parameters.width_max_m, "maximum working width [m] (DDI 70)")->capture_default_str();
+  app.add_option("--command-timeout", command_timeout_s, "close metering after this long without input [s] (0: off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  if (!replay_path.empty() && !can_interface.empty()) {
+    std::cerr << "firmware_sim: error: --replay and --can are exclusive (replay feeds the log instead of a bus)\n";
+    return 2;
+  }
+  parameters.command_timeout = from_seconds(command_timeout_s);
+
+  try {
+    std::unique_ptr<SpreadPredictor> predictor;
+    if (!tables_path.empty()) {
+#ifdef SPREAD_FIRMWARE_HAS_CAPI
+      predictor = std::make_unique<CapiSpreadPredictor>(tables_path, cv_target_percent);
+#else
+      std::cerr << "firmware_sim: error: built without the C API (target spreadc): --tables is unavailable\n";
+      return 2;
+#endif
+    }
+
+    // Replay runs on simulated time starting at the log's first timestamp, so answers are reproducible.
+    std::optional<can::CandumpLog> replay_log;
+    std::unique_ptr<Clock> clock;
+    if (!replay_path.empty()) {
+      replay_log = can::read_candump_file(replay_path);
+      for (const auto& e : replay_log->errors) std::cerr << "firmware_sim: " << replay_path << ": " << e << "\n";
+      const Nanoseconds start = replay_log->records.empty() ? Nanoseconds::zero() : replay_log->records.front().time;
+      clock = std::make_unique<ManualClock>(start);
+    } else {
+      clock = std::make_unique<SteadyClock>();
+    }
+
+    Ecu ecu(*clock, parameters, predictor.get());
+    if (replay_log) {
+      for (std::size_t i = 0; i < replay_log->errors.size(); ++i) ecu.record_fault(Fault::kReplayParseError);
+    }
+    FixedRateLoop loop(*clock, rate_hz);
+    LoopIoGroup io;
+
+    std::unique_ptr<lcm::LCM> lcm;
+    std::unique_ptr<lcm_link::LcmEcuLink> lcm_io;
+    if (!no_lcm) {
+      lcm = std::make_unique<lcm::LCM>(lcm_url);
+      if (!lcm->good()) throw std::runtime_error("LCM: cannot create an instance for URL '" + lcm_url + "'");
+      lcm_io = std::make_unique<lcm_link::LcmEcuLink>(*lcm, ecu, lcm_link::channels_with_prefix(channel_prefix));
+      lcm_io->attach_loop(&loop);
+      io.add(*lcm_io);
+    }
+
+    std::ofstream record_file;
+    std::unique_ptr<can::CandumpWriter> recorder;
+    if (!record_path.empty()) {
+      record_file.open(record_path);
+      if (!record_file) throw std::runtime_error("cannot write candump log '" + record_path + "'");
+      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can_interface.empty() ? "can0" : can_interface);
+    }
+
+    can::CanEcuSettings can_settings;
+    can_settings.address = static_cast<std::uint8_t>(can_address);
+    can::CanFramePort can_port;
+    std::unique_ptr<can::CanPortIo> can_io;
+    if (!can_interface.empty()) {
+      can_port = can::open_socketcan(can_interface);
+      can_io = std::make_unique<can::CanPortIo>(can_port, ecu, *clock, can_settings, recorder.get());
+      can_io->processor().send_address_claim();
+      io.add(*can_io);
+    }
+
+    // Replay answers go to stdout as candump lines (and to --record with the received frames).
+    std::unique_ptr<can::CandumpWriter> replay_answers;
+    std::unique_ptr<can::TeeSink> replay_tx;
+    std::unique_ptr<can::CanEcuProcessor> replay_processor;
+    std::unique_ptr<can::CandumpReplayIo> replay_io;
+    if (replay_log) {
+      replay_answers = std::make_unique<can::CandumpWriter>(std::cout, *clock, "can0");
+      replay_tx = std::make_unique<can::TeeSink>(*replay_answers, recorder.get());
+      replay_processor = std::make_unique<can::CanEcuProcessor>(ecu, *clock, *replay_tx, can_settings);
+      replay_io = std::make_unique<can::CandumpReplayIo>(*replay_log, *replay_processor, *clock, recorder.get());
+      io.add(*replay_io);
+    }
+
+    StatusPrinter printer;
+    printer.start_at(clock->now());
+    if (print_status) io.add(printer);
+
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    std::optional<Nanoseconds> duration;
+    if (duration_s > 0.0) duration = from_seconds(duration_s);
+    if (replay_io && !duration) duration = replay_io->span() + std::chrono::seconds(1);
+    std::cerr << "firmware_sim: running at " << rate_hz << " Hz"
+              << (lcm_io ? ", LCM channels " + lcm_io->channels().command + "/" + lcm_io->channels().status : "")
+              << (can_io ? ", CAN " + can_interface : "") << (replay_io ? ", replaying " + replay_path : "")
+              << (predictor ? ", tables " + tables_path : ", no tables (manual mode only)") << "\n";
+    loop.run(ecu, io, duration, &g_stop);
+    std::cerr << "firmware_sim: " << loop.statistics().ticks << " ticks, " << loop.statistics().overruns
+              << " overruns, worst step " << std::chrono::duration<double, std::micro>(loop.statistics().worst_step).count()
+              << " us\n";
+    print_fault_summary(ecu);
+  } catch (const std::exception& e) {
+    std::cerr << "firmware_sim: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,377 @@
+// ISOBUS over the virtual CAN bus: codecs, end-to-end process data and speed, every bad-frame class,
+// candump logs and their replay against recorded answers.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "firmware_sim/can/can_ecu_link.hpp"
+#include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/can/ddi.hpp"
+#include "firmware_sim/can/frame_description.hpp"
+#include "firmware_sim/can/isobus_id.hpp"
+#include "firmware_sim/can/process_data.hpp"
+#include "firmware_sim/can/socketcan.hpp"
+#include "firmware_sim/can/speed_messages.hpp"
+#include "firmware_sim/can/virtual_can_bus.hpp"
+
+namespace spread::firmware::can {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr std::uint8_t kEcu = 0x80;
+constexpr std::uint8_t kTractor = 0x81;
+
+TEST(IsobusId, DecodesTheDesignExample) {
+  const IsobusId id = decode_id(0x0CCB8081);
+  EXPECT_EQ(id.priority, 3);
+  EXPECT_EQ(id.pgn, 0xCB00u);
+  EXPECT_EQ(id.destination, 0x80);
+  EXPECT_EQ(id.source, 0x81);
+  EXPECT_EQ(encode_id(id), 0x0CCB8081u);
+}
+
+TEST(IsobusId, Pdu2KeepsGroupExtensionInPgn) {
+  const IsobusId id{3, kGroundBasedSpeedPgn, 0x12 /* ignored for PDU2 */, 0xF0};
+  const std::uint32_t raw = encode_id(id);
+  EXPECT_EQ(raw, 0x0CFE49F0u);
+  const IsobusId back = decode_id(raw);
+  EXPECT_EQ(back.pgn, kGroundBasedSpeedPgn);
+  EXPECT_EQ(back.destination, kGlobalAddress);
+}
+
+TEST(ProcessData, ByteLayoutMatchesIso11783_10) {
+  // command 3, element 0x123, DDI 390, value 7 500 000 (= 750 r/min).
+  const ProcessDataBytes b = encode_process_data({3, 0x123, 390, 7500000});
+  const ProcessDataBytes expected{0x33, 0x12, 0x86, 0x01, 0xE0, 0x70, 0x72, 0x00};
+  EXPECT_EQ(b, expected);
+  const ProcessData back = decode_process_data(b);
+  EXPECT_EQ(back.command, 3);
+  EXPECT_EQ(back.element, 0x123);
+  EXPECT_EQ(back.ddi, 390);
+  EXPECT_EQ(back.value, 7500000);
+  EXPECT_EQ(decode_process_data(encode_process_data({2, 0, 6, -5})).value, -5);
+}
+
+TEST(SpeedMessages, RoundTripAndNotAvailable) {
+  const auto bytes = encode_speed(3.456, 1000, Direction::kForward);
+  const auto speed = decode_speed(bytes);
+  ASSERT_TRUE(speed.has_value());
+  EXPECT_NEAR(speed->speed_m_s, 3.456, 1e-9);
+  EXPECT_EQ(speed->direction, Direction::kForward);
+  std::array<std::uint8_t, 8> unavailable{0xFF, 0xFF, 0, 0, 0, 0, 0xFF, 0xFF};
+  EXPECT_FALSE(decode_speed(unavailable).has_value());
+}
+
+TEST(Candump, ParsesAndFormatsLines) {
+  std::string error;
+  const auto record = parse_candump_line("(1700000000.123456) can0 0CCB8081#0306000064000000", error);
+  ASSERT_TRUE(record.has_value()) << error;
+  EXPECT_EQ(record->interface, "can0");
+  EXPECT_EQ(record->frame.can_id, 0x0CCB8081u | CAN_EFF_FLAG);
+  EXPECT_EQ(record->frame.len, 8);
+  EXPECT_EQ(record->frame.data[4], 0x64);
+  EXPECT_EQ(record->time, Nanoseconds(1700000000123456000));
+  EXPECT_EQ(format_candump_line(record->time, "can0", record->frame),
+            "(1700000000.123456) can0 0CCB8081#0306000064000000");
+  const auto standard = parse_candump_line("(0000000001.000000) can1 123#DEAD", error);
+  ASSERT_TRUE(standard.has_value()) << error;
+  EXPECT_EQ(standard->frame.can_id, 0x123u);
+  EXPECT_EQ(standard->frame.len, 2);
+}
+
+TEST(Candump, BadLinesAreReportedWithLineNumbers) {
+  std::istringstream in(
+      "(1.000000) can0 0CCB8081#03\n"
+      "garbage\n"
+      "(1.000000) can0 0CCB8081#0G\n"
+      "(1.000000) can0 0CCB8081##0011\n"
+      "(1.000000) can0 3FFFFFFF1#00\n"
+      "(1.5) can0 0CCB8081#00\n"
+      "\n"
+      "(2.000000) can0 0CCB8081#030600006400000000\n");
+  const CandumpLog log = read_candump_log(in);
+  EXPECT_EQ(log.records.size(), 1u);
+  ASSERT_EQ(log.errors.size(), 6u);
+  EXPECT_NE(log.errors[0].find("line 2"), std::string::npos) << log.errors[0];
+  EXPECT_NE(log.errors[2].find("CAN FD"), std::string::npos) << log.errors[2];
+}
+
+TEST(SocketCan, MissingSupportOrInterfaceIsAClearError) {
+  try {
+    open_socketcan("nosuchcan7");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_TRUE(what.find("AF_CAN") != std::string::npos || what.find("nosuchcan7") != std::string::npos) << what;
+  }
+  EXPECT_THROW(open_socketcan(""), std::runtime_error);
+}
+
+TEST(SocketCan, RealCanRawOnVcan0) {
+  if (!socketcan_available()) GTEST_SKIP() << "this kernel has no AF_CAN (SocketCAN): real CAN_RAW cannot be tested";
+  CanFramePort a;
+  try {
+    a = open_socketcan("vcan0");
+  } catch (const std::exception& e) {
+    GTEST_SKIP() << "no vcan0 interface (ip link add vcan0 type vcan; ip link set vcan0 up): " << e.what();
+  }
+  CanFramePort b = open_socketcan("vcan0");
+  const std::uint8_t data[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+  ASSERT_TRUE(a.send(make_frame(0x0CCB8081, data, 8)));
+  ASSERT_TRUE(b.wait_readable(1s));
+  can_frame frame{};
+  ASSERT_EQ(b.read(frame), ReadOutcome::kFrame);
+  EXPECT_EQ(frame.data[7], 8);
+}
+
+// The ECU on one end of the virtual bus, the test as the tractor / task controller on the other.
+class VirtualBus : public ::testing::Test {
+ protected:
+  VirtualBus()
+      : pair_(make_virtual_can_pair()),
+        ecu_(clock_, parameters(), nullptr),
+        ecu_io_(pair_.first, ecu_, clock_, CanEcuSettings{}),
+        loop_(clock_, 20.0) {}
+
+  static EcuParameters parameters() {
+    EcuParameters p;
+    p.command_timeout = 0s;
+    return p;
+  }
+
+  void send_pd(ProcessDataCommand command, std::uint16_t ddi, std::int32_t value, std::uint16_t element = 0,
+               std::uint8_t destination = kEcu) {
+    const ProcessDataBytes b = encode_process_data({static_cast<std::uint8_t>(command), element, ddi, value});
+    ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, destination, kTractor}), b.data(), 8)));
+  }
+
+  // Runs loop ticks, then returns every frame the ECU sent.
+  std::vector<can_frame> run(int ticks) {
+    for (int i = 0; i < ticks; ++i) loop_.tick(ecu_, ecu_io_);
+    std::vector<can_frame> out;
+    can_frame f{};
+    while (tractor().read(f) == ReadOutcome::kFrame) out.push_back(f);
+    return out;
+  }
+
+  ProcessData single_answer(std::uint16_t expected_ddi) {
+    const auto frames = run(1);
+    EXPECT_EQ(frames.size(), 1u);
+    if (frames.empty()) return {};
+    const IsobusId id = decode_id(frames[0].can_id & CAN_EFF_MASK);
+    EXPECT_EQ(id.pgn, kProcessDataPgn);
+    EXPECT_EQ(id.source, kEcu);
+    EXPECT_EQ(id.destination, kTractor);
+    ProcessDataBytes b{};
+    std::copy(frames[0].data, frames[0].data + 8, b.begin());
+    const ProcessData m = decode_process_data(b);
+    EXPECT_EQ(m.ddi, expected_ddi);
+    return m;
+  }
+
+  std::uint8_t pdack_errors(std::uint16_t expected_ddi) {
+    const auto frames = run(1);
+    EXPECT_EQ(frames.size(), 1u);
+    if (frames.empty()) return 0xFF;
+    ProcessDataBytes b{};
+    std::copy(frames[0].data, frames[0].data + 8, b.begin());
+    const auto ack = decode_pdack(b);
+    EXPECT_TRUE(ack.has_value()) << describe_frame(frames[0]);
+    if (!ack) return 0xFF;
+    EXPECT_EQ(ack->ddi, expected_ddi);
+    return ack->error_bits;
+  }
+
+  CanFramePort& tractor() { return pair_.second; }
+
+  ManualClock clock_;
+  std::pair<CanFramePort, CanFramePort> pair_;
+  Ecu ecu_;
+  CanPortIo ecu_io_;
+  FixedRateLoop loop_;
+};
+
+TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 6, 20000);  // 200 kg/ha
+  EXPECT_EQ(pdack_errors(6), kPdackNoError);
+  send_pd(ProcessDataCommand::kValue, 66, 24000);  // 24 m, no acknowledge expected
+  send_pd(ProcessDataCommand::kValue, 389, 7500000);  // 750 r/min
+  send_pd(ProcessDataCommand::kValue, 289, 1);  // work state on
+  send_pd(ProcessDataCommand::kValue, 290, 0x5555);  // sections 1-8 on
+  const auto speed = encode_speed(12.0 / 3.6, 0, Direction::kForward);
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, 0xF0}), speed.data(), 8)));
+  EXPECT_TRUE(run(1).empty()) << "set-values without acknowledge are answered only on error";
+
+  // Wheel-based speed is ignored while the ground-based one is fresh.
+  const auto wheel = encode_speed(5.0, 0, Direction::kForward);
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kWheelBasedSpeedPgn, kGlobalAddress, 0xF0}), wheel.data(), 8)));
+  run(200);  // 10 s: the disc settles (tau 0.8 s)
+
+  send_pd(ProcessDataCommand::kRequestValue, 6, 0);
+  EXPECT_EQ(single_answer(6).value, 20000);
+  send_pd(ProcessDataCommand::kRequestValue, 390, 0);
+  EXPECT_NEAR(single_answer(390).value, 7500000, 100);
+  send_pd(ProcessDataCommand::kRequestValue, 397, 0);
+  EXPECT_EQ(single_answer(397).value, 3333);
+  send_pd(ProcessDataCommand::kRequestValue, 141, 0);
+  EXPECT_EQ(single_answer(141).value, 1);
+  send_pd(ProcessDataCommand::kRequestValue, 161, 0);
+  EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF5555u) << "sections 9-16 not installed";
+  send_pd(ProcessDataCommand::kRequestValue, 7, 0);
+  EXPECT_EQ(single_answer(7).value, 20000);
+  send_pd(ProcessDataCommand::kRequestValue, 70, 0);
+  EXPECT_EQ(single_answer(70).value, 54000);
+  EXPECT_NEAR(ecu_.status().mass_flow_kg_s, 200.0 * 24.0 * 12.0 / 36000.0, 1e-3);
+
+  // Close sections 7 and 8 (state 00), leave the rest (11 = unchanged).
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 290, static_cast<std::int32_t>(0xFFFF0FFFu));
+  EXPECT_EQ(pdack_errors(290), kPdackNoError);
+  send_pd(ProcessDataCommand::kRequestValue, 67, 0);
+  EXPECT_EQ(single_answer(67).value, 18000);
+  EXPECT_EQ(ecu_.faults().total(), 0u);
+}
+
+TEST_F(VirtualBus, AnswersAddressClaimRequest) {
+  const std::uint8_t request[3] = {0x00, 0xEE, 0x00};
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({6, kRequestPgn, kGlobalAddress, kTractor}), request, 3)));
+  const auto frames = run(1);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(decode_id(frames[0].can_id & CAN_EFF_MASK).pgn, kAddressClaimedPgn);
+}
+
+struct BadProcessDataCase {
+  const char* name;
+  std::uint8_t command;
+  std::uint16_t ddi;
+  std::int32_t value;
+  std::uint16_t element;
+  std::uint8_t expected_pdack;
+  Fault expected_fault;
+};
+
+class VirtualBusBadProcessData : public VirtualBus, public ::testing::WithParamInterface<BadProcessDataCase> {};
+
+TEST_P(VirtualBusBadProcessData, IsNackedCountedAndChangesNothing) {
+  const BadProcessDataCase& c = GetParam();
+  send_pd(ProcessDataCommand::kValue, 6, 20000);
+  run(1);
+  const EcuStatus before = ecu_.status();
+  send_pd(static_cast<ProcessDataCommand>(c.command), c.ddi, c.value, c.element);
+  EXPECT_EQ(pdack_errors(c.ddi), c.expected_pdack);
+  const EcuStatus after = ecu_.status();
+  EXPECT_EQ(after.fault_counts[static_cast<std::size_t>(c.expected_fault)], 1u) << fault_name(c.expected_fault);
+  EXPECT_NE(after.fault_codes & fault_bit(c.expected_fault), 0u);
+  EXPECT_EQ(after.rate_setpoint_kg_ha, before.rate_setpoint_kg_ha);
+  EXPECT_EQ(after.width_setpoint_m, before.width_setpoint_m);
+  EXPECT_EQ(after.rpm_target, before.rpm_target);
+  EXPECT_EQ(after.section_mask, before.section_mask);
+  EXPECT_EQ(after.work_state_setpoint, before.work_state_setpoint);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllClasses, VirtualBusBadProcessData,
+    ::testing::Values(
+        BadProcessDataCase{"unknown_ddi_request", 0x2, 999, 0, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
+        BadProcessDataCase{"unknown_ddi_set", 0xA, 1234, 5, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
+        BadProcessDataCase{"wrong_element", 0x2, 6, 0, 5, kPdackInvalidElement, Fault::kCanUnknownDdi},
+        BadProcessDataCase{"unsupported_command", 0x4, 6, 1000, 0, kPdackCommandNotSupported,
+                           Fault::kCanUnsupportedCommand},
+        BadProcessDataCase{"read_only_ddi", 0xA, 7, 100, 0, kPdackNotSettable, Fault::kCanNotSettable},
+        BadProcessDataCase{"negative_rate", 0xA, 6, -1, 0, kPdackValueOutOfRange, Fault::kSetpointOutOfRange},
+        BadProcessDataCase{"width_too_wide", 0x3, 66, 100000, 0, kPdackValueOutOfRange, Fault::kSetpointOutOfRange},
+        BadProcessDataCase{"rpm_too_fast", 0x3, 389, 2000000000, 0, kPdackValueOutOfRange,
+                           Fault::kSetpointOutOfRange},
+        BadProcessDataCase{"work_state_two", 0xA, 289, 2, 0, kPdackValueOutOfRange, Fault::kSetpointOutOfRange},
+        BadProcessDataCase{"section_nine_on", 0xA, 290, 0x10000, 0, kPdackValueOutOfRange,
+                           Fault::kSetpointOutOfRange},
+        BadProcessDataCase{"section_error_state", 0xA, 290, 0x2, 0, kPdackValueOutOfRange,
+                           Fault::kSetpointOutOfRange}),
+    [](const ::testing::TestParamInfo<BadProcessDataCase>& param_info) { return std::string(param_info.param.name); });
+
+TEST_F(VirtualBus, MalformedFramesAreCountedAndLoopGoesOn) {
+  // Truncated record (5 bytes of a 16-byte can_frame).
+  const std::uint8_t junk[5] = {1, 2, 3, 4, 5};
+  ASSERT_TRUE(tractor().send_raw(junk, sizeof(junk)));
+  // Oversized record (a CAN FD frame's size).
+  std::uint8_t big[72] = {};
+  ASSERT_TRUE(tractor().send_raw(big, sizeof(big)));
+  // Process data with DLC 4.
+  const std::uint8_t short_pd[4] = {0x02, 0x00, 0x06, 0x00};
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kEcu, kTractor}), short_pd, 4)));
+  // Standard 11-bit frame.
+  can_frame standard{};
+  standard.can_id = 0x123;
+  standard.len = 8;
+  ASSERT_TRUE(tractor().send(standard));
+  // Remote frame.
+  can_frame remote = make_frame(encode_id({3, kProcessDataPgn, kEcu, kTractor}), nullptr, 0);
+  remote.can_id |= CAN_RTR_FLAG;
+  ASSERT_TRUE(tractor().send(remote));
+  // Speed with DLC 2.
+  const std::uint8_t short_speed[2] = {0x10, 0x00};
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, 0xFF, 0xF0}), short_speed, 2)));
+  // NaN has no integer encoding on CAN; a speed beyond the ECU's range stands for an impossible value.
+  const auto too_fast = encode_speed(30.0, 0, Direction::kForward);
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, 0xFF, 0xF0}), too_fast.data(), 8)));
+
+  EXPECT_TRUE(run(3).empty()) << "malformed frames get no answer";
+  EXPECT_EQ(ecu_.faults().count(Fault::kCanMalformedFrame), 6u);
+  EXPECT_EQ(ecu_.faults().count(Fault::kSetpointOutOfRange), 1u);
+  EXPECT_EQ(ecu_.status().ground_speed_m_s, 0.0);
+  EXPECT_EQ(loop_.statistics().ticks, 3) << "the loop kept running";
+  // And the bus still works afterwards.
+  send_pd(ProcessDataCommand::kRequestValue, 6, 0);
+  EXPECT_EQ(single_answer(6).value, 0);
+}
+
+TEST_F(VirtualBus, BroadcastErrorsAreCountedButNotNacked) {
+  send_pd(ProcessDataCommand::kValue, 999, 1, 0, kGlobalAddress);
+  EXPECT_TRUE(run(1).empty());
+  EXPECT_EQ(ecu_.faults().count(Fault::kCanUnknownDdi), 1u);
+  // Frames for another ECU are not ours to judge.
+  send_pd(ProcessDataCommand::kValue, 999, 1, 0, 0x90);
+  EXPECT_TRUE(run(1).empty());
+  EXPECT_EQ(ecu_.faults().count(Fault::kCanUnknownDdi), 1u);
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Replays tests/firmware/data/process_data_session.log and returns the ECU's answers as a candump log.
+std::string replay_answers(const CandumpLog& log) {
+  ManualClock clock(log.records.front().time);
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p);
+  std::ostringstream answers;
+  CandumpWriter writer(answers, clock, "can0");
+  CanEcuProcessor processor(ecu, clock, writer);
+  CandumpReplayIo replay(log, processor, clock);
+  FixedRateLoop loop(clock, 20.0);
+  loop.run(ecu, replay, replay.span() + 1s);
+  EXPECT_TRUE(replay.finished());
+  return answers.str();
+}
+
+TEST(CandumpReplay, ProducesTheRecordedAnswers) {
+  const std::string dir = SPREAD_FIRMWARE_TEST_DATA;
+  const CandumpLog log = read_candump_file(dir + "/process_data_session.log");
+  ASSERT_TRUE(log.errors.empty()) << log.errors.front();
+  ASSERT_FALSE(log.records.empty());
+  const std::string answers = replay_answers(log);
+  if (std::getenv("SPREAD_FIRMWARE_REGENERATE") != nullptr) {
+    std::ofstream(dir + "/process_data_session.expected") << answers;
+  }
+  EXPECT_EQ(answers, read_text(dir + "/process_data_session.expected"));
+  EXPECT_EQ(replay_answers(log), answers) << "replay is deterministic";
+}
+
+}  // namespace
+}  // namespace spread::firmware::can

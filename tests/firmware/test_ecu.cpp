@@ -1,0 +1,345 @@
+// ECU core without I/O: dynamics, metering, sections, validation of every bad-input class, automatic
+// mode against an analytic predictor, and the fixed-rate loop on a manual clock.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "firmware_sim/ecu/ecu.hpp"
+#include "firmware_sim/ecu/fixed_rate_loop.hpp"
+#include "firmware_sim/ecu/metering.hpp"
+#include "tests/firmware/analytic_predictor.hpp"
+
+namespace spread::firmware {
+namespace {
+
+using namespace std::chrono_literals;
+using testing::AnalyticPredictor;
+
+EcuCommand manual_command(std::int64_t sequence) {
+  EcuCommand c;
+  c.sequence = sequence;
+  c.mode = 0;
+  c.rate_setpoint_kg_ha = 200.0;
+  c.width_setpoint_m = 24.0;
+  c.ground_speed_m_s = 12.0 / 3.6;
+  c.rpm_setpoint = 750.0;
+  c.material = "urea";
+  c.section_count = 8;
+  for (int i = 0; i < 8; ++i) c.section_on[static_cast<std::size_t>(i)] = true;
+  return c;
+}
+
+class NullIo final : public LoopIo {
+ public:
+  void pump(Nanoseconds) override { ++pumps; }
+  void after_step(const EcuStatus&) override { ++publishes; }
+  int pumps = 0;
+  int publishes = 0;
+};
+
+TEST(Metering, MassFlowFollowsRateWidthSpeed) {
+  // 200 kg/ha over 24 m at 12 km/h: 200 * 24 * 12 / 36000 = 1.6 kg/s.
+  EXPECT_NEAR(mass_flow_kg_s(200.0, 24.0, 12.0 / 3.6), 1.6, 1e-12);
+  EXPECT_EQ(mass_flow_kg_s(200.0, 24.0, 0.0), 0.0);
+  EXPECT_EQ(mass_flow_kg_s(-5.0, 24.0, 3.0), 0.0);
+}
+
+TEST(DiscSpeed, FirstOrderLagReaches63PercentAfterOneTimeConstant) {
+  DiscSpeedModel disc(0.8);
+  for (int i = 0; i < 16; ++i) disc.step(1000.0, 0.05);  // 16 * 50 ms = 0.8 s = tau
+  EXPECT_NEAR(disc.rpm(), 1000.0 * (1.0 - std::exp(-1.0)), 1e-9);
+  EXPECT_THROW(DiscSpeedModel(0.0), std::invalid_argument);
+  EXPECT_THROW(DiscSpeedModel(std::nan("")), std::invalid_argument);
+}
+
+TEST(Ecu, ManualCommandMetersAndSpinsUp) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;  // 10 s without a new command
+  Ecu ecu(clock, p);
+  ASSERT_FALSE(ecu.apply_command(manual_command(1)).has_value());
+  for (int i = 0; i < 200; ++i) {
+    clock.advance(50ms);
+    ecu.step(0.05);
+  }
+  const EcuStatus s = ecu.status();
+  EXPECT_NEAR(s.rpm_actual, 750.0, 0.01);
+  EXPECT_NEAR(s.mass_flow_kg_s, 1.6, 1e-9);
+  EXPECT_TRUE(s.work_state_actual);
+  EXPECT_EQ(s.section_mask, 0xFF);
+  EXPECT_TRUE(std::isnan(s.throw_width_m)) << "no predictor: no pattern";
+}
+
+TEST(Ecu, SectionsOffScaleTheFlow) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p);
+  EcuCommand c = manual_command(1);
+  for (int i = 4; i < 8; ++i) c.section_on[static_cast<std::size_t>(i)] = false;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  ecu.step(0.05);
+  EXPECT_NEAR(ecu.status().mass_flow_kg_s, 0.8, 1e-9);
+  EXPECT_NEAR(ecu.status().width_actual_m, 12.0, 1e-12);
+  ASSERT_FALSE(ecu.set_work_state(false).has_value());
+  ecu.step(0.05);
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_FALSE(ecu.status().work_state_actual);
+}
+
+// Every rejected command: counted under its own fault, bit shown, state unchanged.
+struct BadCommandCase {
+  const char* name;
+  void (*spoil)(EcuCommand&);
+  Fault expected;
+};
+
+class EcuBadCommand : public ::testing::TestWithParam<BadCommandCase> {};
+
+TEST_P(EcuBadCommand, IsCountedReportedAndChangesNothing) {
+  ManualClock clock;
+  AnalyticPredictor predictor;
+  Ecu ecu(clock, EcuParameters{}, &predictor);
+  ASSERT_FALSE(ecu.apply_command(manual_command(10)).has_value());
+  ecu.step(0.05);
+  const EcuStatus before = ecu.status();
+
+  EcuCommand bad = manual_command(11);
+  bad.rate_setpoint_kg_ha = 999.0;  // would change state if accepted
+  GetParam().spoil(bad);
+  const Rejection rejection = ecu.apply_command(bad);
+  ASSERT_TRUE(rejection.has_value());
+  EXPECT_EQ(*rejection, GetParam().expected) << fault_name(*rejection);
+
+  const EcuStatus after = ecu.status();
+  EXPECT_EQ(after.rate_setpoint_kg_ha, before.rate_setpoint_kg_ha);
+  EXPECT_EQ(after.last_command_sequence, 10);
+  EXPECT_EQ(after.fault_counts[static_cast<std::size_t>(GetParam().expected)], 1u);
+  EXPECT_NE(after.fault_codes & fault_bit(GetParam().expected), 0u);
+  // Event faults stay visible for the hold time (2 s), then clear; the count stays.
+  clock.advance(2500ms);
+  ecu.step(0.05);
+  EXPECT_EQ(ecu.status().fault_codes & fault_bit(GetParam().expected), 0u);
+  EXPECT_EQ(ecu.status().fault_counts[static_cast<std::size_t>(GetParam().expected)], 1u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllClasses, EcuBadCommand,
+    ::testing::Values(
+        BadCommandCase{"nan_rate", [](EcuCommand& c) { c.rate_setpoint_kg_ha = std::nan(""); }, Fault::kNotANumber},
+        BadCommandCase{"inf_speed", [](EcuCommand& c) { c.ground_speed_m_s = INFINITY; }, Fault::kNotANumber},
+        BadCommandCase{"nan_rpm", [](EcuCommand& c) { c.rpm_setpoint = std::nan(""); }, Fault::kNotANumber},
+        BadCommandCase{"negative_rate", [](EcuCommand& c) { c.rate_setpoint_kg_ha = -1.0; },
+                       Fault::kSetpointOutOfRange},
+        BadCommandCase{"width_too_wide", [](EcuCommand& c) { c.width_setpoint_m = 100.0; },
+                       Fault::kSetpointOutOfRange},
+        BadCommandCase{"rpm_too_fast", [](EcuCommand& c) { c.rpm_setpoint = 5000.0; }, Fault::kSetpointOutOfRange},
+        BadCommandCase{"speed_negative", [](EcuCommand& c) { c.ground_speed_m_s = -0.1; },
+                       Fault::kSetpointOutOfRange},
+        BadCommandCase{"seventeen_sections", [](EcuCommand& c) { c.section_count = 17; },
+                       Fault::kSetpointOutOfRange},
+        BadCommandCase{"zero_sections", [](EcuCommand& c) { c.section_count = 0; }, Fault::kSetpointOutOfRange},
+        BadCommandCase{"unknown_mode", [](EcuCommand& c) { c.mode = 7; }, Fault::kUnknownMode},
+        BadCommandCase{"unknown_material", [](EcuCommand& c) { c.material = "sand"; }, Fault::kUnknownMaterial},
+        BadCommandCase{"duplicate_sequence", [](EcuCommand& c) { c.sequence = 10; }, Fault::kStaleSequence},
+        BadCommandCase{"older_sequence", [](EcuCommand& c) { c.sequence = 3; }, Fault::kStaleSequence},
+        BadCommandCase{"automatic_without_width",
+                       [](EcuCommand& c) {
+                         c.mode = 1;
+                         c.width_setpoint_m = 0.0;
+                       },
+                       Fault::kSetpointOutOfRange}),
+    [](const ::testing::TestParamInfo<BadCommandCase>& param_info) { return std::string(param_info.param.name); });
+
+TEST(Ecu, BadSingleSetValuesAreRejected) {
+  ManualClock clock;
+  Ecu ecu(clock, EcuParameters{});
+  ASSERT_FALSE(ecu.apply_command(manual_command(1)).has_value());
+  EXPECT_EQ(ecu.set_rate_setpoint(std::nan("")), Fault::kNotANumber);
+  EXPECT_EQ(ecu.set_width_setpoint(-3.0), Fault::kSetpointOutOfRange);
+  EXPECT_EQ(ecu.set_ground_speed(21.0), Fault::kSetpointOutOfRange);
+  EXPECT_EQ(ecu.set_section_mask(0x100), Fault::kSetpointOutOfRange) << "section 9 is not installed";
+  EXPECT_EQ(ecu.status().rate_setpoint_kg_ha, 200.0);
+  EXPECT_EQ(ecu.status().section_mask, 0xFF);
+  EXPECT_EQ(ecu.faults().total(), 4u);
+}
+
+TEST(Ecu, AutomaticModeNeedsTables) {
+  ManualClock clock;
+  Ecu ecu(clock, EcuParameters{});
+  EcuCommand c = manual_command(1);
+  c.mode = 1;
+  EXPECT_EQ(ecu.apply_command(c), Fault::kAutomaticUnavailable);
+  EXPECT_EQ(ecu.status().mode, Mode::kManual);
+}
+
+TEST(Ecu, CommandTimeoutClosesMeteringAndReportsIt) {
+  ManualClock clock;
+  Ecu ecu(clock, EcuParameters{});  // timeout 2 s
+  ASSERT_FALSE(ecu.apply_command(manual_command(1)).has_value());
+  clock.advance(1s);
+  ecu.step(0.05);
+  EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0);
+  clock.advance(1500ms);
+  ecu.step(0.05);
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_NE(ecu.status().fault_codes & fault_bit(Fault::kCommandTimeout), 0u);
+  ASSERT_FALSE(ecu.apply_command(manual_command(2)).has_value());
+  ecu.step(0.05);
+  EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_EQ(ecu.status().fault_codes & fault_bit(Fault::kCommandTimeout), 0u);
+  EXPECT_EQ(ecu.status().fault_counts[static_cast<std::size_t>(Fault::kCommandTimeout)], 1u);
+}
+
+TEST(Ecu, AutomaticModeReachesRequestedWidth) {
+  ManualClock clock;
+  AnalyticPredictor predictor;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p, &predictor);
+  EcuCommand c = manual_command(1);
+  c.mode = 1;
+  c.width_setpoint_m = 18.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  for (int i = 0; i < 200; ++i) {  // 10 s at 20 Hz, > 10 time constants
+    clock.advance(50ms);
+    ecu.step(0.05);
+  }
+  const EcuStatus s = ecu.status();
+  const double exact_rpm = AnalyticPredictor::urea_rpm_for_effective_width(18.0);
+  EXPECT_NEAR(s.rpm_target, exact_rpm, 1.0);
+  EXPECT_NEAR(s.rpm_actual, exact_rpm, 1.0);
+  EXPECT_NEAR(s.effective_width_m, 18.0, 0.1);
+  EXPECT_GE(s.rpm_target, exact_rpm) << "the solver picks the slowest speed known to reach the width";
+  EXPECT_TRUE(s.width_reachable);
+  EXPECT_EQ(s.fault_codes, 0u);
+}
+
+TEST(Ecu, AutomaticModeReportsWidthOutOfReach) {
+  ManualClock clock;
+  AnalyticPredictor predictor;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p, &predictor);
+  EcuCommand c = manual_command(1);
+  c.mode = 1;
+  c.width_setpoint_m = 40.0;  // E(1100 r/min) = 32.7 m
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  ecu.step(0.05);
+  EcuStatus s = ecu.status();
+  EXPECT_FALSE(s.width_reachable);
+  EXPECT_NEAR(s.rpm_target, 1100.0, 1e-9) << "out of reach: the widest speed in range";
+  EXPECT_NE(s.fault_codes & fault_bit(Fault::kWidthOutOfReach), 0u);
+  // Back within reach: the state fault clears at once.
+  ASSERT_FALSE(ecu.set_width_setpoint(24.0).has_value());
+  ecu.step(0.05);
+  s = ecu.status();
+  EXPECT_TRUE(s.width_reachable);
+  EXPECT_EQ(s.fault_codes & fault_bit(Fault::kWidthOutOfReach), 0u);
+  // Too narrow: E(300 r/min) = 2.4 m.
+  ASSERT_FALSE(ecu.set_width_setpoint(1.0).has_value());
+  ecu.step(0.05);
+  EXPECT_FALSE(ecu.status().width_reachable);
+  EXPECT_NEAR(ecu.status().rpm_target, 300.0, 1e-9);
+}
+
+TEST(Ecu, AutomaticModeRefusesManualRpm) {
+  ManualClock clock;
+  AnalyticPredictor predictor;
+  Ecu ecu(clock, EcuParameters{}, &predictor);
+  EcuCommand c = manual_command(1);
+  c.mode = 1;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  EXPECT_EQ(ecu.set_rpm_setpoint(500.0), Fault::kCanNotSettable);
+}
+
+TEST(Ecu, PredictionFailureIsCountedAndFallsBackToTheCurve) {
+  ManualClock clock;
+  AnalyticPredictor predictor;
+  Ecu ecu(clock, EcuParameters{}, &predictor);
+  EcuCommand c = manual_command(1);
+  c.mode = 1;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  ecu.step(0.05);
+  predictor.fail_next = true;  // every refinement prediction fails from now on
+  ASSERT_FALSE(ecu.set_width_setpoint(20.0).has_value());
+  ecu.step(0.05);
+  EXPECT_GE(ecu.faults().count(Fault::kPredictionFailed), 1u);
+  // The curve sample that reaches 20 m is used: within one curve step (5 r/min) above the exact speed.
+  const double exact_rpm = AnalyticPredictor::urea_rpm_for_effective_width(20.0);
+  EXPECT_GE(ecu.status().rpm_target, exact_rpm);
+  EXPECT_LE(ecu.status().rpm_target, exact_rpm + 5.0);
+}
+
+TEST(RpmForWidthSolver, CostIsBoundedPerSolve) {
+  AnalyticPredictor predictor;
+  const WidthCurve curve = sample_width_curve(predictor, "urea", {300.0, 1100.0}, 5.0);
+  EXPECT_EQ(curve.rpm.size(), 161u);
+  RpmForWidthSolver solver;
+  const RpmSolution s = solver.solve(predictor, curve, 18.0);
+  EXPECT_TRUE(s.reachable);
+  EXPECT_LE(s.predictions, solver.settings().max_bisections);
+  EXPECT_NEAR(s.rpm, AnalyticPredictor::urea_rpm_for_effective_width(18.0), 5.0 / 8.0);
+  // A noisy, non-monotonic curve: the first sample reaching the set-point wins.
+  WidthCurve noisy{"urea", {400, 450, 500, 550, 600}, {3.0, 5.0, 2.5, 6.0, 4.0}};
+  RpmSolverSettings no_refinement;
+  no_refinement.max_bisections = 0;
+  EXPECT_EQ(RpmForWidthSolver(no_refinement).solve(predictor, noisy, 5.5).rpm, 550.0);
+  EXPECT_EQ(RpmForWidthSolver(no_refinement).solve(predictor, noisy, 4.5).rpm, 450.0);
+  EXPECT_FALSE(RpmForWidthSolver(no_refinement).solve(predictor, noisy, 8.0).reachable);
+  EXPECT_EQ(RpmForWidthSolver(no_refinement).solve(predictor, noisy, 8.0).rpm, 550.0);
+}
+
+TEST(FixedRateLoop, TwentyHertzOnManualClockIsDeterministic) {
+  auto run = [] {
+    ManualClock clock;
+    AnalyticPredictor predictor;
+    Ecu ecu(clock, EcuParameters{}, &predictor);
+    FixedRateLoop loop(clock, 20.0);
+    NullIo io;
+    EXPECT_FALSE(ecu.apply_command(manual_command(1)).has_value());
+    loop.run(ecu, io, 1s);
+    EXPECT_EQ(loop.statistics().ticks, 20);
+    EXPECT_EQ(io.publishes, 20);
+    EXPECT_EQ(loop.statistics().overruns, 0);
+    EXPECT_EQ(clock.now(), Nanoseconds(1s));
+    return ecu.status();
+  };
+  const EcuStatus a = run();
+  const EcuStatus b = run();
+  EXPECT_EQ(a.rpm_actual, b.rpm_actual);  // bit-identical
+  EXPECT_EQ(a.throw_width_m, b.throw_width_m);
+  EXPECT_NEAR(a.rpm_actual, 750.0 * (1.0 - std::exp(-1.0 / 0.8)), 1e-6);
+}
+
+TEST(FixedRateLoop, OverrunIsCountedAsFault) {
+  ManualClock clock;
+  Ecu ecu(clock, EcuParameters{});
+  FixedRateLoop loop(clock, 20.0);
+  class SlowIo final : public LoopIo {
+   public:
+    explicit SlowIo(ManualClock& c) : clock(c) {}
+    void pump(Nanoseconds) override {}
+    void after_step(const EcuStatus&) override { clock.advance(70ms); }  // longer than 50 ms
+    ManualClock& clock;
+  } io(clock);
+  loop.tick(ecu, io);
+  EXPECT_EQ(loop.statistics().overruns, 1);
+  EXPECT_EQ(ecu.faults().count(Fault::kLoopOverrun), 1u);
+  EXPECT_THROW(FixedRateLoop(clock, 0.0), std::invalid_argument);
+  EXPECT_THROW(loop.run(ecu, io, std::nullopt, nullptr), std::invalid_argument);
+}
+
+TEST(EcuParameters, BadParametersNameTheField) {
+  EcuParameters p;
+  p.section_count = 20;
+  try {
+    validate(p);
+    FAIL() << "expected invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("section_count"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace spread::firmware

@@ -1,0 +1,242 @@
+// LCM end to end: in-process over memq://, and over udpm:// inside a private network namespace the test
+// creates itself (re-executing this binary under `unshare -n`), never on the machine's interfaces.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <thread>
+
+#include "firmware_sim/ecu/ecu.hpp"
+#include "firmware_sim/ecu/fixed_rate_loop.hpp"
+#include "firmware_sim/lcm/lcm_ecu_link.hpp"
+#include "firmware_sim/lcm/lcm_payload.hpp"
+#include "firmware_sim/lcm/lcm_tractor_link.hpp"
+
+namespace spread::firmware::lcm_link {
+namespace {
+
+using namespace std::chrono_literals;
+
+spread::command_t manual_command(std::int64_t sequence) {
+  spread::command_t c{};
+  c.sequence = sequence;
+  c.mode = spread::command_t::MODE_MANUAL;
+  c.rate_setpoint_kg_ha = 200.0;
+  c.width_setpoint_m = 24.0;
+  c.ground_speed_m_s = 12.0 / 3.6;
+  c.material = "urea";
+  c.rpm_setpoint = 750.0;
+  c.num_sections = 8;
+  c.section_on.assign(8, true);
+  return c;
+}
+
+std::vector<std::uint8_t> encode(const spread::command_t& c) {
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(c.getEncodedSize()));
+  c.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// One LCM instance (memq is per instance) shared by the ECU link and the tractor link.
+class Memq : public ::testing::Test {
+ protected:
+  Memq()
+      : lcm_("memq://"),
+        ecu_(clock_, parameters()),
+        ecu_link_(lcm_, ecu_, channels_with_prefix("TEST_")),
+        tractor_(lcm_, channels_with_prefix("TEST_")),
+        loop_(clock_, 20.0) {
+    ecu_link_.attach_loop(&loop_);
+  }
+  static EcuParameters parameters() {
+    EcuParameters p;
+    p.command_timeout = 0s;
+    return p;
+  }
+  void ticks(int n) {
+    for (int i = 0; i < n; ++i) loop_.tick(ecu_, ecu_link_);
+    tractor_.handle(0ns);  // deliver the last status
+  }
+  const spread::status_t& status() {
+    EXPECT_TRUE(tractor_.latest_status().has_value());
+    return *tractor_.latest_status();
+  }
+
+  ManualClock clock_;
+  lcm::LCM lcm_;
+  Ecu ecu_;
+  LcmEcuLink ecu_link_;
+  LcmTractorLink tractor_;
+  FixedRateLoop loop_;
+};
+
+TEST_F(Memq, CommandInStatusOutHeartbeat) {
+  ASSERT_TRUE(tractor_.send(manual_command(1)));
+  ticks(100);  // 5 s
+  const spread::status_t& s = status();
+  EXPECT_EQ(s.last_command_sequence, 1);
+  EXPECT_EQ(s.material, "urea");
+  EXPECT_NEAR(s.rpm_actual, 750.0 * (1.0 - std::exp(-5.0 / 0.8)), 1e-6);
+  EXPECT_NEAR(s.mass_flow_kg_s, 1.6, 1e-9);
+  EXPECT_EQ(s.num_sections, 8);
+  EXPECT_TRUE(s.work_state_actual);
+  EXPECT_TRUE(std::isnan(s.throw_width_m)) << "no tables loaded";
+  EXPECT_EQ(s.fault_codes, 0);
+  EXPECT_EQ(s.num_fault_counts, static_cast<int>(kFaultCount));
+  EXPECT_EQ(tractor_.statuses_received(), 100u);
+  EXPECT_EQ(tractor_.heartbeats_received(), 5u) << "1 Hz over 5 s";
+  ASSERT_TRUE(tractor_.latest_heartbeat().has_value());
+  EXPECT_EQ(tractor_.latest_heartbeat()->loop_rate_mhz, 20000);
+  EXPECT_EQ(ecu_link_.counters().commands_accepted, 1u);
+}
+
+TEST_F(Memq, SectionsFromTheCommand) {
+  spread::command_t c = manual_command(1);
+  c.section_on[6] = false;
+  c.section_on[7] = false;
+  ASSERT_TRUE(tractor_.send(c));
+  ticks(2);
+  EXPECT_NEAR(status().width_actual_m, 18.0, 1e-12);
+  EXPECT_FALSE(status().section_on[7]);
+}
+
+TEST_F(Memq, WrongFingerprintIsCounted) {
+  spread::heartbeat_t other{};
+  other.node = "impostor";
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(other.getEncodedSize()));
+  other.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  ASSERT_TRUE(tractor_.send_raw(bytes.data(), static_cast<unsigned>(bytes.size())));
+  ticks(2);
+  EXPECT_EQ(status().rejected_wrong_fingerprint, 1);
+  EXPECT_NE(status().fault_codes & static_cast<std::int32_t>(fault_bit(Fault::kLcmWrongFingerprint)), 0);
+  EXPECT_EQ(status().last_command_sequence, -1);
+}
+
+TEST_F(Memq, UndecodablePayloadsAreCountedNotFatal) {
+  std::vector<std::uint8_t> good = encode(manual_command(1));
+  // 1: shorter than a fingerprint. 2: truncated body. 3: trailing garbage.
+  const std::uint8_t tiny[3] = {1, 2, 3};
+  ASSERT_TRUE(tractor_.send_raw(tiny, sizeof(tiny)));
+  ASSERT_TRUE(tractor_.send_raw(good.data(), static_cast<unsigned>(good.size() - 5)));
+  std::vector<std::uint8_t> longer = good;
+  longer.push_back(0);
+  ASSERT_TRUE(tractor_.send_raw(longer.data(), static_cast<unsigned>(longer.size())));
+  // 4: hostile string length (-1), 5: hostile array count (-1): lcm-gen's decoder would throw.
+  std::vector<std::uint8_t> bad_string = good;
+  const std::size_t string_length_at = 8 + 8 + 8 + 1 + 8 + 8 + 8;
+  for (int i = 0; i < 4; ++i) bad_string[string_length_at + static_cast<std::size_t>(i)] = 0xFF;
+  ASSERT_TRUE(tractor_.send_raw(bad_string.data(), static_cast<unsigned>(bad_string.size())));
+  std::vector<std::uint8_t> bad_count = good;
+  const std::size_t count_at = string_length_at + 4 + 5 /* "urea\0" */ + 8;
+  ASSERT_EQ(bad_count[count_at], 8);
+  bad_count[count_at] = 0xFF;
+  ASSERT_TRUE(tractor_.send_raw(bad_count.data(), static_cast<unsigned>(bad_count.size())));
+  ticks(2);
+  EXPECT_EQ(status().rejected_undecodable, 5);
+  EXPECT_EQ(status().last_command_sequence, -1);
+  // The link still works.
+  ASSERT_TRUE(tractor_.send(manual_command(2)));
+  ticks(1);
+  EXPECT_EQ(status().last_command_sequence, 2);
+}
+
+TEST_F(Memq, InvalidCommandsAreRejectedAndCounted) {
+  ASSERT_TRUE(tractor_.send(manual_command(5)));
+  spread::command_t nan_rate = manual_command(6);
+  nan_rate.rate_setpoint_kg_ha = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(tractor_.send(nan_rate));
+  spread::command_t too_wide = manual_command(7);
+  too_wide.width_setpoint_m = 80.0;
+  ASSERT_TRUE(tractor_.send(too_wide));
+  spread::command_t bad_mode = manual_command(8);
+  bad_mode.mode = 9;
+  ASSERT_TRUE(tractor_.send(bad_mode));
+  spread::command_t automatic = manual_command(9);  // no tables loaded
+  automatic.mode = spread::command_t::MODE_AUTOMATIC;
+  ASSERT_TRUE(tractor_.send(automatic));
+  ASSERT_TRUE(tractor_.send(manual_command(5)));  // replay of an old command
+  spread::command_t too_many = manual_command(10);
+  too_many.num_sections = 20;
+  too_many.section_on.assign(20, true);
+  ASSERT_TRUE(tractor_.send(too_many));
+  ticks(2);
+  const spread::status_t& s = status();
+  EXPECT_EQ(s.last_command_sequence, 5);
+  EXPECT_EQ(s.rate_setpoint_kg_ha, 200.0);
+  EXPECT_EQ(s.rejected_invalid, 5);
+  EXPECT_EQ(s.rejected_stale, 1);
+  EXPECT_EQ(s.fault_counts[static_cast<std::size_t>(Fault::kNotANumber)], 1);
+  EXPECT_EQ(s.fault_counts[static_cast<std::size_t>(Fault::kUnknownMode)], 1);
+  EXPECT_EQ(s.fault_counts[static_cast<std::size_t>(Fault::kAutomaticUnavailable)], 1);
+  EXPECT_EQ(s.fault_counts[static_cast<std::size_t>(Fault::kSetpointOutOfRange)], 2);
+}
+
+// ---- udpm:// in a private network namespace -------------------------------------------------------
+
+constexpr const char* kInNamespaceVariable = "SPREAD_FIRMWARE_IN_NETNS";
+
+// Re-runs this binary for `test_name` inside `unshare -n` with multicast routed over lo. Returns
+// false with `why` when namespaces are not permitted here.
+bool run_in_private_network(const std::string& test_name, std::string& why) {
+  if (std::system("unshare -n true >/dev/null 2>&1") != 0) {
+    why = "unshare -n is not permitted here (needs CAP_SYS_ADMIN or user namespaces)";
+    return false;
+  }
+  char self[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof(self) - 1);
+  if (n <= 0) {
+    why = "cannot resolve /proc/self/exe";
+    return false;
+  }
+  self[n] = '\0';
+  const std::string command = std::string("unshare -n sh -c 'ip link set lo up && ip link set lo multicast on && "
+                                          "ip route add 224.0.0.0/4 dev lo && ") +
+                              kInNamespaceVariable + "=1 exec \"$0\" --gtest_filter=" + test_name + "' '" + self + "'";
+  const int rc = std::system(command.c_str());
+  EXPECT_EQ(rc, 0) << "inside the namespace: " << command;
+  return true;
+}
+
+TEST(Udpm, EndToEndInPrivateNetworkNamespace) {
+  if (std::getenv(kInNamespaceVariable) == nullptr) {
+    std::string why;
+    if (!run_in_private_network("Udpm.EndToEndInPrivateNetworkNamespace", why)) GTEST_SKIP() << why;
+    return;
+  }
+  // Inside the namespace: a real ECU loop on the steady clock, and a separate LCM instance as tractor.
+  const std::string url = "udpm://239.255.76.67:7711?ttl=0";  // port reserved for this test
+  lcm::LCM ecu_lcm(url);
+  lcm::LCM tractor_lcm(url);
+  ASSERT_TRUE(ecu_lcm.good() && tractor_lcm.good()) << "udpm provider failed to start in the namespace";
+  SteadyClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p);
+  LcmEcuLink ecu_link(ecu_lcm, ecu, channels_with_prefix("NETNS_"));
+  FixedRateLoop loop(clock, 20.0);
+  std::atomic<bool> stop{false};
+  std::thread ecu_thread([&] { loop.run(ecu, ecu_link, 10s, &stop); });
+
+  LcmTractorLink tractor(tractor_lcm, channels_with_prefix("NETNS_"));
+  const spread::command_t command = manual_command(42);
+  const bool accepted = tractor.wait_for(
+      [&] {
+        tractor.send(command);
+        return tractor.latest_status() && tractor.latest_status()->last_command_sequence == 42;
+      },
+      5s);
+  const bool heartbeat = tractor.wait_for([&] { return tractor.heartbeats_received() > 0; }, 3s);
+  stop = true;
+  ecu_thread.join();
+  ASSERT_TRUE(accepted) << "no status acknowledging the command over udpm";
+  EXPECT_TRUE(heartbeat);
+  EXPECT_EQ(tractor.latest_status()->material, "urea");
+  EXPECT_NEAR(tractor.latest_status()->mass_flow_kg_s, 1.6, 1e-9);
+  EXPECT_EQ(tractor.undecodable_received(), 0u);
+}
+
+}  // namespace
+}  // namespace spread::firmware::lcm_link

@@ -1,0 +1,125 @@
+#include <charconv>
+#include <chrono>
+#include <iostream>
+#include <stdexcept>
+#include <thread>
+
+#include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/can/frame_description.hpp"
+#include "firmware_sim/can/isobus_id.hpp"
+#include "firmware_sim/can/process_data.hpp"
+#include "firmware_sim/can/socketcan.hpp"
+#include "firmware_sim/can/speed_messages.hpp"
+#include "tools/spread_tractor/sessions.hpp"
+
+namespace spread::tractor {
+namespace {
+
+using namespace firmware::can;
+using Clock = std::chrono::steady_clock;
+
+bool parse_int(std::string_view text, long long& value) {
+  int base = 10;
+  if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
+    text.remove_prefix(2);
+    base = 16;
+  }
+  bool negative = false;
+  if (!text.empty() && text.front() == '-') {
+    negative = true;
+    text.remove_prefix(1);
+  }
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), value, base);
+  if (r.ec != std::errc{} || r.ptr != text.data() + text.size()) return false;
+  if (negative) value = -value;
+  return true;
+}
+
+void drain(CanFramePort& port, Clock::duration wait, std::uint8_t own_address) {
+  const auto end = Clock::now() + wait;
+  can_frame frame{};
+  while (Clock::now() < end && !stop_requested()) {
+    if (!port.wait_readable(std::chrono::duration_cast<std::chrono::nanoseconds>(end - Clock::now()))) continue;
+    while (port.read(frame) == ReadOutcome::kFrame) {
+      // Show what concerns us: frames addressed to us or broadcast by others.
+      const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
+      if (id.source == own_address) continue;
+      std::cout << "rx " << describe_frame(frame) << std::endl;
+    }
+  }
+}
+
+}  // namespace
+
+int run_can_session(const CanSessionOptions& o) {
+  struct PlannedSet {
+    std::uint16_t ddi;
+    std::int32_t value;
+  };
+  std::vector<PlannedSet> sets;
+  for (const auto& text : o.set_values) {
+    const auto eq = text.find('=');
+    long long ddi = 0;
+    long long value = 0;
+    if (eq == std::string::npos || !parse_int(std::string_view(text).substr(0, eq), ddi) ||
+        !parse_int(std::string_view(text).substr(eq + 1), value) || ddi < 0 || ddi > 0xFFFF ||
+        value < INT32_MIN || value > INT32_MAX) {
+      std::cerr << "spread-tractor: error: --set '" << text << "' is not DDI=VALUE (integers, raw DDI units)\n";
+      return kExitUsage;
+    }
+    sets.push_back({static_cast<std::uint16_t>(ddi), static_cast<std::int32_t>(value)});
+  }
+  CanFramePort port = open_socketcan(o.interface);
+  const auto own = static_cast<std::uint8_t>(o.own_address);
+  const auto ecu = static_cast<std::uint8_t>(o.ecu_address);
+  auto send_pd = [&](ProcessDataCommand command, std::uint16_t ddi, std::int32_t value) {
+    const ProcessDataBytes bytes = encode_process_data({static_cast<std::uint8_t>(command), 0, ddi, value});
+    const can_frame frame = make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, ecu, own}), bytes.data(), 8);
+    std::cout << "tx " << describe_frame(frame) << std::endl;
+    if (!port.send(frame)) std::cerr << "spread-tractor: warning: CAN write failed\n";
+  };
+  for (const auto& s : sets) {
+    send_pd(o.acknowledge ? ProcessDataCommand::kSetValueAndAcknowledge : ProcessDataCommand::kValue, s.ddi, s.value);
+  }
+  for (const int ddi : o.requests) send_pd(ProcessDataCommand::kRequestValue, static_cast<std::uint16_t>(ddi), 0);
+
+  const auto start = Clock::now();
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.send_hz));
+  std::uint32_t distance_mm = 0;
+  while (!stop_requested() && Clock::now() - start < std::chrono::duration<double>(o.duration_s)) {
+    if (o.speed_m_s >= 0.0) {
+      const auto bytes = encode_speed(o.speed_m_s, distance_mm, Direction::kForward);
+      distance_mm += static_cast<std::uint32_t>(o.speed_m_s * 1000.0 / o.send_hz);
+      port.send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, own}), bytes.data(), 8));
+    }
+    drain(port, period, own);
+  }
+  return kExitOk;
+}
+
+int run_replay(const ReplayOptions& o) {
+  const CandumpLog log = read_candump_file(o.log_path);
+  for (const auto& e : log.errors) std::cerr << "spread-tractor: " << o.log_path << ": " << e << "\n";
+  if (o.interface.empty()) {
+    // Dry run: what the log says, decoded.
+    for (const auto& r : log.records) {
+      std::cout << format_candump_line(r.time, r.interface, r.frame) << "  " << describe_frame(r.frame) << "\n";
+    }
+    return log.errors.empty() ? kExitOk : kExitFailure;
+  }
+  CanFramePort port = open_socketcan(o.interface);
+  const auto start = Clock::now();
+  for (const auto& r : log.records) {
+    if (stop_requested()) break;
+    const auto due = start + std::chrono::duration_cast<Clock::duration>(r.time - log.records.front().time);
+    std::this_thread::sleep_until(due);
+    std::cout << "tx " << describe_frame(r.frame) << std::endl;
+    if (!port.send(r.frame)) std::cerr << "spread-tractor: warning: CAN write failed (line " << r.line << ")\n";
+    can_frame frame{};
+    while (port.read(frame) == ReadOutcome::kFrame) std::cout << "rx " << describe_frame(frame) << std::endl;
+  }
+  drain(port, std::chrono::milliseconds(500), 0xFE);
+  return log.errors.empty() ? kExitOk : kExitFailure;
+}
+
+}  // namespace spread::tractor

@@ -1,0 +1,86 @@
+// spread-tractor: the tractor side of firmware_sim. Sends set-points and prints the ECU's status over
+// LCM or over an ISOBUS (SocketCAN), or replays a candump log. Usage examples: docs/can-integration.md
+// and docs/messages.md.
+#include <CLI/CLI.hpp>
+
+#include <atomic>
+#include <csignal>
+#include <iostream>
+
+#include "firmware_sim/lcm/lcm_channels.hpp"
+#include "tools/spread_tractor/sessions.hpp"
+
+namespace {
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop.store(true); }
+}  // namespace
+
+bool spread::tractor::stop_requested() { return g_stop.load(); }
+
+int main(int argc, char** argv) {
+  using namespace spread::tractor;
+  CLI::App app{"spread-tractor: talk to the firmware_sim spreader ECU over LCM or CAN"};
+  app.require_subcommand(1);
+
+  LcmSessionOptions lcm_options;
+  lcm_options.channel_prefix = std::string(spread::firmware::lcm_link::kDefaultChannelPrefix);
+  auto* lcm = app.add_subcommand("lcm", "send command_t set-points and print status_t (omit set-points to monitor)");
+  lcm->add_option("--lcm-url", lcm_options.url, "LCM URL (default: LCM's default udpm)");
+  lcm->add_option("--channel-prefix", lcm_options.channel_prefix, "channel prefix")->capture_default_str();
+  lcm->add_option("--mode", lcm_options.mode, "manual or auto")->check(CLI::IsMember({"manual", "auto"}))->capture_default_str();
+  auto* rate = lcm->add_option("--rate", lcm_options.rate_kg_ha, "application rate set-point [kg/ha]");
+  auto* width = lcm->add_option("--width", lcm_options.width_m, "working width set-point [m]");
+  auto* speed = lcm->add_option("--speed", lcm_options.speed_m_s, "ground speed [m/s]");
+  auto* material = lcm->add_option("--material", lcm_options.material, "material name as in the tables");
+  auto* rpm = lcm->add_option("--rpm", lcm_options.rpm, "disc speed set-point, manual mode [r/min]");
+  auto* sections = lcm->add_option("--sections", lcm_options.sections, "sections in use (1..16)")->capture_default_str();
+  auto* off = lcm->add_option("--off", lcm_options.sections_off, "sections to close, 1-based (e.g. --off 7 8)");
+  lcm->add_option("--hz", lcm_options.send_hz, "command repetition rate [Hz]")->check(CLI::Range(0.1, 100.0))->capture_default_str();
+  lcm->add_option("--duration", lcm_options.duration_s, "run this long [s] (0: until Ctrl-C)")->check(CLI::NonNegativeNumber);
+  lcm->add_flag("--once", lcm_options.once, "send one command, print the status that shows it accepted, exit (3: rejected)");
+  lcm->add_option("--timeout", lcm_options.once_timeout_s, "--once gives up after this long [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  lcm->add_option("--print-interval", lcm_options.print_interval_s, "print a status line at most this often [s]")
+      ->capture_default_str();
+  lcm->add_flag("--heartbeats", lcm_options.heartbeats, "print heartbeats too");
+
+  CanSessionOptions can_options;
+  auto* can = app.add_subcommand("can", "send ISOBUS process data / speed to the ECU and print its answers");
+  can->add_option("--iface", can_options.interface, "SocketCAN interface")->required();
+  can->add_option("--ecu", can_options.ecu_address, "ECU source address")->check(CLI::Range(0, 253))->capture_default_str();
+  can->add_option("--address", can_options.own_address, "our source address")->check(CLI::Range(0, 253))->capture_default_str();
+  can->add_option("--set", can_options.set_values, "set-value DDI=VALUE in raw DDI units (e.g. 6=20000 for 200 kg/ha)");
+  can->add_option("--request", can_options.requests, "request the value of these DDIs (e.g. 390 67)");
+  can->add_flag("--ack", can_options.acknowledge, "send set-values with acknowledge (command 0xA)");
+  can->add_option("--speed", can_options.speed_m_s, "broadcast ground-based speed (PGN 0xFE49) [m/s]");
+  can->add_option("--hz", can_options.send_hz, "speed broadcast rate [Hz]")->check(CLI::Range(0.1, 100.0))->capture_default_str();
+  can->add_option("--duration", can_options.duration_s, "listen this long for answers [s]")->capture_default_str();
+
+  ReplayOptions replay_options;
+  auto* replay = app.add_subcommand("replay", "print a candump log decoded, or send it onto a CAN interface in real time");
+  replay->add_option("log", replay_options.log_path, "candump log file")->required()->check(CLI::ExistingFile);
+  replay->add_option("--iface", replay_options.interface, "send onto this SocketCAN interface (default: only print)");
+
+  CLI11_PARSE(app, argc, argv);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    if (lcm->parsed()) {
+      lcm_options.send = rate->count() + width->count() + speed->count() + material->count() + rpm->count() +
+                             sections->count() + off->count() > 0 ||
+                         lcm_options.mode != "manual";
+      if (lcm_options.once && !lcm_options.send) {
+        std::cerr << "spread-tractor: error: --once needs set-points to send (e.g. --rate 200 --width 24)\n";
+        return kExitUsage;
+      }
+      return run_lcm_session(lcm_options);
+    }
+    if (can->parsed()) return run_can_session(can_options);
+    if (replay->parsed()) return run_replay(replay_options);
+  } catch (const std::exception& e) {
+    std::cerr << "spread-tractor: error: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  return kExitUsage;
+}

@@ -1,0 +1,57 @@
+#pragma once
+// The three ways spread-tractor talks to the ECU. Each returns the process exit code.
+#include <string>
+#include <vector>
+
+namespace spread::tractor {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitUsage = 2;
+inline constexpr int kExitRejected = 3;  // the ECU rejected the command or never answered
+
+struct LcmSessionOptions {
+  std::string url;                 // LCM URL ("" = LCM's default)
+  std::string channel_prefix;
+  bool send = false;               // send commands (else only monitor)
+  std::string mode = "manual";     // manual | auto
+  double rate_kg_ha = 0.0;
+  double width_m = 0.0;
+  double speed_m_s = 0.0;
+  std::string material;
+  double rpm = 0.0;
+  int sections = 8;
+  std::vector<int> sections_off;   // 1-based section numbers to close
+  double send_hz = 5.0;            // command repetition [Hz]
+  double duration_s = 0.0;         // 0: until Ctrl-C (or --once)
+  bool once = false;               // send one command, print the status that reflects it, exit
+  double once_timeout_s = 3.0;     // --once gives up after this long [s]
+  double print_interval_s = 1.0;   // status lines at most this often [s]
+  bool heartbeats = false;         // also print heartbeats
+};
+
+struct CanSessionOptions {
+  std::string interface;
+  int ecu_address = 0x80;
+  int own_address = 0x81;
+  std::vector<std::string> set_values;  // "DDI=VALUE" in the DDI's raw unit
+  std::vector<int> requests;            // DDIs to request
+  bool acknowledge = false;             // use set-value-and-acknowledge (0xA)
+  double speed_m_s = -1.0;              // broadcast ground-based speed at send_hz when >= 0
+  double send_hz = 10.0;
+  double duration_s = 2.0;
+};
+
+struct ReplayOptions {
+  std::string log_path;
+  std::string interface;  // empty: only print the decoded log
+};
+
+int run_lcm_session(const LcmSessionOptions& options);
+int run_can_session(const CanSessionOptions& options);
+int run_replay(const ReplayOptions& options);
+
+// Set by SIGINT/SIGTERM handlers in main.
+bool stop_requested();
+
+}  // namespace spread::tractor
