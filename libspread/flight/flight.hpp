@@ -32,7 +32,7 @@ std::string effects_to_string(EffectSet effects);  // canonical order, comma sep
 
 enum class LiftModel : std::uint8_t {
   // C_L = 0.45 tanh(2Ω / 0.45): slope 2Ω at small spin ratio (Rubinow–Keller), saturating at the
-  // Oesterle & Bui Dinh high-Re value 0.45. Vanishes smoothly as ω → 0. Default (see docs/physics.md).
+  // Oesterle & Bui Dinh high-Re value 0.45. Vanishes smoothly as ω → 0. Default (see docs/physics-flight.md).
   kSmoothSaturating,
   // Oesterle & Bui Dinh (1998), seed Eq. 29 with the exponent Ω^0.4 of the original paper.
   kOesterleBuiDinh,
@@ -80,12 +80,25 @@ struct Landing {
 
 // Flies one granule from `launch` until z crosses ground_z_m (downward). Gravity is -z.
 // Preconditions (checked, std::invalid_argument): finite inputs, diameter > 0, density > 0,
-// air density >= 0, viscosity > 0, dt > 0.
+// air density >= 0, viscosity > 0, dt > 0; also rel_tol > 0, abs_tol >= 0, max_time_s > 0,
+// max_steps > 0, gravity > 0, effects within kAllEffects, launch z >= ground_z_m. A launch exactly on
+// the ground and not moving up has landed at t = 0.
 Landing fly_to_ground(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
                       EffectSet effects, const Settings& settings);
 
+// Optional per-step hook (tests, tools): called once at launch (t = 0), after every accepted step, and
+// with the landing state. A plain function pointer + context: no allocation, no virtual call, and a
+// null on_step costs one predictable branch per step.
+struct StepObserver {
+  void (*on_step)(void* context, double time_s, const State& state) = nullptr;
+  void* context = nullptr;
+};
+Landing fly_to_ground(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                      EffectSet effects, const Settings& settings, const StepObserver& observer);
+
 // Batch of independent flights, split over `threads` worker threads (<= 0: hardware concurrency).
-// Results are identical for any thread count.
+// Results are identical for any thread count. granules.size() is launches.size() or 1 (one granule for
+// all launches); out.size() == launches.size(). All inputs are validated before any thread starts.
 void fly_batch(std::span<const Granule> granules, std::span<const State> launches, double ground_z_m,
                const Air& air, EffectSet effects, const Settings& settings, std::span<Landing> out,
                int threads);

@@ -1,0 +1,66 @@
+// Public entry point: validate, derive the parameters once, and dispatch through a table to the
+// integrator instantiated for exactly this effect combination (DESIGN.md §7: "an effect that is off costs
+// nothing").
+#include <array>
+#include <cstddef>
+#include <utility>
+
+#include "libspread/flight/dormand_prince.hpp"
+#include "libspread/flight/fly_unchecked.hpp"
+#include "libspread/flight/rk4.hpp"
+#include "libspread/flight/validation.hpp"
+
+namespace spread::flight {
+namespace detail {
+namespace {
+
+using FlyFunction = Landing (*)(const FlightParameters&, const State&, double, const Settings&,
+                                const StepObserver&);
+
+template <std::size_t... I>
+constexpr std::array<FlyFunction, sizeof...(I)> make_rk4_table(std::index_sequence<I...>) {
+  return {&fly_rk4<static_cast<EffectSet>(I)>...};
+}
+template <std::size_t... I>
+constexpr std::array<FlyFunction, sizeof...(I)> make_dormand_prince_table(std::index_sequence<I...>) {
+  return {&fly_dormand_prince<static_cast<EffectSet>(I)>...};
+}
+
+constexpr std::size_t kCombinations = static_cast<std::size_t>(kAllEffects) + 1;  // 16
+constexpr auto kRk4Table = make_rk4_table(std::make_index_sequence<kCombinations>{});
+constexpr auto kDormandPrinceTable = make_dormand_prince_table(std::make_index_sequence<kCombinations>{});
+
+}  // namespace
+
+Landing fly_unchecked(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                      EffectSet effects, const Settings& settings, const StepObserver& observer) {
+  // A launch on the ground that is not rising has already landed (the crossing test needs z > ground
+  // at the start of a step).
+  if (launch.position_m.z() == ground_z_m && launch.velocity_m_s.z() <= 0.0) {
+    Landing landing;
+    landing.state = launch;
+    landing.landed = true;
+    if (observer.on_step != nullptr) observer.on_step(observer.context, 0.0, launch);
+    return landing;
+  }
+  if (observer.on_step != nullptr) observer.on_step(observer.context, 0.0, launch);
+  const FlightParameters params = make_flight_parameters(granule, launch, air, settings);
+  const auto& table = settings.scheme == Scheme::kRk4 ? kRk4Table : kDormandPrinceTable;
+  return table[effects & kAllEffects](params, launch, ground_z_m, settings, observer);
+}
+
+}  // namespace detail
+
+Landing fly_to_ground(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                      EffectSet effects, const Settings& settings, const StepObserver& observer) {
+  detail::validate_shared_inputs(ground_z_m, air, effects, settings);
+  detail::validate_flight_inputs(granule, launch, ground_z_m, -1);
+  return detail::fly_unchecked(granule, launch, ground_z_m, air, effects, settings, observer);
+}
+
+Landing fly_to_ground(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                      EffectSet effects, const Settings& settings) {
+  return fly_to_ground(granule, launch, ground_z_m, air, effects, settings, StepObserver{});
+}
+
+}  // namespace spread::flight

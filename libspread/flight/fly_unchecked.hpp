@@ -1,0 +1,10 @@
+#pragma once
+// fly_to_ground without input validation, for callers that validated already (fly_batch).
+#include "libspread/flight/flight.hpp"
+
+namespace spread::flight::detail {
+
+Landing fly_unchecked(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                      EffectSet effects, const Settings& settings, const StepObserver& observer);
+
+}  // namespace spread::flight::detail
