@@ -1,0 +1,249 @@
+/*
+ * spread.h — C API of libspread: predict where a centrifugal fertiliser spreader throws its granules,
+ * from a launch-table file (DESIGN.md §4) and a ballistic flight model (seed 000, Sect. 2.4).
+ *
+ * C99, no dependencies beyond the C standard library. Guide and a complete example: docs/c-api.md.
+ *
+ * Conventions
+ * - Every function that can fail returns a spread_status; SPREAD_OK (0) is success. Outputs are written
+ *   only on success unless a function says otherwise. spread_status_str() names every code.
+ * - Units are SI and appear in every field name (_m, _s, _m_s, _kg_m3, _rpm, _percent).
+ * - Frame: x lateral (positive to the machine's right), y along the driving direction (forward), z up;
+ *   the ground is z = 0 for predictions.
+ * - Ownership (as sqlite3): a spread_tables handle is created by spread_open() and destroyed by
+ *   spread_close(). Strings returned by the library belong to the handle and stay valid until
+ *   spread_close(). Strings passed in (path, material name) are only read during the call. Result structs
+ *   and buffers belong to the caller.
+ * - No allocation during spread_predict() or spread_trajectory(): all workspace is allocated by
+ *   spread_open().
+ * - No C++ exception ever crosses this interface; an unexpected failure is SPREAD_ERROR_INTERNAL.
+ *
+ * Thread-safety
+ *   A handle is NOT safe for concurrent spread_predict() calls: it owns the prediction workspace. Use one
+ *   handle per thread (open the same file several times; handles never write to the file). The query
+ *   functions (spread_material_*, spread_default_disc_height, spread_transverse_bound) only read and may
+ *   run concurrently with each other on one handle, but not concurrently with spread_predict() on it.
+ *   Functions without a handle (spread_trajectory, spread_status_str, spread_version*) are thread-safe.
+ *
+ * ABI stability
+ *   Definition structs carry struct_size, filled in by the static inline *_default() functions below with
+ *   the sizeof() the caller was compiled with. The library reads struct_size to learn which header version
+ *   the caller used, and reads/writes only the fields that version has (the definition and its result).
+ *   New fields are only ever appended; existing fields, enum values and function signatures never change
+ *   within a major version. Always start from *_default() and then set the fields you need.
+ */
+#ifndef SPREAD_SPREAD_H
+#define SPREAD_SPREAD_H
+
+#include <math.h>   /* NAN for the defaults */
+#include <stddef.h> /* size_t */
+#include <stdint.h> /* int32_t, uint32_t */
+
+/* Compile-time version. spread_version() returns the run-time one: compare them to detect a mismatch
+ * between the header you compiled with and the library you linked. */
+#define SPREAD_VERSION_MAJOR 0
+#define SPREAD_VERSION_MINOR 1
+#define SPREAD_VERSION_PATCH 0
+#define SPREAD_VERSION_NUMBER (SPREAD_VERSION_MAJOR * 10000 + SPREAD_VERSION_MINOR * 100 + SPREAD_VERSION_PATCH)
+#define SPREAD_VERSION_STRING "0.1.0"
+
+#if defined(__GNUC__) || defined(__clang__)
+#define SPREAD_API __attribute__((visibility("default")))
+#else
+#define SPREAD_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------------
+ * Status codes. Values are stable: new codes are appended, existing ones never renumbered.
+ * ------------------------------------------------------------------------------------------------- */
+typedef enum spread_status {
+  SPREAD_OK = 0,
+  SPREAD_ERROR_NULL_POINTER = 1,       /* a required pointer argument is NULL */
+  SPREAD_ERROR_NOT_FINITE = 2,         /* a floating-point argument is NaN or infinite */
+  SPREAD_ERROR_OUT_OF_RANGE = 3,       /* a value outside its domain (negative height, CV target <= 0,
+                                          tray width <= 0, index >= count, struct_size too small, ...) */
+  SPREAD_ERROR_RPM_OUTSIDE_TABLE = 4,  /* rpm outside [min, max] of the material's table rows */
+  SPREAD_ERROR_UNKNOWN_MATERIAL = 5,   /* no material of that name in the file */
+  SPREAD_ERROR_UNKNOWN_EFFECT = 6,     /* effect bits outside SPREAD_EFFECT_ALL */
+  SPREAD_ERROR_BUFFER_TOO_SMALL = 7,   /* caller buffer smaller than needed; see spread_transverse_bound */
+  SPREAD_ERROR_FILE_MISSING = 8,       /* no such file */
+  SPREAD_ERROR_FILE_NOT_OURS = 9,      /* not SQLite, or not a libspread launch-table file */
+  SPREAD_ERROR_FILE_CORRUPT = 10,      /* integrity check failed or a record is malformed */
+  SPREAD_ERROR_FILE_WRONG_VERSION = 11,/* a launch-table file of another format version */
+  SPREAD_ERROR_FILE_EMPTY = 12,        /* a launch-table file without runs */
+  SPREAD_ERROR_IO = 13,                /* any other failure reading the file (locked, unreadable) */
+  SPREAD_ERROR_OUT_OF_MEMORY = 14,     /* spread_open could not allocate */
+  SPREAD_ERROR_NOT_LANDED = 15,        /* a trajectory did not reach the ground within the time limit */
+  SPREAD_ERROR_INTERNAL = 16           /* unexpected failure inside the library (a bug: please report) */
+} spread_status;
+
+/* Name of a status code, e.g. "SPREAD_ERROR_UNKNOWN_MATERIAL: unknown material". Never NULL; static
+ * storage. Unknown values give "unknown status". */
+SPREAD_API const char* spread_status_str(spread_status status);
+
+/* Run-time version: SPREAD_VERSION_NUMBER and SPREAD_VERSION_STRING of the library you linked. */
+SPREAD_API uint32_t spread_version(void);
+SPREAD_API const char* spread_version_string(void);
+
+/* ---------------------------------------------------------------------------------------------------
+ * In-flight effects. The same bits as libspread's flight::Effect. Gravity always acts.
+ * ------------------------------------------------------------------------------------------------- */
+#define SPREAD_EFFECT_DRAG 0x1u       /* air drag, seed Eq. 27 with the Haider–Levenspiel C_D, Eq. 32 */
+#define SPREAD_EFFECT_MAGNUS 0x2u     /* Magnus lift, Eq. 28 (smoothly vanishing lift model) */
+#define SPREAD_EFFECT_SPIN_DECAY 0x4u /* spin decay in flight, Eqs. 34–36 */
+#define SPREAD_EFFECT_WIND 0x8u       /* wind: the relative air velocity replaces the granule velocity */
+#define SPREAD_EFFECT_ALL 0xFu
+
+/* ---------------------------------------------------------------------------------------------------
+ * Launch-table handle
+ * ------------------------------------------------------------------------------------------------- */
+typedef struct spread_tables spread_tables; /* opaque */
+
+/* Opens a launch-table file read-only, checks it (application id, format version, integrity, records),
+ * reads it into memory and allocates all prediction workspace. On success *out_tables is a new handle;
+ * on failure *out_tables is set to NULL (when out_tables is not NULL) and the status says why:
+ * SPREAD_ERROR_FILE_MISSING / _NOT_OURS / _CORRUPT / _WRONG_VERSION / _EMPTY / _IO / _OUT_OF_MEMORY. */
+SPREAD_API spread_status spread_open(const char* path, spread_tables** out_tables);
+
+/* Destroys a handle. NULL is a no-op. */
+SPREAD_API void spread_close(spread_tables* tables);
+
+/* Materials, sorted by name, indexed 0 .. count-1. The name string belongs to the handle. */
+SPREAD_API spread_status spread_material_count(const spread_tables* tables, int32_t* out_count);
+SPREAD_API spread_status spread_material_name(const spread_tables* tables, int32_t index,
+                                              const char** out_name);
+/* The rpm range [min, max] of the material's table rows; predictions outside it are refused. */
+SPREAD_API spread_status spread_material_rpm_range(const spread_tables* tables, int32_t index,
+                                                   double* out_min_rpm, double* out_max_rpm);
+/* Height of the disc above the ground stored with the machine (used when the definition says NaN). */
+SPREAD_API spread_status spread_default_disc_height(const spread_tables* tables, double* out_height_m);
+
+/* ---------------------------------------------------------------------------------------------------
+ * Prediction
+ * ------------------------------------------------------------------------------------------------- */
+typedef struct spread_prediction_def {
+  uint32_t struct_size;        /* sizeof(spread_prediction_def) of the caller's header; set by _default() */
+  const char* material;        /* material name (NUL-terminated), read during the call only. Required. */
+  double rpm;                  /* disc speed, revolutions per minute; within the material's table range */
+  double disc_height_m;        /* disc above the ground (m), >= 0; NaN = the machine's stored height */
+  double wind_m_s[2];          /* wind (x lateral, y forward), m/s; used when SPREAD_EFFECT_WIND is set */
+  double cv_target_percent;    /* CV target for the effective working widths, percent, > 0 (default 15) */
+  uint32_t effects;            /* SPREAD_EFFECT_* bits (default: all) */
+  double bout_width_m;         /* bout width at which cv_percent is evaluated, m, >= 0;
+                                  0 = at the to-and-fro effective working width */
+  double tray_width_m;         /* width of the collecting trays, m, > 0 (default 0.5, ISO 5690) */
+} spread_prediction_def;
+
+/* Defaults. Static inline on purpose: the struct is built with the caller's sizeof, so a newer library
+ * with a larger struct never writes past the caller's memory. */
+static inline spread_prediction_def spread_prediction_def_default(void) {
+  spread_prediction_def def;
+  def.struct_size = (uint32_t)sizeof(spread_prediction_def);
+  def.material = NULL;
+  def.rpm = 0.0;
+  def.disc_height_m = NAN;
+  def.wind_m_s[0] = 0.0;
+  def.wind_m_s[1] = 0.0;
+  def.cv_target_percent = 15.0;
+  def.effects = SPREAD_EFFECT_ALL;
+  def.bout_width_m = 0.0;
+  def.tray_width_m = 0.5;
+  return def;
+}
+
+/* Result of one prediction (whole machine: one disc or two counter-rotating discs). Caller-owned. */
+typedef struct spread_prediction {
+  double throw_width_m;               /* lateral extent holding 99 % of the mass */
+  double working_width_to_and_fro_m;  /* largest bout width with CV <= target, to-and-fro; 0 = none */
+  double working_width_racetrack_m;   /* the same for racetrack driving */
+  double bout_width_m;                /* bout width cv_percent refers to (the requested one, or the
+                                         to-and-fro working width); 0 when that width is 0 */
+  double cv_percent;                  /* CV at bout_width_m, to-and-fro, percent; NaN when bout_width_m
+                                         is 0 */
+  double cv_racetrack_percent;        /* CV at bout_width_m, racetrack, percent; NaN when bout_width_m
+                                         is 0 */
+  double mean_radius_m;               /* R̄ of one disc's landings about its centre, seed Eq. 51 */
+  double radial_width_m;              /* ξ, seed Eq. 52 */
+  double disc_height_m;               /* the height used */
+  double lost_mass_fraction;          /* mass that fell outside the tray range or did not land, 0..1 */
+  int32_t tray_count;                 /* trays of the transverse distribution (needed buffer size) */
+  double tray_width_m;                /* as requested */
+  double tray_left_edge_m;            /* left edge of tray 0; tray k is centred at
+                                         tray_left_edge_m + (k + 0.5) * tray_width_m */
+  int32_t flights;                    /* trajectories integrated for this prediction */
+} spread_prediction;
+
+/* Upper bound of spread_prediction.tray_count for any prediction on this handle with this tray width
+ * (zstd-style bounds query): a transverse buffer of this many doubles is always large enough. */
+SPREAD_API spread_status spread_transverse_bound(const spread_tables* tables, double tray_width_m,
+                                                 size_t* out_tray_count);
+
+/* Predicts the spread pattern. `transverse_mass_fraction` may be NULL (not wanted); otherwise it receives
+ * result->tray_count values: the fraction of the machine's discharged mass caught by each tray (the sum
+ * over trays is 1 - lost_mass_fraction). If transverse_capacity < result->tray_count the call returns
+ * SPREAD_ERROR_BUFFER_TOO_SMALL, writes nothing to the buffer, but fills *result (so tray_count says how
+ * many are needed). Input errors: SPREAD_ERROR_NULL_POINTER, _NOT_FINITE, _OUT_OF_RANGE, _UNKNOWN_MATERIAL,
+ * _RPM_OUTSIDE_TABLE, _UNKNOWN_EFFECT. Does not allocate. Not re-entrant on one handle (see top). */
+SPREAD_API spread_status spread_predict(spread_tables* tables, const spread_prediction_def* def,
+                                        spread_prediction* result, double* transverse_mass_fraction,
+                                        size_t transverse_capacity);
+
+/* ---------------------------------------------------------------------------------------------------
+ * Single trajectory (no table needed)
+ * ------------------------------------------------------------------------------------------------- */
+typedef struct spread_trajectory_def {
+  uint32_t struct_size;        /* sizeof(spread_trajectory_def) of the caller's header; set by _default() */
+  double diameter_m;           /* granule diameter, m, > 0 (default 3 mm) */
+  double density_kg_m3;        /* granule density, kg/m³, > 0 (default 1500) */
+  double position_m[3];        /* launch position, m */
+  double velocity_m_s[3];      /* launch velocity, m/s */
+  double spin_rad_s[3];        /* launch angular velocity, rad/s */
+  double ground_z_m;           /* height of the ground plane, m (default 0); the flight ends crossing it */
+  double air_density_kg_m3;    /* kg/m³, >= 0 (default 1.225) */
+  double air_viscosity_pa_s;   /* dynamic viscosity, Pa·s, > 0 (default 1.81e-5) */
+  double wind_m_s[3];          /* m/s; used when SPREAD_EFFECT_WIND is set */
+  uint32_t effects;            /* SPREAD_EFFECT_* bits (default: all) */
+} spread_trajectory_def;
+
+static inline spread_trajectory_def spread_trajectory_def_default(void) {
+  spread_trajectory_def def;
+  int i;
+  def.struct_size = (uint32_t)sizeof(spread_trajectory_def);
+  def.diameter_m = 3e-3;
+  def.density_kg_m3 = 1500.0;
+  for (i = 0; i < 3; ++i) {
+    def.position_m[i] = 0.0;
+    def.velocity_m_s[i] = 0.0;
+    def.spin_rad_s[i] = 0.0;
+    def.wind_m_s[i] = 0.0;
+  }
+  def.position_m[2] = 1.0;
+  def.ground_z_m = 0.0;
+  def.air_density_kg_m3 = 1.225;
+  def.air_viscosity_pa_s = 1.81e-5;
+  def.effects = SPREAD_EFFECT_ALL;
+  return def;
+}
+
+typedef struct spread_landing {
+  double position_m[3];        /* where the granule crosses the ground plane, m */
+  double velocity_m_s[3];      /* its velocity there, m/s */
+  double spin_rad_s[3];        /* its angular velocity there, rad/s */
+  double flight_time_s;        /* s */
+  int32_t steps;               /* accepted integrator steps */
+} spread_landing;
+
+/* Flies one granule to the ground (adaptive Dormand–Prince 5(4), the same settings as spread_predict).
+ * SPREAD_ERROR_NOT_LANDED when it has not reached the ground after 60 s of flight (e.g. launched
+ * upwards in a strong updraught); *out_landing then holds the last state. Thread-safe; no allocation. */
+SPREAD_API spread_status spread_trajectory(const spread_trajectory_def* def, spread_landing* out_landing);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* SPREAD_SPREAD_H */

@@ -1,0 +1,79 @@
+// spread_predict: C definition → predict::PredictionRequest → Predictor → C result. No allocation:
+// the material name is viewed in place, the workspace belongs to the handle.
+#include <algorithm>
+#include <cstring>
+#include <new>
+#include <string_view>
+
+#include "capi/src/tables_handle.hpp"
+
+namespace {
+
+spread_status status_of(spread::predict::PredictStatus status) {
+  using S = spread::predict::PredictStatus;
+  switch (status) {
+    case S::kOk: return SPREAD_OK;
+    case S::kNotFinite: return SPREAD_ERROR_NOT_FINITE;
+    case S::kOutOfRange: return SPREAD_ERROR_OUT_OF_RANGE;
+    case S::kUnknownEffect: return SPREAD_ERROR_UNKNOWN_EFFECT;
+    case S::kUnknownMaterial: return SPREAD_ERROR_UNKNOWN_MATERIAL;
+    case S::kRpmOutsideTable: return SPREAD_ERROR_RPM_OUTSIDE_TABLE;
+  }
+  return SPREAD_ERROR_INTERNAL;
+}
+
+void copy_result(const spread::predict::Prediction& p, spread_prediction& r) {
+  r.throw_width_m = p.throw_width_m;
+  r.working_width_to_and_fro_m = p.working_width_to_and_fro_m;
+  r.working_width_racetrack_m = p.working_width_racetrack_m;
+  r.bout_width_m = p.bout_width_m;
+  r.cv_percent = 100.0 * p.cv_to_and_fro;
+  r.cv_racetrack_percent = 100.0 * p.cv_racetrack;
+  r.mean_radius_m = p.mean_radius_m;
+  r.radial_width_m = p.radial_width_m;
+  r.disc_height_m = p.disc_height_m;
+  r.lost_mass_fraction = p.lost_mass_fraction;
+  r.tray_count = p.trays.tray_count;
+  r.tray_width_m = p.trays.tray_width_m;
+  r.tray_left_edge_m = p.trays.left_edge_m();
+  r.flights = p.flights;
+}
+
+}  // namespace
+
+extern "C" spread_status spread_predict(spread_tables* tables, const spread_prediction_def* def,
+                                        spread_prediction* result, double* transverse_mass_fraction,
+                                        size_t transverse_capacity) {
+  if (tables == nullptr || def == nullptr || result == nullptr) return SPREAD_ERROR_NULL_POINTER;
+  // struct_size first: a definition not made by spread_prediction_def_default() is refused before any
+  // of its fields is read.
+  if (def->struct_size < spread::capi::kPredictionDefV1Size) return SPREAD_ERROR_OUT_OF_RANGE;
+  if (def->material == nullptr) return SPREAD_ERROR_NULL_POINTER;
+  try {
+    spread::predict::PredictionRequest request;
+    request.material = std::string_view(def->material, std::strlen(def->material));
+    request.rpm = def->rpm;
+    request.disc_height_m = def->disc_height_m;
+    request.wind_x_m_s = def->wind_m_s[0];
+    request.wind_y_m_s = def->wind_m_s[1];
+    request.cv_target = def->cv_target_percent / 100.0;
+    request.effects = def->effects;
+    request.bout_width_m = def->bout_width_m;
+    request.tray_width_m = def->tray_width_m;
+
+    spread::predict::Prediction prediction;
+    const auto status = tables->predictor.predict(request, prediction);
+    if (status != spread::predict::PredictStatus::kOk) return status_of(status);
+    copy_result(prediction, *result);
+    if (transverse_mass_fraction != nullptr) {
+      const auto& trays = prediction.tray_mass_fraction;
+      if (transverse_capacity < trays.size()) return SPREAD_ERROR_BUFFER_TOO_SMALL;
+      std::copy(trays.begin(), trays.end(), transverse_mass_fraction);
+    }
+    return SPREAD_OK;
+  } catch (const std::bad_alloc&) {
+    return SPREAD_ERROR_OUT_OF_MEMORY;
+  } catch (...) {
+    return SPREAD_ERROR_INTERNAL;
+  }
+}

@@ -1,0 +1,20 @@
+#pragma once
+// The object behind the opaque spread_tables handle: the predictor (tables in memory + workspace).
+#include <cstddef>
+
+#include "libspread/predict/predictor.hpp"
+#include "spread/spread.h"
+
+struct spread_tables {
+  explicit spread_tables(spread::tables::TableContents contents) : predictor(std::move(contents)) {}
+  spread::predict::Predictor predictor;
+};
+
+namespace spread::capi {
+
+// Oldest struct sizes this library accepts (the first published layouts). A caller compiled against a
+// newer header passes a larger struct_size; the library reads the fields it knows.
+inline constexpr std::size_t kPredictionDefV1Size = sizeof(spread_prediction_def);
+inline constexpr std::size_t kTrajectoryDefV1Size = sizeof(spread_trajectory_def);
+
+}  // namespace spread::capi

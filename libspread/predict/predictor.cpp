@@ -1,0 +1,250 @@
+#include "libspread/predict/predictor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "libspread/predict/flight_defaults.hpp"
+#include "libspread/predict/launch_interpolation.hpp"
+
+namespace spread::predict {
+
+const char* to_string(PredictStatus status) {
+  switch (status) {
+    case PredictStatus::kOk: return "ok";
+    case PredictStatus::kNotFinite: return "argument not finite";
+    case PredictStatus::kOutOfRange: return "argument out of range";
+    case PredictStatus::kUnknownEffect: return "unknown effect bits";
+    case PredictStatus::kUnknownMaterial: return "unknown material";
+    case PredictStatus::kRpmOutsideTable: return "rpm outside the table";
+  }
+  return "unknown status";
+}
+
+Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
+    : contents_(std::move(contents)), limits_(limits), settings_(default_flight_settings()) {
+  if (!(limits_.min_tray_width_m > 0.0) || !(limits_.max_half_extent_m >= limits_.min_tray_width_m) ||
+      !std::isfinite(limits_.max_half_extent_m)) {
+    throw std::invalid_argument("Predictor: limits need 0 < min_tray_width_m <= max_half_extent_m < inf");
+  }
+  const auto& runs = contents_.runs;
+  run_rpm_.reserve(runs.size());
+  std::size_t largest_pair = 0;  // samples needed by the widest interpolation (mixture of two rows)
+  std::size_t i = 0;
+  while (i < runs.size()) {
+    std::size_t j = i;
+    while (j < runs.size() && runs[j].material == runs[i].material) ++j;
+    const auto found = std::find_if(contents_.materials.begin(), contents_.materials.end(),
+                                    [&](const tables::Material& m) { return m.name == runs[i].material; });
+    if (found == contents_.materials.end()) {
+      throw tables::TableError(tables::TableErrorKind::kCorrupt,
+                               "run of material '" + runs[i].material + "' has no material row");
+    }
+    materials_.push_back(MaterialRows{static_cast<std::size_t>(found - contents_.materials.begin()), i, j - i});
+    for (std::size_t k = i; k < j; ++k) {
+      if (k > i && !(runs[k].rpm > runs[k - 1].rpm)) {
+        throw tables::TableError(tables::TableErrorKind::kCorrupt,
+                                 "runs of material '" + runs[i].material + "' not in ascending rpm order");
+      }
+      const std::size_t next = k + 1 < j ? runs[k + 1].samples.size() : 0;
+      largest_pair = std::max(largest_pair, runs[k].samples.size() + next);
+      for (const auto& s : runs[k].samples) lowest_sample_z_m_ = std::min(lowest_sample_z_m_, double{s.z_m});
+    }
+    i = j;
+  }
+  std::sort(materials_.begin(), materials_.end(), [&](const MaterialRows& a, const MaterialRows& b) {
+    return contents_.materials[a.material].name < contents_.materials[b.material].name;
+  });
+  for (const auto& run : runs) run_rpm_.push_back(run.rpm);
+
+  samples_.resize(largest_pair);
+  sample_weight_kg_.resize(largest_pair);
+  // Two discs, each flown (lateral wind) or mirrored: at most two landings per sample.
+  landing_x_m_.resize(2 * largest_pair);
+  landing_y_m_.resize(2 * largest_pair);
+  landing_weight_.resize(2 * largest_pair);
+  radial_x_m_.resize(largest_pair);
+  radial_y_m_.resize(largest_pair);
+  radial_weight_.resize(largest_pair);
+  tray_mass_.resize(static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m)));
+}
+
+const tables::Material& Predictor::material(std::size_t index) const {
+  return contents_.materials.at(materials_.at(index).material);
+}
+double Predictor::min_rpm(std::size_t index) const { return contents_.runs[materials_.at(index).first_run].rpm; }
+double Predictor::max_rpm(std::size_t index) const {
+  const auto& rows = materials_.at(index);
+  return contents_.runs[rows.first_run + rows.run_count - 1].rpm;
+}
+
+std::optional<std::size_t> Predictor::find_material(std::string_view name) const {
+  for (std::size_t k = 0; k < materials_.size(); ++k) {
+    if (contents_.materials[materials_[k].material].name == name) return k;
+  }
+  return std::nullopt;
+}
+
+int Predictor::tray_capacity(double tray_width_m) const {
+  if (!(tray_width_m >= limits_.min_tray_width_m) || !(tray_width_m <= limits_.max_half_extent_m)) return 0;
+  return metrics::tray_layout_covering(limits_.max_half_extent_m, tray_width_m).tray_count;
+}
+
+PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) const {
+  height_m = std::isnan(r.disc_height_m) ? contents_.machine.disc_height_m : r.disc_height_m;
+  for (double v : {r.rpm, height_m, r.wind_x_m_s, r.wind_y_m_s, r.cv_target, r.bout_width_m, r.tray_width_m}) {
+    if (!std::isfinite(v)) return PredictStatus::kNotFinite;
+  }
+  if (height_m < 0.0 || height_m + lowest_sample_z_m_ < 0.0) return PredictStatus::kOutOfRange;
+  if (!(r.cv_target > 0.0) || r.bout_width_m < 0.0) return PredictStatus::kOutOfRange;
+  if (tray_capacity(r.tray_width_m) == 0) return PredictStatus::kOutOfRange;
+  if ((r.effects & ~flight::kAllEffects) != 0) return PredictStatus::kUnknownEffect;
+  return PredictStatus::kOk;
+}
+
+std::size_t Predictor::fly_launches(std::size_t n, double omega_rad_s, double height_m, const flight::Air& air,
+                                    flight::EffectSet effects, bool fly_right_disc, double density_kg_m3) {
+  const auto& machine = contents_.machine;
+  const bool two_discs = machine.disc_count == 2;
+  const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
+  const double rim_speed_m_s = omega_rad_s * machine.disc_radius_m;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::size_t flights = 0;
+
+  // mirror = +1: the left disc as stored; −1: its mirror image x → −x, the right disc. Spin is an axial
+  // vector: under the reflection its x component keeps its sign and y, z change sign.
+  auto fly = [&](const tables::LaunchSample& s, double mirror) {
+    flight::Granule granule;
+    granule.diameter_m = s.diameter_m;
+    granule.density_kg_m3 = density_kg_m3;
+    flight::State launch;
+    launch.position_m = Vec3(mirror * s.x_m, s.y_m, s.z_m + height_m);
+    launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
+    launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
+    ++flights;
+    return flight::fly_to_ground(granule, launch, 0.0, air, effects, settings_);
+  };
+
+  std::size_t radial_count = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const flight::Landing left = fly(samples_[k], 1.0);
+    const double w = sample_weight_kg_[k];
+    const double x = left.landed ? left.state.position_m.x() : nan;
+    const double y = left.landed ? left.state.position_m.y() : nan;
+    landing_x_m_[k] = x - half_spacing_m;
+    landing_y_m_[k] = y;
+    landing_weight_[k] = w;
+    if (left.landed) {
+      radial_x_m_[radial_count] = x;
+      radial_y_m_[radial_count] = y;
+      radial_weight_[radial_count] = w;
+      ++radial_count;
+    }
+    if (!two_discs) continue;
+    if (fly_right_disc) {
+      const flight::Landing right = fly(samples_[k], -1.0);
+      landing_x_m_[n + k] = right.landed ? right.state.position_m.x() + half_spacing_m : nan;
+      landing_y_m_[n + k] = right.landed ? right.state.position_m.y() : nan;
+    } else {
+      landing_x_m_[n + k] = half_spacing_m - x;
+      landing_y_m_[n + k] = y;
+    }
+    landing_weight_[n + k] = w;
+  }
+  const auto stats = metrics::radial_statistics(std::span(radial_x_m_).first(radial_count),
+                                                std::span(radial_y_m_).first(radial_count),
+                                                std::span(radial_weight_).first(radial_count));
+  radial_mean_m_ = stats.mean_radius_m;
+  radial_width_m_ = stats.radial_width_m;
+  return flights;
+}
+
+PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
+  double height_m = 0.0;
+  if (const PredictStatus s = validate(request, height_m); s != PredictStatus::kOk) return s;
+  const auto material_index = find_material(request.material);
+  if (!material_index) return PredictStatus::kUnknownMaterial;
+  const MaterialRows& rows = materials_[*material_index];
+  const auto bracket =
+      bracket_rpm(std::span(run_rpm_).subspan(rows.first_run, rows.run_count), request.rpm);
+  if (!bracket) return PredictStatus::kRpmOutsideTable;
+
+  // 1–2. Launch samples at this rpm (normalised), then scaled during the flight loop.
+  const auto& lower = contents_.runs[rows.first_run + bracket->lower];
+  const auto& upper = contents_.runs[rows.first_run + bracket->upper];
+  const std::size_t n = interpolate_launch_samples(lower.samples, upper.samples, bracket->upper_weight,
+                                                   samples_, sample_weight_kg_);
+  const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
+
+  // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
+  // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
+  flight::EffectSet effects = request.effects;
+  flight::Air air;
+  const bool windy = (effects & flight::kWind) != 0 && (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0);
+  if (windy) {
+    air.wind_m_s = Vec3(request.wind_x_m_s, request.wind_y_m_s, 0.0);
+  } else {
+    effects &= ~flight::EffectSet{flight::kWind};
+  }
+  const bool two_discs = contents_.machine.disc_count == 2;
+  const bool fly_right_disc = two_discs && windy && request.wind_x_m_s != 0.0;
+
+  // 3–4. Flights, machine frame.
+  const int flights = static_cast<int>(fly_launches(n, omega_rad_s, height_m, air, effects, fly_right_disc,
+                                                    contents_.materials[rows.material].density_kg_m3));
+  const std::size_t landings = two_discs ? 2 * n : n;
+  const std::span<const double> xs = std::span(landing_x_m_).first(landings);
+  const std::span<const double> ys = std::span(landing_y_m_).first(landings);
+  const std::span<double> weights = std::span(landing_weight_).first(landings);
+
+  // 5. Trays fitted to the landings (symmetric about the centre line), capped at the widest layout.
+  double half_extent_m = request.tray_width_m;
+  for (double x : xs) {
+    if (std::isfinite(x)) half_extent_m = std::max(half_extent_m, std::abs(x));
+  }
+  half_extent_m = std::min(half_extent_m, limits_.max_half_extent_m);
+  metrics::TrayLayout trays = metrics::tray_layout_covering(half_extent_m, request.tray_width_m);
+  const int capacity = tray_capacity(request.tray_width_m);
+  if (trays.tray_count > capacity) trays.tray_count = capacity;
+  const std::span<double> tray_mass = std::span(tray_mass_).first(static_cast<std::size_t>(trays.tray_count));
+  std::fill(tray_mass.begin(), tray_mass.end(), 0.0);
+
+  double total_kg = 0.0;
+  for (double w : weights) total_kg += w;
+  // Weights as fractions of the machine's discharged mass: the tray contents then read directly as the
+  // share of the application rate per tray.
+  const double scale = total_kg > 0.0 ? 1.0 / total_kg : 0.0;
+  for (double& w : weights) w *= scale;
+  const metrics::MachineLayout machine_frame{1, 0.0};  // landings are already in the machine frame
+  const double lost = metrics::accumulate_transverse(xs, weights, machine_frame, trays, tray_mass);
+
+  Prediction p;
+  p.trays = trays;
+  p.flights = flights;
+  p.disc_height_m = height_m;
+  p.lost_mass_fraction = std::clamp(lost, 0.0, 1.0);
+  p.throw_width_m = metrics::throw_width(tray_mass, trays, 0.99);
+  p.working_width_to_and_fro_m =
+      metrics::effective_working_width(tray_mass, trays, metrics::Overlap::kToAndFro, request.cv_target);
+  p.working_width_racetrack_m =
+      metrics::effective_working_width(tray_mass, trays, metrics::Overlap::kRacetrack, request.cv_target);
+  p.bout_width_m = request.bout_width_m > 0.0 ? request.bout_width_m : p.working_width_to_and_fro_m;
+  if (p.bout_width_m > 0.0) {
+    p.cv_to_and_fro = metrics::cv_at_width(tray_mass, trays, p.bout_width_m, metrics::Overlap::kToAndFro);
+    p.cv_racetrack = metrics::cv_at_width(tray_mass, trays, p.bout_width_m, metrics::Overlap::kRacetrack);
+  } else {
+    p.cv_to_and_fro = p.cv_racetrack = std::numeric_limits<double>::quiet_NaN();
+  }
+  p.mean_radius_m = radial_mean_m_;
+  p.radial_width_m = radial_width_m_;
+  p.tray_mass_fraction = tray_mass;
+  p.landing_x_m = xs;
+  p.landing_y_m = ys;
+  p.landing_mass_fraction = weights;
+  out = p;
+  return PredictStatus::kOk;
+}
+
+}  // namespace spread::predict

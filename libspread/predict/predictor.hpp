@@ -1,0 +1,136 @@
+#pragma once
+// Predictor: from a launch-table file's contents to the spread pattern of the machine, for any
+// (material, rpm between table rows, disc height, wind, effects). The core of the C API (capi/).
+//
+// Steps of predict() — none allocates; all workspace is sized in the constructor from the largest
+// pair of neighbouring rows and the widest tray layout:
+//   1. find the material and the rows around the rpm (launch_interpolation.hpp),
+//   2. interpolate the normalised launch samples, scale velocities by ωR and spins by ω,
+//      place them at the disc height (ground z = 0),
+//   3. fly each granule (flight::fly_to_ground, default_flight_settings()),
+//   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
+//      (DESIGN.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
+//      so the right disc's launches are mirrored and flown themselves,
+//   5. trays fitted to the landings, throw width, effective working widths (to-and-fro, racetrack),
+//      CV at the bout width, R̄ and ξ of one disc (seed Eqs. 51–52).
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "libspread/flight/flight.hpp"
+#include "libspread/metrics/metrics.hpp"
+#include "libspread/tables/table_reader.hpp"
+
+namespace spread::predict {
+
+// Why a request was refused. kOk = success. (Not exceptions: the C API maps these without unwinding,
+// and a refused request must not allocate either.)
+enum class PredictStatus : std::uint8_t {
+  kOk,
+  kNotFinite,          // a NaN/Inf in rpm, height, wind, CV target, bout or tray width
+  kOutOfRange,         // negative height (or disc below the ground), CV target <= 0, bout width < 0,
+                       // tray width outside [min_tray_width_m, max_half_extent_m]
+  kUnknownEffect,      // bits outside flight::kAllEffects
+  kUnknownMaterial,
+  kRpmOutsideTable,
+};
+const char* to_string(PredictStatus status);
+
+struct PredictionRequest {
+  std::string_view material;
+  double rpm = 0.0;                                              // r/min
+  double disc_height_m = std::numeric_limits<double>::quiet_NaN();  // NaN: the machine's stored height
+  double wind_x_m_s = 0.0;                                       // lateral wind (used with kWind)
+  double wind_y_m_s = 0.0;                                       // wind along the driving direction
+  double cv_target = 0.15;                                       // fraction (0.15 = 15 %)
+  flight::EffectSet effects = flight::kAllEffects;
+  double bout_width_m = 0.0;                                     // 0: at the to-and-fro working width
+  double tray_width_m = 0.5;
+};
+
+struct Prediction {
+  double throw_width_m = 0.0;               // 99 % of the mass
+  double working_width_to_and_fro_m = 0.0;  // largest W with CV <= target; 0 = none
+  double working_width_racetrack_m = 0.0;
+  double bout_width_m = 0.0;                // where the CVs below were evaluated
+  double cv_to_and_fro = 0.0;               // fraction; NaN when bout_width_m == 0
+  double cv_racetrack = 0.0;                // fraction; NaN when bout_width_m == 0
+  double mean_radius_m = 0.0;               // R̄ of the left disc about its centre, Eq. 51
+  double radial_width_m = 0.0;              // ξ, Eq. 52
+  double disc_height_m = 0.0;               // as used
+  double lost_mass_fraction = 0.0;          // outside the trays or not landed
+  metrics::TrayLayout trays;
+  int flights = 0;                          // trajectories integrated
+  // Views into the predictor's workspace, valid until the next predict():
+  std::span<const double> tray_mass_fraction;  // per tray, of the machine's total discharged mass
+  // Landings of the whole machine in the machine frame (both discs; the left disc's first), with the
+  // fraction of the total mass each stands for. Not-landed granules have x = y = NaN.
+  std::span<const double> landing_x_m, landing_y_m, landing_mass_fraction;
+};
+
+struct PredictorLimits {
+  double max_half_extent_m = 100.0;  // trays cover at most [-100 m, 100 m]; landings beyond are "lost"
+  double min_tray_width_m = 0.05;
+};
+
+class Predictor {
+ public:
+  // Throws tables::TableError(kCorrupt) when a run names a material the file does not describe, and
+  // std::invalid_argument for bad limits. Materials without runs are not offered.
+  explicit Predictor(tables::TableContents contents, PredictorLimits limits = {});
+
+  const tables::Machine& machine() const { return contents_.machine; }
+  std::size_t material_count() const { return materials_.size(); }
+  const tables::Material& material(std::size_t index) const;  // sorted by name
+  double min_rpm(std::size_t index) const;
+  double max_rpm(std::size_t index) const;
+  std::optional<std::size_t> find_material(std::string_view name) const;
+  const PredictorLimits& limits() const { return limits_; }
+
+  // Tray count of the widest layout for this tray width: an upper bound of Prediction::trays.tray_count.
+  // 0 when the tray width is outside the limits.
+  int tray_capacity(double tray_width_m) const;
+
+  // Integrator used by predict(); default_flight_settings() unless changed (benchmarks, tests).
+  void set_flight_settings(const flight::Settings& settings) { settings_ = settings; }
+  const flight::Settings& flight_settings() const { return settings_; }
+
+  // Does not allocate. Refused requests are statuses, not exceptions (so a refusal does not allocate
+  // either); on a refusal `out` is unchanged. An exception from here means a malformed table record that
+  // the reader let through (e.g. a zero diameter) or a bug.
+  PredictStatus predict(const PredictionRequest& request, Prediction& out);
+
+ private:
+  struct MaterialRows {
+    std::size_t material = 0;   // index into contents_.materials
+    std::size_t first_run = 0;  // runs are sorted by (material, rpm)
+    std::size_t run_count = 0;
+  };
+
+  PredictStatus validate(const PredictionRequest& request, double& height_m) const;
+  std::size_t fly_launches(std::size_t sample_count, double omega_rad_s, double height_m,
+                           const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
+                           double density_kg_m3);
+
+  tables::TableContents contents_;
+  PredictorLimits limits_;
+  flight::Settings settings_;
+  std::vector<MaterialRows> materials_;
+  std::vector<double> run_rpm_;       // contents_.runs[i].rpm, flat for bracket_rpm
+  double lowest_sample_z_m_ = 0.0;    // over all runs: the disc must sit at least -this above ground
+  double radial_mean_m_ = 0.0;        // R̄, ξ of the last fly_launches()
+  double radial_width_m_ = 0.0;
+
+  // Workspace.
+  std::vector<tables::LaunchSample> samples_;
+  std::vector<double> sample_weight_kg_;
+  std::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
+  std::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
+  std::vector<double> tray_mass_;
+};
+
+}  // namespace spread::predict

@@ -1,0 +1,72 @@
+/* The C API from C99 (compiled with -std=c99 -Wall -Wextra -pedantic -Werror): every declaration of
+ * spread.h must be C, the inline defaults must work in C, and the basic calls must behave. Exit code 0 =
+ * pass; each failed check prints its line. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "spread/spread.h"
+
+static int failures = 0;
+#define CHECK(cond)                                              \
+  do {                                                           \
+    if (!(cond)) {                                               \
+      fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond); \
+      ++failures;                                                \
+    }                                                            \
+  } while (0)
+
+int main(int argc, char** argv) {
+  spread_tables* tables = NULL;
+  spread_prediction_def def = spread_prediction_def_default();
+  spread_trajectory_def traj = spread_trajectory_def_default();
+  spread_prediction result;
+  spread_landing landing;
+  double trays[1000];
+  size_t bound = 0;
+  int32_t count = 0;
+  const char* name = NULL;
+
+  if (argc != 2) {
+    fprintf(stderr, "usage: capi_c99 TABLES.sqlite\n");
+    return 2;
+  }
+  CHECK(def.struct_size == sizeof(spread_prediction_def));
+  CHECK(isnan(def.disc_height_m));
+  CHECK(def.cv_target_percent == 15.0);
+  CHECK(def.effects == SPREAD_EFFECT_ALL);
+  CHECK(spread_version() == SPREAD_VERSION_NUMBER);
+  CHECK(strcmp(spread_version_string(), SPREAD_VERSION_STRING) == 0);
+  CHECK(strncmp(spread_status_str(SPREAD_ERROR_FILE_CORRUPT), "SPREAD_ERROR_FILE_CORRUPT", 25) == 0);
+
+  CHECK(spread_open("/nonexistent/tables.sqlite", &tables) == SPREAD_ERROR_FILE_MISSING);
+  CHECK(tables == NULL);
+  CHECK(spread_open(argv[1], &tables) == SPREAD_OK);
+  if (tables == NULL) return 1;
+
+  CHECK(spread_material_count(tables, &count) == SPREAD_OK && count == 2);
+  CHECK(spread_material_name(tables, 0, &name) == SPREAD_OK && strcmp(name, "can") == 0);
+  CHECK(spread_transverse_bound(tables, 0.5, &bound) == SPREAD_OK && bound <= 1000);
+
+  def.material = "can";
+  def.rpm = 640.0;
+  CHECK(spread_predict(tables, &def, &result, trays, sizeof trays / sizeof trays[0]) == SPREAD_OK);
+  CHECK(result.working_width_to_and_fro_m > 0.0);
+  CHECK(result.tray_count > 0 && (size_t)result.tray_count <= bound);
+  def.rpm = NAN;
+  CHECK(spread_predict(tables, &def, &result, NULL, 0) == SPREAD_ERROR_NOT_FINITE);
+  def.rpm = 1e4;
+  CHECK(spread_predict(tables, &def, &result, NULL, 0) == SPREAD_ERROR_RPM_OUTSIDE_TABLE);
+  def.rpm = 640.0;
+  def.material = "sand";
+  CHECK(spread_predict(tables, &def, &result, NULL, 0) == SPREAD_ERROR_UNKNOWN_MATERIAL);
+
+  traj.position_m[2] = 1.0;
+  traj.velocity_m_s[0] = 10.0;
+  CHECK(spread_trajectory(&traj, &landing) == SPREAD_OK);
+  CHECK(landing.position_m[0] > 1.0 && landing.position_m[0] < 10.0);
+
+  spread_close(tables);
+  if (failures == 0) printf("capi_c99: all checks passed\n");
+  return failures == 0 ? 0 : 1;
+}

@@ -1,0 +1,343 @@
+// C API behaviour: queries, predictions, caller buffers and their bounds, every input error code,
+// single trajectories, version and status names, and that docs/c-api.md carries the compiled example.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "spread/spread.h"
+#include "tests/capi/capi_test_files.hpp"
+#include "tests/predict/synthetic_table.hpp"
+
+namespace {
+
+using spread::testing::temp_path;
+
+class Capi : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    path_ = temp_path("api.sqlite");
+    spread::testing::write_synthetic_table(path_);
+  }
+  void SetUp() override { ASSERT_EQ(spread_open(path_.c_str(), &tables_), SPREAD_OK); }
+  void TearDown() override { spread_close(tables_); }
+
+  static spread_prediction_def def(const char* material = "can", double rpm = 600.0) {
+    spread_prediction_def d = spread_prediction_def_default();
+    d.material = material;
+    d.rpm = rpm;
+    return d;
+  }
+  spread_status predict(const spread_prediction_def& d) {
+    spread_prediction r{};
+    return spread_predict(tables_, &d, &r, nullptr, 0);
+  }
+
+  static inline std::string path_;
+  spread_tables* tables_ = nullptr;
+};
+
+TEST_F(Capi, QueriesMaterialsAndRanges) {
+  int32_t count = 0;
+  ASSERT_EQ(spread_material_count(tables_, &count), SPREAD_OK);
+  ASSERT_EQ(count, 2);
+  const char* name = nullptr;
+  ASSERT_EQ(spread_material_name(tables_, 1, &name), SPREAD_OK);
+  EXPECT_STREQ(name, "urea");
+  double lo = 0, hi = 0;
+  ASSERT_EQ(spread_material_rpm_range(tables_, 0, &lo, &hi), SPREAD_OK);
+  EXPECT_EQ(lo, 500.0);
+  EXPECT_EQ(hi, 800.0);
+  double h = 0;
+  ASSERT_EQ(spread_default_disc_height(tables_, &h), SPREAD_OK);
+  EXPECT_EQ(h, 0.8);
+  EXPECT_EQ(spread_material_name(tables_, 2, &name), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_EQ(spread_material_name(tables_, -1, &name), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_EQ(spread_material_rpm_range(tables_, 7, &lo, &hi), SPREAD_ERROR_OUT_OF_RANGE);
+}
+
+TEST_F(Capi, PredictsIntoCallerResultAndBuffer) {
+  const spread_prediction_def d = def("can", 650.0);
+  size_t bound = 0;
+  ASSERT_EQ(spread_transverse_bound(tables_, d.tray_width_m, &bound), SPREAD_OK);
+  std::vector<double> trays(bound, -1.0);
+  spread_prediction r{};
+  ASSERT_EQ(spread_predict(tables_, &d, &r, trays.data(), trays.size()), SPREAD_OK);
+  EXPECT_GT(r.throw_width_m, 5.0);
+  EXPECT_GT(r.working_width_to_and_fro_m, 0.0);
+  EXPECT_GT(r.working_width_racetrack_m, 0.0);
+  EXPECT_EQ(r.bout_width_m, r.working_width_to_and_fro_m);
+  EXPECT_LE(r.cv_percent, 15.0);
+  EXPECT_GT(r.mean_radius_m, 0.0);
+  EXPECT_GT(r.radial_width_m, 0.0);
+  EXPECT_EQ(r.disc_height_m, 0.8);
+  EXPECT_EQ(r.tray_width_m, 0.5);
+  EXPECT_EQ(r.flights, 256);
+  ASSERT_GT(r.tray_count, 0);
+  ASSERT_LE(static_cast<size_t>(r.tray_count), bound);
+  const double sum = std::accumulate(trays.begin(), trays.begin() + r.tray_count, 0.0);
+  EXPECT_NEAR(sum + r.lost_mass_fraction, 1.0, 1e-12);
+  EXPECT_EQ(trays[static_cast<size_t>(r.tray_count)], -1.0);  // nothing written past tray_count
+  EXPECT_NEAR(r.tray_left_edge_m, -0.5 * r.tray_count * r.tray_width_m, 1e-12);
+  // Symmetric trays in still air.
+  for (int k = 0; k < r.tray_count; ++k) EXPECT_NEAR(trays[k], trays[r.tray_count - 1 - k], 1e-15);
+}
+
+TEST_F(Capi, RequestedBoutWidthAndCvTarget) {
+  spread_prediction_def d = def();
+  d.bout_width_m = 10.0;
+  d.cv_target_percent = 5.0;
+  spread_prediction strict{};
+  ASSERT_EQ(spread_predict(tables_, &d, &strict, nullptr, 0), SPREAD_OK);
+  EXPECT_EQ(strict.bout_width_m, 10.0);
+  EXPECT_TRUE(std::isfinite(strict.cv_percent));
+  d.cv_target_percent = 30.0;
+  spread_prediction lax{};
+  ASSERT_EQ(spread_predict(tables_, &d, &lax, nullptr, 0), SPREAD_OK);
+  EXPECT_GE(lax.working_width_to_and_fro_m, strict.working_width_to_and_fro_m);
+  EXPECT_EQ(lax.cv_percent, strict.cv_percent);  // same bout width, same CV
+}
+
+TEST_F(Capi, BufferTooSmallStillReportsTheNeededSize) {
+  const spread_prediction_def d = def();
+  spread_prediction r{};
+  double tiny[3] = {-1, -1, -1};
+  EXPECT_EQ(spread_predict(tables_, &d, &r, tiny, 3), SPREAD_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_GT(r.tray_count, 3);
+  EXPECT_EQ(tiny[0], -1.0);  // untouched
+  std::vector<double> exact(static_cast<size_t>(r.tray_count));
+  EXPECT_EQ(spread_predict(tables_, &d, &r, exact.data(), exact.size()), SPREAD_OK);
+}
+
+TEST_F(Capi, NullPointers) {
+  spread_prediction_def d = def();
+  spread_prediction r{};
+  EXPECT_EQ(spread_predict(nullptr, &d, &r, nullptr, 0), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_predict(tables_, nullptr, &r, nullptr, 0), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_predict(tables_, &d, nullptr, nullptr, 0), SPREAD_ERROR_NULL_POINTER);
+  d.material = nullptr;
+  EXPECT_EQ(spread_predict(tables_, &d, &r, nullptr, 0), SPREAD_ERROR_NULL_POINTER);
+  int32_t count = 0;
+  const char* name = nullptr;
+  double a = 0, b = 0;
+  size_t n = 0;
+  EXPECT_EQ(spread_material_count(nullptr, &count), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_material_count(tables_, nullptr), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_material_name(tables_, 0, nullptr), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_material_name(nullptr, 0, &name), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_material_rpm_range(tables_, 0, &a, nullptr), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_default_disc_height(nullptr, &a), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_transverse_bound(tables_, 0.5, nullptr), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_transverse_bound(nullptr, 0.5, &n), SPREAD_ERROR_NULL_POINTER);
+  (void)b;
+}
+
+TEST_F(Capi, NotFiniteArguments) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  spread_prediction_def d = def();
+  d.rpm = nan;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_NOT_FINITE);
+  d = def();
+  d.wind_m_s[0] = inf;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_NOT_FINITE);
+  d = def();
+  d.disc_height_m = inf;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_NOT_FINITE);
+  d = def();
+  d.cv_target_percent = nan;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_NOT_FINITE);
+  d = def();
+  d.tray_width_m = nan;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_NOT_FINITE);
+  size_t n = 0;
+  EXPECT_EQ(spread_transverse_bound(tables_, nan, &n), SPREAD_ERROR_NOT_FINITE);
+  // NaN disc height is the documented "use the table's height", not an error.
+  d = def();
+  d.disc_height_m = nan;
+  EXPECT_EQ(predict(d), SPREAD_OK);
+}
+
+TEST_F(Capi, OutOfRangeArguments) {
+  spread_prediction_def d = def();
+  d.disc_height_m = -0.5;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.cv_target_percent = 0.0;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.cv_target_percent = -5.0;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.bout_width_m = -1.0;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.tray_width_m = 0.0;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.struct_size = 8;  // not made by spread_prediction_def_default()
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  size_t n = 0;
+  EXPECT_EQ(spread_transverse_bound(tables_, -0.5, &n), SPREAD_ERROR_OUT_OF_RANGE);
+}
+
+TEST_F(Capi, RpmOutsideTable) {
+  EXPECT_EQ(predict(def("can", 499.0)), SPREAD_ERROR_RPM_OUTSIDE_TABLE);
+  EXPECT_EQ(predict(def("urea", 750.0)), SPREAD_ERROR_RPM_OUTSIDE_TABLE);  // inside can's range only
+  EXPECT_EQ(predict(def("urea", 700.0)), SPREAD_OK);
+}
+
+TEST_F(Capi, UnknownMaterial) {
+  EXPECT_EQ(predict(def("potash", 600.0)), SPREAD_ERROR_UNKNOWN_MATERIAL);
+  EXPECT_EQ(predict(def("", 600.0)), SPREAD_ERROR_UNKNOWN_MATERIAL);
+}
+
+TEST_F(Capi, UnknownEffectBits) {
+  spread_prediction_def d = def();
+  d.effects = SPREAD_EFFECT_ALL | 0x100u;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_UNKNOWN_EFFECT);
+  spread_trajectory_def t = spread_trajectory_def_default();
+  t.effects = 0x20u;
+  spread_landing l{};
+  EXPECT_EQ(spread_trajectory(&t, &l), SPREAD_ERROR_UNKNOWN_EFFECT);
+}
+
+TEST_F(Capi, FewerEffectsChangeThePrediction) {
+  spread_prediction_def d = def();
+  spread_prediction all{}, vacuum{};
+  ASSERT_EQ(spread_predict(tables_, &d, &all, nullptr, 0), SPREAD_OK);
+  d.effects = 0;  // gravity only
+  ASSERT_EQ(spread_predict(tables_, &d, &vacuum, nullptr, 0), SPREAD_OK);
+  EXPECT_GT(vacuum.mean_radius_m, all.mean_radius_m);  // no drag: much further
+}
+
+TEST_F(Capi, LateralWindShiftsThePattern) {
+  spread_prediction_def d = def();
+  d.wind_m_s[0] = 4.0;
+  size_t bound = 0;
+  ASSERT_EQ(spread_transverse_bound(tables_, 0.5, &bound), SPREAD_OK);
+  std::vector<double> trays(bound);
+  spread_prediction r{};
+  ASSERT_EQ(spread_predict(tables_, &d, &r, trays.data(), trays.size()), SPREAD_OK);
+  EXPECT_EQ(r.flights, 512);  // right disc flown, not mirrored
+  double centroid = 0;
+  for (int k = 0; k < r.tray_count; ++k) centroid += trays[k] * (r.tray_left_edge_m + (k + 0.5) * r.tray_width_m);
+  EXPECT_GT(centroid, 0.3);
+}
+
+// The documented threading model: one handle per thread, same results as one thread alone.
+TEST_F(Capi, OneHandlePerThreadGivesIdenticalResults) {
+  const spread_prediction_def d = def("urea", 633.0);
+  spread_prediction alone{};
+  ASSERT_EQ(spread_predict(tables_, &d, &alone, nullptr, 0), SPREAD_OK);
+  std::vector<spread_prediction> results(4);
+  std::vector<spread_status> statuses(4, SPREAD_ERROR_INTERNAL);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    threads.emplace_back([&, i] {
+      spread_tables* own = nullptr;
+      statuses[i] = spread_open(path_.c_str(), &own);
+      for (int repeat = 0; repeat < 3 && statuses[i] == SPREAD_OK; ++repeat) {
+        statuses[i] = spread_predict(own, &d, &results[i], nullptr, 0);
+      }
+      spread_close(own);
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    EXPECT_EQ(statuses[i], SPREAD_OK);
+    EXPECT_EQ(results[i].throw_width_m, alone.throw_width_m);
+    EXPECT_EQ(results[i].mean_radius_m, alone.mean_radius_m);
+    EXPECT_EQ(results[i].working_width_racetrack_m, alone.working_width_racetrack_m);
+  }
+}
+
+TEST(CapiTrajectory, FallsStraightDownInStillAir) {
+  spread_trajectory_def t = spread_trajectory_def_default();
+  t.position_m[2] = 2.0;
+  spread_landing l{};
+  ASSERT_EQ(spread_trajectory(&t, &l), SPREAD_OK);
+  EXPECT_NEAR(l.position_m[0], 0.0, 1e-12);
+  EXPECT_NEAR(l.position_m[2], 0.0, 1e-9);
+  // Slower than in vacuum (drag), but not by much over 2 m.
+  EXPECT_GT(l.flight_time_s, std::sqrt(2.0 * 2.0 / 9.80665));
+  EXPECT_LT(l.flight_time_s, 1.2 * std::sqrt(2.0 * 2.0 / 9.80665));
+  EXPECT_GT(l.steps, 0);
+}
+
+TEST(CapiTrajectory, VacuumThrowMatchesClosedForm) {
+  spread_trajectory_def t = spread_trajectory_def_default();
+  t.effects = 0;
+  t.position_m[2] = 1.0;
+  t.velocity_m_s[0] = 20.0;
+  spread_landing l{};
+  ASSERT_EQ(spread_trajectory(&t, &l), SPREAD_OK);
+  const double time = std::sqrt(2.0 / 9.80665);
+  EXPECT_NEAR(l.flight_time_s, time, 1e-6);
+  EXPECT_NEAR(l.position_m[0], 20.0 * time, 1e-5);
+}
+
+TEST(CapiTrajectory, InputErrors) {
+  spread_landing l{};
+  spread_trajectory_def t = spread_trajectory_def_default();
+  EXPECT_EQ(spread_trajectory(nullptr, &l), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_trajectory(&t, nullptr), SPREAD_ERROR_NULL_POINTER);
+  t.velocity_m_s[1] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(spread_trajectory(&t, &l), SPREAD_ERROR_NOT_FINITE);
+  t = spread_trajectory_def_default();
+  t.diameter_m = -1e-3;
+  EXPECT_EQ(spread_trajectory(&t, &l), SPREAD_ERROR_OUT_OF_RANGE);
+  t = spread_trajectory_def_default();
+  t.position_m[2] = -0.1;  // below the ground
+  EXPECT_EQ(spread_trajectory(&t, &l), SPREAD_ERROR_OUT_OF_RANGE);
+  t = spread_trajectory_def_default();
+  t.struct_size = 0;
+  EXPECT_EQ(spread_trajectory(&t, &l), SPREAD_ERROR_OUT_OF_RANGE);
+}
+
+TEST(CapiTrajectory, StrongUpdraughtNeverLands) {
+  spread_trajectory_def t = spread_trajectory_def_default();
+  t.wind_m_s[2] = 50.0;  // far above the terminal velocity of a 3 mm granule
+  spread_landing l{};
+  EXPECT_EQ(spread_trajectory(&t, &l), SPREAD_ERROR_NOT_LANDED);
+  EXPECT_GT(l.position_m[2], 1.0);
+}
+
+TEST(CapiVersion, RunTimeMatchesCompileTime) {
+  EXPECT_EQ(spread_version(), static_cast<uint32_t>(SPREAD_VERSION_NUMBER));
+  EXPECT_STREQ(spread_version_string(), SPREAD_VERSION_STRING);
+}
+
+TEST(CapiStatus, EveryCodeHasItsOwnName) {
+  std::set<std::string> names;
+  for (int s = SPREAD_OK; s <= SPREAD_ERROR_INTERNAL; ++s) {
+    const std::string name = spread_status_str(static_cast<spread_status>(s));
+    EXPECT_EQ(name.rfind("SPREAD_", 0), 0u) << s;
+    names.insert(name);
+  }
+  EXPECT_EQ(names.size(), static_cast<size_t>(SPREAD_ERROR_INTERNAL) + 1);
+  EXPECT_STREQ(spread_status_str(static_cast<spread_status>(31)), "unknown status");
+}
+
+std::string read_all(const char* path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(CapiDocs, GuideCarriesTheCompiledExampleVerbatim) {
+  const std::string doc = read_all(SPREAD_DOC_C_API);
+  const std::string example = read_all(SPREAD_EXAMPLE_C);
+  ASSERT_FALSE(example.empty());
+  EXPECT_NE(doc.find(example), std::string::npos)
+      << "docs/c-api.md must contain tests/capi/c_api_example.c verbatim";
+}
+
+}  // namespace

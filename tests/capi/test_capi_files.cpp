@@ -1,0 +1,127 @@
+// spread_open on every kind of file: ours, missing, not ours (garbage, foreign SQLite, zero bytes, a
+// directory), corrupt, wrong version, without runs. The broken files are made from a real one.
+#include <sqlite3.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "spread/spread.h"
+#include "tests/capi/capi_test_files.hpp"
+#include "tests/predict/synthetic_table.hpp"
+
+namespace {
+
+using spread::testing::temp_path;
+
+std::string real_table() {
+  static const std::string path = [] {
+    const std::string p = temp_path("real.sqlite");
+    spread::testing::write_synthetic_table(p);
+    return p;
+  }();
+  return path;
+}
+
+std::string copy_of_real(const std::string& name) {
+  const std::string p = temp_path(name);
+  std::filesystem::copy_file(real_table(), p, std::filesystem::copy_options::overwrite_existing);
+  return p;
+}
+
+void exec_sql(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  char* err = nullptr;
+  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &err);
+  std::string message = err ? err : "";
+  sqlite3_free(err);
+  sqlite3_close(db);
+  ASSERT_EQ(rc, SQLITE_OK) << message;
+}
+
+spread_status open_status(const std::string& path) {
+  spread_tables* tables = reinterpret_cast<spread_tables*>(0x1);  // must be reset to NULL on failure
+  const spread_status s = spread_open(path.c_str(), &tables);
+  if (s == SPREAD_OK) {
+    EXPECT_NE(tables, nullptr);
+  } else {
+    EXPECT_EQ(tables, nullptr);
+  }
+  spread_close(tables);
+  return s;
+}
+
+TEST(CapiOpen, OpensOurFile) { EXPECT_EQ(open_status(real_table()), SPREAD_OK); }
+
+TEST(CapiOpen, MissingFile) {
+  EXPECT_EQ(open_status(temp_path("does-not-exist.sqlite")), SPREAD_ERROR_FILE_MISSING);
+}
+
+TEST(CapiOpen, GarbageBytesAreNotOurs) {
+  const std::string p = temp_path("garbage.sqlite");
+  std::ofstream(p, std::ios::binary) << std::string(5000, '\x5a') << "not a database";
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_NOT_OURS);
+}
+
+TEST(CapiOpen, ForeignSqliteDatabaseIsNotOurs) {
+  const std::string p = temp_path("foreign.sqlite");
+  std::filesystem::remove(p);
+  exec_sql(p, "CREATE TABLE birds(name TEXT); INSERT INTO birds VALUES ('wren');");
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_NOT_OURS);
+}
+
+TEST(CapiOpen, ZeroByteFileAndDirectoryAreNotOurs) {
+  const std::string p = temp_path("zero.sqlite");
+  std::ofstream(p, std::ios::binary).close();
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_NOT_OURS);
+  EXPECT_EQ(open_status(std::filesystem::path(p).parent_path().string()), SPREAD_ERROR_FILE_NOT_OURS);
+}
+
+TEST(CapiOpen, WrongVersion) {
+  const std::string p = copy_of_real("wrong-version.sqlite");
+  exec_sql(p, "PRAGMA user_version = 99;");
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_WRONG_VERSION);
+}
+
+TEST(CapiOpen, FileWithoutRunsIsEmpty) {
+  const std::string p = temp_path("no-runs.sqlite");
+  spread::testing::write_table_without_runs(p);
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_EMPTY);
+  // The same when every run of a real file is deleted.
+  const std::string q = copy_of_real("runs-deleted.sqlite");
+  exec_sql(q, "DELETE FROM runs;");
+  EXPECT_EQ(open_status(q), SPREAD_ERROR_FILE_EMPTY);
+}
+
+TEST(CapiOpen, FlippedBytesAreCorrupt) {
+  // Overwrite the b-tree page headers of every page but the first (which holds the SQLite header and the
+  // application id): the file still looks like ours, and the integrity check must catch it.
+  const std::string p = copy_of_real("corrupt.sqlite");
+  const auto size = std::filesystem::file_size(p);
+  ASSERT_GT(size, 3 * 4096u);
+  std::fstream f(p, std::ios::in | std::ios::out | std::ios::binary);
+  for (std::uintmax_t page = 4096; page + 16 < size; page += 4096) {
+    f.seekp(static_cast<std::streamoff>(page));
+    f.write("\x7f\x7f\x7f\x7f\x7f\x7f\x7f\x7f", 8);
+  }
+  f.close();
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_CORRUPT);
+}
+
+TEST(CapiOpen, MalformedRecordIsCorrupt) {
+  // A structurally sound database whose sample BLOB has the wrong size.
+  const std::string p = copy_of_real("bad-record.sqlite");
+  exec_sql(p, "UPDATE runs SET samples = x'00010203';");
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_CORRUPT);
+}
+
+TEST(CapiOpen, NullArguments) {
+  spread_tables* tables = nullptr;
+  EXPECT_EQ(spread_open(nullptr, &tables), SPREAD_ERROR_NULL_POINTER);
+  EXPECT_EQ(spread_open(real_table().c_str(), nullptr), SPREAD_ERROR_NULL_POINTER);
+  spread_close(nullptr);  // no-op
+}
+
+}  // namespace

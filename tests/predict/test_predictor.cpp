@@ -1,0 +1,248 @@
+// Predictor: pipeline against a hand-assembled reference, accuracy of the default integrator settings,
+// symmetry (mirror trick, lateral wind), interpolation between rows, and every refusal.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+#include "libspread/predict/flight_defaults.hpp"
+#include "libspread/predict/predictor.hpp"
+#include "tests/predict/synthetic_table.hpp"
+
+namespace spread::predict {
+namespace {
+
+PredictionRequest request(const char* material, double rpm) {
+  PredictionRequest r;
+  r.material = material;
+  r.rpm = rpm;
+  return r;
+}
+
+std::vector<double> copy(std::span<const double> s) { return {s.begin(), s.end()}; }
+
+TEST(Predictor, ListsMaterialsSortedWithRpmRanges) {
+  Predictor p(testing::synthetic_contents());
+  ASSERT_EQ(p.material_count(), 2u);
+  EXPECT_EQ(p.material(0).name, "can");
+  EXPECT_EQ(p.material(1).name, "urea");
+  EXPECT_EQ(p.min_rpm(0), 500.0);
+  EXPECT_EQ(p.max_rpm(0), 800.0);
+  EXPECT_EQ(p.min_rpm(1), 500.0);
+  EXPECT_EQ(p.max_rpm(1), 700.0);
+  EXPECT_EQ(p.find_material("urea"), 1u);
+  EXPECT_FALSE(p.find_material("Urea"));
+}
+
+// At an exact row the predictor must reproduce the steps written out by hand: scale, place, fly,
+// mirror, accumulate.
+TEST(Predictor, ExactRowMatchesHandAssembledPipeline) {
+  const auto contents = testing::synthetic_contents();
+  Predictor p(contents);
+  Prediction out;
+  ASSERT_EQ(p.predict(request("can", 600.0), out), PredictStatus::kOk);
+
+  const auto& run = contents.runs[1];
+  ASSERT_EQ(run.rpm, 600.0);
+  const double omega = 600.0 * 2.0 * kPi / 60.0, rim = omega * 0.3;
+  std::vector<double> x, m;
+  double total = 0;
+  for (const auto& s : run.samples) {
+    flight::Granule g{s.diameter_m, 1800.0};
+    flight::State st;
+    st.position_m = Vec3(s.x_m, s.y_m, s.z_m + 0.8);
+    st.velocity_m_s = rim * Vec3(s.vx_norm, s.vy_norm, s.vz_norm);
+    st.spin_rad_s = omega * Vec3(s.wx_norm, s.wy_norm, s.wz_norm);
+    const auto l = flight::fly_to_ground(g, st, 0.0, flight::Air{}, flight::kDrag | flight::kMagnus | flight::kSpinDecay,
+                                         default_flight_settings());
+    ASSERT_TRUE(l.landed);
+    x.push_back(l.state.position_m.x());
+    m.push_back(s.mass_kg);
+    total += 2.0 * s.mass_kg;
+  }
+  for (double& w : m) w /= total;
+  std::vector<double> trays(static_cast<std::size_t>(out.trays.tray_count), 0.0);
+  metrics::accumulate_transverse(x, m, metrics::MachineLayout{2, 1.0}, out.trays, trays);
+  ASSERT_EQ(out.tray_mass_fraction.size(), trays.size());
+  for (std::size_t k = 0; k < trays.size(); ++k) EXPECT_NEAR(out.tray_mass_fraction[k], trays[k], 1e-12) << k;
+  EXPECT_EQ(out.flights, 256);
+  EXPECT_DOUBLE_EQ(out.disc_height_m, 0.8);
+}
+
+TEST(Predictor, MassIsConservedAndResultsArePlausible) {
+  Predictor p(testing::synthetic_contents());
+  Prediction out;
+  ASSERT_EQ(p.predict(request("can", 650.0), out), PredictStatus::kOk);
+  const double caught = std::accumulate(out.tray_mass_fraction.begin(), out.tray_mass_fraction.end(), 0.0);
+  EXPECT_NEAR(caught + out.lost_mass_fraction, 1.0, 1e-12);
+  EXPECT_LT(out.lost_mass_fraction, 1e-12);  // fitted trays hold every landing
+  EXPECT_GT(out.throw_width_m, 5.0);
+  EXPECT_GT(out.working_width_to_and_fro_m, 0.0);
+  EXPECT_LE(out.working_width_to_and_fro_m, out.trays.tray_count * out.trays.tray_width_m);
+  EXPECT_GT(out.mean_radius_m, 2.0);
+  EXPECT_GT(out.radial_width_m, 0.0);
+  EXPECT_EQ(out.bout_width_m, out.working_width_to_and_fro_m);
+  EXPECT_LE(out.cv_to_and_fro, 0.15);
+  ASSERT_EQ(out.landing_x_m.size(), 512u);
+}
+
+TEST(Predictor, StillAirPatternIsMirrorSymmetric) {
+  Predictor p(testing::synthetic_contents());
+  Prediction out;
+  ASSERT_EQ(p.predict(request("can", 700.0), out), PredictStatus::kOk);
+  const auto t = copy(out.tray_mass_fraction);
+  for (std::size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], t[t.size() - 1 - k], 1e-15);
+}
+
+// Default integrator settings land within 1 cm of a tight-tolerance reference (issue 2).
+TEST(Predictor, DefaultSettingsLandWithinOneCentimetreOfReference) {
+  for (const char* material : {"can", "urea"}) {
+    for (double rpm : {500.0, 600.0, 650.0, 700.0}) {
+      Predictor p(testing::synthetic_contents());
+      Prediction out;
+      ASSERT_EQ(p.predict(request(material, rpm), out), PredictStatus::kOk);
+      const auto x = copy(out.landing_x_m), y = copy(out.landing_y_m);
+      p.set_flight_settings(reference_flight_settings());
+      ASSERT_EQ(p.predict(request(material, rpm), out), PredictStatus::kOk);
+      double worst = 0;
+      for (std::size_t k = 0; k < x.size(); ++k) {
+        worst = std::max(worst, std::hypot(x[k] - out.landing_x_m[k], y[k] - out.landing_y_m[k]));
+      }
+      EXPECT_LT(worst, 0.01) << material << " " << rpm;
+    }
+  }
+}
+
+// With a lateral wind the right disc is flown, not mirrored: the machine's pattern in wind +w must be
+// the mirror image of the pattern in wind −w. (The mirror trick would give a symmetric pattern.)
+TEST(Predictor, LateralWindFliesBothDiscsAndMirrorsWithTheWind) {
+  Predictor p(testing::synthetic_contents());
+  PredictionRequest r = request("can", 600.0);
+  r.wind_x_m_s = 3.0;
+  Prediction out;
+  ASSERT_EQ(p.predict(r, out), PredictStatus::kOk);
+  EXPECT_EQ(out.flights, 512);
+  const auto plus = copy(out.tray_mass_fraction);
+  r.wind_x_m_s = -3.0;
+  ASSERT_EQ(p.predict(r, out), PredictStatus::kOk);
+  const auto minus = copy(out.tray_mass_fraction);
+  ASSERT_EQ(plus.size(), minus.size());
+  double centroid = 0, asymmetry = 0;
+  for (std::size_t k = 0; k < plus.size(); ++k) {
+    EXPECT_NEAR(plus[k], minus[minus.size() - 1 - k], 1e-9) << k;
+    centroid += plus[k] * out.trays.centre_m(static_cast<int>(k));
+    asymmetry += std::abs(plus[k] - plus[plus.size() - 1 - k]);
+  }
+  EXPECT_GT(centroid, 0.3);    // blown to the right
+  EXPECT_GT(asymmetry, 0.05);  // not symmetric any more
+}
+
+TEST(Predictor, WindAlongTheDrivingDirectionKeepsTheMirrorTrick) {
+  Predictor p(testing::synthetic_contents());
+  PredictionRequest r = request("can", 600.0);
+  r.wind_y_m_s = 3.0;
+  Prediction out;
+  ASSERT_EQ(p.predict(r, out), PredictStatus::kOk);
+  EXPECT_EQ(out.flights, 256);
+  const auto t = copy(out.tray_mass_fraction);
+  for (std::size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], t[t.size() - 1 - k], 1e-15);
+  // Wind bit off: the wind is ignored.
+  const auto windy_radius = out.mean_radius_m;
+  r.effects = flight::kDrag | flight::kMagnus | flight::kSpinDecay;
+  ASSERT_EQ(p.predict(r, out), PredictStatus::kOk);
+  Prediction still;
+  ASSERT_EQ(p.predict(request("can", 600.0), still), PredictStatus::kOk);
+  EXPECT_EQ(out.mean_radius_m, still.mean_radius_m);
+  EXPECT_NE(windy_radius, still.mean_radius_m);
+}
+
+TEST(Predictor, InterpolatedRpmLiesBetweenItsRows) {
+  Predictor p(testing::synthetic_contents());
+  Prediction lo, mid, hi;
+  ASSERT_EQ(p.predict(request("can", 600.0), lo), PredictStatus::kOk);
+  ASSERT_EQ(p.predict(request("can", 650.0), mid), PredictStatus::kOk);
+  ASSERT_EQ(p.predict(request("can", 700.0), hi), PredictStatus::kOk);
+  EXPECT_LT(lo.mean_radius_m, mid.mean_radius_m);
+  EXPECT_LT(mid.mean_radius_m, hi.mean_radius_m);
+  // Mixture rows (urea: 200 and 256 samples): all samples of both rows fly.
+  Prediction urea;
+  ASSERT_EQ(p.predict(request("urea", 600.0), urea), PredictStatus::kOk);
+  EXPECT_EQ(urea.flights, 456);
+  ASSERT_EQ(p.predict(request("urea", 500.0), urea), PredictStatus::kOk);
+  EXPECT_EQ(urea.flights, 200);
+}
+
+TEST(Predictor, BoutWidthAndHeightAreHonoured) {
+  Predictor p(testing::synthetic_contents());
+  PredictionRequest r = request("can", 600.0);
+  r.bout_width_m = 12.0;
+  r.disc_height_m = 1.2;
+  Prediction high;
+  ASSERT_EQ(p.predict(r, high), PredictStatus::kOk);
+  EXPECT_EQ(high.bout_width_m, 12.0);
+  EXPECT_TRUE(std::isfinite(high.cv_to_and_fro));
+  EXPECT_DOUBLE_EQ(high.disc_height_m, 1.2);
+  Prediction low;
+  ASSERT_EQ(p.predict(request("can", 600.0), low), PredictStatus::kOk);
+  EXPECT_GT(high.mean_radius_m, low.mean_radius_m);  // higher disc, longer flights
+}
+
+TEST(Predictor, IsDeterministic) {
+  Predictor a(testing::synthetic_contents()), b(testing::synthetic_contents());
+  Prediction pa, pb;
+  ASSERT_EQ(a.predict(request("urea", 611.0), pa), PredictStatus::kOk);
+  ASSERT_EQ(b.predict(request("urea", 611.0), pb), PredictStatus::kOk);
+  EXPECT_EQ(copy(pa.tray_mass_fraction), copy(pb.tray_mass_fraction));
+  EXPECT_EQ(pa.working_width_racetrack_m, pb.working_width_racetrack_m);
+}
+
+TEST(Predictor, SingleDiscFliesOneDisc) {
+  Predictor p(testing::synthetic_contents(testing::default_synthetic_materials(), 1));
+  Prediction out;
+  ASSERT_EQ(p.predict(request("can", 600.0), out), PredictStatus::kOk);
+  EXPECT_EQ(out.landing_x_m.size(), 256u);
+  const double caught = std::accumulate(out.tray_mass_fraction.begin(), out.tray_mass_fraction.end(), 0.0);
+  EXPECT_NEAR(caught, 1.0, 1e-12);
+}
+
+TEST(Predictor, RefusesBadRequestsWithTheirStatus) {
+  Predictor p(testing::synthetic_contents());
+  Prediction out;
+  out.throw_width_m = -1.0;  // must stay untouched on refusal
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  auto with = [](auto change) {
+    PredictionRequest r = request("can", 600.0);
+    change(r);
+    return r;
+  };
+  EXPECT_EQ(p.predict(with([](auto& r) { r.material = "gravel"; }), out), PredictStatus::kUnknownMaterial);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.rpm = 499.0; }), out), PredictStatus::kRpmOutsideTable);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.rpm = 801.0; }), out), PredictStatus::kRpmOutsideTable);
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.rpm = nan; }), out), PredictStatus::kNotFinite);
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.wind_x_m_s = inf; }), out), PredictStatus::kNotFinite);
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.cv_target = nan; }), out), PredictStatus::kNotFinite);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.disc_height_m = -0.1; }), out), PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.cv_target = 0.0; }), out), PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.bout_width_m = -1.0; }), out), PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.tray_width_m = 0.01; }), out), PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.effects = 0x10; }), out), PredictStatus::kUnknownEffect);
+  EXPECT_EQ(out.throw_width_m, -1.0);
+}
+
+TEST(Predictor, TrayCapacityBoundsEveryLayout) {
+  Predictor p(testing::synthetic_contents());
+  EXPECT_EQ(p.tray_capacity(0.01), 0);
+  EXPECT_GE(p.tray_capacity(0.5), 400);
+  PredictionRequest r = request("can", 800.0);
+  r.tray_width_m = 0.05;
+  Prediction out;
+  ASSERT_EQ(p.predict(r, out), PredictStatus::kOk);
+  EXPECT_LE(out.trays.tray_count, p.tray_capacity(0.05));
+}
+
+}  // namespace
+}  // namespace spread::predict

@@ -1,0 +1,176 @@
+// spread plot --tables FILE --material NAME --rpm N --out PREFIX [--what pattern,transverse,cv]
+//             [--height M] [--wind VX,VY] [--cv-target PCT] [--tray-width W] [--cell M] [--json]
+// PNGs of one prediction: PREFIX_pattern.png (ground pattern of the whole machine), PREFIX_transverse.png
+// (trays, with the overlapped profile at the to-and-fro working width), PREFIX_cv.png (CV(W) for
+// to-and-fro and racetrack). Masses are per kilogram discharged by the machine (the predictor's mass
+// fractions read as kg per kg), so the plots' kg/g axes are "per kg discharged". Uses the C++ predictor directly: the landings a ground pattern needs are not
+// part of the C API. Prints the written paths (JSON with --json).
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "libspread/plot/plot.hpp"
+#include "libspread/predict/predictor.hpp"
+#include "tools/spread/command_registry.hpp"
+
+namespace {
+
+using nlohmann::json;
+
+struct Options {
+  std::string tables;
+  std::string material;
+  double rpm = 0.0;
+  std::string out_prefix;
+  std::string what = "pattern,transverse,cv";
+  double height_m = std::numeric_limits<double>::quiet_NaN();
+  std::string wind = "0,0";
+  double cv_target_percent = 15.0;
+  double tray_width_m = 0.5;
+  double cell_m = 0.25;
+  bool json = false;
+};
+
+class BadInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::set<std::string> parse_what(const std::string& text) {
+  std::set<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item != "pattern" && item != "transverse" && item != "cv") {
+      throw BadInput("--what: unknown plot '" + item + "' (known: pattern, transverse, cv)");
+    }
+    out.insert(item);
+  }
+  if (out.empty()) throw BadInput("--what: name at least one of pattern, transverse, cv");
+  return out;
+}
+
+void parse_wind(const std::string& text, double& x_m_s, double& y_m_s) {
+  std::istringstream in(text);
+  char comma = 0;
+  if (!(in >> x_m_s >> comma >> y_m_s) || comma != ',' || !(in >> std::ws).eof()) {
+    throw BadInput("--wind '" + text + "': expected VX,VY in m/s, e.g. --wind 2,-1");
+  }
+}
+
+std::string refusal(spread::predict::PredictStatus status, const Options& o,
+                    const spread::predict::Predictor& predictor) {
+  using S = spread::predict::PredictStatus;
+  std::ostringstream out;
+  if (status == S::kUnknownMaterial) {
+    out << "--material '" << o.material << "' is not in " << o.tables << "; materials:";
+    for (std::size_t i = 0; i < predictor.material_count(); ++i) out << " " << predictor.material(i).name;
+  } else if (status == S::kRpmOutsideTable) {
+    const auto i = *predictor.find_material(o.material);
+    out << "--rpm " << o.rpm << " is outside the table rows of '" << o.material << "' [" << predictor.min_rpm(i)
+        << ", " << predictor.max_rpm(i) << "] rpm";
+  } else {
+    out << to_string(status) << " (check --rpm, --height >= 0, --cv-target > 0, --tray-width in [0.05, 100] m)";
+  }
+  return out.str();
+}
+
+void run(const Options& o, int& exit_code) {
+  const auto what = parse_what(o.what);
+  if (o.out_prefix.empty()) throw BadInput("--out: give a path prefix for the PNG files");
+  if (!(o.cell_m > 0.0) || !std::isfinite(o.cell_m)) throw BadInput("--cell must be a positive number of metres");
+
+  spread::predict::PredictionRequest request;
+  request.material = o.material;
+  request.rpm = o.rpm;
+  request.disc_height_m = o.height_m;
+  parse_wind(o.wind, request.wind_x_m_s, request.wind_y_m_s);
+  request.cv_target = o.cv_target_percent / 100.0;
+  request.tray_width_m = o.tray_width_m;
+
+  spread::predict::Predictor predictor(spread::tables::read_table_file(o.tables));
+  spread::predict::Prediction p;
+  const auto status = predictor.predict(request, p);
+  if (status != spread::predict::PredictStatus::kOk) throw BadInput(refusal(status, o, predictor));
+
+  const auto& machine = predictor.machine();
+  const spread::metrics::MachineLayout discs{machine.disc_count, machine.disc_spacing_m};
+  std::ostringstream title;
+  title << o.material << " at " << o.rpm << " rpm";
+  json written = json::object();
+
+  if (what.count("pattern")) {
+    // Landings are already in the machine frame (both discs): one "disc" at x = 0 places them as they are.
+    const auto pattern = spread::metrics::ground_pattern(p.landing_x_m, p.landing_y_m, p.landing_mass_fraction,
+                                                         spread::metrics::MachineLayout{1, 0.0}, o.cell_m);
+    const std::string path = o.out_prefix + "_pattern.png";
+    spread::plot::write_ground_pattern_png(pattern, path, title.str() + ": ground pattern per kg discharged", discs);
+    written["pattern"] = path;
+  }
+  if (what.count("transverse")) {
+    spread::plot::TransverseOptions options;
+    options.series_label = "predicted";
+    options.bout_width_m = p.working_width_to_and_fro_m;
+    const std::string path = o.out_prefix + "_transverse.png";
+    spread::plot::write_transverse_png(p.tray_mass_fraction, p.trays, path,
+                                       title.str() + ": transverse distribution per kg discharged", options);
+    written["transverse"] = path;
+  }
+  if (what.count("cv")) {
+    std::vector<double> widths;
+    for (int n = 2; n <= p.trays.tray_count; ++n) widths.push_back(n * p.trays.tray_width_m);
+    std::vector<double> to_and_fro(widths.size()), racetrack(widths.size());
+    spread::metrics::cv_curve(p.tray_mass_fraction, p.trays, widths, spread::metrics::Overlap::kToAndFro, to_and_fro);
+    spread::metrics::cv_curve(p.tray_mass_fraction, p.trays, widths, spread::metrics::Overlap::kRacetrack, racetrack);
+    const std::string path = o.out_prefix + "_cv.png";
+    spread::plot::write_cv_curve_png(widths, to_and_fro, racetrack, request.cv_target, path, title.str() + ": CV(W)");
+    written["cv"] = path;
+  }
+
+  if (o.json) {
+    std::cout << json{{"written", written},
+                      {"working_width_m", {{"to_and_fro", p.working_width_to_and_fro_m},
+                                           {"racetrack", p.working_width_racetrack_m}}},
+                      {"throw_width_m", p.throw_width_m}}
+                     .dump(2)
+              << "\n";
+  } else {
+    for (const auto& [kind, path] : written.items()) std::cout << path.get<std::string>() << "\n";
+  }
+  exit_code = spread::cli::kExitOk;
+}
+
+spread::cli::CommandRegistration reg{"plot", [](CLI::App& app, int& exit_code) {
+  static Options options;
+  auto* sub = app.add_subcommand("plot", "PNG plots of a prediction: ground pattern, transverse distribution, CV(W)");
+  sub->add_option("--tables", options.tables, "launch-table file (SQLite) written by lookup_builder")->required();
+  sub->add_option("--material", options.material, "material name as in the table")->required();
+  sub->add_option("--rpm", options.rpm, "disc speed (r/min), within the material's table rows")->required();
+  sub->add_option("--out", options.out_prefix, "path prefix of the PNG files (PREFIX_pattern.png, ...)")->required();
+  sub->add_option("--what", options.what, "plots to write: pattern,transverse,cv");
+  sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
+  sub->add_option("--wind", options.wind, "wind VX,VY (m/s)");
+  sub->add_option("--cv-target", options.cv_target_percent, "CV target (%)");
+  sub->add_option("--tray-width", options.tray_width_m, "collecting tray width (m)");
+  sub->add_option("--cell", options.cell_m, "ground-pattern cell size (m)");
+  sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  sub->callback([&exit_code] {
+    try {
+      run(options, exit_code);
+    } catch (const BadInput& e) {
+      std::cerr << "spread plot: error: " << e.what() << "\n";
+      exit_code = spread::cli::kExitUsage;
+    } catch (const spread::tables::TableError& e) {
+      std::cerr << "spread plot: error: --tables: " << e.what() << "\n";
+      exit_code = e.kind() == spread::tables::TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
+    }
+  });
+}};
+
+}  // namespace

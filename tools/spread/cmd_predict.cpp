@@ -1,0 +1,224 @@
+// spread predict --tables FILE --material NAME --rpm N [--height M] [--wind VX,VY] [--cv-target PCT]
+//                [--width W] [--tray-width W] [--effects LIST] [--repeat K] [--json]
+// Goes through the C API (spread.h) on purpose: the CLI is the C API's first user (dogfooding), so what
+// it prints is what an integrator gets. Bad input → a message naming it on stderr and exit code 2.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "libspread/flight/flight.hpp"
+#include "spread/spread.h"
+#include "tools/spread/command_registry.hpp"
+
+namespace {
+
+using nlohmann::json;
+
+struct Options {
+  std::string tables;
+  std::string material;
+  double rpm = 0.0;
+  double height_m = std::numeric_limits<double>::quiet_NaN();
+  std::string wind = "0,0";
+  double cv_target_percent = 15.0;
+  double bout_width_m = 0.0;
+  double tray_width_m = 0.5;
+  std::string effects = "all";
+  int repeat = 0;
+  bool json = false;
+};
+
+struct TablesCloser {
+  void operator()(spread_tables* t) const { spread_close(t); }
+};
+using TablesHandle = std::unique_ptr<spread_tables, TablesCloser>;
+
+class BadInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "VX,VY" in m/s.
+void parse_wind(const std::string& text, double (&wind_m_s)[2]) {
+  std::istringstream in(text);
+  char comma = 0;
+  if (!(in >> wind_m_s[0] >> comma >> wind_m_s[1]) || comma != ',' || !(in >> std::ws).eof()) {
+    throw BadInput("--wind '" + text + "': expected VX,VY in m/s, e.g. --wind 2,-1");
+  }
+}
+
+std::uint32_t parse_effects(const std::string& text) {
+  if (text == "all") return SPREAD_EFFECT_ALL;
+  try {
+    return spread::flight::parse_effects(text);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(std::string("--effects: ") + e.what());
+  }
+}
+
+// An explanation of a refused prediction that names the input and the allowed values.
+std::string explain(spread_status status, const Options& o, spread_tables* tables) {
+  std::ostringstream out;
+  int32_t count = 0;
+  spread_material_count(tables, &count);
+  switch (status) {
+    case SPREAD_ERROR_UNKNOWN_MATERIAL: {
+      out << "--material '" << o.material << "' is not in " << o.tables << "; materials:";
+      for (int32_t i = 0; i < count; ++i) {
+        const char* name = nullptr;
+        if (spread_material_name(tables, i, &name) == SPREAD_OK) out << " " << name;
+      }
+      return out.str();
+    }
+    case SPREAD_ERROR_RPM_OUTSIDE_TABLE:
+      for (int32_t i = 0; i < count; ++i) {
+        const char* name = nullptr;
+        double lo = 0, hi = 0;
+        if (spread_material_name(tables, i, &name) == SPREAD_OK && o.material == name &&
+            spread_material_rpm_range(tables, i, &lo, &hi) == SPREAD_OK) {
+          out << "--rpm " << o.rpm << " is outside the table rows of '" << o.material << "' [" << lo << ", "
+              << hi << "] rpm";
+        }
+      }
+      return out.str();
+    case SPREAD_ERROR_NOT_FINITE: return "an argument is not finite (NaN or Inf) in --rpm/--height/--wind/--cv-target/--width/--tray-width";
+    case SPREAD_ERROR_OUT_OF_RANGE:
+      return "out of range: --height must be >= 0, --cv-target > 0, --width >= 0, --tray-width in [0.05, 100] m";
+    default: return spread_status_str(status);
+  }
+}
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+void run(const Options& o, int& exit_code) {
+  spread_prediction_def def = spread_prediction_def_default();
+  def.material = o.material.c_str();
+  def.rpm = o.rpm;
+  def.disc_height_m = o.height_m;
+  parse_wind(o.wind, def.wind_m_s);
+  def.cv_target_percent = o.cv_target_percent;
+  def.bout_width_m = o.bout_width_m;
+  def.tray_width_m = o.tray_width_m;
+  def.effects = parse_effects(o.effects);
+
+  spread_tables* raw = nullptr;
+  const spread_status opened = spread_open(o.tables.c_str(), &raw);
+  if (opened != SPREAD_OK) {
+    std::cerr << "spread predict: error: --tables '" << o.tables << "': " << spread_status_str(opened) << "\n";
+    exit_code = opened == SPREAD_ERROR_IO || opened == SPREAD_ERROR_OUT_OF_MEMORY ? spread::cli::kExitFailure
+                                                                                  : spread::cli::kExitUsage;
+    return;
+  }
+  TablesHandle tables(raw);
+
+  size_t capacity = 0;
+  spread_status status = spread_transverse_bound(tables.get(), def.tray_width_m, &capacity);
+  std::vector<double> trays(status == SPREAD_OK ? capacity : 0);
+  spread_prediction result{};
+  if (status == SPREAD_OK) status = spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
+  if (status != SPREAD_OK) {
+    std::cerr << "spread predict: error: " << explain(status, o, tables.get()) << "\n";
+    exit_code = status == SPREAD_ERROR_INTERNAL ? spread::cli::kExitFailure : spread::cli::kExitUsage;
+    return;
+  }
+
+  // --repeat K: the median wall time of K further predictions (the first, above, warmed the caches).
+  double median_us = std::numeric_limits<double>::quiet_NaN();
+  if (o.repeat > 0) {
+    std::vector<double> times_us(static_cast<std::size_t>(o.repeat));
+    for (double& t : times_us) {
+      const auto start = std::chrono::steady_clock::now();
+      spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
+      t = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    }
+    std::sort(times_us.begin(), times_us.end());
+    const std::size_t n = times_us.size();
+    median_us = n % 2 == 1 ? times_us[n / 2] : 0.5 * (times_us[n / 2 - 1] + times_us[n / 2]);
+  }
+
+  const auto tray_count = static_cast<std::size_t>(result.tray_count);
+  if (o.json) {
+    json centres = json::array(), fractions = json::array();
+    for (std::size_t k = 0; k < tray_count; ++k) {
+      centres.push_back(result.tray_left_edge_m + (static_cast<double>(k) + 0.5) * result.tray_width_m);
+      fractions.push_back(trays[k]);
+    }
+    json out = {{"tables", o.tables},
+                {"material", o.material},
+                {"rpm", o.rpm},
+                {"disc_height_m", result.disc_height_m},
+                {"wind_m_s", {def.wind_m_s[0], def.wind_m_s[1]}},
+                {"effects", spread::flight::effects_to_string(def.effects)},
+                {"cv_target_percent", o.cv_target_percent},
+                {"throw_width_m", result.throw_width_m},
+                {"working_width_m", {{"to_and_fro", result.working_width_to_and_fro_m},
+                                     {"racetrack", result.working_width_racetrack_m}}},
+                {"bout_width_m", result.bout_width_m},
+                {"cv_percent", number_or_null(result.cv_percent)},
+                {"cv_racetrack_percent", number_or_null(result.cv_racetrack_percent)},
+                {"mean_radius_m", result.mean_radius_m},
+                {"radial_width_m", result.radial_width_m},
+                {"lost_mass_fraction", result.lost_mass_fraction},
+                {"flights", result.flights},
+                {"transverse", {{"tray_width_m", result.tray_width_m},
+                                {"centres_m", centres},
+                                {"mass_fraction", fractions}}}};
+    if (o.repeat > 0) {
+      out["repeat"] = o.repeat;
+      out["time_per_prediction_us"] = median_us;
+    }
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << std::fixed << std::setprecision(2) << o.material << " at " << o.rpm << " rpm, disc "
+              << result.disc_height_m << " m above ground, " << result.flights << " trajectories\n"
+              << "  throw width (99 % of mass)   " << result.throw_width_m << " m\n"
+              << "  working width at CV <= " << o.cv_target_percent << " %: to-and-fro "
+              << result.working_width_to_and_fro_m << " m, racetrack " << result.working_width_racetrack_m
+              << " m\n";
+    if (result.bout_width_m > 0.0) {
+      std::cout << "  CV at " << result.bout_width_m << " m: to-and-fro " << result.cv_percent
+                << " %, racetrack " << result.cv_racetrack_percent << " %\n";
+    } else {
+      std::cout << "  CV: no bout width meets the target\n";
+    }
+    std::cout << "  mean radius R " << result.mean_radius_m << " m, radial width xi " << result.radial_width_m
+              << " m (one disc)\n";
+    if (o.repeat > 0) std::cout << "  median time per prediction " << median_us << " us over " << o.repeat << "\n";
+  }
+  exit_code = spread::cli::kExitOk;
+}
+
+spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code) {
+  static Options options;
+  auto* sub = app.add_subcommand("predict", "predict the spread pattern and working widths from a launch table (via the C API)");
+  sub->add_option("--tables", options.tables, "launch-table file (SQLite) written by lookup_builder")->required();
+  sub->add_option("--material", options.material, "material name as in the table")->required();
+  sub->add_option("--rpm", options.rpm, "disc speed (r/min), within the material's table rows")->required();
+  sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
+  sub->add_option("--wind", options.wind, "wind VX,VY (m/s; x lateral to the right, y forward)");
+  sub->add_option("--cv-target", options.cv_target_percent, "CV target for the working widths (%)");
+  sub->add_option("--width", options.bout_width_m, "bout width for the CV (m); 0 = the to-and-fro working width");
+  sub->add_option("--tray-width", options.tray_width_m, "collecting tray width (m)");
+  sub->add_option("--effects", options.effects, "in-flight effects: all, none, or a list of drag,magnus,spin_decay,wind");
+  sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
+  sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  sub->callback([&exit_code] {
+    try {
+      run(options, exit_code);
+    } catch (const BadInput& e) {
+      std::cerr << "spread predict: error: " << e.what() << "\n";
+      exit_code = spread::cli::kExitUsage;
+    }
+  });
+}};
+
+}  // namespace
