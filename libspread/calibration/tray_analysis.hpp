@@ -1,0 +1,30 @@
+#pragma once
+// What a tray test says about the spreader (docs/field-calibration.md, step 2): CV at a bout width for
+// to-and-fro and racetrack driving, the CV(W) curves, and the effective working widths — all from the
+// measured trays, through spread::metrics on the tray test's symmetric layout.
+#include <vector>
+
+#include "libspread/calibration/tray_csv.hpp"
+
+namespace spread::calibration {
+
+struct TrayTestAnalysis {
+  double total_mass_kg = 0.0;              // sum over the measured trays (mean of the passes)
+  double throw_width_m = 0.0;              // lateral extent of 99 % of the mass
+  double cv_target = 0.15;                 // fraction
+  double working_width_to_and_fro_m = 0.0; // largest W with CV <= target; 0 = none
+  double working_width_racetrack_m = 0.0;
+  double bout_width_m = 0.0;               // the W the CVs below are at (0 = none asked)
+  double cv_to_and_fro = 0.0;              // fraction, at bout_width_m
+  double cv_racetrack = 0.0;
+  // CV(W) on the tray grid from two trays up to the layout width.
+  std::vector<double> widths_m;
+  std::vector<double> cv_to_and_fro_curve;
+  std::vector<double> cv_racetrack_curve;
+};
+
+// cv_target as a fraction (0.15 = 15 %) in (0, 1]; bout_width_m >= 0 (0: no CV at a single width).
+// Throws std::invalid_argument naming a bad cv_target or bout width.
+TrayTestAnalysis analyse_tray_test(const TrayTest& test, double cv_target, double bout_width_m);
+
+}  // namespace spread::calibration

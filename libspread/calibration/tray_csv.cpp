@@ -1,0 +1,234 @@
+#include "libspread/calibration/tray_csv.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace spread::calibration {
+namespace {
+
+// Spacing and centre-line alignment tolerance: tray positions are measured with a tape, to the cm at
+// best, but 0.5 m trays laid 1 cm off still collect what their nominal place does to within a few %.
+constexpr double kPositionTolerance_m = 0.011;
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+std::vector<std::string> split(const std::string& line, char separator) {
+  std::vector<std::string> cells;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, separator)) cells.push_back(trim(cell));
+  if (!line.empty() && line.back() == separator) cells.emplace_back();  // a trailing empty cell
+  return cells;
+}
+
+bool ends_with(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string format_m(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", value);
+  return text;
+}
+
+}  // namespace
+
+TrayCsvError::TrayCsvError(const std::string& source, int line, const std::string& problem)
+    : std::runtime_error(source + ":" + (line > 0 ? std::to_string(line) + ": " : std::string(" ")) + problem),
+      line_(line) {}
+
+double TrayTest::total_mass_kg() const {
+  double sum = 0.0;
+  for (double m : mass_kg) sum += m;
+  return sum;
+}
+
+TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
+  TrayTest test;
+  test.source = source;
+
+  struct Column {
+    std::size_t index;
+    double to_kg;
+  };
+  std::size_t position_column = 0;
+  bool have_position = false;
+  std::vector<Column> mass_columns;
+  std::size_t cell_count = 0;
+  char separator = ',';
+  bool have_header = false;
+  std::vector<int> row_line;  // source line of each tray, for the spacing messages
+
+  std::istringstream in{std::string(text)};
+  std::string raw;
+  int line_number = 0;
+  while (std::getline(in, raw)) {
+    ++line_number;
+    const std::string line = trim(std::string_view(raw).substr(0, raw.find('#')));
+    if (line.empty()) continue;
+
+    if (!have_header) {
+      have_header = true;
+      if (line.find(';') != std::string::npos) separator = ';';
+      else if (line.find('\t') != std::string::npos && line.find(',') == std::string::npos) separator = '\t';
+      const std::vector<std::string> names = split(line, separator);
+      cell_count = names.size();
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        const std::string name = lower(names[i]);
+        if (name == "position_m" || name == "x_m") {
+          if (have_position) throw TrayCsvError(source, line_number, "two position columns ('" + names[i] + "')");
+          have_position = true;
+          position_column = i;
+        } else if (ends_with(name, "_kg")) {
+          mass_columns.push_back({i, 1.0});
+          test.mass_columns.push_back(names[i]);
+        } else if (ends_with(name, "_g")) {
+          mass_columns.push_back({i, 1e-3});
+          test.mass_columns.push_back(names[i]);
+        }
+      }
+      if (!have_position) {
+        throw TrayCsvError(source, line_number,
+                           "missing column position_m (tray centre in metres from the centre line); header is '" +
+                               line + "'");
+      }
+      if (mass_columns.empty()) {
+        throw TrayCsvError(source, line_number,
+                           "missing mass column: name at least one column *_g (grams) or *_kg, e.g. mass_g or "
+                           "pass1_g,pass2_g; header is '" + line + "'");
+      }
+      continue;
+    }
+
+    const std::vector<std::string> cells = split(line, separator);
+    if (cells.size() != cell_count) {
+      throw TrayCsvError(source, line_number,
+                         "expected " + std::to_string(cell_count) + " cells as in the header, found " +
+                             std::to_string(cells.size()));
+    }
+    auto number = [&](std::size_t column, const std::string& what) {
+      const std::string& cell = cells[column];
+      std::size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(cell, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (cell.empty() || used != cell.size() || !std::isfinite(value)) {
+        throw TrayCsvError(source, line_number, what + ": '" + cell + "' is not a number");
+      }
+      return value;
+    };
+    const double position = number(position_column, "position_m");
+    double sum_kg = 0.0;
+    for (std::size_t c = 0; c < mass_columns.size(); ++c) {
+      const double mass = number(mass_columns[c].index, test.mass_columns[c]);
+      if (mass < 0.0) {
+        throw TrayCsvError(source, line_number,
+                           test.mass_columns[c] + ": negative mass " + cells[mass_columns[c].index]);
+      }
+      sum_kg += mass * mass_columns[c].to_kg;
+    }
+    if (!test.position_m.empty() && !(position > test.position_m.back())) {
+      throw TrayCsvError(source, line_number,
+                         "position_m " + cells[position_column] + " is not greater than the previous tray's " +
+                             format_m(test.position_m.back()) + " (list the trays from left to right)");
+    }
+    test.position_m.push_back(position);
+    test.mass_kg.push_back(sum_kg / static_cast<double>(mass_columns.size()));
+    row_line.push_back(line_number);
+  }
+
+  if (!have_header) throw TrayCsvError(source, 0, "empty file: no header and no trays");
+  const int trays = static_cast<int>(test.position_m.size());
+  if (trays < kMinimumTrays) {
+    throw TrayCsvError(source, line_number,
+                       "too few trays: " + std::to_string(trays) + " (need at least " +
+                           std::to_string(kMinimumTrays) + ")");
+  }
+
+  const double spacing = test.position_m[1] - test.position_m[0];
+  for (int k = 2; k < trays; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    const double step = test.position_m[ku] - test.position_m[ku - 1];
+    if (std::abs(step - spacing) > kPositionTolerance_m) {
+      throw TrayCsvError(source, row_line[ku],
+                         "non-uniform tray spacing: " + format_m(step) + " m from the previous tray, but " +
+                             format_m(spacing) + " m between the first two (a missing tray? enter it with mass 0)");
+    }
+  }
+  test.tray_width_m = (test.position_m.back() - test.position_m.front()) / (trays - 1);
+
+  // Symmetric layout: with an odd tray count the centres sit at multiples of the width, with an even
+  // count midway between. Which of the two the first tray is on decides the parity.
+  const double w = test.tray_width_m;
+  const double phase = test.position_m.front() / w - std::floor(test.position_m.front() / w);  // [0, 1)
+  const bool on_multiples = std::min(phase, 1.0 - phase) * w <= kPositionTolerance_m;
+  const bool on_halves = std::abs(phase - 0.5) * w <= kPositionTolerance_m;
+  if (!on_multiples && !on_halves) {
+    throw TrayCsvError(source, row_line.front(),
+                       "tray centres are not on the centre-line grid: with " + format_m(w) +
+                           " m trays the centres must be at multiples of " + format_m(w) + " m or midway between "
+                           "(measure position_m from the tractor centre line)");
+  }
+  const double half_extent = std::max(std::abs(test.position_m.front()), std::abs(test.position_m.back())) + 0.5 * w;
+  int count = static_cast<int>(std::lround(2.0 * half_extent / w));
+  if ((count % 2 == 1) != on_multiples) ++count;  // keep the parity of the grid the trays are on
+  test.layout.tray_width_m = w;
+  test.layout.tray_count = count;
+  test.layout_mass_kg.assign(static_cast<std::size_t>(count), 0.0);
+  for (int k = 0; k < trays; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    const long index = std::lround((test.position_m[ku] - test.layout.left_edge_m()) / w - 0.5);
+    test.layout_mass_kg[static_cast<std::size_t>(std::clamp(index, 0L, static_cast<long>(count - 1)))] = test.mass_kg[ku];
+  }
+  test.padded_trays = count - trays;
+
+  if (!(test.total_mass_kg() > 0.0)) throw TrayCsvError(source, 0, "no mass in any tray");
+  return test;
+}
+
+TrayTest read_tray_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw TrayCsvError(path, 0, "cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_tray_csv(text.str(), path);
+}
+
+void write_tray_csv(const std::string& path, const std::vector<double>& position_m,
+                    const std::vector<std::vector<double>>& pass_mass_g, const std::vector<std::string>& comments) {
+  std::ofstream out(path, std::ios::trunc);
+  if (!out) throw std::runtime_error(path + ": cannot write the tray-test file");
+  for (const std::string& c : comments) out << "# " << c << "\n";
+  out << "position_m";
+  for (std::size_t p = 0; p < pass_mass_g.size(); ++p) out << ",pass" << p + 1 << "_g";
+  out << "\n";
+  char cell[48];
+  for (std::size_t k = 0; k < position_m.size(); ++k) {
+    std::snprintf(cell, sizeof cell, "%.3f", position_m[k]);
+    out << cell;
+    for (const auto& pass : pass_mass_g) {
+      std::snprintf(cell, sizeof cell, ",%.3f", pass.at(k));
+      out << cell;
+    }
+    out << "\n";
+  }
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace spread::calibration

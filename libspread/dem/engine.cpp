@@ -1,0 +1,471 @@
+#include "libspread/dem/engine.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "libspread/dem/contact_laws.hpp"
+#include "libspread/dem/time_step.hpp"
+#include "libspread/flight/flight.hpp"
+
+namespace spread::dem {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+constexpr long long kMinParallelItems = 4096;
+double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * kPi * r * r * r; }
+}  // namespace
+
+DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> overrides, WallSet walls,
+                     EngineParams params)
+    : materials_(std::move(materials)),
+      pair_table_(materials_, overrides, params.model, params.linear),
+      walls_(std::move(walls)),
+      params_(params) {
+  if (materials_.empty()) throw std::invalid_argument("dem: at least one material is needed");
+  if (materials_.size() > 65535) throw std::invalid_argument("dem: too many materials");
+  if (!(params_.min_particle_radius_m > 0.0))
+    throw std::invalid_argument("dem: min_particle_radius_m must be > 0 (it sets the contact time step)");
+  if (params_.max_particle_radius_m <= 0.0) params_.max_particle_radius_m = params_.min_particle_radius_m;
+  if (params_.max_particle_radius_m < params_.min_particle_radius_m)
+    throw std::invalid_argument("dem: max_particle_radius_m must be >= min_particle_radius_m");
+  if (!(params_.contact_steps >= 1.0)) throw std::invalid_argument("dem: contact_steps (N_c) must be >= 1");
+  if (params_.rolling && !params_.rotation)
+    throw std::invalid_argument("dem: the rolling effect needs the rotation effect");
+  if (params_.threads < 1) params_.threads = 1;
+  for (const auto& g : walls_.groups)
+    if (g.material < 0 || static_cast<std::size_t>(g.material) >= materials_.size())
+      throw std::invalid_argument("dem: wall group '" + g.name + "' refers to an unknown material");
+  p_.with_spin = params_.rotation;
+  skin_m_ = params_.skin_m > 0.0 ? params_.skin_m : params_.max_particle_radius_m;
+
+  // Contact time and stability over every material pair at the smallest radius (t_c ∝ R): as particle
+  // against a wall (R* = r, M* = m) and against an equal particle (R* = r/2, M* = m/2).
+  const double v = params_.impact_speed_m_s > 0.0 ? params_.impact_speed_m_s
+                                                  : std::max(1.0, walls_.max_surface_speed_m_s() + 5.0);
+  const double r = params_.min_particle_radius_m;
+  double tc = std::numeric_limits<double>::infinity();
+  double bound = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < materials_.size(); ++a) {
+    if (materials_[a].rigid) continue;
+    const double m = sphere_mass(materials_[a].density_kg_m3, r);
+    for (std::size_t b = 0; b < materials_.size(); ++b) {
+      const PairParams& pp = pair_table_(static_cast<int>(a), static_cast<int>(b));
+      for (int partner = 0; partner < 2; ++partner) {
+        const double r_eff = partner == 0 ? r : 0.5 * r;
+        const double m_eff = partner == 0 ? m : 0.5 * m;
+        const double t = params_.model == ContactModel::kHertzThornton
+                             ? hertz_contact_time_s(m_eff, r_eff, pp.e_star_pa, v)
+                             : linear_contact_time_s(m_eff, pp.kn_linear_n_m);
+        tc = std::min(tc, t);
+        bound = std::min(bound, dem::stable_step_bound_s(params_.model, pp, m_eff, r_eff, v, params_.rotation));
+      }
+    }
+  }
+  contact_time_s_ = tc;
+  stable_bound_s_ = bound;
+  if (params_.dt_s > 0.0) {
+    if (params_.dt_s > bound) {
+      std::ostringstream os;
+      os << "dt_s (scene: numerics.dt_contact_s) = " << params_.dt_s << " s exceeds the stable bound " << bound
+         << " s of the stiffest contact (impact speed " << v << " m/s); use at most that, or leave it 0 for t_c/N_c = "
+         << tc / params_.contact_steps << " s";
+      throw std::invalid_argument(os.str());
+    }
+    dt_s_ = params_.dt_s;
+  } else {
+    dt_s_ = std::min(tc / params_.contact_steps, bound);
+  }
+}
+
+std::uint32_t DemEngine::add_particle(const Vec3& pos, const Vec3& vel, double radius, int material, const Vec3& spin) {
+  if (material < 0 || static_cast<std::size_t>(material) >= materials_.size())
+    throw std::invalid_argument("dem: add_particle with an unknown material index");
+  if (!(radius >= params_.min_particle_radius_m * (1.0 - 1e-12)) || !(radius <= params_.max_particle_radius_m * (1.0 + 1e-12)))
+    throw std::invalid_argument("dem: particle radius outside [min_particle_radius_m, max_particle_radius_m]");
+  if (!pos.allFinite() || !vel.allFinite() || !spin.allFinite()) throw std::invalid_argument("dem: non-finite particle state");
+  const double m = sphere_mass(materials_[static_cast<std::size_t>(material)].density_kg_m3, radius);
+  const std::uint32_t pid = next_id_++;
+  p_.push_back(pos, vel, spin, radius, m, 0.4 * m * radius * radius, static_cast<std::uint16_t>(material), pid, time_s_);
+  lists_dirty_ = true;
+  return pid;
+}
+
+bool DemEngine::overlaps_particle(const Vec3& pos, double radius) const {
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (!p_.active[i]) continue;
+    const double cut = radius + p_.radius_m[i];
+    if ((p_.position(i) - pos).squaredNorm() < cut * cut) return true;
+  }
+  return false;
+}
+
+std::size_t DemEngine::active_count() const { return p_.size() - inactive_; }
+
+double DemEngine::kinetic_energy_j() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (!p_.active[i]) continue;
+    e += 0.5 * p_.mass_kg[i] * p_.velocity(i).squaredNorm();
+    if (p_.with_spin) e += 0.5 * p_.inertia_kg_m2[i] * p_.spin(i).squaredNorm();
+  }
+  return e;
+}
+
+void DemEngine::maintain_lists() {
+  const auto t0 = Clock::now();
+  if (!params_.particle_contact) {
+    if (inactive_ > 0) { p_.compact(); inactive_ = 0; }
+    lists_dirty_ = false;
+    return;
+  }
+  if (!lists_dirty_) {
+    const double half = 0.5 * skin_m_;
+    if (max_displacement2(p_) > half * half) lists_dirty_ = true;
+  }
+  if (lists_dirty_) {
+    if (inactive_ > 0) {
+      // Compaction renumbers the slots; the pair history follows the particle ids.
+      p_.compact();
+      inactive_ = 0;
+    }
+    build_pair_list(p_, skin_m_, pairs_);
+    ++stats_.pair_list_builds;
+    lists_dirty_ = false;
+  }
+  stats_.pair_search_s += seconds_since(t0);
+}
+
+template <class Law, bool kRotation, bool kRolling>
+void DemEngine::compute_forces_impl() {
+  const std::size_t n = p_.size();
+  const double dt = dt_s_;
+  const long long nn = static_cast<long long>(n);
+  std::uint64_t dropped = 0;
+  // A parallel region per pass costs a few microseconds of fork/join; below a few thousand items (and
+  // on a loaded machine) it costs more than it saves.
+  const bool parallel_particles = params_.threads > 1 && nn >= kMinParallelItems;
+  // Walls, per particle (each particle owns its wall-history slots: no races).
+#pragma omp parallel for schedule(static) num_threads(params_.threads) reduction(+ : dropped) if (parallel_particles)
+  for (long long ii = 0; ii < nn; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    p_.fx[i] = p_.fy[i] = p_.fz[i] = 0.0;
+    if constexpr (kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
+    if (!p_.active[i]) continue;
+    const Vec3 x = p_.position(i);
+    const double r = p_.radius_m[i];
+    WallContact wc[kWallSlots + 2];
+    int nc = walls_.collect(x, r, wc, kWallSlots + 2);
+    if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
+    // Old slots (copy), then matched by key; an unmatched contact inherits the history of an unclaimed
+    // old slot with a nearly equal normal (a particle sliding from one triangle to its coplanar
+    // neighbour keeps its tangential spring).
+    std::uint32_t okey[kWallSlots];
+    double ohist[kWallSlots * kHistoryDoubles];
+    double onorm[kWallSlots * 3];
+    bool claimed[kWallSlots] = {};
+    const std::size_t base = i * kWallSlots;
+    for (int s = 0; s < kWallSlots; ++s) {
+      okey[s] = p_.wall_key[base + s];
+      for (int k = 0; k < kHistoryDoubles; ++k) ohist[s * kHistoryDoubles + k] = p_.wall_history[(base + s) * kHistoryDoubles + k];
+      for (int k = 0; k < 3; ++k) onorm[s * 3 + k] = p_.wall_normal[(base + s) * 3 + k];
+    }
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    const Vec3 v = p_.velocity(i);
+    Vec3 w = Vec3::Zero();
+    if constexpr (kRotation) w = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
+    const double m = p_.mass_kg[i];
+    for (int c = 0; c < nc; ++c) {
+      int match = -1;
+      for (int s = 0; s < kWallSlots && match < 0; ++s)
+        if (!claimed[s] && okey[s] == wc[c].key) match = s;
+      if (match < 0) {
+        double best = 0.95;
+        for (int s = 0; s < kWallSlots; ++s) {
+          if (claimed[s] || okey[s] == 0) continue;
+          const double d = wc[c].normal.dot(Vec3(onorm[s * 3], onorm[s * 3 + 1], onorm[s * 3 + 2]));
+          if (d > best) { best = d; match = s; }
+        }
+      }
+      double hist[kHistoryDoubles] = {0.0, 0.0, 0.0, 0.0};
+      if (match >= 0) {
+        claimed[match] = true;
+        for (int k = 0; k < kHistoryDoubles; ++k) hist[k] = ohist[match * kHistoryDoubles + k];
+      }
+      const PairParams& pp = pair_table_(p_.material[i], wc[c].material);
+      ContactInput in;
+      in.normal = wc[c].normal;
+      in.overlap_m = r - wc[c].distance_m;
+      const double lever = Law::lever(r, pp.share_a, in.overlap_m);
+      const Vec3 arm = -lever * in.normal;  // centre → contact point
+      Vec3 v_contact = v;
+      if constexpr (kRotation) v_contact += w.cross(arm);
+      in.slip_m_s = v_contact - wc[c].wall_velocity_m_s;
+      in.r_eff_m = r;
+      in.m_eff_kg = m;
+      in.dt_s = dt;
+      const ContactForce cf = Law::eval(pp, in, hist);
+      force += cf.force_n;
+      if constexpr (kRotation) torque += arm.cross(cf.tangential_force_n);  // Eq. 15
+      if constexpr (kRolling) {
+        const Vec3 wall_spin(0.0, 0.0, walls_.groups[static_cast<std::size_t>(wc[c].group)].angular_velocity_rad_s);
+        torque += rolling_torque(pp.rolling_friction, cf.normal_force_n, r, w - wall_spin, p_.inertia_kg_m2[i], dt);
+      }
+      p_.wall_key[base + c] = wc[c].key;
+      for (int k = 0; k < kHistoryDoubles; ++k) p_.wall_history[(base + c) * kHistoryDoubles + k] = hist[k];
+      for (int k = 0; k < 3; ++k) p_.wall_normal[(base + c) * 3 + k] = wc[c].normal[k];
+    }
+    for (int s = nc; s < kWallSlots; ++s) p_.wall_key[base + s] = 0;
+    p_.fx[i] = force.x(); p_.fy[i] = force.y(); p_.fz[i] = force.z();
+    if constexpr (kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
+  }
+  stats_.wall_contacts_dropped += dropped;
+
+  if (!params_.particle_contact) return;
+  // Pairs: each pair writes its own output slots; the per-particle sums are gathered afterwards in a
+  // fixed order, so the result does not depend on the thread count.
+  const long long np = static_cast<long long>(pairs_.size());
+  const bool parallel_pairs = params_.threads > 1 && np >= kMinParallelItems;
+#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel_pairs)
+  for (long long kk = 0; kk < np; ++kk) {
+    const std::size_t k = static_cast<std::size_t>(kk);
+    const std::size_t i = pairs_.first[k], j = pairs_.second[k];
+    double* hist = &pairs_.history[k * kHistoryDoubles];
+    double* f = &pairs_.force[k * 3];
+    double* ti = &pairs_.torque_first[k * 3];
+    double* tj = &pairs_.torque_second[k * 3];
+    f[0] = f[1] = f[2] = 0.0;
+    if constexpr (kRotation) ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
+    const Vec3 d(p_.x[i] - p_.x[j], p_.y[i] - p_.y[j], p_.z[i] - p_.z[j]);
+    const double ri = p_.radius_m[i], rj = p_.radius_m[j];
+    const double dist2 = d.squaredNorm();
+    const double cut = ri + rj;
+    if (!p_.active[i] || !p_.active[j] || dist2 >= cut * cut || dist2 == 0.0) {
+      hist[0] = hist[1] = hist[2] = hist[3] = 0.0;  // contact lost: the tangential spring is released
+      continue;
+    }
+    const double dist = std::sqrt(dist2);
+    ContactInput in;
+    in.normal = d / dist;  // from j to i
+    in.overlap_m = cut - dist;
+    const PairParams& pp = pair_table_(p_.material[i], p_.material[j]);
+    const double li = Law::lever(ri, pp.share_a, in.overlap_m);
+    const double lj = Law::lever(rj, pp.share_b, in.overlap_m);
+    const Vec3 arm_i = -li * in.normal, arm_j = lj * in.normal;
+    Vec3 vi(p_.vx[i], p_.vy[i], p_.vz[i]), vj(p_.vx[j], p_.vy[j], p_.vz[j]);
+    Vec3 wi = Vec3::Zero(), wj = Vec3::Zero();
+    if constexpr (kRotation) {
+      wi = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
+      wj = Vec3(p_.wx[j], p_.wy[j], p_.wz[j]);
+      vi += wi.cross(arm_i);
+      vj += wj.cross(arm_j);
+    }
+    in.slip_m_s = vi - vj;  // Eq. 8
+    in.r_eff_m = ri * rj / cut;
+    in.m_eff_kg = p_.mass_kg[i] * p_.mass_kg[j] / (p_.mass_kg[i] + p_.mass_kg[j]);
+    in.dt_s = dt;
+    const ContactForce cf = Law::eval(pp, in, hist);
+    f[0] = cf.force_n.x(); f[1] = cf.force_n.y(); f[2] = cf.force_n.z();
+    if constexpr (kRotation) {
+      Vec3 t_i = arm_i.cross(cf.tangential_force_n);
+      Vec3 t_j = arm_j.cross(-cf.tangential_force_n);
+      if constexpr (kRolling) {
+        const double ii_ = p_.inertia_kg_m2[i], ij_ = p_.inertia_kg_m2[j];
+        const Vec3 tr = rolling_torque(pp.rolling_friction, cf.normal_force_n, in.r_eff_m, wi - wj, ii_ * ij_ / (ii_ + ij_), dt);
+        t_i += tr;
+        t_j -= tr;
+      }
+      for (int c = 0; c < 3; ++c) { ti[c] = t_i[c]; tj[c] = t_j[c]; }
+    }
+  }
+#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel_particles)
+  for (long long ii = 0; ii < nn; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    if (!p_.active[i]) continue;
+    double f[3] = {0, 0, 0}, t[3] = {0, 0, 0};
+    for (std::uint32_t k = pairs_.first_start[i]; k < pairs_.first_start[i + 1]; ++k)
+      for (int c = 0; c < 3; ++c) {
+        f[c] += pairs_.force[k * 3 + c];
+        if constexpr (kRotation) t[c] += pairs_.torque_first[k * 3 + c];
+      }
+    for (std::uint32_t q = pairs_.second_start[i]; q < pairs_.second_start[i + 1]; ++q) {
+      const std::uint32_t k = pairs_.second_pairs[q];
+      for (int c = 0; c < 3; ++c) {
+        f[c] -= pairs_.force[k * 3 + c];
+        if constexpr (kRotation) t[c] += pairs_.torque_second[k * 3 + c];
+      }
+    }
+    p_.fx[i] += f[0]; p_.fy[i] += f[1]; p_.fz[i] += f[2];
+    if constexpr (kRotation) { p_.tx[i] += t[0]; p_.ty[i] += t[1]; p_.tz[i] += t[2]; }
+  }
+}
+
+void DemEngine::compute_forces() {
+  const auto t0 = Clock::now();
+  walls_.set_time(time_s_);
+  using Fn = void (DemEngine::*)();
+  // Dispatch table over the effect combination (law × rotation × rolling).
+  static constexpr Fn table[2][2][2] = {
+      {{&DemEngine::compute_forces_impl<HertzThornton, false, false>, &DemEngine::compute_forces_impl<HertzThornton, false, true>},
+       {&DemEngine::compute_forces_impl<HertzThornton, true, false>, &DemEngine::compute_forces_impl<HertzThornton, true, true>}},
+      {{&DemEngine::compute_forces_impl<LinearSpringDashpot, false, false>, &DemEngine::compute_forces_impl<LinearSpringDashpot, false, true>},
+       {&DemEngine::compute_forces_impl<LinearSpringDashpot, true, false>, &DemEngine::compute_forces_impl<LinearSpringDashpot, true, true>}}};
+  const int law = params_.model == ContactModel::kHertzThornton ? 0 : 1;
+  (this->*table[law][params_.rotation ? 1 : 0][params_.rolling ? 1 : 0])();
+  stats_.forces_s += seconds_since(t0);
+}
+
+void DemEngine::kick(double dt) {
+  const std::size_t n = p_.size();
+  const Vec3 g = params_.gravity_m_s2;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!p_.active[i]) continue;
+    const double inv_m = 1.0 / p_.mass_kg[i];
+    p_.vx[i] += dt * (p_.fx[i] * inv_m + g.x());
+    p_.vy[i] += dt * (p_.fy[i] * inv_m + g.y());
+    p_.vz[i] += dt * (p_.fz[i] * inv_m + g.z());
+  }
+  if (p_.with_spin) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!p_.active[i]) continue;
+      const double inv_i = 1.0 / p_.inertia_kg_m2[i];
+      p_.wx[i] += dt * p_.tx[i] * inv_i;
+      p_.wy[i] += dt * p_.ty[i] * inv_i;
+      p_.wz[i] += dt * p_.tz[i] * inv_i;
+    }
+  }
+}
+
+void DemEngine::drift(double dt) {
+  const std::size_t n = p_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    p_.x[i] += dt * p_.vx[i];
+    p_.y[i] += dt * p_.vy[i];
+    p_.z[i] += dt * p_.vz[i];
+  }
+}
+
+void DemEngine::collect() {
+  const auto t0 = Clock::now();
+  const std::size_t n = p_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!p_.active[i]) continue;
+    bool remove = false;
+    if (collector_.enabled) {
+      const double dx = p_.x[i] - collector_.axis_point_m.x(), dy = p_.y[i] - collector_.axis_point_m.y();
+      if (dx * dx + dy * dy > collector_.radius_m * collector_.radius_m) {
+        LaunchRecord rec;
+        rec.time_s = time_s_;
+        rec.residence_s = time_s_ - p_.birth_time_s[i];
+        rec.position_m = p_.position(i);
+        rec.velocity_m_s = p_.velocity(i);
+        rec.spin_rad_s = p_.spin(i);
+        rec.diameter_m = 2.0 * p_.radius_m[i];
+        rec.mass_kg = p_.mass_kg[i];
+        rec.material = p_.material[i];
+        rec.id = p_.id[i];
+        launches_.push_back(rec);
+        if (monolithic_.enabled) {
+          fl_x_.push_back(p_.x[i]); fl_y_.push_back(p_.y[i]); fl_z_.push_back(p_.z[i]);
+          fl_vx_.push_back(p_.vx[i]); fl_vy_.push_back(p_.vy[i]); fl_vz_.push_back(p_.vz[i]);
+          fl_d_.push_back(2.0 * p_.radius_m[i]); fl_m_.push_back(p_.mass_kg[i]);
+        }
+        remove = true;
+      }
+    }
+    if (!remove && p_.z[i] < collector_.lost_below_z_m) {
+      ++stats_.lost;
+      remove = true;
+    }
+    if (remove) {
+      p_.active[i] = 0;
+      ++inactive_;
+    }
+  }
+  stats_.collector_s += seconds_since(t0);
+}
+
+void DemEngine::fly_monolithic() {
+  if (fl_x_.empty()) return;
+  const auto t0 = Clock::now();
+  const double dt = dt_s_;
+  const Vec3 g = params_.gravity_m_s2;
+  std::size_t k = 0;
+  while (k < fl_x_.size()) {
+    // Drag, Eq. 27 with C_D of Eq. 32, in still air; symplectic Euler at Δt_c as the DEM itself.
+    const double speed = std::sqrt(fl_vx_[k] * fl_vx_[k] + fl_vy_[k] * fl_vy_[k] + fl_vz_[k] * fl_vz_[k]);
+    double ax = g.x(), ay = g.y(), az = g.z();
+    if (speed > 0.0) {
+      const double re = monolithic_.air_density_kg_m3 * fl_d_[k] * speed / monolithic_.air_viscosity_pa_s;
+      const double cd = flight::drag_coefficient(re);
+      const double c = 0.5 * monolithic_.air_density_kg_m3 * cd * 0.25 * kPi * fl_d_[k] * fl_d_[k] * speed / fl_m_[k];
+      ax -= c * fl_vx_[k]; ay -= c * fl_vy_[k]; az -= c * fl_vz_[k];
+    }
+    fl_vx_[k] += dt * ax; fl_vy_[k] += dt * ay; fl_vz_[k] += dt * az;
+    fl_x_[k] += dt * fl_vx_[k]; fl_y_[k] += dt * fl_vy_[k]; fl_z_[k] += dt * fl_vz_[k];
+    ++stats_.flight_particle_steps;
+    if (fl_z_[k] <= monolithic_.ground_z_m) {
+      landings_.emplace_back(fl_x_[k], fl_y_[k], fl_z_[k]);
+      ++stats_.landed_monolithic;
+      for (auto* v : {&fl_x_, &fl_y_, &fl_z_, &fl_vx_, &fl_vy_, &fl_vz_, &fl_d_, &fl_m_}) {
+        (*v)[k] = v->back();
+        v->pop_back();
+      }
+      continue;
+    }
+    ++k;
+  }
+  stats_.monolithic_flight_s += seconds_since(t0);
+}
+
+void DemEngine::step() {
+  if (params_.integrator == Integrator::kSymplecticEuler) {
+    maintain_lists();
+    compute_forces();
+    const auto t0 = Clock::now();
+    kick(dt_s_);
+    drift(dt_s_);
+    stats_.integrate_s += seconds_since(t0);
+  } else {
+    if (!forces_valid_) {
+      maintain_lists();
+      compute_forces();
+    }
+    auto t0 = Clock::now();
+    kick(0.5 * dt_s_);
+    drift(dt_s_);
+    stats_.integrate_s += seconds_since(t0);
+    time_s_ += dt_s_;
+    maintain_lists();
+    compute_forces();
+    time_s_ -= dt_s_;
+    t0 = Clock::now();
+    kick(0.5 * dt_s_);
+    stats_.integrate_s += seconds_since(t0);
+    forces_valid_ = true;
+  }
+  stats_.particle_steps += active_count();
+  ++stats_.steps;
+  time_s_ += dt_s_;
+  collect();
+  if (monolithic_.enabled) fly_monolithic();
+}
+
+void DemEngine::drop_on_disc_particles() {
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (p_.active[i]) {
+      p_.active[i] = 0;
+      ++inactive_;
+    }
+  lists_dirty_ = true;
+}
+
+void DemEngine::run_until(double t_s) {
+  while (time_s_ + 0.5 * dt_s_ < t_s) step();
+}
+
+}  // namespace spread::dem

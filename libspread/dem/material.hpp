@@ -1,0 +1,75 @@
+#pragma once
+// Materials and the contact parameters derived once per material pair (DESIGN.md §7: "parameters derived
+// once"). Particles and walls both refer to materials by index into one table.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spread::dem {
+
+struct Material {
+  std::string name;
+  double density_kg_m3 = 1500.0;
+  double young_modulus_pa = 5e7;   // E
+  double poisson_ratio = 0.25;     // ν
+  double restitution = 0.5;        // normal coefficient of restitution e (–), in (0, 1]
+  double friction = 0.35;          // Coulomb μ (–), seed Eq. 6
+  double rolling_friction = 0.0;   // μ_r (–), used only when the rolling effect is on
+  bool rigid = false;              // walls: infinitely stiff, E* is the particle's alone
+};
+
+// Per-pair values replacing the mixing rule (particle–particle or particle–wall pairs).
+struct PairOverride {
+  int material_a = 0;
+  int material_b = 0;
+  double restitution = 0.5;
+  double friction = 0.35;
+  double rolling_friction = 0.0;
+};
+
+enum class ContactModel : std::uint8_t {
+  kHertzThornton,        // seed 000 Eqs. 16–25 (Hertz normal + Thornton tangential)
+  kLinearSpringDashpot,  // seed 001: linear springs, dashpots, Coulomb slider
+};
+
+// The linear model's springs (seed 001); damping comes from the pair restitution.
+struct LinearSprings {
+  double normal_stiffness_n_m = 1e4;   // k_n
+  double tangential_ratio = 2.0 / 7.0; // k_t / k_n
+};
+
+// Everything a contact evaluation needs that depends only on the two materials.
+struct PairParams {
+  double e_star_pa = 0.0;        // E* = (1/E_a* + 1/E_b*)^-1, E_i* = E_i/(1-ν_i²)  (Eq. 16)
+  double g_star_pa = 0.0;        // G* = (1/G_a* + 1/G_b*)^-1, G_i* = G_i/(2-ν_i)... see contact_params.cpp
+  double damping_ratio = 0.0;    // γ of Eqs. 18/24 (Hertz) or ζ (linear), from the pair restitution
+  double restitution = 0.5;
+  double friction = 0.35;
+  double rolling_friction = 0.0;
+  double share_a = 0.5;          // E*/E_a*: share of the indentation taken by body a (Eq. 10, corrected)
+  double share_b = 0.5;          // E*/E_b*
+  double kn_linear_n_m = 0.0;    // linear model only
+  double kt_linear_n_m = 0.0;
+};
+
+// Table of PairParams for every ordered material pair; lookups are inline.
+class PairTable {
+ public:
+  PairTable() = default;
+  // Throws std::invalid_argument naming the material and the bad value.
+  PairTable(const std::vector<Material>& materials, const std::vector<PairOverride>& overrides,
+            ContactModel model, const LinearSprings& springs);
+  const PairParams& operator()(int a, int b) const {
+    return pairs_[static_cast<std::size_t>(a) * count_ + static_cast<std::size_t>(b)];
+  }
+  std::size_t material_count() const { return count_; }
+
+ private:
+  std::size_t count_ = 0;
+  std::vector<PairParams> pairs_;
+};
+
+// Checks one material; throws std::invalid_argument("material 'name': young_modulus_pa must be > 0 ...").
+void validate_material(const Material& material);
+
+}  // namespace spread::dem

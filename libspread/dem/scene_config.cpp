@@ -1,0 +1,101 @@
+#include "libspread/dem/scene_config.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "libspread/dem/time_step.hpp"
+
+namespace spread::dem {
+
+SimulationConfig config_from_scene(const scene::Scene& s, const std::string& material_name) {
+  const std::string name = material_name.empty() ? s.simulate_material : material_name;
+  const scene::Material* sm = name.empty() ? (s.materials.empty() ? nullptr : &s.materials.front()) : s.find_material(name);
+  if (!sm) throw std::invalid_argument(s.source_name + ": simulate.material: unknown material '" + name + "'");
+  SimulationConfig c;
+  Material particle;
+  particle.name = sm->name;
+  particle.density_kg_m3 = sm->density_kg_m3;
+  particle.young_modulus_pa = sm->youngs_modulus_pa;
+  particle.poisson_ratio = sm->poisson_ratio;
+  particle.restitution = sm->restitution;
+  particle.friction = sm->friction_particle;
+  particle.rolling_friction = sm->rolling_friction;
+  Material steel;
+  steel.name = "disc";
+  steel.rigid = true;
+  steel.restitution = sm->restitution;
+  steel.friction = sm->friction_wall;
+  steel.rolling_friction = sm->rolling_friction;
+  c.materials = {particle, steel};
+  // Particle–disc pair: the material's wall friction and restitution (the rigid disc has no own values).
+  c.overrides.push_back({0, 1, sm->restitution, sm->friction_wall, sm->rolling_friction});
+
+  const scene::Machine& m = s.machine;
+  c.disc.radius_m = m.disc_radius_m;
+  c.disc.cone_angle_rad = m.cone_angle_rad;
+  // Frame: the rim at z = 0, so the ground is z = −disc_height_m (the rim height above the ground).
+  c.disc.z_apex_m = -m.disc_radius_m * std::tan(m.cone_angle_rad);
+  c.disc.vane_count = m.vane_count;
+  c.disc.vane_start_radius_m = m.vane_start_radius_m;
+  c.disc.vane_end_radius_m = m.vane_end_radius_m;
+  c.disc.vane_height_m = m.vane_height_m;
+  c.disc.vane_pitch_rad = -m.vane_pitch_rad;  // scene: > 0 leans backwards; DiscGeometry: > 0 forwards
+  c.disc.mesh_size_m = m.disc_model == scene::DiscModel::kMesh ? m.mesh_size_m : 0.0;
+  c.rpm = m.rpm * (m.rotation_sense < 0 ? -1.0 : 1.0);
+  c.disc_material = 1;
+  c.disc_height_m = m.disc_height_m;
+
+  const scene::Inlet& in = s.inlet;
+  c.inlet.radius_m = in.radius_m;
+  c.inlet.mass_rate_kg_s = in.mass_flow_kg_s;
+  c.inlet.diameter_mean_m = sm->diameter_mean_m;
+  c.inlet.diameter_sd_m = sm->diameter_sd_m;
+  c.inlet.release_speed_m_s = 0.5;
+  c.inlet.material = 0;
+  c.inlet.seed = s.numerics.seed;
+  const double surface_z = c.disc.z_apex_m + std::tan(m.cone_angle_rad) * in.offset_m;
+  c.inlet.centre_m = Vec3(in.offset_m * std::cos(in.angle_rad), in.offset_m * std::sin(in.angle_rad),
+                          surface_z + in.drop_height_m);
+
+  const scene::Effects& e = s.effects;
+  EngineParams& ep = c.engine;
+  ep.particle_contact = e.particle_contact;
+  ep.rotation = e.rotation;
+  ep.rolling = e.rolling;
+  if (e.rolling && !e.rotation)
+    throw std::invalid_argument(s.source_name + ": effects.enabled: 'rolling' needs 'rotation'");
+  if (!e.wall_contact)
+    throw std::invalid_argument(s.source_name + ": effects.enabled: the disc DEM needs 'wall_contact' (nothing would hold the particles)");
+  const scene::Numerics& n = s.numerics;
+  ep.integrator = n.integrator == scene::Integrator::kVelocityVerlet ? Integrator::kVelocityVerlet : Integrator::kSymplecticEuler;
+  ep.dt_s = n.dt_contact_s;
+  ep.contact_steps = n.steps_per_contact;
+  ep.threads = n.threads > 0 ? n.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (n.contact_model == scene::ContactModel::kLinear) {
+    // The scene gives no spring constant: pick k_n so the linear contact lasts as long as the Hertz one
+    // of a mean particle on the disc at rim speed + 5 m/s.
+    ep.model = ContactModel::kLinearSpringDashpot;
+    const double r = 0.5 * sm->diameter_mean_m;
+    const double mass = sm->density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
+    const double v = std::abs(m.rpm) * 2.0 * kPi / 60.0 * m.disc_radius_m + 5.0;
+    const double e_star = sm->youngs_modulus_pa / (1.0 - sm->poisson_ratio * sm->poisson_ratio);
+    const double tc = hertz_contact_time_s(mass, r, e_star, v);
+    ep.linear.normal_stiffness_n_m = mass * (kPi / tc) * (kPi / tc);
+  }
+  c.duration_s = n.duration_s;
+  c.collector_radius_m = n.collector_radius_m;
+
+  c.flight_effects = (e.drag ? flight::kDrag : 0u) | (e.magnus ? flight::kMagnus : 0u) |
+                     (e.spin_decay ? flight::kSpinDecay : 0u) | (e.wind ? flight::kWind : 0u);
+  c.air.density_kg_m3 = s.air.density_kg_m3;
+  c.air.viscosity_pa_s = s.air.viscosity_pa_s;
+  c.air.wind_m_s = Vec3(s.air.wind_m_s[0], s.air.wind_m_s[1], 0.0);
+  c.flight_settings.scheme = n.flight_scheme == scene::FlightScheme::kRk4 ? flight::Scheme::kRk4 : flight::Scheme::kDormandPrince45;
+  c.flight_settings.dt_s = n.flight_dt_s;
+  c.flight_settings.rel_tol = n.flight_tolerance;
+  c.flight_threads = ep.threads;
+  return c;
+}
+
+}  // namespace spread::dem

@@ -1,0 +1,111 @@
+// Reference for `spread verify cone`: seed Appendix 1 (Eqs. 53–62). A point mass on the cone
+// z = tanα ρ spinning at ω = 1 (non-dimensional: lengths / R, time τ = ωt, gravity γ = g/(ω²R)).
+//
+// Cone coordinates: s along the generator, φ the polar angle. With e_s = (cosα cosφ, cosα sinφ, sinα),
+// e_φ = (−sinφ, cosφ, 0) and the inner normal n = (−sinα cosφ, −sinα sinφ, cosα) (as in Eq. 54):
+//   a = (s̈ − s cos²α φ̇²) e_s + cosα (2ṡφ̇ + s φ̈) e_φ + s cosα sinα φ̇² n.
+// Forces per unit mass: −γ(sinα e_s + cosα n) + φ_R n + μ φ_R n_v, n_v the unit velocity of the cone
+// relative to the particle (the cone moves at s cosα e_φ). The n-equation gives the reaction
+// φ_R = γ cosα + s cosα sinα φ̇² (always > 0 here), which is Eq. 59's constraint solved exactly.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "libspread/dem/verify.hpp"
+
+namespace spread::dem {
+
+namespace {
+using State = std::array<double, 4>;  // s, φ, ṡ, φ̇
+
+State rhs(const ConeCase& c, const State& y) {
+  const double ca = std::cos(c.alpha_rad), sa = std::sin(c.alpha_rad);
+  const double s = y[0], sd = y[2], pd = y[3];
+  const double reaction = c.gamma * ca + s * ca * sa * pd * pd;
+  // Particle velocity relative to the cone, in (e_s, e_φ).
+  const double rel_s = sd, rel_p = s * ca * (pd - 1.0);
+  const double rel = std::hypot(rel_s, rel_p);
+  double fs = 0.0, fp = 0.0;
+  if (rel > 0.0) {
+    fs = -c.mu * reaction * rel_s / rel;
+    fp = -c.mu * reaction * rel_p / rel;
+  }
+  const double sdd = s * ca * ca * pd * pd - c.gamma * sa + fs;
+  const double pdd = (fp / ca - 2.0 * sd * pd) / s;
+  return {sd, pd, sdd, pdd};
+}
+
+// One Dormand–Prince 5(4) step; returns the 5th-order state and the error estimate norm.
+State dp_step(const ConeCase& c, const State& y, double h, double& err) {
+  static constexpr double a21 = 1.0 / 5, a31 = 3.0 / 40, a32 = 9.0 / 40, a41 = 44.0 / 45, a42 = -56.0 / 15,
+                          a43 = 32.0 / 9, a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
+                          a54 = -212.0 / 729, a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
+                          a64 = 49.0 / 176, a65 = -5103.0 / 18656, b1 = 35.0 / 384, b3 = 500.0 / 1113,
+                          b4 = 125.0 / 192, b5 = -2187.0 / 6784, b6 = 11.0 / 84, e1 = 71.0 / 57600,
+                          e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200, e6 = 22.0 / 525,
+                          e7 = -1.0 / 40;
+  auto add = [](const State& base, std::initializer_list<std::pair<double, const State*>> terms, double hh) {
+    State r = base;
+    for (const auto& [w, k] : terms)
+      for (int i = 0; i < 4; ++i) r[static_cast<std::size_t>(i)] += hh * w * (*k)[static_cast<std::size_t>(i)];
+    return r;
+  };
+  const State k1 = rhs(c, y);
+  const State k2 = rhs(c, add(y, {{a21, &k1}}, h));
+  const State k3 = rhs(c, add(y, {{a31, &k1}, {a32, &k2}}, h));
+  const State k4 = rhs(c, add(y, {{a41, &k1}, {a42, &k2}, {a43, &k3}}, h));
+  const State k5 = rhs(c, add(y, {{a51, &k1}, {a52, &k2}, {a53, &k3}, {a54, &k4}}, h));
+  const State k6 = rhs(c, add(y, {{a61, &k1}, {a62, &k2}, {a63, &k3}, {a64, &k4}, {a65, &k5}}, h));
+  const State y5 = add(y, {{b1, &k1}, {b3, &k3}, {b4, &k4}, {b5, &k5}, {b6, &k6}}, h);
+  const State k7 = rhs(c, y5);
+  err = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double e = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
+    const double sc = 1e-14 + std::max(std::abs(y[i]), std::abs(y5[i]));
+    err = std::max(err, std::abs(e) / sc);
+  }
+  return y5;
+}
+}  // namespace
+
+ConeState cone_reference(const ConeCase& c, double tol) {
+  const double ca = std::cos(c.alpha_rad), sa = std::sin(c.alpha_rad);
+  State y = {c.rho0 / ca, 0.0, 0.0, c.v0 / c.rho0};  // ξ(0) = (ρ0, 0, tanα ρ0), ξ̇(0) = (0, v0, 0)
+  const double s_exit = 1.0 / ca;
+  double t = 0.0, h = 1e-3;
+  for (int guard = 0; guard < 10'000'000; ++guard) {
+    double err = 0.0;
+    const State y_new = dp_step(c, y, h, err);
+    if (err > tol) {
+      h *= std::max(0.1, 0.9 * std::pow(tol / err, 0.2));
+      continue;
+    }
+    if (y_new[0] >= s_exit) {
+      // Locate the exit: bisection on the step length from the last accepted state.
+      double lo = 0.0, hi = h;
+      State y_hi = y_new;
+      for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(1.0, t); ++it) {
+        const double mid = 0.5 * (lo + hi);
+        double e2 = 0.0;
+        const State ym = dp_step(c, y, mid, e2);
+        if (ym[0] >= s_exit) { hi = mid; y_hi = ym; } else { lo = mid; }
+      }
+      t += hi;
+      y = y_hi;
+      break;
+    }
+    y = y_new;
+    t += h;
+    h *= std::min(5.0, 0.9 * std::pow(tol / std::max(err, 1e-300), 0.2));
+  }
+  const double s = y[0], sd = y[2], pd = y[3];
+  const double v_radial = sd * ca, v_z = sd * sa, v_tan = s * ca * pd;
+  ConeState out;
+  out.speed = std::sqrt(sd * sd + v_tan * v_tan);
+  out.elevation_deg = std::atan2(v_z, std::hypot(v_radial, v_tan)) * 180.0 / kPi;
+  out.angle_from_tangent_deg = std::atan2(v_radial, v_tan) * 180.0 / kPi;
+  out.t_exit = t;
+  return out;
+}
+
+}  // namespace spread::dem

@@ -1,0 +1,65 @@
+#include <gtest/gtest.h>
+
+#include "libspread/dem/verify.hpp"
+
+using namespace spread::dem;
+
+TEST(DemVerify, PattersonReeceVaneFast) {
+  for (double mu : {0.0, 0.4}) {
+    VaneCase c;
+    c.rpm = 500;
+    c.friction = mu;
+    const VaneResult r = run_vane(c);
+    EXPECT_LT(std::abs(r.rel_error_radial), 0.02) << mu;
+    EXPECT_LT(std::abs(r.rel_error_tangential), 0.02) << mu;
+  }
+}
+
+TEST(DemVerify, ConeReferenceIsConverged) {
+  ConeCase c;
+  const ConeState a = cone_reference(c, 1e-12), b = cone_reference(c, 1e-9);
+  EXPECT_NEAR(a.speed, b.speed, 1e-9);
+  EXPECT_NEAR(a.t_exit, b.t_exit, 1e-7);
+}
+
+TEST(DemVerify, AnalyticConeWithinOnePercent) {
+  ConeCase c;
+  c.mu = 0.3;
+  c.particles = 1;
+  const ConeResult r = run_cone(c);
+  EXPECT_LT(std::abs(r.rel_error_speed), 0.01);
+  EXPECT_LT(std::abs(r.rel_error_elevation), 0.01);
+  EXPECT_LT(std::abs(r.rel_error_angle), 0.01);
+  EXPECT_LT(std::abs(r.rel_error_t_exit), 0.01);
+}
+
+// Full sweeps (label long): every case of `spread verify vane` and the mesh convergence of the cone.
+TEST(DemVerifyLong, VaneAllCases) {
+  for (double rpm : {500.0, 900.0})
+    for (double mu : {0.0, 0.3, 0.4}) {
+      VaneCase c;
+      c.rpm = rpm;
+      c.friction = mu;
+      const VaneResult r = run_vane(c);
+      EXPECT_LT(std::abs(r.rel_error_radial), 0.02);
+      EXPECT_LT(std::abs(r.rel_error_tangential), 0.02);
+    }
+}
+
+TEST(DemVerifyLong, ConeMeshErrorGrowsAsMeshCoarsens) {
+  ConeCase c;
+  c.mu = 0.25;
+  double previous = 0.0;
+  for (double xi : {0.01, 0.02, 0.05}) {
+    c.mesh_size = xi;
+    const ConeResult r = run_cone(c);
+    const double err = std::abs(r.rel_error_speed) + std::abs(r.rel_error_elevation) + std::abs(r.rel_error_angle);
+    if (xi == 0.01) {
+      EXPECT_LT(std::abs(r.rel_error_speed), 0.01);
+      EXPECT_LT(std::abs(r.rel_error_elevation), 0.01);
+      EXPECT_LT(std::abs(r.rel_error_angle), 0.01);
+    }
+    EXPECT_GT(err, previous) << "xi " << xi;
+    previous = err;
+  }
+}

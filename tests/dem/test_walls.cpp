@@ -1,0 +1,156 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "libspread/dem/disc_generator.hpp"
+#include "libspread/dem/engine.hpp"
+#include "libspread/dem/triangle_mesh.hpp"
+
+using namespace spread;
+using namespace spread::dem;
+
+namespace {
+// A flat square [−L, L]² at z = 0 split into a fan around the origin plus a regular grid: many shared
+// edges and vertices.
+TriangleMesh flat_mesh() {
+  std::vector<std::array<Vec3, 3>> soup;
+  const int n = 4;
+  const double h = 0.01;
+  for (int i = -n; i < n; ++i)
+    for (int j = -n; j < n; ++j) {
+      const Vec3 a(i * h, j * h, 0), b((i + 1) * h, j * h, 0), c((i + 1) * h, (j + 1) * h, 0), d(i * h, (j + 1) * h, 0);
+      const Vec3 m = 0.25 * (a + b + c + d);  // 4-triangle fan per square: vertex of valence 4 and 8
+      soup.push_back({a, b, m});
+      soup.push_back({b, c, m});
+      soup.push_back({c, d, m});
+      soup.push_back({d, a, m});
+    }
+  return weld_triangle_soup(soup, 1e-9);
+}
+}  // namespace
+
+TEST(DemMesh, OneContactPerFlatPatchAnywhere) {
+  MeshCollider mesh(flat_mesh(), 2e-3);
+  const double r = 2e-3, gap = 1.5e-3;
+  // Over a face, an edge, a valence-4 vertex (square centre), a valence-8 vertex (grid node).
+  for (const Vec3& xy : {Vec3(0.0031, 0.0022, 0), Vec3(0.005, 0.0, 0), Vec3(0.005, 0.005, 0), Vec3(0.01, 0.01, 0),
+                        Vec3(0.0100001, 0.0149, 0)}) {
+    MeshContact out[8];
+    const int n = mesh.query(xy + Vec3(0, 0, gap), r, out, 8);
+    ASSERT_EQ(n, 1) << "at " << xy.transpose();
+    EXPECT_NEAR(out[0].distance_m, gap, 1e-12);
+    EXPECT_NEAR(out[0].normal.z(), 1.0, 1e-9);
+  }
+}
+
+TEST(DemMesh, ConvexRidgeAndConcaveFoldContacts) {
+  // Two faces meeting at a ridge along y (roof) and a valley (V).
+  auto make = [](double sign) {
+    std::vector<std::array<Vec3, 3>> soup;
+    const Vec3 a(0, -1, 0), b(0, 1, 0), l1(-1, -1, sign * 0.5), l2(-1, 1, sign * 0.5), r1(1, -1, sign * 0.5), r2(1, 1, sign * 0.5);
+    soup.push_back({a, b, l2}); soup.push_back({a, l2, l1});
+    soup.push_back({a, r1, r2}); soup.push_back({a, r2, b});
+    return weld_triangle_soup(soup, 1e-9);
+  };
+  MeshContact out[8];
+  MeshCollider roof(make(-1.0), 0.1);  // ridge at x = 0 on top
+  EXPECT_EQ(roof.query(Vec3(0, 0, 0.05), 0.1, out, 8), 1);  // sits on the ridge: one edge contact
+  EXPECT_EQ(out[0].feature, Feature::kEdge);
+  MeshCollider valley(make(1.0), 0.1);  // valley: a ball in it touches both faces
+  EXPECT_EQ(valley.query(Vec3(0, 0, 0.1), 0.1, out, 8), 2);
+}
+
+TEST(DemMesh, StlRoundTripAsciiBinaryAndDegenerate) {
+  const auto dir = std::filesystem::temp_directory_path();
+  TriangleMesh m = mesh_cone_disc(0.1, 0.2, 0.0, 0.02);
+  const auto bin = (dir / "dem_test_bin.stl").string(), asc = (dir / "dem_test_ascii.stl").string();
+  write_stl_binary(m, bin);
+  write_stl_ascii(m, asc);
+  MeshLoadReport rb, ra;
+  const TriangleMesh b = read_stl(bin, 1.0, &rb);
+  const TriangleMesh a = read_stl(asc, 1.0, &ra);
+  EXPECT_EQ(b.triangles.size(), m.triangles.size());
+  EXPECT_EQ(a.triangles.size(), m.triangles.size());
+  EXPECT_EQ(a.vertices.size(), m.vertices.size());
+  EXPECT_NE(ra.message.find("ASCII"), std::string::npos);
+  // A degenerate facet (three collinear points) is dropped with a count.
+  {
+    std::ofstream f(asc, std::ios::app);
+    f << "solid x\n";
+  }
+  const auto deg = (dir / "dem_test_degenerate.stl").string();
+  {
+    std::ofstream f(deg);
+    f << "solid d\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+         "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 2 0 0\nendloop\nendfacet\nendsolid d\n";
+  }
+  MeshLoadReport rd;
+  const TriangleMesh d = read_stl(deg, 1.0, &rd);
+  EXPECT_EQ(d.triangles.size(), 1u);
+  EXPECT_EQ(rd.degenerate_dropped, 1u);
+  EXPECT_THROW(read_stl((dir / "does_not_exist.stl").string()), std::runtime_error);
+}
+
+TEST(DemWalls, MeshedPlaneGivesTheAnalyticForce) {
+  // A resting particle on a meshed floor and on an analytic floor settles to the same height.
+  auto settle = [](bool mesh) {
+    Material p;
+    p.name = "p";
+    p.young_modulus_pa = 5e7;
+    p.restitution = 0.2;
+    Material w = p;
+    w.rigid = true;
+    WallGroup g;
+    if (mesh) g.meshes.emplace_back(flat_mesh(), 2e-3);
+    else g.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
+    g.material = 1;
+    WallSet ws;
+    ws.groups.push_back(g);
+    EngineParams ep;
+    ep.particle_contact = false;
+    ep.min_particle_radius_m = 2e-3;
+    ep.impact_speed_m_s = 1.0;
+    DemEngine e({p, w}, {}, ws, ep);
+    e.add_particle(Vec3(0.005, 0.005, 2e-3), Vec3::Zero(), 2e-3, 0);  // right over a fan vertex
+    e.run_until(0.05);
+    return e.particles().z[0];
+  };
+  EXPECT_NEAR(settle(true), settle(false), 1e-12);
+}
+
+TEST(DemWalls, RotatingDiscCarriesAParticle) {
+  // A particle at rest on a spinning flat disc slides: friction μ m g along the relative velocity
+  // (+y at +x for counter-clockwise spin) accelerates it at μ g.
+  Material p;
+  p.name = "p";
+  p.friction = 0.5;
+  p.restitution = 0.3;
+  Material w = p;
+  w.rigid = true;
+  DiscGeometry g;
+  g.radius_m = 0.3;
+  WallSet ws;
+  ws.groups.push_back(make_disc(g, 300.0, 1, 1e-3));
+  EngineParams ep;
+  ep.particle_contact = false;
+  ep.rotation = false;
+  ep.min_particle_radius_m = 1e-3;
+  DemEngine e({p, w}, {}, ws, ep);
+  e.add_particle(Vec3(0.05, 0, 1e-3), Vec3::Zero(), 1e-3, 0);
+  e.run_until(0.02);
+  const Vec3 v = e.particles().velocity(0);
+  EXPECT_NEAR(v.y(), 0.5 * kStandardGravity_m_s2 * 0.02, 0.02 * 0.5 * kStandardGravity_m_s2 * 0.02);
+}
+
+TEST(DemWalls, BadGeometryIsRefusedWithItsName) {
+  DiscGeometry g;
+  g.radius_m = -1.0;
+  try {
+    make_disc(g, 500, 1, 1e-3);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("radius_m"), std::string::npos);
+  }
+}

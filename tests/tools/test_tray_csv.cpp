@@ -1,0 +1,87 @@
+// Tray-test CSV reader: passes averaged, layout about the centre line, and errors naming the line.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "libspread/calibration/tray_csv.hpp"
+
+namespace cal = spread::calibration;
+
+namespace {
+
+// The message of the TrayCsvError the text raises ("" when it parses).
+std::string error_of(const std::string& text, int* line = nullptr) {
+  try {
+    cal::parse_tray_csv(text, "t.csv");
+  } catch (const cal::TrayCsvError& e) {
+    if (line != nullptr) *line = e.line();
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(TrayCsv, AveragesPassesAndConvertsGrams) {
+  const cal::TrayTest t = cal::parse_tray_csv(
+      "# tray test 2026-05-01\n"
+      "tray,position_m,pass1_g,pass2_g\n"
+      "1,-1.0,1,3   # left end\n"
+      "\n"
+      "2,-0.5,2,4\n"
+      "3,0.0,3,5\n"
+      "4,0.5,4,6\n"
+      "5,1.0,5,7\n",
+      "t.csv");
+  ASSERT_EQ(t.mass_kg.size(), 5u);
+  EXPECT_EQ(t.mass_columns, (std::vector<std::string>{"pass1_g", "pass2_g"}));
+  EXPECT_NEAR(t.mass_kg[0], 2e-3, 1e-15);
+  EXPECT_NEAR(t.mass_kg[4], 6e-3, 1e-15);
+  EXPECT_NEAR(t.tray_width_m, 0.5, 1e-12);
+  EXPECT_EQ(t.layout.tray_count, 5);
+  EXPECT_EQ(t.padded_trays, 0);
+  EXPECT_NEAR(t.total_mass_kg(), 20e-3, 1e-15);
+}
+
+TEST(TrayCsv, OneSidedRowIsPaddedToSymmetricLayout) {
+  // Trays from the centre line to the right only: the left side is added empty.
+  const cal::TrayTest t = cal::parse_tray_csv(
+      "position_m;mass_kg\n0.25;0.001\n0.75;0.002\n1.25;0.003\n1.75;0.004\n2.25;0.005\n", "t.csv");
+  EXPECT_EQ(t.layout.tray_count, 10);
+  EXPECT_EQ(t.padded_trays, 5);
+  EXPECT_NEAR(t.layout.left_edge_m(), -2.5, 1e-12);
+  EXPECT_EQ(t.layout_mass_kg[4], 0.0);
+  EXPECT_NEAR(t.layout_mass_kg[5], 0.001, 1e-15);  // centre 0.25
+  EXPECT_NEAR(t.layout_mass_kg[9], 0.005, 1e-15);
+}
+
+TEST(TrayCsv, ErrorsNameTheLine) {
+  const std::string header = "position_m,pass1_g,pass2_g\n";
+  const std::string good = "-1.0,1,1\n-0.5,1,1\n0.0,1,1\n0.5,1,1\n1.0,1,1\n";
+  int line = -1;
+
+  EXPECT_NE(error_of(header + "-1.0,1,1\n-0.5,1,-2\n0.0,1,1\n0.5,1,1\n1.0,1,1\n", &line)
+                .find("t.csv:3: pass2_g: negative mass -2"),
+            std::string::npos);
+  EXPECT_EQ(line, 3);
+  EXPECT_NE(error_of(header + "-1.0,1,1\n-0.5,1\n0.0,1,1\n0.5,1,1\n1.0,1,1\n").find("t.csv:3: expected 3 cells"),
+            std::string::npos);
+  EXPECT_NE(error_of("# c\n" + header + "-1.0,1,1\n-0.5,x1,1\n0.0,1,1\n0.5,1,1\n1.0,1,1\n")
+                .find("t.csv:4: pass1_g: 'x1' is not a number"),
+            std::string::npos);
+  EXPECT_NE(error_of("mass_g,pass2_g\n1,2\n").find("t.csv:1: missing column position_m"), std::string::npos);
+  EXPECT_NE(error_of("position_m,tray\n1,2\n").find("t.csv:1: missing mass column"), std::string::npos);
+  EXPECT_NE(error_of(header + "-1.0,1,1\n-0.5,1,1\n0.0,1,1\n").find("too few trays: 3"), std::string::npos);
+  EXPECT_NE(error_of(header + "-1.0,1,1\n-0.5,1,1\n0.0,1,1\n1.0,1,1\n1.5,1,1\n")
+                .find("t.csv:5: non-uniform tray spacing"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "-1.0,1,1\n-0.5,1,1\n-0.5,1,1\n0.0,1,1\n0.5,1,1\n").find("t.csv:4: position_m"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "-0.9,1,1\n-0.4,1,1\n0.1,1,1\n0.6,1,1\n1.1,1,1\n").find("t.csv:2: tray centres are not"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "-1.0,0,0\n-0.5,0,0\n0.0,0,0\n0.5,0,0\n1.0,0,0\n").find("no mass"), std::string::npos);
+  EXPECT_NE(error_of(header + "-1.0,nan,1\n-0.5,1,1\n0.0,1,1\n0.5,1,1\n1.0,1,1\n").find("t.csv:2:"),
+            std::string::npos);
+  EXPECT_EQ(error_of(header + good), "");
+  EXPECT_THROW(cal::read_tray_csv("/nonexistent/tray.csv"), cal::TrayCsvError);
+}

@@ -1,0 +1,394 @@
+// spread calibrate rate|tray|pattern — the technician's field tools (docs/field-calibration.md).
+//   rate     catch test → flow factor → gate opening for a target rate; the rate error of the current opening
+//   tray     tray-test CSV → CV (to-and-fro, racetrack) at a bout width, CV(W), effective working widths
+//   pattern  fit friction, drag-diameter factor and launch-angle offset of a material to a tray test and
+//            write the calibrated material into a NEW table file (the original is only read)
+// Every command prints a short report, or JSON with --json. Bad input → a message naming it on stderr,
+// exit code 2 (for a CSV: file and line).
+#include <cmath>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "libspread/calibration/calibrated_table.hpp"
+#include "libspread/calibration/pattern_fit.hpp"
+#include "libspread/calibration/rate_calibration.hpp"
+#include "libspread/calibration/tray_analysis.hpp"
+#include "libspread/calibration/tray_csv.hpp"
+#include "libspread/plot/plot.hpp"
+#include "libspread/scene/scene.hpp"
+#include "libspread/tables/table_reader.hpp"
+#include "tools/spread/command_registry.hpp"
+
+namespace {
+
+using nlohmann::json;
+namespace cal = spread::calibration;
+
+class BadInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+constexpr double kDegPerRad = 180.0 / spread::kPi;
+
+// JSON has no infinity: an empty bout's CV (+inf) is written as null.
+json finite_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+// Runs `body`, mapping the failure classes to exit codes and one stderr line naming the problem.
+template <typename Body>
+void guarded(const char* command, int& exit_code, Body body) {
+  const std::string prefix = std::string("spread calibrate ") + command + ": error: ";
+  try {
+    body();
+    exit_code = spread::cli::kExitOk;
+  } catch (const BadInput& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitUsage;
+  } catch (const cal::TrayCsvError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitUsage;
+  } catch (const spread::tables::TableError& e) {
+    std::cerr << prefix << "--tables: " << e.what() << "\n";
+    exit_code = e.kind() == spread::tables::TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
+  } catch (const spread::scene::SceneError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitUsage;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitFailure;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------- rate
+
+struct RateOptions {
+  double mass_kg = NAN, time_s = NAN, gate = NAN;
+  double mass2_kg = NAN, time2_s = NAN, gate2 = NAN;
+  double target_rate_kg_ha = NAN, width_m = NAN, speed_km_h = NAN;
+  double current_gate = NAN;
+  bool json = false;
+};
+
+void run_rate(const RateOptions& o) {
+  const cal::CatchTest first{o.mass_kg, o.time_s, o.gate};
+  const int second_given = !std::isnan(o.mass2_kg) + !std::isnan(o.time2_s) + !std::isnan(o.gate2);
+  if (second_given != 0 && second_given != 3) {
+    throw BadInput("a second catch needs all of --mass2, --time2 and --gate2");
+  }
+  const bool two_point = second_given == 3;
+  const cal::MeteringModel model =
+      two_point ? cal::metering_from_two_catches(first, {o.mass2_kg, o.time2_s, o.gate2}) : cal::metering_from_catch(first);
+  const double current = std::isnan(o.current_gate) ? o.gate : o.current_gate;
+  const cal::RateSetting s = cal::rate_setting(model, o.target_rate_kg_ha, o.width_m, o.speed_km_h, current);
+  if (o.json) {
+    json out{{"model", two_point ? "two-point line" : "line through zero"},
+             {"flow_factor_kg_s_per_unit", model.flow_factor_kg_s_per_unit},
+             {"zero_opening", model.zero_opening},
+             {"catch_mass_flow_kg_s", cal::catch_mass_flow_kg_s(first)},
+             {"target_rate_kg_ha", o.target_rate_kg_ha},
+             {"working_width_m", o.width_m},
+             {"speed_km_h", o.speed_km_h},
+             {"required_mass_flow_kg_s", s.required_mass_flow_kg_s},
+             {"required_gate_opening", s.required_gate_opening},
+             {"current_gate_opening", s.current_gate_opening},
+             {"current_mass_flow_kg_s", s.current_mass_flow_kg_s},
+             {"current_rate_kg_ha", s.current_rate_kg_ha},
+             {"rate_error_percent", 100.0 * s.rate_error}};
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("metering: %s, flow factor %.6g kg/s per gate unit, zero at %.4g\n",
+              two_point ? "two-point line" : "line through zero", model.flow_factor_kg_s_per_unit, model.zero_opening);
+  std::printf("target %.1f kg/ha at %.2f m, %.2f km/h: mass flow %.4f kg/s → set the gate to %.2f\n",
+              o.target_rate_kg_ha, o.width_m, o.speed_km_h, s.required_mass_flow_kg_s, s.required_gate_opening);
+  std::printf("gate at %.2f spreads %.1f kg/ha: %+.1f %% against the target\n", s.current_gate_opening,
+              s.current_rate_kg_ha, 100.0 * s.rate_error);
+}
+
+// ---------------------------------------------------------------------------------------------- tray
+
+struct TrayOptions {
+  std::string file;
+  double width_m = 0.0;
+  double cv_target_percent = 15.0;
+  std::string plot_prefix;
+  bool json = false;
+};
+
+json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
+  json curve = json::array();
+  for (std::size_t i = 0; i < a.widths_m.size(); ++i) {
+    curve.push_back({{"width_m", a.widths_m[i]},
+                     {"cv_to_and_fro_percent", finite_or_null(100.0 * a.cv_to_and_fro_curve[i])},
+                     {"cv_racetrack_percent", finite_or_null(100.0 * a.cv_racetrack_curve[i])}});
+  }
+  json out{{"file", t.source},
+           {"trays", t.mass_kg.size()},
+           {"tray_width_m", t.tray_width_m},
+           {"passes", t.mass_columns},
+           {"padded_trays", t.padded_trays},
+           {"total_mass_g", 1e3 * a.total_mass_kg},
+           {"throw_width_m", a.throw_width_m},
+           {"cv_target_percent", 100.0 * a.cv_target},
+           {"working_width_to_and_fro_m", a.working_width_to_and_fro_m},
+           {"working_width_racetrack_m", a.working_width_racetrack_m},
+           {"cv_curve", curve}};
+  if (a.bout_width_m > 0.0) {
+    out["bout_width_m"] = a.bout_width_m;
+    out["cv_to_and_fro_percent"] = finite_or_null(100.0 * a.cv_to_and_fro);
+    out["cv_racetrack_percent"] = finite_or_null(100.0 * a.cv_racetrack);
+  }
+  return out;
+}
+
+void plot_tray(const cal::TrayTest& t, const cal::TrayTestAnalysis& a, const std::string& prefix, json& written) {
+  spread::plot::TransverseOptions options;
+  options.series_label = "measured";
+  options.bout_width_m = a.bout_width_m > 0.0 ? a.bout_width_m : a.working_width_to_and_fro_m;
+  const std::string transverse = prefix + "_transverse.png";
+  spread::plot::write_transverse_png(t.layout_mass_kg, t.layout, transverse, "tray test " + t.source, options);
+  written["transverse"] = transverse;
+  const std::string cv = prefix + "_cv.png";
+  spread::plot::write_cv_curve_png(a.widths_m, a.cv_to_and_fro_curve, a.cv_racetrack_curve, a.cv_target, cv,
+                                   "tray test " + t.source + ": CV(W)");
+  written["cv"] = cv;
+}
+
+void run_tray(const TrayOptions& o) {
+  const cal::TrayTest t = cal::read_tray_csv(o.file);
+  const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, o.cv_target_percent / 100.0, o.width_m);
+  json written = json::object();
+  if (!o.plot_prefix.empty()) plot_tray(t, a, o.plot_prefix, written);
+  if (o.json) {
+    json out = tray_json(t, a);
+    out["written"] = written;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("%s: %zu trays of %.2f m, %zu pass(es), %.1f g in total, throw width %.1f m\n", t.source.c_str(),
+              t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg, a.throw_width_m);
+  if (a.bout_width_m > 0.0) {
+    std::printf("at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack\n", a.bout_width_m, 100.0 * a.cv_to_and_fro,
+                100.0 * a.cv_racetrack);
+  }
+  std::printf("effective working width (CV <= %.0f %%): %.2f m to-and-fro, %.2f m racetrack\n", 100.0 * a.cv_target,
+              a.working_width_to_and_fro_m, a.working_width_racetrack_m);
+  for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+}
+
+// ------------------------------------------------------------------------------------------- pattern
+
+struct PatternOptions {
+  std::string tables, material, trays, output, name, fit = "friction,drag,offset", plot_prefix;
+  double rpm = 0.0;
+  int samples = 1024;
+  double kernel_m = 0.0;
+  double cv_target_percent = 15.0;
+  bool json = false;
+};
+
+void parse_fit_list(const std::string& text, cal::PatternFitOptions& options) {
+  options.fit_friction = options.fit_drag_diameter = options.fit_angle_offset = false;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item == "friction") options.fit_friction = true;
+    else if (item == "drag") options.fit_drag_diameter = true;
+    else if (item == "offset") options.fit_angle_offset = true;
+    else throw BadInput("--fit: unknown parameter '" + item + "' (known: friction, drag, offset)");
+  }
+  if (!options.fit_friction && !options.fit_drag_diameter && !options.fit_angle_offset) {
+    throw BadInput("--fit: name at least one of friction, drag, offset");
+  }
+}
+
+json fit_json(const cal::PatternFitResult& f) {
+  static const char* names[3] = {"friction_wall", "drag_diameter_factor", "launch_angle_offset_deg"};
+  const double values[3] = {f.fitted.friction_wall, f.fitted.drag_diameter_factor,
+                            f.fitted.launch_angle_offset_rad * kDegPerRad};
+  const double errors[3] = {f.standard_error.friction_wall, f.standard_error.drag_diameter_factor,
+                            f.standard_error.launch_angle_offset_rad * kDegPerRad};
+  const double initial[3] = {f.initial.friction_wall, f.initial.drag_diameter_factor,
+                             f.initial.launch_angle_offset_rad * kDegPerRad};
+  json parameters = json::object();
+  for (std::size_t i = 0; i < 3; ++i) {
+    parameters[names[i]] = {{"value", values[i]},
+                            {"standard_error", f.fitted_mask[i] ? finite_or_null(errors[i]) : json(nullptr)},
+                            {"initial", initial[i]},
+                            {"fitted", f.fitted_mask[i]}};
+  }
+  json correlation = json::array();
+  for (const auto& row : f.correlation) correlation.push_back(row);
+  return {{"parameters", parameters},
+          {"correlation", correlation},
+          {"residual_rms_fraction", f.residual_rms_fraction},
+          {"residual_rms_g", 1e3 * f.residual_rms_kg},
+          {"initial_residual_rms_fraction", f.initial_residual_rms_fraction},
+          {"iterations", f.iterations},
+          {"model_evaluations", f.model_evaluations},
+          {"converged", f.converged},
+          {"stop_reason", f.stop_reason}};
+}
+
+std::vector<std::string> fit_warnings(const cal::PatternFitResult& f) {
+  static const char* names[3] = {"friction", "drag", "offset"};
+  std::vector<std::string> warnings;
+  if (!f.converged) warnings.push_back("the fit did not converge: " + f.stop_reason);
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = i + 1; j < 3; ++j) {
+      if (f.fitted_mask[i] && f.fitted_mask[j] && std::abs(f.correlation[i][j]) > 0.95) {
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "%s and %s are correlated (r = %.3f): this tray test cannot tell them apart; their standard "
+                      "errors are large — fix one (e.g. --fit friction,drag) for a usable value of the other",
+                      names[i], names[j], f.correlation[i][j]);
+        warnings.emplace_back(text);
+      }
+    }
+  }
+  return warnings;
+}
+
+void run_pattern(const PatternOptions& o) {
+  if (o.output.empty()) throw BadInput("--output: give the path of the new table file");
+  if (o.samples < 16 || o.samples > 100000) throw BadInput("--samples must be in [16, 100000]");
+  if (!(o.kernel_m >= 0.0)) throw BadInput("--kernel must be >= 0 m");
+  cal::PatternFitOptions options;
+  parse_fit_list(o.fit, options);
+  options.model.sample_count = o.samples;
+  options.model.kernel_sigma_m = o.kernel_m;
+
+  const cal::TrayTest test = cal::read_tray_csv(o.trays);
+  const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
+  const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
+  const cal::PatternFitResult fit = cal::fit_pattern(setup, test, options);
+  const std::vector<std::string> warnings = fit_warnings(fit);
+
+  json report = fit_json(fit);
+  report["tray_test"] = o.trays;
+  report["rpm"] = o.rpm;
+  report["material"] = o.material;
+  report["samples"] = o.samples;
+  report["kernel_sigma_m"] = o.kernel_m > 0.0 ? o.kernel_m : 0.5 * test.tray_width_m;
+
+  cal::CalibratedTableRequest request;
+  request.original_path = o.tables;
+  request.output_path = o.output;
+  request.material = o.material;
+  request.new_material_name = o.name.empty() ? cal::calibrated_material_name(o.material, cal::utc_date_today()) : o.name;
+  request.parameters = fit.fitted;
+  request.calibration_json = report.dump();
+  const cal::CalibratedTableSummary summary = cal::write_calibrated_table(request);
+
+  json written = json::object();
+  if (!o.plot_prefix.empty()) {
+    // Both series in grams of the tray test: the fitted fractions scaled to the measured total.
+    std::vector<double> predicted_kg(fit.fitted_fraction.size());
+    const double total_kg = test.total_mass_kg();
+    for (std::size_t i = 0; i < predicted_kg.size(); ++i) predicted_kg[i] = fit.fitted_fraction[i] * total_kg;
+    spread::plot::TransverseOptions plot_options;
+    plot_options.series_label = "predicted (calibrated)";
+    plot_options.second_tray_mass_kg = test.layout_mass_kg;
+    plot_options.second_label = "measured";
+    const std::string transverse = o.plot_prefix + "_transverse.png";
+    spread::plot::write_transverse_png(predicted_kg, test.layout, transverse,
+                                       request.new_material_name + " at " + std::to_string(static_cast<int>(o.rpm)) +
+                                           " rpm: measured vs predicted",
+                                       plot_options);
+    written["transverse"] = transverse;
+    const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, o.cv_target_percent / 100.0, 0.0);
+    std::vector<double> tf(measured.widths_m.size()), rt(measured.widths_m.size());
+    spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kToAndFro, tf);
+    spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kRacetrack, rt);
+    const std::string cv = o.plot_prefix + "_cv.png";
+    spread::plot::write_cv_curve_png(measured.widths_m, tf, rt, measured.cv_target, cv,
+                                     request.new_material_name + ": CV(W) predicted");
+    written["cv"] = cv;
+    const std::string cv_measured = o.plot_prefix + "_cv_measured.png";
+    spread::plot::write_cv_curve_png(measured.widths_m, measured.cv_to_and_fro_curve, measured.cv_racetrack_curve,
+                                     measured.cv_target, cv_measured, "tray test: CV(W) measured");
+    written["cv_measured"] = cv_measured;
+  }
+
+  if (o.json) {
+    report["warnings"] = warnings;
+    report["output"] = {{"path", summary.output_path},
+                        {"material", summary.material},
+                        {"rpm_rows", summary.rpm_rows},
+                        {"samples_per_run", summary.samples_per_run}};
+    report["written"] = written;
+    std::cout << report.dump(2) << "\n";
+    return;
+  }
+  std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
+              fit.iterations, fit.converged ? "converged" : "NOT converged");
+  auto line = [&](const char* label, double value, double error, bool fitted, const char* unit) {
+    if (fitted) std::printf("  %-22s %8.4f ± %.4f%s\n", label, value, error, unit);
+    else std::printf("  %-22s %8.4f (fixed)%s\n", label, value, unit);
+  };
+  line("friction on vanes", fit.fitted.friction_wall, fit.standard_error.friction_wall, fit.fitted_mask[0], "");
+  line("drag diameter factor", fit.fitted.drag_diameter_factor, fit.standard_error.drag_diameter_factor,
+       fit.fitted_mask[1], "");
+  line("launch angle offset", fit.fitted.launch_angle_offset_rad * kDegPerRad,
+       fit.standard_error.launch_angle_offset_rad * kDegPerRad, fit.fitted_mask[2], " °");
+  std::printf("  residual: rms %.2f g per tray (%.2f %% of the mass per tray; %.2f %% before the fit)\n",
+              1e3 * fit.residual_rms_kg, 100.0 * fit.residual_rms_fraction, 100.0 * fit.initial_residual_rms_fraction);
+  for (const std::string& w : warnings) std::printf("  warning: %s\n", w.c_str());
+  std::printf("wrote '%s' (%zu rpm rows) into %s\n", summary.material.c_str(), summary.rpm_rows.size(),
+              summary.output_path.c_str());
+  for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+}
+
+spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_code) {
+  auto* sub = app.add_subcommand("calibrate", "field calibration: catch test (rate), tray test, pattern fit");
+  sub->require_subcommand(1);
+
+  static RateOptions rate;
+  auto* r = sub->add_subcommand("rate", "flow factor from a catch test; gate opening for a target rate");
+  r->add_option("--mass", rate.mass_kg, "mass caught from all outlets (kg)")->required();
+  r->add_option("--time", rate.time_s, "catch duration (s)")->required();
+  r->add_option("--gate", rate.gate, "gate opening of the catch (the gate scale's unit: mm, %, ...)")->required();
+  r->add_option("--mass2", rate.mass2_kg, "second catch: mass (kg) — two catches fit the gate's dead zone");
+  r->add_option("--time2", rate.time2_s, "second catch: duration (s)");
+  r->add_option("--gate2", rate.gate2, "second catch: gate opening");
+  r->add_option("--target-rate", rate.target_rate_kg_ha, "target application rate (kg/ha)")->required();
+  r->add_option("--width", rate.width_m, "working (bout) width (m)")->required();
+  r->add_option("--speed", rate.speed_km_h, "forward speed (km/h)")->required();
+  r->add_option("--current-gate", rate.current_gate, "gate opening to check (default: the catch's)");
+  r->add_flag("--json", rate.json, "machine-readable output on stdout");
+  r->callback([&exit_code] { guarded("rate", exit_code, [] { run_rate(rate); }); });
+
+  static TrayOptions tray;
+  auto* t = sub->add_subcommand("tray", "tray test: CV at a bout width, CV(W), effective working widths");
+  t->add_option("file", tray.file, "tray-test CSV (position_m and one *_g or *_kg column per pass)")->required();
+  t->add_option("--width", tray.width_m, "bout width W (m) for the CVs (default: none)");
+  t->add_option("--cv-target", tray.cv_target_percent, "CV target (%) of the effective working width");
+  t->add_option("--plot", tray.plot_prefix, "write PREFIX_transverse.png and PREFIX_cv.png");
+  t->add_flag("--json", tray.json, "machine-readable output on stdout");
+  t->callback([&exit_code] { guarded("tray", exit_code, [] { run_tray(tray); }); });
+
+  static PatternOptions pattern;
+  auto* p = sub->add_subcommand("pattern", "fit a material to a tray test; write it into a new table file");
+  p->add_option("--tables", pattern.tables, "launch-table file (read only)")->required();
+  p->add_option("--material", pattern.material, "material name in the table")->required();
+  p->add_option("--rpm", pattern.rpm, "disc speed of the tray test (r/min)")->required();
+  p->add_option("--trays", pattern.trays, "tray-test CSV")->required();
+  p->add_option("--output", pattern.output, "NEW table file: a copy of --tables plus the calibrated material")->required();
+  p->add_option("--name", pattern.name, "name of the calibrated material (default: 'NAME (calibrated YYYY-MM-DD)')");
+  p->add_option("--fit", pattern.fit, "parameters to fit: friction,drag,offset (the others keep the table's values)");
+  p->add_option("--samples", pattern.samples, "trajectories per model evaluation");
+  p->add_option("--kernel", pattern.kernel_m, "landing kernel sd (m); default half the tray width");
+  p->add_option("--cv-target", pattern.cv_target_percent, "CV target (%) of the plots");
+  p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
+  p->add_flag("--json", pattern.json, "machine-readable output on stdout");
+  p->callback([&exit_code] { guarded("pattern", exit_code, [] { run_pattern(pattern); }); });
+}};
+
+}  // namespace
