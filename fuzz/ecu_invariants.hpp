@@ -1,0 +1,39 @@
+#pragma once
+// What must hold for the simulated ECU whatever arrived on its links: no NaN or infinity in its commanded
+// or derived state (predicted fields may be NaN = "no prediction", by contract), set-points inside the
+// configured ranges, sections inside the installed count.
+#include <cmath>
+#include <string>
+
+#include "firmware_sim/ecu/ecu.hpp"
+#include "fuzz/fuzz_input.hpp"
+
+namespace spread::fuzz {
+
+inline void check_ecu_status(const char* harness, const firmware::Ecu& ecu) {
+  const firmware::EcuStatus s = ecu.status();
+  const firmware::EcuParameters& p = ecu.parameters();
+  const auto finite_in = [&](double value, double low, double high, const char* what) {
+    if (!std::isfinite(value) || value < low || value > high) {
+      fail(harness, std::string(what) + " = " + std::to_string(value) + " outside [" + std::to_string(low) + ", " +
+                        std::to_string(high) + "]");
+    }
+  };
+  finite_in(s.rate_setpoint_kg_ha, 0.0, p.rate_max_kg_ha, "rate_setpoint_kg_ha");
+  finite_in(s.width_setpoint_m, 0.0, p.width_max_m, "width_setpoint_m");
+  finite_in(s.ground_speed_m_s, 0.0, p.speed_max_m_s, "ground_speed_m_s");
+  finite_in(s.rpm_target, 0.0, p.rpm_max, "rpm_target");
+  // The disc follows its target with a first-order lag: it never overshoots the largest set-point.
+  finite_in(s.rpm_actual, 0.0, p.rpm_max, "rpm_actual");
+  finite_in(s.rate_actual_kg_ha, 0.0, 1e9, "rate_actual_kg_ha");
+  finite_in(s.width_actual_m, 0.0, 1e6, "width_actual_m");
+  finite_in(s.mass_flow_kg_s, 0.0, 1e9, "mass_flow_kg_s");
+  if (s.section_count < 1 || s.section_count > firmware::kMaxSections) {
+    fail(harness, "section_count " + std::to_string(s.section_count));
+  }
+  if (s.section_count < firmware::kMaxSections && (s.section_mask >> s.section_count) != 0) {
+    fail(harness, "section_mask has bits above section_count");
+  }
+}
+
+}  // namespace spread::fuzz

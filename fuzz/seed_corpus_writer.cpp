@@ -1,0 +1,195 @@
+// Writes the seed corpora of the fuzz harnesses into fuzz/corpus/<harness>/ from real inputs:
+// the shipped scenes, a small table built by the lookup_builder library, the recorded candump session of
+// the firmware tests (as text and as raw can_frame records), LCM messages encoded by the generated types,
+// and well-formed C API definitions. Run once after a format change:
+//   build-fuzz/fuzz/seed_corpus_writer fuzz/corpus
+// The corpora are committed; run-fuzz.sh and the replay tests use them as they are.
+#include <linux/can.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "firmware_sim/can/candump_log.hpp"
+#include "libspread/scene/scene.hpp"
+#include "lookup_builder/table_build.hpp"
+#include "spread/command_t.hpp"
+#include "spread/heartbeat_t.hpp"
+#include "spread/status_t.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void write_bytes(const fs::path& path, const void* data, std::size_t size) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+}
+void write_bytes(const fs::path& path, const std::vector<std::uint8_t>& bytes) { write_bytes(path, bytes.data(), bytes.size()); }
+void write_text(const fs::path& path, const std::string& text) { write_bytes(path, text.data(), text.size()); }
+
+template <typename T>
+void append(std::vector<std::uint8_t>& out, const T& value) {
+  const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
+  out.insert(out.end(), p, p + sizeof(T));
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+template <typename Message>
+std::vector<std::uint8_t> lcm_payload(std::uint8_t channel, Message& message) {
+  std::vector<std::uint8_t> bytes(1 + static_cast<std::size_t>(message.getEncodedSize()));
+  bytes[0] = channel;
+  message.encode(bytes.data() + 1, 0, static_cast<int>(bytes.size() - 1));
+  return bytes;
+}
+
+void scene_seeds(const fs::path& source, const fs::path& out) {
+  for (const auto& entry : fs::directory_iterator(source / "scenes")) {
+    if (entry.path().extension() == ".toml") fs::copy_file(entry.path(), out / "scene_parser" / entry.path().filename(), fs::copy_options::overwrite_existing);
+  }
+  write_text(out / "scene_parser" / "default_with_overrides.toml",
+             read_text(source / "scenes/default.toml") +
+                 "\n#--set\nmaterials.1.density_kg_m3=1800\nair.wind_m_s.0=2.5\nsimulate.material=Urea\nsweep.rpm=[500.0]\n");
+}
+
+void table_seeds(const fs::path& source, const fs::path& out) {
+  // Small on purpose: libFuzzer mutates a few KB far more effectively than a large file.
+  const fs::path table = out / "table_loader" / "default_small.sqlite";
+  fs::create_directories(table.parent_path());
+  fs::remove(table);
+  const spread::scene::Scene scene = spread::scene::load_scene_file(
+      (source / "scenes/default.toml").string(),
+      {"sweep.samples_per_run=4", "sweep.rpm=[450.0, 600.0]", "sweep.materials=[\"Urea\"]"});
+  spread::lookup::BuildOptions options;
+  options.output_path = table.string();
+  spread::lookup::build_tables(scene, options);
+  fs::create_directories(out / "capi_open");
+  fs::copy_file(table, out / "capi_open" / "default_small.sqlite", fs::copy_options::overwrite_existing);
+}
+
+void can_seeds(const fs::path& source, const fs::path& out) {
+  const fs::path log = source / "tests/firmware/data/process_data_session.log";
+  fs::create_directories(out / "candump");
+  fs::copy_file(log, out / "candump" / "process_data_session.log", fs::copy_options::overwrite_existing);
+  const auto records = spread::firmware::can::read_candump_file(log.string()).records;
+  std::vector<std::uint8_t> session;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    std::vector<std::uint8_t> one;
+    append(one, records[i].frame);
+    one.push_back(10);  // 10 ms loop step after the frame
+    write_bytes(out / "can_frames" / ("frame_" + std::to_string(i) + ".bin"), one);
+    session.insert(session.end(), one.begin(), one.end());
+  }
+  write_bytes(out / "can_frames" / "session.bin", session);
+}
+
+void lcm_seeds(const fs::path& out) {
+  spread::command_t command{};
+  command.timestamp_us = 1000;
+  command.sequence = 1;
+  command.mode = spread::command_t::MODE_MANUAL;
+  command.rate_setpoint_kg_ha = 250.0;
+  command.width_setpoint_m = 24.0;
+  command.ground_speed_m_s = 3.0;
+  command.material = "Urea";
+  command.rpm_setpoint = 600.0;
+  command.num_sections = 4;
+  command.section_on = {true, true, false, true};
+  write_bytes(out / "lcm_handlers" / "command_manual.bin", lcm_payload(0, command));
+  command.mode = spread::command_t::MODE_AUTOMATIC;
+  command.sequence = 2;
+  write_bytes(out / "lcm_handlers" / "command_automatic.bin", lcm_payload(0, command));
+
+  spread::status_t status{};
+  status.material = "Urea";
+  status.num_sections = 2;
+  status.section_on = {true, false};
+  status.num_fault_counts = 3;
+  status.fault_counts = {0, 1, 2};
+  status.cv_percent = 12.5;
+  write_bytes(out / "lcm_handlers" / "status.bin", lcm_payload(1, status));
+
+  spread::heartbeat_t heartbeat{};
+  heartbeat.node = "firmware_sim";
+  heartbeat.loop_rate_mhz = 20000;
+  write_bytes(out / "lcm_handlers" / "heartbeat.bin", lcm_payload(2, heartbeat));
+}
+
+// The byte layouts below follow the harnesses' readers (fuzz_capi_predict.cpp, fuzz_capi_trajectory.cpp).
+void capi_seeds(const fs::path& out) {
+  struct PredictSeed {
+    const char* name;
+    std::uint8_t raw_flags, material;
+    std::uint16_t rpm;
+    std::uint8_t height_default, height_cm;
+    std::int8_t wind_x, wind_y;
+    std::uint8_t cv_half_percent, effects, bout_quarter_m, tray_cm_above_2, buffer;
+  };
+  const PredictSeed predict[] = {
+      {"defaults_mid_rpm", 0, 0, 32768, 0, 0, 0, 0, 30, 0x7, 0, 48, 2},
+      {"stored_height_wind", 0, 1, 20000, 1, 80, 12, -8, 30, 0xF, 0, 48, 2},
+      {"bout_width_small_buffer", 0, 2, 50000, 1, 60, 0, 0, 20, 0x3, 72, 23, 1},
+      {"no_buffer_no_effects", 0, 0, 65535, 1, 0, 0, 0, 10, 0x0, 96, 98, 0},
+  };
+  for (const PredictSeed& s : predict) {
+    std::vector<std::uint8_t> b;
+    append(b, s.raw_flags);
+    append(b, s.material);
+    append(b, s.rpm);
+    append(b, s.height_default);
+    append(b, s.height_cm);
+    append(b, s.wind_x);
+    append(b, s.wind_y);
+    append(b, s.cv_half_percent);
+    append(b, s.effects);
+    append(b, s.bout_quarter_m);
+    append(b, s.tray_cm_above_2);
+    append(b, s.buffer);
+    write_bytes(out / "capi_predict" / (std::string(s.name) + ".bin"), b);
+  }
+  // Trajectory: all fields from their plausible ranges (flags 0); values are 16-bit fractions.
+  const std::vector<std::vector<std::uint16_t>> trajectories = {
+      {0, 19000, 18000, 32768, 32768, 32768, 20000, 45000, 33000, 32768, 32768, 32768, 32768, 32768, 32768, 40000, 10000, 32768, 32768, 32768},
+      {0, 1000, 60000, 40000, 20000, 40000, 65535, 32768, 32768, 0, 50000, 30000, 40000, 32768, 20000, 16000, 30000, 50000, 10000, 32768},
+  };
+  int k = 0;
+  for (const auto& fields : trajectories) {
+    std::vector<std::uint8_t> b;
+    for (std::uint16_t f : fields) append(b, f);
+    b.push_back(0xF);  // effects
+    write_bytes(out / "capi_trajectory" / ("plausible_" + std::to_string(k++) + ".bin"), b);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: seed_corpus_writer OUTPUT_DIR (normally fuzz/corpus)\n";
+    return 2;
+  }
+  const fs::path out = argv[1];
+  const fs::path source = SPREAD_SOURCE_DIR;
+  try {
+    fs::create_directories(out / "scene_parser");
+    scene_seeds(source, out);
+    table_seeds(source, out);
+    can_seeds(source, out);
+    lcm_seeds(out);
+    capi_seeds(out);
+  } catch (const std::exception& e) {
+    std::cerr << "seed_corpus_writer: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << "seed corpora written to " << out << "\n";
+  return 0;
+}

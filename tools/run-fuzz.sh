@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses (fuzz/, clang, AddressSanitizer + UBSan) in build-fuzz and runs each
+# for a bounded time on its seed corpus (fuzz/corpus/<harness>/). Fails when any harness finds a crash,
+# a broken invariant, a leak, a timeout or runs out of memory; the input is saved under
+# build-fuzz/fuzz/artifacts/<harness>/ — add it to fuzz/regressions/<harness>/ once fixed, and the test
+# suite replays it for ever after (tests/stability, ctest -L stability).
+#
+# Usage: tools/run-fuzz.sh [harness ...]        (default: every harness that was built)
+# Environment:
+#   SPREAD_FUZZ_SECONDS  run time per harness, seconds (default 30)
+#   SPREAD_FUZZ_TIMEOUT  seconds one input may take before it counts as a hang (default 20)
+#   SPREAD_FUZZ_BUILD    build directory (default: build-fuzz)
+#   SPREAD_JOBS          build jobs (default: number of cores)
+#   CC / CXX             clang / clang++ (default); libFuzzer needs clang
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${SPREAD_FUZZ_BUILD:-$root/build-fuzz}
+seconds=${SPREAD_FUZZ_SECONDS:-30}
+timeout_s=${SPREAD_FUZZ_TIMEOUT:-20}
+jobs=${SPREAD_JOBS:-$(nproc)}
+export CC=${CC:-clang} CXX=${CXX:-clang++}
+
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+[ -f "$build/CMakeCache.txt" ] && generator=()
+# Libraries: ASan + UBSan (SPREAD_SANITIZE) and coverage counters for libFuzzer (fuzzer-no-link); the
+# harness executables add -fsanitize=fuzzer (fuzz/CMakeLists.txt). The top-level CMakeLists.txt does not
+# list fuzz/ (yet): fuzz/build_hook.cmake adds it without touching it.
+cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPREAD_SANITIZE=ON \
+  -DSPREAD_BUILD_TESTS=OFF -DSPREAD_BUILD_BENCH=OFF -DSPREAD_WITH_MPI=OFF \
+  -DCMAKE_C_FLAGS=-fsanitize=fuzzer-no-link -DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link \
+  -DCMAKE_PROJECT_INCLUDE="$root/fuzz/build_hook.cmake" >/dev/null
+cmake --build "$build" -j "$jobs" --target spread_fuzzers
+
+harnesses=("$@")
+if [ ${#harnesses[@]} -eq 0 ]; then
+  for exe in "$build"/fuzz/fuzz_*; do
+    [ -x "$exe" ] && harnesses+=("$(basename "$exe" | sed 's/^fuzz_//')")
+  done
+fi
+[ ${#harnesses[@]} -gt 0 ] || { echo "run-fuzz: no harness was built (is CXX clang?)" >&2; exit 1; }
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:abort_on_error=0}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+
+failed=()
+summary=()
+for h in "${harnesses[@]}"; do
+  exe=$build/fuzz/fuzz_$h
+  seeds=$root/fuzz/corpus/$h
+  work=$build/fuzz/corpus-work/$h        # new interesting inputs stay out of the source tree
+  artifacts=$build/fuzz/artifacts/$h/
+  log=$build/fuzz/logs/$h.log
+  mkdir -p "$work" "$artifacts" "$(dirname "$log")"
+  dirs=("$work")
+  [ -d "$seeds" ] && dirs+=("$seeds")
+  echo "run-fuzz: $h for ${seconds}s"
+  status=0
+  "$exe" -max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$artifacts" "${dirs[@]}" >"$log" 2>&1 || status=$?
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | sed 's/cov: //')
+  if [ "$status" -ne 0 ]; then
+    failed+=("$h")
+    echo "run-fuzz: $h FAILED (exit $status), see $log and $artifacts" >&2
+    grep -E "ERROR:|invariant broken|Test unit written|SUMMARY" "$log" | head -8 >&2 || true
+  fi
+  summary+=("$(printf '%-18s %8ss %10s runs %8s exec/s  cov %6s  %s' "$h" "$seconds" "${runs:-?}" "${rate:-?}" \
+    "${cov:-?}" "$([ "$status" -eq 0 ] && echo ok || echo FAILED)")")
+done
+echo
+echo "run-fuzz: summary (logs in $build/fuzz/logs)"
+printf '  %s\n' "${summary[@]}"
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "run-fuzz: findings in: ${failed[*]}" >&2
+  exit 1
+fi
