@@ -1,7 +1,15 @@
 #!/usr/bin/env bash
-# Set up (packages, configure, build) and run the whole test suite. Extra arguments go to ctest,
-# e.g. tools/run-tests.sh -L flight
+# The README's test command (also CI's, via .ci/run): set up (packages, configure, build) and run
+#   1. the whole test suite (ctest, all labels but `long`),
+#   2. the same suite under AddressSanitizer + UndefinedBehaviorSanitizer (tools/run-sanitizers.sh),
+#   3. every libFuzzer harness for a bounded, seeded run (tools/run-fuzz.sh).
+# With arguments, only step 1 runs and the arguments go to ctest, e.g. tools/run-tests.sh -L flight
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/tools/setup.sh" "$root/build"
-ctest --test-dir "$root/build" --output-on-failure -j2 "$@"
+if [ $# -gt 0 ]; then
+  exec ctest --test-dir "$root/build" --output-on-failure -j2 "$@"
+fi
+ctest --test-dir "$root/build" --output-on-failure -j2 -LE long
+"$root/tools/run-sanitizers.sh"
+SPREAD_FUZZ_SECONDS=${SPREAD_FUZZ_SECONDS:-20} "$root/tools/run-fuzz.sh"
