@@ -10,7 +10,7 @@ mkdir -p "$out"
 bin=$root/build
 "$bin/lookup_builder/lookup_builder" "$root/scenes/default.toml" --output "$out/default.sqlite"
 "$bin/tools/spread/spread" inspect "$out/default.sqlite"
-material=${MATERIAL:-urea}
+material=${MATERIAL:-Urea}
 rpm=${RPM:-600}
 "$bin/tools/spread/spread" predict --tables "$out/default.sqlite" --material "$material" --rpm "$rpm" "$@"
 "$bin/tools/spread/spread" plot --tables "$out/default.sqlite" --material "$material" --rpm "$rpm" \

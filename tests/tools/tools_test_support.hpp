@@ -42,12 +42,16 @@ inline std::vector<char> file_bytes(const std::string& path) {
   return std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// Urea of scenes/default.toml at 500 and 600 rpm, `samples` per run. The overrides go through the
-// scene's provenance text, so reading them back is part of what the tests check.
+// Urea of scenes/default.toml at 500 and 600 rpm, `samples` per run, with the seed's narrow Case 1 inlet
+// (r 0.0145 m at 0.1 m). The overrides go through the scene's provenance text, so reading them back is
+// part of what the tests check. The narrow inlet pins the fit tests to a single-lobed pattern: on the
+// default's broad feed footprint the fit from (mu 0.4, k 1.0) stops in a local minimum (mu 0.45, k 0.73
+// against the truth 0.30, 1.25) — see docs/field-calibration.md, "Limits".
 inline void build_urea_table(const std::string& path, int samples) {
   const scene::Scene scene = scene::load_scene_file(
       std::string(SPREAD_SOURCE_DIR) + "/scenes/default.toml",
-      {"sweep.materials=[\"Urea\"]", "sweep.rpm=[500.0, 600.0]", "sweep.samples_per_run=" + std::to_string(samples)});
+      {"sweep.materials=[\"Urea\"]", "sweep.rpm=[500.0, 600.0]", "sweep.samples_per_run=" + std::to_string(samples),
+       "inlet.radius_m=0.0145", "inlet.offset_m=0.1", "inlet.angle_rad=1.0"});
   lookup::BuildOptions options;
   options.output_path = path;
   lookup::build_tables(scene, options);
