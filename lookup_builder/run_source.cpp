@@ -3,6 +3,7 @@
 #include "libspread/launch/analytic_launch.hpp"
 #include "libspread/launch/launch_statistics.hpp"
 #include "libspread/tables/table_writer.hpp"
+#include "lookup_builder/dem_run.hpp"
 
 namespace spread::lookup {
 
@@ -30,15 +31,19 @@ tables::Run analytic_run(const scene::Scene& scene, const scene::Material& mater
   return run;
 }
 
-RunSource make_run_source(const scene::Scene& scene) {
+RunSource make_run_source(const scene::Scene& scene, int threads_per_run) {
   switch (scene.sweep.source) {
     case scene::LaunchSource::kAnalytic:
       return [&scene](const scene::Material& material, double rpm) { return analytic_run(scene, material, rpm); };
-    case scene::LaunchSource::kDem:
-      break;
+    case scene::LaunchSource::kDem: {
+      DemRunOptions options;
+      options.threads = threads_per_run;
+      return [&scene, options](const scene::Material& material, double rpm) {
+        return dem_run(scene, material, rpm, options);
+      };
+    }
   }
-  throw SourceUnavailableError(scene.source_name +
-                               ": sweep.source: \"dem\" is not yet available in this build (use \"analytic\")");
+  throw SourceUnavailableError(scene.source_name + ": sweep.source: unknown source");
 }
 
 }  // namespace spread::lookup

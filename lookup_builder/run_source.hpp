@@ -1,6 +1,6 @@
 #pragma once
 // Where the launch samples of one (material, rpm) run come from. The sweep loop asks a RunSource for
-// each run it has to make, so adding the DEM source is adding a branch in make_run_source().
+// each run it has to make, the DEM source (dem_run.hpp) is one branch of make_run_source().
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -14,8 +14,9 @@ namespace spread::lookup {
 using RunSource = std::function<tables::Run(const scene::Material& material, double rpm)>;
 
 // The source named by scene.sweep.source. Throws SourceUnavailableError for a source this build
-// cannot run yet (`dem`), before anything is written.
-RunSource make_run_source(const scene::Scene& scene);
+// cannot run, before anything is written. threads_per_run: DEM and flight threads of one DEM run
+// (0 = the scene's numerics.threads); the analytic source ignores it. The scene must outlive the source.
+RunSource make_run_source(const scene::Scene& scene, int threads_per_run = 0);
 
 class SourceUnavailableError : public std::runtime_error {
  public:

@@ -56,6 +56,12 @@ std::optional<CandumpRecord> parse_candump_line(std::string_view line, std::stri
     error = "timestamp is not '(seconds.microseconds)' with 6 fraction digits";
     return std::nullopt;
   }
+  // Range check before converting: the record's time is a signed 64-bit count of nanoseconds.
+  if (seconds > kMaxCandumpSeconds) {
+    error = "timestamp " + std::string(line.substr(0, close + 1)) + " is beyond the representable range (seconds <= " +
+            std::to_string(kMaxCandumpSeconds) + ")";
+    return std::nullopt;
+  }
   std::string_view rest = trim(line.substr(close + 1));
   const auto space = rest.find_first_of(" \t");
   if (space == std::string_view::npos) {

@@ -22,6 +22,10 @@ struct CandumpRecord {
   int line = 0;           // 1-based line number in its file
 };
 
+// Largest seconds part of a timestamp: (kMaxCandumpSeconds + 0.999999) s still fits Nanoseconds (int64 ns,
+// about year 2262); a larger timestamp is a bad line.
+inline constexpr std::uint64_t kMaxCandumpSeconds = 9'223'372'035;
+
 // nullopt with `error` describing what is wrong (for an empty/comment line: nullopt, empty error).
 std::optional<CandumpRecord> parse_candump_line(std::string_view line, std::string& error);
 std::string format_candump_line(Nanoseconds time, std::string_view interface, const can_frame& frame);

@@ -41,6 +41,9 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
     if (g.material < 0 || static_cast<std::size_t>(g.material) >= materials_.size())
       throw std::invalid_argument("dem: wall group '" + g.name + "' refers to an unknown material");
   p_.with_spin = params_.rotation;
+  if (params_.integrator == Integrator::kGear4 || params_.integrator == Integrator::kGear5 ||
+      params_.integrator == Integrator::kGear6)
+    gear_ = GearPredictorCorrector(4 + static_cast<int>(params_.integrator) - static_cast<int>(Integrator::kGear4));
   skin_m_ = params_.skin_m > 0.0 ? params_.skin_m : params_.max_particle_radius_m;
 
   // Contact time and stability over every material pair at the smallest radius (t_c ∝ R): as particle
@@ -68,6 +71,13 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
   }
   contact_time_s_ = tc;
   stable_bound_s_ = bound;
+  // 0 means "automatic"; a NaN (or a negative step) must not quietly become that.
+  if (!(params_.dt_s >= 0.0)) {
+    std::ostringstream os;
+    os << "dt_s (scene: numerics.dt_contact_s) = " << params_.dt_s
+       << " s: must be 0 (automatic, t_c/N_c) or a finite step > 0";
+    throw std::invalid_argument(os.str());
+  }
   if (params_.dt_s > 0.0) {
     if (params_.dt_s > bound) {
       std::ostringstream os;
@@ -429,6 +439,23 @@ void DemEngine::step() {
     const auto t0 = Clock::now();
     kick(dt_s_);
     drift(dt_s_);
+    stats_.integrate_s += seconds_since(t0);
+  } else if (params_.integrator != Integrator::kVelocityVerlet) {
+    // Gear: predict to t + Δt, one force evaluation there, correct (gear_predictor_corrector.hpp).
+    if (gear_.needs_start(p_)) {  // particles were added: start values from the forces now
+      maintain_lists();
+      compute_forces();
+      gear_.start(p_, params_.gravity_m_s2, dt_s_);
+    }
+    auto t0 = Clock::now();
+    gear_.predict(p_, dt_s_);
+    stats_.integrate_s += seconds_since(t0);
+    time_s_ += dt_s_;
+    maintain_lists();
+    compute_forces();
+    time_s_ -= dt_s_;
+    t0 = Clock::now();
+    gear_.correct(p_, params_.gravity_m_s2, dt_s_);
     stats_.integrate_s += seconds_since(t0);
   } else {
     if (!forces_valid_) {

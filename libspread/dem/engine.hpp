@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "libspread/core/vec3.hpp"
+#include "libspread/dem/gear_predictor_corrector.hpp"
 #include "libspread/dem/material.hpp"
 #include "libspread/dem/neighbor_list.hpp"
 #include "libspread/dem/particles.hpp"
@@ -22,6 +23,9 @@ namespace spread::dem {
 enum class Integrator : std::uint8_t {
   kSymplecticEuler,  // seed Eq. 41: v ← v + Δt F/m, then x ← x + Δt v
   kVelocityVerlet,   // half kick, drift, forces, half kick
+  kGear4,            // Gear predictor–corrector, 4/5/6 values (seed 001; gear_predictor_corrector.hpp)
+  kGear5,
+  kGear6,
 };
 
 struct EngineParams {
@@ -31,7 +35,7 @@ struct EngineParams {
   bool particle_contact = true;        // effect: particle–particle contacts
   bool rotation = true;                // effect: particle spin (contact moments, Eq. 15)
   bool rolling = false;                // effect: rolling resistance (needs rotation)
-  double dt_s = 0.0;                   // 0: Δt = t_c / contact_steps (Sect. 3.1); else refused above the stable bound
+  double dt_s = 0.0;                   // 0: Δt = t_c / contact_steps (Sect. 3.1); else refused above the stable bound (NaN, < 0: refused)
   double contact_steps = 20.0;         // N_c
   double impact_speed_m_s = 0.0;       // v in t_c; 0: fastest wall surface speed + 5 m/s
   double min_particle_radius_m = 0.0;  // smallest radius to be added (sets t_c); required
@@ -140,6 +144,7 @@ class DemEngine {
   PairList pairs_;
   Collector collector_;
   MonolithicFlight monolithic_;
+  GearPredictorCorrector gear_;  // Gear integrators only
   std::vector<LaunchRecord> launches_;
   // Monolithic reference: particles in flight (flat arrays).
   std::vector<double> fl_x_, fl_y_, fl_z_, fl_vx_, fl_vy_, fl_vz_, fl_d_, fl_m_;

@@ -17,4 +17,13 @@ inline double drag_coefficient_times_reynolds(double reynolds) {
          0.4251 * reynolds * reynolds / (reynolds + 6880.95);
 }
 
+// Slope of the drag acceleration along v_rel in units of drag_rate_per_s (FlightParameters): with
+// |a| = drag_rate f(Re) |v| and Re ∝ |v|, d|a|/d|v| = drag_rate (f + Re f'(Re)). Increasing in Re.
+inline double drag_slope_factor(double reynolds) {
+  constexpr double c = 6880.95;
+  const double q = reynolds + c;
+  return 24.0 + 24.0 * 0.1806 * (1.0 + 0.6459) * std::pow(reynolds, 0.6459) + 0.4251 * reynolds * reynolds / q +
+         0.4251 * reynolds * reynolds * (reynolds + 2.0 * c) / (q * q);
+}
+
 }  // namespace spread::flight::detail

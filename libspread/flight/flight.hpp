@@ -81,10 +81,25 @@ struct Landing {
 // Flies one granule from `launch` until z crosses ground_z_m (downward). Gravity is -z.
 // Preconditions (checked, std::invalid_argument): finite inputs, diameter > 0, density > 0,
 // air density >= 0, viscosity > 0, dt > 0; also rel_tol > 0, abs_tol >= 0, max_time_s > 0,
-// max_steps > 0, gravity > 0, effects within kAllEffects, launch z >= ground_z_m. A launch exactly on
-// the ground and not moving up has landed at t = 0.
+// max_steps > 0, gravity > 0, effects within kAllEffects, launch z >= ground_z_m; and with Scheme::kRk4,
+// dt_s <= rk4_stable_step_bound_s() (the message names the "stable bound"). A launch exactly on the
+// ground and not moving up has landed at t = 0.
 Landing fly_to_ground(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
                       EffectSet effects, const Settings& settings);
+
+// Explicit stability of fixed-step RK4 (docs/physics-flight.md). RK4 on y' = -y/tau is stable for
+// dt/tau <= 2.785 (the real-axis interval of its amplification polynomial); kRk4StabilityLimit keeps a
+// hair of margin. Above it a fine granule's velocity grows without bound and "lands" at 1e8+ m/s.
+inline constexpr double kRk4StabilityLimit = 2.78;
+// The largest fixed RK4 step that is stable for this flight: kRk4StabilityLimit * tau, where 1/tau is the
+// stiffest linearised rate of the right-hand side —
+//   drag:       d|a_drag|/d|v_rel| (the drag slope divided by the mass) at the largest relative speed the
+//               flight can reach, sqrt(|v_rel,0|^2 + 2 g (z0 - ground_z_m)) (+ 2 g |wind_z| max_time_s):
+//               in the air's frame drag only removes energy and Magnus does no work;
+//   spin decay: d|dω/dt|/d|ω| at the launch spin (spin only decays).
+// +Inf when neither is on. Inputs as fly_to_ground (not re-validated here).
+double rk4_stable_step_bound_s(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                               EffectSet effects, const Settings& settings);
 
 // Optional per-step hook (tests, tools): called once at launch (t = 0), after every accepted step, and
 // with the landing state. A plain function pointer + context: no allocation, no virtual call, and a

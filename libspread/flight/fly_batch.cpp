@@ -27,8 +27,9 @@ void fly_batch(std::span<const Granule> granules, std::span<const State> launche
   // Validate everything here so no exception has to cross a worker thread.
   detail::validate_shared_inputs(ground_z_m, air, effects, settings);
   for (std::size_t i = 0; i < count; ++i) {
-    detail::validate_flight_inputs(granules.size() == 1 ? granules[0] : granules[i], launches[i], ground_z_m,
-                                   static_cast<long>(i));
+    const Granule& granule = granules.size() == 1 ? granules[0] : granules[i];
+    detail::validate_flight_inputs(granule, launches[i], ground_z_m, static_cast<long>(i));
+    detail::validate_rk4_step(granule, launches[i], ground_z_m, air, effects, settings, static_cast<long>(i));
   }
   if (count == 0) return;
 

@@ -55,6 +55,7 @@ Landing fly_to_ground(const Granule& granule, const State& launch, double ground
                       EffectSet effects, const Settings& settings, const StepObserver& observer) {
   detail::validate_shared_inputs(ground_z_m, air, effects, settings);
   detail::validate_flight_inputs(granule, launch, ground_z_m, -1);
+  detail::validate_rk4_step(granule, launch, ground_z_m, air, effects, settings, -1);
   return detail::fly_unchecked(granule, launch, ground_z_m, air, effects, settings, observer);
 }
 

@@ -1,9 +1,14 @@
 #include "libspread/flight/validation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "libspread/flight/drag_coefficient.hpp"
+#include "libspread/flight/flight_parameters.hpp"
 
 namespace spread::flight::detail {
 namespace {
@@ -85,4 +90,45 @@ void validate_flight_inputs(const Granule& granule, const State& launch, double 
   }
 }
 
+void validate_rk4_step(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                       EffectSet effects, const Settings& settings, long index) {
+  if (settings.scheme != Scheme::kRk4) return;
+  const double bound_s = rk4_stable_step_bound_s(granule, launch, ground_z_m, air, effects, settings);
+  if (!(settings.dt_s > bound_s)) return;
+  std::ostringstream message;
+  message.precision(6);
+  message << "fly_to_ground: ";
+  if (index >= 0) message << "element " << index << ": ";
+  message << "settings.dt_s = " << settings.dt_s << " s is above RK4's stable bound " << bound_s
+          << " s for this granule (diameter " << granule.diameter_m << " m, density " << granule.density_kg_m3
+          << " kg/m3: relaxation time tau = " << bound_s / kRk4StabilityLimit << " s, RK4 needs dt <= "
+          << kRk4StabilityLimit << " tau); use a smaller step or Scheme::kDormandPrince45";
+  throw std::invalid_argument(message.str());
+}
+
 }  // namespace spread::flight::detail
+
+namespace spread::flight {
+
+double rk4_stable_step_bound_s(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
+                               EffectSet effects, const Settings& settings) {
+  const detail::FlightParameters p = detail::make_flight_parameters(granule, launch, air, settings);
+  double rate_per_s = 0.0;
+  if ((effects & kDrag) != 0) {
+    const bool windy = (effects & kWind) != 0;
+    const Vec3 relative = windy ? Vec3(launch.velocity_m_s - air.wind_m_s) : launch.velocity_m_s;
+    double speed_sq = relative.squaredNorm() + 2.0 * settings.gravity_m_s2 * std::max(0.0, launch.position_m.z() - ground_z_m);
+    if (windy) speed_sq += 2.0 * settings.gravity_m_s2 * std::abs(air.wind_m_s.z()) * settings.max_time_s;
+    const double reynolds = p.reynolds_per_speed_s_m * std::sqrt(speed_sq);
+    rate_per_s = std::max(rate_per_s, p.drag_rate_per_s * detail::drag_slope_factor(reynolds));
+  }
+  if ((effects & kSpinDecay) != 0) {
+    // dω/dt = -R α(Re_s) ω with α = 2.01 (1 + 0.201 sqrt(Re_s)), Re_s ∝ |ω|: slope R (α + Re_s α').
+    const double spin_reynolds = p.spin_reynolds_per_rad_s * launch.spin_rad_s.norm();
+    rate_per_s = std::max(rate_per_s, p.spin_decay_rate_per_s * 2.01 * (1.0 + 1.5 * 0.201 * std::sqrt(spin_reynolds)));
+  }
+  if (!(rate_per_s > 0.0)) return std::numeric_limits<double>::infinity();
+  return kRk4StabilityLimit / rate_per_s;
+}
+
+}  // namespace spread::flight

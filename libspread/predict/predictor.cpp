@@ -29,6 +29,22 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
       !std::isfinite(limits_.max_half_extent_m)) {
     throw std::invalid_argument("Predictor: limits need 0 < min_tray_width_m <= max_half_extent_m < inf");
   }
+  for (double bound : {limits_.max_bout_width_m, limits_.max_disc_height_m, limits_.max_wind_m_s, limits_.max_cv_target}) {
+    if (!(bound > 0.0 && std::isfinite(bound))) throw std::invalid_argument("Predictor: request bounds must be finite and > 0");
+  }
+  // The same plausibility rules as the table reader, for contents that did not come from a file: a NaN,
+  // Inf or non-positive mass/diameter must never reach the flight code.
+  std::string problem = tables::machine_problem(contents_.machine);
+  for (const auto& m : contents_.materials) {
+    if (problem.empty()) problem = tables::material_problem(m);
+  }
+  for (const auto& run : contents_.runs) {
+    if (problem.empty()) {
+      problem = tables::run_values_problem(run);
+      if (!problem.empty()) problem = "run " + run.material + ": " + problem;
+    }
+  }
+  if (!problem.empty()) throw tables::TableError(tables::TableErrorKind::kCorrupt, "Predictor: " + problem);
   const auto& runs = contents_.runs;
   run_rpm_.reserve(runs.size());
   std::size_t largest_pair = 0;  // samples needed by the widest interpolation (mixture of two rows)
@@ -97,8 +113,15 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
   for (double v : {r.rpm, height_m, r.wind_x_m_s, r.wind_y_m_s, r.cv_target, r.bout_width_m, r.tray_width_m}) {
     if (!std::isfinite(v)) return PredictStatus::kNotFinite;
   }
-  if (height_m < 0.0 || height_m + lowest_sample_z_m_ < 0.0) return PredictStatus::kOutOfRange;
-  if (!(r.cv_target > 0.0) || r.bout_width_m < 0.0) return PredictStatus::kOutOfRange;
+  // Every field's domain, before any is used (docs/c-api.md, PredictorLimits).
+  if (height_m < 0.0 || height_m > limits_.max_disc_height_m || height_m + lowest_sample_z_m_ < 0.0) {
+    return PredictStatus::kOutOfRange;
+  }
+  if (std::abs(r.wind_x_m_s) > limits_.max_wind_m_s || std::abs(r.wind_y_m_s) > limits_.max_wind_m_s) {
+    return PredictStatus::kOutOfRange;
+  }
+  if (!(r.cv_target > 0.0) || r.cv_target > limits_.max_cv_target) return PredictStatus::kOutOfRange;
+  if (r.bout_width_m < 0.0 || r.bout_width_m > limits_.max_bout_width_m) return PredictStatus::kOutOfRange;
   if (tray_capacity(r.tray_width_m) == 0) return PredictStatus::kOutOfRange;
   if ((r.effects & ~flight::kAllEffects) != 0) return PredictStatus::kUnknownEffect;
   return PredictStatus::kOk;

@@ -32,8 +32,9 @@ namespace spread::predict {
 enum class PredictStatus : std::uint8_t {
   kOk,
   kNotFinite,          // a NaN/Inf in rpm, height, wind, CV target, bout or tray width
-  kOutOfRange,         // negative height (or disc below the ground), CV target <= 0, bout width < 0,
-                       // tray width outside [min_tray_width_m, max_half_extent_m]
+  kOutOfRange,         // height < 0 (or disc below the ground) or > max_disc_height_m, |wind| component >
+                       // max_wind_m_s, CV target <= 0 or > max_cv_target, bout width < 0 or >
+                       // max_bout_width_m, tray width outside [min_tray_width_m, max_half_extent_m]
   kUnknownEffect,      // bits outside flight::kAllEffects
   kUnknownMaterial,
   kRpmOutsideTable,
@@ -75,6 +76,12 @@ struct Prediction {
 struct PredictorLimits {
   double max_half_extent_m = 100.0;  // trays cover at most [-100 m, 100 m]; landings beyond are "lost"
   double min_tray_width_m = 0.05;
+  // Upper bounds of the request fields (kOutOfRange above them). Far beyond any spreader, but they keep
+  // a finite yet absurd value (a bout width of 3.6e59 m) out of the metrics and flight code.
+  double max_bout_width_m = 1000.0;   // m
+  double max_disc_height_m = 100.0;   // m above the ground
+  double max_wind_m_s = 100.0;        // each wind component, absolute value
+  double max_cv_target = 10.0;        // fraction (1000 %)
 };
 
 class Predictor {

@@ -98,6 +98,13 @@ struct Sweep {
   int samples_per_run = 512;
   std::string output = "tables.sqlite";    // relative paths are relative to the working directory
   SpinModel spin_model = SpinModel::kSliding;  // analytic source only
+  // DEM source only (lookup_builder): the disc is simulated in batches of batch_s; after each batch the
+  // launches so far are flown and R̄, ξ (Eqs. 51–52) computed; the run stops when both changed by at most
+  // convergence_tolerance (relative) since the previous batch and at least samples_per_run granules were
+  // launched, or when particle_budget launches (0 = no limit) or numerics.duration_s is reached.
+  double batch_s = 0.05;                   // simulated time per batch (s)
+  double convergence_tolerance = 0.02;     // relative change of R̄ and ξ between batches
+  int particle_budget = 0;                 // launched granules; 0 = only the time budget
 };
 
 struct Outputs {

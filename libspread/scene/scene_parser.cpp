@@ -401,6 +401,9 @@ void read_sweep(const toml::table& root, Scene& scene) {
   sw.output = s.string("output", sw.output);
   sw.spin_model = s.choice<SpinModel>("spin_model", sw.spin_model,
                                       {{"sliding", SpinModel::kSliding}, {"rolling", SpinModel::kRolling}});
+  sw.batch_s = s.number("batch_s", sw.batch_s);
+  sw.convergence_tolerance = s.number("convergence_tolerance", sw.convergence_tolerance);
+  sw.particle_budget = s.small_integer("particle_budget", sw.particle_budget);
   s.finish();
 }
 
@@ -527,6 +530,9 @@ void validate(Scene& scene) {
     c.fail("sweep.samples_per_run", "must be in [1, 10000000], got " + std::to_string(sw.samples_per_run));
   }
   if (sw.output.empty()) c.fail("sweep.output", "must not be empty");
+  c.positive("sweep.batch_s", sw.batch_s);
+  c.positive("sweep.convergence_tolerance", sw.convergence_tolerance);
+  if (sw.particle_budget < 0) c.fail("sweep.particle_budget", "must be >= 0, got " + std::to_string(sw.particle_budget));
   if (scene.outputs.vtk_every_steps < 0) {
     c.fail("outputs.vtk_every_steps", "must be >= 0, got " + std::to_string(scene.outputs.vtk_every_steps));
   }

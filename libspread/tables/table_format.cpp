@@ -1,5 +1,10 @@
 #include "libspread/tables/table_format.hpp"
 
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
 namespace spread::tables {
 
 const char* to_string(TableErrorKind kind) {
@@ -12,6 +17,96 @@ const char* to_string(TableErrorKind kind) {
     case TableErrorKind::kIo: return "i/o error";
   }
   return "unknown";
+}
+
+}  // namespace spread::tables
+
+namespace spread::tables {
+namespace {
+
+std::string show(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
+
+// "" when `value` is finite and within [low, high] (an open end when the flag says so).
+std::string range_problem(const std::string& field, double value, double low, bool low_open, double high,
+                          bool high_open) {
+  const bool ok = std::isfinite(value) && (low_open ? value > low : value >= low) &&
+                  (high_open ? value < high : value <= high);
+  if (ok) return {};
+  std::string need = "must be finite";
+  if (std::isfinite(low)) need += std::string(low_open ? " and > " : " and >= ") + show(low);
+  if (std::isfinite(high)) need += std::string(high_open ? " and < " : " and <= ") + show(high);
+  return field + " = " + show(value) + ": " + need;
+}
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string positive(const std::string& field, double value) {
+  return range_problem(field, value, 0.0, true, kInf, true);
+}
+std::string non_negative(const std::string& field, double value) {
+  return range_problem(field, value, 0.0, false, kInf, true);
+}
+
+}  // namespace
+
+std::string machine_problem(const Machine& m) {
+  for (const std::string& p : {positive("machine.disc_radius_m", m.disc_radius_m),
+                        non_negative("machine.disc_height_m", m.disc_height_m),
+                        non_negative("machine.disc_spacing_m", m.disc_spacing_m),
+                        range_problem("machine.cone_angle_rad", m.cone_angle_rad, -std::numbers::pi / 2, true,
+                                      std::numbers::pi / 2, true)}) {
+    if (!p.empty()) return p;
+  }
+  if (m.disc_count != 1 && m.disc_count != 2) return "machine.disc_count = " + std::to_string(m.disc_count) + ": must be 1 or 2";
+  if (m.vane_count < 0) return "machine.vane_count = " + std::to_string(m.vane_count) + ": must be >= 0";
+  if (m.rotation_sense != 1 && m.rotation_sense != -1) {
+    return "machine.rotation_sense = " + std::to_string(m.rotation_sense) + ": must be +1 or -1";
+  }
+  return {};
+}
+
+std::string material_problem(const Material& m) {
+  const std::string at = "materials." + m.name + ".";
+  for (const std::string& p : {positive(at + "density_kg_m3", m.density_kg_m3),
+                        positive(at + "diameter_mean_m", m.diameter_mean_m),
+                        non_negative(at + "diameter_sd_m", m.diameter_sd_m),
+                        non_negative(at + "friction_wall", m.friction_wall),
+                        non_negative(at + "friction_particle", m.friction_particle),
+                        range_problem(at + "restitution", m.restitution, 0.0, false, 1.0, false),
+                        non_negative(at + "youngs_modulus_pa", m.youngs_modulus_pa),
+                        range_problem(at + "poisson_ratio", m.poisson_ratio, -1.0, true, 0.5, false),
+                        non_negative(at + "rolling_friction", m.rolling_friction)}) {
+    if (!p.empty()) return p;
+  }
+  return {};
+}
+
+std::string run_values_problem(const Run& run) {
+  for (const std::string& p : {positive("rpm", run.rpm), non_negative("dt_contact_s", run.dt_contact_s),
+                        non_negative("dt_flight_s", run.dt_flight_s)}) {
+    if (!p.empty()) return p;
+  }
+  static constexpr const char* kNames[kSampleFloats] = {"x_m", "y_m", "z_m", "t_s", "vx_norm", "vy_norm",
+                                                        "vz_norm", "wx_norm", "wy_norm", "wz_norm",
+                                                        "diameter_m", "mass_kg"};
+  for (std::size_t i = 0; i < run.samples.size(); ++i) {
+    const LaunchSample& s = run.samples[i];
+    const float values[kSampleFloats] = {s.x_m, s.y_m, s.z_m, s.t_s, s.vx_norm, s.vy_norm, s.vz_norm,
+                                         s.wx_norm, s.wy_norm, s.wz_norm, s.diameter_m, s.mass_kg};
+    for (int f = 0; f < kSampleFloats; ++f) {
+      // Checked without building a string: tables hold millions of these.
+      const double value = static_cast<double>(values[f]);
+      const bool must_be_positive = f >= 10;  // diameter_m, mass_kg
+      if (std::isfinite(value) && (!must_be_positive || value > 0.0)) continue;
+      const std::string field = "sample " + std::to_string(i) + " " + kNames[f];
+      return must_be_positive ? positive(field, value) : range_problem(field, value, -kInf, true, kInf, true);
+    }
+  }
+  return {};
 }
 
 }  // namespace spread::tables

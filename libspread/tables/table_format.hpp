@@ -86,6 +86,20 @@ enum class TableErrorKind {
 };
 const char* to_string(TableErrorKind kind);
 
+// Physical plausibility of the stored values, shared by the reader (a violation is TableError kCorrupt)
+// and TableWriter (std::invalid_argument): "" when every value is usable, otherwise the first violation
+// as "<field> = <value>: <requirement>". Rules (docs/table-format.md):
+//   machine   disc_radius_m finite > 0; disc_height_m, disc_spacing_m finite >= 0; |cone_angle_rad| < pi/2;
+//             disc_count 1 or 2; vane_count >= 0; rotation_sense +1 or -1;
+//   material  density_kg_m3 and diameter_mean_m finite > 0; diameter_sd_m, friction_wall,
+//             friction_particle, youngs_modulus_pa, rolling_friction finite >= 0; restitution in [0, 1];
+//             poisson_ratio in (-1, 0.5];
+//   run       rpm finite > 0; dt_contact_s, dt_flight_s finite >= 0; every sample field finite, and
+//             diameter_m > 0, mass_kg > 0 ("sample <index> <field>").
+std::string machine_problem(const Machine& machine);
+std::string material_problem(const Material& material);
+std::string run_values_problem(const Run& run);
+
 class TableError : public std::runtime_error {
  public:
   TableError(TableErrorKind kind, const std::string& what) : std::runtime_error(what), kind_(kind) {}

@@ -34,6 +34,13 @@ void run_quick_check(Connection& db) {
   if (verdict != "ok") raise(TableErrorKind::kCorrupt, db.path(), "PRAGMA quick_check: " + verdict);
 }
 
+// A REAL column of a record. The schema says NOT NULL, but a hand-edited file may not: a NULL (which is
+// also what SQLite stores for a bound NaN) is a missing value, not 0.
+double required_double(const Statement& query, int column, Connection& db, const std::string& field) {
+  if (query.column_is_null(column)) raise(TableErrorKind::kCorrupt, db.path(), field + " is missing (NULL)");
+  return query.column_double(column);
+}
+
 void require_tables(Connection& db) {
   for (const char* table : {"machine", "materials", "runs", "meta"}) {
     Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
@@ -49,17 +56,15 @@ Machine read_machine(Connection& db) {
   if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row is missing");
   Machine m;
   m.name = query.column_text(0);
-  m.disc_radius_m = query.column_double(1);
-  m.disc_height_m = query.column_double(2);
-  m.disc_spacing_m = query.column_double(3);
+  m.disc_radius_m = required_double(query, 1, db, "machine.disc_radius_m");
+  m.disc_height_m = required_double(query, 2, db, "machine.disc_height_m");
+  m.disc_spacing_m = required_double(query, 3, db, "machine.disc_spacing_m");
   m.disc_count = static_cast<int>(query.column_int(4));
   m.vane_count = static_cast<int>(query.column_int(5));
-  m.cone_angle_rad = query.column_double(6);
+  m.cone_angle_rad = required_double(query, 6, db, "machine.cone_angle_rad");
   m.rotation_sense = static_cast<int>(query.column_int(7));
-  if (!(m.disc_radius_m > 0.0) || (m.disc_count != 1 && m.disc_count != 2) ||
-      (m.rotation_sense != 1 && m.rotation_sense != -1)) {
-    raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row has impossible values");
-  }
+  const std::string problem = machine_problem(m);
+  if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row has an impossible value: " + problem);
   return m;
 }
 
@@ -71,15 +76,18 @@ std::vector<Material> read_materials(Connection& db) {
   while (query.step()) {
     Material m;
     m.name = query.column_text(0);
-    m.density_kg_m3 = query.column_double(1);
-    m.diameter_mean_m = query.column_double(2);
-    m.diameter_sd_m = query.column_double(3);
-    m.friction_wall = query.column_double(4);
-    m.friction_particle = query.column_double(5);
-    m.restitution = query.column_double(6);
-    m.youngs_modulus_pa = query.column_double(7);
-    m.poisson_ratio = query.column_double(8);
-    m.rolling_friction = query.column_double(9);
+    const std::string at = "materials." + m.name + ".";
+    m.density_kg_m3 = required_double(query, 1, db, at + "density_kg_m3");
+    m.diameter_mean_m = required_double(query, 2, db, at + "diameter_mean_m");
+    m.diameter_sd_m = required_double(query, 3, db, at + "diameter_sd_m");
+    m.friction_wall = required_double(query, 4, db, at + "friction_wall");
+    m.friction_particle = required_double(query, 5, db, at + "friction_particle");
+    m.restitution = required_double(query, 6, db, at + "restitution");
+    m.youngs_modulus_pa = required_double(query, 7, db, at + "youngs_modulus_pa");
+    m.poisson_ratio = required_double(query, 8, db, at + "poisson_ratio");
+    m.rolling_friction = required_double(query, 9, db, at + "rolling_friction");
+    const std::string problem = material_problem(m);
+    if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "impossible material value: " + problem);
     materials.push_back(std::move(m));
   }
   return materials;
@@ -94,7 +102,7 @@ std::vector<Run> read_runs(Connection& db) {
   while (query.step()) {
     Run run;
     run.material = query.column_text(0);
-    run.rpm = query.column_double(1);
+    run.rpm = required_double(query, 1, db, "run " + run.material + ": rpm");
     run.source = query.column_text(2);
     const std::int64_t sample_count = query.column_int(3);
     const std::string layout = query.column_text(4);
@@ -118,13 +126,15 @@ std::vector<Run> read_runs(Connection& db) {
     run.scene_hash = query.column_text(7);
     run.scene_text = query.column_text(8);
     run.effects = query.column_text(9);
-    run.dt_contact_s = query.column_double(10);
-    run.dt_flight_s = query.column_double(11);
+    run.dt_contact_s = required_double(query, 10, db, which + "dt_contact_s");
+    run.dt_flight_s = required_double(query, 11, db, which + "dt_flight_s");
     run.particle_count = query.column_int(12);
     run.software_version = query.column_text(13);
     run.created_utc = query.column_text(14);
     run.stats_json = query.column_text(15);
     run.convergence_json = query.column_text(16);
+    const std::string problem = run_values_problem(run);
+    if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), which + "impossible value: " + problem);
     runs.push_back(std::move(run));
   }
   return runs;

@@ -40,6 +40,20 @@ void check_existing_file_is_ours(const std::string& path) {
                                                         ", this build writes version " +
                                                         std::to_string(kFormatVersion) + "; refusing to write");
   }
+  // A truncated or damaged file still has a valid header; writing into it could make it worse. Check
+  // the whole file (read-only) before a resumed build appends to it.
+  std::string verdict;
+  try {
+    Connection probe(path, Connection::Mode::kReadOnly);
+    Statement check(probe, "PRAGMA quick_check(1)");
+    verdict = check.step() ? check.column_text(0) : std::string("no result");
+  } catch (const TableError& e) {
+    throw TableError(TableErrorKind::kCorrupt, path + ": damaged table file (" + e.what() + "); refusing to write into it");
+  }
+  if (verdict != "ok") {
+    throw TableError(TableErrorKind::kCorrupt,
+                     path + ": damaged table file (PRAGMA quick_check: " + verdict + "); refusing to write into it");
+  }
 }
 
 // Commits on success, rolls back when an exception leaves the scope.
@@ -97,6 +111,8 @@ TableWriter& TableWriter::operator=(TableWriter&&) noexcept = default;
 const std::string& TableWriter::path() const { return impl_->connection->path(); }
 
 void TableWriter::write_machine(const Machine& machine) {
+  const std::string problem = machine_problem(machine);
+  if (!problem.empty()) throw std::invalid_argument(path() + ": refusing to write " + problem);
   Connection& db = *impl_->connection;
   Transaction transaction(db);
   Statement insert(db,
@@ -115,6 +131,10 @@ void TableWriter::write_machine(const Machine& machine) {
 }
 
 void TableWriter::write_materials(const std::vector<Material>& materials) {
+  for (const Material& m : materials) {
+    const std::string problem = material_problem(m);
+    if (!problem.empty()) throw std::invalid_argument(path() + ": refusing to write " + problem);
+  }
   Connection& db = *impl_->connection;
   Transaction transaction(db);
   Statement upsert(db,
@@ -162,6 +182,11 @@ void TableWriter::write_run(const Run& run, bool replace) {
   if (run.samples.empty()) {
     throw std::invalid_argument(path() + ": run " + run.material + " @ " + std::to_string(run.rpm) +
                                 " rpm has no samples");
+  }
+  const std::string problem = run_values_problem(run);
+  if (!problem.empty()) {
+    throw std::invalid_argument(path() + ": refusing to write run " + run.material + " @ " + std::to_string(run.rpm) +
+                                " rpm: " + problem);
   }
   Connection& db = *impl_->connection;
   Transaction transaction(db);

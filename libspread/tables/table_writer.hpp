@@ -2,7 +2,8 @@
 // Writes a launch-table file (DESIGN.md §4, docs/table-format.md). One run per transaction, so an
 // interrupted build loses at most the run in progress. Never touches a file that is not ours: an
 // existing file that is not SQLite, or whose application_id differs, is refused (TableError kNotOurs)
-// and left byte-identical; a file of another format version is refused (kWrongVersion).
+// and left byte-identical; a file of another format version is refused (kWrongVersion), a damaged or
+// truncated one (PRAGMA quick_check fails) too (kCorrupt), both also left byte-identical.
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -28,15 +29,19 @@ class TableWriter {
 
   const std::string& path() const;
 
-  // The single machine row (replaced when written again).
+  // The single machine row (replaced when written again). std::invalid_argument naming the field when
+  // machine_problem() finds a value the reader would refuse (NaN/Inf, radius <= 0, ...).
   void write_machine(const Machine& machine);
-  // Inserts or updates each material by name.
+  // Inserts or updates each material by name; std::invalid_argument (nothing written) when
+  // material_problem() objects to any of them.
   void write_materials(const std::vector<Material>& materials);
   void write_meta(const std::string& key, const std::string& value);
 
   bool has_run(const std::string& material, double rpm);
   // Throws RunExistsError if the run exists and replace is false; std::invalid_argument for a run
-  // without samples, or whose material has not been written.
+  // without samples, with a value run_values_problem() objects to (a NaN/Inf sample field, diameter or
+  // mass <= 0, rpm <= 0, ...; the message names the sample and field), or whose material has not been
+  // written.
   void write_run(const Run& run, bool replace = false);
 
  private:

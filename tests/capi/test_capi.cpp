@@ -183,6 +183,24 @@ TEST_F(Capi, OutOfRangeArguments) {
   d = def();
   d.struct_size = 8;  // not made by spread_prediction_def_default()
   EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  // Finite but beyond the documented bounds (the fuzzer's bout width 3.55e59 m was SPREAD_ERROR_INTERNAL).
+  for (double width : {3.55e59, 1000.5}) {
+    d = def();
+    d.bout_width_m = width;
+    EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE) << width;
+  }
+  d = def();
+  d.disc_height_m = 101.0;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.wind_m_s[1] = -100.5;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.cv_target_percent = 1000.5;
+  EXPECT_EQ(predict(d), SPREAD_ERROR_OUT_OF_RANGE);
+  d = def();
+  d.bout_width_m = 1000.0;
+  EXPECT_EQ(predict(d), SPREAD_OK);
   size_t n = 0;
   EXPECT_EQ(spread_transverse_bound(tables_, -0.5, &n), SPREAD_ERROR_OUT_OF_RANGE);
 }

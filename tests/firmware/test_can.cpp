@@ -99,6 +99,29 @@ TEST(Candump, BadLinesAreReportedWithLineNumbers) {
   EXPECT_NE(log.errors[2].find("CAN FD"), std::string::npos) << log.errors[2];
 }
 
+// Fuzz finding (docs/stability.md): a huge seconds part overflowed the int64 nanosecond conversion (UB)
+// and the record printed as a negative time. The largest representable second still parses and round
+// trips; one more, and the fuzzer's 17100000002 s = year 2511, are bad lines naming the line.
+TEST(Candump, TimestampsBeyondTheNanosecondRangeAreBadLines) {
+  std::string error;
+  const std::string last = "(" + std::to_string(kMaxCandumpSeconds) + ".999999) can0 0CCB8081#00";
+  const auto record = parse_candump_line(last, error);
+  ASSERT_TRUE(record.has_value()) << error;
+  EXPECT_EQ(record->time.count(), static_cast<std::int64_t>(kMaxCandumpSeconds) * 1000000000 + 999999000);
+  EXPECT_EQ(format_candump_line(record->time, "can0", record->frame), last);
+  std::istringstream in("(1.000000) can0 0CCB8081#00\n"
+                        "(" + std::to_string(kMaxCandumpSeconds + 1) + ".000000) can0 0CCB8081#00\n"
+                        "(17100000002.010000) can0 0CCB8081#0200070000000000\n"
+                        "(18446744073709551615.999999) can0 0CCB8081#00\n");
+  const CandumpLog log = read_candump_log(in);
+  ASSERT_EQ(log.records.size(), 1u);
+  ASSERT_EQ(log.errors.size(), 3u);
+  for (std::size_t i = 0; i < log.errors.size(); ++i) {
+    EXPECT_EQ(log.errors[i].rfind("line " + std::to_string(i + 2) + ": timestamp (", 0), 0u) << log.errors[i];
+    EXPECT_NE(log.errors[i].find("beyond the representable range"), std::string::npos) << log.errors[i];
+  }
+}
+
 TEST(SocketCan, MissingSupportOrInterfaceIsAClearError) {
   try {
     open_socketcan("nosuchcan7");

@@ -5,9 +5,11 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
@@ -172,6 +174,117 @@ TEST_F(Memq, InvalidCommandsAreRejectedAndCounted) {
   EXPECT_EQ(s.fault_counts[static_cast<std::size_t>(Fault::kUnknownMode)], 1);
   EXPECT_EQ(s.fault_counts[static_cast<std::size_t>(Fault::kAutomaticUnavailable)], 1);
   EXPECT_EQ(s.fault_counts[static_cast<std::size_t>(Fault::kSetpointOutOfRange)], 2);
+}
+
+// ---- length fields checked before lcm-gen's decoder (fuzz finding, docs/stability.md) --------------
+
+template <typename Message>
+std::vector<std::uint8_t> encode_any(const Message& m) {
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(m.getEncodedSize()));
+  EXPECT_EQ(m.encode(bytes.data(), 0, static_cast<int>(bytes.size())), static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+spread::status_t sample_status(const std::string& material, int sections, int fault_counts) {
+  spread::status_t s{};
+  s.material = material;
+  s.num_sections = static_cast<std::int8_t>(sections);
+  s.section_on.assign(static_cast<std::size_t>(sections), true);
+  s.num_fault_counts = static_cast<std::int8_t>(fault_counts);
+  s.fault_counts.assign(static_cast<std::size_t>(fault_counts), 7);
+  return s;
+}
+
+// The hand-written layouts in lcm_payload.hpp follow the .lcm files: every encoding lcm-gen produces,
+// with empty and long strings and empty and full arrays, is valid; one byte less or more is not.
+template <typename Message>
+void expect_layout_exact(const Message& m) {
+  std::vector<std::uint8_t> bytes = encode_any(m);
+  EXPECT_TRUE(payload_layout_valid<Message>(bytes.data(), static_cast<std::uint32_t>(bytes.size())));
+  EXPECT_FALSE(payload_layout_valid<Message>(bytes.data(), static_cast<std::uint32_t>(bytes.size() - 1)));
+  bytes.push_back(0);
+  EXPECT_FALSE(payload_layout_valid<Message>(bytes.data(), static_cast<std::uint32_t>(bytes.size())));
+}
+
+TEST(LcmPayload, LayoutMatchesTheGeneratedEncoder) {
+  for (const std::string& text : {std::string(), std::string("u"), std::string(63, 'x')}) {
+    for (int n : {0, 1, 16}) {
+      spread::command_t c = manual_command(1);
+      c.material = text;
+      c.num_sections = static_cast<std::int8_t>(n);
+      c.section_on.assign(static_cast<std::size_t>(n), true);
+      expect_layout_exact(c);
+      expect_layout_exact(sample_status(text, n, 16 - n));
+    }
+    spread::heartbeat_t h{};
+    h.node = text;
+    expect_layout_exact(h);
+  }
+}
+
+// Writes a big-endian int32 at `at`.
+void put_int32(std::vector<std::uint8_t>& bytes, std::size_t at, std::int32_t value) {
+  const auto u = static_cast<std::uint32_t>(value);
+  for (int i = 0; i < 4; ++i) bytes[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(u >> (24 - 8 * i));
+}
+
+constexpr std::int32_t kHostileLengths[] = {std::numeric_limits<std::int32_t>::min(), -2, -1, 0,
+                                            std::numeric_limits<std::int32_t>::max(), 1000};
+
+// The fuzzer's finding: status_t with material length INT32_MIN made lcm-gen's decoder overflow and
+// then assign ~2^64 bytes (SIGSEGV). Every such length is now undecodable before the decoder runs.
+TEST(LcmPayload, HostileStringLengthsAreUndecodableNotACrash) {
+  const std::size_t status_material_at = 8 + 8 + 8 + 8 + 1;
+  const std::vector<std::uint8_t> status_bytes = encode_any(sample_status("urea", 8, 4));
+  const std::size_t command_material_at = 8 + 8 + 8 + 1 + 8 + 8 + 8;
+  const std::vector<std::uint8_t> command_bytes = encode(manual_command(1));
+  spread::heartbeat_t h{};
+  h.node = "firmware_sim";
+  const std::vector<std::uint8_t> heartbeat_bytes = encode_any(h);
+  for (const std::int32_t length : kHostileLengths) {
+    SCOPED_TRACE(length);
+    std::vector<std::uint8_t> s = status_bytes;
+    put_int32(s, status_material_at, length);
+    spread::status_t status_out{};
+    EXPECT_EQ(decode_checked(s.data(), static_cast<std::uint32_t>(s.size()), status_out), DecodeOutcome::kUndecodable);
+    std::vector<std::uint8_t> c = command_bytes;
+    put_int32(c, command_material_at, length);
+    spread::command_t command_out{};
+    EXPECT_EQ(decode_checked(c.data(), static_cast<std::uint32_t>(c.size()), command_out), DecodeOutcome::kUndecodable);
+    std::vector<std::uint8_t> b = heartbeat_bytes;
+    put_int32(b, 8 + 8 + 8, length);
+    spread::heartbeat_t heartbeat_out{};
+    EXPECT_EQ(decode_checked(b.data(), static_cast<std::uint32_t>(b.size()), heartbeat_out), DecodeOutcome::kUndecodable);
+  }
+  // Negative array counts (num_sections, num_fault_counts) likewise.
+  std::vector<std::uint8_t> s = status_bytes;
+  const std::size_t sections_at = status_material_at + 4 + 5 + 11 * 8 + 3;
+  ASSERT_EQ(s[sections_at], 8);
+  s[sections_at] = 0x80;
+  spread::status_t status_out{};
+  EXPECT_EQ(decode_checked(s.data(), static_cast<std::uint32_t>(s.size()), status_out), DecodeOutcome::kUndecodable);
+  s = status_bytes;
+  ASSERT_EQ(s[s.size() - 4 * 8 - 1], 4);
+  s[s.size() - 4 * 8 - 1] = 0xFF;
+  EXPECT_EQ(decode_checked(s.data(), static_cast<std::uint32_t>(s.size()), status_out), DecodeOutcome::kUndecodable);
+}
+
+// On the ECU side: command_t with a hostile material length is counted as undecodable (the existing
+// fault counter) and the link keeps working.
+TEST_F(Memq, HostileCommandStringLengthIsCountedAsUndecodable) {
+  const std::size_t material_at = 8 + 8 + 8 + 1 + 8 + 8 + 8;
+  for (const std::int32_t length : kHostileLengths) {
+    std::vector<std::uint8_t> bytes = encode(manual_command(1));
+    put_int32(bytes, material_at, length);
+    ASSERT_TRUE(tractor_.send_raw(bytes.data(), static_cast<unsigned>(bytes.size())));
+  }
+  ticks(2);
+  EXPECT_EQ(status().rejected_undecodable, static_cast<std::int64_t>(std::size(kHostileLengths)));
+  EXPECT_NE(status().fault_codes & static_cast<std::int32_t>(fault_bit(Fault::kLcmUndecodable)), 0);
+  EXPECT_EQ(status().last_command_sequence, -1);
+  ASSERT_TRUE(tractor_.send(manual_command(2)));
+  ticks(1);
+  EXPECT_EQ(status().last_command_sequence, 2);
 }
 
 // ---- udpm:// in a private network namespace -------------------------------------------------------

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "libspread/predict/flight_defaults.hpp"
@@ -230,7 +231,45 @@ TEST(Predictor, RefusesBadRequestsWithTheirStatus) {
   EXPECT_EQ(p.predict(with([](auto& r) { r.bout_width_m = -1.0; }), out), PredictStatus::kOutOfRange);
   EXPECT_EQ(p.predict(with([](auto& r) { r.tray_width_m = 0.01; }), out), PredictStatus::kOutOfRange);
   EXPECT_EQ(p.predict(with([](auto& r) { r.effects = 0x10; }), out), PredictStatus::kUnknownEffect);
+  // Finite but absurd values are out of range against PredictorLimits' upper bounds (the fuzzer's
+  // bout width of 3.6e59 m used to end in an exception from the metrics: SPREAD_ERROR_INTERNAL).
+  const PredictorLimits limits;
+  EXPECT_EQ(p.predict(with([](auto& r) { r.bout_width_m = 3.55e59; }), out), PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.bout_width_m = std::nextafter(limits.max_bout_width_m, inf); }), out),
+            PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.disc_height_m = 1e300; }), out), PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.disc_height_m = 1.01 * limits.max_disc_height_m; }), out),
+            PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.wind_x_m_s = -1e200; }), out), PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.wind_y_m_s = 1.01 * limits.max_wind_m_s; }), out),
+            PredictStatus::kOutOfRange);
+  EXPECT_EQ(p.predict(with([](auto& r) { r.cv_target = 1e308; }), out), PredictStatus::kOutOfRange);
   EXPECT_EQ(out.throw_width_m, -1.0);
+  // The bounds themselves are accepted.
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.bout_width_m = limits.max_bout_width_m; }), out), PredictStatus::kOk);
+  EXPECT_TRUE(std::isfinite(out.cv_to_and_fro));
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.wind_x_m_s = -limits.max_wind_m_s; }), out), PredictStatus::kOk);
+  EXPECT_EQ(p.predict(with([&](auto& r) { r.cv_target = limits.max_cv_target; }), out), PredictStatus::kOk);
+}
+
+// Contents that did not come through the table reader get the same value checks: a NaN mass or a zero
+// diameter never reaches the flight code (TableError kCorrupt naming the field).
+TEST(Predictor, ImpossibleContentsAreRefusedAtConstruction) {
+  for (int field : {0, 4, 10, 11}) {
+    tables::TableContents contents = testing::synthetic_contents();
+    float* values = &contents.runs.at(0).samples.at(3).x_m;
+    values[field] = field == 10 ? 0.0f : std::numeric_limits<float>::quiet_NaN();
+    try {
+      Predictor p(std::move(contents));
+      ADD_FAILURE() << "field " << field << " accepted";
+    } catch (const tables::TableError& e) {
+      EXPECT_EQ(e.kind(), tables::TableErrorKind::kCorrupt);
+      EXPECT_NE(std::string(e.what()).find("sample 3"), std::string::npos) << e.what();
+    }
+  }
+  tables::TableContents contents = testing::synthetic_contents();
+  contents.materials.at(0).density_kg_m3 = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(Predictor{std::move(contents)}, tables::TableError);
 }
 
 TEST(Predictor, TrayCapacityBoundsEveryLayout) {

@@ -171,16 +171,23 @@ TEST(DemHardCases, NonFiniteStepOrStateIsRefused) {
   EXPECT_THROW(engine.add_particle(Vec3(0, 0, nan), Vec3::Zero(), radius, 0), std::invalid_argument);
   EXPECT_THROW(engine.add_particle(Vec3(0, 0, 1), Vec3(HUGE_VAL, 0, 0), radius, 0), std::invalid_argument);
   EXPECT_THROW(engine.add_particle(Vec3(0, 0, 1), Vec3::Zero(), nan, 0), std::invalid_argument);
-  for (double bad : {nan, HUGE_VAL}) {
+  // A NaN, infinite or negative step is refused naming the key; it never quietly becomes the automatic
+  // step (only 0 means automatic).
+  for (double bad : {nan, -nan, HUGE_VAL, -HUGE_VAL, -1e-6}) {
+    SCOPED_TRACE(bad);
     EngineParams q = p;
     q.dt_s = bad;
-    // A NaN or infinite step must not be taken: refused, or replaced by the automatic one.
     try {
       const DemEngine e({granule(5e7), rigid_wall()}, {}, plane_floor(), q);
-      EXPECT_TRUE(std::isfinite(e.dt_s()) && e.dt_s() > 0.0 && e.dt_s() <= e.stable_step_bound_s()) << e.dt_s();
-    } catch (const std::invalid_argument&) {
+      ADD_FAILURE() << "dt_s = " << bad << " was accepted; the engine took " << e.dt_s() << " s";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find("dt_s"), std::string::npos) << error.what();
     }
   }
+  EngineParams automatic = p;
+  automatic.dt_s = 0.0;
+  const DemEngine e({granule(5e7), rigid_wall()}, {}, plane_floor(), automatic);
+  EXPECT_TRUE(std::isfinite(e.dt_s()) && e.dt_s() > 0.0 && e.dt_s() <= e.stable_step_bound_s()) << e.dt_s();
   Material bad_material = granule(nan);
   EXPECT_THROW(DemEngine({bad_material, rigid_wall()}, {}, plane_floor(), p), std::invalid_argument);
 }

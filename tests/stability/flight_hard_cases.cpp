@@ -163,6 +163,9 @@ TEST_P(FlightHardCases, WindStrongerThanTheLaunch) {
   }
 }
 
+// Fixed-step RK4 is refused exactly when the step is above its explicit stability bound
+// (rk4_stable_step_bound_s: 2.78 × the stiffest drag/spin-decay relaxation time), and the message says so;
+// every flight that is not refused — all of Dormand–Prince's — is finite and energy-bounded.
 TEST_P(FlightHardCases, ExtremeDiametersAndDensitiesStayFiniteAndBounded) {
   State launch;
   launch.position_m = Vec3(0.0, 0.0, 0.8);
@@ -170,26 +173,91 @@ TEST_P(FlightHardCases, ExtremeDiametersAndDensitiesStayFiniteAndBounded) {
   launch.spin_rad_s = Vec3(50.0, -80.0, 400.0);
   Settings s = settings_for(GetParam());
   s.max_steps = 200'000;  // the dust cases may not land in time: they must stop, not run away
+  int refused = 0;
   for (double d : {1e-5, 1e-4, 3e-3, 2e-2, 1e-1}) {
     for (double rho : {10.0, 300.0, 1500.0, 8000.0, 2e4}) {
       SCOPED_TRACE(::testing::Message() << "d = " << d << " m, rho = " << rho << " kg/m3");
+      const Granule granule{d, rho};
+      const bool above_bound =
+          GetParam() == Scheme::kRk4 && s.dt_s > rk4_stable_step_bound_s(granule, launch, 0.0, Air{}, kAllEffects, s);
+      if (d >= 3e-3) {
+        EXPECT_FALSE(above_bound) << "a fertiliser-sized granule is within RK4's bound at 1 ms";
+      }
       try {
-        const Landing l = fly_to_ground(Granule{d, rho}, launch, 0.0, Air{}, kAllEffects, s);
+        const Landing l = fly_to_ground(granule, launch, 0.0, Air{}, kAllEffects, s);
+        EXPECT_FALSE(above_bound) << "a step above RK4's stable bound was taken";
         expect_finite_landing(l);
         if (l.landed) {
           EXPECT_NEAR(l.state.position_m.z(), 0.0, 1e-9);
           expect_energy_bounded(launch, 0.0, l);
         }
       } catch (const std::invalid_argument& e) {
-        ADD_FAILURE() << "a valid granule was refused: " << e.what();
+        ++refused;
+        EXPECT_TRUE(above_bound) << "a valid granule was refused: " << e.what();
+        EXPECT_NE(std::string(e.what()).find("stable bound"), std::string::npos) << e.what();
+      }
+    }
+  }
+  // At dt = 1 ms only dust (d <= 0.1 mm) is beyond RK4, and only RK4 refuses.
+  if (GetParam() == Scheme::kRk4) {
+    EXPECT_GT(refused, 0);
+  } else {
+    EXPECT_EQ(refused, 0);
+  }
+}
+
+// The bound: for a granule at rest in still air with only drag on it is 2.78 × the Stokes relaxation time
+// ρ d²/(18 μ); with spin decay on it is never larger; it shrinks as the flight can reach higher speeds.
+TEST(FlightRk4Bound, MatchesTheStokesRelaxationTimeAndOrdersCorrectly) {
+  const Air air;
+  const Granule dust{1e-4, 1000.0};
+  State at_rest;  // on the ground, at rest: relative speed 0 for the whole "flight"
+  Settings s;
+  const double tau_stokes = dust.density_kg_m3 * dust.diameter_m * dust.diameter_m / (18.0 * air.viscosity_pa_s);
+  EXPECT_NEAR(rk4_stable_step_bound_s(dust, at_rest, 0.0, air, kDrag, s), kRk4StabilityLimit * tau_stokes,
+              1e-12 * tau_stokes);
+  EXPECT_LE(rk4_stable_step_bound_s(dust, at_rest, 0.0, air, kAllEffects, s),
+            rk4_stable_step_bound_s(dust, at_rest, 0.0, air, kDrag, s));
+  State thrown = at_rest;
+  thrown.position_m = Vec3(0.0, 0.0, 1.0);
+  thrown.velocity_m_s = Vec3(30.0, 0.0, 0.0);
+  EXPECT_LT(rk4_stable_step_bound_s(dust, thrown, 0.0, air, kDrag, s), rk4_stable_step_bound_s(dust, at_rest, 0.0, air, kDrag, s));
+  EXPECT_EQ(rk4_stable_step_bound_s(dust, thrown, 0.0, air, kMagnus, s), HUGE_VAL);  // no stiff term
+  // A 3 mm fertiliser granule at 30 m/s: the bound is far above any step in use (about 0.5 s).
+  EXPECT_GT(rk4_stable_step_bound_s(Granule{3e-3, 1800.0}, thrown, 0.0, air, kAllEffects, s), 0.1);
+}
+
+// Just below the bound RK4 is stable: the dust that is refused at 1 ms flies finite and energy-bounded
+// at 0.9 × its bound, with and without spin decay.
+TEST(FlightRk4Bound, JustBelowTheBoundTheDustStaysFiniteAndBounded) {
+  State launch;
+  launch.position_m = Vec3(0.0, 0.0, 0.8);
+  launch.velocity_m_s = Vec3(30.0, 10.0, 3.0);
+  launch.spin_rad_s = Vec3(50.0, -80.0, 400.0);
+  for (EffectSet effects : {EffectSet{kDrag}, kAllEffects}) {
+    for (double d : {1e-5, 1e-4}) {
+      for (double rho : {10.0, 1500.0}) {
+        SCOPED_TRACE(::testing::Message() << "effects " << effects << ", d = " << d << " m, rho = " << rho);
+        const Granule granule{d, rho};
+        Settings s;
+        s.scheme = Scheme::kRk4;
+        s.max_time_s = 2.0;
+        s.max_steps = 2'000'000;
+        s.dt_s = 0.9 * rk4_stable_step_bound_s(granule, launch, 0.0, Air{}, effects, s);
+        const Landing l = fly_to_ground(granule, launch, 0.0, Air{}, effects, s);
+        expect_finite_landing(l);
+        expect_energy_bounded(launch, 0.0, l);
+        EXPECT_GE(l.state.position_m.z(), 0.0);
+        s.dt_s *= 1.2;  // 1.08 × the bound: refused
+        EXPECT_THROW(fly_to_ground(granule, launch, 0.0, Air{}, effects, s), std::invalid_argument);
       }
     }
   }
 }
 
-// Re → 0: a 1 µm particle in air 1000× more viscous. The drag relaxation time ρd²/(18μ) ≈ 5e-12 s is
-// nine orders below the RK4 step: an explicit step is unstable there. Allowed outcomes: a refusal that
-// says why, or a finite state (sub-stepped / stopped at max_steps) — never NaN or Inf.
+// Re → 0: a 1 µm particle in air 1000× more viscous. The drag relaxation time ρd²/(18μ) ≈ 3e-12 s is
+// nine orders below the step. RK4 refuses the step naming its stable bound (before, it diverged to
+// |v| ≈ 1e25 m/s); Dormand–Prince adapts its step and stops finite, hovering, at max_time_s.
 TEST_P(FlightHardCases, StokesLimitWithAStepFarAboveTheRelaxationTime) {
   State launch;
   launch.position_m = Vec3(0.0, 0.0, 1.0);
@@ -199,15 +267,30 @@ TEST_P(FlightHardCases, StokesLimitWithAStepFarAboveTheRelaxationTime) {
   Settings s = settings_for(GetParam());
   s.max_steps = 20'000;
   s.max_time_s = 1.0;
-  try {
-    const Landing l = fly_to_ground(Granule{1e-6, 1000.0}, launch, 0.0, viscous, kAllEffects, s);
-    expect_finite_landing(l);
-    EXPECT_FALSE(l.landed);  // terminal speed ≈ 3e-8 m/s: it cannot fall 1 m in 1 s
-    EXPECT_GT(l.state.position_m.z(), 0.0);
-    EXPECT_LE(l.state.velocity_m_s.norm(), 10.0 * (1.0 + 1e-9));
-  } catch (const std::invalid_argument& e) {
-    SUCCEED() << "refused: " << e.what();
+  if (GetParam() == Scheme::kRk4) {
+    try {
+      (void)fly_to_ground(Granule{1e-6, 1000.0}, launch, 0.0, viscous, kAllEffects, s);
+      ADD_FAILURE() << "RK4 took a step 1e8 x its relaxation time";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("stable bound"), std::string::npos) << e.what();
+    }
+    // fly_batch refuses it too, before any thread starts, naming the element.
+    const std::vector<Granule> granules{Granule{3e-3, 1800.0}, Granule{1e-6, 1000.0}};
+    const std::vector<State> launches{launch, launch};
+    std::vector<Landing> out(2);
+    try {
+      fly_batch(granules, launches, 0.0, viscous, kAllEffects, s, out, 1);
+      ADD_FAILURE() << "fly_batch took the unstable step";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("element 1"), std::string::npos) << e.what();
+    }
+    return;
   }
+  const Landing l = fly_to_ground(Granule{1e-6, 1000.0}, launch, 0.0, viscous, kAllEffects, s);
+  expect_finite_landing(l);
+  EXPECT_FALSE(l.landed);  // terminal speed ≈ 3e-8 m/s: it cannot fall 1 m in 1 s
+  EXPECT_GT(l.state.position_m.z(), 0.0);
+  EXPECT_LE(l.state.velocity_m_s.norm(), 10.0 * (1.0 + 1e-9));
 }
 
 TEST_P(FlightHardCases, SameInputSameResultAndAnyThreadCount) {

@@ -54,10 +54,14 @@ std::string read_file(const std::filesystem::path& path) {
   return text.str();
 }
 
+// Spreader scenes only: a scene with a [drum] table belongs to the drum parser (libspread/drum), whose
+// own tests cover its validation.
 std::vector<std::filesystem::path> shipped_scenes() {
   std::vector<std::filesystem::path> scenes;
   for (const auto& entry : std::filesystem::directory_iterator(SPREAD_SOURCE_DIR "/scenes")) {
-    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+    if (entry.path().extension() != ".toml") continue;
+    if (toml::parse_file(entry.path().string()).contains("drum")) continue;
+    scenes.push_back(entry.path());
   }
   std::sort(scenes.begin(), scenes.end());
   return scenes;

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "libspread/tables/sample_codec.hpp"
@@ -112,30 +113,73 @@ TEST(TableNonFinite, UndamagedTablePredicts) {
   expect_refused_or_finite(stability_table_path(), "undamaged");
 }
 
+// The reader refuses the damaged file as corrupt with a message naming the record and field, and so
+// spread_open says SPREAD_ERROR_FILE_CORRUPT: nothing of it reaches a prediction.
+void expect_corrupt(const std::string& path, const std::string& what, const std::vector<std::string>& named) {
+  SCOPED_TRACE(what);
+  spread_tables* tables = nullptr;
+  EXPECT_EQ(spread_open(path.c_str(), &tables), SPREAD_ERROR_FILE_CORRUPT);
+  EXPECT_EQ(tables, nullptr);
+  spread_close(tables);
+  try {
+    (void)tables::read_table_file(path);
+    ADD_FAILURE() << "read_table_file accepted it";
+  } catch (const tables::TableError& e) {
+    EXPECT_EQ(e.kind(), tables::TableErrorKind::kCorrupt) << e.what();
+    for (const std::string& word : named) EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+  }
+}
+
+constexpr const char* kSampleFieldNames[] = {"x_m",     "y_m",     "z_m",     "t_s",     "vx_norm",    "vy_norm",
+                                             "vz_norm", "wx_norm", "wy_norm", "wz_norm", "diameter_m", "mass_kg"};
+
+// Was a known issue: x, y, v, ω, diameter → SPREAD_ERROR_INTERNAL from spread_predict, mass = NaN/Inf →
+// SPREAD_OK with NaN trays.
 TEST(TableNonFinite, NanOrInfInAnySampleField) {
-  const char* names[] = {"x_m", "y_m", "z_m", "t_s", "vx", "vy", "vz", "wx", "wy", "wz", "diameter_m", "mass_kg"};
   for (int field = 0; field < tables::kSampleFloats; ++field) {
     for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
                       -std::numeric_limits<float>::infinity()}) {
-      const std::string what = std::string("sample 0 ") + names[field] + " = " + std::to_string(bad);
+      const std::string name = kSampleFieldNames[field];
       const std::string path = copy_of_table("sample_" + std::to_string(field) + ".sqlite");
       poison_samples(path, field, bad);
-      expect_refused_or_finite(path, what);
+      expect_corrupt(path, "sample 0 " + name + " = " + std::to_string(bad), {"sample 0 " + name, "Urea"});
     }
   }
 }
 
-// Finite but impossible sample values (a zero or negative diameter or mass).
+// Finite but impossible sample values (a zero or negative diameter or mass). Was a known issue (INTERNAL).
 TEST(TableNonFinite, ZeroOrNegativeDiameterAndMass) {
   for (int field : {10, 11}) {
     for (float bad : {0.0f, -1e-3f}) {
+      const std::string name = kSampleFieldNames[field];
       const std::string path = copy_of_table("sample_sign_" + std::to_string(field) + ".sqlite");
       poison_samples(path, field, bad);
-      expect_refused_or_finite(path, "field " + std::to_string(field) + " = " + std::to_string(bad));
+      expect_corrupt(path, name + " = " + std::to_string(bad), {"sample 0 " + name, "> 0"});
     }
   }
 }
 
+// Removes the NOT NULL constraints of `table` from the schema (a hand-edited or foreign-written file),
+// so a NULL can be stored where the reader expects a number.
+void drop_not_null(const std::string& path, const std::string& table) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  const std::string sql = "PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, 'NOT NULL', '') "
+                          "WHERE type = 'table' AND name = '" + table + "'; PRAGMA writable_schema = OFF;";
+  char* error = nullptr;
+  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK) << (error ? error : "");
+  sqlite3_free(error);
+  sqlite3_close(db);
+}
+
+// One row of `table` (runs: the lowest rpm, as two runs with the same rpm would break UNIQUE).
+std::string one_row(const std::string& table) {
+  return table == "runs" ? " WHERE rowid = (SELECT min(rowid) FROM runs)" : "";
+}
+
+// Was a known issue: machine.disc_radius_m = Inf, materials.density_kg_m3 = ±Inf → INTERNAL. ±Inf is now
+// corrupt naming the column; a NaN is stored by SQLite as NULL, which the schema's NOT NULL refuses — and
+// in a file whose schema lost NOT NULL, the reader reports the value as missing.
 TEST(TableNonFinite, NanInfOrMissingInMachineMaterialAndRunRows) {
   const std::vector<std::pair<std::string, std::string>> columns = {
       {"machine", "disc_radius_m"},     {"machine", "disc_height_m"},       {"machine", "disc_spacing_m"},
@@ -145,32 +189,70 @@ TEST(TableNonFinite, NanInfOrMissingInMachineMaterialAndRunRows) {
   };
   int n = 0;
   for (const auto& [table, column] : columns) {
-    for (double bad : {kNaN, kInf, -kInf}) {  // a bound NaN is stored as NULL: the "missing" case
+    for (double bad : {kInf, -kInf}) {
       const std::string path = copy_of_table("row_" + std::to_string(n++) + ".sqlite");
-      execute(path, "UPDATE " + table + " SET " + column + " = ?1", bad);
-      expect_refused_or_finite(path, table + "." + column + " = " + std::to_string(bad));
+      execute(path, "UPDATE " + table + " SET " + column + " = ?1" + one_row(table), bad);
+      expect_corrupt(path, table + "." + column + " = " + std::to_string(bad), {column, "inf"});
     }
+    const std::string path = copy_of_table("row_" + std::to_string(n++) + ".sqlite");
+    drop_not_null(path, table);
+    execute(path, "UPDATE " + table + " SET " + column + " = ?1" + one_row(table), kNaN);  // stored as NULL
+    expect_corrupt(path, table + "." + column + " = NaN (NULL)", {column, "missing (NULL)"});
+  }
+  // Finite but impossible machine and material values.
+  for (const auto& [table, column, value] : std::vector<std::tuple<std::string, std::string, double>>{
+           {"machine", "disc_radius_m", 0.0}, {"machine", "disc_height_m", -0.5}, {"machine", "cone_angle_rad", 2.0},
+           {"materials", "density_kg_m3", 0.0}, {"materials", "diameter_mean_m", -1e-3},
+           {"materials", "restitution", 1.5}, {"runs", "rpm", -450.0}}) {
+    const std::string path = copy_of_table("row_" + std::to_string(n++) + ".sqlite");
+    execute(path, "UPDATE " + table + " SET " + column + " = ?1" + one_row(table), value);
+    expect_corrupt(path, table + "." + column + " = " + std::to_string(value), {column});
   }
 }
 
-// The writer is the other way a NaN could get into a file: refusing it there is allowed; if it
-// writes, the reader/C API rule above applies.
+// Was a known issue: TableWriter wrote a NaN sample without complaint. It now refuses with
+// std::invalid_argument naming the sample and field, and writes nothing of that run.
 TEST(TableNonFinite, WriterWithNanSample) {
   const std::string path = (temp_directory().path() / "writer_nan.sqlite").string();
+  tables::TableContents contents = tables::read_table_file(stability_table_path());
+  tables::TableWriter writer(path);
+  writer.write_machine(contents.machine);
+  writer.write_materials(contents.materials);
+  tables::Run run = contents.runs.at(0);
+  run.samples.at(1).vx_norm = std::numeric_limits<float>::quiet_NaN();
   try {
-    tables::TableContents contents = tables::read_table_file(stability_table_path());
-    tables::TableWriter writer(path);
-    writer.write_machine(contents.machine);
-    writer.write_materials(contents.materials);
-    for (tables::Run& run : contents.runs) {
-      run.samples.at(1).vx_norm = std::numeric_limits<float>::quiet_NaN();
-      writer.write_run(run);
-    }
+    writer.write_run(run);
+    ADD_FAILURE() << "the writer wrote a NaN sample";
   } catch (const std::invalid_argument& e) {
-    SUCCEED() << "the writer refused: " << e.what();
-    return;
+    EXPECT_NE(std::string(e.what()).find("sample 1 vx_norm"), std::string::npos) << e.what();
   }
-  expect_refused_or_finite(path, "written by TableWriter with a NaN vx");
+  EXPECT_FALSE(writer.has_run(run.material, run.rpm));
+  run = contents.runs.at(0);
+  run.samples.at(2).mass_kg = 0.0f;
+  EXPECT_THROW(writer.write_run(run), std::invalid_argument);
+  run = contents.runs.at(0);
+  run.rpm = kInf;
+  EXPECT_THROW(writer.write_run(run), std::invalid_argument);
+  // Machine and material rows likewise.
+  tables::Machine machine = contents.machine;
+  machine.disc_radius_m = kNaN;
+  try {
+    writer.write_machine(machine);
+    ADD_FAILURE() << "the writer wrote a NaN disc radius";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("disc_radius_m"), std::string::npos) << e.what();
+  }
+  std::vector<tables::Material> materials = contents.materials;
+  materials.at(0).density_kg_m3 = -kInf;
+  try {
+    writer.write_materials(materials);
+    ADD_FAILURE() << "the writer wrote an infinite density";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("density_kg_m3"), std::string::npos) << e.what();
+  }
+  // The valid rows still write and read back.
+  writer.write_run(contents.runs.at(0));
+  EXPECT_EQ(tables::read_table_file(path).runs.size(), 1u);
 }
 
 }  // namespace

@@ -76,18 +76,17 @@ TEST(LookupBuilder, RerunSkipsFinishedRunsAndRebuildRedoesThem) {
   EXPECT_EQ(tables::read_table_file(file.path()).runs.size(), 18u);
 }
 
-TEST(LookupBuilder, DemSourceIsAnExplicitNotYetAvailableError) {
-  const scene::Scene scene = default_scene({"sweep.source=\"dem\""});
-  TempFile file("dem");
-  BuildOptions options;
-  options.output_path = file.path();
-  try {
-    build_tables(scene, options);
-    FAIL() << "dem source accepted";
-  } catch (const SourceUnavailableError& e) {
-    EXPECT_NE(std::string(e.what()).find("not yet available"), std::string::npos);
+TEST(LookupBuilder, DemSweepKeysAreValidatedByName) {
+  // The DEM source itself is tested in test_lookup_dem.cpp; bad budgets are scene errors naming the key.
+  for (const char* bad : {"sweep.batch_s=0", "sweep.convergence_tolerance=-1", "sweep.particle_budget=-5"}) {
+    try {
+      default_scene({"sweep.source=\"dem\"", bad});
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const scene::SceneError& e) {
+      const std::string key = std::string(bad).substr(0, std::string(bad).find('='));
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
   }
-  EXPECT_FALSE(std::filesystem::exists(file.path()));  // refused before anything was written
 }
 
 }  // namespace

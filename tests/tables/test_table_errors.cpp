@@ -3,6 +3,11 @@
 #include <sqlite3.h>
 
 #include <filesystem>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "libspread/tables/table_reader.hpp"
 #include "libspread/tables/table_writer.hpp"
@@ -124,6 +129,56 @@ TEST(TableErrors, TableWithoutRunsIsEmpty) {
     writer.write_materials({spread::testing::sample_material("A", 0.4)});
   }
   expect_read_error(file.path(), TableErrorKind::kEmpty, "no runs");
+}
+
+// Physically impossible values: the reader says corrupt naming the record and field (docs/table-format.md,
+// value rules); the writer refuses to write them at all.
+TEST(TableErrors, ImpossibleValuesAreCorruptNamingTheField) {
+  const std::vector<std::pair<std::string, std::string>> damage = {
+      {"UPDATE machine SET disc_radius_m = 0", "machine.disc_radius_m = 0"},
+      {"UPDATE machine SET disc_height_m = 9e999", "machine.disc_height_m = inf"},
+      {"UPDATE materials SET density_kg_m3 = -9e999 WHERE name = 'B'", "materials.B.density_kg_m3 = -inf"},
+      {"UPDATE materials SET poisson_ratio = 0.7 WHERE name = 'A'", "materials.A.poisson_ratio = 0.7"},
+      {"UPDATE runs SET dt_flight_s = -1 WHERE material = 'A' AND rpm = 600", "dt_flight_s = -1"},
+  };
+  for (const auto& [sql, named] : damage) {
+    TempFile file("impossible");
+    spread::testing::write_sample_table(file.path());
+    raw_exec(file.path(), sql);
+    expect_read_error(file.path(), TableErrorKind::kCorrupt, named);
+  }
+}
+
+TEST(TableErrors, WriterRefusesImpossibleValuesNamingTheField) {
+  TempFile file("writer");
+  TableWriter writer(file.path());
+  Machine machine = spread::testing::sample_machine();
+  machine.disc_radius_m = std::numeric_limits<double>::quiet_NaN();
+  try {
+    writer.write_machine(machine);
+    ADD_FAILURE() << "wrote a NaN radius";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("machine.disc_radius_m = nan"), std::string::npos) << e.what();
+  }
+  writer.write_machine(spread::testing::sample_machine());
+  Material material = spread::testing::sample_material("A", 0.4);
+  material.diameter_mean_m = 0.0;
+  EXPECT_THROW(writer.write_materials({spread::testing::sample_material("B", 0.4), material}), std::invalid_argument);
+  writer.write_materials({spread::testing::sample_material("A", 0.4)});
+  for (int field = 0; field < kSampleFloats; ++field) {
+    spread::tables::Run run = spread::testing::sample_run("A", 450.0, 8);
+    float* values = &run.samples.at(5).x_m;
+    values[field] = field >= 10 ? -1.0f : std::numeric_limits<float>::infinity();
+    try {
+      writer.write_run(run);
+      ADD_FAILURE() << "wrote field " << field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("sample 5 "), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_FALSE(writer.has_run("A", 450.0));
+  writer.write_run(spread::testing::sample_run("A", 450.0, 8));
+  EXPECT_EQ(read_table_file(file.path()).runs.size(), 1u);
 }
 
 TEST(TableErrors, ZeroByteFileIsNotOurs) {

@@ -10,6 +10,14 @@
 
 #include "tools/spread/command_registry.hpp"
 
+#if defined(SPREAD_HAS_DRUM)
+#include "libspread/drum/drum_scene.hpp"
+namespace spread::drum {  // defined in cmd_drum.cpp
+int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
+                     const std::string& sweep, const std::string& map_path);
+}
+#endif
+
 #if defined(SPREAD_DEM_HAS_SCENE)
 #include "libspread/dem/scene_config.hpp"
 #include "libspread/dem/simulate.hpp"
@@ -132,6 +140,13 @@ spread::cli::CommandRegistration reg{"simulate", [](CLI::App& app, int& exit_cod
   sub->add_flag("--monolithic", state->monolithic,
                 "also keep launched particles in the DEM loop at the contact step until they land (cost reference)");
   sub->callback([&exit_code] {
+#if defined(SPREAD_HAS_DRUM)
+    // A scene with a [drum] table is the rotating drum (issue 7), not a disc.
+    if (spread::drum::is_drum_scene_file(state->scene_path)) {
+      exit_code = spread::drum::run_drum_command(state->scene_path, state->overrides, state->json_out, "", "");
+      return;
+    }
+#endif
 #if defined(SPREAD_DEM_HAS_SCENE)
     exit_code = run(*state);
 #else

@@ -129,11 +129,13 @@ typedef struct spread_prediction_def {
   uint32_t struct_size;        /* sizeof(spread_prediction_def) of the caller's header; set by _default() */
   const char* material;        /* material name (NUL-terminated), read during the call only. Required. */
   double rpm;                  /* disc speed, revolutions per minute; within the material's table range */
-  double disc_height_m;        /* disc above the ground (m), >= 0; NaN = the machine's stored height */
-  double wind_m_s[2];          /* wind (x lateral, y forward), m/s; used when SPREAD_EFFECT_WIND is set */
-  double cv_target_percent;    /* CV target for the effective working widths, percent, > 0 (default 15) */
+  double disc_height_m;        /* disc above the ground (m), 0..100; NaN = the machine's stored height */
+  double wind_m_s[2];          /* wind (x lateral, y forward), m/s, each within [-100, 100]; used when
+                                  SPREAD_EFFECT_WIND is set */
+  double cv_target_percent;    /* CV target for the effective working widths, percent, in (0, 1000]
+                                  (default 15) */
   uint32_t effects;            /* SPREAD_EFFECT_* bits (default: all) */
-  double bout_width_m;         /* bout width at which cv_percent is evaluated, m, >= 0;
+  double bout_width_m;         /* bout width at which cv_percent is evaluated, m, 0..1000;
                                   0 = at the to-and-fro effective working width */
   double tray_width_m;         /* width of the collecting trays, m, > 0 (default 0.5, ISO 5690) */
 } spread_prediction_def;

@@ -1,0 +1,129 @@
+#include "lookup_builder/run_message.hpp"
+
+#include <bit>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "libspread/tables/sample_codec.hpp"
+
+namespace spread::lookup {
+namespace {
+
+constexpr char kMagic[] = "SPRUN1";
+constexpr std::size_t kMagicBytes = sizeof kMagic - 1;
+
+class Writer {
+ public:
+  void u64(std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  void text(const std::string& s) {
+    u64(s.size());
+    bytes.insert(bytes.end(), s.begin(), s.end());
+  }
+  void raw(std::span<const std::uint8_t> b) {
+    u64(b.size());
+    bytes.insert(bytes.end(), b.begin(), b.end());
+  }
+  std::vector<std::uint8_t> bytes;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::span<const std::uint8_t> b) : bytes_(b) {}
+  std::uint64_t u64() {
+    need(8);
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(bytes_[pos_ + static_cast<std::size_t>(i)]) << (8 * i);
+    pos_ += 8;
+    return v;
+  }
+  double f64() { return std::bit_cast<double>(u64()); }
+  std::string text() {
+    const std::size_t n = size();
+    std::string s(reinterpret_cast<const char*>(bytes_.data() + pos_), n);
+    pos_ += n;
+    return s;
+  }
+  std::span<const std::uint8_t> raw() {
+    const std::size_t n = size();
+    const auto out = bytes_.subspan(pos_, n);
+    pos_ += n;
+    return out;
+  }
+  void magic() {
+    need(kMagicBytes);
+    if (std::memcmp(bytes_.data(), kMagic, kMagicBytes) != 0) fail("bad magic");
+    pos_ += kMagicBytes;
+  }
+  void finish() const {
+    if (pos_ != bytes_.size()) fail(std::to_string(bytes_.size() - pos_) + " trailing bytes");
+  }
+
+ private:
+  std::size_t size() {
+    const std::uint64_t n = u64();
+    if (n > bytes_.size() - pos_) fail("length " + std::to_string(n) + " beyond the end");
+    return static_cast<std::size_t>(n);
+  }
+  void need(std::size_t n) const {
+    if (bytes_.size() - pos_ < n) fail("truncated");
+  }
+  [[noreturn]] static void fail(const std::string& why) {
+    throw std::invalid_argument("serialised run: " + why);
+  }
+  std::span<const std::uint8_t> bytes_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::vector<std::uint8_t> serialise_run(const tables::Run& run) {
+  Writer w;
+  w.bytes.assign(kMagic, kMagic + kMagicBytes);
+  w.text(run.material);
+  w.f64(run.rpm);
+  w.text(run.source);
+  w.raw(tables::encode_samples(run.samples));
+  w.text(run.scene_hash);
+  w.text(run.scene_text);
+  w.text(run.effects);
+  w.f64(run.dt_contact_s);
+  w.f64(run.dt_flight_s);
+  w.u64(static_cast<std::uint64_t>(run.particle_count));
+  w.text(run.software_version);
+  w.text(run.created_utc);
+  w.text(run.stats_json);
+  w.text(run.convergence_json);
+  return std::move(w.bytes);
+}
+
+tables::Run deserialise_run(std::span<const std::uint8_t> bytes) {
+  Reader r(bytes);
+  r.magic();
+  tables::Run run;
+  run.material = r.text();
+  run.rpm = r.f64();
+  run.source = r.text();
+  const auto samples = r.raw();
+  if (samples.size() % tables::kSampleBytes != 0) {
+    throw std::invalid_argument("serialised run: sample bytes not a multiple of the record size");
+  }
+  run.samples = tables::decode_samples(samples);
+  run.scene_hash = r.text();
+  run.scene_text = r.text();
+  run.effects = r.text();
+  run.dt_contact_s = r.f64();
+  run.dt_flight_s = r.f64();
+  run.particle_count = static_cast<std::int64_t>(r.u64());
+  run.software_version = r.text();
+  run.created_utc = r.text();
+  run.stats_json = r.text();
+  run.convergence_json = r.text();
+  r.finish();
+  return run;
+}
+
+}  // namespace spread::lookup

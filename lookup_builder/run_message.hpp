@@ -1,0 +1,19 @@
+#pragma once
+// A finished run as a byte buffer, for sending it from an MPI worker to the writing rank 0.
+// Layout: magic "SPRUN1", then every Run field in declaration order — strings as u64 length + bytes,
+// doubles as their IEEE-754 bits in u64, integers as u64, all little-endian — and the samples in the
+// table's own float32 record codec (sample_codec.hpp). Hosts of different byte order interoperate.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "libspread/tables/table_format.hpp"
+
+namespace spread::lookup {
+
+std::vector<std::uint8_t> serialise_run(const tables::Run& run);
+
+// Throws std::invalid_argument for a buffer that is not a whole serialised run.
+tables::Run deserialise_run(std::span<const std::uint8_t> bytes);
+
+}  // namespace spread::lookup

@@ -1,0 +1,124 @@
+// The quick accuracy–cost study (what `spread accuracy --quick` runs), with assertions on its physics
+// and its recommendations. The studies run once per process and are shared by the tests below.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "libspread/accuracy/accuracy.hpp"
+
+namespace acc = spread::accuracy;
+
+namespace {
+
+acc::StudyOptions quick_options() {
+  acc::StudyOptions o;
+  o.quick = true;
+  o.scene_path = acc::default_scene_path();
+  return o;
+}
+
+const acc::Study& study(const std::string& name) {
+  static const std::vector<acc::Study> studies = [] {
+    const auto o = quick_options();
+    return std::vector<acc::Study>{acc::flight_study(o), acc::dem_study(o), acc::particle_count_study(o),
+                                   acc::table_study(o), acc::partition_study(o)};
+  }();
+  for (const auto& s : studies) {
+    if (s.name == name) return s;
+  }
+  throw std::runtime_error("no study " + name);
+}
+
+double figure(const acc::Study& s, const std::string& key) {
+  const auto it = s.figures.find(key);
+  if (it == s.figures.end()) throw std::runtime_error(s.name + ": no figure " + key);
+  return it->second;
+}
+
+// The study's table, for failure messages.
+std::string rows(const acc::Study& s) {
+  std::string out = "\n";
+  for (const auto& r : s.rows) {
+    for (const auto& c : r) out += c + "  ";
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(AccuracyFlight, Rk4ConvergesAtFourthOrder) {
+  EXPECT_NEAR(figure(study("flight"), "rk4_order"), 4.0, 0.6) << rows(study("flight"));
+}
+
+TEST(AccuracyFlight, RecommendationWithinBudgetAndDefaultWithinOneCentimetre) {
+  const auto& s = study("flight");
+  EXPECT_LE(figure(s, "recommended_rel_error"), acc::kErrorBudget);
+  EXPECT_GT(figure(s, "recommended_time_us"), 0.0);
+  // The predictor's documented promise (flight_defaults.hpp): every landing within 1 cm.
+  EXPECT_LE(figure(s, "default_max_error_m"), 0.01);
+}
+
+TEST(AccuracyDem, ContactStepsAndMeshRecommendationsWithinBudget) {
+  const auto& s = study("dem");
+  const double nc = figure(s, "nc_recommended");
+  ASSERT_TRUE(std::isfinite(nc));
+  EXPECT_LE(nc, 20.0);
+  EXPECT_LT(std::abs(figure(s, "vane_error_nc20")), acc::kErrorBudget);
+  EXPECT_LT(std::abs(figure(s, "impact_error_nc20")), acc::kErrorBudget);
+  EXPECT_LT(figure(s, "cone_analytic_error"), 1e-3);
+  EXPECT_TRUE(std::isfinite(figure(s, "xi_recommended")));
+  // A finer mesh is no worse than a coarse one on the cone.
+  EXPECT_LE(figure(s, "cone_error_xi0.01"), figure(s, "cone_error_xi0.02"));
+  // Cost grows with N_c: 20 steps per contact take longer than 5 (a 4× ratio, checked loosely).
+  EXPECT_GT(figure(s, "vane_time_s_nc20"), figure(s, "vane_time_s_nc5"));
+}
+
+TEST(AccuracyParticleCount, SpreadShrinksWithCountAndRecommendationExists) {
+  const auto& s = study("particle_count");
+  EXPECT_LT(figure(s, "xi_run_spread_2048"), figure(s, "xi_run_spread_32"));
+  EXPECT_LT(figure(s, "r_bar_run_spread_2048"), figure(s, "r_bar_run_spread_32"));
+  // With the quick run's 4 replicates the t-interval is wide: a recommendation may not exist, but when it
+  // does it must be a measured count below the reference.
+  const double n = figure(s, "recommended_count");
+  if (std::isfinite(n)) {
+    EXPECT_LT(n, 8192.0) << rows(s);
+  }
+  EXPECT_GT(figure(s, "reference_r_bar_m"), 1.0);
+}
+
+TEST(AccuracyTables, ErrorFallsWithSamplesAndInterpolationIsCheap) {
+  const auto& s = study("tables");
+  // More samples per run, smaller error (the throw width is a 99 % tail quantile: it converges slowly).
+  EXPECT_LT(figure(s, "error_exact_2048"), figure(s, "error_exact_128")) << rows(s);
+  EXPECT_LT(figure(s, "error_75_2048"), figure(s, "error_75_128")) << rows(s);
+  // Interpolating between rows 75 rpm apart adds little to the sampling error of a row at the exact rpm.
+  EXPECT_LT(figure(s, "error_75_512"), figure(s, "error_exact_512") + 0.005) << rows(s);
+  if (s.figures.count("recommended_error")) {
+    EXPECT_LE(figure(s, "recommended_error"), acc::kErrorBudget);
+  }
+}
+
+TEST(AccuracyFiles, CsvPngAndReportWritten) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "spread-accuracy-test";
+  std::filesystem::remove_all(dir);
+  std::vector<acc::Study> studies{study("flight"), study("dem"), study("particle_count"), study("tables"),
+                                  study("partition")};
+  acc::write_study_files(studies, dir.string());
+  acc::write_report(studies, quick_options(), "spread accuracy --quick", 1.0, (dir / "report.md").string(), "");
+  for (const char* f : {"flight.csv", "dem.csv", "particle_count.csv", "tables.csv", "partition.csv", "flight.png",
+                        "dem_contact_steps.png", "dem_mesh_size.png", "particle_count.png", "tables.png", "report.md"}) {
+    EXPECT_GT(std::filesystem::file_size(dir / f), 0u) << f;
+  }
+  std::ifstream png(dir / "flight.png", std::ios::binary);
+  char magic[4] = {};
+  png.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  std::ifstream md(dir / "report.md");
+  const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("spread accuracy --quick"), std::string::npos);
+  EXPECT_NE(text.find("![Flight"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}

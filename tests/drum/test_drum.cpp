@@ -1,0 +1,120 @@
+// Drum scene, packing, settling and flow regimes on small thin drums (a few hundred particles, frictionless
+// end walls standing in for a periodic axis). The default cases stay short; DrumLong.* carry `long`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "libspread/drum/drum_packing.hpp"
+#include "libspread/drum/drum_scene.hpp"
+#include "libspread/drum/drum_simulation.hpp"
+
+namespace drum = spread::drum;
+
+namespace {
+
+const char* kScene = R"(
+[drum]
+radius_m = 0.04
+length_m = 0.009
+froude = 0.02
+fill_fraction = 0.35
+[contact]
+model = "linear"
+normal_stiffness_n_m = 1000.0
+restitution = 0.5
+friction = 0.5
+wall_friction = 0.8
+[[species]]
+diameter_m = 0.004
+density_kg_m3 = 2500.0
+[numerics]
+integrator = "velocity_verlet"
+contact_steps = 12
+rotate_s = 1.5
+measure_from_s = 0.75
+)";
+
+drum::DrumScene scene_at(double froude, double rotate_s, double measure_from_s) {
+  auto s = drum::parse_drum_scene(kScene, "test.toml",
+                                  {"drum.froude=" + std::to_string(froude), "numerics.rotate_s=" + std::to_string(rotate_s),
+                                   "numerics.measure_from_s=" + std::to_string(measure_from_s)});
+  return s;
+}
+
+void print(const drum::DrumResult& r) {
+  const auto& e = r.evidence;
+  std::printf("Fr %.3f N %zu settled %d (%.3f s): %s — %s; angle %.1f±%.1f airborne %.3f corot %.3f cover %.2f speed %.2f\n",
+              r.froude, r.particles, r.settled, r.settle_time_s, drum::regime_name(e.regime).c_str(), e.reason.c_str(),
+              e.angle_of_repose_deg, e.angle_of_repose_sd_deg, e.airborne_fraction, e.co_rotating_fraction, e.wall_coverage,
+              e.wall_speed_ratio);
+}
+
+}  // namespace
+
+TEST(DrumScene, ErrorsNameFileAndKey) {
+  try {
+    drum::parse_drum_scene("[drum]\nradius_m = -1\nfroude = 0.1\n", "bad.toml");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.toml: drum.radius_m"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\n", "x.toml"), std::invalid_argument);  // no speed
+  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nfroude = 0.1\n", "x.toml"), std::invalid_argument);
+  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nradius = 2\n", "x.toml"), std::invalid_argument);
+  EXPECT_THROW(drum::parse_drum_scene(std::string(kScene) + "\n[extra]\n", "x.toml"), std::invalid_argument);
+  EXPECT_THROW(drum::parse_drum_scene(kScene, "x.toml", {"numerics.integrator=gear7"}), std::invalid_argument);
+  const auto s = drum::parse_drum_scene(kScene, "x.toml", {"drum.froude=1"});
+  EXPECT_NEAR(drum::froude_number(s), 1.0, 1e-12);
+}
+
+TEST(DrumPacking, GridHasNoOverlapsAndMatchesFill) {
+  auto s = scene_at(0.02, 1.0, 0.5);
+  const auto placed = drum::grid_packing(s);
+  EXPECT_EQ(placed.size(), drum::particle_count(s));
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    EXPECT_LE(std::hypot(placed[i].position_m.x(), placed[i].position_m.y()) + placed[i].radius_m, s.radius_m);
+    for (std::size_t j = i + 1; j < placed.size(); ++j)
+      EXPECT_GE((placed[i].position_m - placed[j].position_m).norm(), placed[i].radius_m + placed[j].radius_m);
+  }
+  s.fill_fraction = 0.9;
+  s.bed_solid_fraction = 0.74;
+  EXPECT_THROW(drum::grid_packing(s), std::invalid_argument);
+}
+
+// Settling reaches rest, rolling at low Fr with an angle near the material's (μ = 0.5: atan μ ≈ 27°;
+// the dynamic angle of monodisperse beads in thin drums is typically 20–35°).
+TEST(DrumRegime, SettlesThenRollsAtLowFroude) {
+  const auto r = drum::run_drum(scene_at(0.05, 1.5, 0.75));
+  print(r);
+  EXPECT_TRUE(r.settled);
+  EXPECT_LT(r.energy.back().kinetic_energy_j, 1.0);  // finite
+  EXPECT_EQ(r.evidence.regime, drum::Regime::kRolling) << r.evidence.reason;
+  EXPECT_GT(r.evidence.angle_of_repose_deg, 15.0);
+  EXPECT_LT(r.evidence.angle_of_repose_deg, 40.0);
+  EXPECT_LT(r.evidence.airborne_fraction, 0.1);
+}
+
+TEST(DrumRegime, CataractsAtFroudeHalf) {
+  const auto r = drum::run_drum(scene_at(0.5, 1.0, 0.5));
+  print(r);
+  EXPECT_EQ(r.evidence.regime, drum::Regime::kCataracting) << r.evidence.reason;
+}
+
+TEST(DrumRegime, CentrifugesAboveFroudeOne) {
+  const auto r = drum::run_drum(scene_at(3.0, 1.0, 0.6));
+  print(r);
+  EXPECT_EQ(r.evidence.regime, drum::Regime::kCentrifuging) << r.evidence.reason;
+}
+
+// Gear in the drum (label `long`): at N_c = 12–25 the 5-value Gear does not bring the bed to rest (the
+// kinetic energy stays near 5e-4 J: contact onsets kick the stored higher derivatives), at N_c = 50 it does.
+TEST(DrumLong, Gear5SettlesAtFiftyStepsPerContact) {
+  auto s = scene_at(0.05, 0.1, 0.05);
+  s.integrator = spread::dem::Integrator::kGear5;
+  s.contact_steps = 50.0;
+  s.settle_max_s = 0.6;
+  const auto r = drum::run_drum(s);
+  print(r);
+  EXPECT_TRUE(r.settled);
+}

@@ -1,0 +1,250 @@
+// lookup_builder with the DEM source (issue 4): runs are deterministic and normalised as the table
+// format says; a build killed mid-run (SIGKILL) resumes to the same content as an uninterrupted build;
+// threads give the same file as one process; damaged, truncated and foreign files are refused and left
+// byte-identical; finished runs survive the MPI message round trip.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "libspread/scene/scene.hpp"
+#include "libspread/tables/table_reader.hpp"
+#include "lookup_builder/dem_run.hpp"
+#include "lookup_builder/run_message.hpp"
+#include "lookup_builder/table_build.hpp"
+#include "temp_file.hpp"
+
+extern char** environ;
+
+namespace spread::lookup {
+namespace {
+
+using spread::testing::file_bytes;
+using spread::testing::TempFile;
+using spread::testing::write_bytes;
+
+const std::string kTinyScene = std::string(SPREAD_SOURCE_DIR) + "/tests/tables/data/tiny_dem.toml";
+
+scene::Scene tiny_scene(std::vector<std::string> overrides = {}) {
+  overrides.insert(overrides.begin(), "sweep.materials=[\"Urea\", \"Kmag\"]");
+  return scene::load_scene_file(kTinyScene, overrides);
+}
+
+// Same runs: (material, rpm), samples bit for bit, statistics, convergence and provenance — all but
+// created_utc (the build date).
+void expect_same_runs(const tables::TableContents& a, const tables::TableContents& b) {
+  ASSERT_EQ(a.runs.size(), b.runs.size());
+  for (std::size_t i = 0; i < a.runs.size(); ++i) {
+    const tables::Run& ra = a.runs[i];
+    const tables::Run& rb = b.runs[i];
+    SCOPED_TRACE(ra.material + " @ " + std::to_string(ra.rpm));
+    EXPECT_EQ(ra.material, rb.material);
+    EXPECT_EQ(ra.rpm, rb.rpm);
+    EXPECT_EQ(ra.source, rb.source);
+    EXPECT_EQ(ra.scene_hash, rb.scene_hash);
+    EXPECT_EQ(ra.scene_text, rb.scene_text);
+    EXPECT_EQ(ra.effects, rb.effects);
+    EXPECT_EQ(ra.dt_contact_s, rb.dt_contact_s);
+    EXPECT_EQ(ra.particle_count, rb.particle_count);
+    EXPECT_EQ(ra.stats_json, rb.stats_json);
+    EXPECT_EQ(ra.convergence_json, rb.convergence_json);
+    ASSERT_EQ(ra.samples.size(), rb.samples.size());
+    EXPECT_EQ(std::memcmp(ra.samples.data(), rb.samples.data(), ra.samples.size() * sizeof(tables::LaunchSample)), 0);
+  }
+}
+
+TEST(LookupDem, RunIsDeterministicNormalisedAndRecordsConvergence) {
+  const scene::Scene scene = tiny_scene();
+  const scene::Material& urea = *scene.find_material("Urea");
+  const tables::Run a = dem_run(scene, urea, 650.0);
+  const tables::Run b = dem_run(scene, urea, 650.0, DemRunOptions{2});  // thread count must not matter
+  ASSERT_GT(a.samples.size(), 10u);
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  EXPECT_EQ(std::memcmp(a.samples.data(), b.samples.data(), a.samples.size() * sizeof(tables::LaunchSample)), 0);
+  EXPECT_EQ(a.stats_json, b.stats_json);
+  EXPECT_EQ(a.source, "dem");
+  EXPECT_GT(a.dt_contact_s, 0.0);
+  EXPECT_GE(a.particle_count, static_cast<std::int64_t>(a.samples.size()));
+  EXPECT_EQ(a.effects, "particle_contact,wall_contact,rotation,drag,magnus,spin_decay");
+
+  // Table frame: disc centre at the origin, rim at z = 0; launches at the collector (R = 0.29 m).
+  // Velocities / ωR: most granules leave a radial vane with at least the rim speed tangentially; a few,
+  // knocked up by other granules, leave over the vane top, slower and higher.
+  const double radius_m = scene.machine.disc_radius_m;
+  std::size_t vane_launches = 0;
+  for (const tables::LaunchSample& s : a.samples) {
+    const double r = std::hypot(s.x_m, s.y_m);
+    EXPECT_GE(r, radius_m - 1e-6);
+    EXPECT_LT(r, radius_m + 0.02);
+    EXPECT_LT(std::abs(s.z_m), 0.2);
+    const double speed = std::sqrt(s.vx_norm * s.vx_norm + s.vy_norm * s.vy_norm + s.vz_norm * s.vz_norm);
+    EXPECT_LT(speed, 2.0);
+    if (speed > 0.8 && std::abs(s.z_m) < 0.05) ++vane_launches;
+    EXPECT_GT(s.t_s, 0.0f);
+    EXPECT_GT(s.mass_kg, 0.0f);
+  }
+  EXPECT_GT(vane_launches, a.samples.size() * 8 / 10);
+  const nlohmann::json history = nlohmann::json::parse(a.convergence_json);
+  ASSERT_TRUE(history.is_array());
+  ASSERT_EQ(history.size(), 3u);  // 0.15 s in batches of 0.05 s
+  EXPECT_NEAR(history.back()["simulated_s"].get<double>(), 0.15, 1e-4);
+  const nlohmann::json stats = nlohmann::json::parse(a.stats_json);
+  EXPECT_EQ(stats["launched"].get<std::size_t>(), a.samples.size());
+  EXPECT_DOUBLE_EQ(stats["mean_radius_m"].get<double>(), history.back()["mean_radius_m"].get<double>());
+  EXPECT_GT(stats["mean_radius_m"].get<double>(), 1.0);
+}
+
+TEST(LookupDem, StopsAtTheParticleBudgetAndOnConvergence) {
+  const scene::Scene budget = tiny_scene({"sweep.particle_budget=15"});
+  const tables::Run a = dem_run(budget, *budget.find_material("Urea"), 650.0);
+  EXPECT_EQ(a.samples.size(), 15u);
+  EXPECT_EQ(nlohmann::json::parse(a.stats_json)["stop"], "particle_budget");
+
+  // A huge tolerance: converged at the first batch with a previous one to compare with and enough launches.
+  const scene::Scene loose = tiny_scene({"sweep.convergence_tolerance=10", "numerics.duration_s=1"});
+  const tables::Run b = dem_run(loose, *loose.find_material("Urea"), 650.0);
+  const nlohmann::json stats = nlohmann::json::parse(b.stats_json);
+  EXPECT_EQ(stats["stop"], "converged");
+  EXPECT_LT(stats["simulated_s"].get<double>(), 0.5);
+}
+
+TEST(LookupDem, JobsOnThreadsGiveTheSameFileAsOneProcess) {
+  const scene::Scene scene = tiny_scene();
+  TempFile one("dem_jobs1"), two("dem_jobs2");
+  BuildOptions options;
+  options.output_path = one.path();
+  EXPECT_EQ(build_tables(scene, options).runs_written, 4);
+  options.output_path = two.path();
+  options.jobs = 2;
+  EXPECT_EQ(build_tables(scene, options).runs_written, 4);
+  expect_same_runs(tables::read_table_file(one.path()), tables::read_table_file(two.path()));
+}
+
+int runs_in(const std::string& path) {
+  try {
+    return static_cast<int>(tables::read_table_file(path).runs.size());
+  } catch (const tables::TableError&) {
+    return 0;  // not created yet, empty, or locked by the writer at this instant
+  }
+}
+
+TEST(LookupDem, BuildKilledMidRunResumesToTheSameContent) {
+  // Slower runs than the other tests so the kill lands inside a run: 4 rows of ~1 s.
+  const std::vector<std::string> overrides = {"sweep.materials=[\"Urea\"]", "sweep.rpm=[500, 550, 600, 650]",
+                                              "numerics.duration_s=0.3"};
+  TempFile killed("dem_killed"), reference("dem_reference");
+  std::vector<std::string> args = {LOOKUP_BUILDER_EXE, kTinyScene, "--output", killed.path()};
+  for (const std::string& o : overrides) {
+    args.push_back("--set");
+    args.push_back(o);
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, LOOKUP_BUILDER_EXE, nullptr, nullptr, argv.data(), environ), 0);
+  // Kill as soon as the first run is committed: the second is then in progress.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  int status = 0;
+  bool exited = false;
+  while (runs_in(killed.path()) < 1 && std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_FALSE(exited) << "the build finished before it could be killed";
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const int survived = runs_in(killed.path());
+  EXPECT_GE(survived, 1);
+  EXPECT_LT(survived, 4) << "kill came too late to interrupt a run";
+
+  // Resume: only the missing runs are made.
+  const scene::Scene scene = scene::load_scene_file(kTinyScene, overrides);
+  BuildOptions options;
+  options.output_path = killed.path();
+  const BuildSummary resumed = build_tables(scene, options);
+  EXPECT_EQ(resumed.runs_skipped, survived);
+  EXPECT_EQ(resumed.runs_written, 4 - survived);
+  // A rerun skips everything; --rebuild is needed to redo.
+  EXPECT_EQ(build_tables(scene, options).runs_written, 0);
+
+  options.output_path = reference.path();
+  build_tables(scene, options);
+  expect_same_runs(tables::read_table_file(killed.path()), tables::read_table_file(reference.path()));
+}
+
+TEST(LookupDem, DamagedTruncatedAndForeignFilesAreRefusedAndLeftAlone) {
+  const scene::Scene scene = tiny_scene({"sweep.materials=[\"Kmag\"]", "sweep.rpm=[650]", "numerics.duration_s=0.1"});
+  TempFile good("dem_good");
+  BuildOptions options;
+  options.output_path = good.path();
+  build_tables(scene, options);
+  const std::vector<char> valid = file_bytes(good.path());
+  ASSERT_GT(valid.size(), 4096u * 3);
+
+  struct Case {
+    const char* name;
+    std::vector<char> bytes;
+    tables::TableErrorKind kind;
+  };
+  std::vector<char> truncated(valid.begin(), valid.begin() + static_cast<std::ptrdiff_t>(valid.size() / 2));
+  std::vector<char> damaged = valid;
+  for (std::size_t i = 4096 + 8; i < 4096 + 1000; ++i) damaged[i] = static_cast<char>(0xA5);  // page 2 garbled
+  const std::string text = "[machine]\nname = \"not a table\"\n";
+  std::vector<char> foreign(text.begin(), text.end());
+  std::vector<Case> cases = {{"truncated", truncated, tables::TableErrorKind::kCorrupt},
+                             {"damaged", damaged, tables::TableErrorKind::kCorrupt},
+                             {"foreign", foreign, tables::TableErrorKind::kNotOurs}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    TempFile file(std::string("dem_") + c.name);
+    write_bytes(file.path(), c.bytes);
+    options.output_path = file.path();
+    try {
+      build_tables(scene, options);
+      ADD_FAILURE() << "accepted a " << c.name << " file";
+    } catch (const tables::TableError& e) {
+      EXPECT_EQ(e.kind(), c.kind) << e.what();
+      EXPECT_NE(std::string(e.what()).find(file.path()), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(file_bytes(file.path()), c.bytes) << "the refused file was modified";
+  }
+}
+
+TEST(LookupDem, RunSurvivesTheMpiMessageRoundTrip) {
+  const scene::Scene scene = tiny_scene({"numerics.duration_s=0.1"});
+  const tables::Run run = dem_run(scene, *scene.find_material("Kmag"), 650.0);
+  const std::vector<std::uint8_t> bytes = serialise_run(run);
+  const tables::Run back = deserialise_run(bytes);
+  EXPECT_EQ(back.material, run.material);
+  EXPECT_EQ(back.rpm, run.rpm);
+  EXPECT_EQ(back.source, run.source);
+  EXPECT_EQ(back.scene_text, run.scene_text);
+  EXPECT_EQ(back.scene_hash, run.scene_hash);
+  EXPECT_EQ(back.effects, run.effects);
+  EXPECT_EQ(back.dt_contact_s, run.dt_contact_s);
+  EXPECT_EQ(back.dt_flight_s, run.dt_flight_s);
+  EXPECT_EQ(back.particle_count, run.particle_count);
+  EXPECT_EQ(back.software_version, run.software_version);
+  EXPECT_EQ(back.created_utc, run.created_utc);
+  EXPECT_EQ(back.stats_json, run.stats_json);
+  EXPECT_EQ(back.convergence_json, run.convergence_json);
+  ASSERT_EQ(back.samples.size(), run.samples.size());
+  EXPECT_EQ(std::memcmp(back.samples.data(), run.samples.data(), run.samples.size() * sizeof(tables::LaunchSample)), 0);
+  const std::vector<std::uint8_t> cut(bytes.begin(), bytes.end() - 3);
+  EXPECT_THROW(deserialise_run(cut), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace spread::lookup
