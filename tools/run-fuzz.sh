@@ -24,12 +24,11 @@ generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 [ -f "$build/CMakeCache.txt" ] && generator=()
 # Libraries: ASan + UBSan (SPREAD_SANITIZE) and coverage counters for libFuzzer (fuzzer-no-link); the
-# harness executables add -fsanitize=fuzzer (fuzz/CMakeLists.txt). The top-level CMakeLists.txt does not
-# list fuzz/ (yet): fuzz/build_hook.cmake adds it without touching it.
+# harness executables add -fsanitize=fuzzer (fuzz/CMakeLists.txt), added by SPREAD_BUILD_FUZZ.
 cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPREAD_SANITIZE=ON \
   -DSPREAD_BUILD_TESTS=OFF -DSPREAD_BUILD_BENCH=OFF -DSPREAD_WITH_MPI=OFF \
   -DCMAKE_C_FLAGS=-fsanitize=fuzzer-no-link -DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link \
-  -DCMAKE_PROJECT_INCLUDE="$root/fuzz/build_hook.cmake" >/dev/null
+  -DSPREAD_BUILD_FUZZ=ON >/dev/null
 cmake --build "$build" -j "$jobs" --target spread_fuzzers
 
 harnesses=("$@")
@@ -56,7 +55,7 @@ for h in "${harnesses[@]}"; do
   [ -d "$seeds" ] && dirs+=("$seeds")
   echo "run-fuzz: $h for ${seconds}s"
   status=0
-  "$exe" -max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb=2048 -print_final_stats=1 \
+  "$exe" -seed=1 -max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$artifacts" "${dirs[@]}" >"$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
