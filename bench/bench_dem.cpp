@@ -41,7 +41,7 @@ dem::SimulationConfig case1() {
   c.disc.z_apex_m = -0.29 * std::tan(0.157);
   c.disc.vane_count = 2;
   c.disc.vane_height_m = 0.036;
-  c.disc.mesh_size_m = 0.005;  // ξ of scenes/case1.toml
+  c.disc.mesh_size_m = 0.005;  // ξ the peer comparison (bench/peers) used; scenes/case1.toml now uses R/100
   c.rpm = 500;
   c.disc_height_m = 0.28;
   c.inlet.radius_m = 0.0145;
