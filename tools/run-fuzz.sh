@@ -7,7 +7,10 @@
 #
 # Usage: tools/run-fuzz.sh [harness ...]        (default: every harness that was built)
 # Environment:
-#   SPREAD_FUZZ_SECONDS  run time per harness, seconds (default 30)
+#   SPREAD_FUZZ_SECONDS  run time per harness, seconds (default 30); with a budget, the cap
+#   SPREAD_FUZZ_BUDGET   file of "harness runs" lines (fuzz/ci-runs.txt): each listed harness runs that
+#                        many inputs from a fresh work corpus (CI mode: the same inputs on every machine)
+#   SPREAD_FUZZ_SEED     libFuzzer -seed (default 1; use others for exploratory runs)
 #   SPREAD_FUZZ_TIMEOUT  seconds one input may take before it counts as a hang (default 20)
 #   SPREAD_FUZZ_BUILD    build directory (default: build-fuzz)
 #   SPREAD_JOBS          build jobs (default: number of cores)
@@ -17,6 +20,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SPREAD_FUZZ_BUILD:-$root/build-fuzz}
 seconds=${SPREAD_FUZZ_SECONDS:-30}
 timeout_s=${SPREAD_FUZZ_TIMEOUT:-20}
+budget_file=${SPREAD_FUZZ_BUDGET:-}
+fuzz_seed=${SPREAD_FUZZ_SEED:-1}
+[ -z "$budget_file" ] || [ -f "$budget_file" ] || { echo "run-fuzz: no budget file $budget_file" >&2; exit 1; }
 jobs=${SPREAD_JOBS:-$(nproc)}
 export CC=${CC:-clang} CXX=${CXX:-clang++}
 
@@ -53,9 +59,19 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$work" "$artifacts" "$(dirname "$log")"
   dirs=("$work")
   [ -d "$seeds" ] && dirs+=("$seeds")
-  echo "run-fuzz: $h for ${seconds}s"
+  runs_limit=()
+  budget=""
+  [ -n "$budget_file" ] && budget=$(awk -v h="$h" '$1 == h { print $2 }' "$budget_file")
+  if [ -n "$budget" ]; then
+    rm -rf "$work" && mkdir -p "$work"   # the same start on every machine
+    runs_limit=(-runs="$budget")
+    echo "run-fuzz: $h for $budget runs (at most ${seconds}s)"
+  else
+    echo "run-fuzz: $h for ${seconds}s"
+  fi
   status=0
-  "$exe" -seed=1 -max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb=2048 -print_final_stats=1 \
+  started=$SECONDS
+  "$exe" -seed="$fuzz_seed" "${runs_limit[@]}" -max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$artifacts" "${dirs[@]}" >"$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
@@ -65,7 +81,7 @@ for h in "${harnesses[@]}"; do
     echo "run-fuzz: $h FAILED (exit $status), see $log and $artifacts" >&2
     grep -E "ERROR:|invariant broken|Test unit written|SUMMARY" "$log" | head -8 >&2 || true
   fi
-  summary+=("$(printf '%-18s %8ss %10s runs %8s exec/s  cov %6s  %s' "$h" "$seconds" "${runs:-?}" "${rate:-?}" \
+  summary+=("$(printf '%-18s %6ss %10s runs %8s exec/s  cov %6s  %s' "$h" "$((SECONDS - started))" "${runs:-?}" "${rate:-?}" \
     "${cov:-?}" "$([ "$status" -eq 0 ] && echo ok || echo FAILED)")")
 done
 echo

@@ -27,16 +27,51 @@ bool all_finite(const spread_trajectory_def& d) {
   return true;
 }
 
+// The physical domain of a single flight. Beyond it the inputs are finite but absurd (a launch at
+// 3e307 m/s overflowed the position to inf, found by fuzz_capi_trajectory), so they are refused with
+// SPREAD_ERROR_OUT_OF_RANGE rather than flown. The bounds are far outside any spreader and documented
+// in spread.h and docs/c-api.md.
+struct TrajectoryDomain {
+  double min_diameter_m = 1e-6, max_diameter_m = 0.1;              // dust to a 10 cm stone
+  double min_density_kg_m3 = 1.0, max_density_kg_m3 = 25'000.0;   // above osmium's 22,600
+  double max_abs_position_m = 1000.0;    // each launch coordinate and the ground height
+  double max_abs_speed_m_s = 1000.0;     // each launch velocity component (about Mach 3)
+  double max_abs_spin_rad_s = 1e5;       // each spin component (about 1e6 rpm)
+  double max_air_density_kg_m3 = 100.0;
+  double max_air_viscosity_pa_s = 1.0;   // water is 1e-3 Pa·s
+  double max_abs_wind_m_s = 100.0;       // each component, as predict::PredictorLimits
+};
+
+bool within(double value, double low, double high) { return value >= low && value <= high; }
+
+bool in_domain(const spread_trajectory_def& d) {
+  constexpr TrajectoryDomain k;
+  if (!within(d.diameter_m, k.min_diameter_m, k.max_diameter_m) ||
+      !within(d.density_kg_m3, k.min_density_kg_m3, k.max_density_kg_m3) ||
+      !within(d.ground_z_m, -k.max_abs_position_m, k.max_abs_position_m) ||
+      !within(d.air_density_kg_m3, 0.0, k.max_air_density_kg_m3) ||
+      !(d.air_viscosity_pa_s > 0.0 && d.air_viscosity_pa_s <= k.max_air_viscosity_pa_s) ||
+      d.position_m[2] < d.ground_z_m) {
+    return false;
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (!within(d.position_m[i], -k.max_abs_position_m, k.max_abs_position_m) ||
+        !within(d.velocity_m_s[i], -k.max_abs_speed_m_s, k.max_abs_speed_m_s) ||
+        !within(d.spin_rad_s[i], -k.max_abs_spin_rad_s, k.max_abs_spin_rad_s) ||
+        !within(d.wind_m_s[i], -k.max_abs_wind_m_s, k.max_abs_wind_m_s)) {
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spread_landing* out_landing) {
   if (def == nullptr || out_landing == nullptr) return SPREAD_ERROR_NULL_POINTER;
   if (def->struct_size < spread::capi::kTrajectoryDefV1Size) return SPREAD_ERROR_OUT_OF_RANGE;
   if (!all_finite(*def)) return SPREAD_ERROR_NOT_FINITE;
-  if (!(def->diameter_m > 0.0) || !(def->density_kg_m3 > 0.0) || def->air_density_kg_m3 < 0.0 ||
-      !(def->air_viscosity_pa_s > 0.0) || def->position_m[2] < def->ground_z_m) {
-    return SPREAD_ERROR_OUT_OF_RANGE;
-  }
+  if (!in_domain(*def)) return SPREAD_ERROR_OUT_OF_RANGE;
   if ((def->effects & ~uint32_t{SPREAD_EFFECT_ALL}) != 0) return SPREAD_ERROR_UNKNOWN_EFFECT;
   try {
     spread::flight::Granule granule;

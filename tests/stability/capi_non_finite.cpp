@@ -120,5 +120,53 @@ TEST(CapiTrajectoryNonFinite, EveryFieldRefusesNanAndInf) {
   }
 }
 
+
+// Finite but absurd inputs: a launch at 3e307 m/s overflowed the landing position to inf (found by
+// fuzz_capi_trajectory, fuzz/regressions/capi_trajectory/). Each field has a physical domain (spread.h):
+// its bound is flown, a value just beyond it is refused and leaves the output untouched.
+TEST(CapiTrajectoryDomain, EveryFieldRefusesValuesBeyondItsBound) {
+  struct Case {
+    std::string name;
+    std::function<void(spread_trajectory_def&, double)> set;
+    double at_bound;
+    double beyond;
+  };
+  std::vector<Case> cases = {
+      {"diameter_m low", [](spread_trajectory_def& d, double v) { d.diameter_m = v; }, 1e-6, 0.9e-6},
+      {"diameter_m high", [](spread_trajectory_def& d, double v) { d.diameter_m = v; }, 0.1, 0.11},
+      {"density_kg_m3 low", [](spread_trajectory_def& d, double v) { d.density_kg_m3 = v; }, 1.0, 0.5},
+      {"density_kg_m3 high", [](spread_trajectory_def& d, double v) { d.density_kg_m3 = v; }, 25000.0, 26000.0},
+      {"ground_z_m", [](spread_trajectory_def& d, double v) { d.ground_z_m = v; }, -1000.0, -1001.0},
+      {"air_density_kg_m3", [](spread_trajectory_def& d, double v) { d.air_density_kg_m3 = v; }, 100.0, 101.0},
+      {"air_viscosity_pa_s", [](spread_trajectory_def& d, double v) { d.air_viscosity_pa_s = v; }, 1.0, 1.1},
+  };
+  for (int i = 0; i < 3; ++i) {
+    const std::string index = "[" + std::to_string(i) + "]";
+    cases.push_back({"position_m" + index, [i](spread_trajectory_def& d, double v) { d.position_m[i] = v; },
+                     i == 2 ? 1000.0 : -1000.0, i == 2 ? 1001.0 : -1001.0});
+    cases.push_back({"velocity_m_s" + index, [i](spread_trajectory_def& d, double v) { d.velocity_m_s[i] = v; },
+                     -1000.0, -3.2e307});
+    cases.push_back({"spin_rad_s" + index, [i](spread_trajectory_def& d, double v) { d.spin_rad_s[i] = v; }, 1e5,
+                     1.1e5});
+    cases.push_back(
+        {"wind_m_s" + index, [i](spread_trajectory_def& d, double v) { d.wind_m_s[i] = v; }, 100.0, 101.0});
+  }
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    spread_trajectory_def def = spread_trajectory_def_default();
+    def.effects = 0;  // vacuum: the bound itself must fly, whatever drag would make of it
+    c.set(def, c.at_bound);
+    spread_landing landing{};
+    const spread_status at_bound = spread_trajectory(&def, &landing);
+    EXPECT_TRUE(at_bound == SPREAD_OK || at_bound == SPREAD_ERROR_NOT_LANDED) << spread_status_str(at_bound);
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(landing.position_m[k]));
+    c.set(def, c.beyond);
+    spread_landing out{};
+    out.flight_time_s = -7.0;
+    EXPECT_EQ(spread_trajectory(&def, &out), SPREAD_ERROR_OUT_OF_RANGE);
+    EXPECT_EQ(out.flight_time_s, -7.0);
+  }
+}
+
 }  // namespace
 }  // namespace spread::stability

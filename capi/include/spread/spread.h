@@ -199,15 +199,15 @@ SPREAD_API spread_status spread_predict(spread_tables* tables, const spread_pred
  * ------------------------------------------------------------------------------------------------- */
 typedef struct spread_trajectory_def {
   uint32_t struct_size;        /* sizeof(spread_trajectory_def) of the caller's header; set by _default() */
-  double diameter_m;           /* granule diameter, m, > 0 (default 3 mm) */
-  double density_kg_m3;        /* granule density, kg/m³, > 0 (default 1500) */
-  double position_m[3];        /* launch position, m */
-  double velocity_m_s[3];      /* launch velocity, m/s */
-  double spin_rad_s[3];        /* launch angular velocity, rad/s */
-  double ground_z_m;           /* height of the ground plane, m (default 0); the flight ends crossing it */
-  double air_density_kg_m3;    /* kg/m³, >= 0 (default 1.225) */
-  double air_viscosity_pa_s;   /* dynamic viscosity, Pa·s, > 0 (default 1.81e-5) */
-  double wind_m_s[3];          /* m/s; used when SPREAD_EFFECT_WIND is set */
+  double diameter_m;           /* granule diameter, m, in [1e-6, 0.1] (default 3 mm) */
+  double density_kg_m3;        /* granule density, kg/m³, in [1, 25000] (default 1500) */
+  double position_m[3];        /* launch position, m, each within ±1000 and z >= ground_z_m */
+  double velocity_m_s[3];      /* launch velocity, m/s, each within ±1000 */
+  double spin_rad_s[3];        /* launch angular velocity, rad/s, each within ±1e5 */
+  double ground_z_m;           /* ground plane height, m, within ±1000 (default 0); the flight ends there */
+  double air_density_kg_m3;    /* kg/m³, in [0, 100] (default 1.225) */
+  double air_viscosity_pa_s;   /* dynamic viscosity, Pa·s, in (0, 1] (default 1.81e-5) */
+  double wind_m_s[3];          /* m/s, each within ±100; used when SPREAD_EFFECT_WIND is set */
   uint32_t effects;            /* SPREAD_EFFECT_* bits (default: all) */
 } spread_trajectory_def;
 
