@@ -18,28 +18,18 @@
 #include "libspread/plot/plot.hpp"
 #include "libspread/predict/predictor.hpp"
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/prediction_args.hpp"
 
 namespace {
 
 using nlohmann::json;
+using spread::cli::BadInput;
 
-struct Options {
-  std::string tables;
-  std::string material;
-  double rpm = 0.0;
+struct Options : spread::cli::PredictionArgs {
   std::string out_prefix;
   std::string what = "pattern,transverse,cv";
-  double height_m = std::numeric_limits<double>::quiet_NaN();
-  std::string wind = "0,0";
-  double cv_target_percent = 15.0;
-  double tray_width_m = 0.5;
   double cell_m = 0.25;
   bool json = false;
-};
-
-class BadInput : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 std::set<std::string> parse_what(const std::string& text) {
@@ -54,14 +44,6 @@ std::set<std::string> parse_what(const std::string& text) {
   }
   if (out.empty()) throw BadInput("--what: name at least one of pattern, transverse, cv");
   return out;
-}
-
-void parse_wind(const std::string& text, double& x_m_s, double& y_m_s) {
-  std::istringstream in(text);
-  char comma = 0;
-  if (!(in >> x_m_s >> comma >> y_m_s) || comma != ',' || !(in >> std::ws).eof()) {
-    throw BadInput("--wind '" + text + "': expected VX,VY in m/s, e.g. --wind 2,-1");
-  }
 }
 
 std::string refusal(spread::predict::PredictStatus status, const Options& o,
@@ -90,7 +72,9 @@ void run(const Options& o, int& exit_code) {
   request.material = o.material;
   request.rpm = o.rpm;
   request.disc_height_m = o.height_m;
-  parse_wind(o.wind, request.wind_x_m_s, request.wind_y_m_s);
+  const auto wind = spread::cli::parse_wind(o.wind);
+  request.wind_x_m_s = wind.x_m_s;
+  request.wind_y_m_s = wind.y_m_s;
   request.cv_target = o.cv_target_percent / 100.0;
   request.tray_width_m = o.tray_width_m;
 
@@ -149,15 +133,9 @@ void run(const Options& o, int& exit_code) {
 spread::cli::CommandRegistration reg{"plot", [](CLI::App& app, int& exit_code) {
   static Options options;
   auto* sub = app.add_subcommand("plot", "PNG plots of a prediction: ground pattern, transverse distribution, CV(W)");
-  sub->add_option("--tables", options.tables, "launch-table file (SQLite) written by lookup_builder")->required();
-  sub->add_option("--material", options.material, "material name as in the table")->required();
-  sub->add_option("--rpm", options.rpm, "disc speed (r/min), within the material's table rows")->required();
+  spread::cli::add_prediction_args(*sub, options);
   sub->add_option("--out", options.out_prefix, "path prefix of the PNG files (PREFIX_pattern.png, ...)")->required();
   sub->add_option("--what", options.what, "plots to write: pattern,transverse,cv");
-  sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
-  sub->add_option("--wind", options.wind, "wind VX,VY (m/s)");
-  sub->add_option("--cv-target", options.cv_target_percent, "CV target (%)");
-  sub->add_option("--tray-width", options.tray_width_m, "collecting tray width (m)");
   sub->add_option("--cell", options.cell_m, "ground-pattern cell size (m)");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   sub->callback([&exit_code] {

@@ -18,20 +18,15 @@
 #include "libspread/flight/flight.hpp"
 #include "spread/spread.h"
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/prediction_args.hpp"
 
 namespace {
 
 using nlohmann::json;
+using spread::cli::BadInput;
 
-struct Options {
-  std::string tables;
-  std::string material;
-  double rpm = 0.0;
-  double height_m = std::numeric_limits<double>::quiet_NaN();
-  std::string wind = "0,0";
-  double cv_target_percent = 15.0;
+struct Options : spread::cli::PredictionArgs {
   double bout_width_m = 0.0;
-  double tray_width_m = 0.5;
   std::string effects = "all";
   int repeat = 0;
   bool json = false;
@@ -41,20 +36,6 @@ struct TablesCloser {
   void operator()(spread_tables* t) const { spread_close(t); }
 };
 using TablesHandle = std::unique_ptr<spread_tables, TablesCloser>;
-
-class BadInput : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// "VX,VY" in m/s.
-void parse_wind(const std::string& text, double (&wind_m_s)[2]) {
-  std::istringstream in(text);
-  char comma = 0;
-  if (!(in >> wind_m_s[0] >> comma >> wind_m_s[1]) || comma != ',' || !(in >> std::ws).eof()) {
-    throw BadInput("--wind '" + text + "': expected VX,VY in m/s, e.g. --wind 2,-1");
-  }
-}
 
 std::uint32_t parse_effects(const std::string& text) {
   if (text == "all") return SPREAD_EFFECT_ALL;
@@ -104,7 +85,9 @@ void run(const Options& o, int& exit_code) {
   def.material = o.material.c_str();
   def.rpm = o.rpm;
   def.disc_height_m = o.height_m;
-  parse_wind(o.wind, def.wind_m_s);
+  const auto wind = spread::cli::parse_wind(o.wind);
+  def.wind_m_s[0] = wind.x_m_s;
+  def.wind_m_s[1] = wind.y_m_s;
   def.cv_target_percent = o.cv_target_percent;
   def.bout_width_m = o.bout_width_m;
   def.tray_width_m = o.tray_width_m;
@@ -200,14 +183,8 @@ void run(const Options& o, int& exit_code) {
 spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code) {
   static Options options;
   auto* sub = app.add_subcommand("predict", "predict the spread pattern and working widths from a launch table (via the C API)");
-  sub->add_option("--tables", options.tables, "launch-table file (SQLite) written by lookup_builder")->required();
-  sub->add_option("--material", options.material, "material name as in the table")->required();
-  sub->add_option("--rpm", options.rpm, "disc speed (r/min), within the material's table rows")->required();
-  sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
-  sub->add_option("--wind", options.wind, "wind VX,VY (m/s; x lateral to the right, y forward)");
-  sub->add_option("--cv-target", options.cv_target_percent, "CV target for the working widths (%)");
+  spread::cli::add_prediction_args(*sub, options);
   sub->add_option("--width", options.bout_width_m, "bout width for the CV (m); 0 = the to-and-fro working width");
-  sub->add_option("--tray-width", options.tray_width_m, "collecting tray width (m)");
   sub->add_option("--effects", options.effects, "in-flight effects: all, none, or a list of drag,magnus,spin_decay,wind");
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", options.json, "machine-readable output on stdout");

@@ -1,0 +1,27 @@
+#include "tools/spread/prediction_args.hpp"
+
+#include <sstream>
+
+namespace spread::cli {
+
+void add_prediction_args(CLI::App& sub, PredictionArgs& args) {
+  sub.add_option("--tables", args.tables, "launch-table file (SQLite) written by lookup_builder")->required();
+  sub.add_option("--material", args.material, "material name as in the table")->required();
+  sub.add_option("--rpm", args.rpm, "disc speed (r/min), within the material's table rows")->required();
+  sub.add_option("--height", args.height_m, "disc height above the ground (m); default: the table's");
+  sub.add_option("--wind", args.wind, "wind VX,VY (m/s; x lateral to the right, y forward)");
+  sub.add_option("--cv-target", args.cv_target_percent, "CV target for the working widths (%)");
+  sub.add_option("--tray-width", args.tray_width_m, "collecting tray width (m)");
+}
+
+WindXY parse_wind(const std::string& text) {
+  std::istringstream in(text);
+  WindXY wind;
+  char comma = 0;
+  if (!(in >> wind.x_m_s >> comma >> wind.y_m_s) || comma != ',' || !(in >> std::ws).eof()) {
+    throw BadInput("--wind '" + text + "': expected VX,VY in m/s, e.g. --wind 2,-1");
+  }
+  return wind;
+}
+
+}  // namespace spread::cli

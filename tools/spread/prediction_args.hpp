@@ -1,0 +1,39 @@
+#pragma once
+// The arguments that name one prediction, shared by `spread predict` and `spread plot`: the same
+// option names, defaults, help texts and parsing, so the two commands cannot drift apart.
+#include <CLI/CLI.hpp>
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace spread::cli {
+
+// A bad command-line value; the message names the option. Subcommands print it and exit kExitUsage.
+class BadInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct PredictionArgs {
+  std::string tables;                                           // launch-table file (SQLite)
+  std::string material;                                         // name as in the table
+  double rpm = 0.0;                                             // disc speed, r/min
+  double height_m = std::numeric_limits<double>::quiet_NaN();  // NaN: the table's disc height
+  std::string wind = "0,0";                                     // "VX,VY", m/s
+  double cv_target_percent = 15.0;                              // CV target of the working widths, %
+  double tray_width_m = 0.5;                                    // collecting tray width, m
+};
+
+// Adds --tables, --material, --rpm (required), --height, --wind, --cv-target and --tray-width.
+void add_prediction_args(CLI::App& sub, PredictionArgs& args);
+
+struct WindXY {
+  double x_m_s = 0.0;  // lateral, to the right
+  double y_m_s = 0.0;  // forward
+};
+
+// "VX,VY" in m/s; BadInput naming --wind otherwise.
+WindXY parse_wind(const std::string& text);
+
+}  // namespace spread::cli
