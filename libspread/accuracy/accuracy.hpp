@@ -67,6 +67,10 @@ void write_report(const std::vector<Study>& studies, const StudyOptions& options
 // scenes/default.toml of the source tree this library was built from.
 std::string default_scene_path();
 
+// A scene path as the report shows it: relative to that source tree when inside it (the committed
+// report must not name the machine it was generated on), else as given.
+std::string scene_display_name(const std::string& path);
+
 // Cell formatting shared by the studies: %.4g, or "—" for NaN.
 std::string cell(double value);
 

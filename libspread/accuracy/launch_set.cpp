@@ -8,7 +8,9 @@ namespace spread::accuracy::detail {
 
 scene::Scene load_study_scene(const StudyOptions& options) {
   if (options.scene_path.empty()) throw std::invalid_argument("accuracy: no scene file given");
-  return scene::load_scene_file(options.scene_path);
+  scene::Scene scene = scene::load_scene_file(options.scene_path);
+  scene.source_name = scene_display_name(options.scene_path);
+  return scene;
 }
 
 const scene::Material& study_material(const scene::Scene& scene, const StudyOptions& options) {

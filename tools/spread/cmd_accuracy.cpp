@@ -72,7 +72,7 @@ int run(const AccuracyOptions& o) {
   if (!o.material.empty()) command += " --material \"" + o.material + "\"";
   if (o.rpm != 500.0) command += " --rpm " + accuracy::cell(o.rpm);
   accuracy::StudyOptions shown = so;
-  shown.scene_path = o.scene == accuracy::default_scene_path() ? "scenes/default.toml" : o.scene;
+  shown.scene_path = accuracy::scene_display_name(o.scene);
   accuracy::write_report(studies, shown, command, wall_s, report, prefix);
   std::cout << "wrote " << report << " and " << studies.size() << " studies' CSV/PNG in " << o.out << " ("
             << accuracy::cell(wall_s) << " s)\n";
