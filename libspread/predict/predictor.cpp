@@ -8,6 +8,8 @@
 
 #include "libspread/predict/flight_defaults.hpp"
 #include "libspread/predict/launch_interpolation.hpp"
+#include "libspread/predict/launch_landing_keys.hpp"
+#include "libspread/predict/launch_quantile_cells.hpp"
 
 namespace spread::predict {
 
@@ -47,7 +49,7 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
   if (!problem.empty()) throw tables::TableError(tables::TableErrorKind::kCorrupt, "Predictor: " + problem);
   const auto& runs = contents_.runs;
   run_rpm_.reserve(runs.size());
-  std::size_t largest_pair = 0;  // samples needed by the widest interpolation (mixture of two rows)
+  std::size_t largest_pair = 0;  // samples of the widest interpolation (by quantile cells: n_a + n_b)
   std::size_t i = 0;
   while (i < runs.size()) {
     std::size_t j = i;
@@ -74,6 +76,19 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
     return contents_.materials[a.material].name < contents_.materials[b.material].name;
   });
   for (const auto& run : runs) run_rpm_.push_back(run.rpm);
+  run_offset_.assign(runs.size() + 1, 0);
+  for (std::size_t k = 0; k < runs.size(); ++k) run_offset_[k + 1] = run_offset_[k] + runs[k].samples.size();
+  cell_of_sample_.assign(run_offset_.back(), 0);
+  cell_offset_.assign(runs.size() + 1, 0);
+  for (const auto& rows : materials_) {
+    const auto cells = static_cast<std::size_t>(cell_counts(rows).cells());
+    for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+      cell_offset_[k + 1] = needs_cells(rows, k) ? cells : 0;
+    }
+  }
+  for (std::size_t k = 0; k < runs.size(); ++k) cell_offset_[k + 1] += cell_offset_[k];
+  cell_mean_.assign(cell_offset_.back(), tables::LaunchSample{});
+  for (const auto& rows : materials_) assign_cells(rows);
 
   samples_.resize(largest_pair);
   sample_weight_kg_.resize(largest_pair);
@@ -85,6 +100,49 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
   radial_y_m_.resize(largest_pair);
   radial_weight_.resize(largest_pair);
   tray_mass_.resize(static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m)));
+}
+
+bool Predictor::pairwise(std::size_t run_a, std::size_t run_b) const {
+  const auto& a = contents_.runs[run_a];
+  const auto& b = contents_.runs[run_b];
+  return a.source == "analytic" && b.source == "analytic" && a.samples.size() == b.samples.size();
+}
+
+bool Predictor::needs_cells(const MaterialRows& rows, std::size_t run) const {
+  const std::size_t first = rows.first_run, end = rows.first_run + rows.run_count;
+  return (run > first && !pairwise(run - 1, run)) || (run + 1 < end && !pairwise(run, run + 1));
+}
+
+QuantileCellCounts Predictor::cell_counts(const MaterialRows& rows) const {
+  // One cell count for all rows of the material, so that neighbours are cut into the same cells.
+  std::size_t smallest = std::numeric_limits<std::size_t>::max();
+  for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+    smallest = std::min(smallest, contents_.runs[k].samples.size());
+  }
+  return quantile_cells_for(smallest);
+}
+
+void Predictor::assign_cells(const MaterialRows& rows) {
+  const QuantileCellCounts counts = cell_counts(rows);
+  const double density_kg_m3 = contents_.materials[rows.material].density_kg_m3;
+  std::vector<double> transverse_x_m, radius_m, mass_kg;  // construction only: may allocate
+  std::vector<std::uint32_t> order;
+  for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+    if (!needs_cells(rows, k)) continue;
+    const auto& run = contents_.runs[k];
+    const std::size_t n = run.samples.size();
+    transverse_x_m.resize(n);
+    radius_m.resize(n);
+    mass_kg.resize(n);
+    order.resize(n);
+    landing_rank_keys(run.samples, run.rpm, contents_.machine.disc_radius_m, contents_.machine.disc_height_m,
+                      density_kg_m3, default_flight_settings(), radius_m, transverse_x_m);
+    for (std::size_t i = 0; i < n; ++i) mass_kg[i] = static_cast<double>(run.samples[i].mass_kg);
+    const std::span<std::uint32_t> cell_of_sample = std::span(cell_of_sample_).subspan(run_offset_[k], n);
+    assign_quantile_cells(radius_m, transverse_x_m, mass_kg, counts, order, cell_of_sample);
+    quantile_cell_means(run.samples, cell_of_sample,
+                        std::span(cell_mean_).subspan(cell_offset_[k], cell_offset_[k + 1] - cell_offset_[k]));
+  }
 }
 
 const tables::Material& Predictor::material(std::size_t index) const {
@@ -195,10 +253,20 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   if (!bracket) return PredictStatus::kRpmOutsideTable;
 
   // 1–2. Launch samples at this rpm (normalised), then scaled during the flight loop.
-  const auto& lower = contents_.runs[rows.first_run + bracket->lower];
-  const auto& upper = contents_.runs[rows.first_run + bracket->upper];
-  const std::size_t n = interpolate_launch_samples(lower.samples, upper.samples, bracket->upper_weight,
-                                                   samples_, sample_weight_kg_);
+  const std::size_t lower_run = rows.first_run + bracket->lower, upper_run = rows.first_run + bracket->upper;
+  std::size_t n = 0;
+  if (bracket->upper_weight == 0.0 || pairwise(lower_run, upper_run)) {
+    n = interpolate_launch_samples(contents_.runs[lower_run].samples, contents_.runs[upper_run].samples,
+                                   bracket->upper_weight, samples_, sample_weight_kg_);
+  } else {
+    const auto celled = [&](std::size_t run) {
+      return CelledRow{contents_.runs[run].samples,
+                       std::span(cell_of_sample_).subspan(run_offset_[run], contents_.runs[run].samples.size()),
+                       std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
+    };
+    n = interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), bracket->upper_weight, samples_,
+                                      sample_weight_kg_);
+  }
   const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
 
   // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component

@@ -5,7 +5,9 @@
 // Steps of predict() — none allocates; all workspace is sized in the constructor from the largest
 // pair of neighbouring rows and the widest tray layout:
 //   1. find the material and the rows around the rpm (launch_interpolation.hpp),
-//   2. interpolate the normalised launch samples, scale velocities by ωR and spins by ω,
+//   2. interpolate the normalised launch samples — pairwise for analytic rows of equal count, otherwise
+//      by quantile cells computed here at construction (launch_interpolation.hpp,
+//      launch_quantile_cells.hpp, launch_landing_keys.hpp) —, scale velocities by ωR and spins by ω,
 //      place them at the disc height (ground z = 0),
 //   3. fly each granule (flight::fly_to_ground, default_flight_settings()),
 //   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
@@ -23,6 +25,7 @@
 
 #include "libspread/flight/flight.hpp"
 #include "libspread/metrics/metrics.hpp"
+#include "libspread/predict/launch_quantile_cells.hpp"
 #include "libspread/tables/table_reader.hpp"
 
 namespace spread::predict {
@@ -87,7 +90,8 @@ struct PredictorLimits {
 class Predictor {
  public:
   // Throws tables::TableError(kCorrupt) when a run names a material the file does not describe, and
-  // std::invalid_argument for bad limits. Materials without runs are not offered.
+  // std::invalid_argument for bad limits. Materials without runs are not offered. Rows interpolated by
+  // quantile cells are flown once here to find their cells (one flight per sample, default settings).
   explicit Predictor(tables::TableContents contents, PredictorLimits limits = {});
 
   const tables::Machine& machine() const { return contents_.machine; }
@@ -119,6 +123,14 @@ class Predictor {
   };
 
   PredictStatus validate(const PredictionRequest& request, double& height_m) const;
+  // True when runs a and b (neighbours) interpolate sample by sample: both from the analytic builder
+  // (sample k is the same granule in every row) and of equal count.
+  bool pairwise(std::size_t run_a, std::size_t run_b) const;
+  // Whether run `run` of these rows is interpolated by quantile cells with a neighbour.
+  bool needs_cells(const MaterialRows& rows, std::size_t run) const;
+  QuantileCellCounts cell_counts(const MaterialRows& rows) const;
+  // Flies the runs that need cells once (landing keys) and fills their cells and cell means.
+  void assign_cells(const MaterialRows& rows);
   std::size_t fly_launches(std::size_t sample_count, double omega_rad_s, double height_m,
                            const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
                            double density_kg_m3);
@@ -128,6 +140,12 @@ class Predictor {
   flight::Settings settings_;
   std::vector<MaterialRows> materials_;
   std::vector<double> run_rpm_;       // contents_.runs[i].rpm, flat for bracket_rpm
+  // Quantile cells (launch_quantile_cells.hpp) of the runs interpolated by cells, flat: run i's samples
+  // occupy [run_offset_[i], run_offset_[i + 1]) of cell_of_sample_, its cell means
+  // [cell_offset_[i], cell_offset_[i + 1]) of cell_mean_ (empty for runs only interpolated pairwise).
+  std::vector<std::size_t> run_offset_, cell_offset_;
+  std::vector<std::uint32_t> cell_of_sample_;
+  std::vector<tables::LaunchSample> cell_mean_;
   double lowest_sample_z_m_ = 0.0;    // over all runs: the disc must sit at least -this above ground
   double radial_mean_m_ = 0.0;        // R̄, ξ of the last fly_launches()
   double radial_width_m_ = 0.0;

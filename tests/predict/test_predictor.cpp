@@ -168,12 +168,74 @@ TEST(Predictor, InterpolatedRpmLiesBetweenItsRows) {
   ASSERT_EQ(p.predict(request("can", 700.0), hi), PredictStatus::kOk);
   EXPECT_LT(lo.mean_radius_m, mid.mean_radius_m);
   EXPECT_LT(mid.mean_radius_m, hi.mean_radius_m);
-  // Mixture rows (urea: 200 and 256 samples): all samples of both rows fly.
-  Prediction urea;
+  // Rows of different counts (urea: 200 and 256 samples) interpolate by quantile cells: every granule
+  // of both rows flies.
+  Prediction urea_lo, urea, urea_hi;
   ASSERT_EQ(p.predict(request("urea", 600.0), urea), PredictStatus::kOk);
   EXPECT_EQ(urea.flights, 456);
-  ASSERT_EQ(p.predict(request("urea", 500.0), urea), PredictStatus::kOk);
-  EXPECT_EQ(urea.flights, 200);
+  ASSERT_EQ(p.predict(request("urea", 500.0), urea_lo), PredictStatus::kOk);
+  EXPECT_EQ(urea_lo.flights, 200);
+  ASSERT_EQ(p.predict(request("urea", 700.0), urea_hi), PredictStatus::kOk);
+  EXPECT_LT(urea_lo.mean_radius_m, urea.mean_radius_m);
+  EXPECT_LT(urea.mean_radius_m, urea_hi.mean_radius_m);
+}
+
+// Rows without sample correspondence (source "dem", different counts, stored in scrambled order) whose
+// normalised speeds differ by ±10 %: the quantile-cell interpolation at mid-interval must reproduce what
+// the pairwise interpolation of the complete, paired rows gives (the truth here: the speeds lerp to
+// ×1.0), and do better on the throw width than the mass-weighted mixture of both rows (the earlier
+// method, assembled here as one row of both rows' samples at half weight).
+TEST(Predictor, CellInterpolationOfUnpairedRowsMatchesThePairedTruth) {
+  auto scaled = [](std::vector<tables::LaunchSample> samples, float factor) {
+    for (auto& s : samples) {
+      s.vx_norm *= factor;
+      s.vy_norm *= factor;
+    }
+    return samples;
+  };
+  tables::TableContents paired = testing::synthetic_contents({{"ref", 1330.0, {500.0, 700.0}, 300, -1}});
+  paired.runs[0].samples = scaled(paired.runs[0].samples, 0.9f);
+  paired.runs[1].samples = scaled(paired.runs[1].samples, 1.1f);
+
+  tables::TableContents unpaired = paired;
+  for (auto& run : unpaired.runs) run.source = "dem";
+  std::vector<tables::LaunchSample> thinned;  // lower row: every 4th granule missing, scrambled order
+  const auto& full = paired.runs[0].samples;
+  for (std::size_t k = 0; k < full.size(); ++k) {
+    const std::size_t from = (k * 7) % full.size();
+    if (from % 4 != 3) thinned.push_back(full[from]);
+  }
+  unpaired.runs[0].samples = thinned;
+  std::reverse(unpaired.runs[1].samples.begin(), unpaired.runs[1].samples.end());
+
+  tables::TableContents mixture = unpaired;  // one row at 600 rpm: both rows' samples, mass × 1/2
+  mixture.runs.resize(1);
+  mixture.runs[0].rpm = 600.0;
+  mixture.runs[0].samples.insert(mixture.runs[0].samples.end(), unpaired.runs[1].samples.begin(),
+                                 unpaired.runs[1].samples.end());
+  for (auto& s : mixture.runs[0].samples) s.mass_kg *= 0.5f;
+
+  Prediction truth, ranked, mixed;
+  ASSERT_EQ(Predictor(paired).predict(request("ref", 600.0), truth), PredictStatus::kOk);
+  ASSERT_EQ(truth.flights, 300);
+  Predictor rank_predictor(unpaired);
+  ASSERT_EQ(rank_predictor.predict(request("ref", 600.0), ranked), PredictStatus::kOk);
+  EXPECT_EQ(ranked.flights, 225 + 300);  // every granule of both rows
+  ASSERT_EQ(Predictor(mixture).predict(request("ref", 600.0), mixed), PredictStatus::kOk);
+
+  auto error = [&](double value, double reference) { return std::abs(value - reference) / reference; };
+  EXPECT_LT(error(ranked.throw_width_m, truth.throw_width_m), 0.03);
+  EXPECT_LT(error(ranked.mean_radius_m, truth.mean_radius_m), 0.01);
+  // ξ is small here (~0.17 m, one launch speed per angle); the rows' own spreads inside the 2 × 2 cells
+  // of 225-sample rows (≥ 32 samples a cell) widen it by ~10 %, the mixture by ~270 %.
+  EXPECT_LT(error(ranked.radial_width_m, truth.radial_width_m), 0.15);
+  EXPECT_GT(error(mixed.throw_width_m, truth.throw_width_m), 5.0 * error(ranked.throw_width_m, truth.throw_width_m));
+  EXPECT_GT(error(mixed.radial_width_m, truth.radial_width_m), 5.0 * error(ranked.radial_width_m, truth.radial_width_m));
+
+  // Deterministic: a second predictor from the same contents gives the same pattern.
+  Prediction again;
+  ASSERT_EQ(Predictor(unpaired).predict(request("ref", 600.0), again), PredictStatus::kOk);
+  EXPECT_EQ(copy(again.tray_mass_fraction), copy(ranked.tray_mass_fraction));
 }
 
 TEST(Predictor, BoutWidthAndHeightAreHonoured) {
