@@ -70,7 +70,7 @@ bool closest_point(const AnalyticPiece& piece, const Vec3& c, double radius_m, W
     }
     case PieceKind::kRevolution: {
       // Work in the meridian half-plane of the centre: (ρ, z). Exact for a surface of revolution.
-      const double rho = std::hypot(c.x(), c.y());
+      const double rho = std::sqrt(c.x() * c.x() + c.y() * c.y());  // not std::hypot: no overflow at these sizes, and it is a hot path
       const double er_x = rho > 1e-15 ? c.x() / rho : 1.0;
       const double er_y = rho > 1e-15 ? c.y() / rho : 0.0;
       const double gr = piece.rho1_m - piece.rho0_m, gz = piece.z1_m - piece.z0_m;

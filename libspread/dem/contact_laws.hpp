@@ -16,6 +16,17 @@
 #include "libspread/core/vec3.hpp"
 #include "libspread/dem/material.hpp"
 
+// The laws run once per touching pair per step inside the pair loop; GCC's size heuristics at -O2 leave
+// them (and their helpers) as calls, which costs more than the arithmetic. Forced inline there.
+// SPREAD_CONTACT_FLATTEN marks the loop that calls them: everything it calls is inlined into it.
+#if defined(__GNUC__)
+#define SPREAD_CONTACT_INLINE inline __attribute__((always_inline))
+#define SPREAD_CONTACT_FLATTEN __attribute__((flatten))
+#else
+#define SPREAD_CONTACT_INLINE inline
+#define SPREAD_CONTACT_FLATTEN
+#endif
+
 namespace spread::dem {
 
 struct ContactInput {
@@ -39,7 +50,7 @@ struct ContactForce {
 namespace detail {
 // Carries the stored elastic tangential force into the current tangent plane keeping its magnitude:
 // the contact frame turns as the bodies roll and the walls spin.
-inline Vec3 carry_into_plane(const double* history, const Vec3& normal) {
+SPREAD_CONTACT_INLINE Vec3 carry_into_plane(const double* history, const Vec3& normal) {
   Vec3 f(history[0], history[1], history[2]);
   const double mag2 = f.squaredNorm();
   if (mag2 == 0.0) return f;
@@ -49,7 +60,7 @@ inline Vec3 carry_into_plane(const double* history, const Vec3& normal) {
 }
 // Coulomb cap (Eq. 6) with the spring shortened to the friction limit on slip (the β = 1 remark of
 // Sect. 2.1: the viscous part is disregarded when shortening).
-inline Vec3 coulomb(Vec3& elastic, const Vec3& damping, double limit) {
+SPREAD_CONTACT_INLINE Vec3 coulomb(Vec3& elastic, const Vec3& damping, double limit) {
   const double el2 = elastic.squaredNorm();
   if (el2 > limit * limit) elastic *= limit / std::sqrt(el2);
   Vec3 total = elastic + damping;
@@ -97,7 +108,7 @@ struct HertzThornton {
     return out;
   }
   // Lever arm from a's centre to the contact point (Eq. 10, corrected share).
-  static double lever(double radius_m, double share, double overlap_m) { return radius_m - share * overlap_m; }
+  SPREAD_CONTACT_INLINE static double lever(double radius_m, double share, double overlap_m) { return radius_m - share * overlap_m; }
 };
 
 // Seed 001: F_n = k_n δ + 2ζ sqrt(M* k_n) δ̇ (clipped at 0), tangential spring k_t with dashpot
@@ -124,7 +135,7 @@ struct LinearSpringDashpot {
     return out;
   }
   // Seed 001: d_c = −(R − h/2) n, i.e. each body takes half the overlap.
-  static double lever(double radius_m, double share, double overlap_m) {
+  SPREAD_CONTACT_INLINE static double lever(double radius_m, double share, double overlap_m) {
     (void)share;
     return radius_m - 0.5 * overlap_m;
   }

@@ -7,7 +7,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "libspread/dem/contact_laws.hpp"
+#include "libspread/dem/energy_monitor.hpp"
 #include "libspread/dem/time_step.hpp"
 #include "libspread/flight/flight.hpp"
 
@@ -18,6 +23,13 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 constexpr long long kMinParallelItems = 4096;
 double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * kPi * r * r * r; }
+int thread_index() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
 }  // namespace
 
 DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> overrides, WallSet walls,
@@ -45,6 +57,30 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
       params_.integrator == Integrator::kGear6)
     gear_ = GearPredictorCorrector(4 + static_cast<int>(params_.integrator) - static_cast<int>(Integrator::kGear4));
   skin_m_ = params_.skin_m > 0.0 ? params_.skin_m : params_.max_particle_radius_m;
+  if (params_.periodic_z.enabled) {
+    const PeriodicZ& pz = params_.periodic_z;
+    const double cutoff = 2.0 * params_.max_particle_radius_m + skin_m_;
+    if (!std::isfinite(pz.min_m) || !std::isfinite(pz.max_m) || !(pz.length_m() >= 2.0 * cutoff)) {
+      std::ostringstream os;
+      os << "dem: periodic_z: period max_m - min_m = " << pz.length_m() << " m must be finite and at least twice the "
+         << "pair-search cut-off 2 r_max + skin = " << cutoff << " m";
+      throw std::invalid_argument(os.str());
+    }
+  }
+  wall_scratch_.resize(static_cast<std::size_t>(params_.threads) * (kWallSlots + 2));
+  // A group's surface stays where it is when it does not turn, or when it turns about its own z axis and
+  // consists only of surfaces of revolution about that axis and planes normal to it. Analytic pieces only:
+  // mesh and bead queries are built for contact radii, not for radius + skin.
+  walls_fixed_in_space_ = true;
+  for (const auto& g : walls_.groups) {
+    if (!g.meshes.empty() || !g.bead_walls.empty()) { walls_fixed_in_space_ = false; continue; }
+    if (g.angular_velocity_rad_s == 0.0) continue;
+    bool symmetric = true;
+    for (const auto& piece : g.pieces)
+      symmetric = symmetric && (piece.kind == PieceKind::kRevolution ||
+                                (piece.kind == PieceKind::kPlane && piece.normal.x() == 0.0 && piece.normal.y() == 0.0));
+    walls_fixed_in_space_ = walls_fixed_in_space_ && symmetric;
+  }
 
   // Contact time and stability over every material pair at the smallest radius (t_c ∝ R): as particle
   // against a wall (R* = r, M* = m) and against an equal particle (R* = r/2, M* = m/2).
@@ -100,7 +136,9 @@ std::uint32_t DemEngine::add_particle(const Vec3& pos, const Vec3& vel, double r
   if (!pos.allFinite() || !vel.allFinite() || !spin.allFinite()) throw std::invalid_argument("dem: non-finite particle state");
   const double m = sphere_mass(materials_[static_cast<std::size_t>(material)].density_kg_m3, radius);
   const std::uint32_t pid = next_id_++;
-  p_.push_back(pos, vel, spin, radius, m, 0.4 * m * radius * radius, static_cast<std::uint16_t>(material), pid, time_s_);
+  Vec3 at = pos;
+  if (params_.periodic_z.enabled) at.z() = wrap_into_period(at.z(), params_.periodic_z);
+  p_.push_back(at, vel, spin, radius, m, 0.4 * m * radius * radius, static_cast<std::uint16_t>(material), pid, time_s_);
   lists_dirty_ = true;
   return pid;
 }
@@ -109,7 +147,9 @@ bool DemEngine::overlaps_particle(const Vec3& pos, double radius) const {
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (!p_.active[i]) continue;
     const double cut = radius + p_.radius_m[i];
-    if ((p_.position(i) - pos).squaredNorm() < cut * cut) return true;
+    Vec3 d = p_.position(i) - pos;
+    if (params_.periodic_z.enabled) d.z() = minimum_image_z(d.z(), params_.periodic_z.length_m());
+    if (d.squaredNorm() < cut * cut) return true;
   }
   return false;
 }
@@ -135,7 +175,7 @@ void DemEngine::maintain_lists() {
   }
   if (!lists_dirty_) {
     const double half = 0.5 * skin_m_;
-    if (max_displacement2(p_) > half * half) lists_dirty_ = true;
+    if (max_displacement2(p_, params_.periodic_z) > half * half) lists_dirty_ = true;
   }
   if (lists_dirty_) {
     if (inactive_ > 0) {
@@ -143,8 +183,19 @@ void DemEngine::maintain_lists() {
       p_.compact();
       inactive_ = 0;
     }
-    build_pair_list(p_, skin_m_, pairs_);
+    build_pair_list(p_, skin_m_, pairs_, params_.periodic_z);
     ++stats_.pair_list_builds;
+    if (walls_fixed_in_space_) {
+      // Until the next build no particle moves more than skin/2, so one with no wall within its radius
+      // plus the skin (and no wall history) cannot touch a wall before then. (A centre behind a one-sided
+      // wall is not reported either; it is looked at again at the next build.)
+      walls_.set_time(time_s_);
+      far_from_walls_.assign(p_.size(), 0);
+      WallContact* const wc = wall_scratch_.data();
+      for (std::size_t i = 0; i < p_.size(); ++i)
+        far_from_walls_[i] = p_.active[i] && p_.wall_key[i * kWallSlots] == 0 &&
+                             walls_.collect(p_.position(i), p_.radius_m[i] + skin_m_, wc, 1) == 0;
+    }
     lists_dirty_ = false;
   }
   stats_.pair_search_s += seconds_since(t0);
@@ -159,18 +210,24 @@ void DemEngine::compute_forces_impl() {
   // A parallel region per pass costs a few microseconds of fork/join; below a few thousand items (and
   // on a loaded machine) it costs more than it saves.
   const bool parallel_particles = params_.threads > 1 && nn >= kMinParallelItems;
+  WallContact* const scratch = wall_scratch_.data();
+  const std::uint8_t* const far_from_walls = far_from_walls_.size() == n ? far_from_walls_.data() : nullptr;
   // Walls, per particle (each particle owns its wall-history slots: no races).
 #pragma omp parallel for schedule(static) num_threads(params_.threads) reduction(+ : dropped) if (parallel_particles)
   for (long long ii = 0; ii < nn; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
     p_.fx[i] = p_.fy[i] = p_.fz[i] = 0.0;
     if constexpr (kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
-    if (!p_.active[i]) continue;
+    if (!p_.active[i] || (far_from_walls != nullptr && far_from_walls[i])) continue;
     const Vec3 x = p_.position(i);
     const double r = p_.radius_m[i];
-    WallContact wc[kWallSlots + 2];
+    WallContact* const wc = scratch + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2);
     int nc = walls_.collect(x, r, wc, kWallSlots + 2);
     if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
+    const std::size_t base = i * kWallSlots;
+    // Slots are filled from the front, so an empty first slot means no wall history to carry: most
+    // particles of a bed touch no wall, and they skip the slot bookkeeping below.
+    if (nc == 0 && p_.wall_key[base] == 0) continue;
     // Old slots (copy), then matched by key; an unmatched contact inherits the history of an unclaimed
     // old slot with a nearly equal normal (a particle sliding from one triangle to its coplanar
     // neighbour keeps its tangential spring).
@@ -178,7 +235,6 @@ void DemEngine::compute_forces_impl() {
     double ohist[kWallSlots * kHistoryDoubles];
     double onorm[kWallSlots * 3];
     bool claimed[kWallSlots] = {};
-    const std::size_t base = i * kWallSlots;
     for (int s = 0; s < kWallSlots; ++s) {
       okey[s] = p_.wall_key[base + s];
       for (int k = 0; k < kHistoryDoubles; ++k) ohist[s * kHistoryDoubles + k] = p_.wall_history[(base + s) * kHistoryDoubles + k];
@@ -236,72 +292,166 @@ void DemEngine::compute_forces_impl() {
   stats_.wall_contacts_dropped += dropped;
 
   if (!params_.particle_contact) return;
-  // Pairs: each pair writes its own output slots; the per-particle sums are gathered afterwards in a
-  // fixed order, so the result does not depend on the thread count.
-  const long long np = static_cast<long long>(pairs_.size());
-  const bool parallel_pairs = params_.threads > 1 && np >= kMinParallelItems;
-#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel_pairs)
-  for (long long kk = 0; kk < np; ++kk) {
-    const std::size_t k = static_cast<std::size_t>(kk);
-    const std::size_t i = pairs_.first[k], j = pairs_.second[k];
-    double* hist = &pairs_.history[k * kHistoryDoubles];
-    double* f = &pairs_.force[k * 3];
-    double* ti = &pairs_.torque_first[k * 3];
-    double* tj = &pairs_.torque_second[k * 3];
-    f[0] = f[1] = f[2] = 0.0;
-    if constexpr (kRotation) ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
-    const Vec3 d(p_.x[i] - p_.x[j], p_.y[i] - p_.y[j], p_.z[i] - p_.z[j]);
-    const double ri = p_.radius_m[i], rj = p_.radius_m[j];
-    const double dist2 = d.squaredNorm();
-    const double cut = ri + rj;
-    if (!p_.active[i] || !p_.active[j] || dist2 >= cut * cut || dist2 == 0.0) {
-      hist[0] = hist[1] = hist[2] = hist[3] = 0.0;  // contact lost: the tangential spring is released
-      continue;
-    }
-    const double dist = std::sqrt(dist2);
-    ContactInput in;
-    in.normal = d / dist;  // from j to i
-    in.overlap_m = cut - dist;
-    const PairParams& pp = pair_table_(p_.material[i], p_.material[j]);
-    const double li = Law::lever(ri, pp.share_a, in.overlap_m);
-    const double lj = Law::lever(rj, pp.share_b, in.overlap_m);
-    const Vec3 arm_i = -li * in.normal, arm_j = lj * in.normal;
-    Vec3 vi(p_.vx[i], p_.vy[i], p_.vz[i]), vj(p_.vx[j], p_.vy[j], p_.vz[j]);
-    Vec3 wi = Vec3::Zero(), wj = Vec3::Zero();
-    if constexpr (kRotation) {
-      wi = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
-      wj = Vec3(p_.wx[j], p_.wy[j], p_.wz[j]);
-      vi += wi.cross(arm_i);
-      vj += wj.cross(arm_j);
-    }
-    in.slip_m_s = vi - vj;  // Eq. 8
-    in.r_eff_m = ri * rj / cut;
-    in.m_eff_kg = p_.mass_kg[i] * p_.mass_kg[j] / (p_.mass_kg[i] + p_.mass_kg[j]);
-    in.dt_s = dt;
-    const ContactForce cf = Law::eval(pp, in, hist);
-    f[0] = cf.force_n.x(); f[1] = cf.force_n.y(); f[2] = cf.force_n.z();
-    if constexpr (kRotation) {
-      Vec3 t_i = arm_i.cross(cf.tangential_force_n);
-      Vec3 t_j = arm_j.cross(-cf.tangential_force_n);
-      if constexpr (kRolling) {
-        const double ii_ = p_.inertia_kg_m2[i], ij_ = p_.inertia_kg_m2[j];
-        const Vec3 tr = rolling_torque(pp.rolling_friction, cf.normal_force_n, in.r_eff_m, wi - wj, ii_ * ij_ / (ii_ + ij_), dt);
-        t_i += tr;
-        t_j -= tr;
-      }
-      for (int c = 0; c < 3; ++c) { ti[c] = t_i[c]; tj[c] = t_j[c]; }
-    }
+  if (pair_fx_.size() != n) {
+    for (auto* a : {&pair_fx_, &pair_fy_, &pair_fz_, &pair_tx_, &pair_ty_, &pair_tz_}) a->assign(n, 0.0);
   }
-#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel_particles)
+  // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
+  // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
+  const bool threaded = params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems;
+  if (threaded || monitor_ != nullptr) {
+    pair_forces<Law, kRotation, kRolling, true>();
+    gather_stored_pair_forces<kRotation>();
+  } else {
+    pair_forces<Law, kRotation, kRolling, false>();
+  }
+}
+
+// flatten: the whole pair kernel (law, Eigen's 3-vector operations) inlined into the loop; at -O2 GCC
+// otherwise keeps the law as a call per touching pair, which costs about a third of the pass.
+template <class Law, bool kRotation, bool kRolling, bool kStorePairs>
+SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
+  // Flat arrays once, outside the loop (the vectors' bounds and sizes do not change within the pass).
+  const double* const px = p_.x.data();
+  const double* const py = p_.y.data();
+  const double* const pz = p_.z.data();
+  const double* const pvx = p_.vx.data();
+  const double* const pvy = p_.vy.data();
+  const double* const pvz = p_.vz.data();
+  const double* const pwx = kRotation ? p_.wx.data() : nullptr;
+  const double* const pwy = kRotation ? p_.wy.data() : nullptr;
+  const double* const pwz = kRotation ? p_.wz.data() : nullptr;
+  const double* const radius = p_.radius_m.data();
+  const double* const mass = p_.mass_kg.data();
+  const double* const inertia = p_.inertia_kg_m2.data();
+  const std::uint16_t* const material = p_.material.data();
+  const std::uint8_t* const active = p_.active.data();
+  const std::uint32_t* const pair_start = pairs_.first_start.data();
+  const std::uint32_t* const partner = pairs_.second.data();
+  double* const history = pairs_.history.data();
+  double* const out_force = pairs_.force.data();
+  double* const out_torque_i = pairs_.torque_first.data();
+  double* const out_torque_j = pairs_.torque_second.data();
+  double* const sum_fx = pair_fx_.data();
+  double* const sum_fy = pair_fy_.data();
+  double* const sum_fz = pair_fz_.data();
+  double* const sum_tx = pair_tx_.data();
+  double* const sum_ty = pair_ty_.data();
+  double* const sum_tz = pair_tz_.data();
+  const PairParams* const params_row0 = &pair_table_(0, 0);
+  const std::size_t material_count = pair_table_.material_count();
+  const bool periodic = params_.periodic_z.enabled;
+  const double period = params_.periodic_z.length_m();
+  const double dt = dt_s_;
+  const long long nn = static_cast<long long>(p_.size());
+  const bool parallel = kStorePairs && params_.threads > 1 && nn >= kMinParallelItems;
+
+#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel)
   for (long long ii = 0; ii < nn; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
-    if (!p_.active[i]) continue;
-    double f[3] = {0, 0, 0}, t[3] = {0, 0, 0};
-    for (std::uint32_t k = pairs_.first_start[i]; k < pairs_.first_start[i + 1]; ++k)
-      for (int c = 0; c < 3; ++c) {
-        f[c] += pairs_.force[k * 3 + c];
-        if constexpr (kRotation) t[c] += pairs_.torque_first[k * 3 + c];
+    const std::uint32_t k_begin = pair_start[i], k_end = pair_start[i + 1];
+    const bool i_active = active[i] != 0;
+    const Vec3 xi(px[i], py[i], pz[i]);
+    const Vec3 vi0(pvx[i], pvy[i], pvz[i]);
+    Vec3 wi = Vec3::Zero();
+    if constexpr (kRotation) wi = Vec3(pwx[i], pwy[i], pwz[i]);
+    const double ri = radius[i], mi = mass[i];
+    const PairParams* const params_row = params_row0 + static_cast<std::size_t>(material[i]) * material_count;
+    // This particle's share of its own pairs (it is `first` in all of them), summed from zero.
+    Vec3 sum_f = Vec3::Zero(), sum_t = Vec3::Zero();
+    for (std::uint32_t k = k_begin; k < k_end; ++k) {
+      const std::size_t j = partner[k];
+      double* const hist = history + static_cast<std::size_t>(k) * kHistoryDoubles;
+      Vec3 d(xi.x() - px[j], xi.y() - py[j], xi.z() - pz[j]);
+      if (periodic) d.z() = minimum_image_z(d.z(), period);
+      const double rj = radius[j];
+      const double dist2 = d.squaredNorm();
+      const double cut = ri + rj;
+      if (!i_active || !active[j] || dist2 >= cut * cut || dist2 == 0.0) {
+        // Contact lost: the tangential spring is released (history written only if it holds anything,
+        // so the ~2/3 of listed pairs that are apart cost a read, not a write).
+        if (hist[0] != 0.0 || hist[1] != 0.0 || hist[2] != 0.0 || hist[3] != 0.0)
+          hist[0] = hist[1] = hist[2] = hist[3] = 0.0;
+        if constexpr (kStorePairs) {
+          for (int c = 0; c < 3; ++c) out_force[k * 3 + c] = 0.0;
+          if constexpr (kRotation)
+            for (int c = 0; c < 3; ++c) out_torque_i[k * 3 + c] = out_torque_j[k * 3 + c] = 0.0;
+        }
+        continue;
       }
+      const double dist = std::sqrt(dist2);
+      ContactInput in;
+      in.normal = d / dist;  // from j to i
+      in.overlap_m = cut - dist;
+      const PairParams& pp = params_row[material[j]];
+      const double li = Law::lever(ri, pp.share_a, in.overlap_m);
+      const double lj = Law::lever(rj, pp.share_b, in.overlap_m);
+      const Vec3 arm_i = -li * in.normal, arm_j = lj * in.normal;
+      Vec3 vi = vi0, vj(pvx[j], pvy[j], pvz[j]);
+      Vec3 wj = Vec3::Zero();
+      if constexpr (kRotation) {
+        wj = Vec3(pwx[j], pwy[j], pwz[j]);
+        vi += wi.cross(arm_i);
+        vj += wj.cross(arm_j);
+      }
+      in.slip_m_s = vi - vj;  // Eq. 8
+      in.r_eff_m = ri * rj / cut;
+      const double mj = mass[j];
+      in.m_eff_kg = mi * mj / (mi + mj);
+      in.dt_s = dt;
+      const ContactForce cf = Law::eval(pp, in, hist);
+      const Vec3& f = cf.force_n;
+      Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
+      if constexpr (kRotation) {
+        t_i = arm_i.cross(cf.tangential_force_n);  // Eq. 15
+        t_j = arm_j.cross(-cf.tangential_force_n);
+        if constexpr (kRolling) {
+          const double ii_ = inertia[i], ij_ = inertia[j];
+          const Vec3 tr = rolling_torque(pp.rolling_friction, cf.normal_force_n, in.r_eff_m, wi - wj, ii_ * ij_ / (ii_ + ij_), dt);
+          t_i += tr;
+          t_j -= tr;
+        }
+      }
+      sum_f += f;
+      if constexpr (kRotation) sum_t += t_i;
+      if constexpr (kStorePairs) {
+        for (int c = 0; c < 3; ++c) out_force[k * 3 + c] = f[c];
+        if constexpr (kRotation)
+          for (int c = 0; c < 3; ++c) { out_torque_i[k * 3 + c] = t_i[c]; out_torque_j[k * 3 + c] = t_j[c]; }
+      } else {
+        // j > i: its sum is finished when the loop reaches j (Newton's third law, Eq. 1).
+        sum_fx[j] -= f.x(); sum_fy[j] -= f.y(); sum_fz[j] -= f.z();
+        if constexpr (kRotation) { sum_tx[j] += t_j.x(); sum_ty[j] += t_j.y(); sum_tz[j] += t_j.z(); }
+      }
+    }
+    if constexpr (kStorePairs) {
+      // Kept for the gather, which adds the partners' share in the same order as the direct pass.
+      sum_fx[i] = sum_f.x(); sum_fy[i] = sum_f.y(); sum_fz[i] = sum_f.z();
+      if constexpr (kRotation) { sum_tx[i] = sum_t.x(); sum_ty[i] = sum_t.y(); sum_tz[i] = sum_t.z(); }
+    } else {
+      // All pairs with i as `second` came earlier (their `first` is smaller): sum_*[i] is complete.
+      p_.fx[i] += sum_fx[i] + sum_f.x();
+      p_.fy[i] += sum_fy[i] + sum_f.y();
+      p_.fz[i] += sum_fz[i] + sum_f.z();
+      sum_fx[i] = sum_fy[i] = sum_fz[i] = 0.0;
+      if constexpr (kRotation) {
+        p_.tx[i] += sum_tx[i] + sum_t.x();
+        p_.ty[i] += sum_ty[i] + sum_t.y();
+        p_.tz[i] += sum_tz[i] + sum_t.z();
+        sum_tx[i] = sum_ty[i] = sum_tz[i] = 0.0;
+      }
+    }
+  }
+}
+
+template <bool kRotation>
+void DemEngine::gather_stored_pair_forces() {
+  const long long nn = static_cast<long long>(p_.size());
+  const bool parallel = params_.threads > 1 && nn >= kMinParallelItems;
+#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel)
+  for (long long ii = 0; ii < nn; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    // The partners' share, from zero in pair order — the order in which the direct pass adds it.
+    double f[3] = {0.0, 0.0, 0.0}, t[3] = {0.0, 0.0, 0.0};
     for (std::uint32_t q = pairs_.second_start[i]; q < pairs_.second_start[i + 1]; ++q) {
       const std::uint32_t k = pairs_.second_pairs[q];
       for (int c = 0; c < 3; ++c) {
@@ -309,11 +459,30 @@ void DemEngine::compute_forces_impl() {
         if constexpr (kRotation) t[c] += pairs_.torque_second[k * 3 + c];
       }
     }
-    p_.fx[i] += f[0]; p_.fy[i] += f[1]; p_.fz[i] += f[2];
-    if constexpr (kRotation) { p_.tx[i] += t[0]; p_.ty[i] += t[1]; p_.tz[i] += t[2]; }
+    p_.fx[i] += f[0] + pair_fx_[i];
+    p_.fy[i] += f[1] + pair_fy_[i];
+    p_.fz[i] += f[2] + pair_fz_[i];
+    pair_fx_[i] = pair_fy_[i] = pair_fz_[i] = 0.0;
+    if constexpr (kRotation) {
+      p_.tx[i] += t[0] + pair_tx_[i];
+      p_.ty[i] += t[1] + pair_ty_[i];
+      p_.tz[i] += t[2] + pair_tz_[i];
+      pair_tx_[i] = pair_ty_[i] = pair_tz_[i] = 0.0;
+    }
   }
 }
 
+void DemEngine::wrap_periodic_z() {
+  const PeriodicZ& pz = params_.periodic_z;
+  const double period = pz.length_m();
+  double* const z = p_.z.data();
+  const std::size_t n = p_.size();
+  // One period at most per step (a step moves far less than the period).
+  for (std::size_t i = 0; i < n; ++i) {
+    if (z[i] >= pz.max_m) z[i] -= period;
+    else if (z[i] < pz.min_m) z[i] += period;
+  }
+}
 void DemEngine::compute_forces() {
   const auto t0 = Clock::now();
   walls_.set_time(time_s_);
@@ -433,6 +602,7 @@ void DemEngine::fly_monolithic() {
 }
 
 void DemEngine::step() {
+  if (monitor_ != nullptr) monitor_->begin_step(*this);
   if (params_.integrator == Integrator::kSymplecticEuler) {
     maintain_lists();
     compute_forces();
@@ -475,9 +645,11 @@ void DemEngine::step() {
     stats_.integrate_s += seconds_since(t0);
     forces_valid_ = true;
   }
+  if (params_.periodic_z.enabled) wrap_periodic_z();
   stats_.particle_steps += active_count();
   ++stats_.steps;
   time_s_ += dt_s_;
+  if (monitor_ != nullptr) monitor_->end_step(*this);  // before the collector removes launched particles
   collect();
   if (monolithic_.enabled) fly_monolithic();
 }

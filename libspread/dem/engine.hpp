@@ -43,6 +43,7 @@ struct EngineParams {
   double skin_m = 0.0;                 // pair-list skin; 0: the largest radius
   Vec3 gravity_m_s2 = Vec3(0.0, 0.0, -kStandardGravity_m_s2);
   int threads = 1;                     // OpenMP threads; results are identical for any count
+  PeriodicZ periodic_z;                // periodic boundary along z (period >= 2 (2 r_max + skin)); off by default
 };
 
 // Cylinder about the vertical axis through axis_point_m: a particle whose horizontal distance from
@@ -74,6 +75,8 @@ struct MonolithicFlight {
   double air_density_kg_m3 = 1.225;
   double air_viscosity_pa_s = 1.81e-5;
 };
+
+class EnergyMonitor;  // energy_monitor.hpp
 
 struct EngineStats {
   std::uint64_t steps = 0;
@@ -108,6 +111,8 @@ class DemEngine {
 
   void set_collector(const Collector& c) { collector_ = c; }
   void set_monolithic_flight(const MonolithicFlight& m) { monolithic_ = m; }
+  // Energy/penetration diagnostics called every step (nullptr: off, the default); not owned.
+  void set_energy_monitor(EnergyMonitor* monitor) { monitor_ = monitor; }
 
   double time_s() const { return time_s_; }
   double dt_s() const { return dt_s_; }
@@ -122,6 +127,7 @@ class DemEngine {
   const std::vector<Material>& materials() const { return materials_; }
   const WallSet& walls() const { return walls_; }
   std::size_t pair_count() const { return pairs_.size(); }
+  const PairList& pair_list() const { return pairs_; }
 
   // Total kinetic energy (translation + rotation) of the active particles (J).
   double kinetic_energy_j() const;
@@ -129,6 +135,14 @@ class DemEngine {
  private:
   template <class Law, bool kRotation, bool kRolling>
   void compute_forces_impl();
+  // Particle–particle pass over the CSR half list. kStorePairs: each pair's results go to the list's
+  // per-pair arrays and are gathered afterwards (threads, energy monitor); otherwise they are added
+  // straight into the sums. Both add in the same order, so the results are bit-identical.
+  template <class Law, bool kRotation, bool kRolling, bool kStorePairs>
+  void pair_forces();
+  template <bool kRotation>
+  void gather_stored_pair_forces();
+  void wrap_periodic_z();
   void compute_forces();
   void maintain_lists();
   void kick(double dt);
@@ -144,11 +158,20 @@ class DemEngine {
   PairList pairs_;
   Collector collector_;
   MonolithicFlight monolithic_;
+  EnergyMonitor* monitor_ = nullptr;
   GearPredictorCorrector gear_;  // Gear integrators only
   std::vector<LaunchRecord> launches_;
   // Monolithic reference: particles in flight (flat arrays).
   std::vector<double> fl_x_, fl_y_, fl_z_, fl_vx_, fl_vy_, fl_vz_, fl_d_, fl_m_;
   std::vector<Vec3> landings_;
+  // Pair-force sums per particle (force N, torque N m); all zero between force passes.
+  std::vector<double> pair_fx_, pair_fy_, pair_fz_, pair_tx_, pair_ty_, pair_tz_;
+  std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
+  // Wall list: 1 = no wall within radius + skin at the last pair-list build (the wall test is skipped
+  // until the next build). Used only when every wall group's surface is fixed in space
+  // (walls_fixed_in_space_); empty otherwise.
+  std::vector<std::uint8_t> far_from_walls_;
+  bool walls_fixed_in_space_ = false;
   EngineStats stats_;
   double time_s_ = 0.0;
   double dt_s_ = 0.0;

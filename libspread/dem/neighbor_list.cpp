@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
 
 namespace spread::dem {
 
@@ -11,16 +13,19 @@ std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
 }
 }  // namespace
 
-double max_displacement2(const ParticleArrays& p) {
+double max_displacement2(const ParticleArrays& p, const PeriodicZ& periodic) {
   double m = 0.0;
+  const double period = periodic.length_m();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double dx = p.x[i] - p.x0[i], dy = p.y[i] - p.y0[i], dz = p.z[i] - p.z0[i];
+    const double dx = p.x[i] - p.x0[i], dy = p.y[i] - p.y0[i];
+    double dz = p.z[i] - p.z0[i];
+    if (periodic.enabled) dz = minimum_image_z(dz, period);  // a wrap is not a move
     m = std::max(m, dx * dx + dy * dy + dz * dz);
   }
   return m;
 }
 
-void build_pair_list(ParticleArrays& p, double skin_m, PairList& list) {
+void build_pair_list(ParticleArrays& p, double skin_m, PairList& list, const PeriodicZ& periodic) {
   const std::size_t n = p.size();
   // Old history, sorted by key, for transfer.
   std::vector<std::size_t> old_order(list.size());
@@ -54,16 +59,33 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list) {
   list.second_pairs.clear();
   if (any) {
     double cell = 2.0 * rmax + skin_m;
-    const Vec3 ext = hi - lo;
-    while ((ext.x() / cell + 1) * (ext.y() / cell + 1) * (ext.z() / cell + 1) > 8.0 * static_cast<double>(n) + 64) cell *= 1.3;
-    const int nx = static_cast<int>(ext.x() / cell) + 1, ny = static_cast<int>(ext.y() / cell) + 1,
-              nz = static_cast<int>(ext.z() / cell) + 1;
+    const double period = periodic.length_m();
+    if (periodic.enabled && !(period >= 2.0 * cell)) {
+      std::ostringstream os;
+      os << "periodic z axis: period " << period << " m is shorter than twice the pair-search cut-off 2 r_max + skin = "
+         << cell << " m (a pair would meet more than one image)";
+      throw std::invalid_argument(os.str());
+    }
+    Vec3 ext = hi - lo;
+    if (periodic.enabled) { lo.z() = periodic.min_m; ext.z() = period; }
+    // Periodic z: a whole number of cells spans the period (each at least the cut-off wide), so the
+    // cells at both ends are neighbours.
+    auto cells_z = [&](double c) { return periodic.enabled ? std::max(1, static_cast<int>(period / c)) : static_cast<int>(ext.z() / c) + 1; };
+    while ((ext.x() / cell + 1) * (ext.y() / cell + 1) * cells_z(cell) > 8.0 * static_cast<double>(n) + 64) cell *= 1.3;
+    const int nx = static_cast<int>(ext.x() / cell) + 1, ny = static_cast<int>(ext.y() / cell) + 1, nz = cells_z(cell);
+    const double cell_z = periodic.enabled ? period / nz : cell;
     const std::size_t ncell = static_cast<std::size_t>(nx) * ny * nz;
     std::vector<std::uint32_t> cell_of(n), start(ncell + 1, 0), items;
     auto cell_index = [&](std::size_t i, int& ix, int& iy, int& iz) {
       ix = std::min(nx - 1, static_cast<int>((p.x[i] - lo.x()) / cell));
       iy = std::min(ny - 1, static_cast<int>((p.y[i] - lo.y()) / cell));
-      iz = std::min(nz - 1, static_cast<int>((p.z[i] - lo.z()) / cell));
+      if (periodic.enabled) {
+        // Positions are wrapped once per step; a predictor may carry one a little past either end.
+        iz = static_cast<int>(std::floor((p.z[i] - lo.z()) / cell_z)) % nz;
+        if (iz < 0) iz += nz;
+      } else {
+        iz = std::min(nz - 1, static_cast<int>((p.z[i] - lo.z()) / cell_z));
+      }
     };
     for (std::size_t i = 0; i < n; ++i) {
       if (!p.active[i]) continue;
@@ -78,6 +100,23 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list) {
     for (std::size_t i = 0; i < n; ++i)
       if (p.active[i]) items[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);  // ascending slot order per cell
 
+    // z layers to scan around layer iz: the three neighbours, wrapped when periodic (fewer than three
+    // layers in the period: each layer once, the minimum image then picks the near copy).
+    int layers[3];
+    auto neighbour_layers = [&](int iz) {
+      int count = 0;
+      if (periodic.enabled && nz < 3) {
+        for (int c = 0; c < nz; ++c) layers[count++] = c;
+      } else {
+        for (int dz = -1; dz <= 1; ++dz) {
+          int cz = iz + dz;
+          if (periodic.enabled) cz = (cz + nz) % nz;
+          else if (cz < 0 || cz >= nz) continue;
+          layers[count++] = cz;
+        }
+      }
+      return count;
+    };
     std::vector<std::uint32_t> mine;
     for (std::size_t i = 0; i < n; ++i) {
       list.first_start[i] = static_cast<std::uint32_t>(list.first.size());
@@ -85,17 +124,20 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list) {
       int ix, iy, iz;
       cell_index(i, ix, iy, iz);
       mine.clear();
-      for (int dz = -1; dz <= 1; ++dz)
+      const int nlayers = neighbour_layers(iz);
+      for (int l = 0; l < nlayers; ++l)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
-            const int cx = ix + dx, cy = iy + dy, cz = iz + dz;
-            if (cx < 0 || cy < 0 || cz < 0 || cx >= nx || cy >= ny || cz >= nz) continue;
+            const int cx = ix + dx, cy = iy + dy, cz = layers[l];
+            if (cx < 0 || cy < 0 || cx >= nx || cy >= ny) continue;
             const std::size_t c = (static_cast<std::size_t>(cz) * ny + cy) * nx + cx;
             for (std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
               const std::uint32_t j = items[k];
               if (j <= i) continue;
               const double cut = p.radius_m[i] + p.radius_m[j] + skin_m;
-              const double ddx = p.x[j] - p.x[i], ddy = p.y[j] - p.y[i], ddz = p.z[j] - p.z[i];
+              const double ddx = p.x[j] - p.x[i], ddy = p.y[j] - p.y[i];
+              double ddz = p.z[j] - p.z[i];
+              if (periodic.enabled) ddz = minimum_image_z(ddz, period);
               if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) mine.push_back(j);
             }
           }
@@ -122,9 +164,10 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list) {
   list.second_pairs.resize(np);
   std::vector<std::uint32_t> fill(list.second_start.begin(), list.second_start.end() - 1);
   for (std::size_t k = 0; k < np; ++k) list.second_pairs[fill[list.second[k]]++] = static_cast<std::uint32_t>(k);
-  list.force.assign(np * 3, 0.0);
-  list.torque_first.assign(np * 3, 0.0);
-  list.torque_second.assign(np * 3, 0.0);
+  // Sized only: the passes that use them write every entry (new entries start at zero).
+  list.force.resize(np * 3, 0.0);
+  list.torque_first.resize(np * 3, 0.0);
+  list.torque_second.resize(np * 3, 0.0);
 }
 
 }  // namespace spread::dem

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 
 #include "libspread/metrics/metrics.hpp"
@@ -89,6 +90,8 @@ SimulationResult simulate(const SimulationConfig& cfg) {
   if (cfg.materials.empty()) throw std::invalid_argument("simulate: no materials");
   if (!(cfg.duration_s > 0.0)) throw std::invalid_argument("simulate: duration_s must be > 0");
   if (!(cfg.disc_height_m >= 0.0)) throw std::invalid_argument("simulate: disc_height_m must be >= 0");
+  if (cfg.energy_monitor_every_steps < 0)
+    throw std::invalid_argument("simulate: energy_monitor_every_steps must be >= 0 (0 = off)");
   SimulationResult res;
   const int particle_material = cfg.inlet.material;
   const LognormalDiameter dist(cfg.inlet.diameter_mean_m, cfg.inlet.diameter_sd_m);
@@ -107,6 +110,11 @@ SimulationResult simulate(const SimulationConfig& cfg) {
   col.radius_m = cfg.collector_radius_m > 0.0 ? cfg.collector_radius_m : cfg.disc.radius_m;
   col.lost_below_z_m = cfg.disc.z_apex_m - 0.5;  // fell through (should not happen)
   engine.set_collector(col);
+  std::unique_ptr<EnergyMonitor> monitor;
+  if (cfg.energy_monitor_every_steps > 0) {
+    monitor = std::make_unique<EnergyMonitor>(cfg.energy_monitor_every_steps);
+    engine.set_energy_monitor(monitor.get());
+  }
   if (cfg.monolithic_reference) {
     MonolithicFlight m;
     m.enabled = true;
@@ -146,6 +154,11 @@ SimulationResult simulate(const SimulationConfig& cfg) {
   }
   const EngineStats& st = engine.stats();
   res.engine_stats = st;
+  if (monitor) {
+    res.energy_monitored = true;
+    res.energy = monitor->report();
+    res.energy_samples = monitor->samples();
+  }
   res.launches = engine.launches();
   res.released = inlet.released();
   if (!cfg.monolithic_reference) res.on_disc_at_end = engine.active_count();

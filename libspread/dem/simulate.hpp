@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "libspread/dem/disc_generator.hpp"
+#include "libspread/dem/energy_monitor.hpp"
 #include "libspread/dem/engine.hpp"
 #include "libspread/dem/inlet.hpp"
 #include "libspread/flight/flight.hpp"
@@ -36,6 +37,9 @@ struct SimulationConfig {
   // Outputs (empty = none).
   std::string vtk_prefix;
   int vtk_every_steps = 0;
+  // Energy and penetration diagnostics (energy_monitor.hpp): 0 = off (costs nothing); N > 0 = on, with a
+  // time-series sample every N steps (the budget itself is kept every step).
+  int energy_monitor_every_steps = 0;
 };
 
 struct LaunchSummary {
@@ -62,6 +66,10 @@ struct SimulationResult {
   std::map<std::string, double> module_time_s;
   EngineStats engine_stats;
   std::vector<Vec3> monolithic_landings;
+  // Filled when config.energy_monitor_every_steps > 0.
+  bool energy_monitored = false;
+  EnergyReport energy;
+  std::vector<EnergySample> energy_samples;
 };
 
 // Throws std::invalid_argument naming the bad value.

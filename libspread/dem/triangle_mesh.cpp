@@ -191,6 +191,20 @@ MeshCollider::MeshCollider(TriangleMesh mesh, double max_particle_radius_m, doub
   // Keep the grid to a few million cells.
   const Vec3 ext = hi - lo;
   while ((ext.x() / cell_m + 1) * (ext.y() / cell_m + 1) * (ext.z() / cell_m + 1) > 4e6) cell_m *= 1.5;
+  // And the cell lists to a few million entries: a few huge triangles among many small ones (small
+  // cells) would each be listed in every cell of their bounding box — a crafted STL could exhaust memory.
+  const double max_items = 8e6 + 8.0 * static_cast<double>(mesh_.triangles.size());
+  const auto items_at = [&](double cell) {
+    double items = 0.0;
+    for (const auto& t : mesh_.triangles) {
+      const Vec3& a = mesh_.vertices[t[0]];
+      const Vec3 box = a.cwiseMax(mesh_.vertices[t[1]]).cwiseMax(mesh_.vertices[t[2]]) -
+                       a.cwiseMin(mesh_.vertices[t[1]]).cwiseMin(mesh_.vertices[t[2]]);
+      items += (std::floor(box.x() / cell) + 2.0) * (std::floor(box.y() / cell) + 2.0) * (std::floor(box.z() / cell) + 2.0);
+    }
+    return items;
+  };
+  while (items_at(cell_m) > max_items) cell_m *= 2.0;
   cell_m_ = cell_m;
   lo_ = lo - Vec3::Constant(1e-9);
   nx_ = static_cast<int>(ext.x() / cell_m) + 1;

@@ -9,6 +9,7 @@
 
 #include "libspread/core/vec3.hpp"
 #include "libspread/dem/analytic_wall.hpp"
+#include "libspread/dem/sphere_wall.hpp"
 #include "libspread/dem/triangle_mesh.hpp"
 
 namespace spread::dem {
@@ -17,6 +18,7 @@ struct WallGroup {
   std::string name = "wall";
   std::vector<AnalyticPiece> pieces;   // exact pieces, in the group frame
   std::vector<MeshCollider> meshes;    // triangle meshes, in the group frame
+  std::vector<SphereWall> bead_walls;  // fixed beads (rough walls), in the group frame
   Vec3 centre_m = Vec3::Zero();        // origin of the group frame (inertial)
   double angular_velocity_rad_s = 0.0; // about +z (counter-clockwise seen from above)
   double initial_angle_rad = 0.0;      // frame angle at t = 0
@@ -49,6 +51,8 @@ class WallSet {
   std::vector<Pose> poses_;
 };
 
+// Bead contacts: index = kBeadKeyFlag | (bead index over the group's bead walls), beads < 2^22.
+inline constexpr std::uint32_t kBeadKeyFlag = 1u << 22;
 inline std::uint32_t wall_feature_key(int group, bool mesh, std::uint32_t index) {
   return (static_cast<std::uint32_t>(group + 1) << 24) | (mesh ? (1u << 23) : 0u) | (index & 0x7FFFFFu);
 }

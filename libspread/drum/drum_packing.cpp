@@ -11,7 +11,8 @@ namespace spread::drum {
 std::size_t particle_count(const DrumScene& s) {
   double v_mean = 0.0;
   for (const auto& x : s.species) v_mean += x.number_fraction * kPi / 6.0 * x.diameter_m * x.diameter_m * x.diameter_m;
-  const double bed = s.fill_fraction * kPi * s.radius_m * s.radius_m * s.length_m * s.bed_solid_fraction;
+  const double r_free = free_radius_m(s);  // inside a bead lining the bed fills the space within the bead tips
+  const double bed = s.fill_fraction * kPi * r_free * r_free * s.length_m * s.bed_solid_fraction;
   return static_cast<std::size_t>(std::max(1.0, std::round(bed / v_mean)));
 }
 
@@ -20,7 +21,7 @@ std::vector<PlacedParticle> grid_packing(const DrumScene& s, double spacing_fact
   for (const auto& x : s.species) dmax = std::max(dmax, x.diameter_m);
   const double h = spacing_factor * dmax;
   const double rmax = 0.5 * dmax;
-  const double rho_max = s.radius_m - 0.5 * h - 1e-3 * rmax;  // cell centre at least half a cell from the wall
+  const double rho_max = free_radius_m(s) - 0.5 * h - 1e-3 * rmax;  // cell centre at least half a cell from the wall
   std::vector<std::tuple<double, double, double>> nodes;       // (y, x, z): sorted bottom first
   const int nxy = static_cast<int>(std::floor(rho_max / h));
   std::vector<double> zs;

@@ -15,7 +15,8 @@ struct PlacedParticle {
   int species = 0;
 };
 
-// N = fill · πR²L · bed_solid_fraction / V̄, V̄ the number-weighted mean particle volume.
+// N = fill · πR_f²L · bed_solid_fraction / V̄, V̄ the number-weighted mean particle volume, R_f the free
+// radius (R, or R − d_b inside a bead lining).
 std::size_t particle_count(const DrumScene& s);
 
 // Grid spacing = spacing_factor × largest diameter (> 1: gaps, the seed's placement; 0.999: every

@@ -108,11 +108,15 @@ DrumScene parse_drum_scene(const std::string& text, const std::string& source, c
   const std::string axial = drum.string("axial", "frictionless_walls");
   if (axial == "frictionless_walls") s.axial = AxialBoundary::kFrictionlessWalls;
   else if (axial == "walls") s.axial = AxialBoundary::kWalls;
-  else if (axial == "periodic") drum.fail("axial", "\"periodic\" is not supported by the engine yet; use \"frictionless_walls\" (its stand-in) or \"walls\"");
-  else drum.fail("axial", "expected \"frictionless_walls\" or \"walls\", got \"" + axial + "\"");
+  else if (axial == "periodic") s.axial = AxialBoundary::kPeriodic;
+  else drum.fail("axial", "expected \"frictionless_walls\", \"walls\" or \"periodic\", got \"" + axial + "\"");
   const std::string wall = drum.string("wall", "analytic_cylinder");
-  if (wall != "analytic_cylinder")
-    drum.fail("wall", "only \"analytic_cylinder\" is supported (the rough wall of fixed particles is not implemented), got \"" + wall + "\"");
+  if (wall == "analytic_cylinder") s.wall = DrumWall::kAnalyticCylinder;
+  else if (wall == "rough_particles") s.wall = DrumWall::kRoughParticles;
+  else drum.fail("wall", "expected \"analytic_cylinder\" or \"rough_particles\" (a layer of fixed beads), got \"" + wall + "\"");
+  if (drum.has("wall_bead_diameter_m") && s.wall != DrumWall::kRoughParticles)
+    drum.fail("wall_bead_diameter_m", "only used with wall = \"rough_particles\"");
+  s.wall_bead_diameter_m = drum.number("wall_bead_diameter_m", s.wall_bead_diameter_m);
   const bool has_rpm = drum.has("rpm"), has_fr = drum.has("froude");
   if (has_rpm && has_fr) drum.fail("froude", "give either rpm or froude, not both");
   if (!has_rpm && !has_fr) drum.fail("rpm", "missing: give rpm or froude (Fr = ω²R/g)");
@@ -206,6 +210,15 @@ void validate(const DrumScene& s) {
     share += x.number_fraction;
   }
   if (std::abs(share - 1.0) > 1e-9) bad("species", "number_fraction values must add up to 1");
+  if (s.wall == DrumWall::kRoughParticles) {
+    if (!(s.wall_bead_diameter_m >= 0.0)) bad("drum.wall_bead_diameter_m", "must be > 0 (or 0: the mean species diameter)");
+    const double db = bead_diameter_m(s);
+    if (!(db <= 0.25 * s.radius_m)) bad("drum.wall_bead_diameter_m", "must be <= drum.radius_m / 4 (the beads line the mantle)");
+    if (!(db <= s.length_m)) bad("drum.wall_bead_diameter_m", "must be <= drum.length_m (one ring of beads must fit)");
+    for (std::size_t i = 0; i < s.species.size(); ++i)
+      if (!(s.species[i].diameter_m < free_radius_m(s)))
+        bad("species[" + std::to_string(i) + "].diameter_m", "must be smaller than the radius inside the bead lining (drum.radius_m − bead diameter)");
+  }
   if (s.model == dem::ContactModel::kLinearSpringDashpot && !(s.normal_stiffness_n_m > 0.0))
     bad("contact.normal_stiffness_n_m", "must be > 0");
   if (!(s.tangential_ratio >= 0.0)) bad("contact.tangential_ratio", "must be >= 0");
@@ -222,6 +235,14 @@ void validate(const DrumScene& s) {
   if (!(s.measure_from_s >= 0.0 && s.measure_from_s <= s.rotate_s)) bad("numerics.measure_from_s", "must be in [0, rotate_s]");
   if (!(s.sample_every_s > 0.0)) bad("numerics.sample_every_s", "must be > 0");
   if (s.threads < 1) bad("numerics.threads", "must be >= 1");
+}
+
+double bead_diameter_m(const DrumScene& s) {
+  if (s.wall != DrumWall::kRoughParticles) return 0.0;
+  if (s.wall_bead_diameter_m > 0.0) return s.wall_bead_diameter_m;
+  double mean = 0.0;
+  for (const auto& x : s.species) mean += x.number_fraction * x.diameter_m;
+  return mean;
 }
 
 DrumScene load_drum_scene(const std::string& path, const std::vector<std::string>& overrides) {

@@ -14,6 +14,14 @@ namespace spread::drum {
 enum class AxialBoundary {
   kFrictionlessWalls,  // static, frictionless end walls: stands in for a periodic axis (thin "2D" drums)
   kWalls,              // end walls turning with the drum, with the wall friction
+  kPeriodic,           // no end walls: periodic along z with period length_m (length_m >= 3 d_max)
+};
+
+// The drum mantle the bed touches.
+enum class DrumWall {
+  kAnalyticCylinder,  // smooth cylinder of radius R, particle–wall friction contact.wall_friction
+  kRoughParticles,    // seed 001's rough wall: a layer of fixed beads lining the mantle, turning with it,
+                      // contacts as particle–particle with the wall friction (dem/sphere_wall.hpp)
 };
 
 struct Species {
@@ -27,6 +35,8 @@ struct DrumScene {
   double radius_m = 0.05;             // inner radius R
   double length_m = 0.01;             // axial length L
   AxialBoundary axial = AxialBoundary::kFrictionlessWalls;
+  DrumWall wall = DrumWall::kAnalyticCylinder;
+  double wall_bead_diameter_m = 0.0;  // rough wall: bead diameter; 0 = number-weighted mean species diameter
   double angular_velocity_rad_s = 0.0;  // ω (from rpm or froude = ω²R/g)
   double fill_fraction = 0.35;        // bed volume (incl. voids) / drum volume
   double bed_solid_fraction = 0.6;    // solids in the bed volume, to turn the fill into a particle count
@@ -57,6 +67,12 @@ struct DrumScene {
 inline double froude_number(const DrumScene& s) {
   return s.angular_velocity_rad_s * s.angular_velocity_rad_s * s.radius_m / kStandardGravity_m_s2;
 }
+// Rough wall: the bead diameter used (wall_bead_diameter_m, or the mean species diameter); 0 otherwise.
+double bead_diameter_m(const DrumScene& s);
+// Radius of the space free for the bed: R, or R − d_b inside a bead lining (the bead tips). Packing,
+// fill and the measurements use it; the Froude number keeps the mantle radius R.
+inline double free_radius_m(const DrumScene& s) { return s.radius_m - bead_diameter_m(s); }
+
 inline double omega_from_froude(double froude, double radius_m) {
   return std::sqrt(froude * kStandardGravity_m_s2 / radius_m);
 }

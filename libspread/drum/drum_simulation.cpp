@@ -7,6 +7,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "libspread/drum/drum_mantle.hpp"
+
 namespace spread::drum {
 
 dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
@@ -42,9 +44,8 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
   dem::WallSet walls;
   dem::WallGroup drum;
   drum.name = "drum";
-  drum.material = wall_mat;
   drum.angular_velocity_rad_s = omega;
-  drum.pieces.push_back(dem::make_cylinder_inner(s.radius_m, 0.0, s.length_m));
+  add_drum_mantle(s, wall_mat, drum, mats, ov);  // cylinder, plus the bead lining of a rough wall
   dem::WallGroup ends;
   ends.name = "end walls";
   ends.material = end_mat;
@@ -52,6 +53,7 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
   ends.pieces.push_back(dem::make_plane(Vec3(0.0, 0.0, s.length_m), -Vec3::UnitZ()));
   if (s.axial == AxialBoundary::kWalls) ends.angular_velocity_rad_s = omega;  // end plates turn with the drum
   walls.groups = {drum, ends};
+  if (s.axial == AxialBoundary::kPeriodic) walls.groups = {drum};  // no end walls: periodic images instead
 
   dem::EngineParams ep;
   ep.model = s.model;
@@ -70,6 +72,14 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
   ep.max_particle_radius_m = 0.5 * dmax;
   ep.gravity_m_s2 = Vec3(0.0, -kStandardGravity_m_s2, 0.0);  // drum axis is z, gravity along −y
   ep.threads = s.threads;
+  if (s.axial == AxialBoundary::kPeriodic) {
+    // The engine needs the period to hold twice the pair-search cut-off d_max + skin (skin = r_max).
+    if (!(s.length_m >= 3.0 * dmax))
+      throw std::invalid_argument(s.source_name + ": drum.length_m: " + std::to_string(s.length_m) +
+                                  " m is too short for axial = \"periodic\": at least 3 × the largest diameter (" +
+                                  std::to_string(3.0 * dmax) + " m)");
+    ep.periodic_z = {true, 0.0, s.length_m};
+  }
   return dem::DemEngine(std::move(mats), std::move(ov), std::move(walls), ep);
 }
 
@@ -124,7 +134,7 @@ DrumResult run_drum(const DrumScene& s) {
   // Stage 2: rotation, starting from the settled positions and velocities (the seed's second stage).
   dem::DemEngine turn = make_drum_engine(s, s.angular_velocity_rad_s);
   copy_state(settle.particles(), turn);
-  const DrumGeometry geo{s.radius_m, s.length_m, s.angular_velocity_rad_s};
+  const DrumGeometry geo{free_radius_m(s), s.length_m, s.angular_velocity_rad_s};  // the bed's wall: bead tips if rough
   const int sample_steps = std::max(1, static_cast<int>(std::round(s.sample_every_s / turn.dt_s())));
   std::vector<Snapshot> window;
   k = 0;

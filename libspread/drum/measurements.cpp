@@ -11,15 +11,17 @@ namespace spread::drum {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / kPi;
+constexpr double kFreeFlightGap = 0.25;  // airborne: no particle or wall within this many diameters
 
-// Particles touching another particle, found through a uniform grid of the largest diameter.
-std::vector<std::uint8_t> touching_particles(const dem::ParticleArrays& p) {
+// Particles within `gap_m` of another particle (surface to surface; 0: touching), found through a
+// uniform grid of cells one largest diameter plus the gap wide.
+std::vector<std::uint8_t> particles_near_another(const dem::ParticleArrays& p, double gap_m) {
   const std::size_t n = p.size();
-  std::vector<std::uint8_t> touch(n, 0);
+  std::vector<std::uint8_t> near(n, 0);
   double rmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius_m[i]);
-  if (n == 0 || rmax <= 0.0) return touch;
-  const double cell = 2.0 * rmax;
+  if (n == 0 || rmax <= 0.0) return near;
+  const double cell = 2.0 * rmax + gap_m;
   auto key = [&](long long a, long long b, long long c) {
     return (static_cast<std::uint64_t>(a & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(b & 0x1FFFFF) << 21) |
            static_cast<std::uint64_t>(c & 0x1FFFFF);
@@ -29,25 +31,25 @@ std::vector<std::uint8_t> touching_particles(const dem::ParticleArrays& p) {
   for (std::size_t i = 0; i < n; ++i)
     if (p.active[i]) grid[key(idx(p.x[i]), idx(p.y[i]), idx(p.z[i]))].push_back(static_cast<std::uint32_t>(i));
   for (std::size_t i = 0; i < n; ++i) {
-    if (!p.active[i] || touch[i]) continue;
+    if (!p.active[i] || near[i]) continue;
     const long long a = idx(p.x[i]), b = idx(p.y[i]), c = idx(p.z[i]);
-    for (long long da = -1; da <= 1 && !touch[i]; ++da)
-      for (long long db = -1; db <= 1 && !touch[i]; ++db)
-        for (long long dc = -1; dc <= 1 && !touch[i]; ++dc) {
+    for (long long da = -1; da <= 1 && !near[i]; ++da)
+      for (long long db = -1; db <= 1 && !near[i]; ++db)
+        for (long long dc = -1; dc <= 1 && !near[i]; ++dc) {
           const auto it = grid.find(key(a + da, b + db, c + dc));
           if (it == grid.end()) continue;
           for (std::uint32_t j : it->second) {
             if (j == i) continue;
             const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j], dz = p.z[i] - p.z[j];
-            const double cut = p.radius_m[i] + p.radius_m[j];
+            const double cut = p.radius_m[i] + p.radius_m[j] + gap_m;
             if (dx * dx + dy * dy + dz * dz < cut * cut) {
-              touch[i] = touch[j] = 1;
+              near[i] = near[j] = 1;
               break;
             }
           }
         }
   }
-  return touch;
+  return near;
 }
 
 }  // namespace
@@ -90,9 +92,14 @@ Snapshot measure(const dem::ParticleArrays& p, const DrumGeometry& g, double tim
   s.time_s = time_s;
   const std::size_t n = p.size();
   const double w = g.angular_velocity_rad_s, R = g.radius_m;
-  const auto touch = touching_particles(p);
   double dmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) dmax = std::max(dmax, 2.0 * p.radius_m[i]);
+  const auto touch = particles_near_another(p, 0.0);
+  // Free flight: farther than a quarter diameter from any particle and wall. Touching alone is not enough:
+  // in a soft, collisional surface layer many particles are momentarily apart by a small fraction of a
+  // diameter, which counted 5–15 % of a rolling or cascading bed as "airborne".
+  const double flight_gap = kFreeFlightGap * dmax;
+  const auto near = particles_near_another(p, flight_gap);
   int active = 0, airborne = 0, co_rot = 0, outer = 0;
   double outer_speed = 0.0, cx = 0.0, cy = 0.0;
   constexpr int kSectors = 36;
@@ -102,8 +109,14 @@ Snapshot measure(const dem::ParticleArrays& p, const DrumGeometry& g, double tim
     ++active;
     const double x = p.x[i], y = p.y[i], r = p.radius_m[i];
     const double rho = std::hypot(x, y);
-    const bool at_wall = rho > R - r * 1.02 || p.z[i] < r * 1.02 || p.z[i] > g.length_m - r * 1.02;
-    if (!touch[i] && !at_wall) ++airborne;
+    // The end walls do not count: they are planes parallel to the cross-section (frictionless stand-ins
+    // for a periodic axis), so a particle gliding along one still flies freely in the x–y plane. In a
+    // drum 2.25 d long, a quarter-diameter clearance from both ends left a window of 0.75 d of the 1.25 d
+    // the centres can occupy, and dropped ~80 % of the particles in flight (rough wall, Fr 0.6: 0.003
+    // counted against 0.017). An end wall with friction that drags a particle shows as an in-plane force.
+    const bool near_mantle = rho > R - r - flight_gap;
+    const bool in_plane_force = i < p.fx.size() && i < p.fy.size() && (p.fx[i] != 0.0 || p.fy[i] != 0.0);
+    if (!near[i] && !near_mantle && !in_plane_force) ++airborne;
     // Rigid rotation with the wall: v = ω ẑ × r = (−ω y, ω x).
     const double ux = p.vx[i] + w * y, uy = p.vy[i] - w * x;
     if (w > 0.0 && std::hypot(ux, uy) < 0.2 * w * rho) ++co_rot;
@@ -111,6 +124,12 @@ Snapshot measure(const dem::ParticleArrays& p, const DrumGeometry& g, double tim
       double a = std::atan2(y, x);
       if (a < 0.0) a += 2.0 * kPi;
       covered[std::min(kSectors - 1, static_cast<int>(a / (2.0 * kPi) * kSectors))] = true;
+    }
+    // Slip at the wall: the layer in contact with the mantle (10 % of a radius of tolerance: on a bead
+    // lining a particle resting on a bead tip sits at R − r), within 45° of straight down — under the
+    // bed, away from its two ends where the surface flow meets the wall and runs against its motion (in
+    // a thin bed those ends held a third of the wall layer and pulled a rolling bed's ratio to ~0.6).
+    if (rho > R - 1.1 * r && -y > std::abs(x)) {
       ++outer;
       outer_speed += (-p.vx[i] * y + p.vy[i] * x) / rho;  // counter-clockwise tangential speed
     }
@@ -212,14 +231,18 @@ RegimeEvidence classify(const std::vector<Snapshot>& window, double froude) {
   if (e.wall_coverage >= 0.9 && e.co_rotating_fraction >= 0.8) {
     e.regime = Regime::kCentrifuging;
     os << "wall coverage " << e.wall_coverage << " >= 0.9 and co-rotating fraction " << e.co_rotating_fraction << " >= 0.8";
-  } else if (e.airborne_fraction >= 0.1) {
+  } else if (e.airborne_fraction >= 0.01) {
+    // Free flight (a quarter diameter clear of everything) stays below 0.002 in rolling and cascading
+    // beds; particles thrown off a lifted shoulder give 0.014 and more (docs/drum.md).
     e.regime = Regime::kCataracting;
-    os << "airborne fraction " << e.airborne_fraction << " >= 0.1";
+    os << "airborne fraction " << e.airborne_fraction << " >= 0.01 (particles in free flight)";
   } else if (e.wall_speed_ratio < 0.5 && e.co_rotating_fraction < 0.25) {
     e.regime = Regime::kSlipping;
     os << "outer layer moves at " << e.wall_speed_ratio << " of the wall speed (< 0.5), co-rotating " << e.co_rotating_fraction;
-  } else if (e.angle_of_repose_sd_deg >= 4.0 && e.co_rotating_fraction >= 0.5) {
-    // Slumping: the bed turns with the wall between avalanches (mostly co-rotating) and the angle jumps.
+  } else if (e.angle_of_repose_sd_deg >= 4.0 && e.co_rotating_fraction >= 0.5 && e.wall_coverage < 0.6) {
+    // Slumping: a compact heap (less than 60 % of the wall covered) turns with the wall between
+    // avalanches (mostly co-rotating) and the angle jumps. Without the heap condition a bed forming a
+    // ring near Fr 1 (coverage 0.88, a surface fit that jumps by 25°) was labelled slumping.
     e.regime = Regime::kSlumping;
     os << "angle of repose varies by sd " << e.angle_of_repose_sd_deg << " deg >= 4 (avalanches) while co-rotating "
        << e.co_rotating_fraction << " >= 0.5";

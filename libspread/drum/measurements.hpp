@@ -19,10 +19,10 @@ struct Snapshot {
   double angle_of_repose_deg = 0.0;   // atan of the line fitted to the free-surface particles (Sect. 4)
   double surface_sagitta = 0.0;       // max |surface − line| / chord: 0 flat (rolling), larger for an S/kidney shape
   int surface_points = 0;
-  double airborne_fraction = 0.0;     // particles touching nothing
+  double airborne_fraction = 0.0;     // in free flight: no particle or mantle within d/4, no in-plane contact force
   double co_rotating_fraction = 0.0;  // particles moving with the wall: |v − ω×r| < 0.2 ω |r|
   double wall_coverage = 0.0;         // share of 10° sectors of the wall with a particle within 1.5 d of it
-  double wall_speed_ratio = 0.0;      // mean tangential speed of the outer layer / ωR (slip at the wall)
+  double wall_speed_ratio = 0.0;      // tangential speed of the layer touching the wall under the bed (±45°) / ωR (~1: no slip)
   double centroid_angle_deg = 0.0;    // bed centroid angle from straight down, + towards +x (lift of the bed)
   double lacey_index = 0.0;           // two species only (else 0)
 };

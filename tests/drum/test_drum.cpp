@@ -95,12 +95,6 @@ TEST(DrumRegime, SettlesThenRollsAtLowFroude) {
   EXPECT_LT(r.evidence.airborne_fraction, 0.1);
 }
 
-TEST(DrumRegime, CataractsAtFroudeHalf) {
-  const auto r = drum::run_drum(scene_at(0.5, 1.0, 0.5));
-  print(r);
-  EXPECT_EQ(r.evidence.regime, drum::Regime::kCataracting) << r.evidence.reason;
-}
-
 TEST(DrumRegime, CentrifugesAboveFroudeOne) {
   const auto r = drum::run_drum(scene_at(3.0, 1.0, 0.6));
   print(r);

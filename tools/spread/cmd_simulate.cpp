@@ -37,6 +37,7 @@ struct SimulateState {
   std::string material;
   bool json_out = false;
   bool monolithic = false;
+  int energy_every_steps = 0;
 };
 
 #if defined(SPREAD_DEM_HAS_SCENE)
@@ -52,6 +53,7 @@ int run(const SimulateState& s) {
     return spread::cli::kExitUsage;
   }
   cfg.monolithic_reference = s.monolithic;
+  cfg.energy_monitor_every_steps = s.energy_every_steps;
   const std::filesystem::path dir = scene.outputs.directory;
   const bool any_output = scene.outputs.launch_csv || scene.outputs.pattern_png || scene.outputs.vtk_every_steps > 0;
   if (any_output) std::filesystem::create_directories(dir);
@@ -119,6 +121,21 @@ int run(const SimulateState& s) {
     out["monolithic_flight_particle_steps"] = r.engine_stats.flight_particle_steps;
     out["monolithic_landed"] = r.engine_stats.landed_monolithic;
   }
+  if (r.energy_monitored) {
+    const dem::EnergyReport& e = r.energy;
+    out["energy"] = {{"max_penetration_ratio", e.max_penetration_ratio},
+                     {"balance_residual", e.balance_residual()},
+                     {"energy_created_j", e.energy_created_j},
+                     {"energy_input_j", e.energy_input_j},
+                     {"disc_work_j", e.disc_work_j},
+                     {"gravity_work_j", e.gravity_work_j},
+                     {"added_kinetic_j", e.added_kinetic_j},
+                     {"launched_kinetic_j", e.launched_kinetic_j},
+                     {"dissipated_j", e.dissipated_j},
+                     {"kinetic_j", e.kinetic_j},
+                     {"elastic_j", e.elastic_j},
+                     {"steps", e.steps}};
+  }
   if (s.json_out) {
     std::cout << out.dump(2) << "\n";
   } else {
@@ -139,6 +156,9 @@ spread::cli::CommandRegistration reg{"simulate", [](CLI::App& app, int& exit_cod
   sub->add_flag("--json", state->json_out, "machine-readable output on stdout");
   sub->add_flag("--monolithic", state->monolithic,
                 "also keep launched particles in the DEM loop at the contact step until they land (cost reference)");
+  sub->add_option("--energy-monitor", state->energy_every_steps,
+                  "energy budget and max penetration every step, sampled every N steps (0 = off); adds \"energy\" to the summary")
+      ->check(CLI::NonNegativeNumber);
   sub->callback([&exit_code] {
 #if defined(SPREAD_HAS_DRUM)
     // A scene with a [drum] table is the rotating drum (issue 7), not a disc.
