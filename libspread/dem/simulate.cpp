@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "libspread/dem/vtk_writer.hpp"
 #include "libspread/metrics/metrics.hpp"
 
 namespace spread::dem {
@@ -68,23 +69,6 @@ void write_launch_csv(const std::vector<LaunchRecord>& launches, const std::stri
   std::fclose(f);
 }
 
-void write_particles_vtk(const ParticleArrays& p, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write VTK file '" + path + "'");
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) n += p.active[i] ? 1 : 0;
-  out << "# vtk DataFile Version 3.0\nlibspread particles\nASCII\nDATASET POLYDATA\nPOINTS " << n << " double\n";
-  out.precision(9);
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.active[i]) out << p.x[i] << ' ' << p.y[i] << ' ' << p.z[i] << '\n';
-  out << "POINT_DATA " << n << "\nSCALARS radius_m double 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.active[i]) out << p.radius_m[i] << '\n';
-  out << "VECTORS velocity_m_s double\n";
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.active[i]) out << p.vx[i] << ' ' << p.vy[i] << ' ' << p.vz[i] << '\n';
-}
-
 SimulationResult simulate(const SimulationConfig& cfg) {
   const auto t_start = Clock::now();
   if (cfg.materials.empty()) throw std::invalid_argument("simulate: no materials");
@@ -103,6 +87,9 @@ SimulationResult simulate(const SimulationConfig& cfg) {
   WallSet walls;
   walls.groups.push_back(make_disc(cfg.disc, cfg.rpm, cfg.disc_material, ep.max_particle_radius_m));
   res.module_time_s["disc_generator"] = since(t0);
+  const bool write_vtk = !cfg.vtk_prefix.empty() && cfg.vtk_every_steps > 0;
+  const bool write_walls_vtk_files = write_vtk && !cfg.vtk_walls_prefix.empty();
+  const WallSet wall_geometry = write_walls_vtk_files ? walls : WallSet{};  // the engine owns the walls
 
   DemEngine engine(cfg.materials, cfg.overrides, std::move(walls), ep);
   Collector col;
@@ -135,11 +122,12 @@ SimulationResult simulate(const SimulationConfig& cfg) {
     inlet_s += since(t0);
     engine.step();
     ++step;
-    if (!cfg.vtk_prefix.empty() && cfg.vtk_every_steps > 0 && step % static_cast<std::uint64_t>(cfg.vtk_every_steps) == 0) {
+    if (write_vtk && step % static_cast<std::uint64_t>(cfg.vtk_every_steps) == 0) {
       t0 = Clock::now();
       char name[64];
       std::snprintf(name, sizeof name, "_%09llu.vtk", static_cast<unsigned long long>(step));
       write_particles_vtk(engine.particles(), cfg.vtk_prefix + name);
+      if (write_walls_vtk_files) write_walls_vtk(wall_geometry, engine.time_s(), cfg.vtk_walls_prefix + name);
       vtk_s += since(t0);
     }
   }

@@ -35,7 +35,8 @@ struct SimulationConfig {
   int flight_threads = 1;
   bool monolithic_reference = false;   // keep launched particles in the DEM loop at Δt_c (cost reference)
   // Outputs (empty = none).
-  std::string vtk_prefix;
+  std::string vtk_prefix;        // particles: <prefix>_<step>.vtk (vtk_writer.hpp)
+  std::string vtk_walls_prefix;  // walls at the same steps: <prefix>_<step>.vtk; empty = none
   int vtk_every_steps = 0;
   // Energy and penetration diagnostics (energy_monitor.hpp): 0 = off (costs nothing); N > 0 = on, with a
   // time-series sample every N steps (the budget itself is kept every step).
@@ -78,8 +79,7 @@ SimulationResult simulate(const SimulationConfig& config);
 LaunchSummary summarise_launches(const std::vector<LaunchRecord>& launches, const Vec3& axis_point);
 std::array<double, 12> sector_mass_fraction(const std::vector<LaunchRecord>& launches, const Vec3& axis_point);
 
-// Writers for the outputs.
+// Writer of the launch records (VTK snapshots: vtk_writer.hpp).
 void write_launch_csv(const std::vector<LaunchRecord>& launches, const std::string& path);
-void write_particles_vtk(const ParticleArrays& particles, const std::string& path);
 
 }  // namespace spread::dem

@@ -59,6 +59,7 @@ int run(const SimulateState& s) {
   if (any_output) std::filesystem::create_directories(dir);
   if (scene.outputs.vtk_every_steps > 0) {
     cfg.vtk_prefix = (dir / "particles").string();
+    cfg.vtk_walls_prefix = (dir / "walls").string();
     cfg.vtk_every_steps = scene.outputs.vtk_every_steps;
   }
   dem::SimulationResult r;
