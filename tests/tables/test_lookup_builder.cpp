@@ -8,12 +8,12 @@
 #include "libspread/tables/table_reader.hpp"
 #include "lookup_builder/run_source.hpp"
 #include "lookup_builder/table_build.hpp"
-#include "temp_file.hpp"
+#include "tests/support/temp_path.hpp"
 
 namespace spread::lookup {
 namespace {
 
-using spread::testing::TempFile;
+using spread::testing::TempPath;
 
 scene::Scene default_scene(const std::vector<std::string>& overrides = {}) {
   return scene::load_scene_file(std::string(SPREAD_SOURCE_DIR) + "/scenes/default.toml", overrides);
@@ -21,7 +21,7 @@ scene::Scene default_scene(const std::vector<std::string>& overrides = {}) {
 
 TEST(LookupBuilder, DefaultSceneTwiceGivesTheSameRuns) {
   const scene::Scene scene = default_scene();
-  TempFile first("build1"), second("build2");
+  TempPath first("build1"), second("build2");
   BuildOptions options;
   options.output_path = first.path();
   const BuildSummary summary = build_tables(scene, options);
@@ -56,7 +56,7 @@ TEST(LookupBuilder, DefaultSceneTwiceGivesTheSameRuns) {
 
 TEST(LookupBuilder, RerunSkipsFinishedRunsAndRebuildRedoesThem) {
   const scene::Scene scene = default_scene({"sweep.samples_per_run=32"});
-  TempFile file("rerun");
+  TempPath file("rerun");
   BuildOptions options;
   options.output_path = file.path();
   std::ostringstream progress;

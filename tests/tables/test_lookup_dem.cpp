@@ -19,7 +19,7 @@
 #include "lookup_builder/dem_run.hpp"
 #include "lookup_builder/run_message.hpp"
 #include "lookup_builder/table_build.hpp"
-#include "temp_file.hpp"
+#include "tests/support/temp_path.hpp"
 
 extern char** environ;
 
@@ -27,7 +27,7 @@ namespace spread::lookup {
 namespace {
 
 using spread::testing::file_bytes;
-using spread::testing::TempFile;
+using spread::testing::TempPath;
 using spread::testing::write_bytes;
 
 const std::string kTinyScene = std::string(SPREAD_SOURCE_DIR) + "/tests/tables/data/tiny_dem.toml";
@@ -117,7 +117,7 @@ TEST(LookupDem, StopsAtTheParticleBudgetAndOnConvergence) {
 
 TEST(LookupDem, JobsOnThreadsGiveTheSameFileAsOneProcess) {
   const scene::Scene scene = tiny_scene();
-  TempFile one("dem_jobs1"), two("dem_jobs2");
+  TempPath one("dem_jobs1"), two("dem_jobs2");
   BuildOptions options;
   options.output_path = one.path();
   EXPECT_EQ(build_tables(scene, options).runs_written, 4);
@@ -139,7 +139,7 @@ TEST(LookupDem, BuildKilledMidRunResumesToTheSameContent) {
   // Slower runs than the other tests so the kill lands inside a run: 4 rows of ~1 s.
   const std::vector<std::string> overrides = {"sweep.materials=[\"Urea\"]", "sweep.rpm=[500, 550, 600, 650]",
                                               "numerics.duration_s=0.3"};
-  TempFile killed("dem_killed"), reference("dem_reference");
+  TempPath killed("dem_killed"), reference("dem_reference");
   std::vector<std::string> args = {LOOKUP_BUILDER_EXE, kTinyScene, "--output", killed.path()};
   for (const std::string& o : overrides) {
     args.push_back("--set");
@@ -186,7 +186,7 @@ TEST(LookupDem, BuildKilledMidRunResumesToTheSameContent) {
 
 TEST(LookupDem, DamagedTruncatedAndForeignFilesAreRefusedAndLeftAlone) {
   const scene::Scene scene = tiny_scene({"sweep.materials=[\"Kmag\"]", "sweep.rpm=[650]", "numerics.duration_s=0.1"});
-  TempFile good("dem_good");
+  TempPath good("dem_good");
   BuildOptions options;
   options.output_path = good.path();
   build_tables(scene, options);
@@ -208,7 +208,7 @@ TEST(LookupDem, DamagedTruncatedAndForeignFilesAreRefusedAndLeftAlone) {
                              {"foreign", foreign, tables::TableErrorKind::kNotOurs}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
-    TempFile file(std::string("dem_") + c.name);
+    TempPath file(std::string("dem_") + c.name);
     write_bytes(file.path(), c.bytes);
     options.output_path = file.path();
     try {

@@ -12,13 +12,13 @@
 #include "libspread/tables/table_reader.hpp"
 #include "libspread/tables/table_writer.hpp"
 #include "table_fixtures.hpp"
-#include "temp_file.hpp"
+#include "tests/support/temp_path.hpp"
 
 namespace spread::tables {
 namespace {
 
 using spread::testing::file_bytes;
-using spread::testing::TempFile;
+using spread::testing::TempPath;
 
 // Runs SQL on a file with the plain sqlite3 API, as a foreign tool (or a vandal) would.
 void raw_exec(const std::string& path, const std::string& sql) {
@@ -55,12 +55,12 @@ void expect_read_error(const std::string& path, TableErrorKind kind, const std::
 }
 
 TEST(TableErrors, MissingFile) {
-  TempFile file("missing");
+  TempPath file("missing");
   expect_read_error(file.path(), TableErrorKind::kMissing, "no such file");
 }
 
 TEST(TableErrors, GarbageBytesAreNotOurs) {
-  TempFile file("garbage");
+  TempPath file("garbage");
   std::vector<char> garbage(5000);
   for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 37 + 11) % 256);
   spread::testing::write_bytes(file.path(), garbage);
@@ -68,7 +68,7 @@ TEST(TableErrors, GarbageBytesAreNotOurs) {
 }
 
 TEST(TableErrors, ForeignSqliteDatabaseIsNotOurs) {
-  TempFile file("foreign");
+  TempPath file("foreign");
   raw_exec(file.path(), "CREATE TABLE runs (x INTEGER); INSERT INTO runs VALUES (1);");
   expect_read_error(file.path(), TableErrorKind::kNotOurs, "application_id");
   // The writer refuses it too, and leaves it as it was.
@@ -83,7 +83,7 @@ TEST(TableErrors, ForeignSqliteDatabaseIsNotOurs) {
 }
 
 TEST(TableErrors, BumpedUserVersionIsWrongVersion) {
-  TempFile file("version");
+  TempPath file("version");
   spread::testing::write_sample_table(file.path());
   raw_exec(file.path(), "PRAGMA user_version = " + std::to_string(kFormatVersion + 1));
   expect_read_error(file.path(), TableErrorKind::kWrongVersion, "version");
@@ -98,7 +98,7 @@ TEST(TableErrors, BumpedUserVersionIsWrongVersion) {
 }
 
 TEST(TableErrors, TruncatedFileIsCorrupt) {
-  TempFile file("truncated");
+  TempPath file("truncated");
   spread::testing::write_sample_table(file.path(), 2000);  // several pages of BLOB overflow
   std::vector<char> bytes = file_bytes(file.path());
   ASSERT_GT(bytes.size(), 4u * 4096u);
@@ -108,21 +108,21 @@ TEST(TableErrors, TruncatedFileIsCorrupt) {
 }
 
 TEST(TableErrors, BlobOfWrongSizeIsCorrupt) {
-  TempFile file("blob");
+  TempPath file("blob");
   spread::testing::write_sample_table(file.path());
   raw_exec(file.path(), "UPDATE runs SET samples = substr(samples, 1, 100) WHERE material = 'B'");
   expect_read_error(file.path(), TableErrorKind::kCorrupt, "BLOB");
 }
 
 TEST(TableErrors, DifferentRecordLayoutIsCorrupt) {
-  TempFile file("layout");
+  TempPath file("layout");
   spread::testing::write_sample_table(file.path());
   raw_exec(file.path(), "UPDATE runs SET record_layout = 'x_m,y_m' WHERE material = 'A' AND rpm = 600");
   expect_read_error(file.path(), TableErrorKind::kCorrupt, "layout");
 }
 
 TEST(TableErrors, TableWithoutRunsIsEmpty) {
-  TempFile file("empty");
+  TempPath file("empty");
   {
     TableWriter writer(file.path());
     writer.write_machine(spread::testing::sample_machine());
@@ -142,7 +142,7 @@ TEST(TableErrors, ImpossibleValuesAreCorruptNamingTheField) {
       {"UPDATE runs SET dt_flight_s = -1 WHERE material = 'A' AND rpm = 600", "dt_flight_s = -1"},
   };
   for (const auto& [sql, named] : damage) {
-    TempFile file("impossible");
+    TempPath file("impossible");
     spread::testing::write_sample_table(file.path());
     raw_exec(file.path(), sql);
     expect_read_error(file.path(), TableErrorKind::kCorrupt, named);
@@ -150,7 +150,7 @@ TEST(TableErrors, ImpossibleValuesAreCorruptNamingTheField) {
 }
 
 TEST(TableErrors, WriterRefusesImpossibleValuesNamingTheField) {
-  TempFile file("writer");
+  TempPath file("writer");
   TableWriter writer(file.path());
   Machine machine = spread::testing::sample_machine();
   machine.disc_radius_m = std::numeric_limits<double>::quiet_NaN();
@@ -182,7 +182,7 @@ TEST(TableErrors, WriterRefusesImpossibleValuesNamingTheField) {
 }
 
 TEST(TableErrors, ZeroByteFileIsNotOurs) {
-  TempFile file("zero");
+  TempPath file("zero");
   spread::testing::write_bytes(file.path(), {});
   expect_read_error(file.path(), TableErrorKind::kNotOurs);
 }

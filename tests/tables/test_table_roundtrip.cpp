@@ -8,12 +8,12 @@
 #include "libspread/tables/table_reader.hpp"
 #include "libspread/tables/table_writer.hpp"
 #include "table_fixtures.hpp"
-#include "temp_file.hpp"
+#include "tests/support/temp_path.hpp"
 
 namespace spread::tables {
 namespace {
 
-using spread::testing::TempFile;
+using spread::testing::TempPath;
 
 bool same_bits(const LaunchSample& a, const LaunchSample& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -38,7 +38,7 @@ TEST(TableFormat, EncodesLittleEndianExplicitly) {
 }
 
 TEST(TableRoundTrip, EverythingWrittenIsReadBack) {
-  TempFile file("roundtrip");
+  TempPath file("roundtrip");
   spread::testing::write_sample_table(file.path(), 100);
   const TableContents contents = read_table_file(file.path());
 
@@ -82,7 +82,7 @@ TEST(TableRoundTrip, EverythingWrittenIsReadBack) {
 }
 
 TEST(TableWriter, SecondWriteOfARunNeedsReplace) {
-  TempFile file("replace");
+  TempPath file("replace");
   spread::testing::write_sample_table(file.path(), 8);
   TableWriter writer(file.path());  // reopen an existing table of ours
   EXPECT_TRUE(writer.has_run("A", 450.0));
@@ -97,7 +97,7 @@ TEST(TableWriter, SecondWriteOfARunNeedsReplace) {
 }
 
 TEST(TableWriter, RefusesRunOfUnknownMaterialAndEmptyRun) {
-  TempFile file("unknown_material");
+  TempPath file("unknown_material");
   spread::testing::write_sample_table(file.path(), 4);
   TableWriter writer(file.path());
   EXPECT_THROW(writer.write_run(spread::testing::sample_run("C", 450.0, 4)), std::invalid_argument);
@@ -106,7 +106,7 @@ TEST(TableWriter, RefusesRunOfUnknownMaterialAndEmptyRun) {
 }
 
 TEST(TableWriter, RefusesGarbageFileAndLeavesItByteIdentical) {
-  TempFile file("writer_garbage");
+  TempPath file("writer_garbage");
   std::vector<char> garbage(3000);
   for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 131 + 7) % 251);
   spread::testing::write_bytes(file.path(), garbage);

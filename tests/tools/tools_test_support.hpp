@@ -1,46 +1,13 @@
 #pragma once
-// Shared pieces of the field-tool tests: temporary files, and a small analytic table of the bundled
-// default scene built with lookup_builder's sweep.
-#include <unistd.h>
-
-#include <filesystem>
-#include <fstream>
-#include <iterator>
+// Shared pieces of the field-tool tests: a small analytic table of the bundled default scene built
+// with lookup_builder's sweep (temporary files: tests/support/temp_path.hpp).
 #include <string>
-#include <vector>
 
 #include "libspread/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
+#include "tests/support/temp_path.hpp"
 
 namespace spread::testing {
-
-class TempPath {
- public:
-  explicit TempPath(const std::string& name) {
-    static int counter = 0;
-    path_ = (std::filesystem::temp_directory_path() /
-             ("spread_tools_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" + name))
-                .string();
-    remove();
-  }
-  ~TempPath() { remove(); }
-  TempPath(const TempPath&) = delete;
-  TempPath& operator=(const TempPath&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  void remove() const {
-    std::error_code ec;
-    std::filesystem::remove(path_, ec);
-    std::filesystem::remove(path_ + "-journal", ec);
-  }
-  std::string path_;
-};
-
-inline std::vector<char> file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 // Urea of scenes/default.toml at 500 and 600 rpm, `samples` per run, with the seed's narrow Case 1 inlet
 // (r 0.0145 m at 0.1 m). The overrides go through the scene's provenance text, so reading them back is

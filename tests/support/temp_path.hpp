@@ -1,28 +1,30 @@
 #pragma once
-// A unique path in the temp directory, removed (with any SQLite journal) at scope exit.
+// Test helpers shared by the suites: a unique path in the temp directory, removed (with any SQLite
+// journal) at scope exit, and whole-file byte reads and writes for damaging files on purpose.
 #include <unistd.h>
 
-#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace spread::testing {
 
-class TempFile {
+class TempPath {
  public:
-  explicit TempFile(const std::string& tag) {
+  // `name` ends the file name (e.g. "table.sqlite"); the process id and a counter make it unique.
+  explicit TempPath(const std::string& name) {
     static int counter = 0;
     path_ = (std::filesystem::temp_directory_path() /
-             ("spread_test_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".sqlite"))
+             ("spread_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" + name))
                 .string();
     remove();
   }
-  ~TempFile() { remove(); }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
+  ~TempPath() { remove(); }
+  TempPath(const TempPath&) = delete;
+  TempPath& operator=(const TempPath&) = delete;
   const std::string& path() const { return path_; }
 
  private:
