@@ -38,6 +38,20 @@ struct ContactInput {
   double dt_s = 0.0;
 };
 
+// The parts of a law that depend only on the two bodies (R*, M*, the pair's material constants), not on
+// the contact's state: computed by Law::coeffs once per material pair whose particles all share one
+// radius and mass (the engine's table, refreshed when particles are added), or per contact otherwise.
+// The per-step kernel is then left with the distance's sqrt and one reciprocal (plus δ^{1/2} for Hertz).
+struct PairCoeffs {
+  double r_eff_m = 0.0;   // R* (rolling resistance; the Hertz prefactors below)
+  double m_eff_kg = 0.0;  // M*
+  double k_n = 0.0;       // linear: k_n (N/m);      Hertz: 4/3 sqrt(R*) E*  (F_el = k_n δ^{3/2}, Eq. 16)
+  double k_t = 0.0;       // linear: k_t (N/m);      Hertz: 8 G* sqrt(R*)    (k_t(δ) = this · δ^{1/2}, Eq. 19)
+  double c_n = 0.0;       // linear: 2ζ sqrt(M* k_n); Hertz: γ sqrt(8 E* M* sqrt(R*))  (× δ^{1/4}, Eq. 18)
+  double c_t = 0.0;       // linear: 2ζ sqrt(M* k_t); Hertz: 2γ sqrt(8 G* M* sqrt(R*)) (× δ^{1/4}, Eq. 24)
+  bool uniform = false;   // engine table only: true when the entry holds for every particle pair of these materials
+};
+
 // History slots per contact: elastic tangential force (N, 3 components) and the previous overlap (m).
 inline constexpr int kHistoryDoubles = 4;
 
@@ -75,18 +89,31 @@ SPREAD_CONTACT_INLINE Vec3 coulomb(Vec3& elastic, const Vec3& damping, double li
 struct HertzThornton {
   static constexpr bool kNeedsHistory = true;
 
+  SPREAD_CONTACT_INLINE static PairCoeffs coeffs(const PairParams& p, double r_eff_m, double m_eff_kg) {
+    PairCoeffs c;
+    const double sqrt_r = std::sqrt(r_eff_m);
+    c.r_eff_m = r_eff_m;
+    c.m_eff_kg = m_eff_kg;
+    // Eq. 16: F_el = 4/3 sqrt(R*) E* δ^{3/2}; Eq. 18: c_n = γ sqrt(8 E* M* sqrt(R*)) — γ is the damping
+    // ratio against the linearised stiffness dF/dδ = 2 E* sqrt(R* δ).
+    c.k_n = (4.0 / 3.0) * sqrt_r * p.e_star_pa;
+    c.c_n = p.damping_ratio * std::sqrt(8.0 * p.e_star_pa * m_eff_kg * sqrt_r);
+    c.k_t = 8.0 * p.g_star_pa * sqrt_r;                                             // k_t = 8 G* sqrt(R* δ)
+    c.c_t = 2.0 * p.damping_ratio * std::sqrt(8.0 * p.g_star_pa * m_eff_kg * sqrt_r);  // Eq. 24
+    return c;
+  }
   static ContactForce eval(const PairParams& p, const ContactInput& in, double* history) {
+    return eval(p, coeffs(p, in.r_eff_m, in.m_eff_kg), in, history);
+  }
+  // in.r_eff_m and in.m_eff_kg are not read: c holds what depends on them.
+  static ContactForce eval(const PairParams& p, const PairCoeffs& c, const ContactInput& in, double* history) {
     ContactForce out;
     const double delta = in.overlap_m;
-    const double sqrt_r = std::sqrt(in.r_eff_m);
     const double sqrt_delta = std::sqrt(delta);
     const double quarter = std::sqrt(sqrt_delta);  // δ^{1/4}
     const double delta_rate = -in.slip_m_s.dot(in.normal);
-    // Eq. 16: F_el = 4/3 sqrt(R*) E* δ^{3/2}; Eq. 18: c_n = γ sqrt(8 E* M* sqrt(R*)) — γ is the damping
-    // ratio against the linearised stiffness dF/dδ = 2 E* sqrt(R* δ).
-    const double f_el = (4.0 / 3.0) * sqrt_r * p.e_star_pa * delta * sqrt_delta;
-    const double c_n = p.damping_ratio * std::sqrt(8.0 * p.e_star_pa * in.m_eff_kg * sqrt_r);
-    const double f_n = std::max(0.0, f_el + c_n * quarter * delta_rate);
+    const double f_el = c.k_n * delta * sqrt_delta;                       // Eq. 16
+    const double f_n = std::max(0.0, f_el + c.c_n * quarter * delta_rate);  // Eqs. 17–18
     out.normal_force_n = f_n;
 
     const Vec3 slip_t = in.slip_m_s - in.slip_m_s.dot(in.normal) * in.normal;
@@ -95,10 +122,9 @@ struct HertzThornton {
     // overlap (and with it the contact radius) shrinks (Appendix 2, Eq. 63).
     const double delta_old = history[3];
     if (delta < delta_old && delta_old > 0.0) elastic *= std::sqrt(delta / delta_old);
-    const double k_t = 8.0 * p.g_star_pa * sqrt_r * sqrt_delta;  // k_t = 8 G* sqrt(R* δ)
-    elastic -= k_t * in.dt_s * slip_t;                             // Eq. 19, force opposes the slip
-    const double c_t = 2.0 * p.damping_ratio * std::sqrt(8.0 * p.g_star_pa * in.m_eff_kg * sqrt_r);  // Eq. 24
-    const Vec3 damping = -c_t * quarter * slip_t;                                                      // Eq. 23
+    const double k_t = c.k_t * sqrt_delta;  // k_t = 8 G* sqrt(R* δ)
+    elastic -= k_t * in.dt_s * slip_t;      // Eq. 19, force opposes the slip
+    const Vec3 damping = -c.c_t * quarter * slip_t;  // Eq. 23
     out.tangential_force_n = detail::coulomb(elastic, damping, p.friction * f_n);
     history[0] = elastic.x();
     history[1] = elastic.y();
@@ -116,17 +142,29 @@ struct HertzThornton {
 struct LinearSpringDashpot {
   static constexpr bool kNeedsHistory = true;
 
+  SPREAD_CONTACT_INLINE static PairCoeffs coeffs(const PairParams& p, double r_eff_m, double m_eff_kg) {
+    PairCoeffs c;
+    c.r_eff_m = r_eff_m;
+    c.m_eff_kg = m_eff_kg;
+    c.k_n = p.kn_linear_n_m;
+    c.k_t = p.kt_linear_n_m;
+    c.c_n = 2.0 * p.damping_ratio * std::sqrt(m_eff_kg * p.kn_linear_n_m);  // 2ζ sqrt(M* k_n)
+    c.c_t = 2.0 * p.damping_ratio * std::sqrt(m_eff_kg * p.kt_linear_n_m);  // 2ζ sqrt(M* k_t)
+    return c;
+  }
   static ContactForce eval(const PairParams& p, const ContactInput& in, double* history) {
+    return eval(p, coeffs(p, in.r_eff_m, in.m_eff_kg), in, history);
+  }
+  // in.r_eff_m and in.m_eff_kg are not read: c holds what depends on them.
+  static ContactForce eval(const PairParams& p, const PairCoeffs& c, const ContactInput& in, double* history) {
     ContactForce out;
     const double delta_rate = -in.slip_m_s.dot(in.normal);
-    const double c_n = 2.0 * p.damping_ratio * std::sqrt(in.m_eff_kg * p.kn_linear_n_m);
-    const double f_n = std::max(0.0, p.kn_linear_n_m * in.overlap_m + c_n * delta_rate);
+    const double f_n = std::max(0.0, c.k_n * in.overlap_m + c.c_n * delta_rate);
     out.normal_force_n = f_n;
     const Vec3 slip_t = in.slip_m_s - in.slip_m_s.dot(in.normal) * in.normal;
     Vec3 elastic = detail::carry_into_plane(history, in.normal);
-    elastic -= p.kt_linear_n_m * in.dt_s * slip_t;
-    const double c_t = 2.0 * p.damping_ratio * std::sqrt(in.m_eff_kg * p.kt_linear_n_m);
-    out.tangential_force_n = detail::coulomb(elastic, -c_t * slip_t, p.friction * f_n);
+    elastic -= c.k_t * in.dt_s * slip_t;
+    out.tangential_force_n = detail::coulomb(elastic, -c.c_t * slip_t, p.friction * f_n);
     history[0] = elastic.x();
     history[1] = elastic.y();
     history[2] = elastic.z();

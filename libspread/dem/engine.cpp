@@ -140,6 +140,7 @@ std::uint32_t DemEngine::add_particle(const Vec3& pos, const Vec3& vel, double r
   if (params_.periodic_z.enabled) at.z() = wrap_into_period(at.z(), params_.periodic_z);
   p_.push_back(at, vel, spin, radius, m, 0.4 * m * radius * radius, static_cast<std::uint16_t>(material), pid, time_s_);
   lists_dirty_ = true;
+  coeffs_dirty_ = true;
   return pid;
 }
 
@@ -201,8 +202,40 @@ void DemEngine::maintain_lists() {
   stats_.pair_search_s += seconds_since(t0);
 }
 
+template <class Law>
+void DemEngine::update_pair_coeffs() {
+  const std::size_t mc = materials_.size();
+  // One radius and mass per material? (Removing particles cannot break it, so only additions refresh.)
+  std::vector<double> r(mc, 0.0), m(mc, 0.0);
+  std::vector<std::uint8_t> seen(mc, 0), uniform(mc, 1);
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (!p_.active[i]) continue;
+    const std::size_t a = p_.material[i];
+    if (!seen[a]) { seen[a] = 1; r[a] = p_.radius_m[i]; m[a] = p_.mass_kg[i]; }
+    else if (p_.radius_m[i] != r[a] || p_.mass_kg[i] != m[a]) uniform[a] = 0;
+  }
+  pair_coeffs_.assign(mc * mc, PairCoeffs{});
+  wall_coeffs_.assign(mc * mc, PairCoeffs{});
+  for (std::size_t a = 0; a < mc; ++a) {
+    if (!seen[a] || !uniform[a]) continue;
+    for (std::size_t b = 0; b < mc; ++b) {
+      const PairParams& pp = pair_table_(static_cast<int>(a), static_cast<int>(b));
+      // The same expressions as the per-contact fallback in the pass, so the results are bit-identical.
+      wall_coeffs_[a * mc + b] = Law::coeffs(pp, r[a], m[a]);
+      wall_coeffs_[a * mc + b].uniform = true;
+      if (!seen[b] || !uniform[b]) continue;
+      pair_coeffs_[a * mc + b] = Law::coeffs(pp, r[a] * r[b] / (r[a] + r[b]), m[a] * m[b] / (m[a] + m[b]));
+      pair_coeffs_[a * mc + b].uniform = true;
+    }
+  }
+  coeffs_dirty_ = false;
+}
+
 template <class Law, bool kRotation, bool kRolling>
 void DemEngine::compute_forces_impl() {
+  if (coeffs_dirty_) update_pair_coeffs<Law>();
+  const PairCoeffs* const wall_coeffs = wall_coeffs_.data();
+  const std::size_t material_count = materials_.size();
   const std::size_t n = p_.size();
   const double dt = dt_s_;
   const long long nn = static_cast<long long>(n);
@@ -271,10 +304,10 @@ void DemEngine::compute_forces_impl() {
       Vec3 v_contact = v;
       if constexpr (kRotation) v_contact += w.cross(arm);
       in.slip_m_s = v_contact - wc[c].wall_velocity_m_s;
-      in.r_eff_m = r;
-      in.m_eff_kg = m;
       in.dt_s = dt;
-      const ContactForce cf = Law::eval(pp, in, hist);
+      const PairCoeffs& tab = wall_coeffs[static_cast<std::size_t>(p_.material[i]) * material_count +
+                                          static_cast<std::size_t>(wc[c].material)];
+      const ContactForce cf = Law::eval(pp, tab.uniform ? tab : Law::coeffs(pp, r, m), in, hist);
       force += cf.force_n;
       if constexpr (kRotation) torque += arm.cross(cf.tangential_force_n);  // Eq. 15
       if constexpr (kRolling) {
@@ -292,9 +325,7 @@ void DemEngine::compute_forces_impl() {
   stats_.wall_contacts_dropped += dropped;
 
   if (!params_.particle_contact) return;
-  if (pair_fx_.size() != n) {
-    for (auto* a : {&pair_fx_, &pair_fy_, &pair_fz_, &pair_tx_, &pair_ty_, &pair_tz_}) a->assign(n, 0.0);
-  }
+  if (pair_sum_.size() != n) pair_sum_.assign(n, PairSum{});
   // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
   // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
   const bool threaded = params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems;
@@ -328,17 +359,14 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
   const std::uint32_t* const pair_start = pairs_.first_start.data();
   const std::uint32_t* const partner = pairs_.second.data();
   double* const history = pairs_.history.data();
+  std::uint8_t* const held = pairs_.held.data();
   double* const out_force = pairs_.force.data();
   double* const out_torque_i = pairs_.torque_first.data();
   double* const out_torque_j = pairs_.torque_second.data();
-  double* const sum_fx = pair_fx_.data();
-  double* const sum_fy = pair_fy_.data();
-  double* const sum_fz = pair_fz_.data();
-  double* const sum_tx = pair_tx_.data();
-  double* const sum_ty = pair_ty_.data();
-  double* const sum_tz = pair_tz_.data();
+  PairSum* const sums = pair_sum_.data();
   const PairParams* const params_row0 = &pair_table_(0, 0);
   const std::size_t material_count = pair_table_.material_count();
+  const PairCoeffs* const coeffs_row0 = pair_coeffs_.data();
   const bool periodic = params_.periodic_z.enabled;
   const double period = params_.periodic_z.length_m();
   const double dt = dt_s_;
@@ -356,6 +384,7 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
     if constexpr (kRotation) wi = Vec3(pwx[i], pwy[i], pwz[i]);
     const double ri = radius[i], mi = mass[i];
     const PairParams* const params_row = params_row0 + static_cast<std::size_t>(material[i]) * material_count;
+    const PairCoeffs* const coeffs_row = coeffs_row0 + static_cast<std::size_t>(material[i]) * material_count;
     // This particle's share of its own pairs (it is `first` in all of them), summed from zero.
     Vec3 sum_f = Vec3::Zero(), sum_t = Vec3::Zero();
     for (std::uint32_t k = k_begin; k < k_end; ++k) {
@@ -366,11 +395,14 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
       const double rj = radius[j];
       const double dist2 = d.squaredNorm();
       const double cut = ri + rj;
-      if (!i_active || !active[j] || dist2 >= cut * cut || dist2 == 0.0) {
-        // Contact lost: the tangential spring is released (history written only if it holds anything,
-        // so the ~2/3 of listed pairs that are apart cost a read, not a write).
-        if (hist[0] != 0.0 || hist[1] != 0.0 || hist[2] != 0.0 || hist[3] != 0.0)
+      // Apart first: most listed pairs are, and the test needs only positions and radii.
+      if (dist2 >= cut * cut || !i_active || !active[j] || dist2 == 0.0) {
+        // Contact lost: the tangential spring is released. History touched only if it holds anything
+        // (held byte), so the ~2/3 of listed pairs that are apart cost a byte read, not 32 bytes.
+        if (held[k]) {
           hist[0] = hist[1] = hist[2] = hist[3] = 0.0;
+          held[k] = 0;
+        }
         if constexpr (kStorePairs) {
           for (int c = 0; c < 3; ++c) out_force[k * 3 + c] = 0.0;
           if constexpr (kRotation)
@@ -380,7 +412,7 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
       }
       const double dist = std::sqrt(dist2);
       ContactInput in;
-      in.normal = d / dist;  // from j to i
+      in.normal = d * (1.0 / dist);  // from j to i: n = d/|d|, one reciprocal instead of three divisions
       in.overlap_m = cut - dist;
       const PairParams& pp = params_row[material[j]];
       const double li = Law::lever(ri, pp.share_a, in.overlap_m);
@@ -394,11 +426,13 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
         vj += wj.cross(arm_j);
       }
       in.slip_m_s = vi - vj;  // Eq. 8
-      in.r_eff_m = ri * rj / cut;
-      const double mj = mass[j];
-      in.m_eff_kg = mi * mj / (mi + mj);
       in.dt_s = dt;
-      const ContactForce cf = Law::eval(pp, in, hist);
+      // R* = r_i r_j / (r_i + r_j), M* = m_i m_j / (m_i + m_j) and what the law derives from them: from the
+      // material-pair table when both materials have one size, else per contact.
+      const PairCoeffs& tab = coeffs_row[material[j]];
+      const PairCoeffs pc = tab.uniform ? tab : Law::coeffs(pp, ri * rj / cut, mi * mass[j] / (mi + mass[j]));
+      const ContactForce cf = Law::eval(pp, pc, in, hist);
+      held[k] = 1;
       const Vec3& f = cf.force_n;
       Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
       if constexpr (kRotation) {
@@ -406,7 +440,7 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
         t_j = arm_j.cross(-cf.tangential_force_n);
         if constexpr (kRolling) {
           const double ii_ = inertia[i], ij_ = inertia[j];
-          const Vec3 tr = rolling_torque(pp.rolling_friction, cf.normal_force_n, in.r_eff_m, wi - wj, ii_ * ij_ / (ii_ + ij_), dt);
+          const Vec3 tr = rolling_torque(pp.rolling_friction, cf.normal_force_n, pc.r_eff_m, wi - wj, ii_ * ij_ / (ii_ + ij_), dt);
           t_i += tr;
           t_j -= tr;
         }
@@ -419,26 +453,28 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
           for (int c = 0; c < 3; ++c) { out_torque_i[k * 3 + c] = t_i[c]; out_torque_j[k * 3 + c] = t_j[c]; }
       } else {
         // j > i: its sum is finished when the loop reaches j (Newton's third law, Eq. 1).
-        sum_fx[j] -= f.x(); sum_fy[j] -= f.y(); sum_fz[j] -= f.z();
-        if constexpr (kRotation) { sum_tx[j] += t_j.x(); sum_ty[j] += t_j.y(); sum_tz[j] += t_j.z(); }
+        PairSum& sj = sums[j];
+        sj.f[0] -= f.x(); sj.f[1] -= f.y(); sj.f[2] -= f.z();
+        if constexpr (kRotation) { sj.t[0] += t_j.x(); sj.t[1] += t_j.y(); sj.t[2] += t_j.z(); }
       }
     }
     if constexpr (kStorePairs) {
       // Kept for the gather, which adds the partners' share in the same order as the direct pass.
-      sum_fx[i] = sum_f.x(); sum_fy[i] = sum_f.y(); sum_fz[i] = sum_f.z();
-      if constexpr (kRotation) { sum_tx[i] = sum_t.x(); sum_ty[i] = sum_t.y(); sum_tz[i] = sum_t.z(); }
+      PairSum& si = sums[i];
+      si.f[0] = sum_f.x(); si.f[1] = sum_f.y(); si.f[2] = sum_f.z();
+      if constexpr (kRotation) { si.t[0] = sum_t.x(); si.t[1] = sum_t.y(); si.t[2] = sum_t.z(); }
     } else {
       // All pairs with i as `second` came earlier (their `first` is smaller): sum_*[i] is complete.
-      p_.fx[i] += sum_fx[i] + sum_f.x();
-      p_.fy[i] += sum_fy[i] + sum_f.y();
-      p_.fz[i] += sum_fz[i] + sum_f.z();
-      sum_fx[i] = sum_fy[i] = sum_fz[i] = 0.0;
+      PairSum& si = sums[i];
+      p_.fx[i] += si.f[0] + sum_f.x();
+      p_.fy[i] += si.f[1] + sum_f.y();
+      p_.fz[i] += si.f[2] + sum_f.z();
       if constexpr (kRotation) {
-        p_.tx[i] += sum_tx[i] + sum_t.x();
-        p_.ty[i] += sum_ty[i] + sum_t.y();
-        p_.tz[i] += sum_tz[i] + sum_t.z();
-        sum_tx[i] = sum_ty[i] = sum_tz[i] = 0.0;
+        p_.tx[i] += si.t[0] + sum_t.x();
+        p_.ty[i] += si.t[1] + sum_t.y();
+        p_.tz[i] += si.t[2] + sum_t.z();
       }
+      si = PairSum{};
     }
   }
 }
@@ -459,16 +495,16 @@ void DemEngine::gather_stored_pair_forces() {
         if constexpr (kRotation) t[c] += pairs_.torque_second[k * 3 + c];
       }
     }
-    p_.fx[i] += f[0] + pair_fx_[i];
-    p_.fy[i] += f[1] + pair_fy_[i];
-    p_.fz[i] += f[2] + pair_fz_[i];
-    pair_fx_[i] = pair_fy_[i] = pair_fz_[i] = 0.0;
+    PairSum& si = pair_sum_[i];
+    p_.fx[i] += f[0] + si.f[0];
+    p_.fy[i] += f[1] + si.f[1];
+    p_.fz[i] += f[2] + si.f[2];
     if constexpr (kRotation) {
-      p_.tx[i] += t[0] + pair_tx_[i];
-      p_.ty[i] += t[1] + pair_ty_[i];
-      p_.tz[i] += t[2] + pair_tz_[i];
-      pair_tx_[i] = pair_ty_[i] = pair_tz_[i] = 0.0;
+      p_.tx[i] += t[0] + si.t[0];
+      p_.ty[i] += t[1] + si.t[1];
+      p_.tz[i] += t[2] + si.t[2];
     }
+    si = PairSum{};
   }
 }
 
@@ -499,11 +535,12 @@ void DemEngine::compute_forces() {
 }
 
 void DemEngine::kick(double dt) {
+  // v += Δt (F/m + g), ω += Δt T/I with the stored 1/m, 1/I (no division per particle per step).
   const std::size_t n = p_.size();
   const Vec3 g = params_.gravity_m_s2;
   for (std::size_t i = 0; i < n; ++i) {
     if (!p_.active[i]) continue;
-    const double inv_m = 1.0 / p_.mass_kg[i];
+    const double inv_m = p_.inv_mass_kg[i];
     p_.vx[i] += dt * (p_.fx[i] * inv_m + g.x());
     p_.vy[i] += dt * (p_.fy[i] * inv_m + g.y());
     p_.vz[i] += dt * (p_.fz[i] * inv_m + g.z());
@@ -511,7 +548,7 @@ void DemEngine::kick(double dt) {
   if (p_.with_spin) {
     for (std::size_t i = 0; i < n; ++i) {
       if (!p_.active[i]) continue;
-      const double inv_i = 1.0 / p_.inertia_kg_m2[i];
+      const double inv_i = p_.inv_inertia_kg_m2[i];
       p_.wx[i] += dt * p_.tx[i] * inv_i;
       p_.wy[i] += dt * p_.ty[i] * inv_i;
       p_.wz[i] += dt * p_.tz[i] * inv_i;

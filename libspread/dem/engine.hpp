@@ -145,6 +145,8 @@ class DemEngine {
   void wrap_periodic_z();
   void compute_forces();
   void maintain_lists();
+  template <class Law>
+  void update_pair_coeffs();
   void kick(double dt);
   void drift(double dt);
   void collect();
@@ -164,14 +166,21 @@ class DemEngine {
   // Monolithic reference: particles in flight (flat arrays).
   std::vector<double> fl_x_, fl_y_, fl_z_, fl_vx_, fl_vy_, fl_vz_, fl_d_, fl_m_;
   std::vector<Vec3> landings_;
-  // Pair-force sums per particle (force N, torque N m); all zero between force passes.
-  std::vector<double> pair_fx_, pair_fy_, pair_fz_, pair_tx_, pair_ty_, pair_tz_;
+  // Pair-force sums per particle (force N, torque N m); all zero between force passes. One 64-byte
+  // record per particle: adding a partner's share touches one cache line instead of six arrays.
+  struct alignas(64) PairSum { double f[3]; double t[3]; };
+  std::vector<PairSum> pair_sum_;
   std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
   // Wall list: 1 = no wall within radius + skin at the last pair-list build (the wall test is skipped
   // until the next build). Used only when every wall group's surface is fixed in space
   // (walls_fixed_in_space_); empty otherwise.
   std::vector<std::uint8_t> far_from_walls_;
   bool walls_fixed_in_space_ = false;
+  // Law::coeffs per material pair (a·M + b), for particle pairs (pair_coeffs_) and particle–wall contacts
+  // (wall_coeffs_, R* = r, M* = m): valid (uniform) when every particle of the particle materials has the
+  // same radius and mass; refreshed after particles are added (coeffs_dirty_).
+  std::vector<PairCoeffs> pair_coeffs_, wall_coeffs_;
+  bool coeffs_dirty_ = true;
   EngineStats stats_;
   double time_s_ = 0.0;
   double dt_s_ = 0.0;

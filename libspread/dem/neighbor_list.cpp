@@ -152,11 +152,15 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list, const Per
   list.first_start[n] = static_cast<std::uint32_t>(list.first.size());
   const std::size_t np = list.size();
   list.history.assign(np * kHistoryDoubles, 0.0);
+  list.held.assign(np, 0);
   for (std::size_t k = 0; k < np; ++k) {
     auto it = std::lower_bound(old_keys.begin(), old_keys.end(), list.key[k]);
     if (it != old_keys.end() && *it == list.key[k]) {
       const std::size_t o = static_cast<std::size_t>(it - old_keys.begin());
-      for (int h = 0; h < kHistoryDoubles; ++h) list.history[k * kHistoryDoubles + h] = old_hist[o * kHistoryDoubles + h];
+      for (int h = 0; h < kHistoryDoubles; ++h) {
+        list.history[k * kHistoryDoubles + h] = old_hist[o * kHistoryDoubles + h];
+        if (old_hist[o * kHistoryDoubles + h] != 0.0) list.held[k] = 1;
+      }
     }
   }
   for (std::size_t k = 0; k < np; ++k) ++list.second_start[list.second[k] + 1];

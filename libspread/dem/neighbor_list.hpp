@@ -45,6 +45,9 @@ struct PairList {
   std::vector<std::uint32_t> first, second;
   std::vector<std::uint64_t> key;      // (id_low << 32) | id_high
   std::vector<double> history;         // kHistoryDoubles per pair; all zero while the pair is not touching
+  // 1 when the pair's history may hold something (it touched at its last evaluation): the force pass
+  // tests this byte for the ~2/3 of listed pairs that are apart instead of loading their 32-byte history.
+  std::vector<std::uint8_t> held;
   // Gather index: pairs where a slot is `second`, CSR (start has size()+1 entries).
   std::vector<std::uint32_t> second_start, second_pairs;
   std::vector<std::uint32_t> first_start;  // CSR start of each slot's pairs as `first`

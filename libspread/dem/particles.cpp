@@ -14,6 +14,8 @@ void ParticleArrays::push_back(const Vec3& pos, const Vec3& vel, const Vec3& s, 
   radius_m.push_back(radius);
   mass_kg.push_back(mass);
   inertia_kg_m2.push_back(inertia);
+  inv_mass_kg.push_back(1.0 / mass);
+  inv_inertia_kg_m2.push_back(1.0 / inertia);
   birth_time_s.push_back(birth);
   x0.push_back(pos.x()); y0.push_back(pos.y()); z0.push_back(pos.z());
   id.push_back(pid);
@@ -30,7 +32,7 @@ std::size_t ParticleArrays::compact() {
   for (std::size_t r = 0; r < n; ++r) {
     if (!active[r]) continue;
     if (w != r) {
-      for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &radius_m, &mass_kg, &inertia_kg_m2, &birth_time_s,
+      for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &radius_m, &mass_kg, &inertia_kg_m2, &inv_mass_kg, &inv_inertia_kg_m2, &birth_time_s,
                       &x0, &y0, &z0})
         (*v)[w] = (*v)[r];
       if (with_spin)
@@ -48,7 +50,7 @@ std::size_t ParticleArrays::compact() {
     ++w;
   }
   const std::size_t removed = n - w;
-  for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &radius_m, &mass_kg, &inertia_kg_m2, &birth_time_s, &x0,
+  for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &radius_m, &mass_kg, &inertia_kg_m2, &inv_mass_kg, &inv_inertia_kg_m2, &birth_time_s, &x0,
                   &y0, &z0})
     v->resize(w);
   if (with_spin)

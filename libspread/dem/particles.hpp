@@ -20,6 +20,8 @@ struct ParticleArrays {
   std::vector<double> wx, wy, wz;     // spin (rad/s), rotation only
   std::vector<double> tx, ty, tz;     // torque (N m), rotation only
   std::vector<double> radius_m, mass_kg, inertia_kg_m2;
+  // 1/m and 1/I, stored so the integrator multiplies instead of dividing twice per particle per step.
+  std::vector<double> inv_mass_kg, inv_inertia_kg_m2;
   std::vector<double> birth_time_s;
   std::vector<double> x0, y0, z0;     // position at the last neighbour-list build (m)
   std::vector<std::uint32_t> id;      // unique, never reused
