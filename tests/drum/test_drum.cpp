@@ -8,38 +8,18 @@
 #include "libspread/drum/drum_packing.hpp"
 #include "libspread/drum/drum_scene.hpp"
 #include "libspread/drum/drum_simulation.hpp"
+#include "tests/drum/small_test_drum.hpp"
 
 namespace drum = spread::drum;
 
 namespace {
 
-const char* kScene = R"(
-[drum]
-radius_m = 0.04
-length_m = 0.009
-froude = 0.02
-fill_fraction = 0.35
-[contact]
-model = "linear"
-normal_stiffness_n_m = 1000.0
-restitution = 0.5
-friction = 0.5
-wall_friction = 0.8
-[[species]]
-diameter_m = 0.004
-density_kg_m3 = 2500.0
-[numerics]
-integrator = "velocity_verlet"
-contact_steps = 12
-rotate_s = 1.5
-measure_from_s = 0.75
-)";
+const std::string kScene = spread::testing::kSmallTestDrum;
 
 drum::DrumScene scene_at(double froude, double rotate_s, double measure_from_s) {
-  auto s = drum::parse_drum_scene(kScene, "test.toml",
-                                  {"drum.froude=" + std::to_string(froude), "numerics.rotate_s=" + std::to_string(rotate_s),
-                                   "numerics.measure_from_s=" + std::to_string(measure_from_s)});
-  return s;
+  return spread::testing::small_test_drum({"drum.froude=" + std::to_string(froude),
+                                           "numerics.rotate_s=" + std::to_string(rotate_s),
+                                           "numerics.measure_from_s=" + std::to_string(measure_from_s)});
 }
 
 void print(const drum::DrumResult& r) {
@@ -62,7 +42,7 @@ TEST(DrumScene, ErrorsNameFileAndKey) {
   EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\n", "x.toml"), std::invalid_argument);  // no speed
   EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nfroude = 0.1\n", "x.toml"), std::invalid_argument);
   EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nradius = 2\n", "x.toml"), std::invalid_argument);
-  EXPECT_THROW(drum::parse_drum_scene(std::string(kScene) + "\n[extra]\n", "x.toml"), std::invalid_argument);
+  EXPECT_THROW(drum::parse_drum_scene(kScene + "\n[extra]\n", "x.toml"), std::invalid_argument);
   EXPECT_THROW(drum::parse_drum_scene(kScene, "x.toml", {"numerics.integrator=gear7"}), std::invalid_argument);
   const auto s = drum::parse_drum_scene(kScene, "x.toml", {"drum.froude=1"});
   EXPECT_NEAR(drum::froude_number(s), 1.0, 1e-12);

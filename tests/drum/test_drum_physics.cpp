@@ -8,36 +8,22 @@
 
 #include "libspread/drum/drum_scene.hpp"
 #include "libspread/drum/drum_simulation.hpp"
+#include "tests/drum/small_test_drum.hpp"
 
 namespace drum = spread::drum;
 
 namespace {
 
-// scenes/drum.toml without the output table.
-const char* kDrum = R"(
-[drum]
-radius_m = 0.04
-length_m = 0.009
-froude = 0.05
-fill_fraction = 0.35
-[contact]
-model = "linear"
-normal_stiffness_n_m = 1000.0
-restitution = 0.5
-friction = 0.5
-wall_friction = 0.8
-[[species]]
-diameter_m = 0.004
-density_kg_m3 = 2500.0
-[numerics]
-integrator = "velocity_verlet"
-contact_steps = 12
-rotate_s = 1.0
-measure_from_s = 0.5
-)";
+// The small test drum at Fr 0.05, rotated 1 s and measured over the second half; each test's overrides
+// come after these and win.
+drum::DrumScene test_drum(const std::vector<std::string>& set) {
+  std::vector<std::string> all = {"drum.froude=0.05", "numerics.rotate_s=1.0", "numerics.measure_from_s=0.5"};
+  all.insert(all.end(), set.begin(), set.end());
+  return spread::testing::small_test_drum(all);
+}
 
 drum::DrumResult run(const std::vector<std::string>& set) {
-  const auto r = drum::run_drum(drum::parse_drum_scene(kDrum, "test.toml", set));
+  const auto r = drum::run_drum(test_drum(set));
   const auto& e = r.evidence;
   std::printf("Fr %.3f N %zu: %s — %s | angle %.1f±%.1f sagitta %.3f airborne %.3f corot %.3f cover %.2f wall speed %.2f "
               "centroid %.1f lacey %.3f\n",
@@ -113,7 +99,7 @@ TEST(DrumRegime, CascadesAtFroudeHalf) {
 // Two colours of the same bead, species 0 below: Lacey's index starts low (the 3d cells across the
 // interface are mixed: not exactly 0) and rises as the rolling drum turns.
 TEST(DrumLong, TwoSpeciesMixInARollingDrum) {
-  auto s = drum::parse_drum_scene(kDrum, "test.toml", {"drum.froude=0.1", "numerics.rotate_s=2.0", "numerics.measure_from_s=1.5",
+  auto s = test_drum({"drum.froude=0.1", "numerics.rotate_s=2.0", "numerics.measure_from_s=1.5",
                                                        "numerics.sample_every_s=0.1"});
   s.species = {drum::Species{0.004, 2500.0, 0.5}, drum::Species{0.004, 2500.0, 0.5}};
   const auto r = drum::run_drum(s);

@@ -8,6 +8,7 @@
 #include "libspread/dem/engine.hpp"
 #include "libspread/drum/drum_scene.hpp"
 #include "libspread/drum/drum_simulation.hpp"
+#include "tests/drum/small_test_drum.hpp"
 
 namespace dem = spread::dem;
 namespace drum = spread::drum;
@@ -102,29 +103,7 @@ TEST(DrumPeriodic, PeriodShorterThanTheCutoffIsRefused) {
 // A small periodic drum (no end walls at all): every particle stays, positions stay in [0, L), and the bed
 // rolls at Fr 0.02 with an angle near the material's, as the end-walled drum of test_drum.cpp.
 TEST(DrumPeriodic, SmallDrumKeepsItsParticlesAndRolls) {
-  const auto s = drum::parse_drum_scene(R"(
-[drum]
-radius_m = 0.04
-length_m = 0.012
-axial = "periodic"
-froude = 0.02
-fill_fraction = 0.35
-[contact]
-model = "linear"
-normal_stiffness_n_m = 1000.0
-restitution = 0.5
-friction = 0.5
-wall_friction = 0.8
-[[species]]
-diameter_m = 0.004
-density_kg_m3 = 2500.0
-[numerics]
-integrator = "velocity_verlet"
-contact_steps = 12
-rotate_s = 1.5
-measure_from_s = 0.75
-)",
-                                        "periodic.toml");
+  const auto s = spread::testing::small_test_drum({"drum.length_m=0.012", "drum.axial=periodic"});
   ASSERT_EQ(s.axial, drum::AxialBoundary::kPeriodic);
   const auto r = drum::run_drum(s);
   std::size_t active = 0;
