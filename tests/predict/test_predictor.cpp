@@ -232,9 +232,11 @@ TEST(Predictor, CellInterpolationOfUnpairedRowsMatchesThePairedTruth) {
   EXPECT_GT(error(mixed.throw_width_m, truth.throw_width_m), 5.0 * error(ranked.throw_width_m, truth.throw_width_m));
   EXPECT_GT(error(mixed.radial_width_m, truth.radial_width_m), 5.0 * error(ranked.radial_width_m, truth.radial_width_m));
 
-  // Deterministic: a second predictor from the same contents gives the same pattern.
+  // Deterministic: a second predictor from the same contents gives the same pattern. (Named: the
+  // prediction's spans point into its predictor's workspace, so the predictor must outlive them.)
+  Predictor again_predictor(unpaired);
   Prediction again;
-  ASSERT_EQ(Predictor(unpaired).predict(request("ref", 600.0), again), PredictStatus::kOk);
+  ASSERT_EQ(again_predictor.predict(request("ref", 600.0), again), PredictStatus::kOk);
   EXPECT_EQ(copy(again.tray_mass_fraction), copy(ranked.tray_mass_fraction));
 }
 
