@@ -51,6 +51,12 @@ struct PileResult {
   std::vector<double> state;  // positions and velocities, for the same-seed comparison
 };
 
+// Same seed, same result: every position and velocity bit for bit.
+void expect_identical_states(const PileResult& a, const PileResult& b) {
+  ASSERT_EQ(a.state.size(), b.state.size());
+  for (std::size_t k = 0; k < a.state.size(); ++k) ASSERT_EQ(a.state[k], b.state[k]) << k;
+}
+
 // Granules on a square lattice in a cylinder over the disc centre, layer above layer, clear of the two
 // radial vanes (along ±x at t = 0); radii and a small velocity jitter from the seed.
 PileResult run_pile(const PileSetup& setup) {
@@ -163,8 +169,7 @@ TEST(DemDensePile, SettlingPileOnTheStoppedMeshDisc) {
   setup.duration_s = 0.01;
   const PileResult a = run_pile(setup);
   const PileResult b = run_pile(setup);
-  ASSERT_EQ(a.state.size(), b.state.size());
-  for (std::size_t k = 0; k < a.state.size(); ++k) ASSERT_EQ(a.state[k], b.state[k]) << k;
+  expect_identical_states(a, b);
   EXPECT_EQ(a.energy.dissipated_j, b.energy.dissipated_j);
   setup.seed = 2;
   EXPECT_NE(run_pile(setup).state, a.state) << "the seed must matter";
@@ -177,8 +182,7 @@ TEST(DemStabilityLong, ThousandsOfGranulesSettleOnTheStoppedMeshDisc) {
   const PileResult a = run_pile(setup);
   expect_settled_pile(setup, a);
   const PileResult b = run_pile(setup);
-  ASSERT_EQ(a.state.size(), b.state.size());
-  for (std::size_t k = 0; k < a.state.size(); ++k) ASSERT_EQ(a.state[k], b.state[k]) << k;
+  expect_identical_states(a, b);
 }
 
 void expect_thrown_pile(const PileSetup& setup, const PileResult& r) {
@@ -187,11 +191,13 @@ void expect_thrown_pile(const PileSetup& setup, const PileResult& r) {
   // Vanes sweep the pile at up to ωR: bounded by the Hertz maximum of the smallest granule striking the
   // rigid disc at the engine's t_c speed ωR + 5 m/s, δ = (15 m v² / (16 E* √r))^{2/5} (0.31 R here).
   // Measured 0.048 with 300 granules, 0.170 with 3000 (granules squeezed between vane and pile).
-  const Material granule = case1_config(setup.rpm).materials[0];
+  const SimulationConfig config = case1_config(setup.rpm);
+  const Material granule = config.materials[0];
+  const double tip_speed_m_s = std::abs(setup.rpm) * 2.0 * kPi / 60.0 * config.disc.radius_m;  // ωR
   const double r_min = setup.radius_min_m;
   const double m_min = granule.density_kg_m3 * 4.0 / 3.0 * kPi * r_min * r_min * r_min;
   const double e_star = granule.young_modulus_pa / (1.0 - granule.poisson_ratio * granule.poisson_ratio);
-  const double v = std::abs(setup.rpm) * 2.0 * kPi / 60.0 * 0.29 + 5.0;
+  const double v = tip_speed_m_s + 5.0;  // m/s
   EXPECT_LE(r.energy.max_penetration_ratio, std::pow(15.0 * m_min * v * v / (16.0 * e_star * std::sqrt(r_min)), 0.4) / r_min);
   // The disc does the work; the contacts dissipate part of it; nothing is created beyond the tolerance
   // measured for the symplectic Euler step at N_c = 15 (4.1e-7 of the input, 300 granules; docs/stability.md).
@@ -199,8 +205,7 @@ void expect_thrown_pile(const PileSetup& setup, const PileResult& r) {
   EXPECT_GT(r.energy.dissipated_j, 0.0);
   EXPECT_LE(r.energy.balance_residual(), 1e-4);
   // No granule faster than the vane tip can make it (ω R √2, seed Eq. 60's limit) plus the fall.
-  const double tip_speed = std::abs(setup.rpm) * 2.0 * kPi / 60.0 * 0.29;
-  EXPECT_LT(r.largest_speed_m_s, std::sqrt(2.0) * tip_speed + 1.0);
+  EXPECT_LT(r.largest_speed_m_s, std::sqrt(2.0) * tip_speed_m_s + 1.0);
 }
 
 TEST(DemStabilityLong, PileThrownOffTheSpinningMeshDisc) {
@@ -211,8 +216,7 @@ TEST(DemStabilityLong, PileThrownOffTheSpinningMeshDisc) {
   const PileResult a = run_pile(setup);
   expect_thrown_pile(setup, a);
   const PileResult b = run_pile(setup);
-  ASSERT_EQ(a.state.size(), b.state.size());
-  for (std::size_t k = 0; k < a.state.size(); ++k) ASSERT_EQ(a.state[k], b.state[k]) << k;
+  expect_identical_states(a, b);
   EXPECT_EQ(a.energy.disc_work_j, b.energy.disc_work_j);
 }
 
