@@ -75,8 +75,11 @@ TEST(DrumRegime, SettlesThenRollsAtLowFroude) {
   EXPECT_LT(r.evidence.airborne_fraction, 0.1);
 }
 
+// The bed needs about a second to spin up into the ring: measured over 0.6–1.0 s the co-rotating
+// fraction was 0.81 (threshold 0.8) and a change in the last bits of the pair sums flipped it; over
+// 1.1–1.6 s it is 0.96–0.995 (N_c 11, 12, 13).
 TEST(DrumRegime, CentrifugesAboveFroudeOne) {
-  const auto r = drum::run_drum(scene_at(3.0, 1.0, 0.6));
+  const auto r = drum::run_drum(scene_at(3.0, 1.6, 1.1));
   print(r);
   EXPECT_EQ(r.evidence.regime, drum::Regime::kCentrifuging) << r.evidence.reason;
 }

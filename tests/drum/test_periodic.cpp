@@ -101,9 +101,12 @@ TEST(DrumPeriodic, PeriodShorterThanTheCutoffIsRefused) {
 }
 
 // A small periodic drum (no end walls at all): every particle stays, positions stay in [0, L), and the bed
-// rolls at Fr 0.02 with an angle near the material's, as the end-walled drum of test_drum.cpp.
+// rolls at Fr 0.02 with an angle near the material's, as the end-walled drum of test_drum.cpp. Four
+// diameters of period: at three (L 12 mm) the bed sat on the rolling/cascading line (surface sagitta 0.11
+// against 0.12, co-rotating 0.48 against slumping's 0.5) and a last-bit change flipped it; at 16 mm the
+// sagitta is 0.05 and co-rotating 0.22–0.26 (N_c 11, 12, 13).
 TEST(DrumPeriodic, SmallDrumKeepsItsParticlesAndRolls) {
-  const auto s = spread::testing::small_test_drum({"drum.length_m=0.012", "drum.axial=periodic"});
+  const auto s = spread::testing::small_test_drum({"drum.length_m=0.016", "drum.axial=periodic"});
   ASSERT_EQ(s.axial, drum::AxialBoundary::kPeriodic);
   const auto r = drum::run_drum(s);
   std::size_t active = 0;
