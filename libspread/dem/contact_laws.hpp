@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>  // cross products
 
 #include "libspread/core/vec3.hpp"
+#include "libspread/dem/lanes.hpp"
 #include "libspread/dem/material.hpp"
 
 // The laws run once per touching pair per step inside the pair loop; GCC's size heuristics at -O2 leave
@@ -61,28 +62,70 @@ struct ContactForce {
   double normal_force_n = 0.0;             // F_n >= 0 (for rolling resistance)
 };
 
+// One contact's tangential history in the kernel's types: the elastic tangential force (N) and the
+// overlap at the previous step (m). Stored as kHistoryDoubles doubles per contact by the caller.
+template <class T>
+struct LawHistory {
+  lanes::V3<T> elastic;
+  T overlap_m;
+};
+// What a law returns for body a, in the kernel's types.
+template <class T>
+struct LawForce {
+  lanes::V3<T> force_n;       // total
+  lanes::V3<T> tangential_n;  // tangential part (the moment, Eq. 15)
+  T normal_force_n;           // F_n >= 0
+};
+
 namespace detail {
+using lanes::V3;
 // Carries the stored elastic tangential force into the current tangent plane keeping its magnitude:
-// the contact frame turns as the bodies roll and the walls spin.
-SPREAD_CONTACT_INLINE Vec3 carry_into_plane(const double* history, const Vec3& normal) {
-  Vec3 f(history[0], history[1], history[2]);
-  const double mag2 = f.squaredNorm();
-  if (mag2 == 0.0) return f;
-  f -= f.dot(normal) * normal;
-  const double new2 = f.squaredNorm();
-  return new2 > 0.0 ? Vec3(f * std::sqrt(mag2 / new2)) : Vec3(Vec3::Zero());
+// the contact frame turns as the bodies roll and the walls spin. (Zero stays zero.)
+template <class T>
+SPREAD_CONTACT_INLINE V3<T> carry_into_plane(const V3<T>& f, const V3<T>& normal) {
+  const T mag2 = squared_norm(f);
+  const V3<T> g = f - dot(f, normal) * normal;
+  const T new2 = squared_norm(g);
+  const auto turned = new2 > lanes::splat<T>(0.0);
+  // A zero new2 (force along the normal, or no force) gives zero; the denominator is kept away from 0
+  // so that no lane divides by zero.
+  const T scale = lanes::sqrt(mag2 / lanes::select(turned, new2, lanes::splat<T>(1.0)));
+  return lanes::select(turned, g * scale, lanes::zero3<T>());
 }
 // Coulomb cap (Eq. 6) with the spring shortened to the friction limit on slip (the β = 1 remark of
-// Sect. 2.1: the viscous part is disregarded when shortening).
-SPREAD_CONTACT_INLINE Vec3 coulomb(Vec3& elastic, const Vec3& damping, double limit) {
-  const double el2 = elastic.squaredNorm();
-  if (el2 > limit * limit) elastic *= limit / std::sqrt(el2);
-  Vec3 total = elastic + damping;
-  const double t2 = total.squaredNorm();
-  if (t2 > limit * limit) total *= limit / std::sqrt(t2);
+// Sect. 2.1: the viscous part is disregarded when shortening). The sqrt only when some contact slips.
+template <class T>
+SPREAD_CONTACT_INLINE V3<T> coulomb(V3<T>& elastic, const V3<T>& damping, T limit) {
+  const T limit2 = limit * limit;
+  const T el2 = squared_norm(elastic);
+  const auto el_slips = el2 > limit2;
+  if (lanes::any(el_slips)) elastic = lanes::select(el_slips, elastic * (limit / lanes::sqrt(el2)), elastic);
+  V3<T> total = elastic + damping;
+  const T t2 = squared_norm(total);
+  const auto slips = t2 > limit2;
+  if (lanes::any(slips)) total = lanes::select(slips, total * (limit / lanes::sqrt(t2)), total);
   return total;
 }
 }  // namespace detail
+
+// Eigen-interface evaluation shared by the laws: the wall contacts and single contacts call it; the pair
+// pass calls Law::kernel directly (one contact, or two in lanes).
+template <class Law>
+SPREAD_CONTACT_INLINE ContactForce eval_one(const PairParams& p, const PairCoeffs& c, const ContactInput& in, double* history) {
+  using lanes::V3;
+  LawHistory<double> h{{history[0], history[1], history[2]}, history[3]};
+  const LawForce<double> r = Law::kernel(c, p.friction, V3<double>{in.normal.x(), in.normal.y(), in.normal.z()}, in.overlap_m,
+                                         V3<double>{in.slip_m_s.x(), in.slip_m_s.y(), in.slip_m_s.z()}, in.dt_s, h);
+  history[0] = h.elastic.x;
+  history[1] = h.elastic.y;
+  history[2] = h.elastic.z;
+  history[3] = h.overlap_m;
+  ContactForce out;
+  out.force_n = Vec3(r.force_n.x, r.force_n.y, r.force_n.z);
+  out.tangential_force_n = Vec3(r.tangential_n.x, r.tangential_n.y, r.tangential_n.z);
+  out.normal_force_n = r.normal_force_n;
+  return out;
+}
 
 // Hertz normal force (Eq. 16) with δ^{1/4} damping (Eqs. 17–18) clipped at 0, and Thornton's
 // incremental tangential law (Eqs. 19–20) with damping (Eqs. 23–24) and the Coulomb cap (Eq. 6).
@@ -107,34 +150,42 @@ struct HertzThornton {
   }
   // in.r_eff_m and in.m_eff_kg are not read: c holds what depends on them.
   static ContactForce eval(const PairParams& p, const PairCoeffs& c, const ContactInput& in, double* history) {
-    ContactForce out;
-    const double delta = in.overlap_m;
-    const double sqrt_delta = std::sqrt(delta);
-    const double quarter = std::sqrt(sqrt_delta);  // δ^{1/4}
-    const double delta_rate = -in.slip_m_s.dot(in.normal);
-    const double f_el = c.k_n * delta * sqrt_delta;                       // Eq. 16
-    const double f_n = std::max(0.0, f_el + c.c_n * quarter * delta_rate);  // Eqs. 17–18
-    out.normal_force_n = f_n;
-
-    const Vec3 slip_t = in.slip_m_s - in.slip_m_s.dot(in.normal) * in.normal;
-    Vec3 elastic = detail::carry_into_plane(history, in.normal);
+    return eval_one<HertzThornton>(p, c, in, history);
+  }
+  // One contact (T = double) or two (T = lanes::Lanes2) with the same coefficients c and friction μ.
+  // normal: unit, from b to a; delta_m: overlap > 0; slip_m_s: Eq. 8; h: in/out history.
+  template <class T>
+  SPREAD_CONTACT_INLINE static LawForce<T> kernel(const PairCoeffs& c, double friction, const lanes::V3<T>& normal, T delta_m,
+                                                  const lanes::V3<T>& slip_m_s, double dt_s, LawHistory<T>& h) {
+    using lanes::splat;
+    const T sqrt_delta = lanes::sqrt(delta_m);
+    const T quarter = lanes::sqrt(sqrt_delta);  // δ^{1/4}
+    const T slip_n = dot(slip_m_s, normal);
+    const T f_el = splat<T>(c.k_n) * delta_m * sqrt_delta;                         // Eq. 16
+    const T f_n = lanes::max0(f_el + splat<T>(c.c_n) * quarter * (-slip_n));  // Eqs. 17–18, δ̇ = −slip·n
+    const lanes::V3<T> slip_t = slip_m_s - slip_n * normal;
+    lanes::V3<T> elastic = detail::carry_into_plane(h.elastic, normal);
     // Eq. 20 unloading branch, integrated over one step: scale by k_t/k_t,old = sqrt(δ/δ_old) when the
     // overlap (and with it the contact radius) shrinks (Appendix 2, Eq. 63).
-    const double delta_old = history[3];
-    if (delta < delta_old && delta_old > 0.0) elastic *= std::sqrt(delta / delta_old);
-    const double k_t = c.k_t * sqrt_delta;  // k_t = 8 G* sqrt(R* δ)
-    elastic -= k_t * in.dt_s * slip_t;      // Eq. 19, force opposes the slip
-    const Vec3 damping = -c.c_t * quarter * slip_t;  // Eq. 23
-    out.tangential_force_n = detail::coulomb(elastic, damping, p.friction * f_n);
-    history[0] = elastic.x();
-    history[1] = elastic.y();
-    history[2] = elastic.z();
-    history[3] = delta;
-    out.force_n = f_n * in.normal + out.tangential_force_n;
+    const T delta_old = h.overlap_m;
+    const auto unloading = lanes::both(delta_m < delta_old, delta_old > splat<T>(0.0));
+    if (lanes::any(unloading))
+      elastic = lanes::select(unloading, elastic * lanes::sqrt(delta_m / lanes::select(unloading, delta_old, splat<T>(1.0))),
+                              elastic);
+    const T k_t = splat<T>(c.k_t) * sqrt_delta;         // k_t = 8 G* sqrt(R* δ)
+    elastic = elastic - (k_t * splat<T>(dt_s)) * slip_t;  // Eq. 19, force opposes the slip
+    const lanes::V3<T> damping = (splat<T>(-c.c_t) * quarter) * slip_t;  // Eq. 23
+    LawForce<T> out;
+    out.tangential_n = detail::coulomb(elastic, damping, splat<T>(friction) * f_n);
+    out.normal_force_n = f_n;
+    out.force_n = f_n * normal + out.tangential_n;
+    h.elastic = elastic;
+    h.overlap_m = delta_m;
     return out;
   }
   // Lever arm from a's centre to the contact point (Eq. 10, corrected share).
-  SPREAD_CONTACT_INLINE static double lever(double radius_m, double share, double overlap_m) { return radius_m - share * overlap_m; }
+  template <class T>
+  SPREAD_CONTACT_INLINE static T lever(T radius_m, double share, T overlap_m) { return radius_m - lanes::splat<T>(share) * overlap_m; }
 };
 
 // Seed 001: F_n = k_n δ + 2ζ sqrt(M* k_n) δ̇ (clipped at 0), tangential spring k_t with dashpot
@@ -157,25 +208,31 @@ struct LinearSpringDashpot {
   }
   // in.r_eff_m and in.m_eff_kg are not read: c holds what depends on them.
   static ContactForce eval(const PairParams& p, const PairCoeffs& c, const ContactInput& in, double* history) {
-    ContactForce out;
-    const double delta_rate = -in.slip_m_s.dot(in.normal);
-    const double f_n = std::max(0.0, c.k_n * in.overlap_m + c.c_n * delta_rate);
+    return eval_one<LinearSpringDashpot>(p, c, in, history);
+  }
+  // As HertzThornton::kernel. The history's overlap is stored, not used.
+  template <class T>
+  SPREAD_CONTACT_INLINE static LawForce<T> kernel(const PairCoeffs& c, double friction, const lanes::V3<T>& normal, T delta_m,
+                                                  const lanes::V3<T>& slip_m_s, double dt_s, LawHistory<T>& h) {
+    using lanes::splat;
+    const T slip_n = dot(slip_m_s, normal);
+    const T f_n = lanes::max0(splat<T>(c.k_n) * delta_m + splat<T>(c.c_n) * (-slip_n));  // δ̇ = −slip·n
+    const lanes::V3<T> slip_t = slip_m_s - slip_n * normal;
+    lanes::V3<T> elastic = detail::carry_into_plane(h.elastic, normal);
+    elastic = elastic - (splat<T>(c.k_t) * splat<T>(dt_s)) * slip_t;
+    LawForce<T> out;
+    out.tangential_n = detail::coulomb(elastic, splat<T>(-c.c_t) * slip_t, splat<T>(friction) * f_n);
     out.normal_force_n = f_n;
-    const Vec3 slip_t = in.slip_m_s - in.slip_m_s.dot(in.normal) * in.normal;
-    Vec3 elastic = detail::carry_into_plane(history, in.normal);
-    elastic -= c.k_t * in.dt_s * slip_t;
-    out.tangential_force_n = detail::coulomb(elastic, -c.c_t * slip_t, p.friction * f_n);
-    history[0] = elastic.x();
-    history[1] = elastic.y();
-    history[2] = elastic.z();
-    history[3] = in.overlap_m;
-    out.force_n = f_n * in.normal + out.tangential_force_n;
+    out.force_n = f_n * normal + out.tangential_n;
+    h.elastic = elastic;
+    h.overlap_m = delta_m;
     return out;
   }
   // Seed 001: d_c = −(R − h/2) n, i.e. each body takes half the overlap.
-  SPREAD_CONTACT_INLINE static double lever(double radius_m, double share, double overlap_m) {
+  template <class T>
+  SPREAD_CONTACT_INLINE static T lever(T radius_m, double share, T overlap_m) {
     (void)share;
-    return radius_m - 0.5 * overlap_m;
+    return radius_m - lanes::splat<T>(0.5) * overlap_m;
   }
 };
 

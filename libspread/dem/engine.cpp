@@ -30,6 +30,40 @@ int thread_index() {
   return 0;
 #endif
 }
+
+using lanes::Lanes2;
+using lanes::pack;
+using lanes::V3;
+
+// One touching pair's contact (T = double), or two pairs' side by side (T = Lanes2) with the same
+// material pair: normal and overlap from the pair vector d (from j to i), the levers (Eq. 10), the
+// contact points' relative velocity (Eq. 8), the law, and the moments on both (Eq. 15).
+template <class T>
+struct PairOut {
+  V3<T> f, t_i, t_j;  // force on i (j gets −f); torques on i and j
+  T normal_force_n;
+};
+template <class Law, bool kRotation, class T>
+SPREAD_CONTACT_INLINE PairOut<T> pair_contact(const V3<T>& d, T dist2, T ri, T rj, const V3<T>& v_rel, const V3<T>& wi,
+                                              const V3<T>& wj, const PairParams& pp, const PairCoeffs& pc, double dt,
+                                              LawHistory<T>& h) {
+  const T dist = lanes::sqrt(dist2);
+  const V3<T> n = d * (lanes::splat<T>(1.0) / dist);  // one reciprocal instead of three divisions
+  const T overlap = (ri + rj) - dist;
+  const T li = Law::lever(ri, pp.share_a, overlap), lj = Law::lever(rj, pp.share_b, overlap);
+  // Arms −l_i n and +l_j n both lie along n, so the relative velocity of the contact points,
+  // v_i + ω_i × (−l_i n) − v_j − ω_j × (l_j n), takes one cross product, and both torques share n × F_t.
+  V3<T> slip = v_rel;
+  if constexpr (kRotation) slip = slip - cross(li * wi + lj * wj, n);
+  const LawForce<T> law = Law::kernel(pc, pp.friction, n, overlap, slip, dt, h);
+  PairOut<T> out{law.force_n, lanes::zero3<T>(), lanes::zero3<T>(), law.normal_force_n};
+  if constexpr (kRotation) {
+    const V3<T> n_cross_ft = cross(n, law.tangential_n);
+    out.t_i = (-li) * n_cross_ft;  // (−l_i n) × F_t
+    out.t_j = (-lj) * n_cross_ft;  // (l_j n) × (−F_t)
+  }
+  return out;
+}
 }  // namespace
 
 DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> overrides, WallSet walls,
@@ -329,17 +363,20 @@ void DemEngine::compute_forces_impl() {
   // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
   // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
   const bool threaded = params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems;
+  const bool periodic = params_.periodic_z.enabled;
   if (threaded || monitor_ != nullptr) {
-    pair_forces<Law, kRotation, kRolling, true>();
+    if (periodic) pair_forces<Law, kRotation, kRolling, true, true>();
+    else pair_forces<Law, kRotation, kRolling, true, false>();
     gather_stored_pair_forces<kRotation>();
   } else {
-    pair_forces<Law, kRotation, kRolling, false>();
+    if (periodic) pair_forces<Law, kRotation, kRolling, false, true>();
+    else pair_forces<Law, kRotation, kRolling, false, false>();
   }
 }
 
-// flatten: the whole pair kernel (law, Eigen's 3-vector operations) inlined into the loop; at -O2 GCC
+// flatten: the whole pair kernel (geometry, law, lane operations) inlined into the loop; at -O2 GCC
 // otherwise keeps the law as a call per touching pair, which costs about a third of the pass.
-template <class Law, bool kRotation, bool kRolling, bool kStorePairs>
+template <class Law, bool kRotation, bool kRolling, bool kStorePairs, bool kPeriodic>
 SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
   // Flat arrays once, outside the loop (the vectors' bounds and sizes do not change within the pass).
   const double* const px = p_.x.data();
@@ -367,7 +404,6 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
   const PairParams* const params_row0 = &pair_table_(0, 0);
   const std::size_t material_count = pair_table_.material_count();
   const PairCoeffs* const coeffs_row0 = pair_coeffs_.data();
-  const bool periodic = params_.periodic_z.enabled;
   const double period = params_.periodic_z.length_m();
   const double dt = dt_s_;
   const long long nn = static_cast<long long>(p_.size());
@@ -378,123 +414,144 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
     const std::size_t i = static_cast<std::size_t>(ii);
     const std::uint32_t k_begin = pair_start[i], k_end = pair_start[i + 1];
     const bool i_active = active[i] != 0;
-    const Vec3 xi(px[i], py[i], pz[i]);
-    const Vec3 vi0(pvx[i], pvy[i], pvz[i]);
-    Vec3 wi = Vec3::Zero();
-    if constexpr (kRotation) wi = Vec3(pwx[i], pwy[i], pwz[i]);
+    const double xi = px[i], yi = py[i], zi = pz[i];
+    const V3<double> vi{pvx[i], pvy[i], pvz[i]};
+    V3<double> wi{0.0, 0.0, 0.0};
+    if constexpr (kRotation) wi = V3<double>{pwx[i], pwy[i], pwz[i]};
     const double ri = radius[i], mi = mass[i];
     const PairParams* const params_row = params_row0 + static_cast<std::size_t>(material[i]) * material_count;
     const PairCoeffs* const coeffs_row = coeffs_row0 + static_cast<std::size_t>(material[i]) * material_count;
-    // This particle's share of its own pairs (it is `first` in all of them), summed from zero.
-    Vec3 sum_f = Vec3::Zero(), sum_t = Vec3::Zero();
-    // Two stages per chunk of i's pairs. (1) Without a branch on "touching" — about a third of the listed
-    // pairs touch, scattered, so that branch was mispredicted often — the touching pairs' indices are
-    // appended to a small buffer and a pair that has just come apart releases its tangential spring.
-    // (2) The contact law over the buffer only, in pair order, so the sums are the same as one loop's.
-    constexpr std::uint32_t kChunk = 64;
-    for (std::uint32_t chunk = k_begin; chunk < k_end; chunk += kChunk) {
-    const std::uint32_t chunk_end = std::min(k_end, chunk + kChunk);
-    std::uint32_t touching_pairs[kChunk];
-    double touching_dist2[kChunk];
-    std::uint32_t touching = 0;
-    for (std::uint32_t k = chunk; k < chunk_end; ++k) {
-      const std::size_t j = partner[k];
-      double dz = xi.z() - pz[j];
-      if (periodic) dz = minimum_image_z(dz, period);
-      const double dx = xi.x() - px[j], dy = xi.y() - py[j];
-      const double dist2 = dx * dx + (dy * dy + dz * dz);  // as Eigen's squaredNorm sums a 3-vector
-      const double cut = ri + radius[j];
-      const bool touches = (dist2 < cut * cut) & i_active & (active[j] != 0) & (dist2 != 0.0);
-      touching_pairs[touching] = k;
-      touching_dist2[touching] = dist2;
-      touching += touches ? 1u : 0u;
-      // Contact lost: the tangential spring is released. The history is touched only if it holds
-      // anything (held byte): the apart pairs cost a byte read, not 32 bytes. Rarely true, so predictable.
-      if (held[k] & static_cast<std::uint8_t>(!touches)) {
-        double* const hist = history + static_cast<std::size_t>(k) * kHistoryDoubles;
-        hist[0] = hist[1] = hist[2] = hist[3] = 0.0;
-        held[k] = 0;
-      }
+    // This particle's share of its own pairs (it is `first` in all of them), summed from zero in pair order.
+    double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
+    // Pair vector from j to i (minimum image along a periodic axis).
+    auto separation = [&](std::size_t j) {
+      double dz = zi - pz[j];
+      if constexpr (kPeriodic) dz = minimum_image_z(dz, period);
+      return V3<double>{xi - px[j], yi - py[j], dz};
+    };
+    // A finished pair: i's share into the running sums, j's share (Newton's third law, Eq. 1) into j's
+    // sums — finished when the loop reaches j > i — or, when stored, into the pair's output slots.
+    auto add = [&](std::uint32_t k, std::size_t j, const V3<double>& f, const V3<double>& t_i, const V3<double>& t_j) {
+      held[k] = 1;
+      sum_f[0] += f.x; sum_f[1] += f.y; sum_f[2] += f.z;
+      if constexpr (kRotation) { sum_t[0] += t_i.x; sum_t[1] += t_i.y; sum_t[2] += t_i.z; }
       if constexpr (kStorePairs) {
-        for (int c = 0; c < 3; ++c) out_force[k * 3 + c] = 0.0;
-        if constexpr (kRotation)
-          for (int c = 0; c < 3; ++c) out_torque_i[k * 3 + c] = out_torque_j[k * 3 + c] = 0.0;
+        out_force[k * 3] = f.x; out_force[k * 3 + 1] = f.y; out_force[k * 3 + 2] = f.z;
+        if constexpr (kRotation) {
+          out_torque_i[k * 3] = t_i.x; out_torque_i[k * 3 + 1] = t_i.y; out_torque_i[k * 3 + 2] = t_i.z;
+          out_torque_j[k * 3] = t_j.x; out_torque_j[k * 3 + 1] = t_j.y; out_torque_j[k * 3 + 2] = t_j.z;
+        }
+      } else {
+        PairSum& sj = sums[j];
+        sj.f[0] -= f.x; sj.f[1] -= f.y; sj.f[2] -= f.z;
+        if constexpr (kRotation) { sj.t[0] += t_j.x; sj.t[1] += t_j.y; sj.t[2] += t_j.z; }
       }
-    }
-    for (std::uint32_t q = 0; q < touching; ++q) {
-      const std::uint32_t k = touching_pairs[q];
+    };
+    // One touching pair alone (T = double): any materials and sizes, rolling resistance.
+    auto one_pair = [&](std::uint32_t k, double dist2) {
       const std::size_t j = partner[k];
       double* const hist = history + static_cast<std::size_t>(k) * kHistoryDoubles;
-      Vec3 d(xi.x() - px[j], xi.y() - py[j], xi.z() - pz[j]);
-      if (periodic) d.z() = minimum_image_z(d.z(), period);
-      const double rj = radius[j];
-      const double dist2 = touching_dist2[q];
-      const double cut = ri + rj;
-      const double dist = std::sqrt(dist2);
-      ContactInput in;
-      in.normal = d * (1.0 / dist);  // from j to i: n = d/|d|, one reciprocal instead of three divisions
-      in.overlap_m = cut - dist;
       const PairParams& pp = params_row[material[j]];
-      const double li = Law::lever(ri, pp.share_a, in.overlap_m);
-      const double lj = Law::lever(rj, pp.share_b, in.overlap_m);
-      // Arms from the centres to the contact point: −l_i n and +l_j n (Eq. 10). Both arms lie along n, so
-      // the contact points' relative velocity (Eq. 8) v_i + ω_i × (−l_i n) − v_j − ω_j × (l_j n) takes one
-      // cross product, (l_i ω_i + l_j ω_j) × n, and both torques (Eq. 15) share n × F_t.
-      in.slip_m_s = vi0 - Vec3(pvx[j], pvy[j], pvz[j]);
-      Vec3 wj = Vec3::Zero();
-      if constexpr (kRotation) {
-        wj = Vec3(pwx[j], pwy[j], pwz[j]);
-        in.slip_m_s -= (li * wi + lj * wj).cross(in.normal);
-      }
-      in.dt_s = dt;
       // R* = r_i r_j / (r_i + r_j), M* = m_i m_j / (m_i + m_j) and what the law derives from them: from the
       // material-pair table when both materials have one size, else per contact.
       const PairCoeffs& tab = coeffs_row[material[j]];
-      const PairCoeffs pc = tab.uniform ? tab : Law::coeffs(pp, ri * rj / cut, mi * mass[j] / (mi + mass[j]));
-      const ContactForce cf = Law::eval(pp, pc, in, hist);
-      held[k] = 1;
-      const Vec3& f = cf.force_n;
-      Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
-      if constexpr (kRotation) {
-        const Vec3 n_cross_ft = in.normal.cross(cf.tangential_force_n);
-        t_i = -li * n_cross_ft;  // (−l_i n) × F_t, Eq. 15
-        t_j = -lj * n_cross_ft;  // (l_j n) × (−F_t)
-        if constexpr (kRolling) {
-          const double ii_ = inertia[i], ij_ = inertia[j];
-          const Vec3 tr = rolling_torque(pp.rolling_friction, cf.normal_force_n, pc.r_eff_m, wi - wj, ii_ * ij_ / (ii_ + ij_), dt);
-          t_i += tr;
-          t_j -= tr;
+      const double rj = radius[j];
+      const PairCoeffs pc = tab.uniform ? tab : Law::coeffs(pp, ri * rj / (ri + rj), mi * mass[j] / (mi + mass[j]));
+      V3<double> wj{0.0, 0.0, 0.0};
+      if constexpr (kRotation) wj = V3<double>{pwx[j], pwy[j], pwz[j]};
+      LawHistory<double> h{{hist[0], hist[1], hist[2]}, hist[3]};
+      PairOut<double> r = pair_contact<Law, kRotation>(separation(j), dist2, ri, rj, vi - V3<double>{pvx[j], pvy[j], pvz[j]},
+                                                         wi, wj, pp, pc, dt, h);
+      hist[0] = h.elastic.x; hist[1] = h.elastic.y; hist[2] = h.elastic.z; hist[3] = h.overlap_m;
+      if constexpr (kRolling) {
+        const double ii_ = inertia[i], ij_ = inertia[j];
+        const Vec3 tr = rolling_torque(pp.rolling_friction, r.normal_force_n, pc.r_eff_m, Vec3(wi.x - wj.x, wi.y - wj.y, wi.z - wj.z),
+                                       ii_ * ij_ / (ii_ + ij_), dt);
+        r.t_i = r.t_i + V3<double>{tr.x(), tr.y(), tr.z()};
+        r.t_j = r.t_j - V3<double>{tr.x(), tr.y(), tr.z()};
+      }
+      add(k, j, r.f, r.t_i, r.t_j);
+    };
+    // Two stages per chunk of i's pairs. (1) Without a branch on "touching" — about a third of the listed
+    // pairs touch, scattered, so that branch was mispredicted often — the touching pairs' indices are
+    // appended to a small buffer and a pair that has just come apart releases its tangential spring.
+    // (2) The contact law over the buffer only, in pair order (so the sums are those of one loop), two
+    // pairs at a time in lanes (lanes.hpp) when they share their materials' table entry.
+    constexpr std::uint32_t kChunk = 64;
+    for (std::uint32_t chunk = k_begin; chunk < k_end; chunk += kChunk) {
+      const std::uint32_t chunk_end = std::min(k_end, chunk + kChunk);
+      std::uint32_t touching_pairs[kChunk];
+      double touching_dist2[kChunk];
+      std::uint32_t touching = 0;
+      for (std::uint32_t k = chunk; k < chunk_end; ++k) {
+        const std::size_t j = partner[k];
+        const V3<double> d = separation(j);
+        const double dist2 = squared_norm(d);
+        const double cut = ri + radius[j];
+        const bool touches = (dist2 < cut * cut) & i_active & (active[j] != 0) & (dist2 != 0.0);
+        touching_pairs[touching] = k;
+        touching_dist2[touching] = dist2;
+        touching += touches ? 1u : 0u;
+        // Contact lost: the tangential spring is released. The history is touched only if it holds
+        // anything (held byte): the apart pairs cost a byte read, not 32 bytes. Rarely true, so predictable.
+        if (held[k] & static_cast<std::uint8_t>(!touches)) {
+          double* const hist = history + static_cast<std::size_t>(k) * kHistoryDoubles;
+          hist[0] = hist[1] = hist[2] = hist[3] = 0.0;
+          held[k] = 0;
+        }
+        if constexpr (kStorePairs) {
+          for (int c = 0; c < 3; ++c) out_force[k * 3 + c] = 0.0;
+          if constexpr (kRotation)
+            for (int c = 0; c < 3; ++c) out_torque_i[k * 3 + c] = out_torque_j[k * 3 + c] = 0.0;
         }
       }
-      sum_f += f;
-      if constexpr (kRotation) sum_t += t_i;
-      if constexpr (kStorePairs) {
-        for (int c = 0; c < 3; ++c) out_force[k * 3 + c] = f[c];
-        if constexpr (kRotation)
-          for (int c = 0; c < 3; ++c) { out_torque_i[k * 3 + c] = t_i[c]; out_torque_j[k * 3 + c] = t_j[c]; }
-      } else {
-        // j > i: its sum is finished when the loop reaches j (Newton's third law, Eq. 1).
-        PairSum& sj = sums[j];
-        sj.f[0] -= f.x(); sj.f[1] -= f.y(); sj.f[2] -= f.z();
-        if constexpr (kRotation) { sj.t[0] += t_j.x(); sj.t[1] += t_j.y(); sj.t[2] += t_j.z(); }
+      std::uint32_t q = 0;
+      if constexpr (!kRolling) {
+        for (; q + 2 <= touching; q += 2) {
+          const std::uint32_t k0 = touching_pairs[q], k1 = touching_pairs[q + 1];
+          const std::size_t j0 = partner[k0], j1 = partner[k1];
+          const PairCoeffs& tab = coeffs_row[material[j0]];
+          if (material[j1] != material[j0] || !tab.uniform) {
+            one_pair(k0, touching_dist2[q]);
+            one_pair(k1, touching_dist2[q + 1]);
+            continue;
+          }
+          const V3<double> d0 = separation(j0), d1 = separation(j1);
+          V3<Lanes2> wj2 = lanes::zero3<Lanes2>();
+          if constexpr (kRotation) wj2 = V3<Lanes2>{pack(pwx[j0], pwx[j1]), pack(pwy[j0], pwy[j1]), pack(pwz[j0], pwz[j1])};
+          double* const h0 = history + static_cast<std::size_t>(k0) * kHistoryDoubles;
+          double* const h1 = history + static_cast<std::size_t>(k1) * kHistoryDoubles;
+          LawHistory<Lanes2> h{{pack(h0[0], h1[0]), pack(h0[1], h1[1]), pack(h0[2], h1[2])}, pack(h0[3], h1[3])};
+          const PairOut<Lanes2> r = pair_contact<Law, kRotation>(
+              V3<Lanes2>{pack(d0.x, d1.x), pack(d0.y, d1.y), pack(d0.z, d1.z)}, pack(touching_dist2[q], touching_dist2[q + 1]),
+              lanes::splat<Lanes2>(ri), pack(radius[j0], radius[j1]),
+              V3<Lanes2>{lanes::splat<Lanes2>(vi.x) - pack(pvx[j0], pvx[j1]), lanes::splat<Lanes2>(vi.y) - pack(pvy[j0], pvy[j1]),
+                         lanes::splat<Lanes2>(vi.z) - pack(pvz[j0], pvz[j1])},
+              V3<Lanes2>{lanes::splat<Lanes2>(wi.x), lanes::splat<Lanes2>(wi.y), lanes::splat<Lanes2>(wi.z)}, wj2,
+              params_row[material[j0]], tab, dt, h);
+          for (int l = 0; l < 2; ++l) {
+            double* const hl = l == 0 ? h0 : h1;
+            hl[0] = h.elastic.x[l]; hl[1] = h.elastic.y[l]; hl[2] = h.elastic.z[l]; hl[3] = h.overlap_m[l];
+            add(l == 0 ? k0 : k1, l == 0 ? j0 : j1, lanes::lane3(r.f, l), lanes::lane3(r.t_i, l), lanes::lane3(r.t_j, l));
+          }
+        }
       }
-    }
+      for (; q < touching; ++q) one_pair(touching_pairs[q], touching_dist2[q]);
     }
     if constexpr (kStorePairs) {
       // Kept for the gather, which adds the partners' share in the same order as the direct pass.
       PairSum& si = sums[i];
-      si.f[0] = sum_f.x(); si.f[1] = sum_f.y(); si.f[2] = sum_f.z();
-      if constexpr (kRotation) { si.t[0] = sum_t.x(); si.t[1] = sum_t.y(); si.t[2] = sum_t.z(); }
+      for (int c = 0; c < 3; ++c) { si.f[c] = sum_f[c]; if constexpr (kRotation) si.t[c] = sum_t[c]; }
     } else {
-      // All pairs with i as `second` came earlier (their `first` is smaller): sum_*[i] is complete.
+      // All pairs with i as `second` came earlier (their `first` is smaller): sums[i] is complete.
       PairSum& si = sums[i];
-      p_.fx[i] += si.f[0] + sum_f.x();
-      p_.fy[i] += si.f[1] + sum_f.y();
-      p_.fz[i] += si.f[2] + sum_f.z();
+      p_.fx[i] += si.f[0] + sum_f[0];
+      p_.fy[i] += si.f[1] + sum_f[1];
+      p_.fz[i] += si.f[2] + sum_f[2];
       if constexpr (kRotation) {
-        p_.tx[i] += si.t[0] + sum_t.x();
-        p_.ty[i] += si.t[1] + sum_t.y();
-        p_.tz[i] += si.t[2] + sum_t.z();
+        p_.tx[i] += si.t[0] + sum_t[0];
+        p_.ty[i] += si.t[1] + sum_t[1];
+        p_.tz[i] += si.t[2] + sum_t[2];
       }
       si = PairSum{};
     }
@@ -578,12 +635,37 @@ void DemEngine::kick(double dt) {
   }
 }
 
-void DemEngine::drift(double dt) {
+void DemEngine::kick_drift(double dt_kick, double dt_drift) {
+  // kick(dt_kick), then x += dt_drift v for every particle: one pass over the arrays.
   const std::size_t n = p_.size();
+  const Vec3 g = params_.gravity_m_s2;
+  double* const x = p_.x.data(); double* const y = p_.y.data(); double* const z = p_.z.data();
+  double* const vx = p_.vx.data(); double* const vy = p_.vy.data(); double* const vz = p_.vz.data();
+  const double* const fx = p_.fx.data(); const double* const fy = p_.fy.data(); const double* const fz = p_.fz.data();
+  const double* const inv_mass = p_.inv_mass_kg.data();
+  const std::uint8_t* const active = p_.active.data();
   for (std::size_t i = 0; i < n; ++i) {
-    p_.x[i] += dt * p_.vx[i];
-    p_.y[i] += dt * p_.vy[i];
-    p_.z[i] += dt * p_.vz[i];
+    if (active[i]) {
+      const double inv_m = inv_mass[i];
+      vx[i] += dt_kick * (fx[i] * inv_m + g.x());
+      vy[i] += dt_kick * (fy[i] * inv_m + g.y());
+      vz[i] += dt_kick * (fz[i] * inv_m + g.z());
+    }
+    x[i] += dt_drift * vx[i];
+    y[i] += dt_drift * vy[i];
+    z[i] += dt_drift * vz[i];
+  }
+  if (p_.with_spin) {
+    double* const wx = p_.wx.data(); double* const wy = p_.wy.data(); double* const wz = p_.wz.data();
+    const double* const tx = p_.tx.data(); const double* const ty = p_.ty.data(); const double* const tz = p_.tz.data();
+    const double* const inv_inertia = p_.inv_inertia_kg_m2.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!active[i]) continue;
+      const double inv_i = inv_inertia[i];
+      wx[i] += dt_kick * tx[i] * inv_i;
+      wy[i] += dt_kick * ty[i] * inv_i;
+      wz[i] += dt_kick * tz[i] * inv_i;
+    }
   }
 }
 
@@ -666,8 +748,7 @@ void DemEngine::step() {
     maintain_lists();
     compute_forces();
     const auto t0 = Clock::now();
-    kick(dt_s_);
-    drift(dt_s_);
+    kick_drift(dt_s_, dt_s_);  // Eq. 41: v from the forces at t, then x with the new v
     stats_.integrate_s += seconds_since(t0);
   } else if (params_.integrator != Integrator::kVelocityVerlet) {
     // Gear: predict to t + Δt, one force evaluation there, correct (gear_predictor_corrector.hpp).
@@ -692,8 +773,7 @@ void DemEngine::step() {
       compute_forces();
     }
     auto t0 = Clock::now();
-    kick(0.5 * dt_s_);
-    drift(dt_s_);
+    kick_drift(0.5 * dt_s_, dt_s_);
     stats_.integrate_s += seconds_since(t0);
     time_s_ += dt_s_;
     maintain_lists();

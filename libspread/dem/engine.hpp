@@ -138,7 +138,7 @@ class DemEngine {
   // Particle–particle pass over the CSR half list. kStorePairs: each pair's results go to the list's
   // per-pair arrays and are gathered afterwards (threads, energy monitor); otherwise they are added
   // straight into the sums. Both add in the same order, so the results are bit-identical.
-  template <class Law, bool kRotation, bool kRolling, bool kStorePairs>
+  template <class Law, bool kRotation, bool kRolling, bool kStorePairs, bool kPeriodic>
   void pair_forces();
   template <bool kRotation>
   void gather_stored_pair_forces();
@@ -148,7 +148,8 @@ class DemEngine {
   template <class Law>
   void update_pair_coeffs();
   void kick(double dt);
-  void drift(double dt);
+  // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles.
+  void kick_drift(double dt_kick, double dt_drift);
   void collect();
   void fly_monolithic();
 

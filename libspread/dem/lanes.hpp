@@ -1,0 +1,73 @@
+#pragma once
+// Arithmetic written once for one contact (T = double) or for two contacts side by side (T = Lanes2:
+// two doubles in one SSE2 register, GCC/Clang vector extension). The contact laws and the pair geometry
+// are templates over T; the pair pass feeds the touching pairs two at a time.
+//
+// Every operation acts lane by lane with the same IEEE operation as the scalar code (no fused
+// multiply-add on the x86-64 baseline, sqrt and division correctly rounded), so a pair gives bit for bit
+// the same force whether it went through a lane or alone. A branch of the scalar code becomes a
+// select of both outcomes; the costly ones (a sqrt on slip) are computed only if some lane needs them.
+#include <cmath>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace spread::dem::lanes {
+
+using Lanes2 = double __attribute__((vector_size(16)));
+using Mask2 = decltype(Lanes2{} < Lanes2{});  // lane all ones (true) or all zeros
+
+// Broadcast: the same value in every lane.
+template <class T> inline T splat(double v);
+template <> inline double splat<double>(double v) { return v; }
+template <> inline Lanes2 splat<Lanes2>(double v) { return Lanes2{v, v}; }
+
+inline double sqrt(double v) { return std::sqrt(v); }
+inline Lanes2 sqrt(Lanes2 v) {
+#if defined(__SSE2__)
+  return _mm_sqrt_pd(v);
+#else
+  return Lanes2{std::sqrt(v[0]), std::sqrt(v[1])};
+#endif
+}
+
+// select(m, a, b): a where m holds, else b.
+inline double select(bool m, double a, double b) { return m ? a : b; }
+inline Lanes2 select(Mask2 m, Lanes2 a, Lanes2 b) {
+  return reinterpret_cast<Lanes2>((reinterpret_cast<Mask2>(a) & m) | (reinterpret_cast<Mask2>(b) & ~m));
+}
+inline bool both(bool a, bool b) { return a && b; }
+inline Mask2 both(Mask2 a, Mask2 b) { return a & b; }
+inline bool any(bool m) { return m; }
+inline bool any(Mask2 m) { return (m[0] | m[1]) != 0; }
+
+// std::max(0.0, v) lane by lane: v where 0 < v, else +0 (a NaN becomes 0, as std::max(0.0, NaN)).
+inline double max0(double v) { return 0.0 < v ? v : 0.0; }
+inline Lanes2 max0(Lanes2 v) { return select(Lanes2{0.0, 0.0} < v, v, Lanes2{0.0, 0.0}); }
+
+// A 3-vector of T (the contact kernel's own; Eigen's Vec3 stays the interface type).
+template <class T>
+struct V3 {
+  T x, y, z;
+};
+template <class T> inline V3<T> operator+(const V3<T>& a, const V3<T>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <class T> inline V3<T> operator-(const V3<T>& a, const V3<T>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <class T> inline V3<T> operator*(T s, const V3<T>& a) { return {s * a.x, s * a.y, s * a.z}; }
+template <class T> inline V3<T> operator*(const V3<T>& a, T s) { return {a.x * s, a.y * s, a.z * s}; }
+template <class T> inline T dot(const V3<T>& a, const V3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <class T> inline T squared_norm(const V3<T>& a) { return dot(a, a); }
+template <class T> inline V3<T> cross(const V3<T>& a, const V3<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class T, class M> inline V3<T> select(M m, const V3<T>& a, const V3<T>& b) {
+  return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
+}
+template <class T> inline V3<T> zero3() { return {splat<T>(0.0), splat<T>(0.0), splat<T>(0.0)}; }
+
+// Lane l of a two-lane value, and two scalars packed.
+inline double lane(Lanes2 v, int l) { return v[l]; }
+inline Lanes2 pack(double a, double b) { return Lanes2{a, b}; }
+inline V3<double> lane3(const V3<Lanes2>& v, int l) { return {v.x[l], v.y[l], v.z[l]}; }
+
+}  // namespace spread::dem::lanes
