@@ -127,7 +127,7 @@ TEST(DrumLong, AllSixRegimes) {
       {drum::Regime::kRolling, {"drum.froude=0.05"}},
       {drum::Regime::kCascading, {"drum.froude=0.5"}},
       {drum::Regime::kCataracting, {"drum.froude=1.3", "drum.wall=rough_particles"}},
-      {drum::Regime::kCentrifuging, {"drum.froude=3.0", "numerics.measure_from_s=0.6"}},
+      {drum::Regime::kCentrifuging, {"drum.froude=3.0", "numerics.rotate_s=1.6", "numerics.measure_from_s=1.1"}},  // after spin-up
   };
   for (const auto& c : cases) {
     const auto r = run(c.set);
