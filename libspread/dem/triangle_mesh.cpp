@@ -281,11 +281,19 @@ int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, i
           mc.feature = f;
           mc.point = q;
           mc.distance_m = std::sqrt(dist2);
-          if (mc.distance_m > 1e-12 * radius_m) {
-            mc.normal = d / mc.distance_m;
-          } else {
+          // Scaled by the largest component before normalising: with tiny coordinates d² or the face
+          // cross product underflows and d/|d| is not a unit vector (fuzz_stl_reader regression).
+          const auto unit = [](const Vec3& v, Vec3& unit_v) {
+            const double m = v.cwiseAbs().maxCoeff();
+            if (!(m > 0.0) || !std::isfinite(m)) return false;
+            unit_v = v / m;
+            unit_v /= unit_v.norm();
+            return true;
+          };
+          const bool centre_off_surface = mc.distance_m > 1e-12 * radius_m && unit(d, mc.normal);
+          if (!centre_off_surface) {
             const Vec3 fn = (mesh_.vertices[t[1]] - mesh_.vertices[t[0]]).cross(mesh_.vertices[t[2]] - mesh_.vertices[t[0]]);
-            mc.normal = fn.normalized();
+            if (!unit(fn, mc.normal)) continue;  // no defined normal (collinear vertices): no contact
           }
           cand_v[ncand][0] = t[static_cast<std::size_t>(fv[0])];
           cand_v[ncand][1] = f == Feature::kEdge ? t[static_cast<std::size_t>(fv[1])] : cand_v[ncand][0];
