@@ -624,14 +624,18 @@ void DemEngine::kick(double dt) {
     p_.vy[i] += dt * (p_.fy[i] * inv_m + g.y());
     p_.vz[i] += dt * (p_.fz[i] * inv_m + g.z());
   }
-  if (p_.with_spin) {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!p_.active[i]) continue;
-      const double inv_i = p_.inv_inertia_kg_m2[i];
-      p_.wx[i] += dt * p_.tx[i] * inv_i;
-      p_.wy[i] += dt * p_.ty[i] * inv_i;
-      p_.wz[i] += dt * p_.tz[i] * inv_i;
-    }
+  kick_spin(dt);
+}
+
+void DemEngine::kick_spin(double dt) {
+  if (!p_.with_spin) return;
+  const std::size_t n = p_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!p_.active[i]) continue;
+    const double inv_i = p_.inv_inertia_kg_m2[i];
+    p_.wx[i] += dt * p_.tx[i] * inv_i;
+    p_.wy[i] += dt * p_.ty[i] * inv_i;
+    p_.wz[i] += dt * p_.tz[i] * inv_i;
   }
 }
 
@@ -655,18 +659,7 @@ void DemEngine::kick_drift(double dt_kick, double dt_drift) {
     y[i] += dt_drift * vy[i];
     z[i] += dt_drift * vz[i];
   }
-  if (p_.with_spin) {
-    double* const wx = p_.wx.data(); double* const wy = p_.wy.data(); double* const wz = p_.wz.data();
-    const double* const tx = p_.tx.data(); const double* const ty = p_.ty.data(); const double* const tz = p_.tz.data();
-    const double* const inv_inertia = p_.inv_inertia_kg_m2.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!active[i]) continue;
-      const double inv_i = inv_inertia[i];
-      wx[i] += dt_kick * tx[i] * inv_i;
-      wy[i] += dt_kick * ty[i] * inv_i;
-      wz[i] += dt_kick * tz[i] * inv_i;
-    }
-  }
+  kick_spin(dt_kick);
 }
 
 void DemEngine::collect() {

@@ -148,6 +148,7 @@ class DemEngine {
   template <class Law>
   void update_pair_coeffs();
   void kick(double dt);
+  void kick_spin(double dt);  // ω += Δt T/I (rotation only); kick() and kick_drift() end with it
   // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles.
   void kick_drift(double dt_kick, double dt_drift);
   void collect();
