@@ -9,6 +9,7 @@
 #include "libspread/accuracy/accuracy.hpp"
 #include "libspread/accuracy/launch_set.hpp"
 #include "libspread/accuracy/stopwatch.hpp"
+#include "libspread/dem/scene_config.hpp"
 #include "libspread/predict/flight_defaults.hpp"
 
 namespace spread::accuracy {
@@ -17,7 +18,10 @@ namespace {
 struct FlightPoint {
   std::string scheme;        // "rk4" | "dopri5"
   double knob = 0.0;         // RK4: Δt (s); dopri5: tolerance
-  bool is_default = false;   // the predictor's current default_flight_settings()
+  // "" for a grid point; else which product default this row measures: "predictor default"
+  // (predict::default_flight_settings) or "scene default" (the study scene's numerics as
+  // dem::config_from_scene turns them into the DEM run's flight settings).
+  std::string role;
   flight::Settings settings;
   double max_error_m = 0.0, mean_error_m = 0.0, max_rel_error = 0.0;
   double time_per_flight_s = 0.0, mean_steps = 0.0;
@@ -44,7 +48,7 @@ Study flight_study(const StudyOptions& options) {
   const std::vector<double> dts_ms = options.quick ? std::vector<double>{0.5, 1, 2, 5, 10, 20}
                                                    : std::vector<double>{0.1, 0.2, 0.5, 1, 2, 5, 10, 20};
   for (double dt_ms : dts_ms) {
-    FlightPoint p{"rk4", dt_ms * 1e-3, false, predict::fixed_step_rk4_settings(dt_ms * 1e-3)};
+    FlightPoint p{"rk4", dt_ms * 1e-3, "", predict::fixed_step_rk4_settings(dt_ms * 1e-3)};
     points.push_back(p);
   }
   const std::vector<double> tols = options.quick ? std::vector<double>{1e-2, 1e-3, 1e-4, 1e-6}
@@ -54,9 +58,15 @@ Study flight_study(const StudyOptions& options) {
     flight::Settings s = current;  // the predictor's first trial step and limits, tolerance varied
     s.rel_tol = tol;
     s.abs_tol = tol;
-    points.push_back({"dopri5", tol, false, s});
+    points.push_back({"dopri5", tol, "", s});
   }
-  points.push_back({"dopri5", current.rel_tol, true, current});
+  points.push_back({"dopri5", current.rel_tol, "predictor default", current});
+  // The scene's flight settings as a DEM run (`spread simulate`) uses them: numerics.flight_scheme,
+  // flight_dt_s and flight_tolerance (relative; the absolute tolerance stays flight::Settings' default).
+  const flight::Settings scene_flight = dem::config_from_scene(scene, options.material).flight_settings;
+  const bool scene_is_rk4 = scene_flight.scheme == flight::Scheme::kRk4;
+  points.push_back({scene_is_rk4 ? "rk4" : "dopri5", scene_is_rk4 ? scene_flight.dt_s : scene_flight.rel_tol,
+                    "scene default", scene_flight});
 
   const double min_time_s = options.quick ? 0.02 : 0.3;
   // Warm-up (caches, CPU clock) so the first timed setting is not penalised.
@@ -90,7 +100,7 @@ Study flight_study(const StudyOptions& options) {
                               min_time_s) /
                           static_cast<double>(n);
     if (options.progress) {
-      *options.progress << "flight " << p.scheme << " " << p.knob << (p.is_default ? " (default)" : "")
+      *options.progress << "flight " << p.scheme << " " << p.knob << (p.role.empty() ? "" : " (" + p.role + ")")
                         << ": max error " << p.max_error_m << " m, " << p.time_per_flight_s * 1e6 << " us\n";
     }
     if (sink < 0.0) p.mean_steps = -1.0;  // keeps the timed flights from being optimised away
@@ -99,24 +109,26 @@ Study flight_study(const StudyOptions& options) {
   Study st;
   st.name = "flight";
   st.title = "Flight integrator: landing-point error against time per trajectory";
-  char buf[600];
+  char buf[900];
   std::snprintf(buf, sizeof buf,
                 "%zu launches of `%s` at %.0f rpm (analytic launch samples of `%s`, effects drag, Magnus, spin "
                 "decay, disc %.2f m above the ground) flown with each setting. Error = horizontal distance between "
                 "the landing point and that of the reference (Dormand–Prince, rel/abs tolerance 1e-11); relative "
                 "error = that distance / the reference landing radius from the disc centre (worst launch). Time = "
-                "median CPU time per trajectory. Dormand–Prince rows use rel = abs tolerance and the predictor's "
-                "first trial step.",
+                "median CPU time per trajectory. Dormand–Prince grid rows use rel = abs tolerance and the predictor's "
+                "first trial step; the two default rows are the settings as the product uses them (predictor: "
+                "`predict::default_flight_settings()`; scene: `dem::config_from_scene`, the flight of `spread "
+                "simulate`).",
                 n, material.name.c_str(), options.rpm, scene.source_name.c_str(), scene.machine.disc_height_m);
   st.method = buf;
   st.columns = {"scheme", "dt_s_or_tol", "max_error_m", "mean_error_m", "max_rel_error", "time_per_flight_us",
                 "steps_per_flight"};
   Series rk4{"RK4 (label: dt)", {}, {}}, dp{"Dormand-Prince (label: tol)", {}, {}};
   for (const auto& p : points) {
-    st.rows.push_back({p.scheme + (p.is_default ? " (current default)" : ""), cell(p.knob), cell(p.max_error_m),
+    st.rows.push_back({p.scheme + (p.role.empty() ? "" : " (" + p.role + ")"), cell(p.knob), cell(p.max_error_m),
                        cell(p.mean_error_m), cell(p.max_rel_error), cell(p.time_per_flight_s * 1e6),
                        cell(p.mean_steps)});
-    if (p.is_default) continue;
+    if (!p.role.empty()) continue;
     Series& s = p.scheme == "rk4" ? rk4 : dp;
     s.x.push_back(p.time_per_flight_s * 1e6);
     s.y.push_back(std::max(p.max_rel_error, 1e-16));
@@ -150,7 +162,7 @@ Study flight_study(const StudyOptions& options) {
   auto cheapest = [&](auto&& ok) -> const FlightPoint* {
     const FlightPoint* best = nullptr;
     for (const auto& p : points) {
-      if (p.is_default || !ok(p)) continue;
+      if (!p.role.empty() || !ok(p)) continue;
       if (best == nullptr || p.time_per_flight_s < best->time_per_flight_s) best = &p;
     }
     return best;
@@ -159,9 +171,11 @@ Study flight_study(const StudyOptions& options) {
   const FlightPoint* both = cheapest(
       [](const FlightPoint& p) { return p.max_rel_error <= kErrorBudget && p.max_error_m <= 0.01; });
   const FlightPoint* cm = cheapest([](const FlightPoint& p) { return p.max_error_m <= 0.01; });
-  const FlightPoint& def = points.back();
+  const FlightPoint& def = points[points.size() - 2];
+  const FlightPoint& scene_def = points.back();
   st.figures["default_max_error_m"] = def.max_error_m;
   st.figures["default_time_us"] = def.time_per_flight_s * 1e6;
+  st.figures["scene_default_max_error_m"] = scene_def.max_error_m;
   auto describe = [](const FlightPoint* p) {
     if (p == nullptr) return std::string("none of the measured settings");
     char b[200];
@@ -187,8 +201,11 @@ Study flight_study(const StudyOptions& options) {
   st.recommendation = std::string(buf) + "- Cheapest within 1 % of the landing radius: " + describe(rel) +
                       ".\n- Cheapest within 1 cm (the predictor's documented accuracy, 2 % of a 0.5 m tray): " +
                       describe(cm) + ".\n- **Recommended default** (cheapest within both): " + describe(both) +
-                      ".\n- Current predictor default (`libspread/predict/flight_defaults.cpp`): " +
-                      describe(&def) + ".\n";
+                      ".\n- Predictor default (`libspread/predict/flight_defaults.cpp`, rel = abs tolerance): " +
+                      describe(&def) + ".\n- Scene default for DEM runs (`" + scene.source_name +
+                      "` numerics, relative tolerance " + cell(scene_flight.rel_tol) + ", absolute " +
+                      cell(scene_flight.abs_tol) + ", first trial step " + cell(scene_flight.dt_s) +
+                      " s): " + describe(&scene_def) + ".\n";
   return st;
 }
 

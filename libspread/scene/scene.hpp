@@ -18,6 +18,9 @@ namespace spread::scene {
 using Material = tables::Material;
 
 enum class DiscModel { kAnalytic, kMesh };            // "analytic" | "mesh"
+// Default mesh size ξ/R: the coarsest the accuracy study (docs/accuracy-cost.md, DEM) measured within 1 %
+// on the seed's Appendix-1 cone.
+inline constexpr double kDefaultMeshSizePerRadius = 0.01;
 enum class Integrator { kSymplecticEuler, kVelocityVerlet };  // "symplectic_euler" | "velocity_verlet"
 enum class ContactModel { kHertzMindlin, kLinear };   // "hertz_mindlin" | "linear"
 enum class FlightScheme { kRk4, kDopri5 };            // "rk4" | "dopri5"
@@ -41,7 +44,8 @@ struct Machine {
   double vane_height_m = 0.036;
   double vane_pitch_rad = 0.0;        // 0 = radial vanes; > 0 leans the vane backwards
   DiscModel disc_model = DiscModel::kAnalytic;
-  double mesh_size_m = 0.005;         // ξ, triangle size of the generated mesh (disc_model = "mesh")
+  double mesh_size_m = 0.0;           // ξ, triangle size of the generated mesh (disc_model = "mesh");
+                                      // 0 in the file = kDefaultMeshSizePerRadius · disc_radius_m (on load)
   double rpm = 500.0;                 // disc speed of a `simulate` run (rev/min)
 };
 
@@ -86,7 +90,7 @@ struct Numerics {
   ContactModel contact_model = ContactModel::kHertzMindlin;
   FlightScheme flight_scheme = FlightScheme::kDopri5;
   double flight_dt_s = 1e-3;          // RK4 step, or first trial step of dopri5
-  double flight_tolerance = 1e-6;     // dopri5 relative tolerance
+  double flight_tolerance = 1e-3;     // dopri5 relative tolerance (docs/accuracy-cost.md, flight)
   double collector_radius_m = 0.0;    // 0 = disc_radius_m (resolved on load)
   int threads = 0;                    // 0 = all hardware threads
 };

@@ -458,6 +458,7 @@ void validate(Scene& scene) {
   }
   if (m.vane_count > 0) c.positive("machine.vane_height_m", m.vane_height_m);
   c.in_range("machine.vane_pitch_rad", m.vane_pitch_rad, -1.2, 1.2);
+  if (m.mesh_size_m == 0.0) m.mesh_size_m = kDefaultMeshSizePerRadius * m.disc_radius_m;
   c.positive("machine.mesh_size_m", m.mesh_size_m);
   c.positive("machine.rpm", m.rpm);
 

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "libspread/accuracy/accuracy.hpp"
 #include "tools/spread/command_registry.hpp"
 
@@ -28,6 +30,7 @@ struct AccuracyOptions {
   double rpm = 500.0;
   std::string only;  // comma list of studies; empty = all
   bool verbose = false;
+  bool json = false;  // machine-readable summary on stdout instead of the one-line message
 };
 
 int run(const AccuracyOptions& o) {
@@ -56,7 +59,7 @@ int run(const AccuracyOptions& o) {
   if (on("particle_count")) studies.push_back(accuracy::particle_count_study(so));
   if (on("tables")) studies.push_back(accuracy::table_study(so));
   if (on("partition")) studies.push_back(accuracy::partition_study(so));
-  const double wall_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  const double cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
 
   accuracy::write_study_files(studies, o.out);
   const std::string report = o.report.empty() ? o.out + "/accuracy-cost.md" : o.report;
@@ -73,9 +76,28 @@ int run(const AccuracyOptions& o) {
   if (o.rpm != 500.0) command += " --rpm " + accuracy::cell(o.rpm);
   accuracy::StudyOptions shown = so;
   shown.scene_path = accuracy::scene_display_name(o.scene);
-  accuracy::write_report(studies, shown, command, wall_s, report, prefix);
-  std::cout << "wrote " << report << " and " << studies.size() << " studies' CSV/PNG in " << o.out << " ("
-            << accuracy::cell(wall_s) << " s)\n";
+  accuracy::write_report(studies, shown, command, cpu_s, report, prefix);
+  if (o.json) {
+    // Recommendations (markdown text and the named figures behind them) and every file written.
+    nlohmann::json out = {{"command", command}, {"quick", o.quick}, {"cpu_time_s", cpu_s}, {"report", report},
+                          {"out", o.out}, {"studies", nlohmann::json::array()}};
+    for (const auto& st : studies) {
+      nlohmann::json plots = nlohmann::json::array();
+      for (const auto& p : st.plots) plots.push_back(o.out + "/" + p.file);
+      nlohmann::json figures = nlohmann::json::object();
+      for (const auto& [key, value] : st.figures) figures[key] = value;  // NaN (not measured) becomes null
+      out["studies"].push_back({{"name", st.name},
+                                {"title", st.title},
+                                {"csv", o.out + "/" + st.name + ".csv"},
+                                {"plots", plots},
+                                {"recommendation", st.recommendation},
+                                {"figures", figures}});
+    }
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << "wrote " << report << " and " << studies.size() << " studies' CSV/PNG in " << o.out << " ("
+              << accuracy::cell(cpu_s) << " s CPU)\n";
+  }
   return spread::cli::kExitOk;
 }
 
@@ -90,6 +112,7 @@ spread::cli::CommandRegistration registration{"accuracy", [](CLI::App& app, int&
   sub->add_option("--rpm", options->rpm, "Disc speed of the flight and particle-count studies (r/min)")
       ->capture_default_str();
   sub->add_option("--only", options->only, "Comma list of studies: flight,dem,particle_count,tables,partition");
+  sub->add_flag("--json", options->json, "Machine-readable summary on stdout: recommendations, figures, files");
   sub->add_flag("-v,--verbose", options->verbose, "One progress line per measured point on stderr");
   sub->callback([options, &exit_code] {
     try {
