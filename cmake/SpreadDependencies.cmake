@@ -17,7 +17,15 @@ endif()
 if(SPREAD_WITH_MPI)
   find_package(MPI COMPONENTS CXX)
 endif()
-# LCM 1.3.1 in Debian ships no CMake package; lcm-gen runs at build time (DESIGN.md §6).
-find_program(LCM_GEN lcm-gen)
-find_library(LCM_LIBRARY lcm)
-find_path(LCM_INCLUDE_DIR lcm/lcm.h)
+# LCM 1.3.1 in Debian ships no CMake package; lcm-gen runs at build time (DESIGN.md §6). Required by
+# default: without it firmware_sim, spread-tractor and the firmware LCM tests would silently vanish.
+if(SPREAD_WITH_LCM)
+  find_program(LCM_GEN lcm-gen)
+  find_library(LCM_LIBRARY lcm)
+  find_path(LCM_INCLUDE_DIR lcm/lcm.h)
+  if(NOT LCM_GEN OR NOT LCM_LIBRARY OR NOT LCM_INCLUDE_DIR)
+    message(FATAL_ERROR "LCM not found (lcm-gen: ${LCM_GEN}, liblcm: ${LCM_LIBRARY}, lcm/lcm.h: ${LCM_INCLUDE_DIR}). "
+                        "Install the Debian packages liblcm-dev liblcm-bin (tools/setup.sh does), or configure "
+                        "with -DSPREAD_WITH_LCM=OFF to build without firmware_sim and spread-tractor.")
+  endif()
+endif()

@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
   std::string lcm_url;
   bool no_lcm = false;
   std::string channel_prefix(lcm_link::kDefaultChannelPrefix);
+  std::string command_channel, status_channel, heartbeat_channel;  // "" = prefix + COMMAND / STATUS / HEARTBEAT
   std::string can_interface;
   int can_address = 0x80;
   std::string tables_path;
@@ -87,6 +88,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-lcm", no_lcm, "do not use LCM at all");
   app.add_option("--channel-prefix", channel_prefix, "prefix of the LCM channels <P>COMMAND, <P>STATUS, <P>HEARTBEAT")
       ->capture_default_str();
+  app.add_option("--command-channel", command_channel, "full name of the command_t channel (overrides the prefix)");
+  app.add_option("--status-channel", status_channel, "full name of the status_t channel (overrides the prefix)");
+  app.add_option("--heartbeat-channel", heartbeat_channel,
+                 "full name of the heartbeat_t channel (overrides the prefix)");
   app.add_option("--can", can_interface, "SocketCAN interface (e.g. can0) for ISOBUS process data");
   app.add_option("--can-address", can_address, "this ECU's ISOBUS source address (0..253)")
       ->check(CLI::Range(0, 253))
@@ -153,7 +158,7 @@ int main(int argc, char** argv) {
     if (!no_lcm) {
       lcm = std::make_unique<lcm::LCM>(lcm_url);
       if (!lcm->good()) throw std::runtime_error("LCM: cannot create an instance for URL '" + lcm_url + "'");
-      lcm_io = std::make_unique<lcm_link::LcmEcuLink>(*lcm, ecu, lcm_link::channels_with_prefix(channel_prefix));
+      lcm_io = std::make_unique<lcm_link::LcmEcuLink>(*lcm, ecu, lcm_link::channels_from(channel_prefix, command_channel, status_channel, heartbeat_channel));
       lcm_io->attach_loop(&loop);
       io.add(*lcm_io);
     }

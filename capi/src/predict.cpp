@@ -5,6 +5,7 @@
 #include <new>
 #include <string_view>
 
+#include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
 
 namespace {
@@ -50,6 +51,7 @@ extern "C" spread_status spread_predict(spread_tables* tables, const spread_pred
   if (def->struct_size < spread::capi::kPredictionDefV1Size) return SPREAD_ERROR_OUT_OF_RANGE;
   if (def->material == nullptr) return SPREAD_ERROR_NULL_POINTER;
   try {
+    spread::capi::detail::fault_point();
     spread::predict::PredictionRequest request;
     request.material = std::string_view(def->material, std::strlen(def->material));
     request.rpm = def->rpm;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <new>
 
+#include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
 
 namespace {
@@ -31,6 +32,7 @@ extern "C" spread_status spread_open(const char* path, spread_tables** out_table
   *out_tables = nullptr;
   if (path == nullptr) return SPREAD_ERROR_NULL_POINTER;
   try {
+    spread::capi::detail::fault_point();
     auto contents = spread::tables::read_table_file(path);
     if (contents.runs.empty()) return SPREAD_ERROR_FILE_EMPTY;  // the reader should say so already
     *out_tables = new spread_tables(std::move(contents));

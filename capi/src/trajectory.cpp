@@ -3,6 +3,7 @@
 #include <cmath>
 #include <initializer_list>
 
+#include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
 #include "libspread/predict/flight_defaults.hpp"
 
@@ -74,6 +75,7 @@ extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spr
   if (!in_domain(*def)) return SPREAD_ERROR_OUT_OF_RANGE;
   if ((def->effects & ~uint32_t{SPREAD_EFFECT_ALL}) != 0) return SPREAD_ERROR_UNKNOWN_EFFECT;
   try {
+    spread::capi::detail::fault_point();
     spread::flight::Granule granule;
     granule.diameter_m = def->diameter_m;
     granule.density_kg_m3 = def->density_kg_m3;

@@ -5,9 +5,11 @@
 // speed. Each step is timed on its own; the counters report the median and the worst step and the
 // worst as a fraction of the loop period.
 //
-// Predictions come from the C API over the table file named by SPREAD_FIRMWARE_TABLES (e.g. the one
-// ctest builds: build/tests/firmware/firmware_default.sqlite); without it, an analytic stand-in is used
-// and the benchmark label says so.
+// Predictions come from the C API over a real launch table: by default one built at bench start from
+// scenes/default.toml by the same library code lookup_builder runs (spread::lookup::build_tables, into
+// a temporary file), so the automatic-mode worst case is the one a deployed ECU sees. SPREAD_FIRMWARE_TABLES
+// names another table file instead; SPREAD_FIRMWARE_MATERIAL another material (default: the table's first).
+// Only a build without the C API falls back to an analytic stand-in, and the benchmark label says so.
 #include <benchmark/benchmark.h>
 
 #include <time.h>
@@ -16,6 +18,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
@@ -23,7 +26,13 @@
 #include "firmware_sim/ecu/ecu.hpp"
 #include "tests/firmware/analytic_predictor.hpp"
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
+#include <unistd.h>
+
+#include <filesystem>
+
 #include "firmware_sim/ecu/capi_spread_predictor.hpp"
+#include "libspread/scene/scene.hpp"
+#include "lookup_builder/table_build.hpp"
 #endif
 
 namespace {
@@ -37,21 +46,43 @@ struct PredictorChoice {
   std::string label;
 };
 
+#ifdef SPREAD_FIRMWARE_HAS_CAPI
+// The default scene's table, built once per process (about a second) into the temporary directory.
+const std::string& default_scene_table() {
+  static const std::string path = [] {
+    const std::string out =
+        (std::filesystem::temp_directory_path() / ("bench_firmware_default_" + std::to_string(::getpid()) + ".sqlite"))
+            .string();
+    const spread::scene::Scene scene = spread::scene::load_scene_file(SPREAD_DEFAULT_SCENE);
+    spread::lookup::BuildOptions options;
+    options.output_path = out;
+    options.rebuild = true;
+    spread::lookup::build_tables(scene, options);
+    std::atexit([] { std::filesystem::remove(default_scene_table()); });
+    return out;
+  }();
+  return path;
+}
+#endif
+
 PredictorChoice choose_predictor() {
   PredictorChoice c;
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
-  if (const char* path = std::getenv("SPREAD_FIRMWARE_TABLES")) {
-    auto capi = std::make_unique<CapiSpreadPredictor>(path, 15.0);
-    c.material = capi->materials().front();
-    c.label = "C API tables " + std::string(path) + ", material " + c.material;
-    c.predictor = std::move(capi);
-    return c;
-  }
-#endif
+  const char* given = std::getenv("SPREAD_FIRMWARE_TABLES");
+  const std::string path = given != nullptr ? std::string(given) : default_scene_table();
+  auto capi = std::make_unique<CapiSpreadPredictor>(path, 15.0);
+  const char* material = std::getenv("SPREAD_FIRMWARE_MATERIAL");
+  c.material = material != nullptr ? std::string(material) : capi->materials().front();
+  c.label = "C API, " + (given != nullptr ? "tables " + path : std::string("scenes/default.toml table")) +
+            ", material " + c.material;
+  c.predictor = std::move(capi);
+  return c;
+#else
   c.predictor = std::make_unique<testing::AnalyticPredictor>();
   c.material = "urea";
-  c.label = "analytic stand-in (set SPREAD_FIRMWARE_TABLES for the C API)";
+  c.label = "analytic stand-in (this build has no C API)";
   return c;
+#endif
 }
 
 // Thread CPU time [us]: on a loaded machine wall time mostly measures waiting for a core.

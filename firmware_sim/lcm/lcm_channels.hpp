@@ -20,4 +20,16 @@ inline LcmChannels channels_with_prefix(std::string_view prefix) {
   return {p + "COMMAND", p + "STATUS", p + "HEARTBEAT"};
 }
 
+// The prefix's names, each replaced by a full name when one is given (non-empty): the command-line
+// options --command-channel, --status-channel, --heartbeat-channel of firmware_sim and spread-tractor,
+// for a bus whose channel names do not share a prefix.
+inline LcmChannels channels_from(std::string_view prefix, const std::string& command, const std::string& status,
+                                 const std::string& heartbeat) {
+  LcmChannels channels = channels_with_prefix(prefix);
+  if (!command.empty()) channels.command = command;
+  if (!status.empty()) channels.status = status;
+  if (!heartbeat.empty()) channels.heartbeat = heartbeat;
+  return channels;
+}
+
 }  // namespace spread::firmware::lcm_link

@@ -130,8 +130,13 @@ void write_cv_curve_png(std::span<const double> widths_m, std::span<const double
       detail::set_font(cr, 14.0);
       char value[32];
       std::snprintf(value, sizeof value, "%.1f m", w_eff);
-      detail::draw_text(cr, value, axes.px(w_eff) + 5.0, axes.top() + axes.height() - 8.0 - 20.0 * curve_index,
-                        0.0, 1.0);
+      // Right of the marker line, or left of it when the text would run past the right edge of the axes
+      // (the working width is often the largest W plotted).
+      cairo_text_extents_t extents;
+      cairo_text_extents(cr, value, &extents);
+      const bool fits_right = axes.px(w_eff) + 5.0 + extents.x_advance <= axes.left() + axes.width() - 2.0;
+      detail::draw_text(cr, value, axes.px(w_eff) + (fits_right ? 5.0 : -5.0),
+                        axes.top() + axes.height() - 8.0 - 20.0 * curve_index, fits_right ? 0.0 : 1.0, 1.0);
     } else {
       std::snprintf(label, sizeof label, "%s: no width meets the target", c.name);
     }

@@ -91,28 +91,43 @@ void write_ground_pattern_png(const metrics::GroundPattern& pattern, const std::
   detail::Canvas canvas(kImageWidth_px, kImageHeight_px);
   cairo_t* cr = canvas.cr();
 
+  // Disc centres: left disc at -spacing/2, right at +spacing/2 (one disc at 0), both at y = 0.
+  const int discs = machine.disc_count == 1 ? 1 : 2;
+  const double disc_x_m = discs == 1 ? 0.0 : 0.5 * machine.disc_spacing_m;
+
+  // The shown area covers the grid and the disc centres (a pattern thrown wholly behind the machine has
+  // no cell at y = 0; the markers then sat outside the axes, over the title). A margin of 3 % of the
+  // larger span keeps each 10 px marker inside the frame.
+  const double grid_x_span_m = pattern.nx * pattern.cell_m;
+  const double grid_y_span_m = pattern.ny * pattern.cell_m;
+  const double margin_m = 0.03 * std::max(grid_x_span_m, grid_y_span_m);
+  const double x_lo_m = std::min(pattern.x0_m, -disc_x_m - margin_m);
+  const double x_hi_m = std::max(pattern.x0_m + grid_x_span_m, disc_x_m + margin_m);
+  const double y_lo_m = std::min(pattern.y0_m, -margin_m);
+  const double y_hi_m = std::max(pattern.y0_m + grid_y_span_m, margin_m);
+
   // Equal scales in x and y, fitted into the space left of the colour bar.
-  const double x_span_m = pattern.nx * pattern.cell_m;
-  const double y_span_m = pattern.ny * pattern.cell_m;
+  const double x_span_m = x_hi_m - x_lo_m;
+  const double y_span_m = y_hi_m - y_lo_m;
   const double avail_left = 95.0, avail_top = 55.0, avail_w = 720.0, avail_h = 510.0;
   const double px_per_m = std::min(avail_w / x_span_m, avail_h / y_span_m);
   const double w = x_span_m * px_per_m, h = y_span_m * px_per_m;
-  const detail::Axes axes(avail_left + 0.5 * (avail_w - w), avail_top + 0.5 * (avail_h - h), w, h, pattern.x0_m,
-                          pattern.x0_m + x_span_m, pattern.y0_m, pattern.y0_m + y_span_m);
+  const detail::Axes axes(avail_left + 0.5 * (avail_w - w), avail_top + 0.5 * (avail_h - h), w, h, x_lo_m, x_hi_m,
+                          y_lo_m, y_hi_m);
 
   const auto image = cells_image(pattern, colour_top_kg_m2);
   axes.clip(cr);
-  cairo_translate(cr, axes.left(), axes.top());
-  cairo_scale(cr, w / pattern.nx, h / pattern.ny);
+  cairo_save(cr);
+  cairo_translate(cr, axes.px(pattern.x0_m), axes.py(pattern.y0_m + grid_y_span_m));
+  cairo_scale(cr, grid_x_span_m * px_per_m / pattern.nx, grid_y_span_m * px_per_m / pattern.ny);
   cairo_set_source_surface(cr, image.get(), 0.0, 0.0);
   cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
   cairo_paint(cr);
   cairo_restore(cr);
 
-  // Disc centres: left disc at -spacing/2, right at +spacing/2 (one disc at 0), both at y = 0.
-  const int discs = machine.disc_count == 1 ? 1 : 2;
+  // Markers drawn inside the same clip: never over the title or the colour bar.
   for (int d = 0; d < discs; ++d) {
-    const double x_m = discs == 1 ? 0.0 : (d == 0 ? -0.5 : 0.5) * machine.disc_spacing_m;
+    const double x_m = discs == 1 ? 0.0 : (d == 0 ? -disc_x_m : disc_x_m);
     cairo_arc(cr, axes.px(x_m), axes.py(0.0), 7.0, 0.0, 2.0 * kPi);
     cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
     cairo_fill_preserve(cr);
@@ -120,6 +135,7 @@ void write_ground_pattern_png(const metrics::GroundPattern& pattern, const std::
     cairo_set_line_width(cr, 3.0);
     cairo_stroke(cr);
   }
+  cairo_restore(cr);  // clip
   axes.draw_frame(cr, "x, across the driving direction (m)", "y, driving direction (m)");
   detail::draw_legend(cr, {{discs == 1 ? "disc centre" : "disc centres", {0.85, 0.1, 0.1},
                             detail::LegendEntry::Kind::kMarker}},

@@ -1,6 +1,8 @@
 // spread_open on every kind of file: ours, missing, not ours (garbage, foreign SQLite, zero bytes, a
-// directory), corrupt, wrong version, without runs. The broken files are made from a real one.
+// directory), corrupt, wrong version, without runs, left mid-transaction by a crashed writer (i/o). The broken files are made from a real one.
 #include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -115,6 +117,37 @@ TEST(CapiOpen, MalformedRecordIsCorrupt) {
   const std::string p = copy_of_real("bad-record.sqlite");
   exec_sql(p, "UPDATE runs SET samples = x'00010203';");
   EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_CORRUPT);
+}
+
+TEST(CapiOpen, HotJournalOfACrashedWriterIsIo) {
+  // A writer (e.g. lookup_builder) dies inside a write transaction: its rollback journal stays beside the
+  // file ("hot"). Only a read-write connection may roll it back; the C API opens read-only, so SQLite
+  // answers SQLITE_READONLY_ROLLBACK, which is neither "not ours" nor "corrupt": SPREAD_ERROR_IO.
+  const std::string p = copy_of_real("crashed-writer.sqlite");
+  std::filesystem::remove(p + "-journal");
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    sqlite3* db = nullptr;
+    if (sqlite3_open(p.c_str(), &db) != SQLITE_OK) _exit(3);
+    // A one-page cache makes SQLite spill changed pages into the file before COMMIT: it first syncs the
+    // journal (header magic written), then overwrites pages of the table. (Without a spill the journal
+    // header stays zeroed and the file untouched: nothing to roll back.)
+    const char* sql = "PRAGMA cache_size = 1; BEGIN; UPDATE runs SET samples = zeroblob(length(samples));";
+    if (sqlite3_exec(db, sql, nullptr, nullptr, nullptr) != SQLITE_OK) _exit(4);
+    _exit(0);  // no COMMIT, no close: the process "crashes" with the journal on disk
+  }
+  int wait_status = 0;
+  ASSERT_EQ(waitpid(child, &wait_status, 0), child);
+  ASSERT_TRUE(WIFEXITED(wait_status));
+  ASSERT_EQ(WEXITSTATUS(wait_status), 0);
+  ASSERT_TRUE(std::filesystem::exists(p + "-journal"));
+  EXPECT_EQ(open_status(p), SPREAD_ERROR_IO);
+  EXPECT_NE(std::string(spread_status_str(SPREAD_ERROR_IO)).find("could not be read"), std::string::npos);
+  // Any read-write connection rolls the journal back; the file is then whole again, samples included.
+  exec_sql(p, "SELECT count(*) FROM runs;");
+  EXPECT_FALSE(std::filesystem::exists(p + "-journal"));
+  EXPECT_EQ(open_status(p), SPREAD_OK);
 }
 
 TEST(CapiOpen, NullArguments) {

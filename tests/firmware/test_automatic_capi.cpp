@@ -85,7 +85,11 @@ TEST_F(AutomaticModeCapi, ReachesARequestedWidth) {
   EXPECT_GE(effective_width_at(s.rpm_target), requested_m);
   EXPECT_TRUE(std::isfinite(s.throw_width_m));
   EXPECT_TRUE(std::isfinite(s.effective_width_m));
-  EXPECT_GE(s.throw_width_m, s.effective_width_m);
+  // Not "throw >= effective": the throw width leaves out 0.5 % of the mass on each side, the working
+  // width is a CV criterion on the 0.5 m tray grid, and a box-shaped pattern meets the CV target at a bout
+  // width up to its full extent (default table, Urea at 749.6 r/min: throw 16.81 m, working width 17.0 m,
+  // CV 12.2 %; docs/messages.md, status_t). It never exceeds the throw width by more than a tray or two.
+  EXPECT_LE(s.effective_width_m, s.throw_width_m + 1.0);
 }
 
 TEST_F(AutomaticModeCapi, ReportsAWidthOutOfReach) {

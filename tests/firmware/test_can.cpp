@@ -257,6 +257,33 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   EXPECT_EQ(ecu_.faults().total(), 0u);
 }
 
+TEST_F(VirtualBus, WheelBasedSpeedAloneIsTheGroundSpeed) {
+  // A tractor without a radar broadcasts only PGN 0xFE48: that speed must drive metering and DDI 397.
+  const auto wheel = encode_speed(2.5, 0, Direction::kForward);
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kWheelBasedSpeedPgn, kGlobalAddress, 0xF0}), wheel.data(), 8)));
+  EXPECT_TRUE(run(1).empty());
+  EXPECT_NEAR(ecu_.status().ground_speed_m_s, 2.5, 1e-9);
+  EXPECT_EQ(ecu_io_.processor().counters().speed_messages, 1u);
+  send_pd(ProcessDataCommand::kRequestValue, 397, 0);
+  EXPECT_EQ(single_answer(397).value, 2500);  // mm/s
+
+  // A ground-based speed takes over while fresh (1 s); after it goes quiet the wheels count again.
+  const auto ground = encode_speed(4.0, 0, Direction::kForward);
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, 0xF0}), ground.data(), 8)));
+  run(1);
+  const auto wheel_slipping = encode_speed(4.4, 0, Direction::kForward);
+  ASSERT_TRUE(
+      tractor().send(make_frame(encode_id({3, kWheelBasedSpeedPgn, kGlobalAddress, 0xF0}), wheel_slipping.data(), 8)));
+  run(1);
+  EXPECT_NEAR(ecu_.status().ground_speed_m_s, 4.0, 1e-9);
+  run(20);  // 1 s without a ground-based speed
+  ASSERT_TRUE(
+      tractor().send(make_frame(encode_id({3, kWheelBasedSpeedPgn, kGlobalAddress, 0xF0}), wheel_slipping.data(), 8)));
+  run(1);
+  EXPECT_NEAR(ecu_.status().ground_speed_m_s, 4.4, 1e-9);
+  EXPECT_EQ(ecu_.faults().total(), 0u);
+}
+
 TEST_F(VirtualBus, AnswersAddressClaimRequest) {
   const std::uint8_t request[3] = {0x00, 0xEE, 0x00};
   ASSERT_TRUE(tractor().send(make_frame(encode_id({6, kRequestPgn, kGlobalAddress, kTractor}), request, 3)));

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iterator>
 #include <limits>
@@ -292,24 +293,41 @@ TEST_F(Memq, HostileCommandStringLengthIsCountedAsUndecodable) {
 constexpr const char* kInNamespaceVariable = "SPREAD_FIRMWARE_IN_NETNS";
 
 // Re-runs this binary for `test_name` inside `unshare -n` with multicast routed over lo. Returns
-// false with `why` when namespaces are not permitted here.
+// false with `why` when namespaces are not permitted here and we are not root (as root, `unshare -n`
+// must work: its failure is a test failure, not a skip). The inner run must report its one test
+// PASSED: an exit status 0 alone would also come from a filter that matched nothing.
 bool run_in_private_network(const std::string& test_name, std::string& why) {
   if (std::system("unshare -n true >/dev/null 2>&1") != 0) {
     why = "unshare -n is not permitted here (needs CAP_SYS_ADMIN or user namespaces)";
+    EXPECT_NE(::geteuid(), 0u) << "running as root, yet " << why;
     return false;
   }
   char self[4096];
   const ssize_t n = ::readlink("/proc/self/exe", self, sizeof(self) - 1);
   if (n <= 0) {
     why = "cannot resolve /proc/self/exe";
+    ADD_FAILURE() << why;
     return false;
   }
   self[n] = '\0';
   const std::string command = std::string("unshare -n sh -c 'ip link set lo up && ip link set lo multicast on && "
                                           "ip route add 224.0.0.0/4 dev lo && ") +
-                              kInNamespaceVariable + "=1 exec \"$0\" --gtest_filter=" + test_name + "' '" + self + "'";
-  const int rc = std::system(command.c_str());
-  EXPECT_EQ(rc, 0) << "inside the namespace: " << command;
+                              kInNamespaceVariable + "=1 exec \"$0\" --gtest_filter=" + test_name + "' '" + self +
+                              "' 2>&1";
+  std::string output;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    ADD_FAILURE() << "popen failed: " << command;
+    return true;
+  }
+  char buffer[4096];
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, got);
+  const int rc = ::pclose(pipe);
+  EXPECT_EQ(rc, 0) << "inside the namespace: " << command << "\n" << output;
+  EXPECT_NE(output.find("[  PASSED  ] 1 test."), std::string::npos)
+      << "the inner run did not pass exactly one test:\n" << output;
+  EXPECT_EQ(output.find("[  SKIPPED ]"), std::string::npos) << output;
   return true;
 }
 

@@ -2,23 +2,40 @@
 # End to end with the real executables over udpm://, inside a private network namespace this script
 # creates (never on the machine's interfaces): firmware_sim runs, spread-tractor sends a command and must
 # see it accepted, then sends an out-of-range one and must see it rejected (exit code 3).
-# Usage: tools_udpm_netns.sh FIRMWARE_SIM SPREAD_TRACTOR.  Exit 77 = skipped (no namespaces here).
+# Usage: tools_udpm_netns.sh FIRMWARE_SIM SPREAD_TRACTOR.  Exit 77 = skipped (no namespaces here and
+# not root; as root `unshare -n` must work, so its failure fails the test). The outer run passes only
+# when the inner one printed its final "ok" line: exit status 0 alone is not enough.
 set -u
 firmware_sim=$1
 tractor=$2
 if [ -z "${SPREAD_FIRMWARE_IN_NETNS:-}" ]; then
   if ! unshare -n true 2>/dev/null; then
+    if [ "$(id -u)" -eq 0 ]; then
+      echo "FAIL: running as root, yet unshare -n is not permitted"
+      exit 1
+    fi
     echo "skipped: unshare -n is not permitted here"
     exit 77
   fi
-  exec env SPREAD_FIRMWARE_IN_NETNS=1 unshare -n "$0" "$@"
+  inner=$(env SPREAD_FIRMWARE_IN_NETNS=1 unshare -n "$0" "$@" 2>&1)
+  rc=$?
+  printf '%s\n' "$inner"
+  if [ $rc -ne 0 ]; then
+    echo "FAIL: the run inside the namespace exited $rc"
+    exit 1
+  fi
+  case "$inner" in
+    *"tools over udpm: ok"*) exit 0 ;;
+    *) echo "FAIL: the run inside the namespace did not report 'tools over udpm: ok'"; exit 1 ;;
+  esac
 fi
 set -e
 ip link set lo up
 ip link set lo multicast on
 ip route add 224.0.0.0/4 dev lo
 url='udpm://239.255.76.67:7712?ttl=0'  # port reserved for this test
-"$firmware_sim" --lcm-url "$url" --channel-prefix TOOLS_ --duration 8 &
+# Heartbeats on a channel named in full (--heartbeat-channel), the others from the prefix.
+"$firmware_sim" --lcm-url "$url" --channel-prefix TOOLS_ --heartbeat-channel TOOLS_BEAT --duration 8 &
 ecu=$!
 trap 'kill $ecu 2>/dev/null || true' EXIT
 "$tractor" lcm --lcm-url "$url" --channel-prefix TOOLS_ --once --rate 200 --width 24 --speed 3.333 \
@@ -32,6 +49,10 @@ if [ $rc -ne 3 ]; then
   echo "expected exit code 3 (rejected) for rpm 9000, got $rc"
   exit 1
 fi
-"$tractor" lcm --lcm-url "$url" --channel-prefix TOOLS_ --duration 1.1 --heartbeats | tee /dev/stderr |
-  grep -q "heartbeat #"
+# Full channel names override another prefix: the command must still be accepted.
+"$tractor" lcm --lcm-url "$url" --channel-prefix ELSEWHERE_ --command-channel TOOLS_COMMAND \
+  --status-channel TOOLS_STATUS --once --rate 200 --width 24 --speed 3.333 --rpm 650 --material urea |
+  tee /dev/stderr | grep -q "W=24.00/24.00 m"
+"$tractor" lcm --lcm-url "$url" --channel-prefix TOOLS_ --heartbeat-channel TOOLS_BEAT --duration 1.1 \
+  --heartbeats | tee /dev/stderr | grep -q "heartbeat #"
 echo "tools over udpm: ok"

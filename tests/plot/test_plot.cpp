@@ -1,5 +1,6 @@
 // Each PNG writer produces a PNG cairo can read back at the documented size, and an unwritable path
 // throws with the path in the message. Set SPREAD_PLOT_KEEP_DIR to keep the images for a look.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -69,6 +70,27 @@ void expect_throws_naming(const std::string& path, const std::function<void()>& 
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
   }
+}
+
+// Pixels of `path` whose colour is within `tolerance` (0-255 per channel) of (r, g, b), counted inside
+// the rectangle [x0, x1) × [y0, y1) (clamped to the image).
+int count_pixels_near(const std::string& path, int r, int g, int b, int tolerance, int x0, int y0, int x1, int y1) {
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS) << path;
+  const int width = cairo_image_surface_get_width(s), height = cairo_image_surface_get_height(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  int count = 0;
+  for (int y = std::max(0, y0); y < std::min(height, y1); ++y) {
+    const auto* row = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    for (int x = std::max(0, x0); x < std::min(width, x1); ++x) {
+      const int pr = static_cast<int>((row[x] >> 16) & 0xff), pg = static_cast<int>((row[x] >> 8) & 0xff),
+                pb = static_cast<int>(row[x] & 0xff);
+      if (std::abs(pr - r) <= tolerance && std::abs(pg - g) <= tolerance && std::abs(pb - b) <= tolerance) ++count;
+    }
+  }
+  cairo_surface_destroy(s);
+  return count;
 }
 
 const std::string kBadPath = "/nonexistent-dir-for-spread-tests/sub/plot.png";
@@ -151,4 +173,36 @@ TEST(Plot, CvCurvePng) {
   expect_throws_naming(kBadPath, [&] { sp::write_cv_curve_png(widths, tf, rt, 0.15, kBadPath, "x"); });
   std::vector<double> short_cv(2);
   EXPECT_THROW(sp::write_cv_curve_png(widths, short_cv, rt, 0.15, path, "x"), std::invalid_argument);
+}
+
+TEST(Plot, DiscMarkersStayInsideTheAxesWhenThePatternLiesBehind) {
+  // Every landing 1-12 m behind the machine: no grid cell at y = 0, where the disc centres are. The
+  // markers (red ring, 217/26/26) must still show, inside the plot area (top edge >= 55 px), never in
+  // the title band above it.
+  Landings l = synthetic_landings();
+  for (double& y : l.y) y = -1.0 - std::abs(y) * 0.8;
+  const sm::MachineLayout twin{2, 0.9};
+  const sm::GroundPattern g = sm::ground_pattern(l.x, l.y, l.m, twin, 0.25);
+  ASSERT_LT(g.y0_m + g.ny * g.cell_m, 0.0) << "the grid must not reach y = 0 for this test";
+  const std::string path = output_path("ground_pattern_behind.png");
+  sp::write_ground_pattern_png(g, path, "Ground pattern behind the machine", twin);
+  expect_png(path);
+  const int red_in_title_band = count_pixels_near(path, 217, 26, 26, 30, 0, 0, sp::kImageWidth_px, 54);
+  const int red_below = count_pixels_near(path, 217, 26, 26, 30, 0, 54, sp::kImageWidth_px, sp::kImageHeight_px);
+  EXPECT_EQ(red_in_title_band, 0);
+  EXPECT_GT(red_below, 40);  // two rings (and the legend's marker)
+}
+
+TEST(Plot, WorkingWidthLabelAtTheRightEdgeIsNotCut) {
+  // CV 0 at every width: the working width is the largest W plotted (20 m, on the right frame edge at
+  // 960 px). Its value label ("20.0 m", to-and-fro colour 64/115/191) must be drawn inside the axes,
+  // left of the frame, in the label rows just above the x axis (bottom edge 565 px).
+  std::vector<double> widths, zeros;
+  for (int n = 1; n <= 40; ++n) widths.push_back(0.5 * n);
+  zeros.assign(widths.size(), 0.0);
+  const std::string path = output_path("cv_curve_edge.png");
+  sp::write_cv_curve_png(widths, zeros, {}, 0.15, path, "uniform: CV 0 everywhere");
+  expect_png(path);
+  const int label_pixels = count_pixels_near(path, 64, 115, 191, 40, 890, 530, 958, 560);
+  EXPECT_GT(label_pixels, 15);
 }

@@ -42,7 +42,9 @@ int run_lcm_session(const LcmSessionOptions& o) {
     std::cerr << "spread-tractor: error: cannot create an LCM instance for URL '" << o.url << "'\n";
     return kExitFailure;
   }
-  firmware::lcm_link::LcmTractorLink link(lcm, firmware::lcm_link::channels_with_prefix(o.channel_prefix));
+  const firmware::lcm_link::LcmChannels channels =
+      firmware::lcm_link::channels_from(o.channel_prefix, o.command_channel, o.status_channel, o.heartbeat_channel);
+  firmware::lcm_link::LcmTractorLink link(lcm, channels);
   Clock::time_point last_print{};
   bool printed_any = false;
   link.on_status = [&](const spread::status_t& s) {
@@ -77,7 +79,7 @@ int run_lcm_session(const LcmSessionOptions& o) {
       std::cerr << "spread-tractor: the ECU did not accept the command (faults: "
                 << format_fault_codes(link.latest_status()->fault_codes) << ")\n";
     } else {
-      std::cerr << "spread-tractor: no status from the ECU on " << o.channel_prefix << "STATUS within " << o.once_timeout_s << " s\n";
+      std::cerr << "spread-tractor: no status from the ECU on " << channels.status << " within " << o.once_timeout_s << " s\n";
     }
     return kExitRejected;
   }

@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
   auto* lcm = app.add_subcommand("lcm", "send command_t set-points and print status_t (omit set-points to monitor)");
   lcm->add_option("--lcm-url", lcm_options.url, "LCM URL (default: LCM's default udpm)");
   lcm->add_option("--channel-prefix", lcm_options.channel_prefix, "channel prefix")->capture_default_str();
+  lcm->add_option("--command-channel", lcm_options.command_channel, "full name of the command_t channel (overrides the prefix)");
+  lcm->add_option("--status-channel", lcm_options.status_channel, "full name of the status_t channel (overrides the prefix)");
+  lcm->add_option("--heartbeat-channel", lcm_options.heartbeat_channel,
+                  "full name of the heartbeat_t channel (overrides the prefix)");
   lcm->add_option("--mode", lcm_options.mode, "manual or auto")->check(CLI::IsMember({"manual", "auto"}))->capture_default_str();
   auto* rate = lcm->add_option("--rate", lcm_options.rate_kg_ha, "application rate set-point [kg/ha]");
   auto* width = lcm->add_option("--width", lcm_options.width_m, "working width set-point [m]");

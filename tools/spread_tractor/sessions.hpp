@@ -13,6 +13,9 @@ inline constexpr int kExitRejected = 3;  // the ECU rejected the command or neve
 struct LcmSessionOptions {
   std::string url;                 // LCM URL ("" = LCM's default)
   std::string channel_prefix;
+  std::string command_channel;     // full channel names; "" = prefix + COMMAND / STATUS / HEARTBEAT
+  std::string status_channel;
+  std::string heartbeat_channel;
   bool send = false;               // send commands (else only monitor)
   std::string mode = "manual";     // manual | auto
   double rate_kg_ha = 0.0;
