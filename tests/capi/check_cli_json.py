@@ -16,6 +16,16 @@ import subprocess
 import sys
 
 
+
+def expected_rpm_rows():
+    """The rpm rows the table should have: EXPECT_RPM (comma-separated) or the [sweep] rpm list of the
+    scene file EXPECT_RPM_FROM_SCENE names (so the test follows the bundled scene)."""
+    if "EXPECT_RPM" in os.environ:
+        return [float(v) for v in os.environ["EXPECT_RPM"].split(",")]
+    import tomllib
+    with open(os.environ["EXPECT_RPM_FROM_SCENE"], "rb") as f:
+        return [float(v) for v in tomllib.load(f)["sweep"]["rpm"]]
+
 def fail(message):
     print("FAIL: " + message)
     sys.exit(1)
@@ -86,8 +96,8 @@ def check_inspect(out, args):
             fail(f"inspect: material {m['name']}: rpm rows {rpm!r} and sample_counts {counts!r} do not match")
         if rpm != sorted(rpm):
             fail(f"inspect: material {m['name']}: rpm rows not ascending: {rpm}")
-        if "EXPECT_RPM" in os.environ:
-            expected = [float(v) for v in os.environ["EXPECT_RPM"].split(",")]
+        if "EXPECT_RPM" in os.environ or "EXPECT_RPM_FROM_SCENE" in os.environ:
+            expected = expected_rpm_rows()
             if rpm != expected:
                 fail(f"inspect: material {m['name']}: rpm rows {rpm}, expected {expected}")
         if "EXPECT_SAMPLES" in os.environ and any(c != int(os.environ["EXPECT_SAMPLES"]) for c in counts):
