@@ -17,7 +17,7 @@ namespace spread::scene {
 // Same fields as the table's material rows; one type so a scene material goes into a table unchanged.
 using Material = tables::Material;
 
-enum class DiscModel { kAnalytic, kMesh };            // "analytic" | "mesh"
+enum class DiscModel { kAnalytic, kMesh, kStl };     // "analytic" | "mesh" | "stl"
 enum class Integrator { kSymplecticEuler, kVelocityVerlet };  // "symplectic_euler" | "velocity_verlet"
 enum class ContactModel { kHertzMindlin, kLinear };   // "hertz_mindlin" | "linear"
 enum class FlightScheme { kRk4, kDopri5 };            // "rk4" | "dopri5"
@@ -42,6 +42,10 @@ struct Machine {
   double vane_pitch_rad = 0.0;        // 0 = radial vanes; > 0 leans the vane backwards
   DiscModel disc_model = DiscModel::kAnalytic;
   double mesh_size_m = 0.005;         // ξ, triangle size of the generated mesh (disc_model = "mesh")
+  // disc_model = "stl": the disc (with its vanes) is this triangle mesh instead of the generated one.
+  // Relative paths are taken from the scene file's directory (load_scene_file resolves them).
+  std::string stl_path;
+  double stl_scale = 1.0;             // STL coordinates × stl_scale = metres (0.001 for a file in mm)
   double rpm = 500.0;                 // disc speed of a `simulate` run (rev/min)
 };
 
