@@ -1,5 +1,6 @@
-// `spread verify impact`: head-on (and oblique) impacts measured against the requested restitution and
-// the Hertz contact duration. Gravity is off so every velocity change comes from the contact.
+// `spread verify impact`: head-on (and oblique) impacts measured against the requested restitution, the
+// damped model's own contact duration (contact_reference, verify_impact_reference.cpp) and the elastic
+// Hertz duration. Gravity is off so every velocity change comes from the contact.
 #include <cmath>
 
 #include "libspread/dem/restitution.hpp"
