@@ -20,6 +20,7 @@ void validate(const DiscGeometry& g) {
     if (!(std::abs(g.vane_pitch_rad) < 1.4)) bad("vane_pitch_rad must be within (-1.4, 1.4)");
   }
   if (g.mesh_size_m < 0.0) bad("mesh_size_m must be >= 0");
+  if (g.mesh && g.mesh->triangles.empty()) bad("the given disc mesh has no triangle");
 }
 
 struct VaneLine { Vec3 start, end; };
@@ -84,6 +85,7 @@ TriangleMesh mesh_cone_disc(double radius_m, double cone_angle_rad, double z_ape
 
 TriangleMesh mesh_disc_with_vanes(const DiscGeometry& g) {
   validate(g);
+  if (g.mesh) return *g.mesh;
   TriangleMesh disc = mesh_cone_disc(g.radius_m, g.cone_angle_rad, g.z_apex_m, g.mesh_size_m);
   std::vector<std::array<Vec3, 3>> soup;
   for (const auto& tri : disc.triangles) soup.push_back({disc.vertices[tri[0]], disc.vertices[tri[1]], disc.vertices[tri[2]]});
@@ -110,6 +112,10 @@ WallGroup make_disc(const DiscGeometry& g, double rpm, int material, double max_
   group.name = "disc";
   group.material = material;
   group.angular_velocity_rad_s = rpm * 2.0 * kPi / 60.0;
+  if (g.mesh) {
+    group.meshes.emplace_back(*g.mesh, max_particle_radius_m);
+    return group;
+  }
   if (g.mesh_size_m > 0.0) {
     group.meshes.emplace_back(mesh_disc_with_vanes(g), max_particle_radius_m);
     return group;

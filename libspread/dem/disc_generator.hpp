@@ -1,6 +1,8 @@
 #pragma once
 // Spinning-disc generator: a flat or conical disc with N vanes, as exact analytic pieces or as a
 // triangle mesh of element size ξ (seed Sect. 3.3 studies exactly this choice).
+#include <memory>
+
 #include "libspread/dem/triangle_mesh.hpp"
 #include "libspread/dem/wall_set.hpp"
 
@@ -18,13 +20,18 @@ struct DiscGeometry {
                                       // (towards the direction of rotation)
   double first_vane_angle_rad = 0.0;  // polar angle of the first vane's start at t = 0
   double mesh_size_m = 0.0;           // ξ (m); 0: analytic pieces
+  // A given disc (e.g. a machine's own disc read from STL, scene key machine.stl_path): when set, this
+  // mesh — disc and vanes, in the disc frame (axis z, rim at z = 0 as z_apex_m assumes) — is the wall
+  // and the generator's vane and mesh-size values are not used. Shared: configs are copied per run.
+  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 // Disc as a wall group spinning at `rpm` (counter-clockwise seen from above) about its centre.
 // Throws std::invalid_argument naming the bad geometry value.
 WallGroup make_disc(const DiscGeometry& geometry, double rpm, int material, double max_particle_radius_m);
 
-// The meshes used by make_disc (exposed for tests and STL export).
+// The meshes used by make_disc (exposed for tests and STL export); mesh_disc_with_vanes returns the
+// given mesh when geometry.mesh is set.
 TriangleMesh mesh_cone_disc(double radius_m, double cone_angle_rad, double z_apex_m, double mesh_size_m);
 TriangleMesh mesh_disc_with_vanes(const DiscGeometry& geometry);
 

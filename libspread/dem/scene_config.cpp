@@ -1,12 +1,45 @@
 #include "libspread/dem/scene_config.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "libspread/dem/time_step.hpp"
 
 namespace spread::dem {
+
+namespace {
+// machine.disc_model = "stl": the machine's own disc (and vanes) from an STL file, every failure an
+// error naming machine.stl_path. The path is already resolved against the scene file's directory.
+std::shared_ptr<const TriangleMesh> load_disc_stl(const scene::Scene& s) {
+  const scene::Machine& m = s.machine;
+  const std::string key = s.source_name + ": machine.stl_path: ";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(m.stl_path, ec))
+    throw std::invalid_argument(key + "no such file '" + m.stl_path + "'");
+  TriangleMesh mesh;
+  try {
+    mesh = read_stl(m.stl_path, m.stl_scale);  // throws when not STL or when no valid triangle remains
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(key + e.what());
+  }
+  // The collector sits at disc_radius_m (unless numerics.collector_radius_m): a mesh reaching beyond it
+  // is the wrong disc, or the wrong unit (a file in mm read as m).
+  double reach_m = 0.0;
+  for (const Vec3& v : mesh.vertices) reach_m = std::max(reach_m, std::hypot(v.x(), v.y()));
+  if (reach_m > m.disc_radius_m * 1.01) {
+    std::ostringstream msg;
+    msg << key << "the mesh reaches " << reach_m << " m from the axis, beyond machine.disc_radius_m = "
+        << m.disc_radius_m << " m (a file in mm needs machine.stl_scale = 0.001)";
+    throw std::invalid_argument(msg.str());
+  }
+  return std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+}  // namespace
 
 SimulationConfig config_from_scene(const scene::Scene& s, const std::string& material_name) {
   const std::string name = material_name.empty() ? s.simulate_material : material_name;
@@ -42,6 +75,10 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   c.disc.vane_height_m = m.vane_height_m;
   c.disc.vane_pitch_rad = -m.vane_pitch_rad;  // scene: > 0 leans backwards; DiscGeometry: > 0 forwards
   c.disc.mesh_size_m = m.disc_model == scene::DiscModel::kMesh ? m.mesh_size_m : 0.0;
+  if (m.disc_model == scene::DiscModel::kStl) {
+    c.disc.mesh = load_disc_stl(s);  // disc and vanes: the vane keys describe nothing here
+    c.disc.vane_count = 0;
+  }
   c.rpm = m.rpm * (m.rotation_sense < 0 ? -1.0 : 1.0);
   c.disc_material = 1;
   c.disc_height_m = m.disc_height_m;

@@ -23,13 +23,27 @@ struct ImpactResult {
   double e_requested = 0.0;
   double e_measured = 0.0;             // normal separation speed / approach speed
   double t_contact_s = 0.0;            // time with a non-zero contact force
-  double t_contact_hertz_s = 0.0;      // 2.87 (M*²/(R* E*² v))^{1/5}
+  double t_contact_hertz_s = 0.0;      // 2.87 (M*²/(R* E*² v))^{1/5}: the elastic (e = 1) duration
+  double t_contact_ref_s = 0.0;        // the damped model's duration from its overlap ODE (contact_reference)
   double energy_ratio = 0.0;           // kinetic energy after / before (translation + rotation)
   double momentum_rel_error = 0.0;     // |Σ m v after − before| / Σ m |v| before
   double tangential_speed_ratio = 0.0; // oblique: tangential speed of the centre after / before
   double tangential_impulse_ratio = 0.0;  // oblique: |J_t| / (μ |J_n|), <= 1 by Coulomb
 };
 ImpactResult run_impact(const ImpactCase& c);
+
+// Reference for the impact: one head-on contact of the damped model (Hertz with δ^{1/4} damping,
+// Eqs. 16–18, or the linear spring–dashpot; force clipped at zero), as the non-dimensional overlap ODE
+// x'' = −max(0, x^{3/2} + γ√6 x^{1/4} x') (Hertz) or −max(0, x + 2ζ x') (linear), x(0) = 0, x'(0) = 1,
+// solved by adaptive Dormand–Prince at tolerance `tol`. The contact ends when the clipped force is zero
+// again while receding (as the simulation measures it). duration × t0 is the contact time, with
+// t0 = (M*/k)^{2/5} v^{−1/5}, k = 4/3 sqrt(R*) E* (Hertz) or t0 = sqrt(M*/k_n) (linear); restitution
+// is the separation speed / approach speed.
+struct ContactReference {
+  double duration = 0.0;     // non-dimensional contact time
+  double restitution = 0.0;  // non-dimensional separation speed
+};
+ContactReference contact_reference(ContactModel model, double damping_ratio, double tol = 1e-12);
 
 // ---- Patterson & Reece: flat disc with one radial vane -------------------------------------------
 struct VaneCase {

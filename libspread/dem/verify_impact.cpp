@@ -1,7 +1,9 @@
-// `spread verify impact`: head-on (and oblique) impacts measured against the requested restitution and
-// the Hertz contact duration. Gravity is off so every velocity change comes from the contact.
+// `spread verify impact`: head-on (and oblique) impacts measured against the requested restitution, the
+// damped model's own contact duration (contact_reference, verify_impact_reference.cpp) and the elastic
+// Hertz duration. Gravity is off so every velocity change comes from the contact.
 #include <cmath>
 
+#include "libspread/dem/restitution.hpp"
 #include "libspread/dem/time_step.hpp"
 #include "libspread/dem/verify.hpp"
 
@@ -53,6 +55,13 @@ ImpactResult run_impact(const ImpactCase& c) {
   out.t_contact_hertz_s = c.model == ContactModel::kHertzThornton
                               ? hertz_contact_time_s(m_eff, r_eff, e_star, c.speed_m_s)
                               : linear_contact_time_s(m_eff, params.linear.normal_stiffness_n_m);
+  // Reference duration of the damped contact: the overlap ODE scaled back to seconds (t0 as in verify.hpp).
+  const bool hertz = c.model == ContactModel::kHertzThornton;
+  const double damping = hertz ? hertz_damping_ratio(c.restitution) : linear_damping_ratio(c.restitution);
+  const double k_hertz = 4.0 / 3.0 * std::sqrt(r_eff) * e_star;  // Eq. 16: F = k δ^{3/2}
+  const double t0_s = hertz ? std::pow(m_eff / k_hertz, 0.4) * std::pow(c.speed_m_s, -0.2)
+                            : std::sqrt(m_eff / params.linear.normal_stiffness_n_m);
+  out.t_contact_ref_s = contact_reference(c.model, damping).duration * t0_s;
   params.dt_s = out.t_contact_hertz_s / c.contact_steps;
   DemEngine run({particle, wall}, {}, walls, params);
 

@@ -63,7 +63,14 @@ std::vector<double> Scene::sweep_rpms() const {
   return sweep.rpm.empty() ? std::vector<double>{machine.rpm} : sweep.rpm;
 }
 
-const char* to_string(DiscModel value) { return value == DiscModel::kAnalytic ? "analytic" : "mesh"; }
+const char* to_string(DiscModel value) {
+  switch (value) {
+    case DiscModel::kAnalytic: return "analytic";
+    case DiscModel::kMesh: return "mesh";
+    case DiscModel::kStl: return "stl";
+  }
+  return "?";
+}
 const char* to_string(Integrator value) {
   return value == Integrator::kSymplecticEuler ? "symplectic_euler" : "velocity_verlet";
 }

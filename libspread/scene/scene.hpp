@@ -17,7 +17,7 @@ namespace spread::scene {
 // Same fields as the table's material rows; one type so a scene material goes into a table unchanged.
 using Material = tables::Material;
 
-enum class DiscModel { kAnalytic, kMesh };            // "analytic" | "mesh"
+enum class DiscModel { kAnalytic, kMesh, kStl };     // "analytic" | "mesh" | "stl"
 // Default mesh size ξ/R: the coarsest the accuracy study (docs/accuracy-cost.md, DEM) measured within 1 %
 // on the seed's Appendix-1 cone.
 inline constexpr double kDefaultMeshSizePerRadius = 0.01;
@@ -46,6 +46,10 @@ struct Machine {
   DiscModel disc_model = DiscModel::kAnalytic;
   double mesh_size_m = 0.0;           // ξ, triangle size of the generated mesh (disc_model = "mesh");
                                       // 0 in the file = kDefaultMeshSizePerRadius · disc_radius_m (on load)
+  // disc_model = "stl": the disc (with its vanes) is this triangle mesh instead of the generated one.
+  // Relative paths are taken from the scene file's directory (load_scene_file resolves them).
+  std::string stl_path;
+  double stl_scale = 1.0;             // STL coordinates × stl_scale = metres (0.001 for a file in mm)
   double rpm = 500.0;                 // disc speed of a `simulate` run (rev/min)
 };
 

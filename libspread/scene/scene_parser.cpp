@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -277,8 +278,11 @@ void read_machine(const toml::table& root, Scene& scene) {
   m.vane_height_m = s.number("vane_height_m", m.vane_height_m);
   m.vane_pitch_rad = s.number("vane_pitch_rad", m.vane_pitch_rad);
   m.disc_model = s.choice<DiscModel>("disc_model", m.disc_model,
-                                     {{"analytic", DiscModel::kAnalytic}, {"mesh", DiscModel::kMesh}});
+                                     {{"analytic", DiscModel::kAnalytic}, {"mesh", DiscModel::kMesh},
+                                      {"stl", DiscModel::kStl}});
   m.mesh_size_m = s.number("mesh_size_m", m.mesh_size_m);
+  m.stl_path = s.string("stl_path", m.stl_path);
+  m.stl_scale = s.number("stl_scale", m.stl_scale);
   m.rpm = s.number("rpm", m.rpm);
   s.finish();
 }
@@ -460,6 +464,11 @@ void validate(Scene& scene) {
   c.in_range("machine.vane_pitch_rad", m.vane_pitch_rad, -1.2, 1.2);
   if (m.mesh_size_m == 0.0) m.mesh_size_m = kDefaultMeshSizePerRadius * m.disc_radius_m;
   c.positive("machine.mesh_size_m", m.mesh_size_m);
+  // The file itself (exists, is STL, has triangles) is checked where it is read (dem::config_from_scene).
+  if (m.disc_model == DiscModel::kStl && m.stl_path.empty()) c.fail("machine.stl_path", "required when disc_model = \"stl\"");
+  if (m.disc_model != DiscModel::kStl && !m.stl_path.empty())
+    c.fail("machine.stl_path", "is only used with disc_model = \"stl\" (disc_model is \"" + std::string(to_string(m.disc_model)) + "\")");
+  c.positive("machine.stl_scale", m.stl_scale);
   c.positive("machine.rpm", m.rpm);
 
   const Inlet& in = scene.inlet;
@@ -575,7 +584,12 @@ Scene load_scene_file(const std::string& path, const std::vector<std::string>& o
   if (!in) throw SceneError(path + ": cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_scene(text.str(), path, overrides);
+  Scene scene = parse_scene(text.str(), path, overrides);
+  // A disc STL named relative to the scene travels with it: resolve against the scene file's directory.
+  std::string& stl = scene.machine.stl_path;
+  if (!stl.empty() && std::filesystem::path(stl).is_relative())
+    stl = (std::filesystem::path(path).parent_path() / stl).lexically_normal().string();
+  return scene;
 }
 
 }  // namespace spread::scene

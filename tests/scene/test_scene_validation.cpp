@@ -69,7 +69,16 @@ TEST(SceneValidation, UnknownEffectAndEnumValues) {
   expect_error({"effects.enabled=[\"drag\", \"drag\"]"}, "listed twice");
   expect_error({"numerics.integrator=\"leapfrog\""}, "numerics.integrator: unknown value \"leapfrog\"");
   expect_error({"sweep.source=\"cfd\""}, "sweep.source: unknown value \"cfd\"");
-  expect_error({"machine.disc_model=\"stl\""}, "machine.disc_model: unknown value");
+  expect_error({"machine.disc_model=\"cad\""}, "machine.disc_model: unknown value");
+}
+
+// disc_model = "stl" (the file itself is checked where it is read: tests/dem DemSceneStl).
+TEST(SceneValidation, StlDiscKeys) {
+  expect_error({"machine.disc_model=\"stl\""}, "machine.stl_path: required when disc_model = \"stl\"");
+  expect_error({"machine.stl_path=\"disc.stl\""}, "machine.stl_path: is only used with disc_model = \"stl\"");
+  expect_error({"machine.disc_model=\"stl\"", "machine.stl_path=\"disc.stl\"", "machine.stl_scale=0"},
+               "machine.stl_scale: must be > 0");
+  EXPECT_EQ(error_of({"machine.disc_model=\"stl\"", "machine.stl_path=\"disc.stl\"", "machine.stl_scale=0.001"}), "");
 }
 
 TEST(SceneValidation, WrongTypes) {

@@ -19,23 +19,29 @@ double rel(double a, double b) { return b != 0.0 ? (a - b) / b : 0.0; }
 
 json verify_impact() {
   json rows = json::array();
-  // e = 1 added: the elastic contact is the one whose duration Hertz theory gives (damped contacts end
-  // earlier, once the clipped force reaches zero).
+  // t_contact_ref is the damped model's own contact time (its overlap ODE at 1e-12); t_contact_hertz is
+  // the elastic Hertz time, the reference of the e = 1 rows only (damped contacts end earlier, once the
+  // clipped force reaches zero: −3 % at e = 0.9 to −33 % at e = 0.1).
   for (bool ss : {false, true})
     for (double e : {0.1, 0.3, 0.5, 0.7, 0.9, 1.0}) {
       dem::ImpactCase c;
       c.sphere_sphere = ss;
       c.restitution = e;
       const auto r = dem::run_impact(c);
-      rows.push_back({{"geometry", ss ? "sphere_sphere" : "sphere_plane"},
-                      {"e_requested", e},
-                      {"e_measured", r.e_measured},
-                      {"e_rel_error", rel(r.e_measured, e)},
-                      {"t_contact", r.t_contact_s},
-                      {"t_contact_hertz", r.t_contact_hertz_s},
-                      {"t_contact_rel_error", rel(r.t_contact_s, r.t_contact_hertz_s)},
-                      {"momentum_rel_error", r.momentum_rel_error},
-                      {"steps_per_contact", c.contact_steps}});
+      json row = {{"geometry", ss ? "sphere_sphere" : "sphere_plane"},
+                  {"e_requested", e},
+                  {"e_measured", r.e_measured},
+                  {"e_rel_error", rel(r.e_measured, e)},
+                  {"t_contact", r.t_contact_s},
+                  {"t_contact_ref", r.t_contact_ref_s},
+                  {"t_contact_ref_rel_error", rel(r.t_contact_s, r.t_contact_ref_s)},
+                  {"t_contact_hertz", r.t_contact_hertz_s},
+                  {"t_contact_hertz_rel_error", rel(r.t_contact_s, r.t_contact_hertz_s)},
+                  {"energy_ratio", r.energy_ratio},
+                  {"steps_per_contact", c.contact_steps}};
+      // On a sphere–plane impact the (infinitely heavy) wall takes the momentum: no balance to check.
+      if (ss) row["momentum_rel_error"] = r.momentum_rel_error;
+      rows.push_back(row);
     }
   return rows;
 }
