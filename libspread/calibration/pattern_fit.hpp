@@ -29,12 +29,45 @@ struct PatternFitOptions {
   bool fit_drag_diameter = true;
   bool fit_angle_offset = true;
   int max_iterations = 30;
+  // Weighted least squares (see VarianceModel): after an unweighted fit, `reweight_rounds` fits with
+  // weights 1 / v(q_i) from the variance model of the previous fit's residuals. false: unweighted only.
+  bool weighted = true;
+  int reweight_rounds = 1;
 };
+
+// Variance of a tray's measured fraction as a function of its predicted fraction q:
+//   v(q) = floor_variance + counting · q + relative · q²
+// — an additive floor (scale error, stray granules, empty trays read as 0), a counting term (a tray
+// catching N granules varies like a Poisson count) and a relative term (the stream varies from pass to
+// pass by some per cent). Estimated from the residuals of the fit itself (fit_variance_model), so it
+// needs no noise figures from the technician.
+struct VarianceModel {
+  double floor_variance = 0.0;  // fraction²
+  double counting = 0.0;        // fraction
+  double relative = 0.0;        // dimensionless (relative sd²)
+  double variance(double q) const;
+};
+
+// Least floor of the variance model, as a fraction of the largest measured tray (an sd).
+inline constexpr double kVarianceFloor = 1e-3;
+
+// A tray counts (degrees of freedom, variance model) when it caught something or its prediction is
+// above the least floor: an empty tray predicted emptier than that is the same whatever the parameters.
+bool informative(double measured_fraction, double predicted_fraction, double largest_measured_fraction);
+
+// Non-negative least squares of e_i² on (1, q_i, q_i²); the floor at least (kVarianceFloor · largest)².
+VarianceModel fit_variance_model(const std::vector<double>& predicted, const std::vector<double>& residual,
+                                 double largest_measured);
 
 struct PatternFitResult {
   PatternParameters initial;
   PatternParameters fitted;
   PatternParameters standard_error;          // same units as the parameters (δ in rad); 0 when fixed
+  PatternParameters robust_standard_error;   // sandwich estimate (no variance model assumed)
+  bool weighted = false;
+  VarianceModel variance_model;              // of the last reweighting round
+  double reduced_chi_square = 0.0;           // Σ w r² / (informative trays − fitted parameters)
+  int informative_trays = 0;                 // see informative()
   std::array<bool, 3> fitted_mask{};         // order μ, k, δ
   std::array<std::array<double, 3>, 3> correlation{};  // order μ, k, δ; 0 for fixed parameters
   double residual_rms_fraction = 0.0;        // sqrt(Σ r² / n) of the mass fractions
