@@ -5,9 +5,13 @@
 //
 // Residuals: measured minus predicted mass fraction per tray of the tray test's layout, both normalised
 // to sum to 1 over the layout — the tray test measures the shape of the pattern; its absolute mass is
-// the rate calibration's business (step 1). Uncertainty: standard errors from s² (JᵀJ)⁻¹, which assume
-// independent tray errors of equal variance; the correlation matrix says which parameters the test
-// cannot tell apart.
+// the rate calibration's business (step 1).
+// Uncertainty (docs/field-calibration.md, "Uncertainty"): tray noise is not uniform (relative on full
+// trays, counting on sparse ones, a floor on empty ones), so after an unweighted fit the residuals give a
+// variance model v(q) (VarianceModel) and the fit is redone with weights 1 / v(q_i). Standard errors are
+// s² (J̃ᵀJ̃)⁻¹ of the weighted fit with s² = χ² / (informative trays − fitted parameters), plus a
+// sandwich estimate; the correlation matrix says which parameters the test cannot tell apart. Measured
+// coverage of ±2 SE on synthetic tray tests: about 90 % (tests/tools/test_pattern_fit.cpp).
 #include <array>
 #include <string>
 #include <vector>
@@ -73,7 +77,7 @@ struct PatternFitResult {
   double residual_rms_fraction = 0.0;        // sqrt(Σ r² / n) of the mass fractions
   double residual_rms_kg = 0.0;              // the same in mass per tray (× the measured total)
   double initial_residual_rms_fraction = 0.0;
-  double residual_sd_fraction = 0.0;         // s = sqrt(Σ r² / (n − fitted parameters))
+  double residual_sd_fraction = 0.0;         // sqrt(Σ r² / (informative trays − fitted parameters)), unweighted
   int iterations = 0;
   int model_evaluations = 0;
   bool converged = false;

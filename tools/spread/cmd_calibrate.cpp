@@ -440,9 +440,9 @@ void run_synth(const SynthOptions& o) {
                 truth.drag_diameter_factor, o.offset_deg, o.mass_g);
   comments.emplace_back(text);
   std::snprintf(text, sizeof text,
-                "Noise per tray and pass: sd^2 = (%.4g %% of the tray)^2 + %.4g g x tray + (%.4g g)^2, readings "
-                "below 0 written as 0, rounded to %.4g g; seed %llu.",
-                o.relative_noise_percent, o.granule_mass_g, o.floor_g, o.resolution_g,
+                "Noise per tray and pass: Poisson count of %.4g g granules, plus normal with sd^2 = (%.4g %% of the "
+                "tray)^2 + (%.4g g)^2, readings below 0 written as 0, rounded to %.4g g; seed %llu.",
+                o.granule_mass_g, o.relative_noise_percent, o.floor_g, o.resolution_g,
                 static_cast<unsigned long long>(o.seed));
   comments.emplace_back(text);
   cal::write_tray_csv(o.output, test.position_m, test.pass_mass_g, comments);
