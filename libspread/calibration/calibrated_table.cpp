@@ -24,6 +24,27 @@ std::string format_parameters(const PatternParameters& p) {
 
 }  // namespace
 
+std::vector<double> non_analytic_rows(const tables::TableContents& contents, const std::string& material) {
+  std::vector<double> rpm;
+  for (const tables::Run& run : contents.runs) {
+    if (run.material == material && run.source != "analytic") rpm.push_back(run.rpm);
+  }
+  return rpm;
+}
+
+std::string dem_rows_message(const std::string& material, const std::vector<double>& rpm) {
+  std::string list;
+  for (double r : rpm) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%s%g", list.empty() ? "" : ", ", r);
+    list += text;
+  }
+  return "material '" + material + "' has " + std::to_string(rpm.size()) + " DEM row(s) (rpm " + list +
+         "): the pattern fit and the calibrated rows use the analytic launch model, so the calibrated material "
+         "would replace DEM launches with analytic ones. Calibrate an analytic table of the same scene, or pass "
+         "--allow-analytic to accept analytic rows";
+}
+
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd) {
   return material + " (calibrated " + date_yyyy_mm_dd + ")";
 }
@@ -60,6 +81,10 @@ CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& requ
     if (run.material == request.material) rows.push_back(&run);
   }
   if (rows.empty()) throw std::invalid_argument("material '" + request.material + "' has no runs to rebuild");
+  const std::vector<double> dem_rpm = non_analytic_rows(contents, request.material);
+  if (!dem_rpm.empty() && !request.allow_analytic_for_dem) {
+    throw std::invalid_argument(dem_rows_message(request.material, dem_rpm));
+  }
 
   const tables::Material calibrated = calibrated_material(*base, request.parameters, request.new_material_name);
   // Build every run before touching the disk: a model failure leaves no partial file behind.
@@ -75,7 +100,7 @@ CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& requ
     run.scene_text = original->scene_text;
     run.scene_hash = original->scene_hash;
     run.effects = std::string("analytic_vane_sliding,spin_") + scene::to_string(setup.spin_model) + "," +
-                  format_parameters(request.parameters);
+                  format_parameters(request.parameters) + (original->source == "analytic" ? "" : ",replaces_dem_run");
     run.particle_count = static_cast<std::int64_t>(run.samples.size());
     run.software_version = SPREAD_VERSION_STRING;
     run.created_utc = tables::utc_now_iso8601();
@@ -93,6 +118,7 @@ CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& requ
   CalibratedTableSummary summary;
   summary.output_path = request.output_path;
   summary.material = request.new_material_name;
+  summary.replaced_dem_rpm = dem_rpm;
   try {
     tables::TableWriter writer(request.output_path);
     writer.write_materials({calibrated});

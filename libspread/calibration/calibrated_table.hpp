@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libspread/calibration/pattern_model.hpp"
+#include "libspread/tables/table_reader.hpp"
 
 namespace spread::calibration {
 
@@ -21,6 +22,10 @@ struct CalibratedTableRequest {
   std::string new_material_name;  // e.g. calibrated_material_name("Urea", "2026-11-22")
   PatternParameters parameters;
   std::string calibration_json;   // stored verbatim in meta "calibration:<new name>"
+  // The fit and the rebuilt rows use the ANALYTIC launch model. When the material's rows came from the
+  // DEM (source "dem"), the calibrated material would silently swap DEM launches for analytic ones:
+  // refused unless this is set (`spread calibrate pattern --allow-analytic`).
+  bool allow_analytic_for_dem = false;
 };
 
 struct CalibratedTableSummary {
@@ -28,15 +33,23 @@ struct CalibratedTableSummary {
   std::string material;
   std::vector<double> rpm_rows;   // the runs written
   int samples_per_run = 0;        // of the first row
+  std::vector<double> replaced_dem_rpm;  // rows of the original that came from the DEM (now analytic)
 };
+
+// The rpm of each row of `material` in the table that did not come from the analytic model (source
+// other than "analytic", i.e. DEM rows), in table order.
+std::vector<double> non_analytic_rows(const tables::TableContents& contents, const std::string& material);
+
+// The refusal message for a material with DEM rows (names the rows and the way round it).
+std::string dem_rows_message(const std::string& material, const std::vector<double>& rpm);
 
 // "<name> (calibrated <date>)".
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd);
 // Today's UTC date, YYYY-MM-DD.
 std::string utc_date_today();
 
-// Throws std::invalid_argument for an output that exists or is the original, an unknown material or a
-// new name already in the table; tables::TableError for an unreadable original or an output that cannot
+// Throws std::invalid_argument for an output that exists or is the original, an unknown material, a
+// new name already in the table, or DEM rows without allow_analytic_for_dem; tables::TableError for an unreadable original or an output that cannot
 // be written. A failure after the copy removes the partial output.
 CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& request);
 

@@ -116,6 +116,7 @@ LeastSquaresResult levenberg_marquardt(const LeastSquaresProblem& problem, const
   result.residual_variance = dof > 0.0 ? cost / dof : std::numeric_limits<double>::quiet_NaN();
   // Uncertainty from the Jacobian at the final parameters.
   if (jacobian(eval, p, r, j)) {
+    result.jacobian = j;
     const Eigen::MatrixXd jtj = j.transpose() * j;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(jtj);
     if (lu.isInvertible()) {

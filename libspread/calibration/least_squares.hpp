@@ -38,6 +38,7 @@ struct LeastSquaresResult {
   Eigen::VectorXd standard_errors;   // sqrt(diag(covariance)); NaN when JᵀJ is singular
   Eigen::MatrixXd covariance;        // s² (JᵀJ)⁻¹ at the minimum
   Eigen::VectorXd residuals;         // at the minimum
+  Eigen::MatrixXd jacobian;          // ∂r/∂p at the minimum (empty when the model refused every neighbour)
   double sum_of_squares = 0.0;
   double initial_sum_of_squares = 0.0;
   double residual_variance = 0.0;    // s² = Σ r² / (n − p)

@@ -1,5 +1,6 @@
 #include "libspread/calibration/normal_noise.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace spread::calibration {
@@ -24,6 +25,21 @@ double NormalNoise::next() {
   spare_ = v * factor;
   has_spare_ = true;
   return u * factor;
+}
+
+long NormalNoise::poisson(double mean) {
+  if (!(mean > 0.0)) return 0;
+  if (mean < 30.0) {
+    const double limit = std::exp(-mean);
+    long count = 0;
+    double product = 0.5 * (uniform_open() + 1.0);
+    while (product > limit) {
+      ++count;
+      product *= 0.5 * (uniform_open() + 1.0);
+    }
+    return count;
+  }
+  return std::max(0L, std::lround(mean + std::sqrt(mean) * next()));
 }
 
 }  // namespace spread::calibration

@@ -5,9 +5,13 @@
 //
 // Residuals: measured minus predicted mass fraction per tray of the tray test's layout, both normalised
 // to sum to 1 over the layout — the tray test measures the shape of the pattern; its absolute mass is
-// the rate calibration's business (step 1). Uncertainty: standard errors from s² (JᵀJ)⁻¹, which assume
-// independent tray errors of equal variance; the correlation matrix says which parameters the test
-// cannot tell apart.
+// the rate calibration's business (step 1).
+// Uncertainty (docs/field-calibration.md, "Uncertainty"): tray noise is not uniform (relative on full
+// trays, counting on sparse ones, a floor on empty ones), so after an unweighted fit the residuals give a
+// variance model v(q) (VarianceModel) and the fit is redone with weights 1 / v(q_i). Standard errors are
+// s² (J̃ᵀJ̃)⁻¹ of the weighted fit with s² = χ² / (informative trays − fitted parameters), plus a
+// sandwich estimate; the correlation matrix says which parameters the test cannot tell apart. Measured
+// coverage of ±2 SE on synthetic tray tests: about 90 % (tests/tools/test_pattern_fit.cpp).
 #include <array>
 #include <string>
 #include <vector>
@@ -29,18 +33,51 @@ struct PatternFitOptions {
   bool fit_drag_diameter = true;
   bool fit_angle_offset = true;
   int max_iterations = 30;
+  // Weighted least squares (see VarianceModel): after an unweighted fit, `reweight_rounds` fits with
+  // weights 1 / v(q_i) from the variance model of the previous fit's residuals. false: unweighted only.
+  bool weighted = true;
+  int reweight_rounds = 1;
 };
+
+// Variance of a tray's measured fraction as a function of its predicted fraction q:
+//   v(q) = floor_variance + counting · q + relative · q²
+// — an additive floor (scale error, stray granules, empty trays read as 0), a counting term (a tray
+// catching N granules varies like a Poisson count) and a relative term (the stream varies from pass to
+// pass by some per cent). Estimated from the residuals of the fit itself (fit_variance_model), so it
+// needs no noise figures from the technician.
+struct VarianceModel {
+  double floor_variance = 0.0;  // fraction²
+  double counting = 0.0;        // fraction
+  double relative = 0.0;        // dimensionless (relative sd²)
+  double variance(double q) const;
+};
+
+// Least floor of the variance model, as a fraction of the largest measured tray (an sd).
+inline constexpr double kVarianceFloor = 1e-3;
+
+// A tray counts (degrees of freedom, variance model) when it caught something or its prediction is
+// above the least floor: an empty tray predicted emptier than that is the same whatever the parameters.
+bool informative(double measured_fraction, double predicted_fraction, double largest_measured_fraction);
+
+// Non-negative least squares of e_i² on (1, q_i, q_i²); the floor at least (kVarianceFloor · largest)².
+VarianceModel fit_variance_model(const std::vector<double>& predicted, const std::vector<double>& residual,
+                                 double largest_measured);
 
 struct PatternFitResult {
   PatternParameters initial;
   PatternParameters fitted;
   PatternParameters standard_error;          // same units as the parameters (δ in rad); 0 when fixed
+  PatternParameters robust_standard_error;   // sandwich estimate (no variance model assumed)
+  bool weighted = false;
+  VarianceModel variance_model;              // of the last reweighting round
+  double reduced_chi_square = 0.0;           // Σ w r² / (informative trays − fitted parameters)
+  int informative_trays = 0;                 // see informative()
   std::array<bool, 3> fitted_mask{};         // order μ, k, δ
   std::array<std::array<double, 3>, 3> correlation{};  // order μ, k, δ; 0 for fixed parameters
   double residual_rms_fraction = 0.0;        // sqrt(Σ r² / n) of the mass fractions
   double residual_rms_kg = 0.0;              // the same in mass per tray (× the measured total)
   double initial_residual_rms_fraction = 0.0;
-  double residual_sd_fraction = 0.0;         // s = sqrt(Σ r² / (n − fitted parameters))
+  double residual_sd_fraction = 0.0;         // sqrt(Σ r² / (informative trays − fitted parameters)), unweighted
   int iterations = 0;
   int model_evaluations = 0;
   bool converged = false;

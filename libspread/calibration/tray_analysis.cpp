@@ -22,8 +22,9 @@ TrayTestAnalysis analyse_tray_test(const TrayTest& test, double cv_target, doubl
       metrics::effective_working_width(test.layout_mass_kg, test.layout, Overlap::kToAndFro, cv_target);
   a.working_width_racetrack_m =
       metrics::effective_working_width(test.layout_mass_kg, test.layout, Overlap::kRacetrack, cv_target);
-  a.bout_width_m = bout_width_m;
+  a.requested_bout_width_m = bout_width_m;
   if (bout_width_m > 0.0) {
+    a.bout_width_m = metrics::bout_tray_count(test.layout, bout_width_m) * test.layout.tray_width_m;
     a.cv_to_and_fro = metrics::cv_at_width(test.layout_mass_kg, test.layout, bout_width_m, Overlap::kToAndFro);
     a.cv_racetrack = metrics::cv_at_width(test.layout_mass_kg, test.layout, bout_width_m, Overlap::kRacetrack);
   }

@@ -20,13 +20,94 @@ std::string trim(std::string_view s) {
   return std::string(s.substr(first, last - first + 1));
 }
 
-std::vector<std::string> split(const std::string& line, char separator) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, separator)) cells.push_back(trim(cell));
-  if (!line.empty() && line.back() == separator) cells.emplace_back();  // a trailing empty cell
+// One line split into cells, RFC 4180 style as spreadsheets export them: a cell may be quoted
+// ("3", "pass 1_g"), a quoted cell may hold the separator or '#', and "" inside quotes is one quote.
+// Whitespace around a cell (quoted or not) is dropped. A quoted cell cannot span lines here (a tray
+// test has no use for it): an unterminated quote is an error, as are text after a closing quote and a
+// quote inside an unquoted cell. `problem` is set and the cells are empty when the line is malformed.
+struct Cells {
+  std::vector<std::string> text;
+  std::vector<bool> quoted;
+};
+Cells split(std::string_view line, char separator, std::string& problem) {
+  Cells cells;
+  std::size_t i = 0;
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  while (true) {
+    while (i < line.size() && line[i] != separator && blank(line[i])) ++i;
+    std::string cell;
+    bool quoted = false;
+    if (i < line.size() && line[i] == '"') {
+      quoted = true;
+      const std::size_t opened = i++;
+      bool closed = false;
+      while (i < line.size()) {
+        if (line[i] == '"') {
+          if (i + 1 < line.size() && line[i + 1] == '"') {
+            cell += '"';
+            i += 2;
+            continue;
+          }
+          closed = true;
+          ++i;
+          break;
+        }
+        cell += line[i++];
+      }
+      if (!closed) {
+        problem = "unterminated quote in cell " + std::to_string(cells.text.size() + 1) + " (opened at column " +
+                  std::to_string(opened + 1) + "; a quoted cell must close on the same line)";
+        return {};
+      }
+      while (i < line.size() && line[i] != separator && blank(line[i])) ++i;
+      if (i < line.size() && line[i] != separator) {
+        problem = "cell " + std::to_string(cells.text.size() + 1) + ": text after the closing quote";
+        return {};
+      }
+    } else {
+      const std::size_t begin = i;
+      while (i < line.size() && line[i] != separator) {
+        if (line[i] == '"') {
+          problem = "cell " + std::to_string(cells.text.size() + 1) +
+                    ": a quote inside an unquoted cell (quote the whole cell, and double a quote inside it)";
+          return {};
+        }
+        ++i;
+      }
+      cell = trim(line.substr(begin, i - begin));
+    }
+    cells.text.push_back(std::move(cell));
+    cells.quoted.push_back(quoted);
+    if (i >= line.size()) break;
+    ++i;  // the separator; a separator at the end leaves a trailing empty cell
+  }
   return cells;
+}
+
+// The line without its comment: from the first '#' outside quotes.
+std::string_view strip_comment(std::string_view line) {
+  bool in_quotes = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    if (line[i] == '"') in_quotes = !in_quotes;  // "" inside quotes toggles twice: no change
+    else if (line[i] == '#' && !in_quotes) return line.substr(0, i);
+  }
+  return line;
+}
+
+// The separator a header uses: ';' or tab (outside quotes) when there, else ','.
+char separator_of(std::string_view header) {
+  bool in_quotes = false, semicolon = false, tab = false, comma = false;
+  for (char c : header) {
+    if (c == '"') in_quotes = !in_quotes;
+    else if (!in_quotes) {
+      semicolon |= c == ';';
+      tab |= c == '\t';
+      comma |= c == ',';
+    }
+  }
+  if (semicolon) return ';';
+  if (tab && !comma) return '\t';
+  return ',';
 }
 
 bool ends_with(const std::string& s, std::string_view suffix) {
@@ -77,17 +158,18 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
   int line_number = 0;
   while (std::getline(in, raw)) {
     ++line_number;
-    const std::string line = trim(std::string_view(raw).substr(0, raw.find('#')));
+    const std::string line = trim(strip_comment(raw));
     if (line.empty()) continue;
+    std::string problem;
 
     if (!have_header) {
       have_header = true;
-      if (line.find(';') != std::string::npos) separator = ';';
-      else if (line.find('\t') != std::string::npos && line.find(',') == std::string::npos) separator = '\t';
-      const std::vector<std::string> names = split(line, separator);
+      separator = separator_of(line);
+      const std::vector<std::string> names = split(line, separator, problem).text;
+      if (!problem.empty()) throw TrayCsvError(source, line_number, "header: " + problem);
       cell_count = names.size();
       for (std::size_t i = 0; i < names.size(); ++i) {
-        const std::string name = lower(names[i]);
+        const std::string name = lower(trim(names[i]));
         if (name == "position_m" || name == "x_m") {
           if (have_position) throw TrayCsvError(source, line_number, "two position columns ('" + names[i] + "')");
           have_position = true;
@@ -113,14 +195,22 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
       continue;
     }
 
-    const std::vector<std::string> cells = split(line, separator);
+    const Cells split_cells = split(line, separator, problem);
+    if (!problem.empty()) throw TrayCsvError(source, line_number, problem);
+    const std::vector<std::string>& cells = split_cells.text;
     if (cells.size() != cell_count) {
       throw TrayCsvError(source, line_number,
                          "expected " + std::to_string(cell_count) + " cells as in the header, found " +
                              std::to_string(cells.size()));
     }
     auto number = [&](std::size_t column, const std::string& what) {
-      const std::string& cell = cells[column];
+      std::string cell = trim(cells[column]);
+      // A decimal comma ("0,221"), as spreadsheets in many locales export it next to ';' or tab
+      // separators. Not with ',' separators: there "1,234" may be a thousands separator.
+      if (separator != ',' && cell.find(',') != std::string::npos && cell.find('.') == std::string::npos &&
+          cell.find(',') == cell.rfind(',')) {
+        cell[cell.find(',')] = '.';
+      }
       std::size_t used = 0;
       double value = 0.0;
       try {
@@ -129,7 +219,10 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
         used = 0;
       }
       if (cell.empty() || used != cell.size() || !std::isfinite(value)) {
-        throw TrayCsvError(source, line_number, what + ": '" + cell + "' is not a number");
+        const bool comma = separator == ',' && cell.find(',') != std::string::npos;
+        throw TrayCsvError(source, line_number,
+                           what + ": '" + cells[column] + "' is not a number" +
+                               (comma ? " (decimal commas only in files separated by ';' or tab)" : ""));
       }
       return value;
     };

@@ -7,11 +7,14 @@
 //   -12.25,10.2,9.8,10.5
 //   ...
 //
+// Cells may be quoted as spreadsheets export them (RFC 4180: "3", a separator or '#' inside quotes, ""
+// for a quote); with ';' or tab separators a decimal comma ("0,221") is read as a decimal point.
 // Columns (separator ',' — or ';' / tab when the header uses it):
 //   position_m (or x_m)  tray centre, lateral, metres from the tractor centre line, left negative;
 //   one or more mass columns named *_g (grams) or *_kg (kilograms): one per pass, averaged per tray;
 //   any other column (e.g. "tray") is ignored.
-// Checks, each failure a TrayCsvError whose message starts "<file>:<line>: ": a header with a position
+// Checks, each failure a TrayCsvError whose message starts "<file>:<line>: ": quoting closed on its
+// line, nothing after a closing quote, no quote inside an unquoted cell; a header with a position
 // and at least one mass column; every row the header's cell count; numbers that parse completely and are
 // finite; masses >= 0; positions strictly increasing with one uniform spacing (within 1 mm); the
 // tray centres on the half-tray grid of the centre line (centres at multiples of the spacing, or

@@ -52,3 +52,17 @@ TEST(TrayAnalysis, RejectsBadTargetsAndWidths) {
   EXPECT_THROW(cal::analyse_tray_test(ramp(), 0.0, 1.0), std::invalid_argument);
   EXPECT_THROW(cal::analyse_tray_test(ramp(), 0.15, -1.0), std::invalid_argument);
 }
+
+TEST(TrayAnalysis, WidthIsReportedAsTheWholeTraysUsed) {
+  // 0.5 m trays resolve bouts in whole trays: 1.2 m is taken as 1.0 m (2 trays) and reported so; the CVs
+  // are exactly those at 1.0 m. A width on the grid is not flagged.
+  const cal::TrayTestAnalysis exact = cal::analyse_tray_test(ramp(), 0.15, 1.0);
+  EXPECT_FALSE(exact.bout_width_rounded());
+  const cal::TrayTestAnalysis a = cal::analyse_tray_test(ramp(), 0.15, 1.2);
+  EXPECT_EQ(a.requested_bout_width_m, 1.2);
+  EXPECT_NEAR(a.bout_width_m, 1.0, 1e-12);
+  EXPECT_TRUE(a.bout_width_rounded());
+  EXPECT_EQ(a.cv_racetrack, exact.cv_racetrack);
+  EXPECT_EQ(a.cv_to_and_fro, exact.cv_to_and_fro);
+  EXPECT_NEAR(cal::analyse_tray_test(ramp(), 0.15, 1.3).bout_width_m, 1.5, 1e-12);
+}

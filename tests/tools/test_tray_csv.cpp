@@ -85,3 +85,48 @@ TEST(TrayCsv, ErrorsNameTheLine) {
   EXPECT_EQ(error_of(header + good), "");
   EXPECT_THROW(cal::read_tray_csv("/nonexistent/tray.csv"), cal::TrayCsvError);
 }
+
+TEST(TrayCsv, QuotedCellsAsSpreadsheetsExportThem) {
+  // RFC 4180 quoting: quoted numbers and names, a separator and a '#' inside quotes, "" for a quote.
+  const cal::TrayTest t = cal::parse_tray_csv(
+      "\"tray \"\"#\"\"\",\"position_m\",\"pass1_g\", \"pass2_g\"\n"
+      "\"a, left\",\"-1.0\",\"1\",3\n"
+      "b,-0.5, \"2\" ,4  # comment after quoted cells\n"
+      "c,0.0,3,5\n"
+      "d,0.5,4,6\n"
+      "e,1.0,5,\"7\"\n",
+      "t.csv");
+  ASSERT_EQ(t.mass_kg.size(), 5u);
+  EXPECT_EQ(t.mass_columns, (std::vector<std::string>{"pass1_g", "pass2_g"}));
+  EXPECT_NEAR(t.mass_kg[0], 2e-3, 1e-15);
+  EXPECT_NEAR(t.mass_kg[1], 3e-3, 1e-15);
+  EXPECT_NEAR(t.mass_kg[4], 6e-3, 1e-15);
+}
+
+TEST(TrayCsv, DecimalCommaWithSemicolonSeparator) {
+  const cal::TrayTest t = cal::parse_tray_csv(
+      "position_m;mass_g\n\"-1,0\";\"0,5\"\n-0,5;1,5\n0;2\n0,5;2,5\n1,0;3\n", "t.csv");
+  ASSERT_EQ(t.mass_kg.size(), 5u);
+  EXPECT_NEAR(t.position_m[0], -1.0, 1e-15);
+  EXPECT_NEAR(t.mass_kg[0], 0.5e-3, 1e-15);
+  EXPECT_NEAR(t.mass_kg[4], 3e-3, 1e-15);
+}
+
+TEST(TrayCsv, BadQuotingNamesTheLine) {
+  const std::string header = "position_m,mass_g\n";
+  const std::string rows = "-0.5,1\n0.0,1\n0.5,1\n1.0,1\n";
+  int line = -1;
+  EXPECT_NE(error_of(header + "-1.0,\"1\n" + rows, &line).find("t.csv:2: unterminated quote in cell 2"),
+            std::string::npos);
+  EXPECT_EQ(line, 2);
+  EXPECT_NE(error_of(header + rows + "\"1.5\"x,1\n").find("t.csv:6: cell 1: text after the closing quote"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "-1.0,1\"2\n" + rows).find("t.csv:2: cell 2: a quote inside an unquoted cell"),
+            std::string::npos);
+  // A quoted number is still checked as a number; a decimal comma with ',' separators gets a hint.
+  EXPECT_NE(error_of(header + "-1.0,\"x\"\n" + rows).find("t.csv:2: mass_g: 'x' is not a number"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "-1.0,\"1,5\"\n" + rows).find("decimal commas only in files separated by"),
+            std::string::npos);
+  EXPECT_NE(error_of("\"position_m,mass_g\n" + rows).find("t.csv:1: header: unterminated quote"), std::string::npos);
+}

@@ -1,6 +1,7 @@
 // spread calibrate rate|tray|pattern — the technician's field tools (docs/field-calibration.md).
 //   rate     catch test → flow factor → gate opening for a target rate; the rate error of the current opening
 //   tray     tray-test CSV → CV (to-and-fro, racetrack) at a bout width, CV(W), effective working widths
+//   synth    a synthetic tray test from the pattern model at known parameters, with seeded noise
 //   pattern  fit friction, drag-diameter factor and launch-angle offset of a material to a tray test and
 //            write the calibrated material into a NEW table file (the original is only read)
 // Every command prints a short report, or JSON with --json. Bad input → a message naming it on stderr,
@@ -16,6 +17,7 @@
 #include "libspread/calibration/calibrated_table.hpp"
 #include "libspread/calibration/pattern_fit.hpp"
 #include "libspread/calibration/rate_calibration.hpp"
+#include "libspread/calibration/synthetic_tray_test.hpp"
 #include "libspread/calibration/tray_analysis.hpp"
 #include "libspread/calibration/tray_csv.hpp"
 #include "libspread/plot/plot.hpp"
@@ -142,6 +144,7 @@ json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
            {"cv_curve", curve}};
   if (a.bout_width_m > 0.0) {
     out["bout_width_m"] = a.bout_width_m;
+    out["bout_width_requested_m"] = a.requested_bout_width_m;
     out["cv_to_and_fro_percent"] = finite_or_null(100.0 * a.cv_to_and_fro);
     out["cv_racetrack_percent"] = finite_or_null(100.0 * a.cv_racetrack);
   }
@@ -161,13 +164,28 @@ void plot_tray(const cal::TrayTest& t, const cal::TrayTestAnalysis& a, const std
   written["cv"] = cv;
 }
 
+std::vector<std::string> tray_warnings(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
+  std::vector<std::string> warnings;
+  if (a.bout_width_m > 0.0 && a.bout_width_rounded()) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "--width %.3g m is not a whole number of %.2f m trays: the CVs are at W = %.2f m, the nearest "
+                  "width the tray test resolves",
+                  a.requested_bout_width_m, t.tray_width_m, a.bout_width_m);
+    warnings.emplace_back(text);
+  }
+  return warnings;
+}
+
 void run_tray(const TrayOptions& o) {
   const cal::TrayTest t = cal::read_tray_csv(o.file);
   const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, o.cv_target_percent / 100.0, o.width_m);
+  const std::vector<std::string> warnings = tray_warnings(t, a);
   json written = json::object();
   if (!o.plot_prefix.empty()) plot_tray(t, a, o.plot_prefix, written);
   if (o.json) {
     json out = tray_json(t, a);
+    out["warnings"] = warnings;
     out["written"] = written;
     std::cout << out.dump(2) << "\n";
     return;
@@ -178,6 +196,7 @@ void run_tray(const TrayOptions& o) {
     std::printf("at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack\n", a.bout_width_m, 100.0 * a.cv_to_and_fro,
                 100.0 * a.cv_racetrack);
   }
+  for (const std::string& w : warnings) std::printf("warning: %s\n", w.c_str());
   std::printf("effective working width (CV <= %.0f %%): %.2f m to-and-fro, %.2f m racetrack\n", 100.0 * a.cv_target,
               a.working_width_to_and_fro_m, a.working_width_racetrack_m);
   for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
@@ -191,6 +210,7 @@ struct PatternOptions {
   int samples = 1024;
   double kernel_m = 0.0;
   double cv_target_percent = 15.0;
+  bool allow_analytic = false;
   bool json = false;
 };
 
@@ -209,7 +229,7 @@ void parse_fit_list(const std::string& text, cal::PatternFitOptions& options) {
   }
 }
 
-json fit_json(const cal::PatternFitResult& f) {
+json fit_json_parameters(const cal::PatternFitResult& f) {
   static const char* names[3] = {"friction_wall", "drag_diameter_factor", "launch_angle_offset_deg"};
   const double values[3] = {f.fitted.friction_wall, f.fitted.drag_diameter_factor,
                             f.fitted.launch_angle_offset_rad * kDegPerRad};
@@ -217,10 +237,13 @@ json fit_json(const cal::PatternFitResult& f) {
                             f.standard_error.launch_angle_offset_rad * kDegPerRad};
   const double initial[3] = {f.initial.friction_wall, f.initial.drag_diameter_factor,
                              f.initial.launch_angle_offset_rad * kDegPerRad};
+  const double robust[3] = {f.robust_standard_error.friction_wall, f.robust_standard_error.drag_diameter_factor,
+                            f.robust_standard_error.launch_angle_offset_rad * kDegPerRad};
   json parameters = json::object();
   for (std::size_t i = 0; i < 3; ++i) {
     parameters[names[i]] = {{"value", values[i]},
                             {"standard_error", f.fitted_mask[i] ? finite_or_null(errors[i]) : json(nullptr)},
+                            {"robust_standard_error", f.fitted_mask[i] ? finite_or_null(robust[i]) : json(nullptr)},
                             {"initial", initial[i]},
                             {"fitted", f.fitted_mask[i]}};
   }
@@ -235,6 +258,17 @@ json fit_json(const cal::PatternFitResult& f) {
           {"model_evaluations", f.model_evaluations},
           {"converged", f.converged},
           {"stop_reason", f.stop_reason}};
+}
+
+json fit_json(const cal::PatternFitResult& f) {
+  json fit = fit_json_parameters(f);
+  fit["weighted"] = f.weighted;
+  fit["variance_model"] = {{"floor_sd_fraction", std::sqrt(f.variance_model.floor_variance)},
+                           {"counting_fraction", f.variance_model.counting},
+                           {"relative_sd", std::sqrt(f.variance_model.relative)}};
+  fit["reduced_chi_square"] = f.reduced_chi_square;
+  fit["informative_trays"] = f.informative_trays;
+  return fit;
 }
 
 std::vector<std::string> fit_warnings(const cal::PatternFitResult& f) {
@@ -267,9 +301,16 @@ void run_pattern(const PatternOptions& o) {
 
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
+  // Before the fit (which takes seconds): a table of DEM rows is refused unless --allow-analytic.
+  const std::vector<double> dem_rpm = cal::non_analytic_rows(contents, o.material);
+  if (!dem_rpm.empty() && !o.allow_analytic) throw BadInput(cal::dem_rows_message(o.material, dem_rpm));
   const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
   const cal::PatternFitResult fit = cal::fit_pattern(setup, test, options);
-  const std::vector<std::string> warnings = fit_warnings(fit);
+  std::vector<std::string> warnings = fit_warnings(fit);
+  if (!dem_rpm.empty()) {
+    warnings.push_back("the table's rows of '" + o.material + "' came from the DEM; the fit used the analytic "
+                       "launch model and the calibrated material's rows are analytic (--allow-analytic)");
+  }
 
   json report = fit_json(fit);
   report["tray_test"] = o.trays;
@@ -285,6 +326,7 @@ void run_pattern(const PatternOptions& o) {
   request.new_material_name = o.name.empty() ? cal::calibrated_material_name(o.material, cal::utc_date_today()) : o.name;
   request.parameters = fit.fitted;
   request.calibration_json = report.dump();
+  request.allow_analytic_for_dem = o.allow_analytic;
   const cal::CalibratedTableSummary summary = cal::write_calibrated_table(request);
 
   json written = json::object();
@@ -346,6 +388,81 @@ void run_pattern(const PatternOptions& o) {
   for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
 }
 
+// --------------------------------------------------------------------------------------------- synth
+
+struct SynthOptions {
+  std::string tables, material, output;
+  double rpm = 0.0;
+  double friction = NAN, drag = 1.0, offset_deg = 0.0;
+  double half_width_m = 18.0, tray_width_m = 0.5;
+  int passes = 3;
+  double mass_g = 400.0;
+  double relative_noise_percent = 8.0, granule_mass_g = 0.0, floor_g = 0.0, resolution_g = 0.001;
+  int samples = 1024;
+  std::uint64_t seed = 1;
+  bool json = false;
+};
+
+void run_synth(const SynthOptions& o) {
+  if (o.output.empty()) throw BadInput("--output: give the path of the CSV to write");
+  if (o.samples < 16 || o.samples > 100000) throw BadInput("--samples must be in [16, 100000]");
+  if (!(o.tray_width_m > 0.0) || !(o.half_width_m >= 2.5 * o.tray_width_m)) {
+    throw BadInput("--tray-width must be > 0 and --half-width at least 2.5 tray widths");
+  }
+  const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
+  const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
+  cal::PatternParameters truth = cal::parameters_of(setup.material);
+  if (!std::isnan(o.friction)) truth.friction_wall = o.friction;
+  truth.drag_diameter_factor = o.drag;
+  truth.launch_angle_offset_rad = o.offset_deg / kDegPerRad;
+  cal::check_parameters(truth);
+  cal::PatternModelOptions model_options;
+  model_options.sample_count = o.samples;
+  const spread::metrics::TrayLayout layout = spread::metrics::tray_layout_covering(o.half_width_m, o.tray_width_m);
+  const cal::PatternModel model(setup, layout, model_options);
+  cal::TrayNoise noise;
+  noise.relative_sd = o.relative_noise_percent / 100.0;
+  noise.granule_mass_g = o.granule_mass_g;
+  noise.floor_sd_g = o.floor_g;
+  noise.resolution_g = o.resolution_g;
+  const cal::SyntheticTrayTest test = cal::synthetic_tray_test(model, truth, o.mass_g, o.passes, noise, o.seed);
+  char text[512];
+  std::vector<std::string> comments;
+  std::snprintf(text, sizeof text,
+                "Synthetic tray test: %d trays of %.2f m, %d pass(es), grams; position_m = tray centre from the "
+                "tractor centre line (left negative).",
+                layout.tray_count, layout.tray_width_m, o.passes);
+  comments.emplace_back(text);
+  std::snprintf(text, sizeof text,
+                "Made by spread calibrate synth: '%s' of %s at %g rpm, %d samples, friction %.4g, drag diameter "
+                "factor %.4g, launch-angle offset %.4g deg, %.4g g per pass in the trays.",
+                o.material.c_str(), o.tables.c_str(), o.rpm, o.samples, truth.friction_wall,
+                truth.drag_diameter_factor, o.offset_deg, o.mass_g);
+  comments.emplace_back(text);
+  std::snprintf(text, sizeof text,
+                "Noise per tray and pass: Poisson count of %.4g g granules, plus normal with sd^2 = (%.4g %% of the "
+                "tray)^2 + (%.4g g)^2, readings below 0 written as 0, rounded to %.4g g; seed %llu.",
+                o.granule_mass_g, o.relative_noise_percent, o.floor_g, o.resolution_g,
+                static_cast<unsigned long long>(o.seed));
+  comments.emplace_back(text);
+  cal::write_tray_csv(o.output, test.position_m, test.pass_mass_g, comments);
+  if (o.json) {
+    json out{{"output", o.output},
+             {"trays", layout.tray_count},
+             {"tray_width_m", layout.tray_width_m},
+             {"passes", o.passes},
+             {"truth", {{"friction_wall", truth.friction_wall},
+                        {"drag_diameter_factor", truth.drag_diameter_factor},
+                        {"launch_angle_offset_deg", o.offset_deg}}},
+             {"seed", o.seed}};
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("wrote %s: %d trays of %.2f m, %d pass(es), friction %.4g, drag %.4g, offset %.4g deg\n",
+              o.output.c_str(), layout.tray_count, layout.tray_width_m, o.passes, truth.friction_wall,
+              truth.drag_diameter_factor, o.offset_deg);
+}
+
 spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_code) {
   auto* sub = app.add_subcommand("calibrate", "field calibration: catch test (rate), tray test, pattern fit");
   sub->require_subcommand(1);
@@ -386,9 +503,33 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   p->add_option("--samples", pattern.samples, "trajectories per model evaluation");
   p->add_option("--kernel", pattern.kernel_m, "landing kernel sd (m); default half the tray width");
   p->add_option("--cv-target", pattern.cv_target_percent, "CV target (%) of the plots");
+  p->add_flag("--allow-analytic", pattern.allow_analytic,
+              "accept a material whose table rows came from the DEM: fit and new rows use the analytic model");
   p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
   p->add_flag("--json", pattern.json, "machine-readable output on stdout");
   p->callback([&exit_code] { guarded("pattern", exit_code, [] { run_pattern(pattern); }); });
+
+  static SynthOptions synth;
+  auto* y = sub->add_subcommand("synth", "write a synthetic tray test made by the pattern model (known answers)");
+  y->add_option("--tables", synth.tables, "launch-table file (read only)")->required();
+  y->add_option("--material", synth.material, "material name in the table")->required();
+  y->add_option("--rpm", synth.rpm, "disc speed (r/min)")->required();
+  y->add_option("--output", synth.output, "CSV to write")->required();
+  y->add_option("--friction", synth.friction, "friction on the vanes (default: the table's)");
+  y->add_option("--drag", synth.drag, "drag diameter factor k");
+  y->add_option("--offset", synth.offset_deg, "launch-angle offset (deg)");
+  y->add_option("--half-width", synth.half_width_m, "trays cover [-this, this] m");
+  y->add_option("--tray-width", synth.tray_width_m, "tray width (m)");
+  y->add_option("--passes", synth.passes, "passes (one mass column each)");
+  y->add_option("--mass", synth.mass_g, "expected mass in all trays per pass (g)");
+  y->add_option("--relative-noise", synth.relative_noise_percent, "noise sd, % of each tray's mass");
+  y->add_option("--granule-mass", synth.granule_mass_g, "counting noise: mass of one granule (g); 0 = none");
+  y->add_option("--floor", synth.floor_g, "additive noise sd (g); readings below 0 are written as 0");
+  y->add_option("--resolution", synth.resolution_g, "readings rounded to this (g)");
+  y->add_option("--samples", synth.samples, "trajectories of the model");
+  y->add_option("--seed", synth.seed, "noise seed");
+  y->add_flag("--json", synth.json, "machine-readable output on stdout");
+  y->callback([&exit_code] { guarded("synth", exit_code, [] { run_synth(synth); }); });
 }};
 
 }  // namespace
