@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 
+#include "libspread/core/dormand_prince.hpp"
 #include "libspread/dem/verify.hpp"
 
 namespace spread::dem {
@@ -37,33 +38,10 @@ State rhs(const ConeCase& c, const State& y) {
 
 // One Dormand–Prince 5(4) step; returns the 5th-order state and the error estimate norm.
 State dp_step(const ConeCase& c, const State& y, double h, double& err) {
-  static constexpr double a21 = 1.0 / 5, a31 = 3.0 / 40, a32 = 9.0 / 40, a41 = 44.0 / 45, a42 = -56.0 / 15,
-                          a43 = 32.0 / 9, a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
-                          a54 = -212.0 / 729, a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
-                          a64 = 49.0 / 176, a65 = -5103.0 / 18656, b1 = 35.0 / 384, b3 = 500.0 / 1113,
-                          b4 = 125.0 / 192, b5 = -2187.0 / 6784, b6 = 11.0 / 84, e1 = 71.0 / 57600,
-                          e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200, e6 = 22.0 / 525,
-                          e7 = -1.0 / 40;
-  auto add = [](const State& base, std::initializer_list<std::pair<double, const State*>> terms, double hh) {
-    State r = base;
-    for (const auto& [w, k] : terms)
-      for (int i = 0; i < 4; ++i) r[static_cast<std::size_t>(i)] += hh * w * (*k)[static_cast<std::size_t>(i)];
-    return r;
-  };
-  const State k1 = rhs(c, y);
-  const State k2 = rhs(c, add(y, {{a21, &k1}}, h));
-  const State k3 = rhs(c, add(y, {{a31, &k1}, {a32, &k2}}, h));
-  const State k4 = rhs(c, add(y, {{a41, &k1}, {a42, &k2}, {a43, &k3}}, h));
-  const State k5 = rhs(c, add(y, {{a51, &k1}, {a52, &k2}, {a53, &k3}, {a54, &k4}}, h));
-  const State k6 = rhs(c, add(y, {{a61, &k1}, {a62, &k2}, {a63, &k3}, {a64, &k4}, {a65, &k5}}, h));
-  const State y5 = add(y, {{b1, &k1}, {b3, &k3}, {b4, &k4}, {b5, &k5}, {b6, &k6}}, h);
-  const State k7 = rhs(c, y5);
+  State e;
+  const State y5 = dormand_prince::step([&](const State& x) { return rhs(c, x); }, y, h, e);
   err = 0.0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    const double e = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
-    const double sc = 1e-14 + std::max(std::abs(y[i]), std::abs(y5[i]));
-    err = std::max(err, std::abs(e) / sc);
-  }
+  for (std::size_t i = 0; i < 4; ++i) err = std::max(err, std::abs(e[i]) / (1e-14 + std::max(std::abs(y[i]), std::abs(y5[i]))));
   return y5;
 }
 }  // namespace

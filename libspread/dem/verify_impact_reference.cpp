@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 
+#include "libspread/core/dormand_prince.hpp"
 #include "libspread/dem/verify.hpp"
 
 namespace spread::dem {
@@ -39,37 +40,10 @@ struct Law {
 
 // One Dormand–Prince 5(4) step; err = max over components of |error| / (1 + |y|) (values are O(1)).
 State dp_step(const Law& law, const State& y, double h, double& err) {
-  static constexpr double a21 = 1.0 / 5, a31 = 3.0 / 40, a32 = 9.0 / 40, a41 = 44.0 / 45, a42 = -56.0 / 15,
-                          a43 = 32.0 / 9, a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
-                          a54 = -212.0 / 729, a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
-                          a64 = 49.0 / 176, a65 = -5103.0 / 18656, b1 = 35.0 / 384, b3 = 500.0 / 1113,
-                          b4 = 125.0 / 192, b5 = -2187.0 / 6784, b6 = 11.0 / 84, e1 = 71.0 / 57600,
-                          e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200, e6 = 22.0 / 525,
-                          e7 = -1.0 / 40;
-  auto at = [&](double w1, const State& k1, double w2 = 0, const State& k2 = {}, double w3 = 0, const State& k3 = {},
-                double w4 = 0, const State& k4 = {}, double w5 = 0, const State& k5 = {}) {
-    State r;
-    for (std::size_t i = 0; i < 2; ++i)
-      r[i] = y[i] + h * (w1 * k1[i] + w2 * k2[i] + w3 * k3[i] + w4 * k4[i] + w5 * k5[i]);
-    return r;
-  };
-  const State k1 = law.rhs(y);
-  const State k2 = law.rhs(at(a21, k1));
-  const State k3 = law.rhs(at(a31, k1, a32, k2));
-  const State k4 = law.rhs(at(a41, k1, a42, k2, a43, k3));
-  const State k5 = law.rhs(at(a51, k1, a52, k2, a53, k3, a54, k4));
-  State k6_in;
-  for (std::size_t i = 0; i < 2; ++i)
-    k6_in[i] = y[i] + h * (a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i]);
-  const State k6 = law.rhs(k6_in);
-  State y5;
-  for (std::size_t i = 0; i < 2; ++i) y5[i] = y[i] + h * (b1 * k1[i] + b3 * k3[i] + b4 * k4[i] + b5 * k5[i] + b6 * k6[i]);
-  const State k7 = law.rhs(y5);
+  State e;
+  const State y5 = dormand_prince::step([&](const State& x) { return law.rhs(x); }, y, h, e);
   err = 0.0;
-  for (std::size_t i = 0; i < 2; ++i) {
-    const double e = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
-    err = std::max(err, std::abs(e) / (1.0 + std::max(std::abs(y[i]), std::abs(y5[i]))));
-  }
+  for (std::size_t i = 0; i < 2; ++i) err = std::max(err, std::abs(e[i]) / (1.0 + std::max(std::abs(y[i]), std::abs(y5[i]))));
   return y5;
 }
 }  // namespace

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libspread/core/dormand_prince.hpp"
 #include "libspread/flight/ground_crossing.hpp"
 #include "libspread/flight/state_vector.hpp"
 
@@ -25,20 +26,8 @@ inline constexpr double kDpMaxFactor = 10.0;
 inline constexpr double kDpMaxFirstFactor = 1000.0;
 inline constexpr double kDpMinStep_s = 1e-12;  // below this the controller has failed: stop, not landed
 
-// Butcher tableau (c_i are not needed: the flight ODE is autonomous).
-inline constexpr double kA21 = 1.0 / 5.0;
-inline constexpr double kA31 = 3.0 / 40.0, kA32 = 9.0 / 40.0;
-inline constexpr double kA41 = 44.0 / 45.0, kA42 = -56.0 / 15.0, kA43 = 32.0 / 9.0;
-inline constexpr double kA51 = 19372.0 / 6561.0, kA52 = -25360.0 / 2187.0, kA53 = 64448.0 / 6561.0,
-                        kA54 = -212.0 / 729.0;
-inline constexpr double kA61 = 9017.0 / 3168.0, kA62 = -355.0 / 33.0, kA63 = 46732.0 / 5247.0,
-                        kA64 = 49.0 / 176.0, kA65 = -5103.0 / 18656.0;
-// 5th-order weights (= row 7 of A: FSAL).
-inline constexpr double kB1 = 35.0 / 384.0, kB3 = 500.0 / 1113.0, kB4 = 125.0 / 192.0,
-                        kB5 = -2187.0 / 6784.0, kB6 = 11.0 / 84.0;
-// Error weights b − b̂ (5th minus embedded 4th order).
-inline constexpr double kE1 = 71.0 / 57600.0, kE3 = -71.0 / 16695.0, kE4 = 71.0 / 1920.0,
-                        kE5 = -17253.0 / 339200.0, kE6 = 22.0 / 525.0, kE7 = -1.0 / 40.0;
+// Butcher tableau: libspread/core/dormand_prince.hpp (shared with the DEM verification references).
+using namespace spread::dormand_prince;
 // Dense output (Hairer's DOPRI5 continuous extension of order 4).
 inline constexpr double kD1 = -12715105075.0 / 11282082432.0, kD3 = 87487479700.0 / 32700410799.0,
                         kD4 = -10690763975.0 / 1880347072.0, kD5 = 701980252875.0 / 199316789632.0,
