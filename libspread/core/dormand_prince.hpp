@@ -2,8 +2,11 @@
 // Dormand–Prince 5(4) (Dormand & Prince 1980; Hairer, Nørsett & Wanner, Solving ODEs I, Table II.5.2):
 // the Butcher tableau, shared by the flight integrator (libspread/flight/dormand_prince.hpp) and the
 // tight-tolerance references of the DEM verification cases, and one generic step for the small
-// autonomous systems those references solve (c_i are not needed: every system here is autonomous).
+// autonomous systems those references solve (c_i are not needed: every system here is autonomous), with
+// the adaptive driver that runs them to an event.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <utility>
 
@@ -45,6 +48,63 @@ std::array<double, N> step(const Rhs& f, const std::array<double, N>& y, double 
   for (std::size_t i = 0; i < N; ++i)
     error[i] = h * (kE1 * k1[i] + kE3 * k3[i] + kE4 * k4[i] + kE5 * k5[i] + kE6 * k6[i] + kE7 * k7[i]);
   return y5;
+}
+
+// Where integrate_until stopped: the event's time and state, or reached = false if the step budget ran out.
+template <std::size_t N>
+struct EventHit {
+  double t = 0.0;
+  std::array<double, N> y{};
+  bool reached = false;
+};
+
+// Integrates y' = f(y) from y0 at t = 0 until event(y) first holds, to the tolerance `tol` on
+// err = max_i |e_i| / (scale_floor + max(|y_i|, |y5_i|)) (scale_floor sets where the error turns from
+// relative to absolute), with the standard controller h ← h · clamp(0.9 (tol/err)^{1/5}, 0.1, 5)
+// (Hairer, Nørsett & Wanner, Sect. II.4). The event is located by bisection on the length of the step
+// that crosses it, from the last accepted state: the states inside one accepted step are as accurate as
+// the step. For the tight-tolerance verification references, not for hot loops.
+template <std::size_t N, class Rhs, class Event>
+EventHit<N> integrate_until(const Rhs& f, const std::array<double, N>& y0, double first_step, double tol,
+                            double scale_floor, const Event& event, int max_steps = 10'000'000) {
+  using State = std::array<double, N>;
+  const auto attempt = [&](const State& from, double h, double& err) {
+    State e;
+    const State y5 = step(f, from, h, e);
+    err = 0.0;
+    for (std::size_t i = 0; i < N; ++i)
+      err = std::max(err, std::abs(e[i]) / (scale_floor + std::max(std::abs(from[i]), std::abs(y5[i]))));
+    return y5;
+  };
+  EventHit<N> out;
+  out.y = y0;
+  double h = first_step;
+  for (int guard = 0; guard < max_steps; ++guard) {
+    double err = 0.0;
+    const State y_new = attempt(out.y, h, err);
+    if (err > tol) {
+      h *= std::max(0.1, 0.9 * std::pow(tol / err, 0.2));
+      continue;
+    }
+    if (event(y_new)) {
+      double lo = 0.0, hi = h;
+      State y_hi = y_new;
+      for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(1.0, out.t); ++it) {
+        const double mid = 0.5 * (lo + hi);
+        double unused = 0.0;
+        const State ym = attempt(out.y, mid, unused);
+        if (event(ym)) { hi = mid; y_hi = ym; } else { lo = mid; }
+      }
+      out.t += hi;
+      out.y = y_hi;
+      out.reached = true;
+      return out;
+    }
+    out.y = y_new;
+    out.t += h;
+    h *= std::min(5.0, 0.9 * std::pow(tol / std::max(err, 1e-300), 0.2));
+  }
+  return out;
 }
 
 }  // namespace spread::dormand_prince

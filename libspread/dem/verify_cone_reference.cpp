@@ -36,46 +36,16 @@ State rhs(const ConeCase& c, const State& y) {
   return {sd, pd, sdd, pdd};
 }
 
-// One Dormand–Prince 5(4) step; returns the 5th-order state and the error estimate norm.
-State dp_step(const ConeCase& c, const State& y, double h, double& err) {
-  State e;
-  const State y5 = dormand_prince::step([&](const State& x) { return rhs(c, x); }, y, h, e);
-  err = 0.0;
-  for (std::size_t i = 0; i < 4; ++i) err = std::max(err, std::abs(e[i]) / (1e-14 + std::max(std::abs(y[i]), std::abs(y5[i]))));
-  return y5;
-}
 }  // namespace
 
 ConeState cone_reference(const ConeCase& c, double tol) {
   const double ca = std::cos(c.alpha_rad), sa = std::sin(c.alpha_rad);
   State y = {c.rho0 / ca, 0.0, 0.0, c.v0 / c.rho0};  // ξ(0) = (ρ0, 0, tanα ρ0), ξ̇(0) = (0, v0, 0)
   const double s_exit = 1.0 / ca;
-  double t = 0.0, h = 1e-3;
-  for (int guard = 0; guard < 10'000'000; ++guard) {
-    double err = 0.0;
-    const State y_new = dp_step(c, y, h, err);
-    if (err > tol) {
-      h *= std::max(0.1, 0.9 * std::pow(tol / err, 0.2));
-      continue;
-    }
-    if (y_new[0] >= s_exit) {
-      // Locate the exit: bisection on the step length from the last accepted state.
-      double lo = 0.0, hi = h;
-      State y_hi = y_new;
-      for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(1.0, t); ++it) {
-        const double mid = 0.5 * (lo + hi);
-        double e2 = 0.0;
-        const State ym = dp_step(c, y, mid, e2);
-        if (ym[0] >= s_exit) { hi = mid; y_hi = ym; } else { lo = mid; }
-      }
-      t += hi;
-      y = y_hi;
-      break;
-    }
-    y = y_new;
-    t += h;
-    h *= std::min(5.0, 0.9 * std::pow(tol / std::max(err, 1e-300), 0.2));
-  }
+  const dormand_prince::EventHit<4> exit = dormand_prince::integrate_until(
+      [&](const State& x) { return rhs(c, x); }, y, 1e-3, tol, 1e-14, [&](const State& x) { return x[0] >= s_exit; });
+  y = exit.y;
+  const double t = exit.t;
   const double s = y[0], sd = y[2], pd = y[3];
   const double v_radial = sd * ca, v_z = sd * sa, v_tan = s * ca * pd;
   ConeState out;

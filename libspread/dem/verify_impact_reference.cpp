@@ -34,56 +34,27 @@ struct Law {
     if (y[0] <= 0.0) return {y[1], 0.0};
     return {y[1], -std::max(0.0, unclipped(y[0], y[1]))};
   }
-  // True once the contact is over (after the start): no overlap, or a zero clipped force while receding.
-  bool ended(const State& y) const { return y[0] <= 0.0 || (y[1] < 0.0 && unclipped(y[0], y[1]) <= 0.0); }
+  // True once the contact is over: receding, and no overlap or a zero clipped force. (Receding excludes the
+  // start, x = 0 with x' = 1: x' falls only while in contact and turns negative past full compression.)
+  bool ended(const State& y) const { return y[1] < 0.0 && (y[0] <= 0.0 || unclipped(y[0], y[1]) <= 0.0); }
 };
 
-// One Dormand–Prince 5(4) step; err = max over components of |error| / (1 + |y|) (values are O(1)).
-State dp_step(const Law& law, const State& y, double h, double& err) {
-  State e;
-  const State y5 = dormand_prince::step([&](const State& x) { return law.rhs(x); }, y, h, e);
-  err = 0.0;
-  for (std::size_t i = 0; i < 2; ++i) err = std::max(err, std::abs(e[i]) / (1.0 + std::max(std::abs(y[i]), std::abs(y5[i]))));
-  return y5;
-}
 }  // namespace
 
 ContactReference contact_reference(ContactModel model, double damping_ratio, double tol) {
   Law law;
   law.hertz = model == ContactModel::kHertzThornton;
   law.c = law.hertz ? damping_ratio * std::sqrt(6.0) : 2.0 * damping_ratio;
-  State y = {0.0, 1.0};
-  double t = 0.0, h = 1e-4;
-  bool started = false;  // x > 0 after the first accepted step
+  // Values are O(1): the error is taken relative to 1 + |y|.
+  const dormand_prince::EventHit<2> end = dormand_prince::integrate_until(
+      [&](const State& y) { return law.rhs(y); }, State{0.0, 1.0}, 1e-4, tol, 1.0,
+      [&](const State& y) { return law.ended(y); });
   ContactReference out;
-  for (int guard = 0; guard < 10'000'000; ++guard) {
-    double err = 0.0;
-    const State y_new = dp_step(law, y, h, err);
-    if (err > tol) {
-      h *= std::max(0.1, 0.9 * std::pow(tol / err, 0.2));
-      continue;
-    }
-    if (started && law.ended(y_new)) {
-      // Locate the end: bisection on the step length from the last accepted state (the state inside
-      // one accepted step is as accurate as the step itself).
-      double lo = 0.0, hi = h;
-      State y_hi = y_new;
-      for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(1.0, t); ++it) {
-        const double mid = 0.5 * (lo + hi);
-        double e2 = 0.0;
-        const State ym = dp_step(law, y, mid, e2);
-        if (law.ended(ym)) { hi = mid; y_hi = ym; } else { lo = mid; }
-      }
-      out.duration = t + hi;
-      out.restitution = -y_hi[1];
-      return out;
-    }
-    y = y_new;
-    t += h;
-    started = started || y[0] > 0.0;
-    h *= std::min(5.0, 0.9 * std::pow(tol / std::max(err, 1e-300), 0.2));
+  if (end.reached) {  // always, for damping ratios the restitution fits produce
+    out.duration = end.t;
+    out.restitution = -end.y[1];
   }
-  return out;  // not reached for damping ratios the restitution fits produce
+  return out;
 }
 
 }  // namespace spread::dem
