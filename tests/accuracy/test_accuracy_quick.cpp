@@ -110,7 +110,7 @@ TEST(AccuracyDem, ContactStepsAndMeshRecommendationsWithinBudget) {
   // Cost grows with N_c: 20 steps per contact take longer than 5 (a 4× ratio, checked loosely).
   EXPECT_GT(figure(s, "vane_time_s_nc20"), figure(s, "vane_time_s_nc5"));
   // Low restitution converges more slowly: at N_c 5 the e = 0.1 error is larger than the e = 0.5 one.
-  EXPECT_TRUE(std::isfinite(figure(s, "impact_low_error_nc5")));
+  EXPECT_GT(std::abs(figure(s, "impact_low_error_nc5")), std::abs(figure(s, "impact_error_nc5"))) << rows(s);
 }
 
 TEST(AccuracyDem, WholeDiscRunsLaunchAndCompareToTheFinest) {
