@@ -409,7 +409,13 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
   const long long nn = static_cast<long long>(p_.size());
   const bool parallel = kStorePairs && params_.threads > 1 && nn >= kMinParallelItems;
 
-#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel)
+  // firstprivate: each thread (also the only one) gets the pointers as locals. Shared, they are read
+  // through the outlined region's argument block, and since a byte store (held) may alias anything,
+  // GCC reloaded every array's pointer for every listed pair.
+#pragma omp parallel for schedule(static) num_threads(params_.threads) if (parallel)                                  \
+    firstprivate(px, py, pz, pvx, pvy, pvz, pwx, pwy, pwz, radius, mass, inertia, material, active, pair_start, partner, \
+                     history, held, out_force, out_torque_i, out_torque_j, sums, params_row0, material_count,         \
+                     coeffs_row0, period, dt)
   for (long long ii = 0; ii < nn; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
     const std::uint32_t k_begin = pair_start[i], k_end = pair_start[i + 1];
