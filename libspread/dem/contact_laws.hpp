@@ -77,20 +77,45 @@ struct LawForce {
   T normal_force_n;           // F_n >= 0
 };
 
+// A contact's normal as the law takes it: the unit normal, and the same direction unnormalised (`axis`,
+// any length, with 1/|axis|²). What needs only the direction — the carry-over's projection — works
+// from the axis, so it need not wait for the sqrt and reciprocal that normalise it: the pair pass gives
+// the pair vector d and 1/|d|², walls give the unit normal twice and 1.
+template <class T>
+struct ContactNormal {
+  lanes::V3<T> unit;
+  lanes::V3<T> axis;
+  T inv_axis2;
+};
+
 namespace detail {
 using lanes::V3;
 // Carries the stored elastic tangential force into the current tangent plane keeping its magnitude:
 // the contact frame turns as the bodies roll and the walls spin. (Zero stays zero.)
+// g = f − (f·n) n has |g|² = (1 − x)|f|², x = (f·n)²/|f|²: the magnitude is restored by (1 − x)^{−1/2}.
+// Between two steps the normal turns little (x ~ (ω Δt)²), so for x < 1e-4 the series
+// 1 + x/2 + 3x²/8 + 5x³/16 (first omitted term 35x⁴/128 < 3e-17) replaces a division and a sqrt that
+// sat on the kernel's longest dependency chain; larger turns take the exact ratio.
 template <class T>
-SPREAD_CONTACT_INLINE V3<T> carry_into_plane(const V3<T>& f, const V3<T>& normal) {
+SPREAD_CONTACT_INLINE V3<T> carry_into_plane(const V3<T>& f, const V3<T>& axis, T inv_axis2) {
+  using lanes::splat;
   const T mag2 = squared_norm(f);
-  const V3<T> g = f - dot(f, normal) * normal;
+  const T f_axis = dot(f, axis);
+  const V3<T> g = f - (f_axis * inv_axis2) * axis;
+  const T x = (f_axis * f_axis * inv_axis2) / lanes::select(mag2 > splat<T>(0.0), mag2, splat<T>(1.0));
+  const auto small = x < splat<T>(1e-4);
+  const T series = splat<T>(1.0) + x * (splat<T>(0.5) + x * (splat<T>(0.375) + x * splat<T>(0.3125)));
+  if (lanes::all(small)) return g * series;
   const T new2 = squared_norm(g);
-  const auto turned = new2 > lanes::splat<T>(0.0);
+  const auto turned = new2 > splat<T>(0.0);
   // A zero new2 (force along the normal, or no force) gives zero; the denominator is kept away from 0
-  // so that no lane divides by zero.
-  const T scale = lanes::sqrt(mag2 / lanes::select(turned, new2, lanes::splat<T>(1.0)));
-  return lanes::select(turned, g * scale, lanes::zero3<T>());
+  // so that no lane divides by zero. Each lane takes the branch it would take alone.
+  const T exact = lanes::sqrt(mag2 / lanes::select(turned, new2, splat<T>(1.0)));
+  return lanes::select(small, g * series, lanes::select(turned, g * exact, lanes::zero3<T>()));
+}
+template <class T>
+SPREAD_CONTACT_INLINE V3<T> carry_into_plane(const V3<T>& f, const V3<T>& unit_normal) {
+  return carry_into_plane(f, unit_normal, lanes::splat<T>(1.0));
 }
 // Coulomb cap (Eq. 6) with the spring shortened to the friction limit on slip (the β = 1 remark of
 // Sect. 2.1: the viscous part is disregarded when shortening). The sqrt only when some contact slips.
@@ -114,7 +139,8 @@ template <class Law>
 SPREAD_CONTACT_INLINE ContactForce eval_one(const PairParams& p, const PairCoeffs& c, const ContactInput& in, double* history) {
   using lanes::V3;
   LawHistory<double> h{{history[0], history[1], history[2]}, history[3]};
-  const LawForce<double> r = Law::kernel(c, p.friction, V3<double>{in.normal.x(), in.normal.y(), in.normal.z()}, in.overlap_m,
+  const V3<double> n{in.normal.x(), in.normal.y(), in.normal.z()};
+  const LawForce<double> r = Law::kernel(c, p.friction, ContactNormal<double>{n, n, 1.0}, in.overlap_m,
                                          V3<double>{in.slip_m_s.x(), in.slip_m_s.y(), in.slip_m_s.z()}, in.dt_s, h);
   history[0] = h.elastic.x;
   history[1] = h.elastic.y;
@@ -155,16 +181,17 @@ struct HertzThornton {
   // One contact (T = double) or two (T = lanes::Lanes2) with the same coefficients c and friction μ.
   // normal: unit, from b to a; delta_m: overlap > 0; slip_m_s: Eq. 8; h: in/out history.
   template <class T>
-  SPREAD_CONTACT_INLINE static LawForce<T> kernel(const PairCoeffs& c, double friction, const lanes::V3<T>& normal, T delta_m,
-                                                  const lanes::V3<T>& slip_m_s, double dt_s, LawHistory<T>& h) {
+  SPREAD_CONTACT_INLINE static LawForce<T> kernel(const PairCoeffs& c, double friction, const ContactNormal<T>& contact_normal,
+                                                  T delta_m, const lanes::V3<T>& slip_m_s, double dt_s, LawHistory<T>& h) {
     using lanes::splat;
+    const lanes::V3<T>& normal = contact_normal.unit;
     const T sqrt_delta = lanes::sqrt(delta_m);
     const T quarter = lanes::sqrt(sqrt_delta);  // δ^{1/4}
     const T slip_n = dot(slip_m_s, normal);
     const T f_el = splat<T>(c.k_n) * delta_m * sqrt_delta;                         // Eq. 16
     const T f_n = lanes::max0(f_el + splat<T>(c.c_n) * quarter * (-slip_n));  // Eqs. 17–18, δ̇ = −slip·n
     const lanes::V3<T> slip_t = slip_m_s - slip_n * normal;
-    lanes::V3<T> elastic = detail::carry_into_plane(h.elastic, normal);
+    lanes::V3<T> elastic = detail::carry_into_plane(h.elastic, contact_normal.axis, contact_normal.inv_axis2);
     // Eq. 20 unloading branch, integrated over one step: scale by k_t/k_t,old = sqrt(δ/δ_old) when the
     // overlap (and with it the contact radius) shrinks (Appendix 2, Eq. 63).
     const T delta_old = h.overlap_m;
@@ -212,13 +239,14 @@ struct LinearSpringDashpot {
   }
   // As HertzThornton::kernel. The history's overlap is stored, not used.
   template <class T>
-  SPREAD_CONTACT_INLINE static LawForce<T> kernel(const PairCoeffs& c, double friction, const lanes::V3<T>& normal, T delta_m,
-                                                  const lanes::V3<T>& slip_m_s, double dt_s, LawHistory<T>& h) {
+  SPREAD_CONTACT_INLINE static LawForce<T> kernel(const PairCoeffs& c, double friction, const ContactNormal<T>& contact_normal,
+                                                  T delta_m, const lanes::V3<T>& slip_m_s, double dt_s, LawHistory<T>& h) {
     using lanes::splat;
+    const lanes::V3<T>& normal = contact_normal.unit;
     const T slip_n = dot(slip_m_s, normal);
     const T f_n = lanes::max0(splat<T>(c.k_n) * delta_m + splat<T>(c.c_n) * (-slip_n));  // δ̇ = −slip·n
     const lanes::V3<T> slip_t = slip_m_s - slip_n * normal;
-    lanes::V3<T> elastic = detail::carry_into_plane(h.elastic, normal);
+    lanes::V3<T> elastic = detail::carry_into_plane(h.elastic, contact_normal.axis, contact_normal.inv_axis2);
     elastic = elastic - (splat<T>(c.k_t) * splat<T>(dt_s)) * slip_t;
     LawForce<T> out;
     out.tangential_n = detail::coulomb(elastic, splat<T>(-c.c_t) * slip_t, splat<T>(friction) * f_n);

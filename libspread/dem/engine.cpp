@@ -47,15 +47,17 @@ template <class Law, bool kRotation, class T>
 SPREAD_CONTACT_INLINE PairOut<T> pair_contact(const V3<T>& d, T dist2, T ri, T rj, const V3<T>& v_rel, const V3<T>& wi,
                                               const V3<T>& wj, const PairParams& pp, const PairCoeffs& pc, double dt,
                                               LawHistory<T>& h) {
+  // 1/|d|² does not wait for the sqrt (the two overlap); the normal is d |d| / |d|².
+  const T inv_dist2 = lanes::splat<T>(1.0) / dist2;
   const T dist = lanes::sqrt(dist2);
-  const V3<T> n = d * (lanes::splat<T>(1.0) / dist);  // one reciprocal instead of three divisions
+  const V3<T> n = d * (dist * inv_dist2);
   const T overlap = (ri + rj) - dist;
   const T li = Law::lever(ri, pp.share_a, overlap), lj = Law::lever(rj, pp.share_b, overlap);
   // Arms −l_i n and +l_j n both lie along n, so the relative velocity of the contact points,
   // v_i + ω_i × (−l_i n) − v_j − ω_j × (l_j n), takes one cross product, and both torques share n × F_t.
   V3<T> slip = v_rel;
   if constexpr (kRotation) slip = slip - cross(li * wi + lj * wj, n);
-  const LawForce<T> law = Law::kernel(pc, pp.friction, n, overlap, slip, dt, h);
+  const LawForce<T> law = Law::kernel(pc, pp.friction, ContactNormal<T>{n, d, inv_dist2}, overlap, slip, dt, h);
   PairOut<T> out{law.force_n, lanes::zero3<T>(), lanes::zero3<T>(), law.normal_force_n};
   if constexpr (kRotation) {
     const V3<T> n_cross_ft = cross(n, law.tangential_n);

@@ -41,6 +41,8 @@ inline bool both(bool a, bool b) { return a && b; }
 inline Mask2 both(Mask2 a, Mask2 b) { return a & b; }
 inline bool any(bool m) { return m; }
 inline bool any(Mask2 m) { return (m[0] | m[1]) != 0; }
+inline bool all(bool m) { return m; }
+inline bool all(Mask2 m) { return (m[0] & m[1]) != 0; }
 
 // std::max(0.0, v) lane by lane: v where 0 < v, else +0 (a NaN becomes 0, as std::max(0.0, NaN)).
 inline double max0(double v) { return 0.0 < v ? v : 0.0; }
