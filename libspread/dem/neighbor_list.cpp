@@ -30,11 +30,13 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list, const Per
   // Old history in ascending key order, for the transfer below. The list is built in ascending (i, j)
   // order and ids ascend with the index unless particles were reordered, so it is usually sorted
   // already: then it is taken over as it is (no sort, no copy).
-  std::vector<std::uint64_t> old_keys;
-  std::vector<double> old_hist;
+  // The old arrays trade places with those of the build before (kept in the list for their storage): a
+  // build allocates nothing new for them, so fresh pages (a page fault each) are not zeroed every time.
+  std::vector<std::uint64_t>& old_keys = list.previous_key;
+  std::vector<double>& old_hist = list.previous_history;
   if (std::is_sorted(list.key.begin(), list.key.end())) {
-    old_keys = std::move(list.key);
-    old_hist = std::move(list.history);
+    old_keys.swap(list.key);
+    old_hist.swap(list.history);
   } else {
     std::vector<std::size_t> old_order(list.size());
     for (std::size_t k = 0; k < old_order.size(); ++k) old_order[k] = k;
@@ -49,7 +51,6 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list, const Per
   list.first.clear();
   list.second.clear();
   list.key.clear();
-  list.key.reserve(old_keys.size());  // its storage may have moved to old_keys
   list.history.clear();
   for (std::size_t i = 0; i < n; ++i) { p.x0[i] = p.x[i]; p.y0[i] = p.y[i]; p.z0[i] = p.z[i]; }
 

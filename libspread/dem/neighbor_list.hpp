@@ -55,6 +55,9 @@ struct PairList {
   // engine stores per-pair results (several threads, or an energy monitor attached); the single-thread
   // pass adds each pair straight into the particles' sums instead. Zero for pairs not touching.
   std::vector<double> force, torque_first, torque_second;
+  // The previous build's keys and history: build_pair_list's scratch, kept for their storage.
+  std::vector<std::uint64_t> previous_key;
+  std::vector<double> previous_history;
 
   std::size_t size() const { return first.size(); }
 };
