@@ -179,7 +179,8 @@ struct HertzThornton {
     return eval_one<HertzThornton>(p, c, in, history);
   }
   // One contact (T = double) or two (T = lanes::Lanes2) with the same coefficients c and friction μ.
-  // normal: unit, from b to a; delta_m: overlap > 0; slip_m_s: Eq. 8; h: in/out history.
+  // contact_normal: unit normal from b to a, and its unnormalised axis (ContactNormal); delta_m: overlap > 0;
+  // slip_m_s: Eq. 8; h: in/out history.
   template <class T>
   SPREAD_CONTACT_INLINE static LawForce<T> kernel(const PairCoeffs& c, double friction, const ContactNormal<T>& contact_normal,
                                                   T delta_m, const lanes::V3<T>& slip_m_s, double dt_s, LawHistory<T>& h) {
