@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "libspread/core/unit_uniform.hpp"
 #include "libspread/flight/flight.hpp"
 
 namespace {
@@ -22,7 +23,7 @@ constexpr EffectSet kDiscEffects = kDrag | kMagnus | kSpinDecay;
 const Granule kGranule{3.2e-3, 1500.0};
 
 double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return lo + (hi - lo) * spread::unit_uniform(rng());
 }
 
 // 256 launches off a disc rim of radius 0.3 m at 0.8 m height, mostly tangential, seeded.

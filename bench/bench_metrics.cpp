@@ -10,6 +10,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "libspread/core/unit_uniform.hpp"
 #include "libspread/metrics/metrics.hpp"
 
 namespace sm = spread::metrics;
@@ -23,7 +24,7 @@ struct Landings {
 // A plausible left-disc throw: a ring sector behind and to the left of the disc.
 Landings make_landings(int count) {
   std::mt19937_64 rng(2024);
-  auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  auto uniform = [&rng] { return spread::unit_uniform(rng()); };
   Landings l;
   for (int i = 0; i < count; ++i) {
     const double r_m = 12.0 + 5.0 * (uniform() + uniform() + uniform() - 1.5);

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libspread/core/unit_uniform.hpp"
+
 namespace spread::calibration {
 
 double NormalNoise::uniform_open() {
-  const double unit = static_cast<double>(engine_() >> 11) * 0x1.0p-53;  // [0, 1)
-  return 2.0 * unit - 1.0;
+  return 2.0 * unit_uniform(engine_()) - 1.0;
 }
 
 double NormalNoise::next() {

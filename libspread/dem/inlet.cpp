@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "libspread/core/unit_uniform.hpp"
+
 namespace spread::dem {
 
 LognormalDiameter::LognormalDiameter(double mean_m, double sd_m) {
@@ -23,7 +25,7 @@ Inlet::Inlet(const InletParams& params, double density_kg_m3)
 }
 
 // Own distributions (std:: ones differ between standard libraries): 53-bit uniform, Box–Muller.
-double Inlet::uniform() { return static_cast<double>(rng_() >> 11) * (1.0 / 9007199254740992.0); }
+double Inlet::uniform() { return unit_uniform(rng_()); }
 double Inlet::normal() {
   const double u1 = 1.0 - uniform(), u2 = uniform();
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);

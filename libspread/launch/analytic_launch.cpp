@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "libspread/core/unit_uniform.hpp"
 #include "libspread/launch/patterson_reece.hpp"
 
 namespace spread::launch {
@@ -18,8 +19,6 @@ std::array<double, 4> r4_steps() {
   for (int i = 0; i < 60; ++i) phi -= (std::pow(phi, 5) - phi - 1.0) / (5.0 * std::pow(phi, 4) - 1.0);
   return {1.0 / phi, 1.0 / (phi * phi), 1.0 / (phi * phi * phi), 1.0 / (phi * phi * phi * phi)};
 }
-
-double unit_from_bits(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
 
 double fraction(double x) { return x - std::floor(x); }
 
@@ -87,7 +86,7 @@ std::vector<tables::LaunchSample> analytic_launch_samples(const scene::Machine& 
 
   std::mt19937_64 rng(seed);
   std::array<double, 4> shift{};
-  for (double& s : shift) s = unit_from_bits(rng());
+  for (double& s : shift) s = unit_uniform(rng());
   const std::array<double, 4> step = r4_steps();
 
   std::vector<tables::LaunchSample> samples;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/core/unit_uniform.hpp"
 #include "libspread/flight/flight.hpp"
 #include "tests/flight/flight_test_support.hpp"
 
@@ -16,7 +17,7 @@ namespace {
 
 // Uniform in [lo, hi) from the raw 64-bit engine output (std:: distributions differ across libraries).
 double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return lo + (hi - lo) * spread::unit_uniform(rng());
 }
 
 TEST(Batch, EqualsSingleFlightsForAnyThreadCount) {

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "libspread/core/unit_uniform.hpp"
 #include "libspread/metrics/metrics.hpp"
 
 namespace sm = spread::metrics;
@@ -28,7 +29,7 @@ sm::TrayLayout layout(int count, double width_m = 0.5) {
 std::vector<double> random_pattern(int count, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::vector<double> p(static_cast<std::size_t>(count));
-  for (double& v : p) v = 0.1 + static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  for (double& v : p) v = 0.1 + spread::unit_uniform(rng());
   return p;
 }
 

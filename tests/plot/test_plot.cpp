@@ -16,6 +16,7 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include "libspread/core/unit_uniform.hpp"
 #include "libspread/metrics/metrics.hpp"
 #include "libspread/plot/plot.hpp"
 
@@ -51,7 +52,7 @@ struct Landings {
 };
 Landings synthetic_landings() {
   std::mt19937_64 rng(42);
-  auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  auto uniform = [&rng] { return spread::unit_uniform(rng()); };
   Landings l;
   for (int i = 0; i < 4000; ++i) {
     const double r = 9.0 + 4.0 * (uniform() + uniform() + uniform() - 1.5);
