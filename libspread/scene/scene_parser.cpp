@@ -3,6 +3,7 @@
 // the keys it knows (anything left over is an "unknown key" error), then validate the values.
 #include <toml++/toml.h>
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -53,8 +54,11 @@ void merge_into_array(toml::array& dest, toml::table& indices, const std::string
     const std::string index_text(index_key.str());
     const std::string path = where + "." + index_text;
     if (!is_index(index_text)) throw SceneError(path + ": expected an array index");
-    const std::size_t index = std::stoul(index_text);
-    if (index >= dest.size()) {
+    // from_chars, not stoul: an index too long for size_t is out of range too, not an exception
+    // escaping the parser (found by fuzz_scene_parser: materials.888888888888888888888881.…).
+    std::size_t index = 0;
+    const auto [end, error] = std::from_chars(index_text.data(), index_text.data() + index_text.size(), index);
+    if (error != std::errc() || end != index_text.data() + index_text.size() || index >= dest.size()) {
       throw SceneError(path + ": index out of range (the array has " + std::to_string(dest.size()) + " elements)");
     }
     toml::node& element = *dest.get(index);

@@ -110,6 +110,15 @@ TEST(SceneOverrides, OverrideIsValidatedLikeTheFile) {
   EXPECT_THROW(load_scene_file(scene_path("default.toml"), {"machine.bogus=1"}), SceneError);
   EXPECT_THROW(load_scene_file(scene_path("default.toml"), {"no_equals_sign"}), SceneError);
   EXPECT_THROW(load_scene_file(scene_path("default.toml"), {"materials.7.density_kg_m3=1"}), SceneError);
+  // An index too long for size_t is refused like any index out of range (it once escaped as
+  // std::out_of_range from stoul: fuzz/regressions/scene_parser/).
+  try {
+    load_scene_file(scene_path("default.toml"), {"materials.888888888888888888888881.density_kg_m3=1800"});
+    FAIL() << "huge index accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("materials.888888888888888888888881: index out of range"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SceneProvenance, HashCoversTextAndOverrides) {
