@@ -1,5 +1,7 @@
 #include "lookup_builder/run_source.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "libspread/launch/analytic_launch.hpp"
 #include "libspread/launch/launch_statistics.hpp"
 #include "libspread/tables/table_writer.hpp"
@@ -26,7 +28,10 @@ tables::Run analytic_run(const scene::Scene& scene, const scene::Material& mater
   run.software_version = SPREAD_VERSION_STRING;
   run.created_utc = tables::utc_now_iso8601();
   const double rim_speed_m_s = rpm * 2.0 * kPi / 60.0 * scene.machine.disc_radius_m;
-  run.stats_json = launch::to_json(launch::launch_statistics(run.samples, rim_speed_m_s));
+  // The flight effects the scene asks for travel with the run: predictions from the table use them.
+  nlohmann::json stats = nlohmann::json::parse(launch::to_json(launch::launch_statistics(run.samples, rim_speed_m_s)));
+  stats["flight_effects"] = scene::flight_effects_to_string(scene.effects);
+  run.stats_json = stats.dump();
   run.convergence_json = "[]";
   return run;
 }

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages libspread needs (only those missing), then configures and builds.
-# Usage: tools/setup.sh [build-dir]   (default: build). Idempotent; safe to run on every invocation.
+# Usage: tools/setup.sh [build-dir [target...]]   (default: build, every target). Idempotent; safe to run
+# on every invocation. With targets, only those (and what they need) are built.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
+shift $(( $# > 0 ? 1 : 0 ))
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
 
 packages=(build-essential cmake pkg-config ninja-build
   libeigen3-dev libsqlite3-dev sqlite3 libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libcairo2-dev
@@ -22,4 +26,4 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build" -j2
+cmake --build "$build" -j2 "${targets[@]}"

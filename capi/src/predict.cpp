@@ -1,6 +1,7 @@
 // spread_predict: C definition → predict::PredictionRequest → Predictor → C result. No allocation:
 // the material name is viewed in place, the workspace belongs to the handle.
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <new>
 #include <string_view>
@@ -23,7 +24,7 @@ spread_status status_of(spread::predict::PredictStatus status) {
   return SPREAD_ERROR_INTERNAL;
 }
 
-void copy_result(const spread::predict::Prediction& p, spread_prediction& r) {
+void copy_result(const spread::predict::Prediction& p, bool v2, spread_prediction& r) {
   r.throw_width_m = p.throw_width_m;
   r.working_width_to_and_fro_m = p.working_width_to_and_fro_m;
   r.working_width_racetrack_m = p.working_width_racetrack_m;
@@ -38,6 +39,17 @@ void copy_result(const spread::predict::Prediction& p, spread_prediction& r) {
   r.tray_width_m = p.trays.tray_width_m;
   r.tray_left_edge_m = p.trays.left_edge_m();
   r.flights = p.flights;
+  if (!v2) return;  // a caller of the first release has no room for the rest
+  r.sample_count = static_cast<int32_t>(std::min<std::size_t>(p.sample_count, INT32_MAX));
+  r.throw_width_se_m = p.throw_width_se_m;
+  r.working_width_to_and_fro_se_m = p.working_width_to_and_fro_se_m;
+  r.working_width_racetrack_se_m = p.working_width_racetrack_se_m;
+  r.cv_se_percent = 100.0 * p.cv_to_and_fro_se;
+  r.cv_racetrack_se_percent = 100.0 * p.cv_racetrack_se;
+  r.cv_crossings_to_and_fro = p.cv_crossings_to_and_fro;
+  r.cv_crossings_racetrack = p.cv_crossings_racetrack;
+  r.effects = p.effects;
+  r.kernel_half_width_m = p.kernel_half_width_m;
 }
 
 }  // namespace
@@ -62,11 +74,13 @@ extern "C" spread_status spread_predict(spread_tables* tables, const spread_pred
     request.effects = def->effects;
     request.bout_width_m = def->bout_width_m;
     request.tray_width_m = def->tray_width_m;
+    const bool v2 = def->struct_size >= spread::capi::kPredictionDefV2Size;
+    if (v2) request.kernel_half_width_m = def->kernel_half_width_m;
 
     spread::predict::Prediction prediction;
     const auto status = tables->predictor.predict(request, prediction);
     if (status != spread::predict::PredictStatus::kOk) return status_of(status);
-    copy_result(prediction, *result);
+    copy_result(prediction, v2, *result);
     if (transverse_mass_fraction != nullptr) {
       const auto& trays = prediction.tray_mass_fraction;
       if (transverse_capacity < trays.size()) return SPREAD_ERROR_BUFFER_TOO_SMALL;

@@ -14,7 +14,9 @@ namespace spread::capi {
 
 // Oldest struct sizes this library accepts (the first published layouts). A caller compiled against a
 // newer header passes a larger struct_size; the library reads the fields it knows.
-inline constexpr std::size_t kPredictionDefV1Size = sizeof(spread_prediction_def);
+// The definition as the first release had it (up to tray_width_m), and as it is now.
+inline constexpr std::size_t kPredictionDefV1Size = offsetof(spread_prediction_def, kernel_half_width_m);
+inline constexpr std::size_t kPredictionDefV2Size = sizeof(spread_prediction_def);
 inline constexpr std::size_t kTrajectoryDefV1Size = sizeof(spread_trajectory_def);
 
 }  // namespace spread::capi

@@ -209,10 +209,14 @@ void Ecu::predict_pattern() {
   predicted_at_rpm_ = rpm;
   prediction_pending_ = false;
   const RpmRange range = predictor_->rpm_range(material_);
-  // Outside the tables (e.g. while the disc spins up) there is simply no prediction: not a fault.
-  if (rpm < range.min_rpm || rpm > range.max_rpm) return;
+  // Outside the tables (e.g. while the disc spins up) there is simply no prediction: not a fault. A disc
+  // settling on a target at the table's edge approaches it exponentially and may stay a hair outside it
+  // for ever: within the re-prediction step of the edge it is predicted at the edge.
+  const double slack = parameters_.reprediction_rpm_step;
+  if (rpm < range.min_rpm - slack || rpm > range.max_rpm + slack) return;
   const double bout_width_m = width_setpoint_m_ > 0.0 ? width_setpoint_m_ : parameters_.width_max_m;
-  const PredictionOutcome outcome = predictor_->predict(material_, rpm, bout_width_m, prediction_);
+  const PredictionOutcome outcome =
+      predictor_->predict(material_, std::clamp(rpm, range.min_rpm, range.max_rpm), bout_width_m, prediction_);
   if (outcome == PredictionOutcome::kOk) {
     prediction_valid_ = true;
   } else if (outcome == PredictionOutcome::kFailed) {

@@ -100,7 +100,7 @@ Study table_study(const StudyOptions& options) {
   const std::vector<double> spacings =
       options.quick ? std::vector<double>{0, 150, 75} : std::vector<double>{0, 150, 100, 75, 50, 25};
   const std::vector<int> sample_counts =
-      options.quick ? std::vector<int>{128, 512, 2048} : std::vector<int>{128, 256, 512, 1024, 2048, 4096};
+      options.quick ? std::vector<int>{125, 500, 2000} : std::vector<int>{125, 250, 500, 1000, 2000, 4000};
   // Off every grid above (the worst case of interpolation is between rows).
   const std::vector<double> test_rpms =
       options.quick ? std::vector<double>{560, 690} : std::vector<double>{480, 560, 615, 690};

@@ -46,7 +46,7 @@ struct PatternParameters {
 struct PatternSetup {
   scene::Machine machine;             // full geometry (vanes) for the analytic launch model
   scene::Inlet inlet;
-  scene::SpinModel spin_model = scene::SpinModel::kSliding;
+  scene::SpinModel spin_model = scene::SpinModel::kRolling;
   std::uint64_t seed = 1;             // of the launch samples (the table scene's numerics.seed)
   tables::Material material;          // as stored in the table
   double rpm = 0.0;                   // r/min

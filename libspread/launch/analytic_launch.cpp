@@ -125,9 +125,13 @@ std::vector<tables::LaunchSample> analytic_launch_samples(const scene::Machine& 
 
     double wx = 0.0, wy = 0.0, wz = sense * omega;  // turning with the vane
     if (options.spin == scene::SpinModel::kRolling) {
-      const double roll = exit.speed_along_vane_m_s / (0.5 * diameter);  // about e_θ
-      wx += -roll * sin_t;
-      wy += roll * cos_t;
+      // Rolling along the vane face: ω_rel = (n × v_rel)/a with the face normal n = sense·e_θ and
+      // v_rel = ṡ (cos α e_r + sin α e_z) along the generatrix; e_θ × e_r = −e_z, e_θ × e_z = e_r.
+      const double roll = sense * exit.speed_along_vane_m_s / (0.5 * diameter);
+      const double cos_a = std::cos(machine.cone_angle_rad), sin_a = std::sin(machine.cone_angle_rad);
+      wx += roll * sin_a * cos_t;
+      wy += roll * sin_a * sin_t;
+      wz -= roll * cos_a;
     }
 
     tables::LaunchSample s{};

@@ -28,7 +28,7 @@
 namespace spread::launch {
 
 struct AnalyticLaunchOptions {
-  scene::SpinModel spin = scene::SpinModel::kSliding;
+  scene::SpinModel spin = scene::SpinModel::kRolling;
   double gravity_m_s2 = kStandardGravity_m_s2;
 };
 

@@ -44,23 +44,64 @@ double accumulate_transverse(std::span<const double> x_m, std::span<const double
                              const MachineLayout& machine, const TrayLayout& trays,
                              std::span<double> tray_mass_kg);
 
-// Coefficient of variation (fraction, 0.1 = 10 %) of the overlapped distribution over one bout
-// [-W/2, W/2] at bout width W (sample standard deviation / mean over the trays in the bout).
-// Passes: the pattern placed at every multiple of W; racetrack = shifted copies, to-and-fro = every
-// other pass mirrored (x → -x). W is rounded to a whole number of trays (>= 1).
+// Kernel density estimate of the transverse distribution: each landing's mass is spread over
+// [x − h, x + h] with the Epanechnikov kernel K(u) = 3/4 (1 − u²), u = (x' − x)/h, and each tray receives
+// the kernel's integral over it (exact: the kernel CDF is 1/2 + u (3 − u²)/4). A Monte Carlo pattern from
+// N landings is noisy at the tray scale (a bout tray of a 12 m bout holds ~N/24 landings); the kernel
+// trades that noise for a bias of order h² f''. h = 0 drops each landing into its tray
+// (accumulate_transverse). Landings are already in the machine frame. Mass beyond the outer tray edges
+// (and non-finite x) is returned as lost. Adds to tray_mass_kg (not cleared). Does not allocate.
+double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
+                                    const TrayLayout& trays, double kernel_half_width_m,
+                                    std::span<double> tray_mass_kg);
+// The kernel's CDF at u = (x' − x)/h: 0 below −1, 1 above 1.
+double epanechnikov_cdf(double u);
+
+// Overlap on true trays (docs/metrics.md "Overlap at a bout width W"). A bout width W is a whole number
+// n = round(W / w) >= 1 of trays, so every pass is the pattern shifted by whole trays and the overlapped
+// distribution lives on the pattern's own tray grid: no tray is split or averaged. The bout [-W/2, W/2]
+// holds n whole grid trays when n - T is even (T = pattern trays); otherwise each bout edge cuts a grid
+// tray in half and those two trays count half each (exact: the overlapped distribution is periodic,
+// racetrack, or mirror-symmetric about every bout edge, to-and-fro).
+//
+// Bouts up to this many grid trays are built in a stack buffer; wider ones are gathered tray by tray.
+inline constexpr int kStackBoutTrays = 1024;  // 8 KiB of stack
+
+// Number of trays of a bout of width W: round(W / tray_width), at least 1.
+int bout_tray_count(const TrayLayout& trays, double bout_width_m);
+
+// The grid trays a bout of n trays touches: grid_trays = n (edges on tray edges) or n + 1 (cut_edges:
+// the first and last are cut in half by the bout edges). Grid index g covers
+// [left_edge_m() + g·w, left_edge_m() + (g+1)·w) and may lie outside [0, T).
+struct BoutTrays {
+  int bout_trays = 1;   // n
+  int first_tray = 0;   // grid index of the first tray touched
+  int grid_trays = 1;   // n, or n + 1 with cut_edges
+  bool cut_edges = false;
+};
+BoutTrays bout_trays(const TrayLayout& trays, int bout_tray_count);
+
+// Coefficient of variation (fraction, 0.1 = 10 %) of the overlapped distribution over one bout at bout
+// width W: CV = s / x̄ with x̄ = Σ w_j P_j / n and s² = Σ w_j (P_j − x̄)² / (n − 1), weights w_j = 1, or 1/2
+// for a cut edge tray (all 1: the sample standard deviation). Passes: the pattern placed at every multiple
+// of W; racetrack = shifted copies, to-and-fro = every other pass mirrored (x → -x).
 // Returns 0 for a one-tray bout (no spread), +infinity when the bout holds no mass (nothing is uniform
 // about an empty bout; it fails every CV target). W wider than the layout is allowed: the empty trays
 // of the bout count.
 double cv_at_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, double bout_width_m,
                    Overlap overlap);
+// The same for a bout of exactly `bout_tray_count` trays.
+double cv_at_trays(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                   Overlap overlap);
 
-// Number of trays of a bout of width W on the tray grid: round(W / tray_width), at least 1.
-int bout_tray_count(const TrayLayout& trays, double bout_width_m);
+// ∂CV/∂(mass of pattern tray i) (1/kg) at a bout of `bout_tray_count` trays, into gradient_per_kg (size T):
+// the sensitivity the delta-method standard error of a predicted CV needs. Zero when the CV is infinite.
+void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                 Overlap overlap, std::span<double> gradient_per_kg);
 
-// The overlapped distribution itself: mass per tray (kg) of the bout [-W/2, W/2], summed over all passes
-// (the tray grid of the bout starts at -W/2). bout_mass_kg.size() must be bout_tray_count(trays, W).
-// When the bout and pattern tray grids are offset by half a tray (tray counts of different parity), each
-// pattern tray gives half its mass to each bout tray it straddles (mass uniform within trays).
+// The overlapped distribution itself: mass per grid tray (kg) over the trays the bout touches, summed over
+// all passes. bout_mass_kg.size() must be bout_trays(trays, bout_tray_count(trays, W)).grid_trays; entry j
+// is grid tray first_tray + j (with cut_edges, entries 0 and grid_trays - 1 straddle the bout edges).
 void overlapped_profile(std::span<const double> tray_mass_kg, const TrayLayout& trays, double bout_width_m,
                         Overlap overlap, std::span<double> bout_mass_kg);
 
@@ -68,15 +109,34 @@ void overlapped_profile(std::span<const double> tray_mass_kg, const TrayLayout& 
 void cv_curve(std::span<const double> tray_mass_kg, const TrayLayout& trays,
               std::span<const double> widths_m, Overlap overlap, std::span<double> cv_out);
 
-// Effective working width: the largest W on the tray grid (2 trays up to the layout width) with
-// CV(W) <= cv_target (fraction). Returns 0 when no width meets the target (also for zero mass or
-// fewer than 2 trays).
+// Effective working width (docs/metrics.md "Effective working width"): CV(W) is evaluated at every
+// whole-tray width from 2 trays to the layout width; the working width is where the curve, rising from
+// narrow bouts, first exceeds the target, interpolated linearly in CV between the two whole-tray widths
+// around that crossing. A later dip back under the target is never taken (it is counted in `crossings`,
+// so callers can flag a curve that crosses the target more than once).
+struct WorkingWidth {
+  double width_m = 0.0;          // 0: not even a bout of two trays meets the target
+  int crossings = 0;             // times CV(W) crosses the target between 2 trays and the layout width
+  int trays_below = 0;           // the crossing lies between trays_below and trays_below + 1 trays
+  double cv_below = 0.0;         // CV at trays_below trays (<= target)
+  double cv_above = 0.0;         // CV at trays_below + 1 trays (> target; may be +inf)
+  bool limited_by_layout = false;  // CV stays within the target up to the whole layout (width = layout)
+};
+WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
+                           double cv_target);
+// working_width(...).width_m. Returns 0 when no width meets the target (also for zero mass or fewer than
+// 2 trays).
 double effective_working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays,
                                Overlap overlap, double cv_target);
 
 // Lateral extent (m) between the (1-f)/2 and (1+f)/2 mass quantiles, mass uniform within each tray.
 // Returns 0 when the trays hold no mass. With mass_fraction = 1 it is the extent of the non-empty trays.
 double throw_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, double mass_fraction = 0.99);
+// The two quantiles themselves (m, machine frame); {0, 0} when the trays hold no mass.
+struct ThrowExtent {
+  double left_m = 0.0, right_m = 0.0;
+};
+ThrowExtent throw_extent(std::span<const double> tray_mass_kg, const TrayLayout& trays, double mass_fraction = 0.99);
 
 // Seed Eqs. 51–52 in the limit of small ground cells: R̄ = Σ m_i r_i / Σ m_i and
 // ξ = Σ m_i |r_i − R̄| / Σ m_i, r measured from `centre` (the disc centre) in the ground plane.

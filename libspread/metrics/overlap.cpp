@@ -1,16 +1,24 @@
-// Overlap at a bout width W (DESIGN.md §3): the distribution in the bout [-W/2, W/2] is the sum of the
-// machine's pattern placed at every multiple of W, Σ_k pass_k(x - kW). Racetrack: every pass is the
-// same pattern. To-and-fro: the machine turns at the headland, so odd passes are mirrored (x → -x).
-// CV = s / x̄ with the sample standard deviation over the bout's trays.
+// Overlap at a bout width W (DESIGN.md §3): the distribution across the field is the sum of the machine's
+// pattern placed at every multiple of W, Σ_k pass_k(x − kW). Racetrack: every pass is the same pattern.
+// To-and-fro: the machine turns at the headland, so odd passes are mirrored (x → −x).
 //
-// Tray grids. The pattern has T trays with edges at -T·w/2 + i·w; the bout has n = round(W/w) trays
-// with edges at -n·w/2 + j·w. Pattern tray i of pass k therefore starts at bout-tray coordinate
-// i + k·n + (n - T)/2. When n - T is even this is a whole tray index; when it is odd, every pattern tray
-// straddles two bout trays and (mass uniform within trays) gives half its mass to each. Each pattern
-// tray of each pass lands in at most two bout trays, so one bout costs O(T + n). The bout is scattered
-// pass by pass into a fixed buffer on the stack (bouts up to kStackBoutTrays = 2048 trays, 1 km at 0.5 m);
-// wider bouts are gathered tray by tray instead (slower: integer divisions per tray), so nothing here
-// touches the heap.
+// True trays. W is a whole number n of trays, so every pass is the pattern shifted by k·n trays: the
+// overlapped distribution lives on the pattern's own tray grid and no tray is ever split or averaged
+// (splitting a tray between two bout trays is a two-tray moving average, which lowers the CV). The bout
+// [−W/2, W/2] holds n whole grid trays when n − T is even (T = pattern trays; the grid is symmetric about
+// x = 0). When n − T is odd each bout edge runs through the middle of a grid tray: the bout then holds
+// n − 1 whole trays and the two cut trays count half each. This is exact, not an approximation: the
+// overlapped distribution is periodic (racetrack: period W, so the two cut trays are the same tray) or
+// symmetric about every bout edge (to-and-fro: pass k and pass k+1 are mirror images about their
+// midpoint), so one bout with half-weight edge trays holds the same tray values, with the same weights,
+// as a whole period of whole trays.
+//
+// CV = s / x̄ over the bout's trays with weights w_j (1, or 1/2 for a cut tray; Σ w_j = n):
+//   x̄ = Σ w_j P_j / n,   s² = Σ w_j (P_j − x̄)² / (n − 1)   (the sample standard deviation when all w_j = 1).
+//
+// Cost: each pattern tray of each pass lands at most once in the bout, so one bout costs O(T + n). The
+// bout is scattered pass by pass into a fixed stack buffer (bouts up to kStackBoutTrays); wider bouts are
+// gathered tray by tray instead (integer divisions per tray), so nothing here touches the heap.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,124 +37,123 @@ long floor_div(long a, long b) {
   return (a % b != 0 && a < 0) ? q - 1 : q;
 }
 
-// Reads the overlapped distribution of one bout, tray by tray, without storing it.
-class BoutView {
- public:
-  BoutView(std::span<const double> pattern_kg, int bout_trays, Overlap overlap)
-      : pattern_kg_(pattern_kg),
-        pattern_trays_(static_cast<long>(pattern_kg.size())),
-        bout_trays_(bout_trays),
-        mirror_odd_passes_(overlap == Overlap::kToAndFro) {
-    const long excess = bout_trays_ - pattern_trays_;   // n - T
-    half_offset_ = (excess % 2) != 0;
-    // Whole part of (n - T)/2, rounded down: pattern tray i of pass k starts at i + k·n + offset_
-    // (+ 1/2 when half_offset_).
-    offset_ = half_offset_ ? (excess - 1) / 2 : excess / 2;
+// Pattern tray i of pass k sits at grid index i + k·n (mirrored passes read tray T − 1 − i there).
+// Grid index g of the pattern layout covers [left_edge + g·w, left_edge + (g+1)·w); g may be outside
+// [0, T). The bout's first touched tray is BoutTrays::first_tray.
+
+// Calls visit(i) for the pattern tray i that every pass reaching grid index g puts there.
+template <typename Visit>
+void for_each_source(long t, long n, bool mirror_odd_passes, long g, Visit visit) {
+  // Valid pattern index 0 <= g − k·n < T  ⇔  (g − T)/n < k <= g/n.
+  const long k_first = floor_div(g - t, n) + 1;
+  const long k_last = floor_div(g, n);
+  for (long k = k_first; k <= k_last; ++k) {
+    const long i = g - k * n;
+    const bool mirrored = mirror_odd_passes && (k % 2 != 0);
+    visit(static_cast<std::size_t>(mirrored ? t - 1 - i : i));
   }
+}
 
-  int tray_count() const { return static_cast<int>(bout_trays_); }
+// Mass at grid index g summed over every pass that reaches it.
+double grid_tray_mass(std::span<const double> pattern_kg, long n, bool mirror_odd_passes, long g) {
+  double sum_kg = 0.0;
+  for_each_source(static_cast<long>(pattern_kg.size()), n, mirror_odd_passes, g,
+                  [&](std::size_t i) { sum_kg += pattern_kg[i]; });
+  return sum_kg;
+}
 
-  // Mass (kg) in bout tray j, summed over all passes that reach it.
-  double tray_mass_kg(long j) const {
-    if (!half_offset_) return passes_sum(j - offset_);
-    // Upper half of the pattern tray starting at j - 1 and lower half of the one starting at j.
-    return 0.5 * (passes_sum(j - offset_) + passes_sum(j - 1 - offset_));
-  }
-
- private:
-  // Σ_k pass_k tray (i0 - k·n): the pattern trays of every pass whose start coincides with position i0.
-  double passes_sum(long i0) const {
-    const long n = bout_trays_;
-    // Valid pattern index 0 <= i0 - k·n < T  ⇔  (i0 - T)/n < k <= i0/n.
-    const long k_first = floor_div(i0 - pattern_trays_, n) + 1;
-    const long k_last = floor_div(i0, n);
-    double sum_kg = 0.0;
-    for (long k = k_first; k <= k_last; ++k) {
-      const long i = i0 - k * n;
-      const bool mirrored = mirror_odd_passes_ && (k % 2 != 0);
-      const long source = mirrored ? pattern_trays_ - 1 - i : i;
-      sum_kg += pattern_kg_[static_cast<std::size_t>(source)];
-    }
-    return sum_kg;
-  }
-
-  std::span<const double> pattern_kg_;
-  long pattern_trays_;
-  long bout_trays_;
-  bool mirror_odd_passes_;
-  bool half_offset_ = false;
-  long offset_ = 0;
-};
-
-constexpr int kStackBoutTrays = 2048;  // 16 KiB of stack
-
-// Adds weight × (pattern tray i) to bout tray i + base for every i landing in the bout; the mirrored
-// pattern reads tray t-1-i. Two branch-free loops so the compiler can vectorise them.
-void add_pass(std::span<const double> pattern_kg, bool mirrored, long base, double weight,
-              std::span<double> bout_kg) {
+// Adds (pattern tray i, or T−1−i when mirrored) to out[i + base] for every i landing in out, or — with
+// `gather` — the reverse: adds out[i + base] to pattern-sized grad[source(i)]. Two branch-free loops each
+// so the compiler can vectorise them.
+void add_pass(std::span<const double> pattern_kg, bool mirrored, long base, std::span<double> out) {
   const long t = static_cast<long>(pattern_kg.size());
-  const long n = static_cast<long>(bout_kg.size());
-  const long i_begin = std::max(0L, -base), i_end = std::min(t, n - base);
+  const long m = static_cast<long>(out.size());
+  const long i_begin = std::max(0L, -base), i_end = std::min(t, m - base);
   if (i_begin >= i_end) return;
-  double* out = bout_kg.data() + base;
+  double* o = out.data() + base;
   const double* in = pattern_kg.data();
   if (mirrored) {
-    for (long i = i_begin; i < i_end; ++i) out[i] += weight * in[t - 1 - i];
+    for (long i = i_begin; i < i_end; ++i) o[i] += in[t - 1 - i];
   } else {
-    for (long i = i_begin; i < i_end; ++i) out[i] += weight * in[i];
+    for (long i = i_begin; i < i_end; ++i) o[i] += in[i];
   }
 }
 
-// Σ_k pass_k into bout_kg (size n, zeroed here): pass k's pattern tray i starts at bout coordinate
-// i + base, base = k·n + offset; with a half-tray offset it starts at i + base + 1/2 and gives half its
-// mass to bout trays i + base and i + base + 1.
-void scatter_bout(std::span<const double> pattern_kg, Overlap overlap, std::span<double> bout_kg) {
-  const long t = static_cast<long>(pattern_kg.size());
-  const long n = static_cast<long>(bout_kg.size());
-  const long excess = n - t;
-  const bool half_offset = (excess % 2) != 0;
-  const long offset = half_offset ? (excess - 1) / 2 : excess / 2;
-  for (double& b : bout_kg) b = 0.0;
-  // Passes whose trays [base, base + t + 1) can touch [0, n).
-  const long k_first = floor_div(-offset - t - 1, n);
-  const long k_last = floor_div(n - offset, n);
+void gather_pass(std::span<const double> bout_values, bool mirrored, long base, std::span<double> pattern_out) {
+  const long t = static_cast<long>(pattern_out.size());
+  const long m = static_cast<long>(bout_values.size());
+  const long i_begin = std::max(0L, -base), i_end = std::min(t, m - base);
+  if (i_begin >= i_end) return;
+  const double* b = bout_values.data() + base;
+  double* o = pattern_out.data();
+  if (mirrored) {
+    for (long i = i_begin; i < i_end; ++i) o[t - 1 - i] += b[i];
+  } else {
+    for (long i = i_begin; i < i_end; ++i) o[i] += b[i];
+  }
+}
+
+// Passes k whose trays [k·n − first, k·n − first + T) can touch [0, m).
+template <typename PerPass>
+void for_each_pass(long t, const BoutTrays& bout, Overlap overlap, PerPass per_pass) {
+  const long n = bout.bout_trays, m = bout.grid_trays, first = bout.first_tray;
+  const long k_first = floor_div(first - t, n);
+  const long k_last = floor_div(first + m, n) + 1;
   for (long k = k_first; k <= k_last; ++k) {
-    const long base = k * n + offset;
-    const bool mirrored = overlap == Overlap::kToAndFro && (k % 2 != 0);
-    if (half_offset) {
-      add_pass(pattern_kg, mirrored, base, 0.5, bout_kg);
-      add_pass(pattern_kg, mirrored, base + 1, 0.5, bout_kg);
-    } else {
-      add_pass(pattern_kg, mirrored, base, 1.0, bout_kg);
-    }
+    per_pass(overlap == Overlap::kToAndFro && (k % 2 != 0), k * n - first);
   }
 }
 
-// CV of n values produced by `value(j)`: sample standard deviation (n - 1) / mean, two passes.
+// Σ_k pass_k into bout_kg (size bout.grid_trays, zeroed here).
+void scatter_bout(std::span<const double> pattern_kg, const BoutTrays& bout, Overlap overlap,
+                  std::span<double> bout_kg) {
+  std::fill(bout_kg.begin(), bout_kg.end(), 0.0);
+  for_each_pass(static_cast<long>(pattern_kg.size()), bout, overlap,
+                [&](bool mirrored, long base) { add_pass(pattern_kg, mirrored, base, bout_kg); });
+}
+
+// Weighted mean and CV of the bout's trays (weights 1, or 1/2 for cut edge trays).
+struct BoutMoments {
+  double mean_kg = 0.0;
+  double sd_kg = 0.0;
+  double cv = 0.0;
+};
+
 template <typename ValueAt>
-double cv_of_values(int n, ValueAt value) {
+BoutMoments bout_moments(const BoutTrays& bout, ValueAt value) {
+  const int m = bout.grid_trays;
+  const int n = bout.bout_trays;
+  auto weight = [&](int j) { return bout.cut_edges && (j == 0 || j == m - 1) ? 0.5 : 1.0; };
   double total_kg = 0.0;
-  for (int j = 0; j < n; ++j) total_kg += value(j);
-  const double mean_kg = total_kg / n;
-  if (!(mean_kg > 0.0)) return std::numeric_limits<double>::infinity();  // empty bout: fails any target
-  if (n == 1) return 0.0;                                                // one tray: no spread
-  double squares_kg2 = 0.0;
-  for (int j = 0; j < n; ++j) {
-    const double deviation_kg = value(j) - mean_kg;
-    squares_kg2 += deviation_kg * deviation_kg;
+  for (int j = 0; j < m; ++j) total_kg += weight(j) * value(j);
+  BoutMoments r;
+  r.mean_kg = total_kg / n;
+  if (!(r.mean_kg > 0.0)) {  // empty bout: fails any target
+    r.cv = std::numeric_limits<double>::infinity();
+    return r;
   }
-  return std::sqrt(squares_kg2 / (n - 1)) / mean_kg;
+  if (n == 1) return r;  // one tray: no spread
+  double squares_kg2 = 0.0;
+  for (int j = 0; j < m; ++j) {
+    const double deviation_kg = value(j) - r.mean_kg;
+    squares_kg2 += weight(j) * deviation_kg * deviation_kg;
+  }
+  r.sd_kg = std::sqrt(squares_kg2 / (n - 1));
+  r.cv = r.sd_kg / r.mean_kg;
+  return r;
 }
 
-double cv_of_bout(std::span<const double> pattern_kg, int n, Overlap overlap) {
-  if (n <= kStackBoutTrays) {
+double cv_of_bout(std::span<const double> pattern_kg, const BoutTrays& bout, Overlap overlap) {
+  if (bout.grid_trays <= kStackBoutTrays) {
     double bout_kg[kStackBoutTrays];
-    const std::span<double> bout(bout_kg, static_cast<std::size_t>(n));
-    scatter_bout(pattern_kg, overlap, bout);
-    return cv_of_values(n, [&bout](int j) { return bout[static_cast<std::size_t>(j)]; });
+    const std::span<double> values(bout_kg, static_cast<std::size_t>(bout.grid_trays));
+    scatter_bout(pattern_kg, bout, overlap, values);
+    return bout_moments(bout, [&values](int j) { return values[static_cast<std::size_t>(j)]; }).cv;
   }
-  const BoutView view(pattern_kg, n, overlap);
-  return cv_of_values(n, [&view](int j) { return view.tray_mass_kg(j); });
+  const bool mirror = overlap == Overlap::kToAndFro;
+  return bout_moments(bout, [&](int j) {
+           return grid_tray_mass(pattern_kg, bout.bout_trays, mirror, bout.first_tray + j);
+         }).cv;
 }
 
 }  // namespace
@@ -163,22 +170,84 @@ int bout_tray_count(const TrayLayout& trays, double bout_width_m) {
   return trays_in_bout < 1.0 ? 1 : static_cast<int>(trays_in_bout);
 }
 
+BoutTrays bout_trays(const TrayLayout& trays, int bout_tray_count) {
+  detail::require_valid_trays(trays, "bout_trays");
+  if (bout_tray_count < 1) {
+    throw std::invalid_argument("bout_trays: a bout holds at least one tray, got " + std::to_string(bout_tray_count));
+  }
+  BoutTrays b;
+  b.bout_trays = bout_tray_count;
+  const long excess = static_cast<long>(trays.tray_count) - bout_tray_count;  // T − n
+  b.cut_edges = (excess % 2) != 0;
+  // The bout's left edge −n·w/2 is at grid coordinate (T − n)/2.
+  b.first_tray = static_cast<int>(b.cut_edges ? floor_div(excess - 1, 2) : excess / 2);
+  b.grid_trays = b.cut_edges ? bout_tray_count + 1 : bout_tray_count;
+  return b;
+}
+
 void overlapped_profile(std::span<const double> tray_mass_kg, const TrayLayout& trays, double bout_width_m,
                         Overlap overlap, std::span<double> bout_mass_kg) {
   detail::require_tray_span(tray_mass_kg.size(), trays, "overlapped_profile", "tray_mass_kg");
-  const int n = bout_tray_count(trays, bout_width_m);
-  if (bout_mass_kg.size() != static_cast<std::size_t>(n)) {
+  const BoutTrays bout = bout_trays(trays, bout_tray_count(trays, bout_width_m));
+  if (bout_mass_kg.size() != static_cast<std::size_t>(bout.grid_trays)) {
     throw std::invalid_argument("overlapped_profile: bout_mass_kg has " + std::to_string(bout_mass_kg.size()) +
-                                " entries but the bout of " + std::to_string(bout_width_m) + " m has " +
-                                std::to_string(n) + " trays");
+                                " entries but the bout of " + std::to_string(bout_width_m) + " m touches " +
+                                std::to_string(bout.grid_trays) + " trays");
   }
-  scatter_bout(tray_mass_kg, overlap, bout_mass_kg);
+  scatter_bout(tray_mass_kg, bout, overlap, bout_mass_kg);
 }
 
 double cv_at_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, double bout_width_m,
                    Overlap overlap) {
   detail::require_tray_span(tray_mass_kg.size(), trays, "cv_at_width", "tray_mass_kg");
-  return cv_of_bout(tray_mass_kg, bout_tray_count(trays, bout_width_m), overlap);
+  return cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count(trays, bout_width_m)), overlap);
+}
+
+double cv_at_trays(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                   Overlap overlap) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "cv_at_trays", "tray_mass_kg");
+  return cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count), overlap);
+}
+
+void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                 Overlap overlap, std::span<double> gradient_per_kg) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "cv_gradient", "tray_mass_kg");
+  detail::require_same_size(tray_mass_kg.size(), gradient_per_kg.size(), "cv_gradient", "tray_mass_kg",
+                            "gradient_per_kg");
+  std::fill(gradient_per_kg.begin(), gradient_per_kg.end(), 0.0);
+  const BoutTrays bout = bout_trays(trays, bout_tray_count);
+  const int n = bout.bout_trays;
+  const bool mirror = overlap == Overlap::kToAndFro;
+  const bool stacked = bout.grid_trays <= kStackBoutTrays;
+  double buffer[kStackBoutTrays];
+  const std::span<double> values(buffer, stacked ? static_cast<std::size_t>(bout.grid_trays) : 0);
+  if (stacked) scatter_bout(tray_mass_kg, bout, overlap, values);
+  auto value = [&](int j) {
+    return stacked ? values[static_cast<std::size_t>(j)] : grid_tray_mass(tray_mass_kg, n, mirror, bout.first_tray + j);
+  };
+  const BoutMoments mo = bout_moments(bout, value);
+  if (!std::isfinite(mo.cv) || n == 1) return;
+  // ∂CV/∂P_j = w_j [ (P_j − x̄) / ((n − 1) s x̄) − CV / (n x̄) ]   (Σ_k w_k (P_k − x̄) = 0 drops a term);
+  // with s = 0 (a flat bout) the first term is left out (|·| has no derivative there).
+  const double spread_term = mo.sd_kg > 0.0 ? 1.0 / ((n - 1) * mo.sd_kg * mo.mean_kg) : 0.0;
+  auto derivative = [&](int j, double p_kg) {
+    const double w = bout.cut_edges && (j == 0 || j == bout.grid_trays - 1) ? 0.5 : 1.0;
+    return w * ((p_kg - mo.mean_kg) * spread_term - mo.cv / (n * mo.mean_kg));
+  };
+  // Each pattern tray's derivative is the sum over the bout trays it reaches (one per pass).
+  if (stacked) {
+    for (int j = 0; j < bout.grid_trays; ++j) {
+      values[static_cast<std::size_t>(j)] = derivative(j, values[static_cast<std::size_t>(j)]);
+    }
+    for_each_pass(static_cast<long>(tray_mass_kg.size()), bout, overlap,
+                  [&](bool mirrored, long base) { gather_pass(values, mirrored, base, gradient_per_kg); });
+    return;
+  }
+  for (int j = 0; j < bout.grid_trays; ++j) {
+    const double d = derivative(j, value(j));
+    for_each_source(static_cast<long>(tray_mass_kg.size()), n, mirror, bout.first_tray + j,
+                    [&](std::size_t i) { gradient_per_kg[i] += d; });
+  }
 }
 
 void cv_curve(std::span<const double> tray_mass_kg, const TrayLayout& trays,
@@ -186,21 +255,51 @@ void cv_curve(std::span<const double> tray_mass_kg, const TrayLayout& trays,
   detail::require_tray_span(tray_mass_kg.size(), trays, "cv_curve", "tray_mass_kg");
   detail::require_same_size(widths_m.size(), cv_out.size(), "cv_curve", "widths_m", "cv_out");
   for (std::size_t i = 0; i < widths_m.size(); ++i) {
-    cv_out[i] = cv_of_bout(tray_mass_kg, bout_tray_count(trays, widths_m[i]), overlap);
+    cv_out[i] = cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count(trays, widths_m[i])), overlap);
   }
+}
+
+WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
+                           double cv_target) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "working_width", "tray_mass_kg");
+  if (std::isnan(cv_target)) throw std::invalid_argument("working_width: cv_target is NaN");
+  WorkingWidth r;
+  const int widest = trays.tray_count;
+  if (widest < 2) return r;
+  // CV(W) from the narrowest bout of two trays up: the working width is where the curve first rises
+  // above the target, interpolated linearly between the two whole-tray widths around the crossing.
+  double previous_cv = cv_of_bout(tray_mass_kg, bout_trays(trays, 2), overlap);
+  bool below = previous_cv <= cv_target;
+  if (!below) return r;  // not even two trays meet the target
+  r.width_m = widest * trays.tray_width_m;
+  r.limited_by_layout = true;
+  for (int n = 3; n <= widest; ++n) {
+    const double cv = cv_of_bout(tray_mass_kg, bout_trays(trays, n), overlap);
+    const bool now_below = cv <= cv_target;
+    if (now_below != below) {
+      ++r.crossings;
+      if (r.crossings == 1) {
+        r.trays_below = n - 1;
+        r.cv_below = previous_cv;
+        r.cv_above = cv;
+        r.limited_by_layout = false;
+        // Linear in CV between (n−1)·w and n·w; an infinite CV (empty bout) puts the crossing at (n−1)·w.
+        const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
+        r.width_m = (n - 1 + std::clamp(fraction, 0.0, 1.0)) * trays.tray_width_m;
+      }
+      below = now_below;
+    }
+    previous_cv = cv;
+  }
+  if (r.limited_by_layout) r.trays_below = widest;
+  return r;
 }
 
 double effective_working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays,
                                Overlap overlap, double cv_target) {
   detail::require_tray_span(tray_mass_kg.size(), trays, "effective_working_width", "tray_mass_kg");
-  if (std::isnan(cv_target)) {
-    throw std::invalid_argument("effective_working_width: cv_target is NaN");
-  }
-  // Widest first: the first width meeting the target is the answer (CV(W) need not be monotone).
-  for (int n = trays.tray_count; n >= 2; --n) {
-    if (cv_of_bout(tray_mass_kg, n, overlap) <= cv_target) return n * trays.tray_width_m;
-  }
-  return 0.0;
+  if (std::isnan(cv_target)) throw std::invalid_argument("effective_working_width: cv_target is NaN");
+  return working_width(tray_mass_kg, trays, overlap, cv_target).width_m;
 }
 
 }  // namespace spread::metrics

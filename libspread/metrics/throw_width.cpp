@@ -31,7 +31,7 @@ double tail_depth_m(std::span<const double> tray_mass_kg, double tray_width_m, d
 
 }  // namespace
 
-double throw_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, double mass_fraction) {
+ThrowExtent throw_extent(std::span<const double> tray_mass_kg, const TrayLayout& trays, double mass_fraction) {
   detail::require_tray_span(tray_mass_kg.size(), trays, "throw_width", "tray_mass_kg");
   if (!(mass_fraction > 0.0 && mass_fraction <= 1.0)) {
     throw std::invalid_argument("throw_width: mass_fraction must be in (0, 1], got " +
@@ -41,13 +41,17 @@ double throw_width(std::span<const double> tray_mass_kg, const TrayLayout& trays
   for (double m_kg : tray_mass_kg) {
     if (m_kg > 0.0) total_kg += m_kg;  // negative tray masses are not mass; ignore them
   }
-  if (!(total_kg > 0.0)) return 0.0;
+  if (!(total_kg > 0.0)) return {};
   const double tail_kg = 0.5 * (1.0 - mass_fraction) * total_kg;
-  const double layout_width_m = trays.tray_count * trays.tray_width_m;
-  const double left_m = tail_depth_m(tray_mass_kg, trays.tray_width_m, tail_kg, +1);
-  const double right_m = tail_depth_m(tray_mass_kg, trays.tray_width_m, tail_kg, -1);
-  const double width_m = layout_width_m - left_m - right_m;
-  return width_m > 0.0 ? width_m : 0.0;
+  const double left_m = trays.left_edge_m() + tail_depth_m(tray_mass_kg, trays.tray_width_m, tail_kg, +1);
+  const double right_m = -trays.left_edge_m() - tail_depth_m(tray_mass_kg, trays.tray_width_m, tail_kg, -1);
+  if (!(right_m > left_m)) return {};
+  return {left_m, right_m};
+}
+
+double throw_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, double mass_fraction) {
+  const ThrowExtent e = throw_extent(tray_mass_kg, trays, mass_fraction);
+  return e.right_m - e.left_m;
 }
 
 }  // namespace spread::metrics

@@ -58,3 +58,50 @@ double accumulate_transverse(std::span<const double> x_m, std::span<const double
 }
 
 }  // namespace spread::metrics
+
+namespace spread::metrics {
+
+double epanechnikov_cdf(double u) {
+  if (!(u > -1.0)) return 0.0;
+  if (!(u < 1.0)) return 1.0;
+  return 0.5 + 0.25 * u * (3.0 - u * u);
+}
+
+double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
+                                    const TrayLayout& trays, double kernel_half_width_m,
+                                    std::span<double> tray_mass_kg) {
+  detail::require_same_size(x_m.size(), mass_kg.size(), "accumulate_transverse_kernel", "x_m", "mass_kg");
+  detail::require_tray_span(tray_mass_kg.size(), trays, "accumulate_transverse_kernel", "tray_mass_kg");
+  if (!(std::isfinite(kernel_half_width_m) && kernel_half_width_m >= 0.0)) {
+    throw std::invalid_argument("accumulate_transverse_kernel: kernel_half_width_m must be finite and >= 0, got " +
+                                std::to_string(kernel_half_width_m));
+  }
+  if (kernel_half_width_m == 0.0) return accumulate_transverse(x_m, mass_kg, MachineLayout{1, 0.0}, trays, tray_mass_kg);
+  const double left_edge_m = trays.left_edge_m();
+  const double right_edge_m = -left_edge_m;
+  const double w = trays.tray_width_m;
+  const double inv_h = 1.0 / kernel_half_width_m;
+  const long last = static_cast<long>(trays.tray_count) - 1;
+  double lost_kg = 0.0;
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    const double x = x_m[i];
+    const double m = mass_kg[i];
+    if (!std::isfinite(x) || x + kernel_half_width_m <= left_edge_m || x - kernel_half_width_m >= right_edge_m) {
+      lost_kg += m;
+      continue;
+    }
+    // Mass beyond the layout's outer edges is lost, the rest goes to the trays the kernel covers.
+    lost_kg += m * (epanechnikov_cdf((left_edge_m - x) * inv_h) + 1.0 - epanechnikov_cdf((right_edge_m - x) * inv_h));
+    const long first = std::max(0L, static_cast<long>(std::floor((x - kernel_half_width_m - left_edge_m) / w)));
+    const long end = std::min(last, static_cast<long>(std::floor((x + kernel_half_width_m - left_edge_m) / w)));
+    double below = epanechnikov_cdf((left_edge_m + first * w - x) * inv_h);
+    for (long k = first; k <= end; ++k) {
+      const double above = epanechnikov_cdf((left_edge_m + (k + 1) * w - x) * inv_h);
+      tray_mass_kg[static_cast<std::size_t>(k)] += m * (above - below);
+      below = above;
+    }
+  }
+  return lost_kg;
+}
+
+}  // namespace spread::metrics

@@ -46,11 +46,13 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
   }
 
   std::vector<double> bout_kg;
+  metrics::BoutTrays bout;
   double bout_half_m = 0.0;
   if (overlapped) {
-    bout_kg.resize(static_cast<std::size_t>(metrics::bout_tray_count(trays, options.bout_width_m)));
+    bout = metrics::bout_trays(trays, metrics::bout_tray_count(trays, options.bout_width_m));
+    bout_kg.resize(static_cast<std::size_t>(bout.grid_trays));
     metrics::overlapped_profile(tray_mass_kg, trays, options.bout_width_m, options.overlap, bout_kg);
-    bout_half_m = 0.5 * static_cast<double>(bout_kg.size()) * trays.tray_width_m;
+    bout_half_m = 0.5 * bout.bout_trays * trays.tray_width_m;
   }
 
   double max_kg = 0.0;
@@ -101,18 +103,20 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
   if (second) legend.push_back({options.second_label, kSecondColour, detail::LegendEntry::Kind::kBox});
 
   if (overlapped) {
-    // The overlapped profile as a step line over the bout, the bout edges dashed.
+    // The overlapped profile as a step line over the bout (grid trays, the cut edge trays clipped at the
+    // bout edges), the bout edges dashed.
     cairo_set_source_rgb(cr, kOverlapColour.r, kOverlapColour.g, kOverlapColour.b);
     cairo_set_line_width(cr, 3.0);
     for (std::size_t j = 0; j < bout_kg.size(); ++j) {
-      const double a_m = -bout_half_m + static_cast<double>(j) * w_m;
+      const double a_m = std::max(-bout_half_m, trays.left_edge_m() + (bout.first_tray + static_cast<double>(j)) * w_m);
+      const double b_m = std::min(bout_half_m, trays.left_edge_m() + (bout.first_tray + static_cast<double>(j) + 1.0) * w_m);
       const double y = axes.py(bout_kg[j] * unit.per_kg);
       if (j == 0) {
         cairo_move_to(cr, axes.px(a_m), y);
       } else {
         cairo_line_to(cr, axes.px(a_m), y);
       }
-      cairo_line_to(cr, axes.px(a_m + w_m), y);
+      cairo_line_to(cr, axes.px(b_m), y);
     }
     cairo_stroke(cr);
     const double dash[] = {6.0, 4.0};

@@ -10,6 +10,7 @@
 #include "libspread/predict/launch_interpolation.hpp"
 #include "libspread/predict/launch_landing_keys.hpp"
 #include "libspread/predict/launch_quantile_cells.hpp"
+#include "libspread/predict/sample_influence.hpp"
 
 namespace spread::predict {
 
@@ -23,6 +24,11 @@ const char* to_string(PredictStatus status) {
     case PredictStatus::kRpmOutsideTable: return "rpm outside the table";
   }
   return "unknown status";
+}
+
+double kernel_half_width_for(double sd_x_m, std::size_t sample_count) {
+  if (sample_count == 0 || !(sd_x_m > 0.0)) return 0.0;
+  return kKernelScale * sd_x_m * std::pow(static_cast<double>(sample_count), -0.2);
 }
 
 Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
@@ -75,7 +81,17 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
   std::sort(materials_.begin(), materials_.end(), [&](const MaterialRows& a, const MaterialRows& b) {
     return contents_.materials[a.material].name < contents_.materials[b.material].name;
   });
-  for (const auto& run : runs) run_rpm_.push_back(run.rpm);
+  for (const auto& run : runs) {
+    run_rpm_.push_back(run.rpm);
+    // Tables made before runs recorded their flight effects flew everything: keep that meaning.
+    const std::optional<std::string> recorded = tables::recorded_flight_effects(run);
+    try {
+      run_effects_.push_back(recorded ? flight::parse_effects(*recorded) : flight::kAllEffects);
+    } catch (const std::invalid_argument& e) {
+      throw tables::TableError(tables::TableErrorKind::kCorrupt,
+                               "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: " + e.what());
+    }
+  }
   run_offset_.assign(runs.size() + 1, 0);
   for (std::size_t k = 0; k < runs.size(); ++k) run_offset_[k + 1] = run_offset_[k] + runs[k].samples.size();
   cell_of_sample_.assign(run_offset_.back(), 0);
@@ -100,6 +116,8 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
   radial_y_m_.resize(largest_pair);
   radial_weight_.resize(largest_pair);
   tray_mass_.resize(static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m)));
+  gradient_a_.resize(tray_mass_.size());
+  gradient_b_.resize(tray_mass_.size());
 }
 
 bool Predictor::pairwise(std::size_t run_a, std::size_t run_b) const {
@@ -181,7 +199,13 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
   if (!(r.cv_target > 0.0) || r.cv_target > limits_.max_cv_target) return PredictStatus::kOutOfRange;
   if (r.bout_width_m < 0.0 || r.bout_width_m > limits_.max_bout_width_m) return PredictStatus::kOutOfRange;
   if (tray_capacity(r.tray_width_m) == 0) return PredictStatus::kOutOfRange;
-  if ((r.effects & ~flight::kAllEffects) != 0) return PredictStatus::kUnknownEffect;
+  if (!std::isnan(r.kernel_half_width_m)) {
+    if (!std::isfinite(r.kernel_half_width_m)) return PredictStatus::kNotFinite;
+    if (r.kernel_half_width_m < 0.0 || r.kernel_half_width_m > limits_.max_kernel_half_width_m) {
+      return PredictStatus::kOutOfRange;
+    }
+  }
+  if ((r.effects & ~(flight::kAllEffects | kTableEffects)) != 0) return PredictStatus::kUnknownEffect;
   return PredictStatus::kOk;
 }
 
@@ -271,7 +295,11 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
 
   // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
   // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
-  flight::EffectSet effects = request.effects;
+  flight::EffectSet effects = request.effects & flight::kAllEffects;
+  if ((request.effects & kTableEffects) != 0) {
+    effects |= run_effects_[lower_run] | run_effects_[upper_run];
+    if (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0) effects |= flight::kWind;
+  }
   flight::Air air;
   const bool windy = (effects & flight::kWind) != 0 && (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0);
   if (windy) {
@@ -290,44 +318,92 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const std::span<const double> ys = std::span(landing_y_m_).first(landings);
   const std::span<double> weights = std::span(landing_weight_).first(landings);
 
-  // 5. Trays fitted to the landings (symmetric about the centre line), capped at the widest layout.
-  double half_extent_m = request.tray_width_m;
-  for (double x : xs) {
-    if (std::isfinite(x)) half_extent_m = std::max(half_extent_m, std::abs(x));
-  }
-  half_extent_m = std::min(half_extent_m, limits_.max_half_extent_m);
-  metrics::TrayLayout trays = metrics::tray_layout_covering(half_extent_m, request.tray_width_m);
-  const int capacity = tray_capacity(request.tray_width_m);
-  if (trays.tray_count > capacity) trays.tray_count = capacity;
-  const std::span<double> tray_mass = std::span(tray_mass_).first(static_cast<std::size_t>(trays.tray_count));
-  std::fill(tray_mass.begin(), tray_mass.end(), 0.0);
-
+  // 5. Kernel, trays fitted to the landings plus the kernel (symmetric about the centre line), capped at
+  // the widest layout.
   double total_kg = 0.0;
   for (double w : weights) total_kg += w;
   // Weights as fractions of the machine's discharged mass: the tray contents then read directly as the
   // share of the application rate per tray.
   const double scale = total_kg > 0.0 ? 1.0 / total_kg : 0.0;
   for (double& w : weights) w *= scale;
-  const metrics::MachineLayout machine_frame{1, 0.0};  // landings are already in the machine frame
-  const double lost = metrics::accumulate_transverse(xs, weights, machine_frame, trays, tray_mass);
+  double kernel_m = request.kernel_half_width_m;
+  if (std::isnan(kernel_m)) {
+    // One disc's lateral spread; with two discs the root mean square of both, so that the choice is the
+    // same for the wind from the left and its mirror image from the right.
+    double sd_m = lateral_sd_m(xs.first(n), weights.first(n));
+    if (two_discs) {
+      const double right_sd_m = lateral_sd_m(xs.subspan(n), weights.subspan(n));
+      sd_m = std::sqrt(0.5 * (sd_m * sd_m + right_sd_m * right_sd_m));
+    }
+    kernel_m = kernel_half_width_for(sd_m, n);
+  }
+  double half_extent_m = request.tray_width_m;
+  for (double x : xs) {
+    if (std::isfinite(x)) half_extent_m = std::max(half_extent_m, std::abs(x) + kernel_m);
+  }
+  half_extent_m = std::min(half_extent_m, limits_.max_half_extent_m);
+  metrics::TrayLayout trays = metrics::tray_layout_covering(half_extent_m, request.tray_width_m);
+  const int capacity = tray_capacity(request.tray_width_m);
+  if (trays.tray_count > capacity) trays.tray_count = capacity;
+  const auto tray_count = static_cast<std::size_t>(trays.tray_count);
+  const std::span<double> tray_mass = std::span(tray_mass_).first(tray_count);
+  std::fill(tray_mass.begin(), tray_mass.end(), 0.0);
+  const double lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass);
 
   Prediction p;
   p.trays = trays;
   p.flights = flights;
   p.disc_height_m = height_m;
   p.lost_mass_fraction = std::clamp(lost, 0.0, 1.0);
-  p.throw_width_m = metrics::throw_width(tray_mass, trays, 0.99);
-  p.working_width_to_and_fro_m =
-      metrics::effective_working_width(tray_mass, trays, metrics::Overlap::kToAndFro, request.cv_target);
-  p.working_width_racetrack_m =
-      metrics::effective_working_width(tray_mass, trays, metrics::Overlap::kRacetrack, request.cv_target);
-  p.bout_width_m = request.bout_width_m > 0.0 ? request.bout_width_m : p.working_width_to_and_fro_m;
+  p.sample_count = n;
+  p.effects = effects;
+  p.kernel_half_width_m = kernel_m;
+  const metrics::ThrowExtent extent = metrics::throw_extent(tray_mass, trays, 0.99);
+  p.throw_width_m = extent.right_m - extent.left_m;
+  const metrics::WorkingWidth to_and_fro =
+      metrics::working_width(tray_mass, trays, metrics::Overlap::kToAndFro, request.cv_target);
+  const metrics::WorkingWidth racetrack =
+      metrics::working_width(tray_mass, trays, metrics::Overlap::kRacetrack, request.cv_target);
+  p.working_width_to_and_fro_m = to_and_fro.width_m;
+  p.working_width_racetrack_m = racetrack.width_m;
+  p.cv_crossings_to_and_fro = to_and_fro.crossings;
+  p.cv_crossings_racetrack = racetrack.crossings;
+  // Without a requested bout width the CVs are at the widest whole-tray bout that meets the target (the
+  // working width itself lies between two whole-tray widths, where no CV is defined).
+  p.bout_width_m = request.bout_width_m > 0.0
+                       ? metrics::bout_tray_count(trays, request.bout_width_m) * trays.tray_width_m
+                       : (to_and_fro.width_m > 0.0 ? to_and_fro.trays_below * trays.tray_width_m : 0.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::span<double> gradient_a = std::span(gradient_a_).first(tray_count);
+  const std::span<double> gradient_b = std::span(gradient_b_).first(tray_count);
+  const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
   if (p.bout_width_m > 0.0) {
-    p.cv_to_and_fro = metrics::cv_at_width(tray_mass, trays, p.bout_width_m, metrics::Overlap::kToAndFro);
-    p.cv_racetrack = metrics::cv_at_width(tray_mass, trays, p.bout_width_m, metrics::Overlap::kRacetrack);
+    const int bout_trays = metrics::bout_tray_count(trays, p.bout_width_m);
+    p.cv_to_and_fro = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro);
+    p.cv_racetrack = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack);
+    metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, gradient_a);
+    p.cv_to_and_fro_se = std::isfinite(p.cv_to_and_fro) ? influence.standard_error(gradient_a) : nan;
+    metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, gradient_a);
+    p.cv_racetrack_se = std::isfinite(p.cv_racetrack) ? influence.standard_error(gradient_a) : nan;
   } else {
-    p.cv_to_and_fro = p.cv_racetrack = std::numeric_limits<double>::quiet_NaN();
+    p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;
   }
+  // Working width W* = (n + (t − c_n)/(c_{n+1} − c_n))·w: its gradient is a combination of the gradients
+  // of the two CVs around the crossing.
+  auto width_se = [&](const metrics::WorkingWidth& ww, metrics::Overlap overlap) {
+    if (!(ww.width_m > 0.0) || ww.limited_by_layout || !std::isfinite(ww.cv_above)) return nan;
+    const double span = ww.cv_above - ww.cv_below;
+    if (!(span > 0.0)) return nan;
+    const double d_below = -trays.tray_width_m * (ww.cv_above - request.cv_target) / (span * span);
+    const double d_above = -trays.tray_width_m * (request.cv_target - ww.cv_below) / (span * span);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below, overlap, gradient_a);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below + 1, overlap, gradient_b);
+    for (std::size_t k = 0; k < tray_count; ++k) gradient_a[k] = d_below * gradient_a[k] + d_above * gradient_b[k];
+    return influence.standard_error(gradient_a);
+  };
+  p.working_width_to_and_fro_se_m = width_se(to_and_fro, metrics::Overlap::kToAndFro);
+  p.working_width_racetrack_se_m = width_se(racetrack, metrics::Overlap::kRacetrack);
+  p.throw_width_se_m = p.throw_width_m > 0.0 ? influence.throw_width_standard_error(tray_mass, extent, 0.99) : nan;
   p.mean_radius_m = radial_mean_m_;
   p.radial_width_m = radial_width_m_;
   p.tray_mass_fraction = tray_mass;

@@ -38,11 +38,13 @@ enum class PredictStatus : std::uint8_t {
   kOutOfRange,         // height < 0 (or disc below the ground) or > max_disc_height_m, |wind| component >
                        // max_wind_m_s, CV target <= 0 or > max_cv_target, bout width < 0 or >
                        // max_bout_width_m, tray width outside [min_tray_width_m, max_half_extent_m]
-  kUnknownEffect,      // bits outside flight::kAllEffects
+  kUnknownEffect,      // bits outside flight::kAllEffects | kTableEffects
   kUnknownMaterial,
   kRpmOutsideTable,
 };
 const char* to_string(PredictStatus status);
+
+inline constexpr flight::EffectSet kTableEffects = 1u << 31;
 
 struct PredictionRequest {
   std::string_view material;
@@ -51,10 +53,23 @@ struct PredictionRequest {
   double wind_x_m_s = 0.0;                                       // lateral wind (used with kWind)
   double wind_y_m_s = 0.0;                                       // wind along the driving direction
   double cv_target = 0.15;                                       // fraction (0.15 = 15 %)
-  flight::EffectSet effects = flight::kAllEffects;
+  // flight::Effect bits, or kTableEffects: the flight effects the table was built with (each run records
+  // them), plus any bits given beside it. With kTableEffects a non-zero wind adds flight::kWind: the wind
+  // is a condition of the day, not of the machine.
+  flight::EffectSet effects = kTableEffects;
   double bout_width_m = 0.0;                                     // 0: at the to-and-fro working width
   double tray_width_m = 0.5;
+  // Half-width h (m) of the Epanechnikov kernel each landing's mass is spread over
+  // (metrics::accumulate_transverse_kernel). NaN: the automatic rule (kernel_half_width_for); 0: each
+  // landing falls into one tray as a point mass.
+  double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
 };
+
+// The automatic kernel half-width (m) for N launch samples whose landings (one disc) have lateral
+// standard deviation sd_x_m: h = kKernelScale · sd_x · N^(−1/5) (the rate of Silverman's rule; the
+// constant is the accuracy–cost study's, docs/metrics.md "Predicted patterns").
+inline constexpr double kKernelScale = 0.5;
+double kernel_half_width_for(double sd_x_m, std::size_t sample_count);
 
 struct Prediction {
   double throw_width_m = 0.0;               // 99 % of the mass
@@ -69,6 +84,22 @@ struct Prediction {
   double lost_mass_fraction = 0.0;          // outside the trays or not landed
   metrics::TrayLayout trays;
   int flights = 0;                          // trajectories integrated
+  // Monte Carlo uncertainty (docs/metrics.md "Uncertainty"): the standard errors of the estimates above
+  // over the table's launch samples, by the delta method (the influence of each sample, linear in the
+  // samples: no resampling). NaN where the estimate has no derivative (no width meets the target, or
+  // the CV is infinite).
+  double throw_width_se_m = 0.0;
+  double working_width_to_and_fro_se_m = 0.0;
+  double working_width_racetrack_se_m = 0.0;
+  double cv_to_and_fro_se = 0.0;            // fraction
+  double cv_racetrack_se = 0.0;             // fraction
+  // Times CV(W) crosses the target between two trays and the layout width: more than 1 means the curve
+  // dips back under the target at a wider bout (never taken as the working width; say so to the user).
+  int cv_crossings_to_and_fro = 0;
+  int cv_crossings_racetrack = 0;
+  std::size_t sample_count = 0;             // independent launch samples behind the estimate
+  flight::EffectSet effects = 0;            // the flight effects that ran
+  double kernel_half_width_m = 0.0;         // as used
   // Views into the predictor's workspace, valid until the next predict():
   std::span<const double> tray_mass_fraction;  // per tray, of the machine's total discharged mass
   // Landings of the whole machine in the machine frame (both discs; the left disc's first), with the
@@ -85,6 +116,7 @@ struct PredictorLimits {
   double max_disc_height_m = 100.0;   // m above the ground
   double max_wind_m_s = 100.0;        // each wind component, absolute value
   double max_cv_target = 10.0;        // fraction (1000 %)
+  double max_kernel_half_width_m = 10.0;  // m
 };
 
 class Predictor {
@@ -140,6 +172,7 @@ class Predictor {
   flight::Settings settings_;
   std::vector<MaterialRows> materials_;
   std::vector<double> run_rpm_;       // contents_.runs[i].rpm, flat for bracket_rpm
+  std::vector<flight::EffectSet> run_effects_;  // the flight effects each run was built with
   // Quantile cells (launch_quantile_cells.hpp) of the runs interpolated by cells, flat: run i's samples
   // occupy [run_offset_[i], run_offset_[i + 1]) of cell_of_sample_, its cell means
   // [cell_offset_[i], cell_offset_[i + 1]) of cell_mean_ (empty for runs only interpolated pairwise).
@@ -156,6 +189,7 @@ class Predictor {
   std::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
   std::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
   std::vector<double> tray_mass_;
+  std::vector<double> gradient_a_, gradient_b_;  // per tray, for the standard errors
 };
 
 }  // namespace spread::predict

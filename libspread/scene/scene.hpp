@@ -26,8 +26,11 @@ enum class ContactModel { kHertzMindlin, kLinear };   // "hertz_mindlin" | "line
 enum class FlightScheme { kRk4, kDopri5 };            // "rk4" | "dopri5"
 enum class LaunchSource { kAnalytic, kDem };          // "analytic" | "dem"
 // Spin of analytic launch samples (see libspread/launch/analytic_launch.hpp):
-// "sliding": zero spin (the Patterson–Reece law assumes pure sliding);
-// "rolling": |ω| = v_rel/(d/2) about the horizontal axis ⟂ to the motion relative to the disc.
+// Launch spin of the analytic source:
+// "rolling" (default): the granule rolls along the vane face as it is pushed out, as DEM granules do:
+//   ω = sense·Ω ẑ + (n × v_rel)/(d/2), n = sense·e_θ the vane face normal, v_rel = ṡ along the vane,
+//   i.e. about the disc axis against the disc's sense on a flat disc (|ω| ≈ ṡ/(d/2), thousands of rad/s);
+// "sliding": the granule keeps its orientation relative to the vane and turns with the disc (sense·Ω ẑ).
 enum class SpinModel { kSliding, kRolling };
 
 struct Machine {
@@ -103,9 +106,9 @@ struct Sweep {
   std::vector<double> rpm;                 // table rows (rev/min); empty = [machine.rpm]
   std::vector<std::string> materials;      // empty = every material of the scene
   LaunchSource source = LaunchSource::kAnalytic;
-  int samples_per_run = 512;
+  int samples_per_run = 2000;
   std::string output = "tables.sqlite";    // relative paths are relative to the working directory
-  SpinModel spin_model = SpinModel::kSliding;  // analytic source only
+  SpinModel spin_model = SpinModel::kRolling;  // analytic source only
   // DEM source only (lookup_builder): the disc is simulated in batches of batch_s; after each batch the
   // launches so far are flown and R̄, ξ (Eqs. 51–52) computed; the run stops when both changed by at most
   // convergence_tolerance (relative) since the previous batch and at least samples_per_run granules were

@@ -408,7 +408,7 @@ void read_sweep(const toml::table& root, Scene& scene) {
   sw.samples_per_run = s.small_integer("samples_per_run", sw.samples_per_run);
   sw.output = s.string("output", sw.output);
   sw.spin_model = s.choice<SpinModel>("spin_model", sw.spin_model,
-                                      {{"sliding", SpinModel::kSliding}, {"rolling", SpinModel::kRolling}});
+                                      {{"rolling", SpinModel::kRolling}, {"sliding", SpinModel::kSliding}});
   sw.batch_s = s.number("batch_s", sw.batch_s);
   sw.convergence_tolerance = s.number("convergence_tolerance", sw.convergence_tolerance);
   sw.particle_budget = s.small_integer("particle_budget", sw.particle_budget);
@@ -502,6 +502,14 @@ void validate(Scene& scene) {
     c.non_negative(p + "friction_particle", mat.friction_particle);
     c.non_negative(p + "friction_wall", mat.friction_wall);
     c.non_negative(p + "rolling_friction", mat.rolling_friction);
+    // A value for an effect that is off would be recorded as provenance yet never act: refuse it.
+    if (mat.rolling_friction > 0.0 && !scene.effects.rolling) {
+      c.fail(p + "rolling_friction", "is " + format_number(mat.rolling_friction) +
+                                         " but the `rolling` effect is off: add \"rolling\" to effects.enabled or remove the key");
+    }
+  }
+  if ((scene.air.wind_m_s[0] != 0.0 || scene.air.wind_m_s[1] != 0.0) && !scene.effects.wind) {
+    c.fail("air.wind_m_s", "is not zero but the `wind` effect is off: add \"wind\" to effects.enabled or set it to [0.0, 0.0]");
   }
   if (scene.simulate_material.empty()) {
     scene.simulate_material = scene.materials.front().name;

@@ -110,3 +110,17 @@ std::string run_values_problem(const Run& run) {
 }
 
 }  // namespace spread::tables
+
+namespace spread::tables {
+
+std::optional<std::string> recorded_flight_effects(const Run& run) {
+  static constexpr std::string_view kKey = "\"flight_effects\":\"";
+  const std::size_t at = run.stats_json.find(kKey);
+  if (at == std::string::npos) return std::nullopt;
+  const std::size_t begin = at + kKey.size();
+  const std::size_t end = run.stats_json.find('"', begin);
+  if (end == std::string::npos) return std::nullopt;
+  return run.stats_json.substr(begin, end - begin);
+}
+
+}  // namespace spread::tables

@@ -100,6 +100,12 @@ std::string machine_problem(const Machine& machine);
 std::string material_problem(const Material& material);
 std::string run_values_problem(const Run& run);
 
+// The flight effects a run was built with: the string value of "flight_effects" in its stats_json (a
+// comma list of flight effect names, "" for none), or nothing when the run does not record them (files
+// written before runs did). A plain scan of the compact JSON the writers produce, so readers need no
+// JSON library.
+std::optional<std::string> recorded_flight_effects(const Run& run);
+
 class TableError : public std::runtime_error {
  public:
   TableError(TableErrorKind kind, const std::string& what) : std::runtime_error(what), kind_(kind) {}

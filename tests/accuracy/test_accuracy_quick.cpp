@@ -87,9 +87,12 @@ TEST(AccuracyDefaults, ContactStepsAndMeshSizeAreTheRecommendation) {
 TEST(AccuracyDefaults, TableSamplesAndSpacingAreTheRecommendation) {
   const auto& s = study("tables");
   ASSERT_TRUE(s.figures.count("recommended_samples")) << rows(s);
+  // The study measures analytic tables: its recommendation is the analytic source's default. The bundled
+  // default table is a DEM table, whose sample count is set by the uncertainty of the working width
+  // (docs/metrics.md "Uncertainty"), not by this study; its rpm spacing is this study's.
   EXPECT_EQ(figure(s, "recommended_samples"), spread::scene::Sweep{}.samples_per_run) << rows(s);
   const auto bundled = spread::scene::load_scene_file(acc::default_scene_path());
-  EXPECT_EQ(figure(s, "recommended_samples"), bundled.sweep.samples_per_run);
+  EXPECT_EQ(bundled.sweep.samples_per_run, figure(s, "recommended_samples"));
   ASSERT_GE(bundled.sweep.rpm.size(), 2u);
   for (std::size_t k = 1; k < bundled.sweep.rpm.size(); ++k) {
     EXPECT_EQ(bundled.sweep.rpm[k] - bundled.sweep.rpm[k - 1], figure(s, "recommended_spacing")) << k;
@@ -140,10 +143,10 @@ TEST(AccuracyParticleCount, SpreadShrinksWithCountAndRecommendationExists) {
 TEST(AccuracyTables, ErrorFallsWithSamplesAndInterpolationIsCheap) {
   const auto& s = study("tables");
   // More samples per run, smaller error (the throw width is a 99 % tail quantile: it converges slowly).
-  EXPECT_LT(figure(s, "error_exact_2048"), figure(s, "error_exact_128")) << rows(s);
-  EXPECT_LT(figure(s, "error_75_2048"), figure(s, "error_75_128")) << rows(s);
+  EXPECT_LT(figure(s, "error_exact_2000"), figure(s, "error_exact_125")) << rows(s);
+  EXPECT_LT(figure(s, "error_75_2000"), figure(s, "error_75_125")) << rows(s);
   // Interpolating between rows 75 rpm apart adds little to the sampling error of a row at the exact rpm.
-  EXPECT_LT(figure(s, "error_75_512"), figure(s, "error_exact_512") + 0.005) << rows(s);
+  EXPECT_LT(figure(s, "error_75_500"), figure(s, "error_exact_500") + 0.005) << rows(s);
   // The recommendation meets the report's stated criterion: R̄ within 1 %, widths within one tray.
   ASSERT_TRUE(s.figures.count("recommended_error_r_bar")) << rows(s);
   EXPECT_LE(figure(s, "recommended_error_r_bar"), acc::kErrorBudget);

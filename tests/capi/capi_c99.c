@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
   CHECK(def.struct_size == sizeof(spread_prediction_def));
   CHECK(isnan(def.disc_height_m));
   CHECK(def.cv_target_percent == 15.0);
-  CHECK(def.effects == SPREAD_EFFECT_ALL);
+  CHECK(def.effects == SPREAD_EFFECTS_AS_TABLE);
+  CHECK(isnan(def.kernel_half_width_m));
   CHECK(spread_version() == SPREAD_VERSION_NUMBER);
   CHECK(strcmp(spread_version_string(), SPREAD_VERSION_STRING) == 0);
   CHECK(strncmp(spread_status_str(SPREAD_ERROR_FILE_CORRUPT), "SPREAD_ERROR_FILE_CORRUPT", 25) == 0);

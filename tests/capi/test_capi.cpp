@@ -73,8 +73,18 @@ TEST_F(Capi, PredictsIntoCallerResultAndBuffer) {
   EXPECT_GT(r.throw_width_m, 5.0);
   EXPECT_GT(r.working_width_to_and_fro_m, 0.0);
   EXPECT_GT(r.working_width_racetrack_m, 0.0);
-  EXPECT_EQ(r.bout_width_m, r.working_width_to_and_fro_m);
+  // The CV is at the widest whole-tray bout within the target, just below the (interpolated) working width.
+  EXPECT_LE(r.bout_width_m, r.working_width_to_and_fro_m);
+  EXPECT_GT(r.bout_width_m, r.working_width_to_and_fro_m - r.tray_width_m);
   EXPECT_LE(r.cv_percent, 15.0);
+  // Appended fields: the Monte Carlo uncertainty and what ran.
+  EXPECT_EQ(r.sample_count, 256);
+  EXPECT_GT(r.working_width_to_and_fro_se_m, 0.0);
+  EXPECT_GT(r.cv_se_percent, 0.0);
+  EXPECT_GT(r.throw_width_se_m, 0.0);
+  // The synthetic file records no flight effects, which means all; no wind today, so not the wind.
+  EXPECT_EQ(r.effects, SPREAD_EFFECT_ALL & ~SPREAD_EFFECT_WIND);
+  EXPECT_GT(r.kernel_half_width_m, 0.0);
   EXPECT_GT(r.mean_radius_m, 0.0);
   EXPECT_GT(r.radial_width_m, 0.0);
   EXPECT_EQ(r.disc_height_m, 0.8);

@@ -80,7 +80,9 @@ TEST(AnalyticLaunch, DiametersFollowTheLognormalMeanAndSd) {
 
 TEST(AnalyticLaunch, SamplesSitOnTheRimWithTheVaneExitVelocity) {
   const double rpm = 600.0;
-  const auto samples = analytic_launch_samples(flat_machine(), material(0.4), rpm, inlet(), 100, 2);
+  AnalyticLaunchOptions sliding;
+  sliding.spin = scene::SpinModel::kSliding;
+  const auto samples = analytic_launch_samples(flat_machine(), material(0.4), rpm, inlet(), 100, 2, sliding);
   const double omega = rpm * 2.0 * kPi / 60.0;
   for (const auto& s : samples) {
     EXPECT_NEAR(std::hypot(s.x_m, s.y_m), 0.3, 1e-6);
@@ -104,7 +106,9 @@ TEST(AnalyticLaunch, SamplesSitOnTheRimWithTheVaneExitVelocity) {
 TEST(AnalyticLaunch, ClockwiseDiscMirrorsTheTangentialVelocity) {
   scene::Machine cw = flat_machine();
   cw.rotation_sense = -1;
-  const auto samples = analytic_launch_samples(cw, material(0.4), 600.0, inlet(), 50, 2);
+  AnalyticLaunchOptions sliding;
+  sliding.spin = scene::SpinModel::kSliding;  // turns with the disc: ω = sense·Ω ẑ
+  const auto samples = analytic_launch_samples(cw, material(0.4), 600.0, inlet(), 50, 2, sliding);
   for (const auto& s : samples) {
     const double rho = std::hypot(s.x_m, s.y_m);
     EXPECT_NEAR((-s.vx_norm * s.y_m + s.vy_norm * s.x_m) / rho, -1.0, 1e-6);
@@ -112,18 +116,39 @@ TEST(AnalyticLaunch, ClockwiseDiscMirrorsTheTangentialVelocity) {
   }
 }
 
-TEST(AnalyticLaunch, RollingSpinIsHorizontalAndMatchesTheRelativeSpeed) {
-  AnalyticLaunchOptions options;
-  options.spin = scene::SpinModel::kRolling;
+TEST(AnalyticLaunch, RollingSpinIsAboutTheDiscAxisAlongTheVaneFace) {
+  // On a flat disc a granule rolling along the vane face spins about the disc axis, against the disc's
+  // sense: ω_z = sense·(Ω − v_r/(d/2)) (thousands of rad/s, as the DEM's launches show).
+  for (int sense : {1, -1}) {
+    scene::Machine machine = flat_machine();
+    machine.rotation_sense = sense;
+    const double rpm = 600.0, omega = rpm * 2.0 * kPi / 60.0;
+    const auto samples = analytic_launch_samples(machine, material(0.4), rpm, inlet(), 50, 2);  // default model
+    for (const auto& s : samples) {
+      const double rho = std::hypot(s.x_m, s.y_m);
+      const double v_r = (s.vx_norm * s.x_m + s.vy_norm * s.y_m) / rho * omega * 0.3;  // m/s relative, radial
+      EXPECT_NEAR(s.wx_norm, 0.0, 1e-9);
+      EXPECT_NEAR(s.wy_norm, 0.0, 1e-9);
+      const double expected = sense * (omega - v_r / (0.5 * s.diameter_m));
+      EXPECT_NEAR(s.wz_norm * omega, expected, 1e-4 * std::abs(expected));
+      EXPECT_LT(sense * s.wz_norm * omega, -1000.0);
+    }
+  }
+}
+
+TEST(AnalyticLaunch, RollingSpinOnAConeTiltsWithTheGeneratrix) {
+  // ω_rel ⟂ the vane face normal e_θ and ⟂ the motion along the generatrix (cos α e_r + sin α e_z).
+  scene::Machine cone = flat_machine();
+  cone.cone_angle_rad = 0.157;
   const double rpm = 600.0, omega = rpm * 2.0 * kPi / 60.0;
-  const auto samples = analytic_launch_samples(flat_machine(), material(0.4), rpm, inlet(), 50, 2, options);
+  const auto samples = analytic_launch_samples(cone, material(0.4), rpm, inlet(), 20, 2);
   for (const auto& s : samples) {
     const double rho = std::hypot(s.x_m, s.y_m);
-    const double v_r = (s.vx_norm * s.x_m + s.vy_norm * s.y_m) / rho * omega * 0.3;  // m/s relative, radial
-    const double spin_h = std::hypot(s.wx_norm, s.wy_norm) * omega;
-    EXPECT_NEAR(spin_h, v_r / (0.5 * s.diameter_m), 1e-4 * spin_h);
-    // About e_θ: ⟂ to the radial relative motion.
-    EXPECT_NEAR((s.wx_norm * s.x_m + s.wy_norm * s.y_m) / rho, 0.0, 1e-3 * std::hypot(s.wx_norm, s.wy_norm));
+    const double er_x = s.x_m / rho, er_y = s.y_m / rho;
+    const double rel_x = s.wx_norm, rel_y = s.wy_norm, rel_z = s.wz_norm - 1.0;  // minus the disc's turn
+    const double along = (rel_x * er_x + rel_y * er_y) * std::cos(0.157) + rel_z * std::sin(0.157);
+    EXPECT_NEAR(along, 0.0, 1e-5 * std::hypot(rel_z, rel_x, rel_y));
+    EXPECT_NEAR(-rel_x * er_y + rel_y * er_x, 0.0, 1e-5 * std::abs(rel_z));  // no e_θ component
   }
 }
 

@@ -33,31 +33,30 @@ std::vector<double> random_pattern(int count, std::uint64_t seed) {
   return p;
 }
 
-// Independent reference: everything on a grid of half trays. Pattern tray i covers half cells
-// 2i - T and 2i - T + 1 (units of w/2 from x = 0), each with half its mass; pass k adds 2kn; the bout
-// is half cells [-n, n) and bout tray j = (h + n) / 2.
-double reference_cv(const std::vector<double>& p, int n, sm::Overlap overlap) {
+// Independent reference: the overlapped distribution on the pattern's own tray grid over one whole
+// period, 2n consecutive trays starting at an arbitrary grid index (racetrack repeats every n trays,
+// to-and-fro every 2n), brute force over passes. Two periods of racetrack and one of to-and-fro hold each
+// bout tray value twice, so CV = sqrt(SS_2n / 2 / (n − 1)) / mean — no weights, no bout placement.
+double reference_cv(const std::vector<double>& p, int n, sm::Overlap overlap, int start = 3) {
   const int t = static_cast<int>(p.size());
-  std::vector<double> bout(static_cast<std::size_t>(n), 0.0);
-  const int reach = (t + n) / n + 3;
+  std::vector<double> period(static_cast<std::size_t>(2 * n), 0.0);
+  const int reach = (t + 2 * n + std::abs(start)) / n + 3;
   for (int k = -reach; k <= reach; ++k) {
     const bool mirrored = overlap == sm::Overlap::kToAndFro && (k % 2 != 0);
     for (int i = 0; i < t; ++i) {
-      const double m = mirrored ? p[static_cast<std::size_t>(t - 1 - i)] : p[static_cast<std::size_t>(i)];
-      for (int half = 0; half < 2; ++half) {
-        const int h = 2 * i - t + half + 2 * k * n;
-        if (h >= -n && h < n) bout[static_cast<std::size_t>((h + n) / 2)] += 0.5 * m;
-      }
+      const int g = i + k * n - start;
+      if (g < 0 || g >= 2 * n) continue;
+      period[static_cast<std::size_t>(g)] += mirrored ? p[static_cast<std::size_t>(t - 1 - i)] : p[static_cast<std::size_t>(i)];
     }
   }
   double mean = 0.0;
-  for (double b : bout) mean += b;
-  mean /= n;
+  for (double b : period) mean += b;
+  mean /= 2 * n;
   if (!(mean > 0.0)) return std::numeric_limits<double>::infinity();
   if (n == 1) return 0.0;
   double ss = 0.0;
-  for (double b : bout) ss += (b - mean) * (b - mean);
-  return std::sqrt(ss / (n - 1)) / mean;
+  for (double b : period) ss += (b - mean) * (b - mean);
+  return std::sqrt(ss / 2.0 / (n - 1)) / mean;
 }
 
 // Mass (kg) of a hat of half-width `half_width_m` and peak 1 kg/m over [a, b] (exact integral).
@@ -100,7 +99,7 @@ TEST(Overlap, UniformOverWholeLayoutIsFlatWhenBoutDividesIt) {
   }
 }
 
-TEST(Overlap, MatchesHalfTrayReferenceOnRandomPatterns) {
+TEST(Overlap, MatchesWholePeriodReferenceOnRandomPatterns) {
   for (int t : {1, 2, 7, 8, 24, 25}) {
     const std::vector<double> p = random_pattern(t, 1000u + static_cast<std::uint64_t>(t));
     for (int n = 1; n <= 2 * t + 3; ++n) {
@@ -190,30 +189,67 @@ TEST(Overlap, HandWorkedEvenLayout) {
   EXPECT_DOUBLE_EQ(bout[1], 7.0);
 }
 
-TEST(Overlap, HandWorkedHalfTrayOffset) {
-  // Trays [-0.75,-0.25], [-0.25,0.25], [0.25,0.75] hold 1, 2, 3 kg; W = 1 m, bout trays [-0.5,0], [0,0.5]:
-  // every tray straddles two bout trays and gives half its mass to each.
-  // Racetrack: [-0.5,0] = 1/2 + 2/2 + (pass at -1 m: tray 3 at [-0.75,-0.25]) 3/2 = 3;
-  //            [0,0.5]  = 2/2 + 3/2 + (pass at +1 m: tray 1 at [0.25,0.75]) 1/2 = 3  → CV 0.
-  // To-and-fro (neighbours 3,2,1): [-0.5,0] = 1.5 + 1/2 = 2, [0,0.5] = 2.5 + 3/2 = 4;
-  //   mean 3, s = √2, CV = √2/3.
+TEST(Overlap, HandWorkedCutEdgeTrays) {
+  // Trays [-0.75,-0.25], [-0.25,0.25], [0.25,0.75] hold 1, 2, 3 kg; W = 1 m (n = 2 trays, T = 3: n - T odd).
+  // The bout [-0.5, 0.5] touches grid trays 0, 1, 2; trays 0 and 2 are cut in half by the bout edges.
+  // Racetrack (passes every 2 trays): P0 = 1 + 3 (pass at -1 m) = 4, P1 = 2, P2 = 3 + 1 (pass at +1 m) = 4:
+  //   weights 1/2, 1, 1/2: mean = (2 + 2 + 2)/2 = 3, SS = (1/2 + 1 + 1/2)·1 = 2, s = √2, CV = √2/3
+  //   (the field repeats 4, 2, 4, 2, ...: a sample CV over one period of two trays gives the same).
+  // To-and-fro (odd passes mirrored, 3 2 1): P0 = 1 + 1 = 2, P1 = 2, P2 = 3 + 3 = 6:
+  //   mean = (1 + 2 + 3)/2 = 3, SS = 1/2 + 1 + 9/2 = 6, CV = √6/3.
+  // Splitting the trays between bout trays instead would give racetrack CV 0: a moving average.
   const std::vector<double> p{1, 2, 3};
-  EXPECT_NEAR(sm::cv_at_width(p, layout(3), 1.0, sm::Overlap::kRacetrack), 0.0, 1e-15);
-  EXPECT_NEAR(sm::cv_at_width(p, layout(3), 1.0, sm::Overlap::kToAndFro), std::sqrt(2.0) / 3.0, 1e-15);
+  EXPECT_NEAR(sm::cv_at_width(p, layout(3), 1.0, sm::Overlap::kRacetrack), std::sqrt(2.0) / 3.0, 1e-15);
+  EXPECT_NEAR(sm::cv_at_width(p, layout(3), 1.0, sm::Overlap::kToAndFro), std::sqrt(6.0) / 3.0, 1e-15);
+  const sm::BoutTrays bout = sm::bout_trays(layout(3), 2);
+  EXPECT_TRUE(bout.cut_edges);
+  EXPECT_EQ(bout.first_tray, 0);
+  EXPECT_EQ(bout.grid_trays, 3);
+  std::vector<double> profile(3);
+  sm::overlapped_profile(p, layout(3), 1.0, sm::Overlap::kToAndFro, profile);
+  EXPECT_DOUBLE_EQ(profile[0], 2.0);
+  EXPECT_DOUBLE_EQ(profile[1], 2.0);
+  EXPECT_DOUBLE_EQ(profile[2], 6.0);
 }
 
 TEST(Overlap, ProfileConservesMassOfOnePass) {
-  // Each tray of the pattern lands in the bout once over all passes (the bout is one period).
+  // Each tray of the pattern lands in the bout once over all passes (the bout is one period), cut edge
+  // trays counting half.
   const std::vector<double> p = random_pattern(25, 3);
   double total = 0.0;
   for (double v : p) total += v;
   for (int n = 1; n <= 40; ++n) {
-    std::vector<double> bout(static_cast<std::size_t>(sm::bout_tray_count(layout(25), n * 0.5)));
-    ASSERT_EQ(bout.size(), static_cast<std::size_t>(n));
-    sm::overlapped_profile(p, layout(25), n * 0.5, sm::Overlap::kToAndFro, bout);
-    double sum = 0.0;
-    for (double v : bout) sum += v;
-    EXPECT_NEAR(sum, total, 1e-12);
+    for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
+      const sm::BoutTrays bout = sm::bout_trays(layout(25), n);
+      ASSERT_EQ(bout.grid_trays, n % 2 == 25 % 2 ? n : n + 1);
+      std::vector<double> profile(static_cast<std::size_t>(bout.grid_trays));
+      sm::overlapped_profile(p, layout(25), n * 0.5, overlap, profile);
+      double sum = 0.0;
+      for (std::size_t j = 0; j < profile.size(); ++j) {
+        sum += (bout.cut_edges && (j == 0 || j + 1 == profile.size()) ? 0.5 : 1.0) * profile[j];
+      }
+      EXPECT_NEAR(sum, total, 1e-12) << n;
+    }
+  }
+}
+
+TEST(Overlap, GradientMatchesFiniteDifferences) {
+  for (int t : {20, 21}) {
+    const std::vector<double> p = random_pattern(t, 31);
+    for (int n : {3, 4, 9, 20, 27}) {
+      for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
+        std::vector<double> grad(p.size());
+        sm::cv_gradient(p, layout(t), n, overlap, grad);
+        for (std::size_t i = 0; i < p.size(); ++i) {
+          std::vector<double> up = p, down = p;
+          const double h = 1e-6;
+          up[i] += h;
+          down[i] -= h;
+          const double numeric = (sm::cv_at_trays(up, layout(t), n, overlap) - sm::cv_at_trays(down, layout(t), n, overlap)) / (2 * h);
+          EXPECT_NEAR(grad[i], numeric, 1e-7) << "T=" << t << " n=" << n << " i=" << i;
+        }
+      }
+    }
   }
 }
 
@@ -269,38 +305,91 @@ TEST(Overlap, EdgeCases) {
 TEST(EffectiveWorkingWidth, StripWithHandComputedCurve) {
   // A uniform strip of 20 trays (10 m, [-5, 5] m) centred in 40 trays (20 m). Passes tile exactly at
   // n = 20 (CV 0). For n > 20 trays only the machine's own pass reaches the bout, leaving empty trays:
-  //   n = 21 (bout [-5.25, 5.25]: half-tray offset, the end trays are half covered):
-  //          0.5, 19 × 1, 0.5: mean 20/21, s² = (19·(1/21)² + 2·(19/42)²)/20 → CV = 0.1579;
-  //   n = 22: 1 × 0, 20 × 1, 1 × 0: mean 10/11, s² = (20·(1/11)² + 2·(10/11)²)/21 → CV = 0.3237;
-  //   n = 23: 0, 0.5, 19 × 1, 0.5, 0 → CV = 0.356; larger n are worse still.
-  // For n < 20 the passes overlap to 1s and 2s, CV > 0 unless n divides 20.
+  //   n = 21 (n - T odd: the bout edges cut grid trays 9 and 30, both empty, weight 1/2; 20 full trays):
+  //          mean 20/21, SS = 20·(1/21)² + 2·(1/2)(20/21)², s² = SS/20 → CV = 0.2291;
+  //   n = 22: 1 × 0, 20 × 1, 1 × 0: mean 10/11, s² = (20·(1/11)² + 2·(10/11)²)/21 → CV = 0.3237.
+  // For n < 20 the passes overlap to 1s and 2s, CV > 0 unless n divides 20: n = 19 puts a doubled
+  // cut edge tray at each end (weight 1/2) holding 2, mean 20/19,
+  // CV = sqrt((18·(1/19)² + (18/19)²)/18)/(20/19) = 0.2179.
   std::vector<double> p(40, 0.0);
   for (int i = 10; i < 30; ++i) p[static_cast<std::size_t>(i)] = 1.0;
   const sm::TrayLayout trays = layout(40);
-  const double cv21 = std::sqrt((19.0 / 441.0 + 2.0 * 361.0 / 1764.0) / 20.0) * 21.0 / 20.0;
+  const double cv21 = std::sqrt((20.0 / 441.0 + 400.0 / 441.0) / 20.0) * 21.0 / 20.0;
   const double cv22 = std::sqrt((20.0 / 121.0 + 2.0 * 100.0 / 121.0) / 21.0) * 11.0 / 10.0;
+  const double cv19 = std::sqrt((18.0 / 361.0 + 324.0 / 361.0) / 18.0) * 19.0 / 20.0;
   EXPECT_NEAR(sm::cv_at_width(p, trays, 10.5, sm::Overlap::kRacetrack), cv21, 1e-12);
   EXPECT_NEAR(sm::cv_at_width(p, trays, 11.0, sm::Overlap::kRacetrack), cv22, 1e-12);
-  EXPECT_NEAR(cv21, 0.1579, 1e-4);
+  EXPECT_NEAR(sm::cv_at_width(p, trays, 9.5, sm::Overlap::kRacetrack), cv19, 1e-12);
+  EXPECT_NEAR(cv21, 0.2291, 1e-4);
   EXPECT_NEAR(cv22, 0.3237, 1e-4);
+  EXPECT_NEAR(cv19, 0.2179, 1e-4);
   for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
-    EXPECT_DOUBLE_EQ(sm::effective_working_width(p, trays, overlap, 0.15), 10.0);
-    EXPECT_DOUBLE_EQ(sm::effective_working_width(p, trays, overlap, 1e-9), 10.0);
-    EXPECT_DOUBLE_EQ(sm::effective_working_width(p, trays, overlap, 0.16), 10.5);
-    EXPECT_DOUBLE_EQ(sm::effective_working_width(p, trays, overlap, 0.33), 11.0);
+    // The strip's own zig-zag (n that do not divide 20) rises above 15 % well before 10 m and comes back
+    // to 0 at 10 m: the working width stops at the first crossing and the curve is flagged.
+    const sm::WorkingWidth at15 = sm::working_width(p, trays, overlap, 0.15);
+    EXPECT_LT(at15.width_m, 10.0);
+    EXPECT_GE(at15.crossings, 2);
+    EXPECT_FALSE(at15.limited_by_layout);
   }
 }
 
-TEST(EffectiveWorkingWidth, IsTheLargestWidthMeetingTheTarget) {
+TEST(EffectiveWorkingWidth, HatCrossingIsInterpolatedBetweenWholeTrayWidths) {
+  // A hat of half-width 6 m overlaps flat at W = 6 m and below; wider bouts leave a dip between passes,
+  // so CV(W) rises once. The working width lies between the two whole-tray widths around the crossing,
+  // linear in CV.
+  for (int layout_trays : {40, 41}) {
+    const sm::TrayLayout trays = layout(layout_trays);
+    std::vector<double> p(static_cast<std::size_t>(layout_trays));
+    for (int i = 0; i < layout_trays; ++i) {
+      const double a = trays.left_edge_m() + i * trays.tray_width_m;
+      p[static_cast<std::size_t>(i)] = hat_mass(a, a + trays.tray_width_m, 6.0);
+    }
+    for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
+      const sm::WorkingWidth w = sm::working_width(p, trays, overlap, 0.15);
+      ASSERT_GT(w.trays_below, 12) << layout_trays;
+      EXPECT_EQ(w.crossings, 1);
+      const double below = sm::cv_at_trays(p, trays, w.trays_below, overlap);
+      const double above = sm::cv_at_trays(p, trays, w.trays_below + 1, overlap);
+      EXPECT_LE(below, 0.15);
+      EXPECT_GT(above, 0.15);
+      EXPECT_DOUBLE_EQ(w.cv_below, below);
+      EXPECT_DOUBLE_EQ(w.cv_above, above);
+      EXPECT_NEAR(w.width_m, 0.5 * (w.trays_below + (0.15 - below) / (above - below)), 1e-12);
+      EXPECT_DOUBLE_EQ(sm::effective_working_width(p, trays, overlap, 0.15), w.width_m);
+    }
+  }
+}
+
+TEST(EffectiveWorkingWidth, IsTheFirstCrossingAndNeverAnIsolatedDip) {
+  // A hand-made CV(W) zig-zag: the first width above the target ends the working width, a later dip
+  // below it does not count (it is flagged as a second crossing).
   const std::vector<double> p = random_pattern(36, 21);
   for (double target : {0.05, 0.1, 0.15, 0.3}) {
-    const double w = sm::effective_working_width(p, layout(36), sm::Overlap::kToAndFro, target);
-    for (int n = 36; n >= 2; --n) {
-      const double cv = sm::cv_at_width(p, layout(36), n * 0.5, sm::Overlap::kToAndFro);
-      if (n * 0.5 > w) {
-        EXPECT_GT(cv, target) << n;
-      } else if (n * 0.5 == w) {
-        EXPECT_LE(cv, target) << n;
+    for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
+      const sm::WorkingWidth w = sm::working_width(p, layout(36), overlap, target);
+      int crossings = 0;
+      bool below = sm::cv_at_trays(p, layout(36), 2, overlap) <= target;
+      int first_above = 0;
+      if (!below) {
+        EXPECT_EQ(w.width_m, 0.0);
+        continue;
+      }
+      for (int n = 3; n <= 36; ++n) {
+        const bool now = sm::cv_at_trays(p, layout(36), n, overlap) <= target;
+        if (now != below) {
+          ++crossings;
+          if (first_above == 0) first_above = n;
+        }
+        below = now;
+      }
+      EXPECT_EQ(w.crossings, crossings) << target;
+      if (first_above == 0) {
+        EXPECT_TRUE(w.limited_by_layout);
+        EXPECT_DOUBLE_EQ(w.width_m, 18.0);
+      } else {
+        EXPECT_EQ(w.trays_below, first_above - 1);
+        EXPECT_GE(w.width_m, (first_above - 1) * 0.5);
+        EXPECT_LE(w.width_m, first_above * 0.5);
       }
     }
   }

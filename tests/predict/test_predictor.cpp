@@ -44,7 +44,9 @@ TEST(Predictor, ExactRowMatchesHandAssembledPipeline) {
   const auto contents = testing::synthetic_contents();
   Predictor p(contents);
   Prediction out;
-  ASSERT_EQ(p.predict(request("can", 600.0), out), PredictStatus::kOk);
+  PredictionRequest point_masses = request("can", 600.0);
+  point_masses.kernel_half_width_m = 0.0;  // each landing into its tray, as accumulate_transverse does
+  ASSERT_EQ(p.predict(point_masses, out), PredictStatus::kOk);
 
   const auto& run = contents.runs[1];
   ASSERT_EQ(run.rpm, 600.0);
@@ -71,6 +73,15 @@ TEST(Predictor, ExactRowMatchesHandAssembledPipeline) {
   for (std::size_t k = 0; k < trays.size(); ++k) EXPECT_NEAR(out.tray_mass_fraction[k], trays[k], 1e-12) << k;
   EXPECT_EQ(out.flights, 256);
   EXPECT_DOUBLE_EQ(out.disc_height_m, 0.8);
+  EXPECT_EQ(out.kernel_half_width_m, 0.0);
+
+  // The automatic kernel: the same landings, each spread over its Epanechnikov kernel.
+  ASSERT_EQ(p.predict(request("can", 600.0), out), PredictStatus::kOk);
+  EXPECT_GT(out.kernel_half_width_m, 0.0);
+  std::vector<double> smoothed(static_cast<std::size_t>(out.trays.tray_count), 0.0);
+  metrics::accumulate_transverse_kernel(out.landing_x_m, out.landing_mass_fraction, out.trays,
+                                        out.kernel_half_width_m, smoothed);
+  for (std::size_t k = 0; k < smoothed.size(); ++k) EXPECT_NEAR(out.tray_mass_fraction[k], smoothed[k], 1e-12) << k;
 }
 
 TEST(Predictor, MassIsConservedAndResultsArePlausible) {
@@ -85,8 +96,13 @@ TEST(Predictor, MassIsConservedAndResultsArePlausible) {
   EXPECT_LE(out.working_width_to_and_fro_m, out.trays.tray_count * out.trays.tray_width_m);
   EXPECT_GT(out.mean_radius_m, 2.0);
   EXPECT_GT(out.radial_width_m, 0.0);
-  EXPECT_EQ(out.bout_width_m, out.working_width_to_and_fro_m);
+  // The CV is reported at the widest whole-tray bout within the target, just below the working width.
+  EXPECT_LE(out.bout_width_m, out.working_width_to_and_fro_m);
+  EXPECT_GT(out.bout_width_m, out.working_width_to_and_fro_m - out.trays.tray_width_m);
   EXPECT_LE(out.cv_to_and_fro, 0.15);
+  EXPECT_GT(out.working_width_to_and_fro_se_m, 0.0);
+  EXPECT_GT(out.cv_to_and_fro_se, 0.0);
+  EXPECT_EQ(out.sample_count, 256u);
   ASSERT_EQ(out.landing_x_m.size(), 512u);
 }
 

@@ -14,11 +14,12 @@ TEST(ScenesShipped, DefaultIsTheCase1MachineWithThreeMaterials) {
   EXPECT_EQ(s.machine.disc_count, 2);
   EXPECT_EQ(s.machine.cone_angle_rad, 0.157);
   EXPECT_EQ(s.materials.size(), 3u);
-  EXPECT_EQ(s.sweep.source, LaunchSource::kAnalytic);
+  // The main job's table is a DEM table (granule scatter), with enough launches per row for a working
+  // width within ±0.5 m (docs/metrics.md "Uncertainty").
+  EXPECT_EQ(s.sweep.source, LaunchSource::kDem);
   EXPECT_GE(s.sweep.rpm.size(), 3u);
   EXPECT_LE(s.sweep.rpm.size(), 5u);
-  EXPECT_GE(s.sweep.samples_per_run, 256);
-  EXPECT_LE(s.sweep.samples_per_run, 512);
+  EXPECT_GE(s.sweep.samples_per_run, 2000);
   EXPECT_EQ(s.sweep_materials().size(), 3u);
   EXPECT_TRUE(s.effects.drag);
   EXPECT_FALSE(s.effects.wind);
@@ -75,7 +76,7 @@ TEST(SceneDefaults, MinimalSceneGetsDocumentedDefaults) {
 TEST(SceneOverrides, ValuesAreParsedAsToml) {
   const Scene s = load_scene_file(scene_path("default.toml"),
                                   {"machine.rpm=650", "sweep.rpm=[500, 600.5]", "air.wind_m_s=[1.5, -2]",
-                                   "effects.enabled=[\"drag\"]", "numerics.integrator=\"velocity_verlet\"",
+                                   "effects.enabled=[\"drag\", \"wind\"]", "numerics.integrator=\"velocity_verlet\"",
                                    "outputs.launch_csv=true", "machine.name=bare-word"});
   EXPECT_EQ(s.machine.rpm, 650.0);
   EXPECT_EQ(s.sweep.rpm, (std::vector<double>{500.0, 600.5}));
@@ -83,7 +84,7 @@ TEST(SceneOverrides, ValuesAreParsedAsToml) {
   EXPECT_EQ(s.air.wind_m_s[1], -2.0);
   EXPECT_TRUE(s.effects.drag);
   EXPECT_FALSE(s.effects.magnus);
-  EXPECT_EQ(effects_to_string(s.effects), "drag");
+  EXPECT_EQ(effects_to_string(s.effects), "drag,wind");
   EXPECT_EQ(s.numerics.integrator, Integrator::kVelocityVerlet);
   EXPECT_TRUE(s.outputs.launch_csv);
   EXPECT_EQ(s.machine.name, "bare-word");

@@ -15,7 +15,10 @@ namespace {
 
 using spread::testing::TempPath;
 
-scene::Scene default_scene(const std::vector<std::string>& overrides = {}) {
+// The bundled default scene with its sweep switched to the analytic source (the DEM source has its own
+// tests in test_lookup_dem.cpp): the sweep logic is the same for both and the analytic runs are instant.
+scene::Scene default_scene(std::vector<std::string> overrides = {}) {
+  overrides.insert(overrides.begin(), {"sweep.source=\"analytic\"", "sweep.samples_per_run=512"});
   return scene::load_scene_file(std::string(SPREAD_SOURCE_DIR) + "/scenes/default.toml", overrides);
 }
 

@@ -17,7 +17,7 @@ namespace spread::testing {
 inline void build_urea_table(const std::string& path, int samples) {
   const scene::Scene scene = scene::load_scene_file(
       std::string(SPREAD_SOURCE_DIR) + "/scenes/default.toml",
-      {"sweep.materials=[\"Urea\"]", "sweep.rpm=[500.0, 600.0]", "sweep.samples_per_run=" + std::to_string(samples),
+      {"sweep.source=\"analytic\"", "sweep.materials=[\"Urea\"]", "sweep.rpm=[500.0, 600.0]", "sweep.samples_per_run=" + std::to_string(samples),
        "inlet.radius_m=0.0145", "inlet.offset_m=0.1", "inlet.angle_rad=1.0"});
   lookup::BuildOptions options;
   options.output_path = path;

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libspread/flight/flight.hpp"
+#include "libspread/metrics/metrics.hpp"
 #include "spread/spread.h"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
@@ -27,7 +28,8 @@ using spread::cli::BadInput;
 
 struct Options : spread::cli::PredictionArgs {
   double bout_width_m = 0.0;
-  std::string effects = "all";
+  std::string effects = "table";
+  double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
   int repeat = 0;
   bool json = false;
 };
@@ -38,6 +40,7 @@ struct TablesCloser {
 using TablesHandle = std::unique_ptr<spread_tables, TablesCloser>;
 
 std::uint32_t parse_effects(const std::string& text) {
+  if (text == "table") return SPREAD_EFFECTS_AS_TABLE;
   if (text == "all") return SPREAD_EFFECT_ALL;
   try {
     return spread::flight::parse_effects(text);
@@ -78,7 +81,36 @@ std::string explain(spread_status status, const Options& o, spread_tables* table
   }
 }
 
+std::string effects_label(std::uint32_t effects) {
+  const std::string names = spread::flight::effects_to_string(effects);
+  return names.empty() ? "none (gravity only)" : names;
+}
+
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// " ± x" with the 95 % half-interval of a standard error, or nothing when it is undefined.
+std::string plus_minus(double standard_error) {
+  if (!std::isfinite(standard_error)) return "";
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << " ± " << 1.96 * standard_error;
+  return out.str();
+}
+
+// CV(W) at every whole-tray width from two trays to the layout, both overlaps, on the trays the C API
+// returned (libspread's metrics: the same overlap code the prediction used).
+json cv_curve_json(const spread_prediction& r, const std::vector<double>& trays) {
+  spread::metrics::TrayLayout layout;
+  layout.tray_width_m = r.tray_width_m;
+  layout.tray_count = r.tray_count;
+  const std::span<const double> mass(trays.data(), static_cast<std::size_t>(r.tray_count));
+  json widths = json::array(), to_and_fro = json::array(), racetrack = json::array();
+  for (int n = 2; n <= r.tray_count; ++n) {
+    widths.push_back(n * r.tray_width_m);
+    to_and_fro.push_back(number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kToAndFro)));
+    racetrack.push_back(number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kRacetrack)));
+  }
+  return {{"bout_width_m", widths}, {"to_and_fro_percent", to_and_fro}, {"racetrack_percent", racetrack}};
+}
 
 void run(const Options& o, int& exit_code) {
   spread_prediction_def def = spread_prediction_def_default();
@@ -92,6 +124,7 @@ void run(const Options& o, int& exit_code) {
   def.bout_width_m = o.bout_width_m;
   def.tray_width_m = o.tray_width_m;
   def.effects = parse_effects(o.effects);
+  def.kernel_half_width_m = o.kernel_half_width_m;
 
   spread_tables* raw = nullptr;
   const spread_status opened = spread_open(o.tables.c_str(), &raw);
@@ -140,21 +173,31 @@ void run(const Options& o, int& exit_code) {
                 {"rpm", o.rpm},
                 {"disc_height_m", result.disc_height_m},
                 {"wind_m_s", {def.wind_m_s[0], def.wind_m_s[1]}},
-                {"effects", spread::flight::effects_to_string(def.effects)},
+                {"effects", spread::flight::effects_to_string(result.effects)},
                 {"cv_target_percent", o.cv_target_percent},
                 {"throw_width_m", result.throw_width_m},
+                {"throw_width_se_m", number_or_null(result.throw_width_se_m)},
                 {"working_width_m", {{"to_and_fro", result.working_width_to_and_fro_m},
                                      {"racetrack", result.working_width_racetrack_m}}},
+                {"working_width_se_m", {{"to_and_fro", number_or_null(result.working_width_to_and_fro_se_m)},
+                                        {"racetrack", number_or_null(result.working_width_racetrack_se_m)}}},
+                {"cv_target_crossings", {{"to_and_fro", result.cv_crossings_to_and_fro},
+                                         {"racetrack", result.cv_crossings_racetrack}}},
                 {"bout_width_m", result.bout_width_m},
                 {"cv_percent", number_or_null(result.cv_percent)},
+                {"cv_se_percent", number_or_null(result.cv_se_percent)},
                 {"cv_racetrack_percent", number_or_null(result.cv_racetrack_percent)},
+                {"cv_racetrack_se_percent", number_or_null(result.cv_racetrack_se_percent)},
                 {"mean_radius_m", result.mean_radius_m},
                 {"radial_width_m", result.radial_width_m},
                 {"lost_mass_fraction", result.lost_mass_fraction},
                 {"flights", result.flights},
+                {"sample_count", result.sample_count},
+                {"kernel_half_width_m", result.kernel_half_width_m},
                 {"transverse", {{"tray_width_m", result.tray_width_m},
                                 {"centres_m", centres},
-                                {"mass_fraction", fractions}}}};
+                                {"mass_fraction", fractions}}},
+                {"cv_curve", cv_curve_json(result, trays)}};
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
@@ -162,17 +205,29 @@ void run(const Options& o, int& exit_code) {
     std::cout << out.dump(2) << "\n";
   } else {
     std::cout << std::fixed << std::setprecision(2) << o.material << " at " << o.rpm << " rpm, disc "
-              << result.disc_height_m << " m above ground, " << result.flights << " trajectories\n"
-              << "  throw width (99 % of mass)   " << result.throw_width_m << " m\n"
+              << result.disc_height_m << " m above ground, " << result.sample_count << " launch samples, "
+              << result.flights << " trajectories, effects " << effects_label(result.effects) << "\n"
+              << "  throw width (99 % of mass)   " << result.throw_width_m << " m" << plus_minus(result.throw_width_se_m) << "\n"
               << "  working width at CV <= " << o.cv_target_percent << " %: to-and-fro "
-              << result.working_width_to_and_fro_m << " m, racetrack " << result.working_width_racetrack_m
-              << " m\n";
+              << result.working_width_to_and_fro_m << " m" << plus_minus(result.working_width_to_and_fro_se_m)
+              << ", racetrack " << result.working_width_racetrack_m << " m"
+              << plus_minus(result.working_width_racetrack_se_m) << "\n";
     if (result.bout_width_m > 0.0) {
-      std::cout << "  CV at " << result.bout_width_m << " m: to-and-fro " << result.cv_percent
-                << " %, racetrack " << result.cv_racetrack_percent << " %\n";
+      std::cout << "  CV at " << result.bout_width_m << " m: to-and-fro " << result.cv_percent << " %"
+                << plus_minus(result.cv_se_percent) << ", racetrack " << result.cv_racetrack_percent << " %"
+                << plus_minus(result.cv_racetrack_se_percent) << "\n";
     } else {
       std::cout << "  CV: no bout width meets the target\n";
     }
+    for (const auto& [crossings, mode] : {std::pair{result.cv_crossings_to_and_fro, "to-and-fro"},
+                                          std::pair{result.cv_crossings_racetrack, "racetrack"}}) {
+      if (crossings > 1) {
+        std::cout << "  note: the " << mode << " CV(W) curve crosses the target " << crossings
+                  << " times; the working width is its first crossing (see --json cv_curve)\n";
+      }
+    }
+    std::cout << "  (± = 95 % interval, 1.96 standard errors over the launch samples; kernel half-width "
+              << result.kernel_half_width_m << " m)\n";
     std::cout << "  mean radius R " << result.mean_radius_m << " m, radial width xi " << result.radial_width_m
               << " m (one disc)\n";
     if (o.repeat > 0) std::cout << "  median time per prediction " << median_us << " us over " << o.repeat << "\n";
@@ -185,7 +240,9 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
   auto* sub = app.add_subcommand("predict", "predict the spread pattern and working widths from a launch table (via the C API)");
   spread::cli::add_prediction_args(*sub, options);
   sub->add_option("--width", options.bout_width_m, "bout width for the CV (m); 0 = the to-and-fro working width");
-  sub->add_option("--effects", options.effects, "in-flight effects: all, none, or a list of drag,magnus,spin_decay,wind");
+  sub->add_option("--effects", options.effects, "in-flight effects: table (as the table was built, the default), all, none, or a list of drag,magnus,spin_decay,wind");
+  sub->add_option("--kernel", options.kernel_half_width_m,
+                  "half-width (m) of the kernel each landing is spread over; default automatic, 0 = point masses");
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   sub->callback([&exit_code] {

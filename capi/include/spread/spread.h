@@ -68,7 +68,7 @@ typedef enum spread_status {
                                           tray width <= 0, index >= count, struct_size too small, ...) */
   SPREAD_ERROR_RPM_OUTSIDE_TABLE = 4,  /* rpm outside [min, max] of the material's table rows */
   SPREAD_ERROR_UNKNOWN_MATERIAL = 5,   /* no material of that name in the file */
-  SPREAD_ERROR_UNKNOWN_EFFECT = 6,     /* effect bits outside SPREAD_EFFECT_ALL */
+  SPREAD_ERROR_UNKNOWN_EFFECT = 6,     /* effect bits outside SPREAD_EFFECT_ALL | SPREAD_EFFECTS_AS_TABLE */
   SPREAD_ERROR_BUFFER_TOO_SMALL = 7,   /* caller buffer smaller than needed; see spread_transverse_bound */
   SPREAD_ERROR_FILE_MISSING = 8,       /* no such file */
   SPREAD_ERROR_FILE_NOT_OURS = 9,      /* not SQLite, or not a libspread launch-table file */
@@ -97,6 +97,10 @@ SPREAD_API const char* spread_version_string(void);
 #define SPREAD_EFFECT_SPIN_DECAY 0x4u /* spin decay in flight, Eqs. 34–36 */
 #define SPREAD_EFFECT_WIND 0x8u       /* wind: the relative air velocity replaces the granule velocity */
 #define SPREAD_EFFECT_ALL 0xFu
+/* The flight effects the table file was built with (each run records them; files that do not record
+ * them mean SPREAD_EFFECT_ALL), plus any SPREAD_EFFECT_* bits given beside it, plus SPREAD_EFFECT_WIND
+ * whenever the wind is not zero (the wind is a condition of the day, not of the machine). The default. */
+#define SPREAD_EFFECTS_AS_TABLE 0x80000000u
 
 /* ---------------------------------------------------------------------------------------------------
  * Launch-table handle
@@ -134,10 +138,13 @@ typedef struct spread_prediction_def {
                                   SPREAD_EFFECT_WIND is set */
   double cv_target_percent;    /* CV target for the effective working widths, percent, in (0, 1000]
                                   (default 15) */
-  uint32_t effects;            /* SPREAD_EFFECT_* bits (default: all) */
+  uint32_t effects;            /* SPREAD_EFFECT_* bits, or SPREAD_EFFECTS_AS_TABLE (the default) */
   double bout_width_m;         /* bout width at which cv_percent is evaluated, m, 0..1000;
                                   0 = at the to-and-fro effective working width */
   double tray_width_m;         /* width of the collecting trays, m, > 0 (default 0.5, ISO 5690) */
+  /* --- appended in 0.2 --- */
+  double kernel_half_width_m;  /* half-width of the kernel each landing's mass is spread over, m, 0..10;
+                                  NaN (default) = automatic (docs/metrics.md), 0 = point masses */
 } spread_prediction_def;
 
 /* Defaults. Static inline on purpose: the struct is built with the caller's sizeof, so a newer library
@@ -151,9 +158,10 @@ static inline spread_prediction_def spread_prediction_def_default(void) {
   def.wind_m_s[0] = 0.0;
   def.wind_m_s[1] = 0.0;
   def.cv_target_percent = 15.0;
-  def.effects = SPREAD_EFFECT_ALL;
+  def.effects = SPREAD_EFFECTS_AS_TABLE;
   def.bout_width_m = 0.0;
   def.tray_width_m = 0.5;
+  def.kernel_half_width_m = NAN;
   return def;
 }
 
@@ -177,6 +185,21 @@ typedef struct spread_prediction {
   double tray_left_edge_m;            /* left edge of tray 0; tray k is centred at
                                          tray_left_edge_m + (k + 0.5) * tray_width_m */
   int32_t flights;                    /* trajectories integrated for this prediction */
+  /* --- appended in 0.2: written only for a definition of at least this version's struct_size ---
+   * Monte Carlo standard errors over the table's launch samples (delta method, docs/metrics.md
+   * "Uncertainty"); a 95 % interval is about ±2 standard errors. NaN where undefined (no width meets
+   * the target, the crossing is the layout's edge, an infinite CV). */
+  int32_t sample_count;               /* independent launch samples behind the estimate */
+  double throw_width_se_m;
+  double working_width_to_and_fro_se_m;
+  double working_width_racetrack_se_m;
+  double cv_se_percent;               /* of cv_percent */
+  double cv_racetrack_se_percent;     /* of cv_racetrack_percent */
+  int32_t cv_crossings_to_and_fro;    /* times CV(W) crosses the target; > 1: the curve dips back under it
+                                         at a wider bout, which the working width never takes */
+  int32_t cv_crossings_racetrack;
+  uint32_t effects;                   /* the SPREAD_EFFECT_* bits that ran */
+  double kernel_half_width_m;         /* as used */
 } spread_prediction;
 
 /* Upper bound of spread_prediction.tray_count for any prediction on this handle with this tray width

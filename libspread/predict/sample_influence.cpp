@@ -1,0 +1,102 @@
+#include "libspread/predict/sample_influence.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace spread::predict {
+namespace {
+
+// Σ_k gradient[k] K_k(x): the kernel's share in each tray, weighted by the gradient.
+double kernel_dot(double x, std::span<const double> gradient, const metrics::TrayLayout& trays, double h) {
+  if (!std::isfinite(x)) return 0.0;
+  const double left_m = trays.left_edge_m();
+  const double w = trays.tray_width_m;
+  const long last = static_cast<long>(trays.tray_count) - 1;
+  if (h == 0.0) {
+    const double position = (x - left_m) / w;
+    if (!(position >= 0.0 && position < trays.tray_count)) return 0.0;
+    return gradient[static_cast<std::size_t>(position)];
+  }
+  const long first = std::max(0L, static_cast<long>(std::floor((x - h - left_m) / w)));
+  const long end = std::min(last, static_cast<long>(std::floor((x + h - left_m) / w)));
+  double sum = 0.0;
+  double below = metrics::epanechnikov_cdf((left_m + first * w - x) / h);
+  for (long k = first; k <= end; ++k) {
+    const double above = metrics::epanechnikov_cdf((left_m + (k + 1) * w - x) / h);
+    sum += gradient[static_cast<std::size_t>(k)] * (above - below);
+    below = above;
+  }
+  return sum;
+}
+
+// Share of a landing's kernel mass at or left of `at_m`.
+double kernel_cdf(double x, double at_m, double h) {
+  if (!std::isfinite(x)) return 0.0;
+  if (h == 0.0) return x <= at_m ? 1.0 : 0.0;
+  return metrics::epanechnikov_cdf((at_m - x) / h);
+}
+
+template <typename PerLanding>
+double influence_standard_error(const SampleInfluence& in, PerLanding per_landing) {
+  const std::size_t n = in.sample_count;
+  if (n < 2) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0, sum_squares = 0.0;
+  for (std::size_t s = 0; s < n; ++s) {
+    double z = 0.0;
+    for (unsigned d = 0; d < in.landings_per_sample; ++d) {
+      const std::size_t l = s + d * n;
+      z += in.weight[l] * per_landing(in.x_m[l]);
+    }
+    z *= static_cast<double>(n);
+    sum += z;
+    sum_squares += z * z;
+  }
+  const double mean = sum / static_cast<double>(n);
+  const double variance_of_z = std::max(0.0, (sum_squares - mean * sum) / static_cast<double>(n - 1));
+  return std::sqrt(variance_of_z / static_cast<double>(n));
+}
+
+}  // namespace
+
+double SampleInfluence::standard_error(std::span<const double> gradient) const {
+  return influence_standard_error(*this, [&](double x) { return kernel_dot(x, gradient, trays, kernel_half_width_m); });
+}
+
+double SampleInfluence::throw_width_standard_error(std::span<const double> tray_mass,
+                                                   const metrics::ThrowExtent& extent, double mass_fraction) const {
+  double total = 0.0;
+  for (double m : tray_mass) total += m > 0.0 ? m : 0.0;
+  const double w = trays.tray_width_m;
+  auto density_at = [&](double x) {  // of the normalised distribution, per m
+    const double position = (x - trays.left_edge_m()) / w;
+    const long k = std::min(static_cast<long>(trays.tray_count) - 1, std::max(0L, static_cast<long>(position)));
+    return tray_mass[static_cast<std::size_t>(k)] / (total * w);
+  };
+  const double q_left = 0.5 * (1.0 - mass_fraction), q_right = 0.5 * (1.0 + mass_fraction);
+  const double f_left = density_at(extent.left_m), f_right = density_at(extent.right_m);
+  if (!(total > 0.0) || !(f_left > 0.0) || !(f_right > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  // Width = x_right − x_left; IF(x_q) = (q − F_l(x_q)) / f(x_q) per unit of landing share.
+  return influence_standard_error(*this, [&](double x) {
+    return (q_right - kernel_cdf(x, extent.right_m, kernel_half_width_m)) / f_right -
+           (q_left - kernel_cdf(x, extent.left_m, kernel_half_width_m)) / f_left;
+  });
+}
+
+double lateral_sd_m(std::span<const double> x_m, std::span<const double> weight) {
+  double sw = 0.0, swx = 0.0;
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    if (std::isfinite(x_m[i])) {
+      sw += weight[i];
+      swx += weight[i] * x_m[i];
+    }
+  }
+  if (!(sw > 0.0)) return 0.0;
+  const double mean = swx / sw;
+  double swd = 0.0;
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    if (std::isfinite(x_m[i])) swd += weight[i] * (x_m[i] - mean) * (x_m[i] - mean);
+  }
+  return std::sqrt(swd / sw);
+}
+
+}  // namespace spread::predict
