@@ -25,6 +25,11 @@ struct StudyOptions {
   std::string material;          // empty: the scene's [simulate] material
   double rpm = 500.0;            // disc speed of the flight and particle-count studies (r/min)
   std::ostream* progress = nullptr;  // one line per measured point; nullptr = silent
+  // Sampling study only: a launch table file (e.g. the main job's DEM table), how the report names it,
+  // and the rpm of the row it cuts into subsets (the material's row closest to it).
+  std::string table_path;
+  std::string table_path_shown;
+  double sampling_rpm = 600.0;           // r/min
 };
 
 struct Series {
@@ -57,6 +62,8 @@ Study dem_study(const StudyOptions& options);
 Study particle_count_study(const StudyOptions& options);
 Study table_study(const StudyOptions& options);
 Study partition_study(const StudyOptions& options);
+// Needs options.table_path (throws std::invalid_argument without it).
+Study sampling_study(const StudyOptions& options);
 
 // <dir>/<name>.csv and the plots' PNGs for every study, and <dir>/<report_name> (markdown, plots linked
 // relative to the report: `image_prefix` + file). Throws std::runtime_error naming a file it cannot write.

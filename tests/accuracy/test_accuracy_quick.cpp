@@ -156,6 +156,30 @@ TEST(AccuracyTables, ErrorFallsWithSamplesAndInterpolationIsCheap) {
   EXPECT_LT(figure(s, "spacing_effect"), acc::kErrorBudget) << rows(s);
 }
 
+// The sampling study on the main job's table (built by the ctest fixture capi.fixture.default_scene).
+TEST(AccuracySampling, ReportedStandardErrorFallsWithSamplesAndMatchesTheSpread) {
+  if (!std::filesystem::exists(SPREAD_ACCURACY_TABLE)) {
+    GTEST_SKIP() << SPREAD_ACCURACY_TABLE << " missing: run through ctest (fixture capi.fixture.default_scene)";
+  }
+  acc::StudyOptions o = quick_options();
+  o.table_path = o.table_path_shown = SPREAD_ACCURACY_TABLE;
+  const acc::Study s = acc::sampling_study(o);
+  const double row = figure(s, "row_samples");
+  ASSERT_GE(row, 500.0) << rows(s);
+  const double se_250 = figure(s, "mean_se_m_250");
+  const double se_row = figure(s, "mean_se_m_" + std::to_string(static_cast<int>(row)));
+  EXPECT_GT(se_250, 0.0) << rows(s);
+  // 1/√N: from 250 samples to the whole row the standard error falls by about √(row/250).
+  EXPECT_LT(se_row, se_250 * std::sqrt(250.0 / row) * 1.6) << rows(s);
+  EXPECT_GT(se_row, se_250 * std::sqrt(250.0 / row) / 1.6) << rows(s);
+  // The reported standard error estimates the real spread over disjoint subsets (few subsets: loosely).
+  const double sd_250 = figure(s, "sd_over_subsets_m_250");
+  ASSERT_TRUE(std::isfinite(sd_250)) << rows(s);
+  EXPECT_GT(se_250 / sd_250, 0.25) << rows(s);
+  EXPECT_LT(se_250 / sd_250, 4.0) << rows(s);
+  EXPECT_THROW(acc::sampling_study(quick_options()), std::invalid_argument);  // no table
+}
+
 TEST(AccuracyFiles, CsvPngAndReportWritten) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "spread-accuracy-test";
   std::filesystem::remove_all(dir);

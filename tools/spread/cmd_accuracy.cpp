@@ -29,18 +29,19 @@ struct AccuracyOptions {
   std::string material;
   double rpm = 500.0;
   std::string only;  // comma list of studies; empty = all
+  std::string table;  // launch table for the sampling study; empty = that study is left out
   bool verbose = false;
   bool json = false;  // machine-readable summary on stdout instead of the one-line message
 };
 
 int run(const AccuracyOptions& o) {
-  const std::set<std::string> known{"flight", "dem", "particle_count", "tables", "partition"};
+  const std::set<std::string> known{"flight", "dem", "particle_count", "tables", "partition", "sampling"};
   std::set<std::string> wanted;
   std::stringstream list(o.only);
   for (std::string name; std::getline(list, name, ',');) {
     if (!known.count(name)) {
       throw std::invalid_argument("--only: unknown study \"" + name +
-                                  "\" (flight, dem, particle_count, tables, partition)");
+                                  "\" (flight, dem, particle_count, tables, partition, sampling)");
     }
     wanted.insert(name);
   }
@@ -52,6 +53,11 @@ int run(const AccuracyOptions& o) {
   so.material = o.material;
   so.rpm = o.rpm;
   so.progress = o.verbose ? &std::cerr : nullptr;
+  so.table_path = o.table;
+  so.table_path_shown = std::filesystem::path(o.table).filename().string();
+  if (wanted.count("sampling") && o.table.empty()) {
+    throw std::invalid_argument("--only sampling needs --table (a launch table, e.g. out/default.sqlite of the main job)");
+  }
   const std::clock_t cpu_start = std::clock();  // process CPU time: the report's total
   std::vector<accuracy::Study> studies;
   if (on("flight")) studies.push_back(accuracy::flight_study(so));
@@ -59,6 +65,7 @@ int run(const AccuracyOptions& o) {
   if (on("particle_count")) studies.push_back(accuracy::particle_count_study(so));
   if (on("tables")) studies.push_back(accuracy::table_study(so));
   if (on("partition")) studies.push_back(accuracy::partition_study(so));
+  if (on("sampling") && !o.table.empty()) studies.push_back(accuracy::sampling_study(so));
   const double cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
 
   accuracy::write_study_files(studies, o.out);
@@ -71,6 +78,7 @@ int run(const AccuracyOptions& o) {
   command += " --out " + o.out;
   if (!o.report.empty()) command += " --report " + o.report;
   if (!o.only.empty()) command += " --only " + o.only;
+  if (!o.table.empty()) command += " --table " + so.table_path_shown;
   if (o.scene != accuracy::default_scene_path()) command += " --scene " + o.scene;
   if (!o.material.empty()) command += " --material \"" + o.material + "\"";
   if (o.rpm != 500.0) command += " --rpm " + accuracy::cell(o.rpm);
@@ -111,7 +119,9 @@ spread::cli::CommandRegistration registration{"accuracy", [](CLI::App& app, int&
   sub->add_option("--material", options->material, "Material (default: the scene's [simulate] material)");
   sub->add_option("--rpm", options->rpm, "Disc speed of the flight and particle-count studies (r/min)")
       ->capture_default_str();
-  sub->add_option("--only", options->only, "Comma list of studies: flight,dem,particle_count,tables,partition");
+  sub->add_option("--only", options->only, "Comma list of studies: flight,dem,particle_count,tables,partition,sampling");
+  sub->add_option("--table", options->table,
+                  "Launch table for the sampling study (e.g. the main job's out/default.sqlite); without it that study is left out");
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout: recommendations, figures, files");
   sub->add_flag("-v,--verbose", options->verbose, "One progress line per measured point on stderr");
   sub->callback([options, &exit_code] {

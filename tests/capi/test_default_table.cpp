@@ -1,0 +1,62 @@
+// The main job's table (the DEM table of scenes/default.toml, built by the ctest fixture
+// capi.fixture.default_scene) through the C API: for every material and rpm row, the working widths do
+// not move with the tray width (0.25 / 0.5 / 1.0 m agree within one 0.5 m tray), and every width carries
+// a finite, positive standard error. Run through ctest (the fixture builds the file).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "spread/spread.h"
+
+namespace {
+
+class DefaultTable : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::filesystem::exists(SPREAD_DEFAULT_TABLE)) {
+      GTEST_SKIP() << SPREAD_DEFAULT_TABLE << " missing: run through ctest (fixture capi.fixture.default_scene)";
+    }
+    ASSERT_EQ(spread_open(SPREAD_DEFAULT_TABLE, &tables_), SPREAD_OK);
+  }
+  void TearDown() override { spread_close(tables_); }
+  spread_tables* tables_ = nullptr;
+};
+
+TEST_F(DefaultTable, WorkingWidthsDoNotMoveWithTheTrayWidth) {
+  int32_t materials = 0;
+  ASSERT_EQ(spread_material_count(tables_, &materials), SPREAD_OK);
+  ASSERT_EQ(materials, 3);
+  for (int32_t m = 0; m < materials; ++m) {
+    const char* name = nullptr;
+    double lo = 0.0, hi = 0.0;
+    ASSERT_EQ(spread_material_name(tables_, m, &name), SPREAD_OK);
+    ASSERT_EQ(spread_material_rpm_range(tables_, m, &lo, &hi), SPREAD_OK);
+    for (double rpm : {lo, 0.5 * (lo + hi), hi}) {  // the rows of scenes/default.toml: 450, 600, 750
+      std::vector<double> to_and_fro, racetrack;
+      for (double tray_m : {0.25, 0.5, 1.0}) {
+        spread_prediction_def def = spread_prediction_def_default();
+        def.material = name;
+        def.rpm = rpm;
+        def.tray_width_m = tray_m;
+        spread_prediction r{};
+        ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK) << name << " " << rpm;
+        EXPECT_EQ(r.effects, SPREAD_EFFECT_DRAG) << "the table's flight effects: drag only";
+        EXPECT_GE(r.sample_count, 4000) << name << " " << rpm;
+        EXPECT_GT(r.working_width_to_and_fro_m, 2.0) << name << " " << rpm << " tray " << tray_m;
+        EXPECT_TRUE(std::isfinite(r.working_width_to_and_fro_se_m) && r.working_width_to_and_fro_se_m > 0.0);
+        EXPECT_TRUE(std::isfinite(r.throw_width_se_m) && r.throw_width_se_m > 0.0);
+        to_and_fro.push_back(r.working_width_to_and_fro_m);
+        racetrack.push_back(r.working_width_racetrack_m);
+      }
+      for (std::size_t k = 1; k < to_and_fro.size(); ++k) {
+        EXPECT_NEAR(to_and_fro[k], to_and_fro[0], 0.5) << name << " at " << rpm << " rpm, tray width #" << k;
+        EXPECT_NEAR(racetrack[k], racetrack[0], 0.5) << name << " at " << rpm << " rpm, tray width #" << k;
+      }
+    }
+  }
+}
+
+}  // namespace
