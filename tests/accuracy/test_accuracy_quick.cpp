@@ -92,7 +92,7 @@ TEST(AccuracyDefaults, TableSamplesAndSpacingAreTheRecommendation) {
   // (docs/metrics.md "Uncertainty"), not by this study; its rpm spacing is this study's.
   EXPECT_EQ(figure(s, "recommended_samples"), spread::scene::Sweep{}.samples_per_run) << rows(s);
   const auto bundled = spread::scene::load_scene_file(acc::default_scene_path());
-  EXPECT_EQ(bundled.sweep.samples_per_run, figure(s, "recommended_samples"));
+  EXPECT_GE(bundled.sweep.samples_per_run, figure(s, "recommended_samples"));
   ASSERT_GE(bundled.sweep.rpm.size(), 2u);
   for (std::size_t k = 1; k < bundled.sweep.rpm.size(); ++k) {
     EXPECT_EQ(bundled.sweep.rpm[k] - bundled.sweep.rpm[k - 1], figure(s, "recommended_spacing")) << k;
