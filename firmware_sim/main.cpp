@@ -38,10 +38,11 @@ class StatusPrinter final : public LoopIo {
     if (last_ && s.time - *last_ < std::chrono::seconds(1)) return;
     last_ = s.time;
     std::printf("t=%8.2f s  mode=%s  rpm=%7.1f->%7.1f  rate=%6.1f kg/ha  W=%5.2f m  v=%5.2f m/s  Q=%6.3f kg/s  "
-                "throw=%5.2f m  eff=%5.2f m  CV=%5.1f %%  faults=0x%05X\n",
+                "throw=%5.2f m  eff=%5.2f±%.2f m  CV=%5.1f±%.1f %%  faults=0x%05X\n",
                 to_seconds(s.time - start_), s.mode == Mode::kAutomatic ? "auto" : "manual", s.rpm_actual,
                 s.rpm_target, s.rate_setpoint_kg_ha, s.width_setpoint_m, s.ground_speed_m_s, s.mass_flow_kg_s,
-                s.throw_width_m, s.effective_width_m, s.cv_percent, s.fault_codes);
+                s.throw_width_m, s.effective_width_m, 1.96 * s.effective_width_se_m, s.cv_percent,
+                1.96 * s.cv_se_percent, s.fault_codes);
     std::fflush(stdout);
   }
   void start_at(Nanoseconds t) { start_ = t; }

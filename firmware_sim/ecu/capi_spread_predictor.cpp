@@ -66,6 +66,9 @@ PredictionOutcome CapiSpreadPredictor::predict(std::string_view material, double
     out.throw_width_m = result.throw_width_m;
     out.effective_width_m = result.working_width_to_and_fro_m;
     out.cv_percent = result.cv_percent;
+    out.throw_width_se_m = result.throw_width_se_m;
+    out.effective_width_se_m = result.working_width_to_and_fro_se_m;
+    out.cv_se_percent = result.cv_se_percent;
     return PredictionOutcome::kOk;
   }
   if (status == SPREAD_ERROR_UNKNOWN_MATERIAL) return PredictionOutcome::kUnknownMaterial;

@@ -266,6 +266,9 @@ EcuStatus Ecu::status() const {
   s.throw_width_m = prediction_valid_ ? prediction_.throw_width_m : kNaN;
   s.effective_width_m = prediction_valid_ ? prediction_.effective_width_m : kNaN;
   s.cv_percent = prediction_valid_ ? prediction_.cv_percent : kNaN;
+  s.throw_width_se_m = prediction_valid_ ? prediction_.throw_width_se_m : kNaN;
+  s.effective_width_se_m = prediction_valid_ ? prediction_.effective_width_se_m : kNaN;
+  s.cv_se_percent = prediction_valid_ ? prediction_.cv_se_percent : kNaN;
   s.width_reachable = width_reachable_;
   s.work_state_setpoint = work_state_setpoint_;
   s.work_state_actual = metering_open_;

@@ -24,6 +24,10 @@ struct EcuStatus {
   double throw_width_m = 0.0;          // predicted at rpm_actual [m]; NaN when no prediction
   double effective_width_m = 0.0;      // predicted at rpm_actual and the CV target [m]; NaN when none
   double cv_percent = 0.0;             // predicted CV at the set-point width [%]; NaN when none
+  // Standard errors of the three predictions above (sampling of the launch table); NaN when none.
+  double throw_width_se_m = 0.0;       // [m]
+  double effective_width_se_m = 0.0;   // [m]
+  double cv_se_percent = 0.0;          // [percentage points]
   bool width_reachable = true;         // automatic mode: set-point width reachable at the CV target
   bool work_state_setpoint = false;    // master switch as commanded
   bool work_state_actual = false;      // actually spreading (master on, a section on, metering open)

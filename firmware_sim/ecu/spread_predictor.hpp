@@ -2,6 +2,7 @@
 // What the ECU needs from a spread prediction, independent of where it comes from (the C API over a
 // table file in the product, an analytic stand-in in unit tests).
 #include <cstddef>
+#include <limits>
 #include <string_view>
 
 namespace spread::firmware {
@@ -10,6 +11,11 @@ struct SpreadPrediction {
   double throw_width_m = 0.0;      // lateral extent holding 99 % of the mass [m]
   double effective_width_m = 0.0;  // largest bout width with CV <= target [m]
   double cv_percent = 0.0;         // coefficient of variation at the requested bout width [%]
+  // Monte Carlo standard errors of the three above over the table's launch samples (docs/metrics.md
+  // "Uncertainty"); NaN = not known (a predictor without them, or undefined at this point).
+  double throw_width_se_m = std::numeric_limits<double>::quiet_NaN();      // [m]
+  double effective_width_se_m = std::numeric_limits<double>::quiet_NaN();  // [m]
+  double cv_se_percent = std::numeric_limits<double>::quiet_NaN();         // [percentage points]
 };
 
 enum class PredictionOutcome { kOk, kUnknownMaterial, kOutOfRange, kFailed };

@@ -101,6 +101,9 @@ void LcmEcuLink::fill_status(const EcuStatus& s) {
   status_.throw_width_m = s.throw_width_m;
   status_.effective_width_m = s.effective_width_m;
   status_.cv_percent = s.cv_percent;
+  status_.throw_width_se_m = s.throw_width_se_m;
+  status_.effective_width_se_m = s.effective_width_se_m;
+  status_.cv_se_percent = s.cv_se_percent;
   status_.width_reachable = s.width_reachable;
   status_.work_state_setpoint = s.work_state_setpoint;
   status_.work_state_actual = s.work_state_actual;

@@ -69,6 +69,7 @@ struct LcmLayout<spread::status_t> {  // status_t.lcm
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // rate actual, width set/actual
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // speed, mass flow, throw width
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8},                         // effective width, cv
+      {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // their standard errors
       {LcmField::kFixed, 1}, {LcmField::kFixed, 1}, {LcmField::kFixed, 1},  // width_reachable, work states
       {LcmField::kCount, 1}, {LcmField::kArray, 1},                         // num_sections, section_on
       {LcmField::kFixed, 4},                                                // fault_codes

@@ -85,6 +85,10 @@ TEST_F(AutomaticModeCapi, ReachesARequestedWidth) {
   EXPECT_GE(effective_width_at(s.rpm_target), requested_m);
   EXPECT_TRUE(std::isfinite(s.throw_width_m));
   EXPECT_TRUE(std::isfinite(s.effective_width_m));
+  // Every predicted width carries its Monte Carlo standard error from the C API.
+  EXPECT_GT(s.effective_width_se_m, 0.0);
+  EXPECT_GT(s.throw_width_se_m, 0.0);
+  EXPECT_GT(s.cv_se_percent, 0.0);
   // Not "throw >= effective": the throw width leaves out 0.5 % of the mass on each side, the working
   // width is a CV criterion on the 0.5 m tray grid, and a box-shaped pattern meets the CV target at a bout
   // width up to its full extent (default table, Urea at 749.6 r/min: throw 16.81 m, working width 17.0 m,

@@ -259,7 +259,7 @@ TEST(LcmPayload, HostileStringLengthsAreUndecodableNotACrash) {
   }
   // Negative array counts (num_sections, num_fault_counts) likewise.
   std::vector<std::uint8_t> s = status_bytes;
-  const std::size_t sections_at = status_material_at + 4 + 5 + 11 * 8 + 3;
+  const std::size_t sections_at = status_material_at + 4 + 5 + 14 * 8 + 3;  // 14 doubles before the flags
   ASSERT_EQ(s[sections_at], 8);
   s[sections_at] = 0x80;
   spread::status_t status_out{};

@@ -86,6 +86,10 @@ std::string effects_label(std::uint32_t effects) {
   return names.empty() ? "none (gravity only)" : names;
 }
 
+// Below this many launch samples per prediction the sampling study (docs/metrics.md "Uncertainty")
+// found the working width bimodal and the delta-method standard error three times too small.
+constexpr std::int32_t kFewSamples = 1000;
+
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 // " ± x" with the 95 % half-interval of a standard error, or nothing when it is undefined.
@@ -225,6 +229,11 @@ void run(const Options& o, int& exit_code) {
         std::cout << "  note: the " << mode << " CV(W) curve crosses the target " << crossings
                   << " times; the working width is its first crossing (see --json cv_curve)\n";
       }
+    }
+    if (result.sample_count < kFewSamples) {
+      std::cout << "  note: only " << result.sample_count << " launch samples: below " << kFewSamples
+                << " the working width can stop at a noise spike and the ± understates its spread"
+                   " (docs/metrics.md \"Uncertainty\"); build the table with more samples per row\n";
     }
     std::cout << "  (± = 95 % interval, 1.96 standard errors over the launch samples; kernel half-width "
               << result.kernel_half_width_m << " m)\n";

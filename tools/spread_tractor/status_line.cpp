@@ -24,13 +24,14 @@ std::string format_status(const spread::status_t& s) {
   char line[512];
   std::snprintf(line, sizeof(line),
                 "status #%lld seq=%lld %s material='%s' rpm=%.1f->%.1f rate=%.1f/%.1f kg/ha W=%.2f/%.2f m "
-                "v=%.2f m/s Q=%.3f kg/s throw=%.2f m eff=%.2f m CV=%.1f %% %s sections=%s "
+                "v=%.2f m/s Q=%.3f kg/s throw=%.2f m eff=%.2f±%.2f m CV=%.1f±%.1f %% %s sections=%s "
                 "rejected(undecodable=%lld fingerprint=%lld invalid=%lld stale=%lld can_malformed=%lld "
                 "can_pd=%lld) faults=%s",
                 static_cast<long long>(s.step), static_cast<long long>(s.last_command_sequence),
                 s.mode == 1 ? "auto" : "manual", s.material.c_str(), s.rpm_actual, s.rpm_target,
                 s.rate_actual_kg_ha, s.rate_setpoint_kg_ha, s.width_actual_m, s.width_setpoint_m, s.ground_speed_m_s,
-                s.mass_flow_kg_s, s.throw_width_m, s.effective_width_m, s.cv_percent,
+                s.mass_flow_kg_s, s.throw_width_m, s.effective_width_m, 1.96 * s.effective_width_se_m, s.cv_percent,
+                1.96 * s.cv_se_percent,
                 s.width_reachable ? "reachable" : "OUT-OF-REACH", sections.c_str(),
                 static_cast<long long>(s.rejected_undecodable), static_cast<long long>(s.rejected_wrong_fingerprint),
                 static_cast<long long>(s.rejected_invalid), static_cast<long long>(s.rejected_stale),
