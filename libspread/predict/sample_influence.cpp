@@ -1,5 +1,6 @@
 #include "libspread/predict/sample_influence.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -29,11 +30,48 @@ double kernel_dot(double x, std::span<const double> gradient, const metrics::Tra
   return sum;
 }
 
-// Share of a landing's kernel mass at or left of `at_m`.
-double kernel_cdf(double x, double at_m, double h) {
-  if (!std::isfinite(x)) return 0.0;
-  if (h == 0.0) return x <= at_m ? 1.0 : 0.0;
-  return metrics::epanechnikov_cdf((at_m - x) / h);
+// Share of a landing's kernel mass left of a tray edge at `edge_m` (point masses: tray k is the half-open
+// [edge_k, edge_k+1), so a landing on an edge belongs to the tray to its right).
+double share_left_of_edge(double x, double edge_m, double h) {
+  if (h == 0.0) return x < edge_m ? 1.0 : 0.0;
+  return metrics::epanechnikov_cdf((edge_m - x) / h);
+}
+
+// A quantile x_q as throw_extent reads it off the trays: inside tray `tray`, a `fraction` of the tray
+// width from its left edge (the tray's mass spread uniformly across it).
+struct TrayQuantile {
+  long tray = 0;
+  double fraction = 0.0;
+};
+
+TrayQuantile tray_quantile(double x_q, const metrics::TrayLayout& trays) {
+  const double w = trays.tray_width_m;
+  const double position = (x_q - trays.left_edge_m()) / w;
+  TrayQuantile q;
+  q.tray = std::min(static_cast<long>(trays.tray_count) - 1, std::max(0L, static_cast<long>(position)));
+  q.fraction = std::clamp(position - static_cast<double>(q.tray), 0.0, 1.0);
+  return q;
+}
+
+// A landing's contribution to the quantile equation C(x_q) = q·S, C the cumulative tray mass (linear
+// within a tray) and S the mass in the trays: its kernel's share in the trays left of x_q's tray plus
+// that tray's share times `fraction` (left), and its share in all trays (inside). This is what the
+// estimator sees — not the share of the kernel left of x_q itself: with point masses the two differ for
+// every landing in x_q's tray, and at a steep pattern edge (all of that tray's landings on one side of
+// x_q) the latter gave every sample the same influence and a standard error of zero.
+struct QuantileShare {
+  double left = 0.0, inside = 0.0;
+};
+
+QuantileShare quantile_share(double x, const TrayQuantile& q, const metrics::TrayLayout& trays, double h) {
+  if (!std::isfinite(x)) return {};
+  const double w = trays.tray_width_m;
+  const double layout_left_m = trays.left_edge_m();
+  const double tray_left_m = layout_left_m + static_cast<double>(q.tray) * w;
+  const double below = share_left_of_edge(x, tray_left_m, h) - share_left_of_edge(x, layout_left_m, h);
+  const double in_tray = share_left_of_edge(x, tray_left_m + w, h) - share_left_of_edge(x, tray_left_m, h);
+  const double inside = share_left_of_edge(x, -layout_left_m, h) - share_left_of_edge(x, layout_left_m, h);
+  return {below + q.fraction * in_tray, inside};
 }
 
 template <typename PerLanding>
@@ -75,10 +113,14 @@ double SampleInfluence::throw_width_standard_error(std::span<const double> tray_
   const double q_left = 0.5 * (1.0 - mass_fraction), q_right = 0.5 * (1.0 + mass_fraction);
   const double f_left = density_at(extent.left_m), f_right = density_at(extent.right_m);
   if (!(total > 0.0) || !(f_left > 0.0) || !(f_right > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-  // Width = x_right − x_left; IF(x_q) = (q − F_l(x_q)) / f(x_q) per unit of landing share.
+  // Width = x_right − x_left. Perturbing the trays by a landing's shares moves x_q by
+  // (q·inside − left) / f(x_q) per unit of landing share (from C(x_q) = q·S; inside = 1 for a landing
+  // whose kernel lies within the layout).
+  const TrayQuantile at_left = tray_quantile(extent.left_m, trays), at_right = tray_quantile(extent.right_m, trays);
   return influence_standard_error(*this, [&](double x) {
-    return (q_right - kernel_cdf(x, extent.right_m, kernel_half_width_m)) / f_right -
-           (q_left - kernel_cdf(x, extent.left_m, kernel_half_width_m)) / f_left;
+    const QuantileShare r = quantile_share(x, at_right, trays, kernel_half_width_m);
+    const QuantileShare l = quantile_share(x, at_left, trays, kernel_half_width_m);
+    return (q_right * r.inside - r.left) / f_right - (q_left * l.inside - l.left) / f_left;
   });
 }
 

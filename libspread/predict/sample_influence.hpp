@@ -26,7 +26,9 @@ struct SampleInfluence {
   // Standard error of a statistic whose derivative with respect to tray k's mass is gradient[k].
   double standard_error(std::span<const double> gradient) const;
   // Standard error of the throw width (the extent between the (1∓f)/2 mass quantiles `extent`): the
-  // influence of a sample on a quantile x_q is (q − F_s(x_q)) / f(x_q), f the density there.
+  // influence of a sample on a quantile x_q is (q − F_s(x_q)) / f(x_q), f the tray density there and
+  // F_s(x_q) the sample's share of the trays left of x_q as throw_extent reads them (whole trays, plus
+  // x_q's own tray pro rata: its mass is taken as uniform across the tray).
   double throw_width_standard_error(std::span<const double> tray_mass, const metrics::ThrowExtent& extent,
                                     double mass_fraction) const;
 };
