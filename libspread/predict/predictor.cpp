@@ -343,8 +343,13 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   }
   half_extent_m = std::min(half_extent_m, limits_.max_half_extent_m);
   metrics::TrayLayout trays = metrics::tray_layout_covering(half_extent_m, request.tray_width_m);
+  // Always an even number of trays: the tray edges then sit at whole multiples of the tray width from the
+  // centre line wherever the outermost landing falls, so the grid never shifts by half a tray between two
+  // predictions whose landings reach a little further or less far (a shift moves every tray, every CV and
+  // the throw width by a fraction of a tray at once).
   const int capacity = tray_capacity(request.tray_width_m);
-  if (trays.tray_count > capacity) trays.tray_count = capacity;
+  if (trays.tray_count % 2 != 0) ++trays.tray_count;
+  if (trays.tray_count > capacity) trays.tray_count = capacity - capacity % 2;
   const auto tray_count = static_cast<std::size_t>(trays.tray_count);
   const std::span<double> tray_mass = std::span(tray_mass_).first(tray_count);
   std::fill(tray_mass.begin(), tray_mass.end(), 0.0);
