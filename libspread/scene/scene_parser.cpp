@@ -129,6 +129,8 @@ class Section {
     used_.insert(key);
     return table_ != nullptr ? table_->get(key) : nullptr;
   }
+  // Whether the scene (or an override) sets the key, as opposed to leaving it at its default.
+  bool present(const std::string& key) const { return table_ != nullptr && table_->get(key) != nullptr; }
 
   double number(const std::string& key, double fallback) {
     const toml::node* node = get(key);
@@ -412,6 +414,19 @@ void read_sweep(const toml::table& root, Scene& scene) {
   sw.batch_s = s.number("batch_s", sw.batch_s);
   sw.convergence_tolerance = s.number("convergence_tolerance", sw.convergence_tolerance);
   sw.particle_budget = s.small_integer("particle_budget", sw.particle_budget);
+  // A key of the other launch source would be recorded as provenance yet never act: refuse it.
+  if (sw.source == LaunchSource::kDem && s.present("spin_model")) {
+    s.fail("spin_model", "applies to the analytic source only, but sweep.source is \"dem\" (DEM launches carry "
+                         "their own spin): remove the key or set sweep.source = \"analytic\"");
+  }
+  if (sw.source == LaunchSource::kAnalytic) {
+    for (const char* key : {"batch_s", "convergence_tolerance", "particle_budget"}) {
+      if (s.present(key)) {
+        s.fail(key, "applies to the DEM source only, but sweep.source is \"analytic\": remove the key or set "
+                    "sweep.source = \"dem\"");
+      }
+    }
+  }
   s.finish();
 }
 

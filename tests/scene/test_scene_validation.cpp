@@ -72,6 +72,24 @@ TEST(SceneValidation, UnknownEffectAndEnumValues) {
   expect_error({"machine.disc_model=\"cad\""}, "machine.disc_model: unknown value");
 }
 
+// A value whose effect or launch source is off would be recorded as provenance and never act: an error
+// naming the key and what is off.
+TEST(SceneValidation, ValuesForWhatIsOffAreRefused) {
+  expect_error({"materials.0.rolling_friction=0.05"}, "materials[0].rolling_friction: is 0.05 but the `rolling` effect is off");
+  EXPECT_EQ(error_of({"materials.0.rolling_friction=0.05",
+                      "effects.enabled=[\"particle_contact\", \"wall_contact\", \"rotation\", \"rolling\"]"}),
+            "");
+  expect_error({"air.wind_m_s=[2.0, 0.0]", "effects.enabled=[\"drag\"]"}, "air.wind_m_s: is not zero but the `wind` effect is off");
+  EXPECT_EQ(error_of({"air.wind_m_s=[2.0, 0.0]", "effects.enabled=[\"drag\", \"wind\"]"}), "");
+  expect_error({"sweep.source=\"dem\"", "sweep.spin_model=\"sliding\""},
+               "sweep.spin_model: applies to the analytic source only");
+  EXPECT_EQ(error_of({"sweep.source=\"analytic\"", "sweep.spin_model=\"sliding\""}), "");
+  for (const char* key : {"sweep.batch_s=0.1", "sweep.convergence_tolerance=0.01", "sweep.particle_budget=100"}) {
+    expect_error({"sweep.source=\"analytic\"", key}, "applies to the DEM source only");
+    EXPECT_EQ(error_of({"sweep.source=\"dem\"", key}), "") << key;
+  }
+}
+
 // disc_model = "stl" (the file itself is checked where it is read: tests/dem DemSceneStl).
 TEST(SceneValidation, StlDiscKeys) {
   expect_error({"machine.disc_model=\"stl\""}, "machine.stl_path: required when disc_model = \"stl\"");
