@@ -165,18 +165,20 @@ TEST(AccuracySampling, ReportedStandardErrorFallsWithSamplesAndMatchesTheSpread)
   o.table_path = o.table_path_shown = SPREAD_ACCURACY_TABLE;
   const acc::Study s = acc::sampling_study(o);
   const double row = figure(s, "row_samples");
-  ASSERT_GE(row, 500.0) << rows(s);
-  const double se_250 = figure(s, "mean_se_m_250");
+  if (row < 4000.0) GTEST_SKIP() << "the fixture's table has " << row << " samples per row (a sanitizer build's small one)";
+  const double se_1000 = figure(s, "mean_se_m_1000");
   const double se_row = figure(s, "mean_se_m_" + std::to_string(static_cast<int>(row)));
-  EXPECT_GT(se_250, 0.0) << rows(s);
-  // 1/√N: from 250 samples to the whole row the standard error falls by about √(row/250).
-  EXPECT_LT(se_row, se_250 * std::sqrt(250.0 / row) * 1.6) << rows(s);
-  EXPECT_GT(se_row, se_250 * std::sqrt(250.0 / row) / 1.6) << rows(s);
-  // The reported standard error estimates the real spread over disjoint subsets (few subsets: loosely).
-  const double sd_250 = figure(s, "sd_over_subsets_m_250");
-  ASSERT_TRUE(std::isfinite(sd_250)) << rows(s);
-  EXPECT_GT(se_250 / sd_250, 0.25) << rows(s);
-  EXPECT_LT(se_250 / sd_250, 4.0) << rows(s);
+  EXPECT_GT(se_1000, 0.0) << rows(s);
+  // 1/√N: from 1000 samples to the whole row the standard error falls by about √(row/1000).
+  EXPECT_LT(se_row, se_1000 * std::sqrt(1000.0 / row) * 1.5) << rows(s);
+  EXPECT_GT(se_row, se_1000 * std::sqrt(1000.0 / row) / 1.5) << rows(s);
+  // The reported standard error estimates the real spread over disjoint subsets (4 subsets: loosely).
+  const double sd_1000 = figure(s, "sd_over_subsets_m_1000");
+  ASSERT_TRUE(std::isfinite(sd_1000)) << rows(s);
+  EXPECT_GT(se_1000 / sd_1000, 0.33) << rows(s);
+  EXPECT_LT(se_1000 / sd_1000, 3.0) << rows(s);
+  // The main job's table meets the uncertainty target on this row: working width ±0.5 m at 95 %.
+  EXPECT_LE(1.96 * se_row, 0.5) << rows(s);
   EXPECT_THROW(acc::sampling_study(quick_options()), std::invalid_argument);  // no table
 }
 
