@@ -9,6 +9,13 @@
 #include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
 
+// The C bits are passed through unchanged: they must be the library's own.
+static_assert(SPREAD_EFFECT_DRAG == spread::flight::kDrag && SPREAD_EFFECT_MAGNUS == spread::flight::kMagnus &&
+              SPREAD_EFFECT_SPIN_DECAY == spread::flight::kSpinDecay && SPREAD_EFFECT_WIND == spread::flight::kWind &&
+              SPREAD_EFFECT_ALL == spread::flight::kAllEffects);
+static_assert(SPREAD_EFFECTS_AS_TABLE == spread::predict::kTableEffects);
+static_assert((SPREAD_EFFECTS_AS_TABLE & SPREAD_EFFECT_ALL) == 0);
+
 namespace {
 
 spread_status status_of(spread::predict::PredictStatus status) {
