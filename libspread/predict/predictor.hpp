@@ -189,7 +189,9 @@ class Predictor {
   std::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
   std::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
   std::vector<double> tray_mass_;
-  std::vector<double> gradient_a_, gradient_b_;  // per tray, for the standard errors
+  // Per tray, for the standard errors: four gradients side by side (SampleInfluence::kMaxGradients),
+  // and one more for the width gradients' second CV.
+  std::vector<double> gradients_, gradient_scratch_;
 };
 
 }  // namespace spread::predict
