@@ -112,6 +112,9 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
   landing_x_m_.resize(2 * largest_pair);
   landing_y_m_.resize(2 * largest_pair);
   landing_weight_.resize(2 * largest_pair);
+  granules_.resize(2 * largest_pair);
+  launches_.resize(2 * largest_pair);
+  landings_.resize(2 * largest_pair);
   radial_x_m_.resize(largest_pair);
   radial_y_m_.resize(largest_pair);
   radial_weight_.resize(largest_pair);
@@ -216,25 +219,32 @@ std::size_t Predictor::fly_launches(std::size_t n, double omega_rad_s, double he
   const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
   const double rim_speed_m_s = omega_rad_s * machine.disc_radius_m;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::size_t flights = 0;
 
   // mirror = +1: the left disc as stored; −1: its mirror image x → −x, the right disc. Spin is an axial
   // vector: under the reflection its x component keeps its sign and y, z change sign.
-  auto fly = [&](const tables::LaunchSample& s, double mirror) {
-    flight::Granule granule;
+  auto launch_of = [&](const tables::LaunchSample& s, double mirror, std::size_t slot) {
+    flight::Granule& granule = granules_[slot];
     granule.diameter_m = s.diameter_m;
     granule.density_kg_m3 = density_kg_m3;
-    flight::State launch;
+    flight::State& launch = launches_[slot];
     launch.position_m = Vec3(mirror * s.x_m, s.y_m, s.z_m + height_m);
     launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
     launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
-    ++flights;
-    return flight::fly_to_ground(granule, launch, 0.0, air, effects, settings_);
   };
+  // All flights in one call: flight::fly_many flies them several at a time in SIMD lanes where the
+  // effects allow (the same landings as one by one).
+  for (std::size_t k = 0; k < n; ++k) launch_of(samples_[k], 1.0, k);
+  const bool right_flown = two_discs && fly_right_disc;
+  if (right_flown) {
+    for (std::size_t k = 0; k < n; ++k) launch_of(samples_[k], -1.0, n + k);
+  }
+  const std::size_t flights = right_flown ? 2 * n : n;
+  flight::fly_many(std::span(granules_).first(flights), std::span(launches_).first(flights), 0.0, air, effects,
+                   settings_, std::span(landings_).first(flights));
 
   std::size_t radial_count = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const flight::Landing left = fly(samples_[k], 1.0);
+    const flight::Landing& left = landings_[k];
     const double w = sample_weight_kg_[k];
     const double x = left.landed ? left.state.position_m.x() : nan;
     const double y = left.landed ? left.state.position_m.y() : nan;
@@ -248,8 +258,8 @@ std::size_t Predictor::fly_launches(std::size_t n, double omega_rad_s, double he
       ++radial_count;
     }
     if (!two_discs) continue;
-    if (fly_right_disc) {
-      const flight::Landing right = fly(samples_[k], -1.0);
+    if (right_flown) {
+      const flight::Landing& right = landings_[n + k];
       landing_x_m_[n + k] = right.landed ? right.state.position_m.x() + half_spacing_m : nan;
       landing_y_m_[n + k] = right.landed ? right.state.position_m.y() : nan;
     } else {

@@ -186,6 +186,9 @@ class Predictor {
   // Workspace.
   std::vector<tables::LaunchSample> samples_;
   std::vector<double> sample_weight_kg_;
+  std::vector<flight::Granule> granules_;  // flights: left disc samples, then the right disc's when flown
+  std::vector<flight::State> launches_;
+  std::vector<flight::Landing> landings_;
   std::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
   std::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
   std::vector<double> tray_mass_;
