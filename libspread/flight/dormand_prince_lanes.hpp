@@ -15,6 +15,10 @@
 #include "libspread/flight/dormand_prince.hpp"
 #include "libspread/flight/flight_lanes.hpp"
 
+// FlightLanes by value: see flight_lanes.hpp on -Wpsabi.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace spread::flight::detail {
 
 template <EffectSet E>
@@ -22,8 +26,9 @@ inline constexpr bool kLaneEffects = (E & (kMagnus | kSpinDecay)) == 0;
 
 // flight_rhs for kLaneEffects combinations, on lanes: the same operations as flight_rhs<E>.
 template <EffectSet E>
-inline void flight_rhs_lanes(FlightLanes drag_rate, FlightLanes reynolds_per_speed, const double* wind_m_s,
-                             double gravity_m_s2, const FlightLanes* y, FlightLanes* dy) {
+[[gnu::always_inline]] inline void flight_rhs_lanes(const FlightLanes& drag_rate, const FlightLanes& reynolds_per_speed,
+                                                   const double* wind_m_s, double gravity_m_s2, const FlightLanes* y,
+                                                   FlightLanes* dy) {
   static_assert(kLaneEffects<E>);
   dy[0] = y[3];
   dy[1] = y[4];
@@ -147,7 +152,7 @@ void fly_dormand_prince_lanes(std::span<const Granule> granules, std::span<const
   };
   for (int l = 0; l < kLanes; ++l) refill(l);
 
-  const auto rhs = [&](const T* in, T* dy) {
+  const auto rhs = [&](const T* in, T* dy) __attribute__((always_inline)) {
     flight_rhs_lanes<E>(drag_rate, reynolds_per_speed, wind, gravity, in, dy);
   };
   for (;;) {
@@ -236,3 +241,5 @@ void fly_dormand_prince_lanes(std::span<const Granule> granules, std::span<const
 }
 
 }  // namespace spread::flight::detail
+
+#pragma GCC diagnostic pop

@@ -15,10 +15,13 @@ namespace spread::flight::detail {
 //   C_D Re = 24 (1 + 0.1806 Re^0.6459) + 0.4251 Re² / (Re + 6880.95)
 // Re^0.6459 by power_06459 (plain arithmetic, to a few ulp as exp(0.6459 ln Re) was, and lane-friendly:
 // glibc's exp and log were most of a flight's cost). Re = 0 still gives the Stokes value 24 exactly.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // FlightLanes by value: see flight_lanes.hpp
 template <class T>
-inline T drag_coefficient_times_reynolds(T reynolds) {
+[[gnu::always_inline]] inline T drag_coefficient_times_reynolds(T reynolds) {
   return 24.0 + 24.0 * 0.1806 * power_06459(reynolds) + 0.4251 * reynolds * reynolds / (reynolds + 6880.95);
 }
+#pragma GCC diagnostic pop
 
 // Slope of the drag acceleration along v_rel in units of drag_rate_per_s (FlightParameters): with
 // |a| = drag_rate f(Re) |v| and Re ∝ |v|, d|a|/d|v| = drag_rate (f + Re f'(Re)). Increasing in Re.

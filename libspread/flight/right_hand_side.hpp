@@ -26,12 +26,15 @@ using StateVector = std::array<double, kStateSize<E>>;
 // Drag acceleration (Eq. 27 with Eq. 32) of the relative air velocity u: −k u, k = drag_rate (C_D Re)(Re),
 // Re = reynolds_per_speed |u|. Shared by flight_rhs and the lanes (dormand_prince_lanes.hpp) so that a
 // flight gives the same bits either way. T = double or FlightLanes.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // FlightLanes by value: see flight_lanes.hpp
 template <class T>
-inline T drag_rate_of(T drag_rate_per_s, T reynolds_per_speed_s_m, T ux, T uy, T uz) {
+[[gnu::always_inline]] inline T drag_rate_of(T drag_rate_per_s, T reynolds_per_speed_s_m, T ux, T uy, T uz) {
   const T speed = lane_sqrt(ux * ux + uy * uy + uz * uz);
   const T reynolds = reynolds_per_speed_s_m * speed;  // Eq. 31
   return drag_rate_per_s * drag_coefficient_times_reynolds(reynolds);  // Eqs. 27, 32
 }
+#pragma GCC diagnostic pop
 
 template <EffectSet E>
 inline void flight_rhs(const FlightParameters& p, const StateVector<E>& y, StateVector<E>& dy) {

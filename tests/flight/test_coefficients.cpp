@@ -23,6 +23,8 @@ TEST(DragCoefficient, MatchesEquation32) {
   }
 }
 
+#pragma GCC diagnostic ignored "-Wpsabi"  // FlightLanes by value (libspread/flight/flight_lanes.hpp)
+
 // The drag's Re^0.6459 in plain arithmetic (flight_lanes.hpp) against std::pow: a few ulp over the whole
 // range a flight reaches and far beyond, as close as exp(0.6459 ln Re) (the form it replaced) is; Re = 0
 // keeps the Stokes C_D Re = 24 exactly.
@@ -36,9 +38,11 @@ TEST(DragCoefficient, PowerInPlainArithmeticMatchesStdPow) {
   EXPECT_LT(worst, 4e-15);
   EXPECT_LT(worst, 2.0 * worst_exp_log) << worst_exp_log;
   EXPECT_EQ(detail::drag_coefficient_times_reynolds(0.0), 24.0);
-  const detail::FlightLanes lanes = detail::power_06459(detail::FlightLanes{3.0, 7.5e3});
-  EXPECT_EQ(lanes[0], detail::power_06459(3.0));
-  EXPECT_EQ(lanes[1], detail::power_06459(7.5e3));
+  // Every lane as the scalar.
+  detail::FlightLanes re = detail::splat<detail::FlightLanes>(0.0);
+  for (int l = 0; l < detail::kFlightLanes; ++l) re[l] = 3.0 * std::pow(10.0, l);
+  const detail::FlightLanes lanes = detail::power_06459(re);
+  for (int l = 0; l < detail::kFlightLanes; ++l) EXPECT_EQ(lanes[l], detail::power_06459(re[l])) << l;
 }
 
 TEST(DragCoefficient, WithinFivePercentOfStandardDragCurve) {
