@@ -186,7 +186,8 @@ void BM_PredictCApiDrag(benchmark::State& state) {
   std::filesystem::remove(path);
 }
 
-// A real table file (SPREAD_BENCH_TABLE); range(0) = lateral wind (m/s).
+// A real table file (SPREAD_BENCH_TABLE); range(0) = lateral wind (m/s), range(1) = rpm (560: between two
+// rows of the default scene's sweep, both rows fly; 600: on a row, that row alone).
 void BM_PredictCApiFile(benchmark::State& state) {
   const char* path = std::getenv("SPREAD_BENCH_TABLE");
   if (path == nullptr || *path == '\0') {
@@ -195,6 +196,7 @@ void BM_PredictCApiFile(benchmark::State& state) {
   }
   spread_prediction_def def = capi_request();
   def.wind_m_s[0] = static_cast<double>(state.range(0));
+  def.rpm = static_cast<double>(state.range(1));
   predict_file(state, path, def);
 }
 
@@ -204,7 +206,10 @@ BENCHMARK(BM_PredictCApiDrag)
     ->ArgsProduct({{512, 2000}, {0, 3}, {0, 1}})
     ->ArgNames({"samples", "wind", "dem"})
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PredictCApiFile)->ArgName("wind")->Arg(0)->Arg(3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PredictCApiFile)
+    ->ArgsProduct({{0, 3}, {560, 600}})
+    ->ArgNames({"wind", "rpm"})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictRk4Fixed1ms)->Arg(256)->Unit(benchmark::kMillisecond);
 
 }  // namespace
