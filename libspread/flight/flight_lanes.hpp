@@ -7,7 +7,9 @@
 // whether it flew in a lane or alone.
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -44,12 +46,13 @@ inline double lane_sqrt(double v) { return std::sqrt(v); }
 inline FlightLanes lane_sqrt(FlightLanes v) {
   FlightLanes r;
 #if defined(__SSE2__)
-  // sqrtpd two lanes at a time (std::sqrt per lane keeps a branch to the errno path for each).
-  static_assert(kFlightLanes % 2 == 0);
-  for (int l = 0; l < kFlightLanes; l += 2) {
-    const __m128d root = _mm_sqrt_pd(_mm_set_pd(v[l + 1], v[l]));
-    r[l] = _mm_cvtsd_f64(root);
-    r[l + 1] = _mm_cvtsd_f64(_mm_unpackhi_pd(root, root));
+  // sqrtpd on each register's two lanes (std::sqrt per lane keeps a branch to the errno path for each).
+  static_assert(sizeof(FlightLanes) % sizeof(__m128d) == 0);
+  for (std::size_t part = 0; part < sizeof(FlightLanes); part += sizeof(__m128d)) {
+    __m128d pair;
+    std::memcpy(&pair, reinterpret_cast<const char*>(&v) + part, sizeof pair);
+    pair = _mm_sqrt_pd(pair);
+    std::memcpy(reinterpret_cast<char*>(&r) + part, &pair, sizeof pair);
   }
 #else
   for (int l = 0; l < kFlightLanes; ++l) r[l] = std::sqrt(v[l]);
