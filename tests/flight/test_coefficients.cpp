@@ -37,7 +37,7 @@ TEST(DragCoefficient, PowerInPlainArithmeticMatchesStdPow) {
   }
   EXPECT_LT(worst, 4e-15);
   EXPECT_LT(worst, 2.0 * worst_exp_log) << worst_exp_log;
-  EXPECT_EQ(detail::drag_coefficient_times_reynolds(0.0), 24.0);
+  EXPECT_EQ(detail::drag_coefficient_times_reynolds_arithmetic(0.0), 24.0);
   // Every lane as the scalar.
   detail::FlightLanes re = detail::splat<detail::FlightLanes>(0.0);
   for (int l = 0; l < detail::kFlightLanes; ++l) re[l] = 3.0 * std::pow(10.0, l);
