@@ -1,7 +1,8 @@
 #pragma once
 // Arithmetic written once for one flight (T = double) or for kFlightLanes flights side by side
-// (T = FlightLanes: GCC/Clang vector extension, two doubles in one SSE2 register on the x86-64 baseline), as the DEM's
-// contact lanes (libspread/dem/lanes.hpp). Every operation acts lane by lane with the same IEEE operation
+// (T = FlightLanes: GCC/Clang vector extension; four doubles, two SSE2 registers on the x86-64 baseline:
+// measured a little faster than two, no faster with eight), as the DEM's contact lanes
+// (libspread/dem/lanes.hpp). Every operation acts lane by lane with the same IEEE operation
 // as the scalar code — no fused multiply-add on the baseline, sqrt and division correctly rounded, and no
 // libm call (power_06459 below is plain arithmetic) — so a flight gives bit for bit the same landing
 // whether it flew in a lane or alone.

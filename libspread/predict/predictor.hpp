@@ -9,7 +9,8 @@
 //      by quantile cells computed here at construction (launch_interpolation.hpp,
 //      launch_quantile_cells.hpp, launch_landing_keys.hpp) —, scale velocities by ωR and spins by ω,
 //      place them at the disc height (ground z = 0),
-//   3. fly each granule (flight::fly_to_ground, default_flight_settings()),
+//   3. fly each granule (all in one flight::fly_many call — SIMD lanes for drag/wind-only flights, the
+//      same landings as flight::fly_to_ground one by one —, default_flight_settings()),
 //   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
 //      (DESIGN.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
 //      so the right disc's launches are mirrored and flown themselves,
