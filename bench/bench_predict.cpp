@@ -6,11 +6,21 @@
 //   max_landing_error_m  largest distance between a landing and its reference landing (both discs)
 //   flights              trajectories per prediction
 //   working_width_m      to-and-fro working width at CV 15 % (sanity: the same for every integrator)
+//
+// The product's default table (2000 DEM launch samples per row, runs recording "flight_effects":"drag")
+// through the C API with the default effects (SPREAD_EFFECTS_AS_TABLE), still air and a 3 m/s lateral
+// crosswind (which flies the right disc too): BM_PredictCApiDrag/<samples per row>/<wind m/s>/<dem>.
+// dem = 0: analytic rows (pairwise interpolation: one flight per sample and disc). dem = 1: the same
+// launches marked as DEM rows, so the prediction interpolates by quantile cells as it does on a real DEM
+// table: every granule of both rows flies (n_a + n_b samples per disc).
+// BM_PredictCApiFile: a real table file given in SPREAD_BENCH_TABLE (e.g. made by
+// `lookup_builder scenes/default.toml --output X.sqlite`), skipped without it.
 // Run: build-<dir>/bench/bench_predict [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -31,8 +41,11 @@ std::string scene_path() {
   return (std::filesystem::path(__FILE__).parent_path().parent_path() / "scenes" / "default.toml").string();
 }
 
-// The bundled scene's table, with `samples` launch samples per row, in memory.
-spread::tables::TableContents make_contents(int samples) {
+// The bundled scene's table, with `samples` launch samples per row, in memory. stats_json "{}" records no
+// flight effects (a prediction then flies all of them, the meaning of tables made before runs recorded
+// them); `source` "dem" makes the predictor interpolate by quantile cells.
+spread::tables::TableContents make_contents(int samples, const std::string& stats_json = "{}",
+                                            const std::string& source = "analytic") {
   const auto scene = spread::scene::load_scene_file(scene_path());
   spread::tables::TableContents c;
   c.machine.name = scene.machine.name;
@@ -49,14 +62,14 @@ spread::tables::TableContents make_contents(int samples) {
     spread::tables::Run run;
     run.material = material->name;
     run.rpm = rpm;
-    run.source = "analytic";
+    run.source = source;
     run.samples = spread::launch::analytic_launch_samples(scene.machine, *material, rpm, scene.inlet, samples,
                                                           scene.numerics.seed);
     run.scene_text = "bench";
     run.scene_hash = "0";
     run.software_version = SPREAD_VERSION_STRING;
     run.created_utc = "2024-01-01T00:00:00Z";
-    run.stats_json = "{}";
+    run.stats_json = stats_json;
     run.convergence_json = "[]";
     c.runs.push_back(std::move(run));
   }
@@ -107,43 +120,96 @@ void run_predictor(benchmark::State& state, const spread::flight::Settings& sett
 void BM_PredictDormandPrince(benchmark::State& state) { run_predictor(state, spread::predict::default_flight_settings()); }
 void BM_PredictRk4Fixed1ms(benchmark::State& state) { run_predictor(state, spread::predict::fixed_step_rk4_settings(1e-3)); }
 
-// The same prediction through the C API (file written with the tables writer, then spread_open).
-void BM_PredictCApi(benchmark::State& state) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / ("bench_predict_" + std::to_string(state.range(0)) + ".sqlite")).string();
-  std::filesystem::remove(path);
-  {
-    const auto contents = make_contents(static_cast<int>(state.range(0)));
-    spread::tables::TableWriter writer(path);
-    writer.write_machine(contents.machine);
-    writer.write_materials(contents.materials);
-    for (const auto& run : contents.runs) writer.write_run(run);
-  }
+// One table file through the C API: spread_predict in a loop with `def`.
+void predict_file(benchmark::State& state, const std::string& path, spread_prediction_def def) {
   spread_tables* tables = nullptr;
   if (spread_open(path.c_str(), &tables) != SPREAD_OK) {
     state.SkipWithError("spread_open failed");
     return;
   }
-  spread_prediction_def def = spread_prediction_def_default();
-  def.material = kMaterial;
-  def.rpm = kRpm;
   size_t capacity = 0;
   spread_transverse_bound(tables, def.tray_width_m, &capacity);
   std::vector<double> trays(capacity);
   spread_prediction result{};
+  if (spread_predict(tables, &def, &result, trays.data(), trays.size()) != SPREAD_OK) {
+    state.SkipWithError("spread_predict failed");
+    spread_close(tables);
+    return;
+  }
   for (auto _ : state) {
     spread_predict(tables, &def, &result, trays.data(), trays.size());
     double cv = result.cv_percent;
     benchmark::DoNotOptimize(cv);
   }
   state.counters["flights"] = result.flights;
+  state.counters["samples"] = static_cast<double>(result.sample_count);
   state.counters["working_width_m"] = result.working_width_to_and_fro_m;
   spread_close(tables);
+}
+
+// The table in memory written to a temporary file with the tables writer.
+std::string write_table(const spread::tables::TableContents& contents, const std::string& name) {
+  const std::string path = (std::filesystem::temp_directory_path() / (name + ".sqlite")).string();
   std::filesystem::remove(path);
+  spread::tables::TableWriter writer(path);
+  writer.write_machine(contents.machine);
+  writer.write_materials(contents.materials);
+  for (const auto& run : contents.runs) writer.write_run(run);
+  return path;
+}
+
+spread_prediction_def capi_request() {
+  spread_prediction_def def = spread_prediction_def_default();
+  def.material = kMaterial;
+  def.rpm = kRpm;
+  return def;
+}
+
+// The same prediction through the C API (file written with the tables writer, then spread_open).
+void BM_PredictCApi(benchmark::State& state) {
+  const std::string path =
+      write_table(make_contents(static_cast<int>(state.range(0))), "bench_predict_" + std::to_string(state.range(0)));
+  predict_file(state, path, capi_request());
+  std::filesystem::remove(path);
+}
+
+// The default table's setting: runs record "flight_effects":"drag", the request keeps the default
+// effects (SPREAD_EFFECTS_AS_TABLE); range(1) = lateral wind (m/s), range(2) = 1 for DEM-marked rows.
+void BM_PredictCApiDrag(benchmark::State& state) {
+  const int samples = static_cast<int>(state.range(0));
+  const bool dem = state.range(2) != 0;
+  const std::string path = write_table(make_contents(samples, R"({"flight_effects":"drag"})", dem ? "dem" : "analytic"),
+                                       "bench_predict_drag_" + std::to_string(samples) + (dem ? "_dem" : ""));
+  spread_prediction_def def = capi_request();
+  def.wind_m_s[0] = static_cast<double>(state.range(1));
+  predict_file(state, path, def);
+  std::filesystem::remove(path);
+}
+
+// A real table file (SPREAD_BENCH_TABLE); range(0) = lateral wind (m/s), range(1) = rpm (560: between two
+// rows of the default scene's sweep, both rows fly; 600: on a row, that row alone).
+void BM_PredictCApiFile(benchmark::State& state) {
+  const char* path = std::getenv("SPREAD_BENCH_TABLE");
+  if (path == nullptr || *path == '\0') {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  spread_prediction_def def = capi_request();
+  def.wind_m_s[0] = static_cast<double>(state.range(0));
+  def.rpm = static_cast<double>(state.range(1));
+  predict_file(state, path, def);
 }
 
 BENCHMARK(BM_PredictDormandPrince)->Arg(256)->Arg(512)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictCApi)->Arg(256)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PredictCApiDrag)
+    ->ArgsProduct({{512, 2000}, {0, 3}, {0, 1}})
+    ->ArgNames({"samples", "wind", "dem"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PredictCApiFile)
+    ->ArgsProduct({{0, 3}, {560, 600}})
+    ->ArgNames({"wind", "rpm"})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictRk4Fixed1ms)->Arg(256)->Unit(benchmark::kMillisecond);
 
 }  // namespace

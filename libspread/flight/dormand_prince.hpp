@@ -65,6 +65,30 @@ inline DenseComponent dense_component(const DpStages<E>& k, const StateVector<E>
   return d;
 }
 
+// The step from y to y_new (length h, stages k) crossed the ground: the step fraction θ of the crossing on
+// the dense output's z, and the state there (z set to the ground exactly) into y_land.
+template <EffectSet E>
+inline double locate_crossing(const DpStages<E>& k, const StateVector<E>& y, const StateVector<E>& y_new, double h,
+                              double ground_z_m, StateVector<E>& y_land) {
+  const DenseComponent z = dense_component<E>(k, y, y_new, h, 2);
+  const auto eval = [&](double theta) { return CrossingSample{z.value(theta) - ground_z_m, z.derivative(theta)}; };
+  const double theta = find_crossing_fraction(eval, y[2] - ground_z_m, y_new[2] - ground_z_m);
+  for (std::size_t i = 0; i < kStateSize<E>; ++i) y_land[i] = dense_component<E>(k, y, y_new, h, i).value(theta);
+  y_land[2] = ground_z_m;
+  return theta;
+}
+
+// Step-size factor after an accepted step with error err (err <= 1), as the controller above.
+inline double accepted_step_factor(double err, bool last_rejected, int steps) {
+  const double factor = err > 0.0 ? kDpSafety * std::pow(err, -0.2) : kDpMaxFactor;
+  const double max_factor = last_rejected ? 1.0 : (steps == 1 ? kDpMaxFirstFactor : kDpMaxFactor);
+  return std::clamp(factor, kDpMinFactor, max_factor);
+}
+// ... and after a rejected one (err > 1 or NaN): shrink hard.
+inline double rejected_step_factor(double err) {
+  return std::isfinite(err) ? std::max(kDpMinFactor, kDpSafety * std::pow(err, -0.2)) : kDpMinFactor;
+}
+
 template <EffectSet E>
 Landing fly_dormand_prince(const FlightParameters& p, const State& launch, double ground_z_m,
                            const Settings& settings, const StepObserver& observer) {
@@ -115,22 +139,15 @@ Landing fly_dormand_prince(const FlightParameters& p, const State& launch, doubl
 
     if (!(err <= 1.0)) {  // also catches NaN: shrink hard
       ++landing.rejected_steps;
-      const double factor = std::isfinite(err) ? std::max(kDpMinFactor, kDpSafety * std::pow(err, -0.2)) : kDpMinFactor;
-      h *= factor;
+      h *= rejected_step_factor(err);
       last_rejected = true;
       continue;
     }
 
     ++landing.steps;
     if (y[2] > ground_z_m && y_new[2] <= ground_z_m) {
-      const DenseComponent z = dense_component<E>(k, y, y_new, h, 2);
-      const auto eval = [&](double theta) {
-        return CrossingSample{z.value(theta) - ground_z_m, z.derivative(theta)};
-      };
-      const double theta = find_crossing_fraction(eval, y[2] - ground_z_m, y_new[2] - ground_z_m);
       StateVector<E> y_land;
-      for (std::size_t i = 0; i < n; ++i) y_land[i] = dense_component<E>(k, y, y_new, h, i).value(theta);
-      y_land[2] = ground_z_m;
+      const double theta = locate_crossing<E>(k, y, y_new, h, ground_z_m, y_land);
       landing.state = to_state<E>(y_land, p);
       landing.flight_time_s = t + theta * h;
       landing.landed = true;
@@ -142,10 +159,7 @@ Landing fly_dormand_prince(const FlightParameters& p, const State& launch, doubl
     k.k1 = k.k7;  // FSAL
     if (observer.on_step != nullptr) notify(observer, t, to_state<E>(y, p));
 
-    double factor = err > 0.0 ? kDpSafety * std::pow(err, -0.2) : kDpMaxFactor;
-    const double max_factor = last_rejected ? 1.0 : (landing.steps == 1 ? kDpMaxFirstFactor : kDpMaxFactor);
-    factor = std::clamp(factor, kDpMinFactor, max_factor);
-    h *= factor;
+    h *= accepted_step_factor(err, last_rejected, landing.steps);
     last_rejected = false;
   }
   landing.state = to_state<E>(y, p);

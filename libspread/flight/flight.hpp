@@ -118,6 +118,14 @@ void fly_batch(std::span<const Granule> granules, std::span<const State> launche
                const Air& air, EffectSet effects, const Settings& settings, std::span<Landing> out,
                int threads);
 
+// Many independent flights on the calling thread, without allocation: out[i] is fly_to_ground's landing
+// of launches[i], bit for bit (granules as fly_batch: one per launch, or one for all). With Dormand–Prince
+// and effects among kDrag | kWind (no spin state, no lift: what a drag-only table flies) the flights run
+// several at a time in SIMD lanes (dormand_prince_lanes.hpp); otherwise one by one. Validation as fly_batch
+// (std::invalid_argument naming the element, before any flight).
+void fly_many(std::span<const Granule> granules, std::span<const State> launches, double ground_z_m,
+              const Air& air, EffectSet effects, const Settings& settings, std::span<Landing> out);
+
 // Coefficients, exposed for tests and tools.
 double drag_coefficient(double reynolds);                                  // Eq. 32
 double lift_coefficient(LiftModel model, double spin_ratio, double reynolds);  // Eq. 29 / smooth model

@@ -3,9 +3,12 @@
 // nothing").
 #include <array>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "libspread/flight/dormand_prince.hpp"
+#include "libspread/flight/dormand_prince_lanes.hpp"
 #include "libspread/flight/fly_unchecked.hpp"
 #include "libspread/flight/rk4.hpp"
 #include "libspread/flight/validation.hpp"
@@ -57,6 +60,35 @@ Landing fly_to_ground(const Granule& granule, const State& launch, double ground
   detail::validate_flight_inputs(granule, launch, ground_z_m, -1);
   detail::validate_rk4_step(granule, launch, ground_z_m, air, effects, settings, -1);
   return detail::fly_unchecked(granule, launch, ground_z_m, air, effects, settings, observer);
+}
+
+void fly_many(std::span<const Granule> granules, std::span<const State> launches, double ground_z_m,
+              const Air& air, EffectSet effects, const Settings& settings, std::span<Landing> out) {
+  const std::size_t count = launches.size();
+  if ((granules.size() != count && granules.size() != 1) || out.size() != count) {
+    throw std::invalid_argument("fly_many: granules.size() must be 1 or launches.size(), out.size() launches.size()");
+  }
+  detail::validate_shared_inputs(ground_z_m, air, effects, settings);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Granule& granule = granules.size() == 1 ? granules[0] : granules[i];
+    detail::validate_flight_inputs(granule, launches[i], ground_z_m, static_cast<long>(i));
+    detail::validate_rk4_step(granule, launches[i], ground_z_m, air, effects, settings, static_cast<long>(i));
+  }
+  if (settings.scheme == Scheme::kDormandPrince45) {
+    switch (effects & kAllEffects) {
+      case 0: return detail::fly_dormand_prince_lanes<0>(granules, launches, ground_z_m, air, settings, out);
+      case kDrag: return detail::fly_dormand_prince_lanes<kDrag>(granules, launches, ground_z_m, air, settings, out);
+      case kWind: return detail::fly_dormand_prince_lanes<kWind>(granules, launches, ground_z_m, air, settings, out);
+      case kDrag | kWind:
+        return detail::fly_dormand_prince_lanes<kDrag | kWind>(granules, launches, ground_z_m, air, settings, out);
+      default: break;
+    }
+  }
+  const StepObserver no_observer{};
+  for (std::size_t i = 0; i < count; ++i) {
+    const Granule& granule = granules.size() == 1 ? granules[0] : granules[i];
+    out[i] = detail::fly_unchecked(granule, launches[i], ground_z_m, air, effects, settings, no_observer);
+  }
 }
 
 Landing fly_to_ground(const Granule& granule, const State& launch, double ground_z_m, const Air& air,

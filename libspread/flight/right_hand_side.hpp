@@ -23,6 +23,20 @@ inline constexpr int kStateSize = kIntegratesSpin<E> ? 9 : 6;
 template <EffectSet E>
 using StateVector = std::array<double, kStateSize<E>>;
 
+// Drag acceleration (Eq. 27 with Eq. 32) of the relative air velocity u: −k u, k = drag_rate (C_D Re)(Re),
+// Re = reynolds_per_speed |u|, for the flights that can run in lanes (no lift, no spin decay). Shared by
+// flight_rhs and the lanes (dormand_prince_lanes.hpp) so that such a flight gives the same bits either
+// way. T = double or FlightLanes.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // FlightLanes by value: see flight_lanes.hpp
+template <class T>
+[[gnu::always_inline]] inline T drag_rate_of(T drag_rate_per_s, T reynolds_per_speed_s_m, T ux, T uy, T uz) {
+  const T speed = lane_sqrt(ux * ux + uy * uy + uz * uz);
+  const T reynolds = reynolds_per_speed_s_m * speed;  // Eq. 31
+  return drag_rate_per_s * drag_coefficient_times_reynolds_arithmetic(reynolds);  // Eqs. 27, 32
+}
+#pragma GCC diagnostic pop
+
 template <EffectSet E>
 inline void flight_rhs(const FlightParameters& p, const StateVector<E>& y, StateVector<E>& dy) {
   constexpr bool kHasDrag = (E & kDrag) != 0;
@@ -58,7 +72,14 @@ inline void flight_rhs(const FlightParameters& p, const StateVector<E>& y, State
     const double speed = std::sqrt(ux * ux + uy * uy + uz * uz);
     const double reynolds = p.reynolds_per_speed_s_m * speed;  // Eq. 31
     if constexpr (kHasDrag) {
-      const double k = p.drag_rate_per_s * drag_coefficient_times_reynolds(reynolds);  // Eqs. 27, 32
+      // Without lift and spin decay the flight may run in lanes: the lanes' drag (drag_rate_of, the same
+      // speed and Re as above). Otherwise glibc's power, as before the lanes.
+      double k;
+      if constexpr (!kHasMagnus && !kIntegratesSpin<E>) {
+        k = drag_rate_of(p.drag_rate_per_s, p.reynolds_per_speed_s_m, ux, uy, uz);
+      } else {
+        k = p.drag_rate_per_s * drag_coefficient_times_reynolds(reynolds);  // Eqs. 27, 32
+      }
       ax -= k * ux;
       ay -= k * uy;
       az -= k * uz;

@@ -54,8 +54,13 @@ double accumulate_transverse(std::span<const double> x_m, std::span<const double
 double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
                                     const TrayLayout& trays, double kernel_half_width_m,
                                     std::span<double> tray_mass_kg);
-// The kernel's CDF at u = (x' − x)/h: 0 below −1, 1 above 1.
-double epanechnikov_cdf(double u);
+// The kernel's CDF at u = (x' − x)/h: 0 below −1, 1 above 1. Inline: the kernel binning and the standard
+// errors call it once per tray a landing's kernel touches.
+inline double epanechnikov_cdf(double u) {
+  if (!(u > -1.0)) return 0.0;
+  if (!(u < 1.0)) return 1.0;
+  return 0.5 + 0.25 * u * (3.0 - u * u);
+}
 
 // Overlap on true trays (docs/metrics.md "Overlap at a bout width W"). A bout width W is a whole number
 // n = round(W / w) >= 1 of trays, so every pass is the pattern shifted by whole trays and the overlapped

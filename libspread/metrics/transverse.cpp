@@ -61,12 +61,6 @@ double accumulate_transverse(std::span<const double> x_m, std::span<const double
 
 namespace spread::metrics {
 
-double epanechnikov_cdf(double u) {
-  if (!(u > -1.0)) return 0.0;
-  if (!(u < 1.0)) return 1.0;
-  return 0.5 + 0.25 * u * (3.0 - u * u);
-}
-
 double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
                                     const TrayLayout& trays, double kernel_half_width_m,
                                     std::span<double> tray_mass_kg) {

@@ -112,12 +112,15 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
   landing_x_m_.resize(2 * largest_pair);
   landing_y_m_.resize(2 * largest_pair);
   landing_weight_.resize(2 * largest_pair);
+  granules_.resize(2 * largest_pair);
+  launches_.resize(2 * largest_pair);
+  landings_.resize(2 * largest_pair);
   radial_x_m_.resize(largest_pair);
   radial_y_m_.resize(largest_pair);
   radial_weight_.resize(largest_pair);
   tray_mass_.resize(static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m)));
-  gradient_a_.resize(tray_mass_.size());
-  gradient_b_.resize(tray_mass_.size());
+  gradients_.resize(SampleInfluence::kMaxGradients * tray_mass_.size());
+  gradient_scratch_.resize(tray_mass_.size());
 }
 
 bool Predictor::pairwise(std::size_t run_a, std::size_t run_b) const {
@@ -216,25 +219,32 @@ std::size_t Predictor::fly_launches(std::size_t n, double omega_rad_s, double he
   const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
   const double rim_speed_m_s = omega_rad_s * machine.disc_radius_m;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::size_t flights = 0;
 
   // mirror = +1: the left disc as stored; −1: its mirror image x → −x, the right disc. Spin is an axial
   // vector: under the reflection its x component keeps its sign and y, z change sign.
-  auto fly = [&](const tables::LaunchSample& s, double mirror) {
-    flight::Granule granule;
+  auto launch_of = [&](const tables::LaunchSample& s, double mirror, std::size_t slot) {
+    flight::Granule& granule = granules_[slot];
     granule.diameter_m = s.diameter_m;
     granule.density_kg_m3 = density_kg_m3;
-    flight::State launch;
+    flight::State& launch = launches_[slot];
     launch.position_m = Vec3(mirror * s.x_m, s.y_m, s.z_m + height_m);
     launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
     launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
-    ++flights;
-    return flight::fly_to_ground(granule, launch, 0.0, air, effects, settings_);
   };
+  // All flights in one call: flight::fly_many flies them several at a time in SIMD lanes where the
+  // effects allow (the same landings as one by one).
+  for (std::size_t k = 0; k < n; ++k) launch_of(samples_[k], 1.0, k);
+  const bool right_flown = two_discs && fly_right_disc;
+  if (right_flown) {
+    for (std::size_t k = 0; k < n; ++k) launch_of(samples_[k], -1.0, n + k);
+  }
+  const std::size_t flights = right_flown ? 2 * n : n;
+  flight::fly_many(std::span(granules_).first(flights), std::span(launches_).first(flights), 0.0, air, effects,
+                   settings_, std::span(landings_).first(flights));
 
   std::size_t radial_count = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const flight::Landing left = fly(samples_[k], 1.0);
+    const flight::Landing& left = landings_[k];
     const double w = sample_weight_kg_[k];
     const double x = left.landed ? left.state.position_m.x() : nan;
     const double y = left.landed ? left.state.position_m.y() : nan;
@@ -248,8 +258,8 @@ std::size_t Predictor::fly_launches(std::size_t n, double omega_rad_s, double he
       ++radial_count;
     }
     if (!two_discs) continue;
-    if (fly_right_disc) {
-      const flight::Landing right = fly(samples_[k], -1.0);
+    if (right_flown) {
+      const flight::Landing& right = landings_[n + k];
       landing_x_m_[n + k] = right.landed ? right.state.position_m.x() + half_spacing_m : nan;
       landing_y_m_[n + k] = right.landed ? right.state.position_m.y() : nan;
     } else {
@@ -379,35 +389,49 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
                        ? metrics::bout_tray_count(trays, request.bout_width_m) * trays.tray_width_m
                        : (to_and_fro.width_m > 0.0 ? to_and_fro.trays_below * trays.tray_width_m : 0.0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::span<double> gradient_a = std::span(gradient_a_).first(tray_count);
-  const std::span<double> gradient_b = std::span(gradient_b_).first(tray_count);
+  // The four CV and width standard errors share one pass over the landings
+  // (SampleInfluence::standard_errors): their gradients first, then the pass. An empty gradient = NaN.
+  const auto gradient = [&](std::size_t slot) { return std::span(gradients_).subspan(slot * tray_count, tray_count); };
+  const std::span<double> scratch = std::span(gradient_scratch_).first(tray_count);
+  std::span<const double> se_gradients[SampleInfluence::kMaxGradients];  // CV t&f, CV racetrack, W t&f, W rt
   const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
   if (p.bout_width_m > 0.0) {
     const int bout_trays = metrics::bout_tray_count(trays, p.bout_width_m);
     p.cv_to_and_fro = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro);
     p.cv_racetrack = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack);
-    metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, gradient_a);
-    p.cv_to_and_fro_se = std::isfinite(p.cv_to_and_fro) ? influence.standard_error(gradient_a) : nan;
-    metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, gradient_a);
-    p.cv_racetrack_se = std::isfinite(p.cv_racetrack) ? influence.standard_error(gradient_a) : nan;
+    if (std::isfinite(p.cv_to_and_fro)) {
+      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, gradient(0));
+      se_gradients[0] = gradient(0);
+    }
+    if (std::isfinite(p.cv_racetrack)) {
+      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, gradient(1));
+      se_gradients[1] = gradient(1);
+    }
   } else {
-    p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;
+    p.cv_to_and_fro = p.cv_racetrack = nan;
   }
   // Working width W* = (n + (t − c_n)/(c_{n+1} − c_n))·w: its gradient is a combination of the gradients
   // of the two CVs around the crossing.
-  auto width_se = [&](const metrics::WorkingWidth& ww, metrics::Overlap overlap) {
-    if (!(ww.width_m > 0.0) || ww.limited_by_layout || !std::isfinite(ww.cv_above)) return nan;
+  auto width_gradient = [&](const metrics::WorkingWidth& ww, metrics::Overlap overlap, std::size_t slot) {
+    if (!(ww.width_m > 0.0) || ww.limited_by_layout || !std::isfinite(ww.cv_above)) return;
     const double span = ww.cv_above - ww.cv_below;
-    if (!(span > 0.0)) return nan;
+    if (!(span > 0.0)) return;
     const double d_below = -trays.tray_width_m * (ww.cv_above - request.cv_target) / (span * span);
     const double d_above = -trays.tray_width_m * (request.cv_target - ww.cv_below) / (span * span);
-    metrics::cv_gradient(tray_mass, trays, ww.trays_below, overlap, gradient_a);
-    metrics::cv_gradient(tray_mass, trays, ww.trays_below + 1, overlap, gradient_b);
-    for (std::size_t k = 0; k < tray_count; ++k) gradient_a[k] = d_below * gradient_a[k] + d_above * gradient_b[k];
-    return influence.standard_error(gradient_a);
+    const std::span<double> g = gradient(slot);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below, overlap, g);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below + 1, overlap, scratch);
+    for (std::size_t k = 0; k < tray_count; ++k) g[k] = d_below * g[k] + d_above * scratch[k];
+    se_gradients[slot] = g;
   };
-  p.working_width_to_and_fro_se_m = width_se(to_and_fro, metrics::Overlap::kToAndFro);
-  p.working_width_racetrack_se_m = width_se(racetrack, metrics::Overlap::kRacetrack);
+  width_gradient(to_and_fro, metrics::Overlap::kToAndFro, 2);
+  width_gradient(racetrack, metrics::Overlap::kRacetrack, 3);
+  double se[SampleInfluence::kMaxGradients];
+  influence.standard_errors(se_gradients, se);
+  p.cv_to_and_fro_se = p.bout_width_m > 0.0 ? se[0] : nan;
+  p.cv_racetrack_se = p.bout_width_m > 0.0 ? se[1] : nan;
+  p.working_width_to_and_fro_se_m = se[2];
+  p.working_width_racetrack_se_m = se[3];
   p.throw_width_se_m = p.throw_width_m > 0.0 ? influence.throw_width_standard_error(tray_mass, extent, 0.99) : nan;
   p.mean_radius_m = radial_mean_m_;
   p.radial_width_m = radial_width_m_;

@@ -9,7 +9,8 @@
 //      by quantile cells computed here at construction (launch_interpolation.hpp,
 //      launch_quantile_cells.hpp, launch_landing_keys.hpp) —, scale velocities by ωR and spins by ω,
 //      place them at the disc height (ground z = 0),
-//   3. fly each granule (flight::fly_to_ground, default_flight_settings()),
+//   3. fly each granule (all in one flight::fly_many call — SIMD lanes for drag/wind-only flights, the
+//      same landings as flight::fly_to_ground one by one —, default_flight_settings()),
 //   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
 //      (DESIGN.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
 //      so the right disc's launches are mirrored and flown themselves,
@@ -186,10 +187,15 @@ class Predictor {
   // Workspace.
   std::vector<tables::LaunchSample> samples_;
   std::vector<double> sample_weight_kg_;
+  std::vector<flight::Granule> granules_;  // flights: left disc samples, then the right disc's when flown
+  std::vector<flight::State> launches_;
+  std::vector<flight::Landing> landings_;
   std::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
   std::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
   std::vector<double> tray_mass_;
-  std::vector<double> gradient_a_, gradient_b_;  // per tray, for the standard errors
+  // Per tray, for the standard errors: four gradients side by side (SampleInfluence::kMaxGradients),
+  // and one more for the width gradients' second CV.
+  std::vector<double> gradients_, gradient_scratch_;
 };
 
 }  // namespace spread::predict

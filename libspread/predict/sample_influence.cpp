@@ -74,6 +74,33 @@ QuantileShare quantile_share(double x, const TrayQuantile& q, const metrics::Tra
   return {below + q.fraction * in_tray, inside};
 }
 
+// kernel_dot for several gradients at once: sums[g] = Σ_k gradients[g][k] K_k(x), each summed in the same
+// order as kernel_dot, so every sum is bit for bit kernel_dot's.
+void kernel_dots(double x, std::span<const std::span<const double>> gradients, const metrics::TrayLayout& trays,
+                 double h, double* sums) {
+  const std::size_t count = gradients.size();
+  for (std::size_t g = 0; g < count; ++g) sums[g] = 0.0;
+  if (!std::isfinite(x)) return;
+  const double left_m = trays.left_edge_m();
+  const double w = trays.tray_width_m;
+  const long last = static_cast<long>(trays.tray_count) - 1;
+  if (h == 0.0) {
+    const double position = (x - left_m) / w;
+    if (!(position >= 0.0 && position < trays.tray_count)) return;
+    for (std::size_t g = 0; g < count; ++g) sums[g] = gradients[g][static_cast<std::size_t>(position)];
+    return;
+  }
+  const long first = std::max(0L, static_cast<long>(std::floor((x - h - left_m) / w)));
+  const long end = std::min(last, static_cast<long>(std::floor((x + h - left_m) / w)));
+  double below = metrics::epanechnikov_cdf((left_m + static_cast<double>(first) * w - x) / h);
+  for (long k = first; k <= end; ++k) {
+    const double above = metrics::epanechnikov_cdf((left_m + static_cast<double>(k + 1) * w - x) / h);
+    const double share = above - below;
+    for (std::size_t g = 0; g < count; ++g) sums[g] += gradients[g][static_cast<std::size_t>(k)] * share;
+    below = above;
+  }
+}
+
 template <typename PerLanding>
 double influence_standard_error(const SampleInfluence& in, PerLanding per_landing) {
   const std::size_t n = in.sample_count;
@@ -98,6 +125,46 @@ double influence_standard_error(const SampleInfluence& in, PerLanding per_landin
 
 double SampleInfluence::standard_error(std::span<const double> gradient) const {
   return influence_standard_error(*this, [&](double x) { return kernel_dot(x, gradient, trays, kernel_half_width_m); });
+}
+
+void SampleInfluence::standard_errors(std::span<const std::span<const double>> gradients,
+                                      std::span<double> out) const {
+  // Gradients in use (non-empty), compacted; the others report NaN.
+  std::span<const double> used[kMaxGradients];
+  std::size_t slot[kMaxGradients];
+  std::size_t count = 0;
+  for (std::size_t g = 0; g < gradients.size() && g < kMaxGradients; ++g) {
+    out[g] = std::numeric_limits<double>::quiet_NaN();
+    if (!gradients[g].empty()) {
+      used[count] = gradients[g];
+      slot[count] = g;
+      ++count;
+    }
+  }
+  const std::size_t n = sample_count;
+  if (n < 2 || count == 0) return;
+  // influence_standard_error, per gradient, with the same operations in the same order.
+  double sum[kMaxGradients] = {}, sum_squares[kMaxGradients] = {};
+  double z[kMaxGradients], dots[kMaxGradients];
+  const std::span<const std::span<const double>> active(used, count);
+  for (std::size_t s = 0; s < n; ++s) {
+    for (std::size_t g = 0; g < count; ++g) z[g] = 0.0;
+    for (unsigned d = 0; d < landings_per_sample; ++d) {
+      const std::size_t l = s + d * n;
+      kernel_dots(x_m[l], active, trays, kernel_half_width_m, dots);
+      for (std::size_t g = 0; g < count; ++g) z[g] += weight[l] * dots[g];
+    }
+    for (std::size_t g = 0; g < count; ++g) {
+      z[g] *= static_cast<double>(n);
+      sum[g] += z[g];
+      sum_squares[g] += z[g] * z[g];
+    }
+  }
+  for (std::size_t g = 0; g < count; ++g) {
+    const double mean = sum[g] / static_cast<double>(n);
+    const double variance_of_z = std::max(0.0, (sum_squares[g] - mean * sum[g]) / static_cast<double>(n - 1));
+    out[slot[g]] = std::sqrt(variance_of_z / static_cast<double>(n));
+  }
 }
 
 double SampleInfluence::throw_width_standard_error(std::span<const double> tray_mass,

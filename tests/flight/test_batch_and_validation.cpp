@@ -53,6 +53,58 @@ TEST(Batch, EqualsSingleFlightsForAnyThreadCount) {
   }
 }
 
+// fly_many (SIMD lanes for drag/wind, one by one otherwise) gives fly_to_ground's landings bit for bit:
+// every field, flights of different lengths (lanes refilled at different times), a launch already on the
+// ground, flights stopped by max_time_s, an odd count, and one granule for all.
+TEST(Batch, FlyManyEqualsSingleFlightsBitForBit) {
+  std::mt19937_64 rng(20261124);
+  const std::size_t n = 37;
+  std::vector<Granule> granules(n);
+  std::vector<State> launches(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    granules[i] = Granule{uniform(rng, 1e-3, 6e-3), uniform(rng, 900.0, 2000.0)};
+    launches[i].position_m = Vec3(uniform(rng, -0.6, 0.6), uniform(rng, -0.6, 0.6), uniform(rng, 0.1, 3.0));
+    launches[i].velocity_m_s = Vec3(uniform(rng, -35, 35), uniform(rng, -35, 35), uniform(rng, -3, 8));
+    launches[i].spin_rad_s = Vec3(uniform(rng, -500, 500), uniform(rng, -500, 500), uniform(rng, -500, 500));
+  }
+  launches[5].position_m.z() = 0.0;  // on the ground, falling: landed at t = 0
+  launches[5].velocity_m_s.z() = -1.0;
+  Air air;
+  air.wind_m_s = Vec3(3.0, -1.5, 0.0);
+  for (const EffectSet effects : {EffectSet{0}, EffectSet{kDrag}, EffectSet{kWind}, EffectSet{kDrag | kWind},
+                                  EffectSet{kDrag | kMagnus | kSpinDecay | kWind}}) {
+    for (const double max_time_s : {60.0, 0.3}) {
+      for (const bool one_granule : {false, true}) {
+        Settings settings;
+        settings.rel_tol = settings.abs_tol = 1e-3;
+        settings.dt_s = 0.02;
+        settings.max_time_s = max_time_s;
+        const std::span<const Granule> g = one_granule ? std::span<const Granule>(granules).first(1) : granules;
+        std::vector<Landing> many(n);
+        fly_many(g, launches, 0.0, air, effects, settings, many);
+        for (std::size_t i = 0; i < n; ++i) {
+          const Landing single = fly_to_ground(g[one_granule ? 0 : i], launches[i], 0.0, air, effects, settings);
+          SCOPED_TRACE(testing::Message() << "effects " << effects << " max_time " << max_time_s << " flight " << i);
+          EXPECT_EQ(many[i].landed, single.landed);
+          EXPECT_EQ(many[i].steps, single.steps);
+          EXPECT_EQ(many[i].rejected_steps, single.rejected_steps);
+          EXPECT_EQ(many[i].flight_time_s, single.flight_time_s);
+          for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(many[i].state.position_m[c], single.state.position_m[c]);
+            EXPECT_EQ(many[i].state.velocity_m_s[c], single.state.velocity_m_s[c]);
+            EXPECT_EQ(many[i].state.spin_rad_s[c], single.state.spin_rad_s[c]);
+          }
+        }
+        if (max_time_s < 1.0) {
+          EXPECT_FALSE(many[0].landed && many[1].landed && many[2].landed && many[3].landed);
+        }
+      }
+    }
+  }
+  std::vector<Landing> too_few(n - 1);
+  EXPECT_THROW(fly_many(granules, launches, 0.0, air, kDrag, Settings{}, too_few), std::invalid_argument);
+}
+
 TEST(Batch, OneGranuleForAllAndSizeChecks) {
   const std::vector<Granule> one{test::typical_granule()};
   const std::vector<State> launches(5, test::typical_launch());

@@ -1,10 +1,12 @@
 // Drag (Eq. 32), lift (Eq. 29 / smooth model), spin decay (Eq. 35) coefficients and effect names.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "libspread/flight/drag_coefficient.hpp"
 #include "libspread/flight/flight.hpp"
 
 namespace spread::flight {
@@ -19,6 +21,28 @@ TEST(DragCoefficient, MatchesEquation32) {
   for (double re : {0.1, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5}) {
     EXPECT_NEAR(drag_coefficient(re), haider_levenspiel(re), 1e-12 * haider_levenspiel(re)) << "Re=" << re;
   }
+}
+
+#pragma GCC diagnostic ignored "-Wpsabi"  // FlightLanes by value (libspread/flight/flight_lanes.hpp)
+
+// The drag's Re^0.6459 in plain arithmetic (flight_lanes.hpp) against std::pow: a few ulp over the whole
+// range a flight reaches and far beyond, as close as exp(0.6459 ln Re) (the form it replaced) is; Re = 0
+// keeps the Stokes C_D Re = 24 exactly.
+TEST(DragCoefficient, PowerInPlainArithmeticMatchesStdPow) {
+  double worst = 0.0, worst_exp_log = 0.0;
+  for (double re = 1e-12; re < 1e9; re *= 1.0137) {
+    const double expected = std::pow(re, 0.6459);
+    worst = std::max(worst, std::abs(detail::power_06459(re) - expected) / expected);
+    worst_exp_log = std::max(worst_exp_log, std::abs(std::exp(0.6459 * std::log(re)) - expected) / expected);
+  }
+  EXPECT_LT(worst, 4e-15);
+  EXPECT_LT(worst, 2.0 * worst_exp_log) << worst_exp_log;
+  EXPECT_EQ(detail::drag_coefficient_times_reynolds_arithmetic(0.0), 24.0);
+  // Every lane as the scalar.
+  detail::FlightLanes re = detail::splat<detail::FlightLanes>(0.0);
+  for (int l = 0; l < detail::kFlightLanes; ++l) re[l] = 3.0 * std::pow(10.0, l);
+  const detail::FlightLanes lanes = detail::power_06459(re);
+  for (int l = 0; l < detail::kFlightLanes; ++l) EXPECT_EQ(lanes[l], detail::power_06459(re[l])) << l;
 }
 
 TEST(DragCoefficient, WithinFivePercentOfStandardDragCurve) {

@@ -11,6 +11,7 @@
 
 #include "libspread/predict/flight_defaults.hpp"
 #include "libspread/predict/predictor.hpp"
+#include "libspread/predict/sample_influence.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::predict {
@@ -269,6 +270,32 @@ TEST(Predictor, BoutWidthAndHeightAreHonoured) {
   Prediction low;
   ASSERT_EQ(p.predict(request("can", 600.0), low), PredictStatus::kOk);
   EXPECT_GT(high.mean_radius_m, low.mean_radius_m);  // higher disc, longer flights
+}
+
+// The one-pass standard errors are the one-by-one standard errors, bit for bit; an empty gradient is NaN.
+TEST(SampleInfluence, StandardErrorsInOnePassEqualOneByOne) {
+  for (double h : {0.0, 0.7}) {
+    const std::vector<double> x{-3.1, -0.2, 0.4, std::numeric_limits<double>::quiet_NaN(), 2.6, 5.9, -4.4, 1.1};
+    const std::vector<double> w{0.1, 0.15, 0.05, 0.1, 0.2, 0.1, 0.2, 0.1};
+    metrics::TrayLayout trays;
+    trays.tray_width_m = 0.5;
+    trays.tray_count = 24;
+    const SampleInfluence influence{x, w, 4, 2, trays, h};
+    std::vector<double> a(24), b(24), c(24);
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      a[k] = std::sin(0.3 * static_cast<double>(k));
+      b[k] = 0.01 * static_cast<double>(k * k) - 1.0;
+      c[k] = std::cos(0.7 * static_cast<double>(k) + 0.2);
+    }
+    const std::span<const double> gradients[4] = {a, {}, b, c};
+    double se[4];
+    influence.standard_errors(gradients, se);
+    EXPECT_EQ(se[0], influence.standard_error(a)) << h;
+    EXPECT_TRUE(std::isnan(se[1]));
+    EXPECT_EQ(se[2], influence.standard_error(b)) << h;
+    EXPECT_EQ(se[3], influence.standard_error(c)) << h;
+    EXPECT_GT(se[0], 0.0);
+  }
 }
 
 TEST(Predictor, IsDeterministic) {
