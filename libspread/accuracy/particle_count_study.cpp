@@ -10,6 +10,7 @@
 
 #include "libspread/accuracy/accuracy.hpp"
 #include "libspread/accuracy/launch_set.hpp"
+#include "libspread/accuracy/mean_sd.hpp"
 #include "libspread/accuracy/stopwatch.hpp"
 #include "libspread/metrics/metrics.hpp"
 #include "libspread/predict/flight_defaults.hpp"
@@ -26,17 +27,8 @@ double student_t95(int dof) {
   return dof >= 1 && dof <= 30 ? t[dof - 1] : 1.96;
 }
 
-struct MeanSd {
-  double mean = 0.0, sd = 0.0;
-};
-MeanSd mean_sd(const std::vector<double>& v) {
-  MeanSd r;
-  for (double x : v) r.mean += x;
-  r.mean /= static_cast<double>(v.size());
-  for (double x : v) r.sd += (x - r.mean) * (x - r.mean);
-  r.sd = v.size() > 1 ? std::sqrt(r.sd / static_cast<double>(v.size() - 1)) : 0.0;
-  return r;
-}
+using detail::MeanSd;
+using detail::mean_sd;
 
 }  // namespace
 

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "libspread/accuracy/accuracy.hpp"
+#include "libspread/accuracy/mean_sd.hpp"
 #include "libspread/accuracy/stopwatch.hpp"
 #include "libspread/core/unit_uniform.hpp"
 #include "libspread/predict/predictor.hpp"
@@ -46,21 +47,8 @@ std::vector<std::size_t> shuffled(std::size_t n, std::uint64_t seed) {
   return order;
 }
 
-struct MeanSd {
-  double mean = 0.0, sd = std::numeric_limits<double>::quiet_NaN();
-};
-MeanSd mean_sd(const std::vector<double>& v) {
-  MeanSd r;
-  if (v.empty()) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
-  for (double x : v) r.mean += x;
-  r.mean /= static_cast<double>(v.size());
-  if (v.size() > 1) {
-    double ss = 0.0;
-    for (double x : v) ss += (x - r.mean) * (x - r.mean);
-    r.sd = std::sqrt(ss / static_cast<double>(v.size() - 1));
-  }
-  return r;
-}
+using detail::MeanSd;
+using detail::mean_sd;
 
 }  // namespace
 
