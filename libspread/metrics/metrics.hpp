@@ -129,6 +129,10 @@ struct WorkingWidth {
 };
 WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
                            double cv_target);
+// The same rule on a CV(W) curve already sampled at increasing widths (plots, measured tray tests):
+// `trays_below` is left 0. Throws std::invalid_argument when the sizes differ or widths do not increase.
+WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<const double> cv,
+                                    double cv_target);
 // working_width(...).width_m. Returns 0 when no width meets the target (also for zero mass or fewer than
 // 2 trays).
 double effective_working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays,

@@ -259,40 +259,81 @@ void cv_curve(std::span<const double> tray_mass_kg, const TrayLayout& trays,
   }
 }
 
-WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
-                           double cv_target) {
-  detail::require_tray_span(tray_mass_kg.size(), trays, "working_width", "tray_mass_kg");
-  if (std::isnan(cv_target)) throw std::invalid_argument("working_width: cv_target is NaN");
-  WorkingWidth r;
-  const int widest = trays.tray_count;
-  if (widest < 2) return r;
-  // CV(W) from the narrowest bout of two trays up: the working width is where the curve first rises
-  // above the target, interpolated linearly between the two whole-tray widths around the crossing.
-  double previous_cv = cv_of_bout(tray_mass_kg, bout_trays(trays, 2), overlap);
+namespace {
+
+// The working-width rule (docs/metrics.md "Effective working width") on a CV(W) curve sampled at
+// count increasing widths, width_at(i) and cv_at(i): the first rise above the target, interpolated
+// linearly in CV between the two samples around it; later crossings are only counted. `index_below` is
+// the sample just below the crossing (count − 1 when the curve never leaves the target).
+struct CurveCrossing {
+  WorkingWidth width;
+  std::size_t index_below = 0;
+};
+
+template <typename WidthAt, typename CvAt>
+CurveCrossing first_crossing(std::size_t count, WidthAt width_at, CvAt cv_at, double cv_target) {
+  CurveCrossing r;
+  if (count == 0) return r;
+  double previous_cv = cv_at(0);
   bool below = previous_cv <= cv_target;
-  if (!below) return r;  // not even two trays meet the target
-  r.width_m = widest * trays.tray_width_m;
-  r.limited_by_layout = true;
-  for (int n = 3; n <= widest; ++n) {
-    const double cv = cv_of_bout(tray_mass_kg, bout_trays(trays, n), overlap);
+  if (!below) return r;  // not even the narrowest bout meets the target
+  r.width.width_m = width_at(count - 1);
+  r.width.limited_by_layout = true;
+  r.index_below = count - 1;
+  for (std::size_t i = 1; i < count; ++i) {
+    const double cv = cv_at(i);
     const bool now_below = cv <= cv_target;
     if (now_below != below) {
-      ++r.crossings;
-      if (r.crossings == 1) {
-        r.trays_below = n - 1;
-        r.cv_below = previous_cv;
-        r.cv_above = cv;
-        r.limited_by_layout = false;
-        // Linear in CV between (n−1)·w and n·w; an infinite CV (empty bout) puts the crossing at (n−1)·w.
+      ++r.width.crossings;
+      if (r.width.crossings == 1) {
+        r.index_below = i - 1;
+        r.width.cv_below = previous_cv;
+        r.width.cv_above = cv;
+        r.width.limited_by_layout = false;
+        // Linear in CV between the two widths; an infinite CV (empty bout) puts the crossing at the lower.
         const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
-        r.width_m = (n - 1 + std::clamp(fraction, 0.0, 1.0)) * trays.tray_width_m;
+        const double lower = width_at(i - 1);
+        r.width.width_m = lower + std::clamp(fraction, 0.0, 1.0) * (width_at(i) - lower);
       }
       below = now_below;
     }
     previous_cv = cv;
   }
-  if (r.limited_by_layout) r.trays_below = widest;
   return r;
+}
+
+}  // namespace
+
+WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
+                           double cv_target) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "working_width", "tray_mass_kg");
+  if (std::isnan(cv_target)) throw std::invalid_argument("working_width: cv_target is NaN");
+  const int widest = trays.tray_count;
+  if (widest < 2) return {};
+  // CV(W) at every whole-tray width from the narrowest bout of two trays up.
+  const auto count = static_cast<std::size_t>(widest - 1);
+  const auto trays_at = [](std::size_t i) { return static_cast<int>(i) + 2; };
+  CurveCrossing c = first_crossing(
+      count, [&](std::size_t i) { return trays_at(i) * trays.tray_width_m; },
+      [&](std::size_t i) { return cv_of_bout(tray_mass_kg, bout_trays(trays, trays_at(i)), overlap); }, cv_target);
+  if (c.width.width_m > 0.0) c.width.trays_below = trays_at(c.index_below);
+  return c.width;
+}
+
+WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<const double> cv,
+                                    double cv_target) {
+  if (widths_m.size() != cv.size()) {
+    throw std::invalid_argument("working_width_on_curve: " + std::to_string(widths_m.size()) + " widths but " +
+                                std::to_string(cv.size()) + " CV values");
+  }
+  if (std::isnan(cv_target)) throw std::invalid_argument("working_width_on_curve: cv_target is NaN");
+  for (std::size_t i = 1; i < widths_m.size(); ++i) {
+    if (!(widths_m[i] > widths_m[i - 1])) throw std::invalid_argument("working_width_on_curve: widths_m must increase");
+  }
+  return first_crossing(
+             widths_m.size(), [&](std::size_t i) { return widths_m[i]; }, [&](std::size_t i) { return cv[i]; },
+             cv_target)
+      .width;
 }
 
 double effective_working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays,

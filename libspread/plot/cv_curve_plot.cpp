@@ -1,5 +1,5 @@
 // CV(W) curves for to-and-fro and racetrack, the CV target, and each curve's effective working width
-// (the largest plotted W with CV <= target, as metrics::effective_working_width on the same grid).
+// (metrics::working_width_on_curve: the first rise above the target, as every prediction reports it).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/metrics/metrics.hpp"
 #include "libspread/plot/axes.hpp"
 #include "libspread/plot/canvas.hpp"
 #include "libspread/plot/plot.hpp"
@@ -30,13 +31,10 @@ void require_curve(std::span<const double> cv, std::size_t widths, const char* n
   }
 }
 
-// Largest width with CV <= target; -1 when none.
+// The working width the library reports for this curve; -1 when none.
 double effective_width_m(std::span<const double> widths_m, std::span<const double> cv, double cv_target) {
-  double best = -1.0;
-  for (std::size_t i = 0; i < cv.size(); ++i) {
-    if (cv[i] <= cv_target && widths_m[i] > best) best = widths_m[i];
-  }
-  return best;
+  const metrics::WorkingWidth w = metrics::working_width_on_curve(widths_m, cv, cv_target);
+  return w.width_m > 0.0 ? w.width_m : -1.0;
 }
 
 }  // namespace

@@ -43,8 +43,9 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
                           const TransverseOptions& options = TransverseOptions{});
 
 // CV(W) in percent against bout width W (m) for to-and-fro and racetrack, the target line, and each
-// curve's effective working width (largest W with CV <= target) marked. `cv_*` are fractions
-// (0.1 = 10 %), the same size as `widths_m`; infinite CV values (empty bouts) are clipped to the top.
+// curve's effective working width (metrics::working_width_on_curve: the first crossing, as predictions
+// report it) marked. `widths_m` increase; `cv_*` are fractions (0.1 = 10 %), the same size as
+// `widths_m`; infinite CV values (empty bouts) are clipped to the top.
 // Either curve may be empty (not drawn).
 void write_cv_curve_png(std::span<const double> widths_m, std::span<const double> cv_to_and_fro,
                         std::span<const double> cv_racetrack, double cv_target, const std::string& path,

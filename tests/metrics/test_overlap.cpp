@@ -360,6 +360,34 @@ TEST(EffectiveWorkingWidth, HatCrossingIsInterpolatedBetweenWholeTrayWidths) {
   }
 }
 
+TEST(EffectiveWorkingWidth, TheSameRuleOnASampledCurve) {
+  // The plots and the tray tests read the working width off a curve they already hold: the same numbers.
+  const std::vector<double> p = random_pattern(36, 21);
+  std::vector<double> widths;
+  for (int n = 2; n <= 36; ++n) widths.push_back(0.5 * n);
+  for (double target : {0.05, 0.1, 0.15, 0.3}) {
+    for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
+      std::vector<double> cv(widths.size());
+      sm::cv_curve(p, layout(36), widths, overlap, cv);
+      const sm::WorkingWidth direct = sm::working_width(p, layout(36), overlap, target);
+      const sm::WorkingWidth on_curve = sm::working_width_on_curve(widths, cv, target);
+      EXPECT_DOUBLE_EQ(on_curve.width_m, direct.width_m) << target;
+      EXPECT_EQ(on_curve.crossings, direct.crossings) << target;
+      EXPECT_EQ(on_curve.limited_by_layout, direct.limited_by_layout) << target;
+    }
+  }
+  // A hand-made zig-zag: 2 m 10 %, 3 m 12 %, 4 m 20 %, 5 m 12 %: first crossing between 3 and 4 m at
+  // 15 %: 3 + (15 − 12)/(20 − 12) = 3.375 m, two crossings (the dip at 5 m is never taken).
+  const sm::WorkingWidth zig = sm::working_width_on_curve(std::vector<double>{2, 3, 4, 5},
+                                                          std::vector<double>{0.10, 0.12, 0.20, 0.12}, 0.15);
+  EXPECT_DOUBLE_EQ(zig.width_m, 3.375);
+  EXPECT_EQ(zig.crossings, 2);
+  EXPECT_THROW(sm::working_width_on_curve(std::vector<double>{2, 2}, std::vector<double>{0.1, 0.1}, 0.15),
+               std::invalid_argument);
+  EXPECT_THROW(sm::working_width_on_curve(std::vector<double>{2}, std::vector<double>{0.1, 0.1}, 0.15),
+               std::invalid_argument);
+}
+
 TEST(EffectiveWorkingWidth, IsTheFirstCrossingAndNeverAnIsolatedDip) {
   // A hand-made CV(W) zig-zag: the first width above the target ends the working width, a later dip
   // below it does not count (it is flagged as a second crossing).
