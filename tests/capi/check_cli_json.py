@@ -54,6 +54,19 @@ def check_predict(out, args):
             fail(f"predict: working width {key} {widths[key]} m exceeds the throw width {out['throw_width_m']} m")
     if out["cv_percent"] > 1000:
         fail(f"predict: cv_percent {out['cv_percent']} implausible")
+    # Uncertainty, crossings, the CV(W) curve and the wider bands it allows, per overlap.
+    for key in ("throw_width_se_m", "cv_se_percent"):
+        number(out, key, "predict", positive=True)
+    for key in ("working_width_se_m", "cv_target_crossings", "wider_bands_within_target_m"):
+        if not isinstance(out.get(key), dict) or set(out[key]) != {"to_and_fro", "racetrack"}:
+            fail(f"predict: '{key}' is not an object with to_and_fro and racetrack: {out.get(key)!r}")
+    curve = out.get("cv_curve")
+    if not isinstance(curve, dict) or len(curve.get("bout_width_m", [])) != len(curve.get("to_and_fro_percent", [None])):
+        fail(f"predict: 'cv_curve' malformed: {curve!r}")
+    for mode, bands in out["wider_bands_within_target_m"].items():
+        for band in bands:
+            if not (isinstance(band, list) and len(band) == 2 and widths[mode] < band[0] <= band[1]):
+                fail(f"predict: wider band {band!r} ({mode}) is not [first, last] beyond the working width")
     if "--repeat" in args:
         number(out, "time_per_prediction_us", "predict", positive=True)
         if out.get("repeat") != int(args[args.index("--repeat") + 1]):

@@ -116,6 +116,35 @@ json cv_curve_json(const spread_prediction& r, const std::vector<double>& trays)
   return {{"bout_width_m", widths}, {"to_and_fro_percent", to_and_fro}, {"racetrack_percent", racetrack}};
 }
 
+// The whole-tray bout widths beyond the working width where CV(W) is back within the target, as runs
+// [first, last] (m). The working width never takes them (it is the first crossing, docs/metrics.md), but
+// a user choosing a wider bout should see where the curve allows one.
+std::vector<std::pair<double, double>> wider_bands_m(const spread_prediction& r, const std::vector<double>& trays,
+                                                     spread::metrics::Overlap overlap, double working_width_m,
+                                                     double cv_target) {
+  std::vector<std::pair<double, double>> bands;
+  if (!(working_width_m > 0.0)) return bands;
+  spread::metrics::TrayLayout layout;
+  layout.tray_width_m = r.tray_width_m;
+  layout.tray_count = r.tray_count;
+  const std::span<const double> mass(trays.data(), static_cast<std::size_t>(r.tray_count));
+  bool open = false;
+  for (int n = 2; n <= r.tray_count; ++n) {
+    const double w = n * r.tray_width_m;
+    const bool within = w > working_width_m && spread::metrics::cv_at_trays(mass, layout, n, overlap) <= cv_target;
+    if (within && !open) bands.emplace_back(w, w);
+    if (within) bands.back().second = w;
+    open = within;
+  }
+  return bands;
+}
+
+json bands_json(const std::vector<std::pair<double, double>>& bands) {
+  json out = json::array();
+  for (const auto& [first, last] : bands) out.push_back({first, last});
+  return out;
+}
+
 void run(const Options& o, int& exit_code) {
   spread_prediction_def def = spread_prediction_def_default();
   def.material = o.material.c_str();
@@ -201,7 +230,12 @@ void run(const Options& o, int& exit_code) {
                 {"transverse", {{"tray_width_m", result.tray_width_m},
                                 {"centres_m", centres},
                                 {"mass_fraction", fractions}}},
-                {"cv_curve", cv_curve_json(result, trays)}};
+                {"cv_curve", cv_curve_json(result, trays)},
+                {"wider_bands_within_target_m",
+                 {{"to_and_fro", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kToAndFro,
+                                                          result.working_width_to_and_fro_m, o.cv_target_percent / 100.0))},
+                  {"racetrack", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kRacetrack,
+                                                         result.working_width_racetrack_m, o.cv_target_percent / 100.0))}}}};
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
@@ -223,12 +257,29 @@ void run(const Options& o, int& exit_code) {
     } else {
       std::cout << "  CV: no bout width meets the target\n";
     }
-    for (const auto& [crossings, mode] : {std::pair{result.cv_crossings_to_and_fro, "to-and-fro"},
-                                          std::pair{result.cv_crossings_racetrack, "racetrack"}}) {
-      if (crossings > 1) {
-        std::cout << "  note: the " << mode << " CV(W) curve crosses the target " << crossings
-                  << " times; the working width is its first crossing (see --json cv_curve)\n";
+    struct Curve {
+      int crossings;
+      const char* mode;
+      spread::metrics::Overlap overlap;
+      double working_width_m;
+    };
+    for (const Curve& c : {Curve{result.cv_crossings_to_and_fro, "to-and-fro", spread::metrics::Overlap::kToAndFro,
+                                 result.working_width_to_and_fro_m},
+                           Curve{result.cv_crossings_racetrack, "racetrack", spread::metrics::Overlap::kRacetrack,
+                                 result.working_width_racetrack_m}}) {
+      if (c.crossings <= 1) continue;
+      std::cout << "  note: the " << c.mode << " CV(W) curve crosses the target " << c.crossings
+                << " times; the working width is its first crossing";
+      const auto bands = wider_bands_m(result, trays, c.overlap, c.working_width_m, o.cv_target_percent / 100.0);
+      if (!bands.empty()) {
+        std::cout << "; back within the target at";
+        for (std::size_t k = 0; k < bands.size(); ++k) {
+          std::cout << (k ? "," : "") << " " << bands[k].first;
+          if (bands[k].second > bands[k].first) std::cout << "-" << bands[k].second;
+          std::cout << " m";
+        }
       }
+      std::cout << " (see --json cv_curve)\n";
     }
     if (result.sample_count < kFewSamples) {
       std::cout << "  note: only " << result.sample_count << " launch samples: below " << kFewSamples
