@@ -140,7 +140,7 @@ TEST(AnalyticLaunch, RollingSpinOnAConeTiltsWithTheGeneratrix) {
   // ω_rel ⟂ the vane face normal e_θ and ⟂ the motion along the generatrix (cos α e_r + sin α e_z).
   scene::Machine cone = flat_machine();
   cone.cone_angle_rad = 0.157;
-  const double rpm = 600.0, omega = rpm * 2.0 * kPi / 60.0;
+  const double rpm = 600.0;
   const auto samples = analytic_launch_samples(cone, material(0.4), rpm, inlet(), 20, 2);
   for (const auto& s : samples) {
     const double rho = std::hypot(s.x_m, s.y_m);
