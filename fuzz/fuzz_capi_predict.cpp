@@ -43,7 +43,8 @@ void build_fixture() {
   fixture->path = "/tmp/spread_fuzz_capi_predict_" + std::to_string(::getpid()) + ".sqlite";
   std::remove(fixture->path.c_str());
   const spread::scene::Scene scene = spread::scene::load_scene_file(
-      SPREAD_SOURCE_DIR "/scenes/default.toml", {"sweep.samples_per_run=32", "sweep.rpm=[450.0, 600.0, 750.0]"});
+      SPREAD_SOURCE_DIR "/scenes/default.toml",
+      {"sweep.source=\"analytic\"", "sweep.samples_per_run=32", "sweep.rpm=[450.0, 600.0, 750.0]"});
   spread::lookup::BuildOptions options;
   options.output_path = fixture->path;
   spread::lookup::build_tables(scene, options);
