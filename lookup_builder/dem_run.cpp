@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "libspread/core/source_revision.hpp"
 #include "libspread/dem/disc_generator.hpp"
 #include "libspread/dem/engine.hpp"
 #include "libspread/dem/inlet.hpp"
@@ -181,11 +182,12 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
   for (const dem::LaunchRecord& l : launches) run.samples.push_back(normalised(l, omega_rad_s, rim_speed_m_s));
   run.scene_text = scene.provenance_text();
   run.scene_hash = scene.hash();
+  run.inputs_hash = scene.run_inputs_hash(material, rpm);
   run.effects = scene::effects_to_string(scene.effects);
   run.dt_contact_s = engine.dt_s();
   run.dt_flight_s = cfg.flight_settings.dt_s;
   run.particle_count = static_cast<std::int64_t>(inlet.released());
-  run.software_version = SPREAD_VERSION_STRING;
+  run.software_version = std::string(SPREAD_VERSION_STRING) + "+" + source_revision();
   run.created_utc = tables::utc_now_iso8601();
 
   // Launch statistics (same keys as the analytic source) plus what the DEM run did. No wall times:

@@ -1,7 +1,9 @@
 // lookup_builder SCENE [--output FILE] [--set key=value]... [--rebuild] [--jobs N] [--threads N]
 // Builds the launch-table file of a scene's machine: every material × rpm of [sweep].
 // Under `mpirun -np N` (a build with MPI) the runs are spread over the ranks; rank 0 writes the file.
-// Exit codes: 0 done, 2 bad input (scene, overrides, output file not ours), 1 a run failed.
+// Exit codes: 0 done; 1 a run failed (the runs finished before it are kept); 2 refused before anything
+// was computed (bad scene or overrides, output file not ours or built from another scene); 3 another
+// process is writing the output file.
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
@@ -10,6 +12,7 @@
 #include <iostream>
 
 #include "libspread/tables/table_format.hpp"
+#include "libspread/tables/table_writer.hpp"
 #include "lookup_builder/run_source.hpp"
 #include "lookup_builder/table_build.hpp"
 
@@ -45,7 +48,9 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene_path, "scene file (TOML), see docs/scene-format.md")->required();
   app.add_option("--output,-o", output, "table file to create or extend (default: sweep.output of the scene)");
   app.add_option("--set", overrides, "override a scene value: dotted.key=value (repeatable)");
-  app.add_flag("--rebuild", rebuild, "redo runs that already exist in the output file");
+  app.add_flag("--rebuild", rebuild,
+               "redo runs that already exist; a file built from another scene is replaced once the new table is "
+               "complete");
   app.add_option("--jobs,-j", jobs, "runs computed at once on threads (without MPI); default 1")
       ->check(CLI::Range(1, 1024));
   app.add_option("--threads", threads,
@@ -107,6 +112,12 @@ int main(int argc, char** argv) {
   } catch (const spread::lookup::SourceUnavailableError& e) {
     std::cerr << "lookup_builder: error: " << e.what() << "\n";
     return 2;
+  } catch (const spread::lookup::BuildConflictError& e) {
+    std::cerr << "lookup_builder: error: " << e.what() << "\n";
+    return 2;
+  } catch (const spread::tables::TableBusyError& e) {
+    std::cerr << "lookup_builder: error: " << e.what() << "\n";
+    return 3;
   } catch (const spread::tables::TableError& e) {
     std::cerr << "lookup_builder: error: " << e.what() << "\n";
     return e.kind() == spread::tables::TableErrorKind::kIo ? 1 : 2;

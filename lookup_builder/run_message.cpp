@@ -10,7 +10,7 @@
 namespace spread::lookup {
 namespace {
 
-constexpr char kMagic[] = "SPRUN1";
+constexpr char kMagic[] = "SPRUN2";
 constexpr std::size_t kMagicBytes = sizeof kMagic - 1;
 
 class Writer {
@@ -88,6 +88,7 @@ std::vector<std::uint8_t> serialise_run(const tables::Run& run) {
   w.text(run.source);
   w.raw(tables::encode_samples(run.samples));
   w.text(run.scene_hash);
+  w.text(run.inputs_hash);
   w.text(run.scene_text);
   w.text(run.effects);
   w.f64(run.dt_contact_s);
@@ -113,6 +114,7 @@ tables::Run deserialise_run(std::span<const std::uint8_t> bytes) {
   }
   run.samples = tables::decode_samples(samples);
   run.scene_hash = r.text();
+  run.inputs_hash = r.text();
   run.scene_text = r.text();
   run.effects = r.text();
   run.dt_contact_s = r.f64();

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "libspread/core/source_revision.hpp"
 #include "libspread/launch/analytic_launch.hpp"
 #include "libspread/launch/launch_statistics.hpp"
 #include "libspread/tables/table_writer.hpp"
@@ -20,12 +21,13 @@ tables::Run analytic_run(const scene::Scene& scene, const scene::Material& mater
                                                 scene.numerics.seed, options);
   run.scene_text = scene.provenance_text();
   run.scene_hash = scene.hash();
+  run.inputs_hash = scene.run_inputs_hash(material, rpm);
   // The analytic model is sliding on disc and vane; nothing else of the scene's effects ran.
   run.effects = std::string("analytic_vane_sliding,spin_") + scene::to_string(scene.sweep.spin_model);
   run.dt_contact_s = 0.0;
   run.dt_flight_s = 0.0;
   run.particle_count = static_cast<std::int64_t>(run.samples.size());
-  run.software_version = SPREAD_VERSION_STRING;
+  run.software_version = std::string(SPREAD_VERSION_STRING) + "+" + source_revision();
   run.created_utc = tables::utc_now_iso8601();
   const double rim_speed_m_s = rpm * 2.0 * kPi / 60.0 * scene.machine.disc_radius_m;
   // The flight effects the scene asks for travel with the run: predictions from the table use them.

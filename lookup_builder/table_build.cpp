@@ -1,6 +1,9 @@
 #include "lookup_builder/table_build.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -64,27 +67,137 @@ std::vector<SweepJob> sweep_jobs(const scene::Scene& scene) {
   return jobs;
 }
 
+namespace {
+
+std::string show(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
+
+// Where the file's machine row and this scene's machine differ, as "machine.<field>: file X, scene Y".
+void machine_differences(const tables::Machine& file, const tables::Machine& scene, std::vector<std::string>& out) {
+  auto real = [&out](const char* field, double a, double b) {
+    if (a != b) out.push_back(std::string("machine.") + field + ": file " + show(a) + ", scene " + show(b));
+  };
+  auto integer = [&out](const char* field, int a, int b) {
+    if (a != b) out.push_back(std::string("machine.") + field + ": file " + std::to_string(a) + ", scene " + std::to_string(b));
+  };
+  if (file.name != scene.name) out.push_back("machine.name: file \"" + file.name + "\", scene \"" + scene.name + "\"");
+  real("disc_radius_m", file.disc_radius_m, scene.disc_radius_m);
+  real("disc_height_m", file.disc_height_m, scene.disc_height_m);
+  real("disc_spacing_m", file.disc_spacing_m, scene.disc_spacing_m);
+  integer("disc_count", file.disc_count, scene.disc_count);
+  integer("vane_count", file.vane_count, scene.vane_count);
+  real("cone_angle_rad", file.cone_angle_rad, scene.cone_angle_rad);
+  integer("rotation_sense", file.rotation_sense, scene.rotation_sense);
+}
+
+void material_differences(const tables::Material& file, const tables::Material& scene, std::vector<std::string>& out) {
+  const std::string at = "materials." + file.name + ".";
+  const std::pair<const char*, std::pair<double, double>> fields[] = {
+      {"density_kg_m3", {file.density_kg_m3, scene.density_kg_m3}},
+      {"diameter_mean_m", {file.diameter_mean_m, scene.diameter_mean_m}},
+      {"diameter_sd_m", {file.diameter_sd_m, scene.diameter_sd_m}},
+      {"friction_wall", {file.friction_wall, scene.friction_wall}},
+      {"friction_particle", {file.friction_particle, scene.friction_particle}},
+      {"restitution", {file.restitution, scene.restitution}},
+      {"youngs_modulus_pa", {file.youngs_modulus_pa, scene.youngs_modulus_pa}},
+      {"poisson_ratio", {file.poisson_ratio, scene.poisson_ratio}},
+      {"rolling_friction", {file.rolling_friction, scene.rolling_friction}}};
+  for (const auto& [field, values] : fields) {
+    if (values.first != values.second) {
+      out.push_back(at + field + ": file " + show(values.first) + ", scene " + show(values.second));
+    }
+  }
+}
+
+// Everything in the file that this scene would have written differently: the machine, a material that
+// has runs, or a run (of a material the scene describes) whose source or inputs differ. Runs of
+// materials the scene does not describe are other scenes' rows of the same machine and stay.
+std::vector<std::string> table_conflicts(tables::TableWriter& writer, const scene::Scene& scene) {
+  std::vector<std::string> out;
+  const std::optional<tables::Machine> machine = writer.stored_machine();
+  if (machine) machine_differences(*machine, table_machine(scene.machine), out);
+  const std::vector<tables::TableWriter::StoredRun> runs = writer.stored_runs();
+  for (const tables::Material& stored : writer.stored_materials()) {
+    const scene::Material* mine = scene.find_material(stored.name);
+    const bool has_runs = std::any_of(runs.begin(), runs.end(), [&](const auto& r) { return r.material == stored.name; });
+    if (mine != nullptr && has_runs) material_differences(stored, *mine, out);
+  }
+  const std::string source = scene::to_string(scene.sweep.source);
+  for (const auto& run : runs) {
+    const scene::Material* mine = scene.find_material(run.material);
+    if (mine == nullptr) continue;
+    const std::string label = "run " + run.material + " @ " + format_rpm(run.rpm) + " rpm";
+    if (run.source != source) {
+      out.push_back(label + ": source " + run.source + " in the file, " + source + " in the scene");
+    } else if (run.inputs_hash != scene.run_inputs_hash(*mine, run.rpm)) {
+      out.push_back(label + ": built from other inputs (numerics, sweep or effects differ; inputs hash " +
+                    (run.inputs_hash.empty() ? std::string("not recorded") : run.inputs_hash) + " in the file, " +
+                    scene.run_inputs_hash(*mine, run.rpm) + " from the scene)");
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 struct SweepWriter::Impl {
-  Impl(const std::string& path, std::ostream* out, bool terminal, int total)
-      : writer(path), progress(out, terminal, total) {}
-  tables::TableWriter writer;
+  Impl(std::ostream* out, bool terminal, int total) : progress(out, terminal, total) {}
+  // The file named by the user. When a --rebuild replaces a file built from another scene, `existing`
+  // keeps it open (and locked) while the new table is written to `writer` at `staging_path`, renamed
+  // over it once every run is written: until then the old table stays intact.
+  std::optional<tables::TableWriter> existing;
+  std::optional<tables::TableWriter> writer;
+  std::string final_path;
+  std::string staging_path;
   Progress progress;
   BuildSummary summary;
   bool rebuild = false;
+  std::size_t pending_count = 0;
+  std::size_t pending_done = 0;  // pending runs written (or found already written)
+  std::string scene_hash;
 };
 
 SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options) {
   const std::string path = options.output_path.empty() ? scene.sweep.output : options.output_path;
   const std::vector<SweepJob> all = sweep_jobs(scene);
-  impl_ = std::make_unique<Impl>(path, options.progress, options.terminal, static_cast<int>(all.size()));
+  impl_ = std::make_unique<Impl>(options.progress, options.terminal, static_cast<int>(all.size()));
   impl_->summary.output_path = path;
+  impl_->final_path = path;
   impl_->rebuild = options.rebuild;
-  tables::TableWriter& writer = impl_->writer;
+  impl_->scene_hash = scene.hash();
+  impl_->writer.emplace(path);
+  if (impl_->writer->recovered_interrupted_write() && options.progress != nullptr) {
+    *options.progress << "lookup_builder: " << path
+                      << ": rolled back a write that was interrupted mid-transaction; the file is as after its last "
+                         "finished run\n";
+  }
+  const std::vector<std::string> conflicts = table_conflicts(*impl_->writer, scene);
+  if (!conflicts.empty()) {
+    if (!options.rebuild) {
+      std::string message = path + ": the file was built from another scene; refusing to mix its rows with this one "
+                                   "(the file is unchanged):";
+      const std::size_t shown = std::min<std::size_t>(conflicts.size(), 8);
+      for (std::size_t i = 0; i < shown; ++i) message += "\n  " + conflicts[i];
+      if (conflicts.size() > shown) message += "\n  ... and " + std::to_string(conflicts.size() - shown) + " more";
+      message += "\nwrite to a new file (--output), or pass --rebuild to replace this table once the new one is complete";
+      throw BuildConflictError(message);
+    }
+    // Rebuild from scratch into a staging file beside it; the old table is replaced only when complete.
+    impl_->existing = std::move(impl_->writer);
+    impl_->writer.reset();
+    impl_->staging_path = path + ".rebuild";
+    std::remove(impl_->staging_path.c_str());
+    std::remove((impl_->staging_path + "-journal").c_str());
+    impl_->writer.emplace(impl_->staging_path);
+  }
+  tables::TableWriter& writer = *impl_->writer;
   writer.write_machine(table_machine(scene.machine));
   std::vector<tables::Material> rows;
   for (const scene::Material* m : scene.sweep_materials()) rows.push_back(*m);
   writer.write_materials(rows);
-  writer.write_meta("machine_scene_hash", scene.hash());
   for (const SweepJob& job : all) {
     if (!options.rebuild && writer.has_run(job.material->name, job.rpm)) {
       ++impl_->summary.runs_skipped;
@@ -93,6 +206,7 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
     }
     pending_.push_back(job);
   }
+  impl_->pending_count = pending_.size();
 }
 
 SweepWriter::~SweepWriter() = default;
@@ -100,8 +214,17 @@ SweepWriter::~SweepWriter() = default;
 void SweepWriter::started(const SweepJob& job) { impl_->progress.started(job.label()); }
 
 void SweepWriter::finished(const SweepJob& job, const tables::Run& run, double seconds) {
-  impl_->writer.write_run(run, impl_->rebuild);  // one transaction: a kill loses at most the run in progress
+  try {
+    impl_->writer->write_run(run, impl_->rebuild);  // one transaction: a kill loses at most the run in progress
+  } catch (const tables::RunExistsError&) {
+    // Written meanwhile by an earlier, interrupted build of the same inputs: keep the stored run.
+    ++impl_->summary.runs_skipped;
+    ++impl_->pending_done;
+    impl_->progress.skipped(job.label());
+    return;
+  }
   ++impl_->summary.runs_written;
+  ++impl_->pending_done;
   impl_->progress.finished(job.label(), run_detail(run), seconds);
 }
 
@@ -111,6 +234,18 @@ void SweepWriter::failed(const SweepJob& job, const std::string& message) {
 
 BuildSummary SweepWriter::finish() {
   impl_->progress.close();
+  if (impl_->pending_done != impl_->pending_count) return impl_->summary;  // a run failed: not complete
+  // The scene that completed this file; a failed or interrupted build leaves the previous value.
+  impl_->writer->write_meta("machine_scene_hash", impl_->scene_hash);
+  if (!impl_->staging_path.empty()) {
+    impl_->writer.reset();
+    if (std::rename(impl_->staging_path.c_str(), impl_->final_path.c_str()) != 0) {
+      throw tables::TableError(tables::TableErrorKind::kIo, impl_->final_path + ": cannot replace it with the rebuilt " +
+                                                                impl_->staging_path + ": " + std::strerror(errno));
+    }
+    impl_->existing.reset();
+    impl_->staging_path.clear();
+  }
   return impl_->summary;
 }
 

@@ -6,6 +6,7 @@
 // and a run's content never depends on where or in which order it was computed.
 #include <memory>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,18 @@
 
 namespace spread::lookup {
 
+// The output file holds rows this scene would have written differently (another machine, a changed
+// material, runs from other inputs or another source): refused, the file untouched, unless --rebuild.
+class BuildConflictError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct BuildOptions {
   std::string output_path;          // empty = scene.sweep.output
-  bool rebuild = false;             // redo runs that already exist
+  // Redo runs that already exist. When the file was built from another scene, build a new table beside
+  // it and replace the file only once every run is written.
+  bool rebuild = false;
   std::ostream* progress = nullptr; // stderr in the executable; nullptr = silent
   bool terminal = false;            // progress is a terminal: one updating line instead of a log
   int jobs = 1;                     // runs computed at once (threads); >= 1
@@ -58,8 +68,9 @@ class SweepWriter {
   std::vector<SweepJob> pending_;
 };
 
-// Throws SourceUnavailableError (source not available), tables::TableError (output file not ours,
-// wrong version, I/O), std::invalid_argument (the launch model cannot run this scene), and
+// Throws SourceUnavailableError (source not available), BuildConflictError (the file holds another
+// scene's rows), tables::TableBusyError (another writer holds the file), tables::TableError (output
+// file not ours, wrong version, I/O), std::invalid_argument (the launch model cannot run this scene), and
 // std::runtime_error when a run failed (runs finished before it are kept).
 BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options);
 

@@ -1,5 +1,7 @@
 #include "libspread/scene/scene.hpp"
 
+#include <cstdio>
+
 #include "libspread/tables/scene_hash.hpp"
 
 namespace spread::scene {
@@ -48,6 +50,96 @@ std::string Scene::provenance_text() const {
 }
 
 std::string Scene::hash() const { return tables::fnv1a64_hex(provenance_text()); }
+
+namespace {
+
+// "key = value\n" with a double in round-trip precision.
+class CanonicalText {
+ public:
+  void add(const char* key, double value) {
+    char digits[40];
+    std::snprintf(digits, sizeof digits, "%.17g", value);
+    line(key, digits);
+  }
+  void add(const char* key, std::int64_t value) { line(key, std::to_string(value)); }
+  void add(const char* key, int value) { line(key, std::to_string(value)); }
+  void add(const char* key, const std::string& value) { line(key, "\"" + value + "\""); }
+  void add(const char* key, const char* value) { add(key, std::string(value)); }
+  std::string text;
+
+ private:
+  void line(const char* key, const std::string& value) { text += std::string(key) + " = " + value + "\n"; }
+};
+
+}  // namespace
+
+std::string Scene::run_inputs_text(const Material& material, double rpm) const {
+  CanonicalText t;
+  const Machine& m = machine;
+  t.add("machine.name", m.name);
+  t.add("machine.disc_radius_m", m.disc_radius_m);
+  t.add("machine.disc_height_m", m.disc_height_m);
+  t.add("machine.disc_count", m.disc_count);
+  t.add("machine.disc_spacing_m", m.disc_spacing_m);
+  t.add("machine.rotation_sense", m.rotation_sense);
+  t.add("machine.cone_angle_rad", m.cone_angle_rad);
+  t.add("machine.vane_count", m.vane_count);
+  t.add("machine.vane_start_radius_m", m.vane_start_radius_m);
+  t.add("machine.vane_end_radius_m", m.vane_end_radius_m);
+  t.add("machine.vane_height_m", m.vane_height_m);
+  t.add("machine.vane_pitch_rad", m.vane_pitch_rad);
+  t.add("machine.disc_model", to_string(m.disc_model));
+  if (m.disc_model == DiscModel::kMesh) t.add("machine.mesh_size_m", m.mesh_size_m);
+  if (m.disc_model == DiscModel::kStl) {
+    t.add("machine.stl_path", m.stl_path);
+    t.add("machine.stl_scale", m.stl_scale);
+  }
+  t.add("inlet.radius_m", inlet.radius_m);
+  t.add("inlet.offset_m", inlet.offset_m);
+  t.add("inlet.angle_rad", inlet.angle_rad);
+  t.add("inlet.drop_height_m", inlet.drop_height_m);
+  t.add("inlet.mass_flow_kg_s", inlet.mass_flow_kg_s);
+  t.add("material.name", material.name);
+  t.add("material.density_kg_m3", material.density_kg_m3);
+  t.add("material.diameter_mean_m", material.diameter_mean_m);
+  t.add("material.diameter_sd_m", material.diameter_sd_m);
+  t.add("material.friction_wall", material.friction_wall);
+  t.add("material.friction_particle", material.friction_particle);
+  t.add("material.restitution", material.restitution);
+  t.add("material.youngs_modulus_pa", material.youngs_modulus_pa);
+  t.add("material.poisson_ratio", material.poisson_ratio);
+  t.add("material.rolling_friction", material.rolling_friction);
+  t.add("rpm", rpm);
+  t.add("air.density_kg_m3", air.density_kg_m3);
+  t.add("air.viscosity_pa_s", air.viscosity_pa_s);
+  t.add("air.wind_m_s[0]", air.wind_m_s[0]);
+  t.add("air.wind_m_s[1]", air.wind_m_s[1]);
+  t.add("effects", effects_to_string(effects));
+  t.add("numerics.seed", static_cast<std::int64_t>(numerics.seed));
+  t.add("sweep.source", to_string(sweep.source));
+  t.add("sweep.samples_per_run", sweep.samples_per_run);
+  if (sweep.source == LaunchSource::kAnalytic) {
+    t.add("sweep.spin_model", to_string(sweep.spin_model));
+  } else {
+    t.add("numerics.duration_s", numerics.duration_s);
+    t.add("numerics.dt_contact_s", numerics.dt_contact_s);
+    t.add("numerics.steps_per_contact", numerics.steps_per_contact);
+    t.add("numerics.integrator", to_string(numerics.integrator));
+    t.add("numerics.contact_model", to_string(numerics.contact_model));
+    t.add("numerics.flight_scheme", to_string(numerics.flight_scheme));
+    t.add("numerics.flight_dt_s", numerics.flight_dt_s);
+    t.add("numerics.flight_tolerance", numerics.flight_tolerance);
+    t.add("numerics.collector_radius_m", numerics.collector_radius_m);
+    t.add("sweep.batch_s", sweep.batch_s);
+    t.add("sweep.convergence_tolerance", sweep.convergence_tolerance);
+    t.add("sweep.particle_budget", sweep.particle_budget);
+  }
+  return t.text;
+}
+
+std::string Scene::run_inputs_hash(const Material& material, double rpm) const {
+  return tables::fnv1a64_hex(run_inputs_text(material, rpm));
+}
 
 std::vector<const Material*> Scene::sweep_materials() const {
   std::vector<const Material*> list;

@@ -144,6 +144,12 @@ struct Scene {
   std::string provenance_text() const;
   // tables::fnv1a64_hex(provenance_text()).
   std::string hash() const;
+  // Every value that can change the launch samples of one (material, rpm) run, one "key = value" line
+  // each, in a fixed order (doubles in round-trip precision): the scene's comments, its other materials
+  // and rpm rows, threads and outputs do not appear. Its hash is stored with the run (Run::inputs_hash),
+  // so a builder can tell whether an existing run came from the same inputs.
+  std::string run_inputs_text(const Material& material, double rpm) const;
+  std::string run_inputs_hash(const Material& material, double rpm) const;
   // The sweep's materials resolved (all scene materials when the list is empty).
   std::vector<const Material*> sweep_materials() const;
   // The sweep's rpm list resolved ([machine.rpm] when the list is empty).

@@ -261,6 +261,14 @@ struct Checker {
   void non_negative(const std::string& key, double value) const {
     if (!(value >= 0.0)) fail(key, "must be >= 0, got " + format_number(value));
   }
+  void positive_at_most(const std::string& key, double value, double hi) const {
+    positive(key, value);
+    if (!(value <= hi)) fail(key, "must be <= " + format_number(hi) + ", got " + format_number(value));
+  }
+  void non_negative_at_most(const std::string& key, double value, double hi) const {
+    non_negative(key, value);
+    if (!(value <= hi)) fail(key, "must be <= " + format_number(hi) + ", got " + format_number(value));
+  }
   void in_range(const std::string& key, double value, double lo, double hi) const {
     if (!(value >= lo && value <= hi)) {
       fail(key, "must be in [" + format_number(lo) + ", " + format_number(hi) + "], got " + format_number(value));
@@ -455,10 +463,13 @@ void validate(Scene& scene) {
   const Checker c{scene.source_name};
   Machine& m = scene.machine;
   if (m.name.empty()) c.fail("machine.name", "must not be empty");
-  c.positive("machine.disc_radius_m", m.disc_radius_m);
-  c.positive("machine.disc_height_m", m.disc_height_m);
+  // Upper bounds: the table file's plausibility limits (tables::PlausibleLimits), so that a scene the
+  // builder accepts always gives a table the reader and the predictor accept.
+  using L = tables::PlausibleLimits;
+  c.positive_at_most("machine.disc_radius_m", m.disc_radius_m, L::kMaxDiscRadius_m);
+  c.positive_at_most("machine.disc_height_m", m.disc_height_m, L::kMaxDiscHeight_m);
   if (m.disc_count != 1 && m.disc_count != 2) c.fail("machine.disc_count", "must be 1 or 2, got " + std::to_string(m.disc_count));
-  c.non_negative("machine.disc_spacing_m", m.disc_spacing_m);
+  c.non_negative_at_most("machine.disc_spacing_m", m.disc_spacing_m, L::kMaxDiscSpacing_m);
   if (m.disc_count == 2 && !(m.disc_spacing_m >= 2.0 * m.disc_radius_m)) {
     c.fail("machine.disc_spacing_m", "must be >= 2 x disc_radius_m = " + format_number(2.0 * m.disc_radius_m) +
                                          " for two discs, got " + format_number(m.disc_spacing_m));
@@ -488,7 +499,7 @@ void validate(Scene& scene) {
   if (m.disc_model != DiscModel::kStl && !m.stl_path.empty())
     c.fail("machine.stl_path", "is only used with disc_model = \"stl\" (disc_model is \"" + std::string(to_string(m.disc_model)) + "\")");
   c.positive("machine.stl_scale", m.stl_scale);
-  c.positive("machine.rpm", m.rpm);
+  c.positive_at_most("machine.rpm", m.rpm, L::kMaxRpm);
 
   const Inlet& in = scene.inlet;
   c.positive("inlet.radius_m", in.radius_m);
@@ -508,15 +519,15 @@ void validate(Scene& scene) {
     const std::string p = "materials[" + std::to_string(i) + "].";
     if (mat.name.empty()) c.fail(p + "name", "must be given and not empty");
     if (!names.insert(mat.name).second) c.fail(p + "name", "duplicate material name \"" + mat.name + "\"");
-    c.positive(p + "density_kg_m3", mat.density_kg_m3);
-    c.positive(p + "diameter_mean_m", mat.diameter_mean_m);
-    c.non_negative(p + "diameter_sd_m", mat.diameter_sd_m);
-    c.positive(p + "youngs_modulus_pa", mat.youngs_modulus_pa);
+    c.positive_at_most(p + "density_kg_m3", mat.density_kg_m3, L::kMaxDensity_kg_m3);
+    c.positive_at_most(p + "diameter_mean_m", mat.diameter_mean_m, L::kMaxDiameter_m);
+    c.non_negative_at_most(p + "diameter_sd_m", mat.diameter_sd_m, L::kMaxDiameter_m);
+    c.positive_at_most(p + "youngs_modulus_pa", mat.youngs_modulus_pa, L::kMaxYoungsModulus_pa);
     c.in_range(p + "poisson_ratio", mat.poisson_ratio, 0.0, 0.499);
     c.in_range(p + "restitution", mat.restitution, 0.01, 1.0);
-    c.non_negative(p + "friction_particle", mat.friction_particle);
-    c.non_negative(p + "friction_wall", mat.friction_wall);
-    c.non_negative(p + "rolling_friction", mat.rolling_friction);
+    c.non_negative_at_most(p + "friction_particle", mat.friction_particle, L::kMaxFriction);
+    c.non_negative_at_most(p + "friction_wall", mat.friction_wall, L::kMaxFriction);
+    c.non_negative_at_most(p + "rolling_friction", mat.rolling_friction, L::kMaxFriction);
     // A value for an effect that is off would be recorded as provenance yet never act: refuse it.
     if (mat.rolling_friction > 0.0 && !scene.effects.rolling) {
       c.fail(p + "rolling_friction", "is " + format_number(mat.rolling_friction) +
@@ -554,7 +565,7 @@ void validate(Scene& scene) {
   Sweep& sw = scene.sweep;
   std::set<double> seen_rpm;
   for (std::size_t i = 0; i < sw.rpm.size(); ++i) {
-    c.positive("sweep.rpm[" + std::to_string(i) + "]", sw.rpm[i]);
+    c.positive_at_most("sweep.rpm[" + std::to_string(i) + "]", sw.rpm[i], L::kMaxRpm);
     if (!seen_rpm.insert(sw.rpm[i]).second) c.fail("sweep.rpm[" + std::to_string(i) + "]", "duplicate rpm " + format_number(sw.rpm[i]));
   }
   std::set<std::string> seen_material;
@@ -616,6 +627,14 @@ Scene load_scene_file(const std::string& path, const std::vector<std::string>& o
   std::string& stl = scene.machine.stl_path;
   if (!stl.empty() && std::filesystem::path(stl).is_relative())
     stl = (std::filesystem::path(path).parent_path() / stl).lexically_normal().string();
+  // Checked here, whatever the launch source: a missing disc file must not wait for the first DEM run
+  // (the builder would have created an empty table by then). Its content is checked where it is read.
+  if (!stl.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(stl, ec)) {
+      throw SceneError(path + ": machine.stl_path: no such file: " + stl + " (relative paths are relative to the scene file)");
+    }
+  }
   return scene;
 }
 

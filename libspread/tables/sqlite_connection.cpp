@@ -13,14 +13,39 @@ TableErrorKind kind_from_sqlite_code(int code) {
   }
 }
 
+namespace {
+
+// An RFC 3986 file: URI for sqlite3_open_v2 with SQLITE_OPEN_URI: only '%', '?' and '#' need escaping.
+std::string file_uri(const std::string& path, const char* query) {
+  std::string uri = "file:";
+  for (char c : path) {
+    if (c == '%' || c == '?' || c == '#') {
+      static constexpr char kHex[] = "0123456789ABCDEF";
+      uri += '%';
+      uri += kHex[(static_cast<unsigned char>(c) >> 4) & 0xF];
+      uri += kHex[static_cast<unsigned char>(c) & 0xF];
+    } else {
+      uri += c;
+    }
+  }
+  return uri + "?" + query;
+}
+
+}  // namespace
+
 Connection::Connection(const std::string& path, Mode mode) : path_(path) {
   int flags = 0;
+  std::string name = path;
   switch (mode) {
     case Mode::kReadOnly: flags = SQLITE_OPEN_READONLY; break;
+    case Mode::kReadOnlyImmutable:
+      flags = SQLITE_OPEN_READONLY | SQLITE_OPEN_URI;
+      name = file_uri(path, "immutable=1");
+      break;
     case Mode::kReadWrite: flags = SQLITE_OPEN_READWRITE; break;
     case Mode::kReadWriteCreate: flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE; break;
   }
-  const int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
+  const int rc = sqlite3_open_v2(name.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
   if (rc != SQLITE_OK) fail(rc, "cannot open");
   sqlite3_extended_result_codes(db_, 1);
   // A writer waits a little for another process instead of failing at once.
@@ -30,6 +55,13 @@ Connection::Connection(const std::string& path, Mode mode) : path_(path) {
 Connection::~Connection() { sqlite3_close_v2(db_); }
 
 void Connection::fail(int code, const std::string& doing) const {
+  if (code == SQLITE_READONLY_ROLLBACK) {
+    // A writer stopped inside a transaction (killed, power lost) and left a hot rollback journal; only a
+    // read-write connection may roll it back, which lookup_builder's writer does when it opens the file.
+    throw TableError(TableErrorKind::kIo, path_ + ": interrupted write: a rollback journal (" + path_ +
+                                              "-journal) was left by a writer that stopped mid-transaction; "
+                                              "rerun lookup_builder on this file to recover it");
+  }
   std::string message = path_ + ": " + doing + ": ";
   message += (db_ != nullptr && sqlite3_errcode(db_) == code) ? sqlite3_errmsg(db_) : sqlite3_errstr(code);
   throw TableError(kind_from_sqlite_code(code), message);

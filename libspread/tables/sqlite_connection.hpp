@@ -19,7 +19,9 @@ TableErrorKind kind_from_sqlite_code(int code);
 
 class Connection {
  public:
-  enum class Mode { kReadOnly, kReadWrite, kReadWriteCreate };
+  // kReadOnlyImmutable: read-only without locks or side files (SQLite's immutable=1), for a file in WAL
+  // mode whose log is empty: a plain read-only open would create -wal and -shm files beside it.
+  enum class Mode { kReadOnly, kReadOnlyImmutable, kReadWrite, kReadWriteCreate };
   Connection(const std::string& path, Mode mode);
   ~Connection();
   Connection(const Connection&) = delete;

@@ -44,9 +44,6 @@ std::string range_problem(const std::string& field, double value, double low, bo
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::string positive(const std::string& field, double value) {
-  return range_problem(field, value, 0.0, true, kInf, true);
-}
 std::string non_negative(const std::string& field, double value) {
   return range_problem(field, value, 0.0, false, kInf, true);
 }
@@ -54,15 +51,18 @@ std::string non_negative(const std::string& field, double value) {
 }  // namespace
 
 std::string machine_problem(const Machine& m) {
-  for (const std::string& p : {positive("machine.disc_radius_m", m.disc_radius_m),
-                        non_negative("machine.disc_height_m", m.disc_height_m),
-                        non_negative("machine.disc_spacing_m", m.disc_spacing_m),
+  using L = PlausibleLimits;
+  for (const std::string& p : {range_problem("machine.disc_radius_m", m.disc_radius_m, 0.0, true, L::kMaxDiscRadius_m, false),
+                        range_problem("machine.disc_height_m", m.disc_height_m, 0.0, false, L::kMaxDiscHeight_m, false),
+                        range_problem("machine.disc_spacing_m", m.disc_spacing_m, 0.0, false, L::kMaxDiscSpacing_m, false),
                         range_problem("machine.cone_angle_rad", m.cone_angle_rad, -std::numbers::pi / 2, true,
                                       std::numbers::pi / 2, true)}) {
     if (!p.empty()) return p;
   }
   if (m.disc_count != 1 && m.disc_count != 2) return "machine.disc_count = " + std::to_string(m.disc_count) + ": must be 1 or 2";
-  if (m.vane_count < 0) return "machine.vane_count = " + std::to_string(m.vane_count) + ": must be >= 0";
+  if (m.vane_count < 0 || m.vane_count > L::kMaxVaneCount) {
+    return "machine.vane_count = " + std::to_string(m.vane_count) + ": must be >= 0 and <= " + std::to_string(L::kMaxVaneCount);
+  }
   if (m.rotation_sense != 1 && m.rotation_sense != -1) {
     return "machine.rotation_sense = " + std::to_string(m.rotation_sense) + ": must be +1 or -1";
   }
@@ -70,40 +70,59 @@ std::string machine_problem(const Machine& m) {
 }
 
 std::string material_problem(const Material& m) {
+  using L = PlausibleLimits;
   const std::string at = "materials." + m.name + ".";
-  for (const std::string& p : {positive(at + "density_kg_m3", m.density_kg_m3),
-                        positive(at + "diameter_mean_m", m.diameter_mean_m),
-                        non_negative(at + "diameter_sd_m", m.diameter_sd_m),
-                        non_negative(at + "friction_wall", m.friction_wall),
-                        non_negative(at + "friction_particle", m.friction_particle),
+  for (const std::string& p : {range_problem(at + "density_kg_m3", m.density_kg_m3, 0.0, true, L::kMaxDensity_kg_m3, false),
+                        range_problem(at + "diameter_mean_m", m.diameter_mean_m, 0.0, true, L::kMaxDiameter_m, false),
+                        range_problem(at + "diameter_sd_m", m.diameter_sd_m, 0.0, false, L::kMaxDiameter_m, false),
+                        range_problem(at + "friction_wall", m.friction_wall, 0.0, false, L::kMaxFriction, false),
+                        range_problem(at + "friction_particle", m.friction_particle, 0.0, false, L::kMaxFriction, false),
                         range_problem(at + "restitution", m.restitution, 0.0, false, 1.0, false),
-                        non_negative(at + "youngs_modulus_pa", m.youngs_modulus_pa),
+                        range_problem(at + "youngs_modulus_pa", m.youngs_modulus_pa, 0.0, false, L::kMaxYoungsModulus_pa, false),
                         range_problem(at + "poisson_ratio", m.poisson_ratio, -1.0, true, 0.5, false),
-                        non_negative(at + "rolling_friction", m.rolling_friction)}) {
+                        range_problem(at + "rolling_friction", m.rolling_friction, 0.0, false, L::kMaxFriction, false)}) {
     if (!p.empty()) return p;
   }
   return {};
 }
 
 std::string run_values_problem(const Run& run) {
-  for (const std::string& p : {positive("rpm", run.rpm), non_negative("dt_contact_s", run.dt_contact_s),
+  using L = PlausibleLimits;
+  for (const std::string& p : {range_problem("rpm", run.rpm, 0.0, true, L::kMaxRpm, false),
+                        non_negative("dt_contact_s", run.dt_contact_s),
                         non_negative("dt_flight_s", run.dt_flight_s)}) {
     if (!p.empty()) return p;
   }
   static constexpr const char* kNames[kSampleFloats] = {"x_m", "y_m", "z_m", "t_s", "vx_norm", "vy_norm",
                                                         "vz_norm", "wx_norm", "wy_norm", "wz_norm",
                                                         "diameter_m", "mass_kg"};
+  // Bound of |value| per field; diameter and mass are checked below.
+  static constexpr double kBound[kSampleFloats] = {
+      L::kMaxSamplePosition_m, L::kMaxSamplePosition_m, L::kMaxSamplePosition_m, L::kMaxSampleTime_s,
+      L::kMaxVelocityPerRimSpeed, L::kMaxVelocityPerRimSpeed, L::kMaxVelocityPerRimSpeed,
+      L::kMaxSpinPerDiscSpeed, L::kMaxSpinPerDiscSpeed, L::kMaxSpinPerDiscSpeed, kInf, kInf};
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const LaunchSample& s = run.samples[i];
     const float values[kSampleFloats] = {s.x_m, s.y_m, s.z_m, s.t_s, s.vx_norm, s.vy_norm, s.vz_norm,
                                          s.wx_norm, s.wy_norm, s.wz_norm, s.diameter_m, s.mass_kg};
-    for (int f = 0; f < kSampleFloats; ++f) {
+    for (int f = 0; f < 10; ++f) {
       // Checked without building a string: tables hold millions of these.
       const double value = static_cast<double>(values[f]);
-      const bool must_be_positive = f >= 10;  // diameter_m, mass_kg
-      if (std::isfinite(value) && (!must_be_positive || value > 0.0)) continue;
-      const std::string field = "sample " + std::to_string(i) + " " + kNames[f];
-      return must_be_positive ? positive(field, value) : range_problem(field, value, -kInf, true, kInf, true);
+      if (std::abs(value) <= kBound[f]) continue;  // false for NaN
+      return range_problem("sample " + std::to_string(i) + " " + kNames[f], value, -kBound[f], false, kBound[f], false);
+    }
+    const double d = static_cast<double>(s.diameter_m);
+    if (!(d > 0.0 && d <= L::kMaxDiameter_m)) {
+      return range_problem("sample " + std::to_string(i) + " diameter_m", d, 0.0, true, L::kMaxDiameter_m, false);
+    }
+    const double mass = static_cast<double>(s.mass_kg);
+    if (!(mass > 0.0)) return range_problem("sample " + std::to_string(i) + " mass_kg", mass, 0.0, true, kInf, true);
+    const double volume_m3 = std::numbers::pi / 6.0 * d * d * d;
+    const double density = mass / volume_m3;
+    if (!(density >= L::kMinSampleDensity_kg_m3 && density <= L::kMaxDensity_kg_m3)) {
+      return "sample " + std::to_string(i) + " mass_kg = " + show(mass) + ": must be finite and give a density in [" +
+             show(L::kMinSampleDensity_kg_m3) + ", " + show(L::kMaxDensity_kg_m3) + "] kg/m^3 for diameter_m " +
+             show(d) + " (got " + show(density) + ")";
     }
   }
   return {};

@@ -11,7 +11,8 @@
 namespace spread::tables {
 
 inline constexpr std::int32_t kApplicationId = 0x53505244;  // 'SPRD' in PRAGMA application_id
-inline constexpr std::int32_t kFormatVersion = 1;           // PRAGMA user_version
+// PRAGMA user_version. 2: row checksums (row_checksum.hpp) and runs.inputs_hash.
+inline constexpr std::int32_t kFormatVersion = 2;
 
 // One launch-off state. Stored as kSampleFloats little-endian float32 in this order; the layout string
 // kSampleLayout is stored with every run and checked on read.
@@ -64,6 +65,9 @@ struct Run {
   std::string source;                  // "analytic" or "dem"
   std::vector<LaunchSample> samples;
   std::string scene_hash;              // hex FNV-1a 64 of scene_text
+  // hex FNV-1a 64 of the canonical text of every scene value that can change this run's samples
+  // (scene::Scene::run_inputs_text): a rerun with the same inputs_hash would write the same run.
+  std::string inputs_hash;
   std::string scene_text;
   std::string effects;                 // comma list of the effects that ran
   double dt_contact_s = 0.0;           // 0 for analytic runs
@@ -86,16 +90,40 @@ enum class TableErrorKind {
 };
 const char* to_string(TableErrorKind kind);
 
-// Physical plausibility of the stored values, shared by the reader (a violation is TableError kCorrupt)
-// and TableWriter (std::invalid_argument): "" when every value is usable, otherwise the first violation
-// as "<field> = <value>: <requirement>". Rules (docs/table-format.md):
-//   machine   disc_radius_m finite > 0; disc_height_m, disc_spacing_m finite >= 0; |cone_angle_rad| < pi/2;
-//             disc_count 1 or 2; vane_count >= 0; rotation_sense +1 or -1;
-//   material  density_kg_m3 and diameter_mean_m finite > 0; diameter_sd_m, friction_wall,
-//             friction_particle, youngs_modulus_pa, rolling_friction finite >= 0; restitution in [0, 1];
-//             poisson_ratio in (-1, 0.5];
-//   run       rpm finite > 0; dt_contact_s, dt_flight_s finite >= 0; every sample field finite, and
-//             diameter_m > 0, mass_kg > 0 ("sample <index> <field>").
+// Physical plausibility of the stored values, shared by the reader (a violation is TableError kCorrupt),
+// TableWriter (std::invalid_argument) and the scene reader (the same upper bounds): "" when every value
+// is usable, otherwise the first violation as "<field> = <value>: <requirement>". The bounds are far
+// outside any spreader, yet they keep a damaged value that is still a valid number (a granule of
+// 4.4e25 kg, a disc 150 m up) out of the predictor, and they match what the predictor accepts, so a
+// file problem is reported as one and never as the caller's out-of-range argument.
+// Rules (docs/table-format.md, "Plausibility"):
+//   machine   disc_radius_m in (0, 5]; disc_height_m in [0, 100] (PredictorLimits::max_disc_height_m);
+//             disc_spacing_m in [0, 20]; |cone_angle_rad| < pi/2; disc_count 1 or 2; vane_count 0..64;
+//             rotation_sense +1 or -1;
+//   material  density_kg_m3 in (0, 25000]; diameter_mean_m in (0, 0.1]; diameter_sd_m in [0, 0.1];
+//             friction_wall, friction_particle, rolling_friction in [0, 10]; restitution in [0, 1];
+//             youngs_modulus_pa in [0, 1e13]; poisson_ratio in (-1, 0.5];
+//   run       rpm in (0, 10000]; dt_contact_s, dt_flight_s finite >= 0; per sample: |x_m|, |y_m|, |z_m|
+//             <= 1000, |t_s| <= 1e6, each velocity / rim speed within +-100, each spin / disc speed within
+//             +-1e5, diameter_m in (0, 0.1], and mass_kg within the density bounds for its diameter
+//             (mass / (pi d^3 / 6) in [1, 25000] kg/m^3) ("sample <index> <field>").
+struct PlausibleLimits {
+  static constexpr double kMaxDiscRadius_m = 5.0;
+  static constexpr double kMaxDiscHeight_m = 100.0;
+  static constexpr double kMaxDiscSpacing_m = 20.0;
+  static constexpr int kMaxVaneCount = 64;
+  static constexpr double kMaxDensity_kg_m3 = 25'000.0;  // above osmium's 22,600
+  static constexpr double kMinSampleDensity_kg_m3 = 1.0;
+  static constexpr double kMaxDiameter_m = 0.1;          // a 10 cm stone
+  static constexpr double kMaxFriction = 10.0;
+  static constexpr double kMaxYoungsModulus_pa = 1e13;   // diamond is 1.2e12
+  static constexpr double kMaxRpm = 10'000.0;            // spreader discs turn at 500-1,200 rpm
+  static constexpr double kMaxSamplePosition_m = 1000.0;  // as spread_trajectory's launch position
+  static constexpr double kMaxSampleTime_s = 1e6;
+  static constexpr double kMaxVelocityPerRimSpeed = 100.0;
+  static constexpr double kMaxSpinPerDiscSpeed = 1e5;
+};
+
 std::string machine_problem(const Machine& machine);
 std::string material_problem(const Material& material);
 std::string run_values_problem(const Run& run);

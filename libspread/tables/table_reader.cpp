@@ -1,10 +1,9 @@
 #include "libspread/tables/table_reader.hpp"
 
-#include <filesystem>
-#include <system_error>
-
+#include "libspread/tables/row_checksum.hpp"
 #include "libspread/tables/sample_codec.hpp"
 #include "libspread/tables/sqlite_connection.hpp"
+#include "libspread/tables/table_file.hpp"
 
 namespace spread::tables {
 
@@ -41,6 +40,16 @@ double required_double(const Statement& query, int column, Connection& db, const
   return query.column_double(column);
 }
 
+// After the values passed their plausibility check (which names the field), the row's checksum says
+// whether they are the values that were written (row_checksum.hpp).
+void verify_checksum(Connection& db, const std::string& row, const std::string& stored, const std::string& computed) {
+  if (stored != computed) {
+    raise(TableErrorKind::kCorrupt, db.path(),
+          row + ": checksum mismatch (stored " + (stored.empty() ? std::string("nothing") : stored) + ", content gives " +
+              computed + "): the row was changed or damaged after it was written; rebuild the table with lookup_builder");
+  }
+}
+
 void require_tables(Connection& db) {
   for (const char* table : {"machine", "materials", "runs", "meta"}) {
     Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
@@ -52,7 +61,7 @@ void require_tables(Connection& db) {
 Machine read_machine(Connection& db) {
   Statement query(db,
                   "SELECT name, disc_radius_m, disc_height_m, disc_spacing_m, disc_count, vane_count, "
-                  "cone_angle_rad, rotation_sense FROM machine WHERE id = 1");
+                  "cone_angle_rad, rotation_sense, checksum FROM machine WHERE id = 1");
   if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row is missing");
   Machine m;
   m.name = query.column_text(0);
@@ -65,13 +74,14 @@ Machine read_machine(Connection& db) {
   m.rotation_sense = static_cast<int>(query.column_int(7));
   const std::string problem = machine_problem(m);
   if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row has an impossible value: " + problem);
+  verify_checksum(db, "the `machine` row", query.column_text(8), machine_checksum(m));
   return m;
 }
 
 std::vector<Material> read_materials(Connection& db) {
   Statement query(db,
                   "SELECT name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, friction_particle, "
-                  "restitution, youngs_modulus_pa, poisson_ratio, rolling_friction FROM materials ORDER BY name");
+                  "restitution, youngs_modulus_pa, poisson_ratio, rolling_friction, checksum FROM materials ORDER BY name");
   std::vector<Material> materials;
   while (query.step()) {
     Material m;
@@ -88,6 +98,7 @@ std::vector<Material> read_materials(Connection& db) {
     m.rolling_friction = required_double(query, 9, db, at + "rolling_friction");
     const std::string problem = material_problem(m);
     if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "impossible material value: " + problem);
+    verify_checksum(db, "material \"" + m.name + "\"", query.column_text(10), material_checksum(m));
     materials.push_back(std::move(m));
   }
   return materials;
@@ -97,7 +108,7 @@ std::vector<Run> read_runs(Connection& db) {
   Statement query(db,
                   "SELECT material, rpm, source, sample_count, record_layout, record_bytes, samples, scene_hash, "
                   "scene_text, effects, dt_contact_s, dt_flight_s, particle_count, software_version, created_utc, "
-                  "stats_json, convergence_json FROM runs ORDER BY material, rpm");
+                  "stats_json, convergence_json, inputs_hash, checksum FROM runs ORDER BY material, rpm");
   std::vector<Run> runs;
   while (query.step()) {
     Run run;
@@ -133,8 +144,11 @@ std::vector<Run> read_runs(Connection& db) {
     run.created_utc = query.column_text(14);
     run.stats_json = query.column_text(15);
     run.convergence_json = query.column_text(16);
+    run.inputs_hash = query.column_text(17);
     const std::string problem = run_values_problem(run);
     if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), which + "impossible value: " + problem);
+    verify_checksum(db, which.substr(0, which.size() - 2), query.column_text(18),
+                    run_checksum(run, blob, layout, record_bytes));
     runs.push_back(std::move(run));
   }
   return runs;
@@ -143,13 +157,16 @@ std::vector<Run> read_runs(Connection& db) {
 }  // namespace
 
 TableContents read_table_file(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) raise(TableErrorKind::kMissing, path, "no such file");
-  if (std::filesystem::is_directory(status)) raise(TableErrorKind::kNotOurs, path, "is a directory, not a table file");
-  if (std::filesystem::file_size(path, ec) == 0 && !ec) raise(TableErrorKind::kNotOurs, path, "empty file (0 bytes), not a table file");
-
-  Connection db(path, Connection::Mode::kReadOnly);
+  const detail::TableFileInfo file = detail::inspect_table_file(path, /*allow_missing=*/false);
+  if (file.empty) raise(TableErrorKind::kNotOurs, path, "empty file (0 bytes), not a table file");
+  if (file.wal && file.wal_has_content) {
+    raise(TableErrorKind::kIo, path,
+          "the file is in WAL mode and its write-ahead log (" + path +
+              "-wal) holds changes not yet written back; open it once read-write (rerun lookup_builder on it) first");
+  }
+  // A WAL file with an empty log reads the same as any other, but a plain read-only open would create
+  // -wal/-shm files (and fail in a read-only directory): open it as immutable.
+  Connection db(path, file.wal ? Connection::Mode::kReadOnlyImmutable : Connection::Mode::kReadOnly);
   const std::int64_t application_id = read_application_id(db);
   if (application_id != kApplicationId) {
     raise(TableErrorKind::kNotOurs, path,

@@ -13,7 +13,8 @@ CREATE TABLE machine (
   disc_count INTEGER NOT NULL,
   vane_count INTEGER NOT NULL,
   cone_angle_rad REAL NOT NULL,
-  rotation_sense INTEGER NOT NULL
+  rotation_sense INTEGER NOT NULL,
+  checksum TEXT NOT NULL
 );
 CREATE TABLE materials (
   name TEXT NOT NULL UNIQUE,
@@ -25,7 +26,8 @@ CREATE TABLE materials (
   restitution REAL NOT NULL,
   youngs_modulus_pa REAL NOT NULL,
   poisson_ratio REAL NOT NULL,
-  rolling_friction REAL NOT NULL
+  rolling_friction REAL NOT NULL,
+  checksum TEXT NOT NULL
 );
 CREATE TABLE runs (
   material TEXT NOT NULL,
@@ -36,6 +38,7 @@ CREATE TABLE runs (
   record_bytes INTEGER NOT NULL,
   samples BLOB NOT NULL,
   scene_hash TEXT NOT NULL,
+  inputs_hash TEXT NOT NULL,
   scene_text TEXT NOT NULL,
   effects TEXT NOT NULL,
   dt_contact_s REAL NOT NULL,
@@ -45,6 +48,7 @@ CREATE TABLE runs (
   created_utc TEXT NOT NULL,
   stats_json TEXT NOT NULL,
   convergence_json TEXT NOT NULL,
+  checksum TEXT NOT NULL,
   UNIQUE (material, rpm)
 );
 CREATE TABLE meta (

@@ -1,11 +1,20 @@
 #include "libspread/tables/table_writer.hpp"
 
-#include <ctime>
-#include <filesystem>
-#include <system_error>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "libspread/tables/row_checksum.hpp"
 #include "libspread/tables/sample_codec.hpp"
 #include "libspread/tables/sqlite_connection.hpp"
+#include "libspread/tables/table_file.hpp"
 #include "libspread/tables/table_schema.hpp"
 
 namespace spread::tables {
@@ -15,25 +24,71 @@ using detail::Statement;
 
 namespace {
 
+// The pid holding a flock(2) on the inode, from /proc/locks ("1: FLOCK  ADVISORY  WRITE 4242 08:01:1234 0 EOF");
+// 0 when it cannot be told.
+long flock_holder_pid(ino_t inode) {
+  std::ifstream locks("/proc/locks");
+  std::string line;
+  while (std::getline(locks, line)) {
+    std::istringstream fields(line);
+    std::string number, type, advisory, access, device;
+    long pid = 0;
+    if (!(fields >> number >> type)) continue;
+    if (type == "->") fields >> type;  // a waiter's line
+    if (type != "FLOCK" || !(fields >> advisory >> access >> pid >> device)) continue;
+    const std::size_t colon = device.rfind(':');
+    if (colon != std::string::npos && device.substr(colon + 1) == std::to_string(inode)) return pid;
+  }
+  return 0;
+}
+
+// The writer lock: an exclusive flock(2) on the table file itself, held while the writer lives. flock
+// locks are independent of the POSIX record locks SQLite takes, and the kernel drops them when the
+// process dies, so a killed builder never leaves a stale lock. The descriptor is closed only after
+// SQLite's connection (closing it earlier would not matter for flock, but no fd SQLite uses is ours).
+class WriterLock {
+ public:
+  explicit WriterLock(const std::string& path) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0644);
+    if (fd_ < 0) throw TableError(TableErrorKind::kIo, path + ": cannot open for writing: " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      struct stat st {};
+      const long pid = ::fstat(fd_, &st) == 0 ? flock_holder_pid(st.st_ino) : 0;
+      ::close(fd_);
+      fd_ = -1;
+      if (error == EWOULDBLOCK) {
+        throw TableBusyError(TableErrorKind::kIo, path + ": another writer (" +
+                                                      (pid > 0 ? "pid " + std::to_string(pid) : std::string("pid unknown")) +
+                                                      ") is writing this table file; wait for it to finish");
+      }
+      throw TableError(TableErrorKind::kIo, path + ": cannot lock for writing: " + std::strerror(error));
+    }
+  }
+  ~WriterLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  WriterLock(const WriterLock&) = delete;
+  WriterLock& operator=(const WriterLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 // Checks an existing non-empty file before anything opens it for writing: it must be SQLite, ours and
 // of this format version. Read-only, so a refused file stays byte-identical.
-void check_existing_file_is_ours(const std::string& path) {
-  std::int64_t application_id = 0;
-  std::int64_t version = 0;
-  try {
-    Connection probe(path, Connection::Mode::kReadOnly);
-    application_id = probe.pragma_int("application_id");
-    version = probe.pragma_int("user_version");
-  } catch (const TableError& e) {
-    if (e.kind() == TableErrorKind::kNotOurs) {
-      throw TableError(TableErrorKind::kNotOurs,
-                       path + ": exists and is not an SQLite file; refusing to write into it");
-    }
-    throw;
+void check_existing_file_is_ours(const std::string& path, const detail::TableFileInfo& file) {
+  if (!file.sqlite) {
+    throw TableError(TableErrorKind::kNotOurs, path + ": exists and is not an SQLite file; refusing to write into it");
   }
-  if (application_id != kApplicationId) {
+  if (file.application_id != kApplicationId) {
     throw TableError(TableErrorKind::kNotOurs, path + ": exists and is not a libspread table (application_id " +
-                                                   std::to_string(application_id) + "); refusing to write into it");
+                                                   std::to_string(file.application_id) + "); refusing to write into it");
+  }
+  std::int64_t version = 0;
+  {
+    Connection probe(path, Connection::Mode::kReadOnly);
+    version = probe.pragma_int("user_version");
   }
   if (version != kFormatVersion) {
     throw TableError(TableErrorKind::kWrongVersion, path + ": table format version " + std::to_string(version) +
@@ -83,20 +138,30 @@ class Transaction {
 }  // namespace
 
 struct TableWriter::Impl {
+  std::unique_ptr<WriterLock> lock;        // declared first: released last
   std::unique_ptr<Connection> connection;
+  bool recovered = false;
 };
 
 TableWriter::TableWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
-  std::error_code ec;
-  const bool exists = std::filesystem::exists(path, ec);
-  const bool has_content = exists && std::filesystem::file_size(path, ec) > 0 && !ec;
-  if (has_content) {
-    check_existing_file_is_ours(path);
+  detail::TableFileInfo file = detail::inspect_table_file(path, /*allow_missing=*/true);
+  impl_->lock = std::make_unique<WriterLock>(path);
+  if (file.exists && !file.empty) {
+    if (file.hot_journal && file.sqlite && file.application_id == kApplicationId) {
+      // A writer stopped inside a transaction: a read-write open rolls its journal back (SQLite's hot
+      // journal recovery, sqlite.org/atomiccommit.html §4.1); the file is then as after its last commit.
+      Connection recover(path, Connection::Mode::kReadWrite);
+      recover.pragma_int("user_version");
+      impl_->recovered = true;
+    }
+    check_existing_file_is_ours(path, file);
     impl_->connection = std::make_unique<Connection>(path, Connection::Mode::kReadWrite);
+    if (file.wal) impl_->connection->exec("PRAGMA journal_mode = DELETE");
     return;
   }
   impl_->connection = std::make_unique<Connection>(path, Connection::Mode::kReadWriteCreate);
   Connection& db = *impl_->connection;
+  db.exec("PRAGMA journal_mode = DELETE");
   Transaction transaction(db);
   db.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
   db.exec("PRAGMA user_version = " + std::to_string(kFormatVersion));
@@ -109,6 +174,53 @@ TableWriter::TableWriter(TableWriter&&) noexcept = default;
 TableWriter& TableWriter::operator=(TableWriter&&) noexcept = default;
 
 const std::string& TableWriter::path() const { return impl_->connection->path(); }
+bool TableWriter::recovered_interrupted_write() const { return impl_->recovered; }
+
+std::optional<Machine> TableWriter::stored_machine() {
+  Statement query(*impl_->connection,
+                  "SELECT name, disc_radius_m, disc_height_m, disc_spacing_m, disc_count, vane_count, cone_angle_rad, "
+                  "rotation_sense FROM machine WHERE id = 1");
+  if (!query.step()) return std::nullopt;
+  Machine m;
+  m.name = query.column_text(0);
+  m.disc_radius_m = query.column_double(1);
+  m.disc_height_m = query.column_double(2);
+  m.disc_spacing_m = query.column_double(3);
+  m.disc_count = static_cast<int>(query.column_int(4));
+  m.vane_count = static_cast<int>(query.column_int(5));
+  m.cone_angle_rad = query.column_double(6);
+  m.rotation_sense = static_cast<int>(query.column_int(7));
+  return m;
+}
+
+std::vector<Material> TableWriter::stored_materials() {
+  Statement query(*impl_->connection,
+                  "SELECT name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, friction_particle, "
+                  "restitution, youngs_modulus_pa, poisson_ratio, rolling_friction FROM materials ORDER BY name");
+  std::vector<Material> out;
+  while (query.step()) {
+    Material m;
+    m.name = query.column_text(0);
+    m.density_kg_m3 = query.column_double(1);
+    m.diameter_mean_m = query.column_double(2);
+    m.diameter_sd_m = query.column_double(3);
+    m.friction_wall = query.column_double(4);
+    m.friction_particle = query.column_double(5);
+    m.restitution = query.column_double(6);
+    m.youngs_modulus_pa = query.column_double(7);
+    m.poisson_ratio = query.column_double(8);
+    m.rolling_friction = query.column_double(9);
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+std::vector<TableWriter::StoredRun> TableWriter::stored_runs() {
+  Statement query(*impl_->connection, "SELECT material, rpm, source, inputs_hash FROM runs ORDER BY material, rpm");
+  std::vector<StoredRun> out;
+  while (query.step()) out.push_back({query.column_text(0), query.column_double(1), query.column_text(2), query.column_text(3)});
+  return out;
+}
 
 void TableWriter::write_machine(const Machine& machine) {
   const std::string problem = machine_problem(machine);
@@ -117,7 +229,7 @@ void TableWriter::write_machine(const Machine& machine) {
   Transaction transaction(db);
   Statement insert(db,
                    "INSERT OR REPLACE INTO machine (id, name, disc_radius_m, disc_height_m, disc_spacing_m, "
-                   "disc_count, vane_count, cone_angle_rad, rotation_sense) VALUES (1, ?, ?, ?, ?, ?, ?, ?, ?)");
+                   "disc_count, vane_count, cone_angle_rad, rotation_sense, checksum) VALUES (1, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   insert.bind(1, machine.name);
   insert.bind(2, machine.disc_radius_m);
   insert.bind(3, machine.disc_height_m);
@@ -126,6 +238,7 @@ void TableWriter::write_machine(const Machine& machine) {
   insert.bind(6, static_cast<std::int64_t>(machine.vane_count));
   insert.bind(7, machine.cone_angle_rad);
   insert.bind(8, static_cast<std::int64_t>(machine.rotation_sense));
+  insert.bind(9, machine_checksum(machine));
   insert.step();
   transaction.commit();
 }
@@ -139,13 +252,13 @@ void TableWriter::write_materials(const std::vector<Material>& materials) {
   Transaction transaction(db);
   Statement upsert(db,
                    "INSERT INTO materials (name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, "
-                   "friction_particle, restitution, youngs_modulus_pa, poisson_ratio, rolling_friction) "
-                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (name) DO UPDATE SET "
+                   "friction_particle, restitution, youngs_modulus_pa, poisson_ratio, rolling_friction, checksum) "
+                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (name) DO UPDATE SET "
                    "density_kg_m3 = excluded.density_kg_m3, diameter_mean_m = excluded.diameter_mean_m, "
                    "diameter_sd_m = excluded.diameter_sd_m, friction_wall = excluded.friction_wall, "
                    "friction_particle = excluded.friction_particle, restitution = excluded.restitution, "
                    "youngs_modulus_pa = excluded.youngs_modulus_pa, poisson_ratio = excluded.poisson_ratio, "
-                   "rolling_friction = excluded.rolling_friction");
+                   "rolling_friction = excluded.rolling_friction, checksum = excluded.checksum");
   for (const Material& m : materials) {
     upsert.reset();
     upsert.bind(1, m.name);
@@ -158,6 +271,7 @@ void TableWriter::write_materials(const std::vector<Material>& materials) {
     upsert.bind(8, m.youngs_modulus_pa);
     upsert.bind(9, m.poisson_ratio);
     upsert.bind(10, m.rolling_friction);
+    upsert.bind(11, material_checksum(m));
     upsert.step();
   }
   transaction.commit();
@@ -214,9 +328,9 @@ void TableWriter::write_run(const Run& run, bool replace) {
   const std::vector<std::uint8_t> blob = encode_samples(run.samples);
   Statement insert(db,
                    "INSERT INTO runs (material, rpm, source, sample_count, record_layout, record_bytes, samples, "
-                   "scene_hash, scene_text, effects, dt_contact_s, dt_flight_s, particle_count, software_version, "
-                   "created_utc, stats_json, convergence_json) "
-                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                   "scene_hash, inputs_hash, scene_text, effects, dt_contact_s, dt_flight_s, particle_count, "
+                   "software_version, created_utc, stats_json, convergence_json, checksum) "
+                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   insert.bind(1, run.material);
   insert.bind(2, run.rpm);
   insert.bind(3, run.source);
@@ -225,15 +339,17 @@ void TableWriter::write_run(const Run& run, bool replace) {
   insert.bind(6, static_cast<std::int64_t>(kSampleBytes));
   insert.bind_blob(7, blob);
   insert.bind(8, run.scene_hash);
-  insert.bind(9, run.scene_text);
-  insert.bind(10, run.effects);
-  insert.bind(11, run.dt_contact_s);
-  insert.bind(12, run.dt_flight_s);
-  insert.bind(13, run.particle_count);
-  insert.bind(14, run.software_version);
-  insert.bind(15, run.created_utc);
-  insert.bind(16, run.stats_json.empty() ? std::string("{}") : run.stats_json);
-  insert.bind(17, run.convergence_json.empty() ? std::string("[]") : run.convergence_json);
+  insert.bind(9, run.inputs_hash);
+  insert.bind(10, run.scene_text);
+  insert.bind(11, run.effects);
+  insert.bind(12, run.dt_contact_s);
+  insert.bind(13, run.dt_flight_s);
+  insert.bind(14, run.particle_count);
+  insert.bind(15, run.software_version);
+  insert.bind(16, run.created_utc);
+  insert.bind(17, stored_stats_json(run));
+  insert.bind(18, stored_convergence_json(run));
+  insert.bind(19, run_checksum(run, blob, kSampleLayout, static_cast<std::int64_t>(kSampleBytes)));
   insert.step();
   transaction.commit();
 }

@@ -5,6 +5,7 @@
 // and left byte-identical; a file of another format version is refused (kWrongVersion), a damaged or
 // truncated one (PRAGMA quick_check fails) too (kCorrupt), both also left byte-identical.
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,13 @@
 #include "libspread/tables/table_format.hpp"
 
 namespace spread::tables {
+
+// Another process holds the file's writer lock (an exclusive flock(2) on the table file, taken for the
+// writer's lifetime): two writers never interleave their runs. The message names the holder's pid.
+class TableBusyError : public TableError {
+ public:
+  using TableError::TableError;
+};
 
 // write_run() of a (material, rpm) that is already stored, without the replace flag.
 class RunExistsError : public std::runtime_error {
@@ -22,12 +30,27 @@ class RunExistsError : public std::runtime_error {
 class TableWriter {
  public:
   // Creates the file with the current schema, or opens an existing table file of ours for writing.
+  // Takes the file's writer lock first (TableBusyError when another process holds it). A rollback
+  // journal left by a writer that stopped mid-transaction is rolled back (recovered_interrupted_write());
+  // a WAL-mode file is switched back to a rollback journal, so readers never need -wal/-shm files.
   explicit TableWriter(const std::string& path);
   ~TableWriter();
   TableWriter(TableWriter&&) noexcept;
   TableWriter& operator=(TableWriter&&) noexcept;
 
   const std::string& path() const;
+  bool recovered_interrupted_write() const;
+
+  // What the file holds already (for a builder that must not mix rows of different scenes).
+  std::optional<Machine> stored_machine();
+  std::vector<Material> stored_materials();
+  struct StoredRun {
+    std::string material;
+    double rpm = 0.0;
+    std::string source;
+    std::string inputs_hash;
+  };
+  std::vector<StoredRun> stored_runs();
 
   // The single machine row (replaced when written again). std::invalid_argument naming the field when
   // machine_problem() finds a value the reader would refuse (NaN/Inf, radius <= 0, ...).

@@ -131,7 +131,7 @@ TEST(AnalyticLaunch, RollingSpinIsAboutTheDiscAxisAlongTheVaneFace) {
       EXPECT_NEAR(s.wy_norm, 0.0, 1e-9);
       const double expected = sense * (omega - v_r / (0.5 * s.diameter_m));
       EXPECT_NEAR(s.wz_norm * omega, expected, 1e-4 * std::abs(expected));
-      EXPECT_LT(sense * s.wz_norm * omega, -1000.0);
+      EXPECT_LT(static_cast<double>(sense) * s.wz_norm * omega, -1000.0);
     }
   }
 }

@@ -2,10 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
+#include "libspread/tables/table_writer.hpp"
 #include "lookup_builder/run_source.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "tests/support/temp_path.hpp"
@@ -49,7 +51,7 @@ TEST(LookupBuilder, DefaultSceneTwiceGivesTheSameRuns) {
     EXPECT_EQ(ra.scene_hash, rb.scene_hash);
     EXPECT_EQ(ra.scene_text, scene.provenance_text());
     EXPECT_EQ(ra.stats_json, rb.stats_json);
-    EXPECT_EQ(ra.software_version, SPREAD_VERSION_STRING);
+    EXPECT_EQ(ra.software_version, rb.software_version);
     EXPECT_NE(ra.stats_json.find("speed_mean"), std::string::npos);
     ASSERT_EQ(ra.samples.size(), 512u);
     ASSERT_EQ(ra.samples.size(), rb.samples.size());
@@ -91,6 +93,125 @@ TEST(LookupBuilder, DemSweepKeysAreValidatedByName) {
       const std::string key = std::string(bad).substr(0, std::string(bad).find('='));
       EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
     }
+  }
+}
+
+
+scene::Scene scene_file(const std::string& name, std::vector<std::string> overrides = {}) {
+  overrides.insert(overrides.begin(), "sweep.samples_per_run=32");
+  return scene::load_scene_file(std::string(SPREAD_SOURCE_DIR) + "/scenes/" + name, overrides);
+}
+
+// The message of the BuildConflictError a build throws ("" when it does not throw one).
+std::string conflict_of(const scene::Scene& scene, const std::string& path) {
+  BuildOptions options;
+  options.output_path = path;
+  try {
+    build_tables(scene, options);
+  } catch (const BuildConflictError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(LookupBuilderConflicts, AnotherMachineIsRefusedAndTheFileIsUntouched) {
+  TempPath file("case1.sqlite");
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(scene_file("case1.toml"), options);
+  const std::vector<char> before = spread::testing::file_bytes(file.path());
+  const std::string problem = conflict_of(scene_file("case2.toml"), file.path());
+  EXPECT_NE(problem.find("machine.disc_radius_m: file 0.29, scene 0.1524"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("--rebuild"), std::string::npos) << problem;
+  EXPECT_EQ(spread::testing::file_bytes(file.path()), before);
+}
+
+TEST(LookupBuilderConflicts, AChangedMaterialOrSourceIsRefused) {
+  TempPath file("changed.sqlite");
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(default_scene({"sweep.samples_per_run=32"}), options);
+  const std::vector<char> before = spread::testing::file_bytes(file.path());
+  const std::string friction = conflict_of(default_scene({"sweep.samples_per_run=32", "materials.0.friction_wall=0.55"}),
+                                           file.path());
+  EXPECT_NE(friction.find(".friction_wall: file"), std::string::npos) << friction;
+  const std::string budget = conflict_of(default_scene({"sweep.samples_per_run=33"}), file.path());
+  EXPECT_NE(budget.find("built from other inputs"), std::string::npos) << budget;
+  const std::string source = conflict_of(default_scene({"sweep.samples_per_run=32", "sweep.source=\"dem\""}), file.path());
+  EXPECT_NE(source.find("source analytic in the file, dem in the scene"), std::string::npos) << source;
+  EXPECT_EQ(spread::testing::file_bytes(file.path()), before);
+  // The same inputs with other comments, another rpm list or thread count are not a conflict.
+  EXPECT_EQ(conflict_of(default_scene({"sweep.samples_per_run=32", "numerics.threads=1", "sweep.rpm=[450.0]"}),
+                        file.path()),
+            "");
+}
+
+TEST(LookupBuilderConflicts, RebuildReplacesTheTableOnlyWhenTheNewOneIsComplete) {
+  TempPath file("rebuilt.sqlite");
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(scene_file("case1.toml"), options);
+  options.rebuild = true;
+  const scene::Scene case2 = scene_file("case2.toml");
+  const BuildSummary summary = build_tables(case2, options);
+  EXPECT_EQ(summary.runs_written, static_cast<int>(case2.sweep_materials().size() * case2.sweep_rpms().size()));
+  const tables::TableContents table = tables::read_table_file(file.path());
+  EXPECT_DOUBLE_EQ(table.machine.disc_radius_m, case2.machine.disc_radius_m);
+  EXPECT_EQ(table.runs.size(), case2.sweep_materials().size() * case2.sweep_rpms().size());  // no case1 rows left
+  for (const tables::Run& run : table.runs) EXPECT_EQ(run.inputs_hash, case2.run_inputs_hash(*case2.find_material(run.material), run.rpm));
+  EXPECT_FALSE(std::filesystem::exists(file.path() + ".rebuild"));
+}
+
+TEST(LookupBuilderConflicts, ASecondBuilderIsRefusedBeforeItComputes) {
+  TempPath file("busy.sqlite");
+  const scene::Scene scene = default_scene({"sweep.samples_per_run=32"});
+  tables::TableWriter holder(file.path());  // another writer holds the file
+  BuildOptions options;
+  options.output_path = file.path();
+  try {
+    build_tables(scene, options);
+    FAIL() << "the build ran beside another writer";
+  } catch (const tables::TableBusyError& e) {
+    EXPECT_NE(std::string(e.what()).find("another writer (pid "), std::string::npos) << e.what();
+  }
+}
+
+TEST(LookupBuilderProvenance, RunsRecordTheSourceRevision) {
+  TempPath file("revision.sqlite");
+  const scene::Scene scene = default_scene({"sweep.samples_per_run=32", "sweep.rpm=[600.0]"});
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(scene, options);
+  for (const tables::Run& run : tables::read_table_file(file.path()).runs) {
+    const std::string prefix = std::string(SPREAD_VERSION_STRING) + "+";
+    ASSERT_EQ(run.software_version.rfind(prefix, 0), 0u) << run.software_version;
+    EXPECT_GT(run.software_version.size(), prefix.size()) << run.software_version;  // a revision or "unknown"
+    EXPECT_EQ(run.inputs_hash, scene.run_inputs_hash(*scene.find_material(run.material), run.rpm));
+  }
+}
+
+TEST(SceneBounds, AbsurdValuesAndAMissingDiscFileAreRefusedAtLoad) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"sweep.rpm=[1e300]", "sweep.rpm[0]: must be <= 10000"},
+      {"machine.rpm=20000", "machine.rpm: must be <= 10000"},
+      {"materials.0.density_kg_m3=1e300", "materials[0].density_kg_m3: must be <= 25000"},
+      {"materials.0.diameter_mean_m=2.0", "materials[0].diameter_mean_m: must be <= 0.1"},
+      {"machine.disc_height_m=150", "machine.disc_height_m: must be <= 100"}};
+  for (const auto& [bad, message] : cases) {
+    try {
+      default_scene({bad});
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const scene::SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  // A disc STL that does not exist is found when the scene is read, whatever the launch source.
+  try {
+    default_scene({"machine.disc_model=\"stl\"", "machine.stl_path=\"no-such-disc.stl\""});
+    ADD_FAILURE() << "a missing stl_path was accepted";
+  } catch (const scene::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("machine.stl_path"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
   }
 }
 
