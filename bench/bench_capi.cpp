@@ -10,8 +10,13 @@
 // 1 kg/m³: the drag relaxation time is ~3 ns, so the explicit integrator's step is bounded by stability
 // and the flight never lands), 1 = a 3 mm granule from 1000 m (the longest legal fall), 2 = a 3 mm
 // granule held up by a 100 m/s updraught.
+// BM_ExtraThreadState/<kind>: what one more predicting thread costs on the table in SPREAD_BENCH_TABLE:
+// kind 0 = spread_open of the same file (one handle per thread), 1 = spread_workspace_create on one
+// shared handle. Counter heap_bytes_per_thread = heap bytes still held afterwards (glibc mallinfo2).
 // Run: SPREAD_BENCH_TABLE=X.sqlite taskset -c 1 build/bench/bench_capi
 #include <benchmark/benchmark.h>
+
+#include <malloc.h>
 
 #include <cstdlib>
 #include <string>
@@ -67,7 +72,7 @@ void BM_PredictWorstCase(benchmark::State& state) {
   spread_close(tables);
 }
 BENCHMARK(BM_PredictWorstCase)
-    ->ArgsProduct({{5, 50}, {0, 50}, {0, 20}})
+    ->ArgsProduct({{5, 50}, {0, 50, 100}, {0, 20, 100}})
     ->ArgNames({"tray_cm", "height_m", "wind_m_s"})
     ->Unit(benchmark::kMillisecond);
 
@@ -98,6 +103,39 @@ void BM_TrajectoryWorstCase(benchmark::State& state) {
   state.counters["flight_time_s"] = landing.flight_time_s;
 }
 BENCHMARK(BM_TrajectoryWorstCase)->DenseRange(0, 2)->ArgName("case")->Unit(benchmark::kMillisecond);
+
+void BM_ExtraThreadState(benchmark::State& state) {
+  const char* path = table_path();
+  if (path == nullptr) {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  const bool workspace_kind = state.range(0) == 1;
+  spread_tables* shared = nullptr;
+  if (spread_open(path, &shared) != SPREAD_OK) {
+    state.SkipWithError("spread_open failed");
+    return;
+  }
+  double held_bytes = 0.0;
+  for (auto _ : state) {
+    const auto before = mallinfo2().uordblks;
+    spread_tables* tables = nullptr;
+    spread_workspace* workspace = nullptr;
+    if (workspace_kind) {
+      spread_workspace_create(shared, &workspace);
+    } else {
+      spread_open(path, &tables);
+    }
+    held_bytes = static_cast<double>(mallinfo2().uordblks) - static_cast<double>(before);
+    state.PauseTiming();
+    spread_workspace_free(workspace);
+    spread_close(tables);
+    state.ResumeTiming();
+  }
+  state.counters["heap_bytes_per_thread"] = held_bytes;
+  spread_close(shared);
+}
+BENCHMARK(BM_ExtraThreadState)->DenseRange(0, 1)->ArgName("workspace")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

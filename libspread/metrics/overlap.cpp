@@ -17,8 +17,9 @@
 //   x̄ = Σ w_j P_j / n,   s² = Σ w_j (P_j − x̄)² / (n − 1)   (the sample standard deviation when all w_j = 1).
 //
 // Cost: each pattern tray of each pass lands at most once in the bout, so one bout costs O(T + n). The
-// bout is scattered pass by pass into a fixed stack buffer (bouts up to kStackBoutTrays); wider bouts are
-// gathered tray by tray instead (integer divisions per tray), so nothing here touches the heap.
+// bout is scattered pass by pass into the caller's scratch span when one is given and large enough, else
+// into a small stack buffer (bouts up to kStackBoutTrays); wider bouts are gathered tray by tray instead
+// (integer divisions per tray), so nothing here touches the heap.
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -113,12 +113,20 @@ TEST(Overlap, MatchesWholePeriodReferenceOnRandomPatterns) {
 }
 
 TEST(Overlap, VeryWideBoutsTakeTheGatherPathWithTheSameResult) {
-  // Bouts wider than 2048 trays are gathered tray by tray instead of scattered into a stack buffer.
+  // Bouts wider than kStackBoutTrays are gathered tray by tray instead of scattered into the stack
+  // buffer, unless the caller gives a scratch span: all three paths give the reference CV, and the two
+  // scatter paths the same bits.
   const std::vector<double> p = random_pattern(2101, 77);
-  for (int n : {2047, 2048, 2049, 2100, 2101, 2102, 4300}) {
+  std::vector<double> scratch(4400);
+  constexpr int kStack = sm::kStackBoutTrays;
+  for (int n : {kStack - 2, kStack - 1, kStack, kStack + 1, 2047, 2048, 2049, 2100, 2101, 2102, 4300}) {
     for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
       const double expected = reference_cv(p, n, overlap);
       EXPECT_NEAR(sm::cv_at_width(p, layout(2101), n * 0.5, overlap), expected, 1e-12 * (1.0 + expected)) << n;
+      EXPECT_NEAR(sm::cv_at_trays(p, layout(2101), n, overlap, scratch), expected, 1e-12 * (1.0 + expected)) << n;
+      if (n <= kStack - 1) {
+        EXPECT_EQ(sm::cv_at_trays(p, layout(2101), n, overlap, scratch), sm::cv_at_trays(p, layout(2101), n, overlap));
+      }
     }
   }
 }

@@ -276,17 +276,20 @@ typedef struct spread_landing {
 
 /* Flies one granule to the ground (adaptive Dormand–Prince 5(4), the same settings as spread_predict).
  * SPREAD_ERROR_NOT_LANDED when it has not reached the ground after 60 s of flight (e.g. launched
- * upwards in a strong updraught); *out_landing then holds the last state. Thread-safe; no allocation. */
+ * upwards in a strong updraught) or after 3072 integrator steps (micrometre dust, whose stiff drag keeps
+ * the steps tiny; the cap bounds the call's time, docs/c-api.md "Worst-case time"); *out_landing then
+ * holds the last state. Thread-safe; no allocation. */
 SPREAD_API spread_status spread_trajectory(const spread_trajectory_def* def, spread_landing* out_landing);
 
 /* ---------------------------------------------------------------------------------------------------
  * Error detail (appended in 0.2)
  * ------------------------------------------------------------------------------------------------- */
 /* A sentence on the last call on this thread that returned an error: for spread_open the file, record
- * and field (e.g. "t.sqlite: run Urea @ 600.000000 rpm: record size 40 bytes, expected 48"), for the
- * others the function and what was refused. Thread-local, so it works when spread_open fails without a handle. Never NULL; "" before the
- * first error on the thread. Successful calls leave it unchanged. Valid until the next failing call on
- * this thread. */
+ * and field (e.g. "t.sqlite: run urea @ 500.000000 rpm: sample BLOB has 4 bytes, expected sample_count
+ * 200 x 48"), for the others the function and what was refused. Thread-local, so it works when
+ * spread_open fails without a handle. Never NULL; "" before the first error on the thread. Successful
+ * calls leave it unchanged. Valid until the next failing call on this thread; written without
+ * allocating (cut at 511 characters). */
 SPREAD_API const char* spread_last_error_detail(void);
 
 /* ---------------------------------------------------------------------------------------------------
