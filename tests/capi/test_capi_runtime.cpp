@@ -1,8 +1,6 @@
 // The C API in a controller: the stack a prediction needs (measured on a thread whose stack this test
 // owns), per-thread workspaces on one shared handle, the caller's allocator, handle tags against double
 // close and use after close, the thread-local error detail, and the trajectory's step cap.
-#include <pthread.h>
-
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -19,26 +17,12 @@
 
 #include "spread/spread.h"
 #include "tests/capi/capi_test_files.hpp"
+#include "tests/capi/stack_depth.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace {
 
 using spread::testing::temp_path;
-
-// The stack need docs/c-api.md states for spread_predict / spread_workspace_predict / spread_trajectory.
-constexpr std::size_t kStatedStackBytes = 8 * 1024;
-
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;  // instrumented frames are several times larger
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
 
 const std::string& table_path() {
   static const std::string path = [] {
@@ -96,45 +80,9 @@ Outcome predict_on(spread_tables* tables, spread_workspace* workspace, const spr
   return o;
 }
 
-// A thread on a stack this test allocates and paints, so that the deepest byte a call wrote is visible.
-struct StackRun {
-  spread_tables* tables = nullptr;
-  spread_prediction_def def{};
-  Outcome outcome;
-  std::uintptr_t entry_address = 0;
-};
-
-void* predict_thread(void* argument) {
-  auto* run = static_cast<StackRun*>(argument);
-  volatile char marker = 0;
-  run->entry_address = reinterpret_cast<std::uintptr_t>(&marker);
-  run->outcome = predict_on(run->tables, nullptr, run->def);
-  return nullptr;
-}
-
-constexpr unsigned char kPaint = 0xA5;
-
-// Runs the prediction on a thread with `stack_bytes` of stack; returns the bytes below the thread
-// function's frame that the call wrote (its stack need).
-std::size_t run_on_small_stack(StackRun& run, std::size_t stack_bytes) {
-  void* stack = std::aligned_alloc(4096, stack_bytes);
-  std::memset(stack, kPaint, stack_bytes);
-  pthread_attr_t attributes;
-  pthread_attr_init(&attributes);
-  EXPECT_EQ(pthread_attr_setstack(&attributes, stack, stack_bytes), 0);
-  pthread_t thread;
-  EXPECT_EQ(pthread_create(&thread, &attributes, predict_thread, &run), 0);
-  pthread_join(thread, nullptr);
-  pthread_attr_destroy(&attributes);
-  const auto* bytes = static_cast<const unsigned char*>(stack);
-  std::size_t lowest = 0;
-  while (lowest < stack_bytes && bytes[lowest] == kPaint) ++lowest;
-  const std::uintptr_t deepest = reinterpret_cast<std::uintptr_t>(bytes + lowest);
-  std::free(stack);
-  return run.entry_address > deepest ? run.entry_address - deepest : 0;
-}
-
 TEST(CapiStack, PredictionNeedsLessThanTheStatedStackAndGivesTheSameResult) {
+  using spread::testing::kSanitizedBuild;
+  using spread::testing::kStatedStackBytes;
   spread_tables* tables = nullptr;
   ASSERT_EQ(spread_open(table_path().c_str(), &tables), SPREAD_OK);
   std::size_t need = 0;
@@ -142,20 +90,21 @@ TEST(CapiStack, PredictionNeedsLessThanTheStatedStackAndGivesTheSameResult) {
     const Outcome on_main = predict_on(tables, nullptr, def);
     // Measured on a roomy stack first (the paint shows the depth), then on a stack of the stated need plus
     // the thread's own start-up and a margin: 16 KiB, the smallest stack glibc allows (PTHREAD_STACK_MIN).
-    StackRun roomy{tables, def, {}, 0};
-    need = std::max(need, run_on_small_stack(roomy, 256 * 1024));
-    expect_same(on_main, roomy.outcome, "256 KiB stack");
-    if (!kSanitized) {
-      StackRun small{tables, def, {}, 0};
-      run_on_small_stack(small, 16 * 1024);
-      expect_same(on_main, small.outcome, "16 KiB stack");
+    Outcome roomy, small;
+    auto on_roomy = [&] { roomy = predict_on(tables, nullptr, def); };
+    need = std::max(need, spread::testing::stack_depth_of(on_roomy, 256 * 1024));
+    expect_same(on_main, roomy, "256 KiB stack");
+    if (!kSanitizedBuild) {
+      auto on_small = [&] { small = predict_on(tables, nullptr, def); };
+      spread::testing::stack_depth_of(on_small, 16 * 1024);
+      expect_same(on_main, small, "16 KiB stack");
     }
   }
-  if (!kSanitized) {
+  if (!kSanitizedBuild) {
     EXPECT_LE(need, kStatedStackBytes) << "stack need " << need << " bytes";
   }
-  std::printf("spread_predict stack need: %zu bytes\n", need);
   EXPECT_GT(need, 0u);
+  std::printf("spread_predict stack need: %zu bytes\n", need);
   spread_close(tables);
 }
 
