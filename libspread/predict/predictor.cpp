@@ -146,9 +146,9 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   landing_x_m_.resize(2 * pair);
   landing_y_m_.resize(2 * pair);
   landing_weight_.resize(2 * pair);
-  granules_.resize(2 * pair);
-  launches_.resize(2 * pair);
-  landings_.resize(2 * pair);
+  granules_.resize(kFlightChunk);
+  launches_.resize(kFlightChunk);
+  landings_.resize(kFlightChunk);
   radial_x_m_.resize(pair);
   radial_y_m_.resize(pair);
   radial_weight_.resize(pair);
@@ -281,42 +281,48 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
     launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
     launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
   };
-  // All flights in one call: flight::fly_many flies them several at a time in SIMD lanes where the
-  // effects allow (the same landings as one by one).
-  for (std::size_t k = 0; k < n; ++k) launch_of(w.samples_[k], 1.0, k);
+  // Flight f < n is left-disc sample f; n <= f < 2n (lateral wind) is the right disc's mirror of sample
+  // f − n. They are flown kFlightChunk at a time: flight::fly_many flies several at once in SIMD lanes
+  // where the effects allow and gives fly_to_ground's landings bit for bit, so the chunking changes no
+  // result, and the launch and landing buffers stay small (a workspace per thread: docs/c-api.md).
   const bool right_flown = two_discs && fly_right_disc;
-  if (right_flown) {
-    for (std::size_t k = 0; k < n; ++k) launch_of(w.samples_[k], -1.0, n + k);
-  }
   const std::size_t flights = right_flown ? 2 * n : n;
-  flight::fly_many(std::span(w.granules_).first(flights), std::span(w.launches_).first(flights), 0.0, air, effects,
-                   settings_, std::span(w.landings_).first(flights));
-
   std::size_t radial_count = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const flight::Landing& left = w.landings_[k];
-    const double weight = w.sample_weight_kg_[k];
-    const double x = left.landed ? left.state.position_m.x() : nan;
-    const double y = left.landed ? left.state.position_m.y() : nan;
-    w.landing_x_m_[k] = x - half_spacing_m;
-    w.landing_y_m_[k] = y;
-    w.landing_weight_[k] = weight;
-    if (left.landed) {
-      w.radial_x_m_[radial_count] = x;
-      w.radial_y_m_[radial_count] = y;
-      w.radial_weight_[radial_count] = weight;
-      ++radial_count;
+  for (std::size_t first = 0; first < flights; first += kFlightChunk) {
+    const std::size_t count = std::min(kFlightChunk, flights - first);
+    for (std::size_t c = 0; c < count; ++c) {
+      const std::size_t f = first + c;
+      launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
     }
-    if (!two_discs) continue;
-    if (right_flown) {
-      const flight::Landing& right = w.landings_[n + k];
-      w.landing_x_m_[n + k] = right.landed ? right.state.position_m.x() + half_spacing_m : nan;
-      w.landing_y_m_[n + k] = right.landed ? right.state.position_m.y() : nan;
-    } else {
-      w.landing_x_m_[n + k] = half_spacing_m - x;
-      w.landing_y_m_[n + k] = y;
+    flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
+                     settings_, std::span(w.landings_).first(count));
+    for (std::size_t c = 0; c < count; ++c) {
+      const std::size_t f = first + c;
+      const flight::Landing& landing = w.landings_[c];
+      if (f >= n) {  // the right disc, flown
+        w.landing_x_m_[f] = landing.landed ? landing.state.position_m.x() + half_spacing_m : nan;
+        w.landing_y_m_[f] = landing.landed ? landing.state.position_m.y() : nan;
+        continue;
+      }
+      const double weight = w.sample_weight_kg_[f];
+      const double x = landing.landed ? landing.state.position_m.x() : nan;
+      const double y = landing.landed ? landing.state.position_m.y() : nan;
+      w.landing_x_m_[f] = x - half_spacing_m;
+      w.landing_y_m_[f] = y;
+      w.landing_weight_[f] = weight;
+      if (landing.landed) {
+        w.radial_x_m_[radial_count] = x;
+        w.radial_y_m_[radial_count] = y;
+        w.radial_weight_[radial_count] = weight;
+        ++radial_count;
+      }
+      if (!two_discs) continue;
+      if (!right_flown) {  // the right disc is the left one's mirror image
+        w.landing_x_m_[n + f] = half_spacing_m - x;
+        w.landing_y_m_[n + f] = y;
+      }
+      w.landing_weight_[n + f] = weight;
     }
-    w.landing_weight_[n + k] = weight;
   }
   const auto stats = metrics::radial_statistics(std::span(w.radial_x_m_).first(radial_count),
                                                 std::span(w.radial_y_m_).first(radial_count),

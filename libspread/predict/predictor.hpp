@@ -127,6 +127,10 @@ struct PredictorLimits {
 
 class Predictor;
 
+// Flights per flight::fly_many call in predict(): the workspace holds launches and landings for this
+// many, not for every flight (2 × 8,102 on the default table would be 3 MB per workspace).
+inline constexpr std::size_t kFlightChunk = 256;
+
 // Everything one predict() call writes: launch samples at the requested rpm, flights, landings, trays,
 // gradients and the metrics' scratch. Sized for one Predictor; one per thread that predicts.
 class PredictorWorkspace {
@@ -143,7 +147,8 @@ class PredictorWorkspace {
   std::size_t tray_capacity_ = 0;
   std::pmr::vector<tables::LaunchSample> samples_;
   std::pmr::vector<double> sample_weight_kg_;
-  std::pmr::vector<flight::Granule> granules_;  // flights: left disc samples, then the right disc's when flown
+  // One chunk of flights (kFlightChunk): left disc samples, then the right disc's when flown.
+  std::pmr::vector<flight::Granule> granules_;
   std::pmr::vector<flight::State> launches_;
   std::pmr::vector<flight::Landing> landings_;
   std::pmr::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
