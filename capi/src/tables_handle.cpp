@@ -145,7 +145,7 @@ extern "C" void spread_workspace_free(spread_workspace* workspace) {
     fail(SPREAD_ERROR_BAD_HANDLE, "spread_workspace_free: not a live workspace (freed already?): left alone");
     return;
   }
-  const spread_allocator a = workspace->tables->memory.allocator();
+  const spread_allocator a = workspace->memory.allocator();
   spread::capi::mark_dead(workspace->tag);
   workspace->~spread_workspace();
   a.free(a.user, workspace, sizeof(spread_workspace));

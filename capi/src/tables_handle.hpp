@@ -51,17 +51,17 @@ struct spread_tables {
   spread_tables(spread::tables::TableContents contents, const spread_allocator& allocator)
       : memory(allocator), predictor(std::move(contents), {}, &memory) {}
   std::uint64_t tag = spread::capi::kTablesTag;  // first member: read before anything else
-  // Before the predictor: it outlives the predictor's buffers. Mutable: workspaces of a const handle
-  // allocate through it (it only forwards to the caller's functions).
-  mutable spread::capi::CallerMemory memory;
+  spread::capi::CallerMemory memory;  // before the predictor: it outlives the predictor's buffers
   spread::predict::Predictor predictor;
 };
 
 struct spread_workspace {
   explicit spread_workspace(const spread_tables& owner)
-      : tables(&owner), workspace(owner.predictor, &owner.memory) {}
+      : tables(&owner), memory(owner.memory.allocator()), workspace(owner.predictor, &memory) {}
   std::uint64_t tag = spread::capi::kWorkspaceTag;
   const spread_tables* tables;
+  // Its own copy of the handle's allocator: freeing the workspace never touches the handle.
+  spread::capi::CallerMemory memory;
   spread::predict::PredictorWorkspace workspace;
 };
 

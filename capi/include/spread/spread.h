@@ -121,7 +121,8 @@ typedef struct spread_tables spread_tables; /* opaque */
  * SPREAD_ERROR_FILE_MISSING / _NOT_OURS / _CORRUPT / _WRONG_VERSION / _EMPTY / _IO / _OUT_OF_MEMORY. */
 SPREAD_API spread_status spread_open(const char* path, spread_tables** out_tables);
 
-/* Destroys a handle. NULL is a no-op. Every workspace made from it must be freed first. A handle that
+/* Destroys a handle. NULL is a no-op. Its workspaces must not be used afterwards (they may still be
+ * freed, before or after). A handle that
  * is not live (closed already) is left alone: the handle carries a tag that spread_open sets and
  * spread_close clears, and every function checks it (SPREAD_ERROR_BAD_HANDLE). After the memory is
  * freed that check reads freed memory, so it catches a double close or a use after close only as long as
@@ -319,8 +320,8 @@ SPREAD_API spread_status spread_open_with_allocator(const char* path, const spre
 typedef struct spread_workspace spread_workspace; /* opaque */
 
 /* A prediction workspace for `tables` (from the handle's allocator): no file access, no copy of the
- * table. The handle must stay open while the workspace lives. May run concurrently with predictions on
- * other workspaces of the same handle. */
+ * table. Use it only while the handle is open; free it before or after spread_close. May run
+ * concurrently with predictions on other workspaces of the same handle. */
 SPREAD_API spread_status spread_workspace_create(const spread_tables* tables, spread_workspace** out_workspace);
 
 /* Frees a workspace. NULL is a no-op; a workspace that is not live is left alone (best effort, as
