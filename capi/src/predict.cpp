@@ -1,11 +1,13 @@
 // spread_predict: C definition → predict::PredictionRequest → Predictor → C result. No allocation:
 // the material name is viewed in place, the workspace belongs to the handle.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <new>
 #include <string_view>
 
+#include "capi/src/error_detail.hpp"
 #include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
 
@@ -59,16 +61,46 @@ void copy_result(const spread::predict::Prediction& p, bool v2, spread_predictio
   r.kernel_half_width_m = p.kernel_half_width_m;
 }
 
-}  // namespace
+// What a refused request was, for spread_last_error_detail (vsnprintf into the thread's buffer: no
+// allocation).
+spread_status refused(spread_status status, const spread::predict::Predictor& predictor,
+                      const spread_prediction_def& def, bool v2) {
+  using spread::capi::fail;
+  switch (status) {
+    case SPREAD_ERROR_UNKNOWN_MATERIAL:
+      return fail(status, "spread_predict: no material \"%.200s\" in the table", def.material);
+    case SPREAD_ERROR_RPM_OUTSIDE_TABLE: {
+      const auto index = predictor.find_material(def.material);
+      return fail(status, "spread_predict: rpm %g outside the rows of \"%.200s\", [%g, %g]", def.rpm, def.material,
+                  index ? predictor.min_rpm(*index) : 0.0, index ? predictor.max_rpm(*index) : 0.0);
+    }
+    case SPREAD_ERROR_UNKNOWN_EFFECT:
+      return fail(status, "spread_predict: effects 0x%x has bits outside SPREAD_EFFECT_ALL | SPREAD_EFFECTS_AS_TABLE",
+                  static_cast<unsigned>(def.effects));
+    default:
+      return fail(status,
+                  "spread_predict: %s: rpm %g, disc_height_m %g, wind_m_s {%g, %g}, cv_target_percent %g, "
+                  "bout_width_m %g, tray_width_m %g, kernel_half_width_m %g (bounds: docs/c-api.md)",
+                  spread_status_str(status), def.rpm, def.disc_height_m, def.wind_m_s[0], def.wind_m_s[1],
+                  def.cv_target_percent, def.bout_width_m, def.tray_width_m, v2 ? def.kernel_half_width_m : NAN);
+  }
+}
 
-extern "C" spread_status spread_predict(spread_tables* tables, const spread_prediction_def* def,
-                                        spread_prediction* result, double* transverse_mass_fraction,
-                                        size_t transverse_capacity) {
-  if (tables == nullptr || def == nullptr || result == nullptr) return SPREAD_ERROR_NULL_POINTER;
+// Both spread_predict and spread_workspace_predict: `run(request, prediction)` predicts with the
+// workspace the entry point chose.
+template <typename Run>
+spread_status predict_with(const spread::predict::Predictor& predictor, const spread_prediction_def* def,
+                           spread_prediction* result, double* transverse_mass_fraction, size_t transverse_capacity,
+                           Run run) {
+  using spread::capi::fail;
+  if (def == nullptr || result == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_predict: def or result is NULL");
   // struct_size first: a definition not made by spread_prediction_def_default() is refused before any
   // of its fields is read.
-  if (def->struct_size < spread::capi::kPredictionDefV1Size) return SPREAD_ERROR_OUT_OF_RANGE;
-  if (def->material == nullptr) return SPREAD_ERROR_NULL_POINTER;
+  if (def->struct_size < spread::capi::kPredictionDefV1Size) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict: def->struct_size %u is smaller than the first published %zu",
+                static_cast<unsigned>(def->struct_size), spread::capi::kPredictionDefV1Size);
+  }
+  if (def->material == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_predict: def->material is NULL");
   try {
     spread::capi::detail::fault_point();
     spread::predict::PredictionRequest request;
@@ -85,18 +117,54 @@ extern "C" spread_status spread_predict(spread_tables* tables, const spread_pred
     if (v2) request.kernel_half_width_m = def->kernel_half_width_m;
 
     spread::predict::Prediction prediction;
-    const auto status = tables->predictor.predict(request, prediction);
-    if (status != spread::predict::PredictStatus::kOk) return status_of(status);
+    const auto status = run(request, prediction);
+    if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, v2);
     copy_result(prediction, v2, *result);
     if (transverse_mass_fraction != nullptr) {
       const auto& trays = prediction.tray_mass_fraction;
-      if (transverse_capacity < trays.size()) return SPREAD_ERROR_BUFFER_TOO_SMALL;
+      if (transverse_capacity < trays.size()) {
+        return fail(SPREAD_ERROR_BUFFER_TOO_SMALL, "spread_predict: transverse buffer of %zu values, the prediction has %zu trays",
+                    transverse_capacity, trays.size());
+      }
       std::copy(trays.begin(), trays.end(), transverse_mass_fraction);
     }
     return SPREAD_OK;
   } catch (const std::bad_alloc&) {
-    return SPREAD_ERROR_OUT_OF_MEMORY;
+    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "spread_predict: out of memory");
+  } catch (const std::exception& e) {
+    return fail(SPREAD_ERROR_INTERNAL, "spread_predict: %.400s", e.what());
   } catch (...) {
-    return SPREAD_ERROR_INTERNAL;
+    return fail(SPREAD_ERROR_INTERNAL, "spread_predict: unknown exception");
   }
+}
+
+}  // namespace
+
+extern "C" spread_status spread_predict(spread_tables* tables, const spread_prediction_def* def,
+                                        spread_prediction* result, double* transverse_mass_fraction,
+                                        size_t transverse_capacity) {
+  if (tables == nullptr) return spread::capi::fail(SPREAD_ERROR_NULL_POINTER, "spread_predict: the handle is NULL");
+  if (!spread::capi::live(tables)) {
+    return spread::capi::fail(SPREAD_ERROR_BAD_HANDLE, "spread_predict: not a live spread_tables handle (closed?)");
+  }
+  spread::predict::Predictor& predictor = tables->predictor;
+  return predict_with(predictor, def, result, transverse_mass_fraction, transverse_capacity,
+                      [&](const spread::predict::PredictionRequest& request, spread::predict::Prediction& out) {
+                        return predictor.predict(request, out);
+                      });
+}
+
+extern "C" spread_status spread_workspace_predict(spread_workspace* workspace, const spread_prediction_def* def,
+                                                  spread_prediction* result, double* transverse_mass_fraction,
+                                                  size_t transverse_capacity) {
+  if (workspace == nullptr) return spread::capi::fail(SPREAD_ERROR_NULL_POINTER, "spread_workspace_predict: the workspace is NULL");
+  if (!spread::capi::live(workspace) || !spread::capi::live(workspace->tables)) {
+    return spread::capi::fail(SPREAD_ERROR_BAD_HANDLE,
+                              "spread_workspace_predict: the workspace or its spread_tables handle is not live");
+  }
+  const spread::predict::Predictor& predictor = workspace->tables->predictor;
+  return predict_with(predictor, def, result, transverse_mass_fraction, transverse_capacity,
+                      [&](const spread::predict::PredictionRequest& request, spread::predict::Prediction& out) {
+                        return predictor.predict(request, out, workspace->workspace);
+                      });
 }

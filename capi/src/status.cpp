@@ -21,6 +21,7 @@ extern "C" const char* spread_status_str(spread_status status) {
     case SPREAD_ERROR_OUT_OF_MEMORY: return "SPREAD_ERROR_OUT_OF_MEMORY: out of memory";
     case SPREAD_ERROR_NOT_LANDED: return "SPREAD_ERROR_NOT_LANDED: the granule did not reach the ground";
     case SPREAD_ERROR_INTERNAL: return "SPREAD_ERROR_INTERNAL: internal error";
+    case SPREAD_ERROR_BAD_HANDLE: return "SPREAD_ERROR_BAD_HANDLE: not a live handle (closed or freed)";
   }
   return "unknown status";
 }

@@ -1,16 +1,38 @@
 #pragma once
-// The object behind the opaque spread_tables handle: the predictor (tables in memory + workspace).
+// The objects behind the opaque handles: spread_tables (the predictor: table in memory, cells, and one
+// workspace) and spread_workspace (one more workspace for another thread), both in memory from the
+// caller's allocator, each with a tag that marks it live.
 #include <cstddef>
+#include <cstdint>
+#include <memory_resource>
 
 #include "libspread/predict/predictor.hpp"
 #include "spread/spread.h"
 
-struct spread_tables {
-  explicit spread_tables(spread::tables::TableContents contents) : predictor(std::move(contents)) {}
-  spread::predict::Predictor predictor;
+namespace spread::capi {
+
+// The caller's spread_allocator as a std::pmr::memory_resource, so that the predictor's buffers come
+// from it. A NULL from alloc is std::bad_alloc (SPREAD_ERROR_OUT_OF_MEMORY at the entry point).
+class CallerMemory final : public std::pmr::memory_resource {
+ public:
+  explicit CallerMemory(const spread_allocator& allocator) : allocator_(allocator) {}
+  const spread_allocator& allocator() const { return allocator_; }
+
+ private:
+  void* do_allocate(std::size_t bytes, std::size_t alignment) override;
+  void do_deallocate(void* pointer, std::size_t bytes, std::size_t alignment) override;
+  bool do_is_equal(const std::pmr::memory_resource& other) const noexcept override { return this == &other; }
+  spread_allocator allocator_;
 };
 
-namespace spread::capi {
+// malloc / free (aligned_alloc above the fundamental alignment): what spread_open uses.
+const spread_allocator& default_allocator();
+
+// Tags: set by the constructors, overwritten with kDeadTag just before the memory is released. A live
+// handle holds its tag; a closed one holds kDeadTag until the memory is reused (best effort).
+inline constexpr std::uint64_t kTablesTag = 0x5350524541445442u;     // "SPREADTB"
+inline constexpr std::uint64_t kWorkspaceTag = 0x5350524541445753u;  // "SPREADWS"
+inline constexpr std::uint64_t kDeadTag = 0xDEADDEADDEADDEADu;
 
 // Oldest struct sizes this library accepts (the first published layouts). A caller compiled against a
 // newer header passes a larger struct_size; the library reads the fields it knows.
@@ -18,5 +40,36 @@ namespace spread::capi {
 inline constexpr std::size_t kPredictionDefV1Size = offsetof(spread_prediction_def, kernel_half_width_m);
 inline constexpr std::size_t kPredictionDefV2Size = sizeof(spread_prediction_def);
 inline constexpr std::size_t kTrajectoryDefV1Size = sizeof(spread_trajectory_def);
+
+// Accepted integrator steps after which spread_trajectory gives up (SPREAD_ERROR_NOT_LANDED): 3072 steps
+// of about 0.45 µs each keep one call near 1.4 ms (bench_capi BM_TrajectoryWorstCase).
+inline constexpr int kTrajectoryMaxSteps = 3072;
+
+}  // namespace spread::capi
+
+struct spread_tables {
+  spread_tables(spread::tables::TableContents contents, const spread_allocator& allocator)
+      : memory(allocator), predictor(std::move(contents), {}, &memory) {}
+  std::uint64_t tag = spread::capi::kTablesTag;  // first member: read before anything else
+  spread::capi::CallerMemory memory;  // before the predictor: it outlives the predictor's buffers
+  spread::predict::Predictor predictor;
+};
+
+struct spread_workspace {
+  explicit spread_workspace(const spread_tables& owner)
+      : tables(&owner), memory(owner.memory.allocator()), workspace(owner.predictor, &memory) {}
+  std::uint64_t tag = spread::capi::kWorkspaceTag;
+  const spread_tables* tables;
+  // Its own copy of the handle's allocator: freeing the workspace never touches the handle.
+  spread::capi::CallerMemory memory;
+  spread::predict::PredictorWorkspace workspace;
+};
+
+namespace spread::capi {
+
+inline bool live(const spread_tables* tables) { return tables->tag == kTablesTag; }
+inline bool live(const spread_workspace* workspace) { return workspace->tag == kWorkspaceTag; }
+// The tag store must not be dropped as a dead store before the memory is released.
+inline void mark_dead(std::uint64_t& tag) { *static_cast<volatile std::uint64_t*>(&tag) = kDeadTag; }
 
 }  // namespace spread::capi

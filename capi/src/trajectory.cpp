@@ -3,6 +3,7 @@
 #include <cmath>
 #include <initializer_list>
 
+#include "capi/src/error_detail.hpp"
 #include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
 #include "libspread/predict/flight_defaults.hpp"
@@ -69,11 +70,21 @@ bool in_domain(const spread_trajectory_def& d) {
 }  // namespace
 
 extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spread_landing* out_landing) {
-  if (def == nullptr || out_landing == nullptr) return SPREAD_ERROR_NULL_POINTER;
-  if (def->struct_size < spread::capi::kTrajectoryDefV1Size) return SPREAD_ERROR_OUT_OF_RANGE;
-  if (!all_finite(*def)) return SPREAD_ERROR_NOT_FINITE;
-  if (!in_domain(*def)) return SPREAD_ERROR_OUT_OF_RANGE;
-  if ((def->effects & ~uint32_t{SPREAD_EFFECT_ALL}) != 0) return SPREAD_ERROR_UNKNOWN_EFFECT;
+  using spread::capi::fail;
+  if (def == nullptr || out_landing == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_trajectory: def or out_landing is NULL");
+  if (def->struct_size < spread::capi::kTrajectoryDefV1Size) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_trajectory: def->struct_size %u is smaller than the first published %zu",
+                static_cast<unsigned>(def->struct_size), spread::capi::kTrajectoryDefV1Size);
+  }
+  if (!all_finite(*def)) return fail(SPREAD_ERROR_NOT_FINITE, "spread_trajectory: an input is NaN or infinite");
+  if (!in_domain(*def)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_trajectory: an input is outside its physical domain (spread.h lists "
+                                           "the bounds per field; launched below the ground?)");
+  }
+  if ((def->effects & ~uint32_t{SPREAD_EFFECT_ALL}) != 0) {
+    return fail(SPREAD_ERROR_UNKNOWN_EFFECT, "spread_trajectory: effects 0x%x has bits outside SPREAD_EFFECT_ALL",
+                static_cast<unsigned>(def->effects));
+  }
   try {
     spread::capi::detail::fault_point();
     spread::flight::Granule granule;
@@ -87,17 +98,26 @@ extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spr
     air.density_kg_m3 = def->air_density_kg_m3;
     air.viscosity_pa_s = def->air_viscosity_pa_s;
     air.wind_m_s = vec(def->wind_m_s);
-    const auto landing = spread::flight::fly_to_ground(granule, launch, def->ground_z_m, air, def->effects,
-                                                       spread::predict::default_flight_settings());
+    // A step cap bounds the worst case (docs/c-api.md "Worst-case time"): the explicit integrator's step
+    // is bounded by stability at about the drag relaxation time τ = ρ d² / (18 μ) (Stokes), 3 ns for 1 µm
+    // dust, so such a flight would otherwise run into the flight module's cap of a million steps (0.44 s)
+    // long before 60 s of flight. Granules of a spreader (>= 0.5 mm) land in tens of steps.
+    spread::flight::Settings settings = spread::predict::default_flight_settings();
+    settings.max_steps = spread::capi::kTrajectoryMaxSteps;
+    const auto landing = spread::flight::fly_to_ground(granule, launch, def->ground_z_m, air, def->effects, settings);
     put(landing.state.position_m, out_landing->position_m);
     put(landing.state.velocity_m_s, out_landing->velocity_m_s);
     put(landing.state.spin_rad_s, out_landing->spin_rad_s);
     out_landing->flight_time_s = landing.flight_time_s;
     out_landing->steps = landing.steps;
-    return landing.landed ? SPREAD_OK : SPREAD_ERROR_NOT_LANDED;
+    if (landing.landed) return SPREAD_OK;
+    return fail(SPREAD_ERROR_NOT_LANDED, "spread_trajectory: not on the ground after %g s of flight and %d steps (limits %g s, %d steps)",
+                landing.flight_time_s, landing.steps, settings.max_time_s, settings.max_steps);
   } catch (const std::bad_alloc&) {
-    return SPREAD_ERROR_OUT_OF_MEMORY;
+    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "spread_trajectory: out of memory");
+  } catch (const std::exception& e) {
+    return fail(SPREAD_ERROR_INTERNAL, "spread_trajectory: %.400s", e.what());
   } catch (...) {
-    return SPREAD_ERROR_INTERNAL;
+    return fail(SPREAD_ERROR_INTERNAL, "spread_trajectory: unknown exception");
   }
 }

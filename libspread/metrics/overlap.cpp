@@ -17,11 +17,13 @@
 //   x̄ = Σ w_j P_j / n,   s² = Σ w_j (P_j − x̄)² / (n − 1)   (the sample standard deviation when all w_j = 1).
 //
 // Cost: each pattern tray of each pass lands at most once in the bout, so one bout costs O(T + n). The
-// bout is scattered pass by pass into a fixed stack buffer (bouts up to kStackBoutTrays); wider bouts are
-// gathered tray by tray instead (integer divisions per tray), so nothing here touches the heap.
+// bout is scattered pass by pass into the caller's scratch span when one is given and large enough, else
+// into a small stack buffer (bouts up to kStackBoutTrays); wider bouts are gathered tray by tray instead
+// (integer divisions per tray), so nothing here touches the heap.
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -143,10 +145,17 @@ BoutMoments bout_moments(const BoutTrays& bout, ValueAt value) {
   return r;
 }
 
-double cv_of_bout(std::span<const double> pattern_kg, const BoutTrays& bout, Overlap overlap) {
+double cv_of_bout(std::span<const double> pattern_kg, const BoutTrays& bout, Overlap overlap,
+                  std::span<double> scratch = {}) {
+  const auto grid = static_cast<std::size_t>(bout.grid_trays);
+  if (grid <= scratch.size()) {
+    const std::span<double> values = scratch.first(grid);
+    scatter_bout(pattern_kg, bout, overlap, values);
+    return bout_moments(bout, [&values](int j) { return values[static_cast<std::size_t>(j)]; }).cv;
+  }
   if (bout.grid_trays <= kStackBoutTrays) {
     double bout_kg[kStackBoutTrays];
-    const std::span<double> values(bout_kg, static_cast<std::size_t>(bout.grid_trays));
+    const std::span<double> values(bout_kg, grid);
     scatter_bout(pattern_kg, bout, overlap, values);
     return bout_moments(bout, [&values](int j) { return values[static_cast<std::size_t>(j)]; }).cv;
   }
@@ -205,12 +214,23 @@ double cv_at_width(std::span<const double> tray_mass_kg, const TrayLayout& trays
 
 double cv_at_trays(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
                    Overlap overlap) {
+  return cv_at_trays(tray_mass_kg, trays, bout_tray_count, overlap, {});
+}
+
+double cv_at_trays(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                   Overlap overlap, std::span<double> scratch) {
   detail::require_tray_span(tray_mass_kg.size(), trays, "cv_at_trays", "tray_mass_kg");
-  return cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count), overlap);
+  return cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count), overlap, scratch);
 }
 
 void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
                  Overlap overlap, std::span<double> gradient_per_kg) {
+  double buffer[kStackBoutTrays];
+  cv_gradient(tray_mass_kg, trays, bout_tray_count, overlap, gradient_per_kg, std::span<double>(buffer));
+}
+
+void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                 Overlap overlap, std::span<double> gradient_per_kg, std::span<double> scratch) {
   detail::require_tray_span(tray_mass_kg.size(), trays, "cv_gradient", "tray_mass_kg");
   detail::require_same_size(tray_mass_kg.size(), gradient_per_kg.size(), "cv_gradient", "tray_mass_kg",
                             "gradient_per_kg");
@@ -218,9 +238,8 @@ void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, 
   const BoutTrays bout = bout_trays(trays, bout_tray_count);
   const int n = bout.bout_trays;
   const bool mirror = overlap == Overlap::kToAndFro;
-  const bool stacked = bout.grid_trays <= kStackBoutTrays;
-  double buffer[kStackBoutTrays];
-  const std::span<double> values(buffer, stacked ? static_cast<std::size_t>(bout.grid_trays) : 0);
+  const bool stacked = static_cast<std::size_t>(bout.grid_trays) <= scratch.size();
+  const std::span<double> values = scratch.first(stacked ? static_cast<std::size_t>(bout.grid_trays) : 0);
   if (stacked) scatter_bout(tray_mass_kg, bout, overlap, values);
   auto value = [&](int j) {
     return stacked ? values[static_cast<std::size_t>(j)] : grid_tray_mass(tray_mass_kg, n, mirror, bout.first_tray + j);
@@ -334,6 +353,170 @@ WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<
              widths_m.size(), [&](std::size_t i) { return widths_m[i]; }, [&](std::size_t i) { return cv[i]; },
              cv_target)
       .width;
+}
+
+namespace {
+
+// FFT length for the linear (not circular) correlations of a T-tray pattern: lags up to 2T − 2.
+std::size_t correlation_fft_size(int tray_count) {
+  std::size_t size = 2;
+  while (size < 2 * static_cast<std::size_t>(tray_count)) size *= 2;
+  return size;
+}
+
+// In-place radix-2 FFT of `size` complex values stored (re, im) interleaved: X_k = Σ_j x_j e^{∓2πijk/size}
+// (− forward, + inverse, unscaled). twiddle holds e^{−2πij/size} for j < size/2, interleaved.
+void fft(std::span<double> data, std::size_t size, std::span<const double> twiddle, bool inverse) {
+  for (std::size_t i = 1, j = 0; i < size; ++i) {  // bit-reversal permutation
+    std::size_t bit = size >> 1;
+    for (; (j & bit) != 0; bit >>= 1) j ^= bit;
+    j |= bit;
+    if (i < j) {
+      std::swap(data[2 * i], data[2 * j]);
+      std::swap(data[2 * i + 1], data[2 * j + 1]);
+    }
+  }
+  const double sign = inverse ? -1.0 : 1.0;  // the inverse uses the conjugate twiddles
+  for (std::size_t length = 2; length <= size; length *= 2) {
+    const std::size_t half = length / 2, stride = size / length;
+    for (std::size_t start = 0; start < size; start += length) {
+      for (std::size_t k = 0; k < half; ++k) {
+        const double wr = twiddle[2 * k * stride], wi = sign * twiddle[2 * k * stride + 1];
+        double* a = &data[2 * (start + k)];
+        double* b = &data[2 * (start + k + half)];
+        const double vr = b[0] * wr - b[1] * wi, vi = b[0] * wi + b[1] * wr;
+        b[0] = a[0] - vr;
+        b[1] = a[1] - vi;
+        a[0] += vr;
+        a[1] += vi;
+      }
+    }
+  }
+}
+
+// CV(n)² of one overlap from the correlations (metrics.hpp, working_widths) of the pattern scaled to total
+// 1, interleaved as the inverse FFT leaves them: R(lag) = correlations[2·lag] for lag < T and
+// C(s) = correlations[2·s + 1] for s <= 2T − 2.
+double fast_cv_squared(std::span<const double> correlations, long t, long n, Overlap overlap) {
+  const auto r = [&](long lag) { return correlations[2 * static_cast<std::size_t>(lag)]; };
+  const auto c = [&](long s) { return correlations[2 * static_cast<std::size_t>(s) + 1]; };
+  double squares = r(0);
+  if (overlap == Overlap::kRacetrack) {
+    for (long lag = n; lag < t; lag += n) squares += 2.0 * r(lag);
+  } else {
+    for (long lag = 2 * n; lag < t; lag += 2 * n) squares += 2.0 * r(lag);
+    for (long shift = n; shift < t; shift += 2 * n) squares += c(t - 1 + shift) + c(t - 1 - shift);  // odd d
+  }
+  const double bout = static_cast<double>(n);
+  return bout * (bout * squares - 1.0) / (bout - 1.0);
+}
+
+}  // namespace
+
+std::size_t working_widths_scratch_size(int tray_count) {
+  if (tray_count < 2) return 0;
+  const std::size_t size = correlation_fft_size(tray_count);
+  // Complex data, the twiddles, and one bout (n + 1 <= T + 1 trays) for the exact evaluations.
+  return 2 * size + size + static_cast<std::size_t>(tray_count) + 1;
+}
+
+WorkingWidths working_widths(std::span<const double> tray_mass_kg, const TrayLayout& trays, double cv_target,
+                             std::span<double> scratch) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "working_widths", "tray_mass_kg");
+  if (std::isnan(cv_target)) throw std::invalid_argument("working_widths: cv_target is NaN");
+  const int widest = trays.tray_count;
+  if (widest < 2) return {};
+  if (scratch.size() < working_widths_scratch_size(widest)) {
+    throw std::invalid_argument("working_widths: scratch has " + std::to_string(scratch.size()) + " values, needs " +
+                                std::to_string(working_widths_scratch_size(widest)));
+  }
+  double total_kg = 0.0;
+  bool plain = true;  // every tray finite and >= 0: the total is the bout's and no bout is empty
+  for (double m : tray_mass_kg) {
+    plain = plain && std::isfinite(m) && m >= 0.0;
+    total_kg += m;
+  }
+  if (!plain || !std::isfinite(total_kg)) {
+    return {working_width(tray_mass_kg, trays, Overlap::kToAndFro, cv_target),
+            working_width(tray_mass_kg, trays, Overlap::kRacetrack, cv_target)};
+  }
+  if (!(total_kg > 0.0)) return {};  // every bout empty: CV infinite at every width, as working_width
+
+  const long t = widest;
+  const std::size_t size = correlation_fft_size(widest);
+  const std::span<double> data = scratch.first(2 * size);
+  const std::span<double> twiddle = scratch.subspan(2 * size, size);
+  const std::span<double> bout_scratch = scratch.subspan(3 * size, static_cast<std::size_t>(widest) + 1);
+  // e^{−2πij/size}: the second quarter from the first (multiplying by e^{−iπ/2} = −i maps (c, s) to
+  // (s, −c)), so only size/4 cos/sin pairs are evaluated.
+  const std::size_t quarter = size / 4;
+  for (std::size_t j = 0; j < std::max<std::size_t>(quarter, 1); ++j) {
+    const double angle = -2.0 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(size);
+    twiddle[2 * j] = std::cos(angle);
+    twiddle[2 * j + 1] = std::sin(angle);
+  }
+  for (std::size_t j = quarter; j < size / 2; ++j) {
+    twiddle[2 * j] = twiddle[2 * (j - quarter) + 1];
+    twiddle[2 * j + 1] = -twiddle[2 * (j - quarter)];
+  }
+  std::fill(data.begin(), data.end(), 0.0);
+  for (long i = 0; i < t; ++i) data[2 * static_cast<std::size_t>(i)] = tray_mass_kg[static_cast<std::size_t>(i)] / total_kg;
+  fft(data, size, twiddle, false);
+  // With X = FFT(p) for a real p, |X|² is the spectrum of R and X² that of C; both are Hermitian, so one
+  // inverse FFT of |X|² + i·X² returns R in the real part and C in the imaginary part.
+  for (std::size_t k = 0; k < size; ++k) {
+    const double a = data[2 * k], b = data[2 * k + 1];
+    data[2 * k] = a * a + b * b - 2.0 * a * b;
+    data[2 * k + 1] = a * a - b * b;
+  }
+  fft(data, size, twiddle, true);
+  const double scale = 1.0 / static_cast<double>(size);
+  for (double& v : data) v *= scale;
+
+  // Rounding of the correlations: each is within about ε·log₂(size) of Σ p² <= 1, and CV² sums up to
+  // 2T/n of them times n: |ΔCV²| ≲ 2·ε·T·log₂(size). The guard band is 128 times that.
+  const double guard = 256.0 * std::numeric_limits<double>::epsilon() * static_cast<double>(t) *
+                       std::log2(static_cast<double>(size));
+  const double target_squared = cv_target * cv_target;
+  auto search = [&](Overlap overlap) {
+    int exact_left = kExactWidthEvaluations;
+    auto exact_cv = [&](long n) {
+      return cv_of_bout(tray_mass_kg, bout_trays(trays, static_cast<int>(n)), overlap, bout_scratch);
+    };
+    auto within = [&](long n) {
+      const double cv_squared = fast_cv_squared(data, t, n, overlap);
+      if (std::abs(cv_squared - target_squared) <= guard && exact_left > 0) {
+        --exact_left;
+        return exact_cv(n) <= cv_target;
+      }
+      return cv_target >= 0.0 && cv_squared <= target_squared;
+    };
+    // working_width's rule (first_crossing) with these classifications.
+    WorkingWidth r;
+    bool below = within(2);
+    if (!below) return r;
+    r.width_m = widest * trays.tray_width_m;
+    r.limited_by_layout = true;
+    r.trays_below = widest;
+    for (long n = 3; n <= t; ++n) {
+      const bool now_below = within(n);
+      if (now_below == below) continue;
+      ++r.crossings;
+      if (r.crossings == 1) {
+        const double previous_cv = exact_cv(n - 1), cv = exact_cv(n);
+        r.trays_below = static_cast<int>(n - 1);
+        r.cv_below = previous_cv;
+        r.cv_above = cv;
+        r.limited_by_layout = false;
+        const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
+        const double lower = static_cast<int>(n - 1) * trays.tray_width_m;
+        r.width_m = lower + std::clamp(fraction, 0.0, 1.0) * (static_cast<int>(n) * trays.tray_width_m - lower);
+      }
+      below = now_below;
+    }
+    return r;
+  };
+  return {search(Overlap::kToAndFro), search(Overlap::kRacetrack)};
 }
 
 double effective_working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays,

@@ -31,8 +31,13 @@ double kernel_half_width_for(double sd_x_m, std::size_t sample_count) {
   return kKernelScale * sd_x_m * std::pow(static_cast<double>(sample_count), -0.2);
 }
 
-Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
-    : contents_(std::move(contents)), limits_(limits), settings_(default_flight_settings()) {
+Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std::pmr::memory_resource* memory)
+    : contents_(std::move(contents)),
+      limits_(limits),
+      settings_(default_flight_settings()),
+      samples_(memory),
+      cell_of_sample_(memory),
+      cell_mean_(memory) {
   if (!(limits_.min_tray_width_m > 0.0) || !(limits_.max_half_extent_m >= limits_.min_tray_width_m) ||
       !std::isfinite(limits_.max_half_extent_m)) {
     throw std::invalid_argument("Predictor: limits need 0 < min_tray_width_m <= max_half_extent_m < inf");
@@ -53,7 +58,7 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
     }
   }
   if (!problem.empty()) throw tables::TableError(tables::TableErrorKind::kCorrupt, "Predictor: " + problem);
-  const auto& runs = contents_.runs;
+  auto& runs = contents_.runs;
   run_rpm_.reserve(runs.size());
   std::size_t largest_pair = 0;  // samples of the widest interpolation (by quantile cells: n_a + n_b)
   std::size_t i = 0;
@@ -92,8 +97,15 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
                                "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: " + e.what());
     }
   }
+  largest_pair_ = largest_pair;
   run_offset_.assign(runs.size() + 1, 0);
   for (std::size_t k = 0; k < runs.size(); ++k) run_offset_[k + 1] = run_offset_[k] + runs[k].samples.size();
+  // The samples move into one block from `memory`; the runs keep their other records.
+  samples_.reserve(run_offset_.back());
+  for (auto& run : contents_.runs) {
+    samples_.insert(samples_.end(), run.samples.begin(), run.samples.end());
+    std::vector<tables::LaunchSample>().swap(run.samples);
+  }
   cell_of_sample_.assign(run_offset_.back(), 0);
   cell_offset_.assign(runs.size() + 1, 0);
   for (const auto& rows : materials_) {
@@ -106,27 +118,63 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits)
   cell_mean_.assign(cell_offset_.back(), tables::LaunchSample{});
   for (const auto& rows : materials_) assign_cells(rows);
 
-  samples_.resize(largest_pair);
-  sample_weight_kg_.resize(largest_pair);
+  own_workspace_.emplace(*this, memory);
+}
+
+PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::memory_resource* memory)
+    : samples_(memory),
+      sample_weight_kg_(memory),
+      granules_(memory),
+      launches_(memory),
+      landings_(memory),
+      landing_x_m_(memory),
+      landing_y_m_(memory),
+      landing_weight_(memory),
+      radial_x_m_(memory),
+      radial_y_m_(memory),
+      radial_weight_(memory),
+      tray_mass_(memory),
+      gradients_(memory),
+      gradient_scratch_(memory),
+      metrics_scratch_(memory) {
+  const std::size_t pair = predictor.largest_pair();
+  const PredictorLimits& limits = predictor.limits();
+  sample_capacity_ = pair;
+  samples_.resize(pair);
+  sample_weight_kg_.resize(pair);
   // Two discs, each flown (lateral wind) or mirrored: at most two landings per sample.
-  landing_x_m_.resize(2 * largest_pair);
-  landing_y_m_.resize(2 * largest_pair);
-  landing_weight_.resize(2 * largest_pair);
-  granules_.resize(2 * largest_pair);
-  launches_.resize(2 * largest_pair);
-  landings_.resize(2 * largest_pair);
-  radial_x_m_.resize(largest_pair);
-  radial_y_m_.resize(largest_pair);
-  radial_weight_.resize(largest_pair);
-  tray_mass_.resize(static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m)));
-  gradients_.resize(SampleInfluence::kMaxGradients * tray_mass_.size());
-  gradient_scratch_.resize(tray_mass_.size());
+  landing_x_m_.resize(2 * pair);
+  landing_y_m_.resize(2 * pair);
+  landing_weight_.resize(2 * pair);
+  granules_.resize(kFlightChunk);
+  launches_.resize(kFlightChunk);
+  landings_.resize(kFlightChunk);
+  radial_x_m_.resize(pair);
+  radial_y_m_.resize(pair);
+  radial_weight_.resize(pair);
+  const int widest = predictor.tray_capacity(limits.min_tray_width_m);
+  tray_capacity_ = static_cast<std::size_t>(widest);
+  tray_mass_.resize(tray_capacity_);
+  gradients_.resize(SampleInfluence::kMaxGradients * tray_capacity_);
+  gradient_scratch_.resize(tray_capacity_);
+  // The widest bout a request may ask for, in the narrowest trays, plus its cut edge tray.
+  const auto widest_bout = static_cast<std::size_t>(std::ceil(limits.max_bout_width_m / limits.min_tray_width_m)) + 2;
+  metrics_scratch_.resize(std::max({metrics::working_widths_scratch_size(widest), widest_bout, tray_capacity_ + 2}));
+}
+
+std::size_t PredictorWorkspace::bytes() const {
+  return samples_.size() * sizeof(tables::LaunchSample) + granules_.size() * sizeof(flight::Granule) +
+         launches_.size() * sizeof(flight::State) + landings_.size() * sizeof(flight::Landing) +
+         sizeof(double) * (sample_weight_kg_.size() + landing_x_m_.size() + landing_y_m_.size() +
+                           landing_weight_.size() + radial_x_m_.size() + radial_y_m_.size() +
+                           radial_weight_.size() + tray_mass_.size() + gradients_.size() +
+                           gradient_scratch_.size() + metrics_scratch_.size());
 }
 
 bool Predictor::pairwise(std::size_t run_a, std::size_t run_b) const {
   const auto& a = contents_.runs[run_a];
   const auto& b = contents_.runs[run_b];
-  return a.source == "analytic" && b.source == "analytic" && a.samples.size() == b.samples.size();
+  return a.source == "analytic" && b.source == "analytic" && run_samples(run_a).size() == run_samples(run_b).size();
 }
 
 bool Predictor::needs_cells(const MaterialRows& rows, std::size_t run) const {
@@ -138,7 +186,7 @@ QuantileCellCounts Predictor::cell_counts(const MaterialRows& rows) const {
   // One cell count for all rows of the material, so that neighbours are cut into the same cells.
   std::size_t smallest = std::numeric_limits<std::size_t>::max();
   for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
-    smallest = std::min(smallest, contents_.runs[k].samples.size());
+    smallest = std::min(smallest, run_samples(k).size());
   }
   return quantile_cells_for(smallest);
 }
@@ -151,17 +199,18 @@ void Predictor::assign_cells(const MaterialRows& rows) {
   for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
     if (!needs_cells(rows, k)) continue;
     const auto& run = contents_.runs[k];
-    const std::size_t n = run.samples.size();
+    const std::span<const tables::LaunchSample> samples = run_samples(k);
+    const std::size_t n = samples.size();
     transverse_x_m.resize(n);
     radius_m.resize(n);
     mass_kg.resize(n);
     order.resize(n);
-    landing_rank_keys(run.samples, run.rpm, contents_.machine.disc_radius_m, contents_.machine.disc_height_m,
+    landing_rank_keys(samples, run.rpm, contents_.machine.disc_radius_m, contents_.machine.disc_height_m,
                       density_kg_m3, default_flight_settings(), radius_m, transverse_x_m);
-    for (std::size_t i = 0; i < n; ++i) mass_kg[i] = static_cast<double>(run.samples[i].mass_kg);
+    for (std::size_t i = 0; i < n; ++i) mass_kg[i] = static_cast<double>(samples[i].mass_kg);
     const std::span<std::uint32_t> cell_of_sample = std::span(cell_of_sample_).subspan(run_offset_[k], n);
     assign_quantile_cells(radius_m, transverse_x_m, mass_kg, counts, order, cell_of_sample);
-    quantile_cell_means(run.samples, cell_of_sample,
+    quantile_cell_means(samples, cell_of_sample,
                         std::span(cell_mean_).subspan(cell_offset_[k], cell_offset_[k + 1] - cell_offset_[k]));
   }
 }
@@ -212,8 +261,9 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
   return PredictStatus::kOk;
 }
 
-std::size_t Predictor::fly_launches(std::size_t n, double omega_rad_s, double height_m, const flight::Air& air,
-                                    flight::EffectSet effects, bool fly_right_disc, double density_kg_m3) {
+std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double omega_rad_s, double height_m,
+                                    const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
+                                    double density_kg_m3) const {
   const auto& machine = contents_.machine;
   const bool two_discs = machine.disc_count == 2;
   const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
@@ -223,60 +273,74 @@ std::size_t Predictor::fly_launches(std::size_t n, double omega_rad_s, double he
   // mirror = +1: the left disc as stored; −1: its mirror image x → −x, the right disc. Spin is an axial
   // vector: under the reflection its x component keeps its sign and y, z change sign.
   auto launch_of = [&](const tables::LaunchSample& s, double mirror, std::size_t slot) {
-    flight::Granule& granule = granules_[slot];
+    flight::Granule& granule = w.granules_[slot];
     granule.diameter_m = s.diameter_m;
     granule.density_kg_m3 = density_kg_m3;
-    flight::State& launch = launches_[slot];
+    flight::State& launch = w.launches_[slot];
     launch.position_m = Vec3(mirror * s.x_m, s.y_m, s.z_m + height_m);
     launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
     launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
   };
-  // All flights in one call: flight::fly_many flies them several at a time in SIMD lanes where the
-  // effects allow (the same landings as one by one).
-  for (std::size_t k = 0; k < n; ++k) launch_of(samples_[k], 1.0, k);
+  // Flight f < n is left-disc sample f; n <= f < 2n (lateral wind) is the right disc's mirror of sample
+  // f − n. They are flown kFlightChunk at a time: flight::fly_many flies several at once in SIMD lanes
+  // where the effects allow and gives fly_to_ground's landings bit for bit, so the chunking changes no
+  // result, and the launch and landing buffers stay small (a workspace per thread: docs/c-api.md).
   const bool right_flown = two_discs && fly_right_disc;
-  if (right_flown) {
-    for (std::size_t k = 0; k < n; ++k) launch_of(samples_[k], -1.0, n + k);
-  }
   const std::size_t flights = right_flown ? 2 * n : n;
-  flight::fly_many(std::span(granules_).first(flights), std::span(launches_).first(flights), 0.0, air, effects,
-                   settings_, std::span(landings_).first(flights));
-
   std::size_t radial_count = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const flight::Landing& left = landings_[k];
-    const double w = sample_weight_kg_[k];
-    const double x = left.landed ? left.state.position_m.x() : nan;
-    const double y = left.landed ? left.state.position_m.y() : nan;
-    landing_x_m_[k] = x - half_spacing_m;
-    landing_y_m_[k] = y;
-    landing_weight_[k] = w;
-    if (left.landed) {
-      radial_x_m_[radial_count] = x;
-      radial_y_m_[radial_count] = y;
-      radial_weight_[radial_count] = w;
-      ++radial_count;
+  for (std::size_t first = 0; first < flights; first += kFlightChunk) {
+    const std::size_t count = std::min(kFlightChunk, flights - first);
+    for (std::size_t c = 0; c < count; ++c) {
+      const std::size_t f = first + c;
+      launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
     }
-    if (!two_discs) continue;
-    if (right_flown) {
-      const flight::Landing& right = landings_[n + k];
-      landing_x_m_[n + k] = right.landed ? right.state.position_m.x() + half_spacing_m : nan;
-      landing_y_m_[n + k] = right.landed ? right.state.position_m.y() : nan;
-    } else {
-      landing_x_m_[n + k] = half_spacing_m - x;
-      landing_y_m_[n + k] = y;
+    flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
+                     settings_, std::span(w.landings_).first(count));
+    for (std::size_t c = 0; c < count; ++c) {
+      const std::size_t f = first + c;
+      const flight::Landing& landing = w.landings_[c];
+      if (f >= n) {  // the right disc, flown
+        w.landing_x_m_[f] = landing.landed ? landing.state.position_m.x() + half_spacing_m : nan;
+        w.landing_y_m_[f] = landing.landed ? landing.state.position_m.y() : nan;
+        continue;
+      }
+      const double weight = w.sample_weight_kg_[f];
+      const double x = landing.landed ? landing.state.position_m.x() : nan;
+      const double y = landing.landed ? landing.state.position_m.y() : nan;
+      w.landing_x_m_[f] = x - half_spacing_m;
+      w.landing_y_m_[f] = y;
+      w.landing_weight_[f] = weight;
+      if (landing.landed) {
+        w.radial_x_m_[radial_count] = x;
+        w.radial_y_m_[radial_count] = y;
+        w.radial_weight_[radial_count] = weight;
+        ++radial_count;
+      }
+      if (!two_discs) continue;
+      if (!right_flown) {  // the right disc is the left one's mirror image
+        w.landing_x_m_[n + f] = half_spacing_m - x;
+        w.landing_y_m_[n + f] = y;
+      }
+      w.landing_weight_[n + f] = weight;
     }
-    landing_weight_[n + k] = w;
   }
-  const auto stats = metrics::radial_statistics(std::span(radial_x_m_).first(radial_count),
-                                                std::span(radial_y_m_).first(radial_count),
-                                                std::span(radial_weight_).first(radial_count));
-  radial_mean_m_ = stats.mean_radius_m;
-  radial_width_m_ = stats.radial_width_m;
+  const auto stats = metrics::radial_statistics(std::span(w.radial_x_m_).first(radial_count),
+                                                std::span(w.radial_y_m_).first(radial_count),
+                                                std::span(w.radial_weight_).first(radial_count));
+  w.radial_mean_m_ = stats.mean_radius_m;
+  w.radial_width_m_ = stats.radial_width_m;
   return flights;
 }
 
 PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
+  return predict(request, out, *own_workspace_);
+}
+
+PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out, PredictorWorkspace& w) const {
+  if (w.sample_capacity_ < largest_pair_ ||
+      w.tray_capacity_ < static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m))) {
+    throw std::invalid_argument("Predictor::predict: the workspace was made for a smaller table");
+  }
   double height_m = 0.0;
   if (const PredictStatus s = validate(request, height_m); s != PredictStatus::kOk) return s;
   const auto material_index = find_material(request.material);
@@ -290,16 +354,15 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const std::size_t lower_run = rows.first_run + bracket->lower, upper_run = rows.first_run + bracket->upper;
   std::size_t n = 0;
   if (bracket->upper_weight == 0.0 || pairwise(lower_run, upper_run)) {
-    n = interpolate_launch_samples(contents_.runs[lower_run].samples, contents_.runs[upper_run].samples,
-                                   bracket->upper_weight, samples_, sample_weight_kg_);
+    n = interpolate_launch_samples(run_samples(lower_run), run_samples(upper_run),
+                                   bracket->upper_weight, w.samples_, w.sample_weight_kg_);
   } else {
     const auto celled = [&](std::size_t run) {
-      return CelledRow{contents_.runs[run].samples,
-                       std::span(cell_of_sample_).subspan(run_offset_[run], contents_.runs[run].samples.size()),
+      return CelledRow{run_samples(run), std::span(cell_of_sample_).subspan(run_offset_[run], run_samples(run).size()),
                        std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
     };
-    n = interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), bracket->upper_weight, samples_,
-                                      sample_weight_kg_);
+    n = interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), bracket->upper_weight, w.samples_,
+                                      w.sample_weight_kg_);
   }
   const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
 
@@ -321,21 +384,21 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const bool fly_right_disc = two_discs && windy && request.wind_x_m_s != 0.0;
 
   // 3–4. Flights, machine frame.
-  const int flights = static_cast<int>(fly_launches(n, omega_rad_s, height_m, air, effects, fly_right_disc,
+  const int flights = static_cast<int>(fly_launches(w, n, omega_rad_s, height_m, air, effects, fly_right_disc,
                                                     contents_.materials[rows.material].density_kg_m3));
   const std::size_t landings = two_discs ? 2 * n : n;
-  const std::span<const double> xs = std::span(landing_x_m_).first(landings);
-  const std::span<const double> ys = std::span(landing_y_m_).first(landings);
-  const std::span<double> weights = std::span(landing_weight_).first(landings);
+  const std::span<const double> xs = std::span(w.landing_x_m_).first(landings);
+  const std::span<const double> ys = std::span(w.landing_y_m_).first(landings);
+  const std::span<double> weights = std::span(w.landing_weight_).first(landings);
 
   // 5. Kernel, trays fitted to the landings plus the kernel (symmetric about the centre line), capped at
   // the widest layout.
   double total_kg = 0.0;
-  for (double w : weights) total_kg += w;
+  for (double weight : weights) total_kg += weight;
   // Weights as fractions of the machine's discharged mass: the tray contents then read directly as the
   // share of the application rate per tray.
   const double scale = total_kg > 0.0 ? 1.0 / total_kg : 0.0;
-  for (double& w : weights) w *= scale;
+  for (double& weight : weights) weight *= scale;
   double kernel_m = request.kernel_half_width_m;
   if (std::isnan(kernel_m)) {
     // One disc's lateral spread; with two discs the root mean square of both, so that the choice is the
@@ -361,7 +424,7 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   if (trays.tray_count % 2 != 0) ++trays.tray_count;
   if (trays.tray_count > capacity) trays.tray_count = capacity - capacity % 2;
   const auto tray_count = static_cast<std::size_t>(trays.tray_count);
-  const std::span<double> tray_mass = std::span(tray_mass_).first(tray_count);
+  const std::span<double> tray_mass = std::span(w.tray_mass_).first(tray_count);
   std::fill(tray_mass.begin(), tray_mass.end(), 0.0);
   const double lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass);
 
@@ -375,10 +438,12 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   p.kernel_half_width_m = kernel_m;
   const metrics::ThrowExtent extent = metrics::throw_extent(tray_mass, trays, 0.99);
   p.throw_width_m = extent.right_m - extent.left_m;
-  const metrics::WorkingWidth to_and_fro =
-      metrics::working_width(tray_mass, trays, metrics::Overlap::kToAndFro, request.cv_target);
-  const metrics::WorkingWidth racetrack =
-      metrics::working_width(tray_mass, trays, metrics::Overlap::kRacetrack, request.cv_target);
+  // Both working widths in O(T log T) (metrics::working_widths): the whole-tray scan is O(T²), 0.13 s at
+  // 4,000 trays of 5 cm.
+  const std::span<double> metrics_scratch(w.metrics_scratch_);
+  const metrics::WorkingWidths widths = metrics::working_widths(tray_mass, trays, request.cv_target, metrics_scratch);
+  const metrics::WorkingWidth& to_and_fro = widths.to_and_fro;
+  const metrics::WorkingWidth& racetrack = widths.racetrack;
   p.working_width_to_and_fro_m = to_and_fro.width_m;
   p.working_width_racetrack_m = racetrack.width_m;
   p.cv_crossings_to_and_fro = to_and_fro.crossings;
@@ -391,20 +456,20 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // The four CV and width standard errors share one pass over the landings
   // (SampleInfluence::standard_errors): their gradients first, then the pass. An empty gradient = NaN.
-  const auto gradient = [&](std::size_t slot) { return std::span(gradients_).subspan(slot * tray_count, tray_count); };
-  const std::span<double> scratch = std::span(gradient_scratch_).first(tray_count);
+  const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
+  const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
   std::span<const double> se_gradients[SampleInfluence::kMaxGradients];  // CV t&f, CV racetrack, W t&f, W rt
   const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
   if (p.bout_width_m > 0.0) {
     const int bout_trays = metrics::bout_tray_count(trays, p.bout_width_m);
-    p.cv_to_and_fro = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro);
-    p.cv_racetrack = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack);
+    p.cv_to_and_fro = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, metrics_scratch);
+    p.cv_racetrack = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, metrics_scratch);
     if (std::isfinite(p.cv_to_and_fro)) {
-      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, gradient(0));
+      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, gradient(0), metrics_scratch);
       se_gradients[0] = gradient(0);
     }
     if (std::isfinite(p.cv_racetrack)) {
-      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, gradient(1));
+      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, gradient(1), metrics_scratch);
       se_gradients[1] = gradient(1);
     }
   } else {
@@ -419,8 +484,8 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     const double d_below = -trays.tray_width_m * (ww.cv_above - request.cv_target) / (span * span);
     const double d_above = -trays.tray_width_m * (request.cv_target - ww.cv_below) / (span * span);
     const std::span<double> g = gradient(slot);
-    metrics::cv_gradient(tray_mass, trays, ww.trays_below, overlap, g);
-    metrics::cv_gradient(tray_mass, trays, ww.trays_below + 1, overlap, scratch);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below, overlap, g, metrics_scratch);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below + 1, overlap, scratch, metrics_scratch);
     for (std::size_t k = 0; k < tray_count; ++k) g[k] = d_below * g[k] + d_above * scratch[k];
     se_gradients[slot] = g;
   };
@@ -433,8 +498,8 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   p.working_width_to_and_fro_se_m = se[2];
   p.working_width_racetrack_se_m = se[3];
   p.throw_width_se_m = p.throw_width_m > 0.0 ? influence.throw_width_standard_error(tray_mass, extent, 0.99) : nan;
-  p.mean_radius_m = radial_mean_m_;
-  p.radial_width_m = radial_width_m_;
+  p.mean_radius_m = w.radial_mean_m_;
+  p.radial_width_m = w.radial_width_m_;
   p.tray_mass_fraction = tray_mass;
   p.landing_x_m = xs;
   p.landing_y_m = ys;

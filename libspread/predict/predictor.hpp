@@ -2,8 +2,8 @@
 // Predictor: from a launch-table file's contents to the spread pattern of the machine, for any
 // (material, rpm between table rows, disc height, wind, effects). The core of the C API (capi/).
 //
-// Steps of predict() — none allocates; all workspace is sized in the constructor from the largest
-// pair of neighbouring rows and the widest tray layout:
+// Steps of predict() — none allocates; all workspace (PredictorWorkspace) is sized from the largest pair
+// of neighbouring rows and the widest tray layout:
 //   1. find the material and the rows around the rpm (launch_interpolation.hpp),
 //   2. interpolate the normalised launch samples — pairwise for analytic rows of equal count, otherwise
 //      by quantile cells computed here at construction (launch_interpolation.hpp,
@@ -16,9 +16,14 @@
 //      so the right disc's launches are mirrored and flown themselves,
 //   5. trays fitted to the landings, throw width, effective working widths (to-and-fro, racetrack),
 //      CV at the bout width, R̄ and ξ of one disc (seed Eqs. 51–52).
+//
+// Sharing (as zstd's CDict and CCtx): the Predictor holds the read-only part (tables, quantile cells) and
+// one workspace of its own for predict(request, out). Threads that predict at once each make a
+// PredictorWorkspace from it and call predict(request, out, workspace), which only reads the Predictor.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory_resource>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -120,12 +125,56 @@ struct PredictorLimits {
   double max_kernel_half_width_m = 10.0;  // m
 };
 
+class Predictor;
+
+// Flights per flight::fly_many call in predict(): the workspace holds launches and landings for this
+// many, not for every flight (2 × 8,102 on the default table would be 3 MB per workspace).
+inline constexpr std::size_t kFlightChunk = 256;
+
+// Everything one predict() call writes: launch samples at the requested rpm, flights, landings, trays,
+// gradients and the metrics' scratch. Sized for one Predictor; one per thread that predicts.
+class PredictorWorkspace {
+ public:
+  // Allocates from `memory` (which must outlive the workspace); the Predictor is only read.
+  explicit PredictorWorkspace(const Predictor& predictor,
+                              std::pmr::memory_resource* memory = std::pmr::get_default_resource());
+  // Bytes of the buffers it holds.
+  std::size_t bytes() const;
+
+ private:
+  friend class Predictor;
+  std::size_t sample_capacity_ = 0;  // launch samples of the largest pair of rows it was sized for
+  std::size_t tray_capacity_ = 0;
+  std::pmr::vector<tables::LaunchSample> samples_;
+  std::pmr::vector<double> sample_weight_kg_;
+  // One chunk of flights (kFlightChunk): left disc samples, then the right disc's when flown.
+  std::pmr::vector<flight::Granule> granules_;
+  std::pmr::vector<flight::State> launches_;
+  std::pmr::vector<flight::Landing> landings_;
+  std::pmr::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
+  std::pmr::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
+  std::pmr::vector<double> tray_mass_;
+  // Per tray, for the standard errors: four gradients side by side (SampleInfluence::kMaxGradients),
+  // and one more for the width gradients' second CV.
+  std::pmr::vector<double> gradients_, gradient_scratch_;
+  // metrics::working_widths' scratch, also the bout buffer of cv_at_trays / cv_gradient (up to the widest
+  // requested bout at the narrowest trays), so that no bout is built on the stack.
+  std::pmr::vector<double> metrics_scratch_;
+  double radial_mean_m_ = 0.0;  // R̄, ξ of the last fly_launches()
+  double radial_width_m_ = 0.0;
+};
+
 class Predictor {
  public:
   // Throws tables::TableError(kCorrupt) when a run names a material the file does not describe, and
   // std::invalid_argument for bad limits. Materials without runs are not offered. Rows interpolated by
   // quantile cells are flown once here to find their cells (one flight per sample, default settings).
-  explicit Predictor(tables::TableContents contents, PredictorLimits limits = {});
+  // The launch samples, the cells and the own workspace are allocated from `memory` (which must outlive
+  // the Predictor); the samples are moved out of `contents` into one block.
+  explicit Predictor(tables::TableContents contents, PredictorLimits limits = {},
+                     std::pmr::memory_resource* memory = std::pmr::get_default_resource());
+  Predictor(const Predictor&) = delete;
+  Predictor& operator=(const Predictor&) = delete;
 
   const tables::Machine& machine() const { return contents_.machine; }
   std::size_t material_count() const { return materials_.size(); }
@@ -145,8 +194,19 @@ class Predictor {
 
   // Does not allocate. Refused requests are statuses, not exceptions (so a refusal does not allocate
   // either); on a refusal `out` is unchanged. An exception from here means a malformed table record that
-  // the reader let through (e.g. a zero diameter) or a bug.
+  // the reader let through (e.g. a zero diameter) or a bug. Uses the Predictor's own workspace: one
+  // thread at a time.
   PredictStatus predict(const PredictionRequest& request, Prediction& out);
+  // The same with a caller's workspace (made from this Predictor): only reads the Predictor, so threads
+  // with a workspace each may call it at once. The views in `out` point into `workspace`.
+  PredictStatus predict(const PredictionRequest& request, Prediction& out, PredictorWorkspace& workspace) const;
+
+  // Launch samples of the largest pair of neighbouring rows (what a workspace is sized for).
+  std::size_t largest_pair() const { return largest_pair_; }
+  // Launch samples of run k (runs sorted by material and rpm, as TableContents::runs).
+  std::span<const tables::LaunchSample> run_samples(std::size_t run) const {
+    return std::span(samples_).subspan(run_offset_[run], run_offset_[run + 1] - run_offset_[run]);
+  }
 
  private:
   struct MaterialRows {
@@ -164,38 +224,27 @@ class Predictor {
   QuantileCellCounts cell_counts(const MaterialRows& rows) const;
   // Flies the runs that need cells once (landing keys) and fills their cells and cell means.
   void assign_cells(const MaterialRows& rows);
-  std::size_t fly_launches(std::size_t sample_count, double omega_rad_s, double height_m,
+  std::size_t fly_launches(PredictorWorkspace& w, std::size_t sample_count, double omega_rad_s, double height_m,
                            const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
-                           double density_kg_m3);
+                           double density_kg_m3) const;
 
-  tables::TableContents contents_;
+  tables::TableContents contents_;  // without the samples (in samples_)
   PredictorLimits limits_;
   flight::Settings settings_;
   std::vector<MaterialRows> materials_;
   std::vector<double> run_rpm_;       // contents_.runs[i].rpm, flat for bracket_rpm
   std::vector<flight::EffectSet> run_effects_;  // the flight effects each run was built with
-  // Quantile cells (launch_quantile_cells.hpp) of the runs interpolated by cells, flat: run i's samples
-  // occupy [run_offset_[i], run_offset_[i + 1]) of cell_of_sample_, its cell means
-  // [cell_offset_[i], cell_offset_[i + 1]) of cell_mean_ (empty for runs only interpolated pairwise).
+  std::size_t largest_pair_ = 0;
+  // Launch samples of all runs, flat: run i's occupy [run_offset_[i], run_offset_[i + 1]). Quantile cells
+  // (launch_quantile_cells.hpp) of the runs interpolated by cells: cell_of_sample_ at the same offsets,
+  // run i's cell means [cell_offset_[i], cell_offset_[i + 1]) of cell_mean_ (empty for runs only
+  // interpolated pairwise).
   std::vector<std::size_t> run_offset_, cell_offset_;
-  std::vector<std::uint32_t> cell_of_sample_;
-  std::vector<tables::LaunchSample> cell_mean_;
+  std::pmr::vector<tables::LaunchSample> samples_;
+  std::pmr::vector<std::uint32_t> cell_of_sample_;
+  std::pmr::vector<tables::LaunchSample> cell_mean_;
   double lowest_sample_z_m_ = 0.0;    // over all runs: the disc must sit at least -this above ground
-  double radial_mean_m_ = 0.0;        // R̄, ξ of the last fly_launches()
-  double radial_width_m_ = 0.0;
-
-  // Workspace.
-  std::vector<tables::LaunchSample> samples_;
-  std::vector<double> sample_weight_kg_;
-  std::vector<flight::Granule> granules_;  // flights: left disc samples, then the right disc's when flown
-  std::vector<flight::State> launches_;
-  std::vector<flight::Landing> landings_;
-  std::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
-  std::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
-  std::vector<double> tray_mass_;
-  // Per tray, for the standard errors: four gradients side by side (SampleInfluence::kMaxGradients),
-  // and one more for the width gradients' second CV.
-  std::vector<double> gradients_, gradient_scratch_;
+  std::optional<PredictorWorkspace> own_workspace_;  // for predict(request, out)
 };
 
 }  // namespace spread::predict

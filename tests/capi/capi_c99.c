@@ -3,6 +3,7 @@
  * pass; each failed check prints its line. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "spread/spread.h"
@@ -15,6 +16,21 @@ static int failures = 0;
       ++failures;                                                \
     }                                                            \
   } while (0)
+
+/* A caller's allocator in C: malloc with a count of live blocks (alignment <= 16 here). */
+static long live_blocks = 0;
+static void* counted_alloc(void* user, size_t size, size_t alignment) {
+  (void)user;
+  if (alignment > 16) return NULL;
+  ++live_blocks;
+  return malloc(size);
+}
+static void counted_free(void* user, void* pointer, size_t size) {
+  (void)user;
+  (void)size;
+  --live_blocks;
+  free(pointer);
+}
 
 int main(int argc, char** argv) {
   spread_tables* tables = NULL;
@@ -67,7 +83,30 @@ int main(int argc, char** argv) {
   CHECK(spread_trajectory(&traj, &landing) == SPREAD_OK);
   CHECK(landing.position_m[0] > 1.0 && landing.position_m[0] < 10.0);
 
+  CHECK(strstr(spread_last_error_detail(), "sand") != NULL);
+
   spread_close(tables);
+
+  {
+    /* One shared handle from a caller's allocator, and a workspace for another thread. */
+    spread_allocator allocator;
+    spread_workspace* workspace = NULL;
+    allocator.alloc = counted_alloc;
+    allocator.free = counted_free;
+    allocator.user = NULL;
+    tables = NULL;
+    CHECK(spread_open_with_allocator(argv[1], &allocator, &tables) == SPREAD_OK);
+    if (tables == NULL) return 1;
+    CHECK(live_blocks > 0);
+    CHECK(spread_workspace_create(tables, &workspace) == SPREAD_OK);
+    def.material = "can";
+    def.rpm = 640.0;
+    CHECK(spread_workspace_predict(workspace, &def, &result, NULL, 0) == SPREAD_OK);
+    CHECK(result.working_width_to_and_fro_m > 0.0);
+    spread_workspace_free(workspace);
+    spread_close(tables);
+    CHECK(live_blocks == 0);
+  }
   if (failures == 0) printf("capi_c99: all checks passed\n");
   return failures == 0 ? 0 : 1;
 }

@@ -366,12 +366,13 @@ TEST(CapiVersion, RunTimeMatchesCompileTime) {
 
 TEST(CapiStatus, EveryCodeHasItsOwnName) {
   std::set<std::string> names;
-  for (int s = SPREAD_OK; s <= SPREAD_ERROR_INTERNAL; ++s) {
+  // SPREAD_ERROR_BAD_HANDLE is the last code.
+  for (int s = SPREAD_OK; s <= SPREAD_ERROR_BAD_HANDLE; ++s) {
     const std::string name = spread_status_str(static_cast<spread_status>(s));
     EXPECT_EQ(name.rfind("SPREAD_", 0), 0u) << s;
     names.insert(name);
   }
-  EXPECT_EQ(names.size(), static_cast<size_t>(SPREAD_ERROR_INTERNAL) + 1);
+  EXPECT_EQ(names.size(), static_cast<size_t>(SPREAD_ERROR_BAD_HANDLE) + 1);
   EXPECT_STREQ(spread_status_str(static_cast<spread_status>(31)), "unknown status");
 }
 

@@ -158,3 +158,24 @@ TEST(CapiOpen, NullArguments) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CapiOpen, FailureDetailNamesFileAndRecord) {
+  // spread_open fails without a handle: the detail is the thread's, and it is the reader's sentence.
+  const std::string p = copy_of_real("bad-record-detail.sqlite");
+  exec_sql(p, "UPDATE runs SET samples = x'00010203' WHERE material = 'urea';");
+  ASSERT_EQ(open_status(p), SPREAD_ERROR_FILE_CORRUPT);
+  const std::string detail = spread_last_error_detail();
+  EXPECT_NE(detail.find(p), std::string::npos) << detail;
+  EXPECT_NE(detail.find("urea"), std::string::npos) << detail;
+  EXPECT_NE(detail.find("4 bytes"), std::string::npos) << detail;
+  // A successful call leaves it; a missing file replaces it.
+  ASSERT_EQ(open_status(real_table()), SPREAD_OK);
+  EXPECT_EQ(detail, spread_last_error_detail());
+  const std::string missing = temp_path("no-such-file.sqlite");
+  ASSERT_EQ(open_status(missing), SPREAD_ERROR_FILE_MISSING);
+  EXPECT_NE(std::string(spread_last_error_detail()).find(missing), std::string::npos);
+}
+
+}  // namespace

@@ -1,7 +1,8 @@
 // The main job's table (the DEM table of scenes/default.toml, built by the ctest fixture
 // capi.fixture.default_scene) through the C API: for every material and rpm row, the working widths do
 // not move with the tray width (0.25 / 0.5 / 1.0 m agree within one 0.5 m tray), and every width carries
-// a finite, positive standard error. Run through ctest (the fixture builds the file).
+// a finite, positive standard error; a prediction between two DEM rows (quantile cells, both rows fly, a
+// crosswind) stays within the stated stack need. Run through ctest (the fixture builds the file).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "spread/spread.h"
+#include "tests/capi/stack_depth.hpp"
 
 namespace {
 
@@ -56,6 +58,27 @@ TEST_F(DefaultTable, WorkingWidthsDoNotMoveWithTheTrayWidth) {
         EXPECT_NEAR(racetrack[k], racetrack[0], 0.5) << name << " at " << rpm << " rpm, tray width #" << k;
       }
     }
+  }
+}
+
+TEST_F(DefaultTable, PredictionBetweenDemRowsStaysWithinTheStatedStack) {
+  if (spread::testing::kSanitizedBuild) GTEST_SKIP() << "instrumented frames are larger";
+  const char* name = nullptr;
+  ASSERT_EQ(spread_material_name(tables_, 0, &name), SPREAD_OK);
+  for (double wind_m_s : {0.0, 3.0}) {
+    spread_prediction_def def = spread_prediction_def_default();
+    def.material = name;
+    def.rpm = 560.0;  // between the 450 and 600 rpm rows
+    def.wind_m_s[0] = wind_m_s;
+    spread_prediction on_main{}, on_thread{};
+    ASSERT_EQ(spread_predict(tables_, &def, &on_main, nullptr, 0), SPREAD_OK);
+    spread_status status = SPREAD_ERROR_INTERNAL;
+    auto call = [&] { status = spread_predict(tables_, &def, &on_thread, nullptr, 0); };
+    const std::size_t need = spread::testing::stack_depth_of(call, 256 * 1024);
+    ASSERT_EQ(status, SPREAD_OK);
+    EXPECT_EQ(on_thread.working_width_to_and_fro_m, on_main.working_width_to_and_fro_m);
+    EXPECT_GT(need, 0u);
+    EXPECT_LE(need, spread::testing::kStatedStackBytes) << "wind " << wind_m_s << " m/s: " << need << " bytes";
   }
 }
 

@@ -113,12 +113,20 @@ TEST(Overlap, MatchesWholePeriodReferenceOnRandomPatterns) {
 }
 
 TEST(Overlap, VeryWideBoutsTakeTheGatherPathWithTheSameResult) {
-  // Bouts wider than 2048 trays are gathered tray by tray instead of scattered into a stack buffer.
+  // Bouts wider than kStackBoutTrays are gathered tray by tray instead of scattered into the stack
+  // buffer, unless the caller gives a scratch span: all three paths give the reference CV, and the two
+  // scatter paths the same bits.
   const std::vector<double> p = random_pattern(2101, 77);
-  for (int n : {2047, 2048, 2049, 2100, 2101, 2102, 4300}) {
+  std::vector<double> scratch(4400);
+  constexpr int kStack = sm::kStackBoutTrays;
+  for (int n : {kStack - 2, kStack - 1, kStack, kStack + 1, 2047, 2048, 2049, 2100, 2101, 2102, 4300}) {
     for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
       const double expected = reference_cv(p, n, overlap);
       EXPECT_NEAR(sm::cv_at_width(p, layout(2101), n * 0.5, overlap), expected, 1e-12 * (1.0 + expected)) << n;
+      EXPECT_NEAR(sm::cv_at_trays(p, layout(2101), n, overlap, scratch), expected, 1e-12 * (1.0 + expected)) << n;
+      if (n <= kStack - 1) {
+        EXPECT_EQ(sm::cv_at_trays(p, layout(2101), n, overlap, scratch), sm::cv_at_trays(p, layout(2101), n, overlap));
+      }
     }
   }
 }
@@ -421,4 +429,69 @@ TEST(EffectiveWorkingWidth, IsTheFirstCrossingAndNeverAnIsolatedDip) {
       }
     }
   }
+}
+
+namespace {
+
+// working_widths (FFT correlations, O(T log T)) must give exactly working_width's results (O(T²)).
+void expect_same_widths(const std::vector<double>& p, const sm::TrayLayout& trays, double target,
+                        const std::string& what) {
+  std::vector<double> scratch(sm::working_widths_scratch_size(trays.tray_count));
+  const sm::WorkingWidths fast = sm::working_widths(p, trays, target, scratch);
+  const sm::WorkingWidth* got[] = {&fast.to_and_fro, &fast.racetrack};
+  const sm::Overlap overlaps[] = {sm::Overlap::kToAndFro, sm::Overlap::kRacetrack};
+  for (int k = 0; k < 2; ++k) {
+    const sm::WorkingWidth want = sm::working_width(p, trays, overlaps[k], target);
+    const std::string where = what + (k == 0 ? " to-and-fro" : " racetrack") + " target " + std::to_string(target);
+    EXPECT_EQ(got[k]->width_m, want.width_m) << where;  // bit for bit
+    EXPECT_EQ(got[k]->crossings, want.crossings) << where;
+    EXPECT_EQ(got[k]->trays_below, want.trays_below) << where;
+    EXPECT_EQ(got[k]->cv_below, want.cv_below) << where;
+    EXPECT_EQ(got[k]->cv_above, want.cv_above) << where;
+    EXPECT_EQ(got[k]->limited_by_layout, want.limited_by_layout) << where;
+  }
+}
+
+}  // namespace
+
+TEST(WorkingWidths, FastSearchEqualsTheWholeTrayScan) {
+  for (int t : {2, 3, 7, 36, 41, 120, 401}) {
+    for (double target : {0.01, 0.05, 0.15, 0.3, 2.0}) {
+      expect_same_widths(random_pattern(t, 500u + static_cast<std::uint64_t>(t)), layout(t), target,
+                         "random " + std::to_string(t));
+    }
+  }
+  // Spreader-like patterns: a hat and a skewed double hump with empty trays around them (the hump is
+  // where the crossing is), odd and even tray counts, and the strip whose CV(W) zig-zags across 15 %.
+  for (int t : {80, 81, 600}) {
+    const sm::TrayLayout trays = layout(t, 0.25);
+    std::vector<double> hat(static_cast<std::size_t>(t)), humps(static_cast<std::size_t>(t));
+    for (int i = 0; i < t; ++i) {
+      const double a = trays.left_edge_m() + i * trays.tray_width_m;
+      hat[static_cast<std::size_t>(i)] = hat_mass(a, a + trays.tray_width_m, 0.3 * t * trays.tray_width_m);
+      const double x = trays.centre_m(i) / (0.5 * t * trays.tray_width_m);
+      humps[static_cast<std::size_t>(i)] =
+          std::max(0.0, 1.0 - 9.0 * (x - 0.35) * (x - 0.35)) + 0.6 * std::max(0.0, 1.0 - 16.0 * (x + 0.4) * (x + 0.4));
+    }
+    for (double target : {0.05, 0.1, 0.15, 0.25}) {
+      expect_same_widths(hat, trays, target, "hat " + std::to_string(t));
+      expect_same_widths(humps, trays, target, "humps " + std::to_string(t));
+    }
+  }
+  std::vector<double> strip(40, 0.0);
+  for (int i = 10; i < 30; ++i) strip[static_cast<std::size_t>(i)] = 1.0;
+  for (double target : {0.1, 0.15, 0.22, 0.3}) expect_same_widths(strip, layout(40), target, "strip");
+}
+
+TEST(WorkingWidths, DegenerateInputsAsTheScan) {
+  expect_same_widths(std::vector<double>(10, 0.0), layout(10), 0.15, "zeros");
+  std::vector<double> negative = random_pattern(30, 3);
+  negative[4] = -0.5;  // not a tray mass: falls back to the scan
+  expect_same_widths(negative, layout(30), 0.15, "negative");
+  std::vector<double> one(20, 0.0);
+  one[7] = 1.0;
+  expect_same_widths(one, layout(20), 0.15, "one tray");
+  expect_same_widths(random_pattern(12, 9), layout(12), -1.0, "negative target");
+  std::vector<double> scratch(3);
+  EXPECT_THROW(sm::working_widths(random_pattern(12, 9), layout(12), 0.15, scratch), std::invalid_argument);
 }

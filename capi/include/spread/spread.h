@@ -15,15 +15,21 @@
  *   spread_close(). Strings passed in (path, material name) are only read during the call. Result structs
  *   and buffers belong to the caller.
  * - No allocation during spread_predict() or spread_trajectory(): all workspace is allocated by
- *   spread_open().
+ *   spread_open() (or spread_workspace_create()). Memory of handles and workspaces can come from the
+ *   caller's allocator (spread_open_with_allocator()).
+ * - Worst case, stack: docs/c-api.md states the worst-case time of every call and the stack a call
+ *   needs (spread_predict: under 8 KiB of the caller's stack).
  * - No C++ exception ever crosses this interface; an unexpected failure is SPREAD_ERROR_INTERNAL.
  *
  * Thread-safety
- *   A handle is NOT safe for concurrent spread_predict() calls: it owns the prediction workspace. Use one
- *   handle per thread (open the same file several times; handles never write to the file). The query
- *   functions (spread_material_*, spread_default_disc_height, spread_transverse_bound) only read and may
- *   run concurrently with each other on one handle, but not concurrently with spread_predict() on it.
- *   Functions without a handle (spread_trajectory, spread_status_str, spread_version*) are thread-safe.
+ *   A spread_tables handle holds the table (read-only after spread_open) and one prediction workspace.
+ *   spread_predict(tables, ...) uses that workspace: one thread at a time per handle. To predict on
+ *   several threads, open the table once and give each thread a spread_workspace
+ *   (spread_workspace_create, cheap: no file access, no table copy); spread_workspace_predict only reads
+ *   the handle, so workspaces of one handle may predict concurrently, also with the query functions
+ *   (spread_material_*, spread_default_disc_height, spread_transverse_bound, which only read). Opening
+ *   the same file once per thread also still works. Functions without a handle (spread_trajectory,
+ *   spread_status_str, spread_version*, spread_last_error_detail) are thread-safe.
  *
  * ABI stability
  *   Definition structs carry struct_size, filled in by the static inline *_default() functions below with
@@ -78,7 +84,9 @@ typedef enum spread_status {
   SPREAD_ERROR_IO = 13,                /* any other failure reading the file (locked, unreadable) */
   SPREAD_ERROR_OUT_OF_MEMORY = 14,     /* spread_open could not allocate */
   SPREAD_ERROR_NOT_LANDED = 15,        /* a trajectory did not reach the ground within the time limit */
-  SPREAD_ERROR_INTERNAL = 16           /* unexpected failure inside the library (a bug: please report) */
+  SPREAD_ERROR_INTERNAL = 16,          /* unexpected failure inside the library (a bug: please report) */
+  SPREAD_ERROR_BAD_HANDLE = 17         /* not a live handle: already closed/freed, or not made by this
+                                          library (best-effort detection, see spread_close) */
 } spread_status;
 
 /* Name of a status code, e.g. "SPREAD_ERROR_UNKNOWN_MATERIAL: unknown material". Never NULL; static
@@ -113,7 +121,12 @@ typedef struct spread_tables spread_tables; /* opaque */
  * SPREAD_ERROR_FILE_MISSING / _NOT_OURS / _CORRUPT / _WRONG_VERSION / _EMPTY / _IO / _OUT_OF_MEMORY. */
 SPREAD_API spread_status spread_open(const char* path, spread_tables** out_tables);
 
-/* Destroys a handle. NULL is a no-op. */
+/* Destroys a handle. NULL is a no-op. Its workspaces must not be used afterwards (they may still be
+ * freed, before or after). A handle that
+ * is not live (closed already) is left alone: the handle carries a tag that spread_open sets and
+ * spread_close clears, and every function checks it (SPREAD_ERROR_BAD_HANDLE). After the memory is
+ * freed that check reads freed memory, so it catches a double close or a use after close only as long as
+ * the memory has not been reused: best effort, not a guarantee. */
 SPREAD_API void spread_close(spread_tables* tables);
 
 /* Materials, sorted by name, indexed 0 .. count-1. The name string belongs to the handle. */
@@ -264,8 +277,63 @@ typedef struct spread_landing {
 
 /* Flies one granule to the ground (adaptive Dormand–Prince 5(4), the same settings as spread_predict).
  * SPREAD_ERROR_NOT_LANDED when it has not reached the ground after 60 s of flight (e.g. launched
- * upwards in a strong updraught); *out_landing then holds the last state. Thread-safe; no allocation. */
+ * upwards in a strong updraught) or after 3072 integrator steps (micrometre dust, whose stiff drag keeps
+ * the steps tiny; the cap bounds the call's time, docs/c-api.md "Worst-case time"); *out_landing then
+ * holds the last state. Thread-safe; no allocation. */
 SPREAD_API spread_status spread_trajectory(const spread_trajectory_def* def, spread_landing* out_landing);
+
+/* ---------------------------------------------------------------------------------------------------
+ * Error detail (appended in 0.2)
+ * ------------------------------------------------------------------------------------------------- */
+/* A sentence on the last call on this thread that returned an error: for spread_open the file, record
+ * and field (e.g. "t.sqlite: run urea @ 500.000000 rpm: sample BLOB has 4 bytes, expected sample_count
+ * 200 x 48"), for the others the function and what was refused. Thread-local, so it works when
+ * spread_open fails without a handle. Never NULL; "" before the first error on the thread. Successful
+ * calls leave it unchanged. Valid until the next failing call on this thread; written without
+ * allocating (cut at 511 characters). */
+SPREAD_API const char* spread_last_error_detail(void);
+
+/* ---------------------------------------------------------------------------------------------------
+ * Caller's allocator (appended in 0.2)
+ * ------------------------------------------------------------------------------------------------- */
+typedef struct spread_allocator {
+  /* Returns size bytes aligned to alignment (a power of two, at most 64), or NULL (then the call fails
+   * with SPREAD_ERROR_OUT_OF_MEMORY). */
+  void* (*alloc)(void* user, size_t size, size_t alignment);
+  /* Releases a block from alloc, with the size it was asked for. Never called with NULL. */
+  void (*free)(void* user, void* pointer, size_t size);
+  void* user; /* passed to both */
+} spread_allocator;
+
+/* spread_open, with every block of the handle and of its workspaces (the launch samples, cells, all
+ * prediction buffers and the handle itself) taken from *allocator, which is copied. Not from it: SQLite's
+ * own memory while the file is read, and the reader's temporary records (freed before this returns),
+ * and small strings the handle keeps (names; docs/c-api.md "Memory"). alloc and free may be called from
+ * the thread that calls spread_open, spread_close, spread_workspace_create or spread_workspace_free, and
+ * from nowhere else. */
+SPREAD_API spread_status spread_open_with_allocator(const char* path, const spread_allocator* allocator,
+                                                    spread_tables** out_tables);
+
+/* ---------------------------------------------------------------------------------------------------
+ * Per-thread workspace (appended in 0.2): share one handle between threads (as zstd's CDict / CCtx)
+ * ------------------------------------------------------------------------------------------------- */
+typedef struct spread_workspace spread_workspace; /* opaque */
+
+/* A prediction workspace for `tables` (from the handle's allocator): no file access, no copy of the
+ * table. Use it only while the handle is open; free it before or after spread_close. May run
+ * concurrently with predictions on other workspaces of the same handle. */
+SPREAD_API spread_status spread_workspace_create(const spread_tables* tables, spread_workspace** out_workspace);
+
+/* Frees a workspace. NULL is a no-op; a workspace that is not live is left alone (best effort, as
+ * spread_close). */
+SPREAD_API void spread_workspace_free(spread_workspace* workspace);
+
+/* spread_predict on the workspace's handle using this workspace: the same results, statuses and
+ * guarantees (no allocation). One thread at a time per workspace; any number of workspaces of one handle
+ * at once. SPREAD_ERROR_BAD_HANDLE when the workspace or its handle is not live. */
+SPREAD_API spread_status spread_workspace_predict(spread_workspace* workspace, const spread_prediction_def* def,
+                                                  spread_prediction* result, double* transverse_mass_fraction,
+                                                  size_t transverse_capacity);
 
 #ifdef __cplusplus
 } /* extern "C" */

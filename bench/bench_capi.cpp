@@ -1,0 +1,142 @@
+// Worst-case time of the C API's entry points over their legal inputs (docs/c-api.md "Worst-case time"),
+// and the cost of a thread's state (handle or workspace).
+//
+// BM_PredictWorstCase/<tray_cm>/<height_m>/<wind_m_s>: spread_predict on a real table file given in
+// SPREAD_BENCH_TABLE (e.g. `lookup_builder scenes/default.toml --output X.sqlite`) at 560 rpm (between
+// two rows: both rows fly), with the narrowest legal trays (0.05 m), a high disc (50 m: long flights,
+// landings spread far) and a strong lateral wind (20 m/s: the right disc flies too and the pattern is
+// skewed across the whole tray range). height 0 = the machine's stored height.
+// BM_TrajectoryWorstCase/<case>: spread_trajectory on the inputs that take longest: 0 = dust (1 µm,
+// 1 kg/m³: the drag relaxation time is ~3 ns, so the explicit integrator's step is bounded by stability
+// and the flight never lands), 1 = a 3 mm granule from 1000 m (the longest legal fall), 2 = a 3 mm
+// granule held up by a 100 m/s updraught.
+// BM_ExtraThreadState/<kind>: what one more predicting thread costs on the table in SPREAD_BENCH_TABLE:
+// kind 0 = spread_open of the same file (one handle per thread), 1 = spread_workspace_create on one
+// shared handle. Counter heap_bytes_per_thread = heap bytes still held afterwards (glibc mallinfo2).
+// Run: SPREAD_BENCH_TABLE=X.sqlite taskset -c 1 build/bench/bench_capi
+#include <benchmark/benchmark.h>
+
+#include <malloc.h>
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "spread/spread.h"
+
+namespace {
+
+const char* table_path() {
+  const char* path = std::getenv("SPREAD_BENCH_TABLE");
+  return (path != nullptr && *path != '\0') ? path : nullptr;
+}
+
+void BM_PredictWorstCase(benchmark::State& state) {
+  const char* path = table_path();
+  if (path == nullptr) {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  spread_tables* tables = nullptr;
+  if (spread_open(path, &tables) != SPREAD_OK) {
+    state.SkipWithError("spread_open failed");
+    return;
+  }
+  const char* material = nullptr;
+  double min_rpm = 0.0, max_rpm = 0.0;
+  spread_material_name(tables, 0, &material);
+  spread_material_rpm_range(tables, 0, &min_rpm, &max_rpm);
+  spread_prediction_def def = spread_prediction_def_default();
+  def.material = material;
+  def.rpm = 560.0 >= min_rpm && 560.0 <= max_rpm ? 560.0 : 0.5 * (min_rpm + max_rpm);
+  def.tray_width_m = 0.01 * static_cast<double>(state.range(0));
+  if (state.range(1) > 0) def.disc_height_m = static_cast<double>(state.range(1));
+  def.wind_m_s[0] = static_cast<double>(state.range(2));
+  size_t capacity = 0;
+  spread_transverse_bound(tables, def.tray_width_m, &capacity);
+  std::vector<double> trays(capacity);
+  spread_prediction result{};
+  if (spread_predict(tables, &def, &result, trays.data(), trays.size()) != SPREAD_OK) {
+    state.SkipWithError("spread_predict failed");
+    spread_close(tables);
+    return;
+  }
+  for (auto _ : state) {
+    spread_predict(tables, &def, &result, trays.data(), trays.size());
+    double cv = result.cv_percent;
+    benchmark::DoNotOptimize(cv);
+  }
+  state.counters["trays"] = result.tray_count;
+  state.counters["flights"] = result.flights;
+  state.counters["working_width_m"] = result.working_width_to_and_fro_m;
+  spread_close(tables);
+}
+BENCHMARK(BM_PredictWorstCase)
+    ->ArgsProduct({{5, 50}, {0, 50, 100}, {0, 20, 100}})
+    ->ArgNames({"tray_cm", "height_m", "wind_m_s"})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_TrajectoryWorstCase(benchmark::State& state) {
+  spread_trajectory_def def = spread_trajectory_def_default();
+  switch (state.range(0)) {
+    case 0:
+      def.diameter_m = 1e-6;
+      def.density_kg_m3 = 1.0;
+      break;
+    case 1:
+      def.position_m[2] = 1000.0;
+      break;
+    default:
+      def.wind_m_s[2] = 100.0;
+      break;
+  }
+  spread_landing landing{};
+  spread_status status = SPREAD_OK;
+  for (auto _ : state) {
+    status = spread_trajectory(&def, &landing);
+    // On a copy: DoNotOptimize on a struct member was seen to clobber it with this toolchain.
+    double time_s = landing.flight_time_s;
+    benchmark::DoNotOptimize(time_s);
+  }
+  state.counters["landed"] = status == SPREAD_OK ? 1 : 0;
+  state.counters["steps"] = landing.steps;
+  state.counters["flight_time_s"] = landing.flight_time_s;
+}
+BENCHMARK(BM_TrajectoryWorstCase)->DenseRange(0, 2)->ArgName("case")->Unit(benchmark::kMillisecond);
+
+void BM_ExtraThreadState(benchmark::State& state) {
+  const char* path = table_path();
+  if (path == nullptr) {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  const bool workspace_kind = state.range(0) == 1;
+  spread_tables* shared = nullptr;
+  if (spread_open(path, &shared) != SPREAD_OK) {
+    state.SkipWithError("spread_open failed");
+    return;
+  }
+  double held_bytes = 0.0;
+  for (auto _ : state) {
+    const auto before = mallinfo2().uordblks;
+    spread_tables* tables = nullptr;
+    spread_workspace* workspace = nullptr;
+    if (workspace_kind) {
+      spread_workspace_create(shared, &workspace);
+    } else {
+      spread_open(path, &tables);
+    }
+    held_bytes = static_cast<double>(mallinfo2().uordblks) - static_cast<double>(before);
+    state.PauseTiming();
+    spread_workspace_free(workspace);
+    spread_close(tables);
+    state.ResumeTiming();
+  }
+  state.counters["heap_bytes_per_thread"] = held_bytes;
+  spread_close(shared);
+}
+BENCHMARK(BM_ExtraThreadState)->DenseRange(0, 1)->ArgName("workspace")->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
