@@ -2,6 +2,7 @@
 // The object behind the opaque spread_tables handle: the predictor (tables in memory + workspace).
 #include <cstddef>
 
+#include "capi/src/abi_layout.hpp"
 #include "libspread/predict/predictor.hpp"
 #include "spread/spread.h"
 
@@ -9,14 +10,3 @@ struct spread_tables {
   explicit spread_tables(spread::tables::TableContents contents) : predictor(std::move(contents)) {}
   spread::predict::Predictor predictor;
 };
-
-namespace spread::capi {
-
-// Oldest struct sizes this library accepts (the first published layouts). A caller compiled against a
-// newer header passes a larger struct_size; the library reads the fields it knows.
-// The definition as the first release had it (up to tray_width_m), and as it is now.
-inline constexpr std::size_t kPredictionDefV1Size = offsetof(spread_prediction_def, kernel_half_width_m);
-inline constexpr std::size_t kPredictionDefV2Size = sizeof(spread_prediction_def);
-inline constexpr std::size_t kTrajectoryDefV1Size = sizeof(spread_trajectory_def);
-
-}  // namespace spread::capi

@@ -94,6 +94,8 @@ extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spr
     put(landing.state.spin_rad_s, out_landing->spin_rad_s);
     out_landing->flight_time_s = landing.flight_time_s;
     out_landing->steps = landing.steps;
+    // Only a caller whose header has the reserved fields is sure to have room for this one.
+    if (def->struct_size >= spread::capi::kTrajectoryDefReservedSize) out_landing->reserved = 0;
     return landing.landed ? SPREAD_OK : SPREAD_ERROR_NOT_LANDED;
   } catch (const std::bad_alloc&) {
     return SPREAD_ERROR_OUT_OF_MEMORY;
