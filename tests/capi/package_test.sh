@@ -39,10 +39,16 @@ others=$(grep -v '^spread_' "$work/exports.txt" || true)
 for f in spread_open spread_close spread_predict spread_trajectory spread_status_str spread_version; do
   grep -qx "$f" "$work/exports.txt" || fail "$f not exported"
 done
+# The archive too: pre-linked, its only globals are spread_* (and the C++ library's own "unique"
+# symbols from its headers, which bind to one copy per program whatever the archive does).
+nm --defined-only --extern-only "$libdir/libspreadc.a" | awk 'NF == 3 && $2 != "u" {print $3}' >"$work/archive_globals.txt"
+others=$(grep -v '^spread_' "$work/archive_globals.txt" || true)
+[ -z "$others" ] || fail "libspreadc.a has globals besides spread_*: $(echo "$others" | head -5 | tr '\n' ' ')"
+grep -qx spread_predict "$work/archive_globals.txt" || fail "spread_predict not in libspreadc.a"
 for lib in "$so" "$libdir/libspreadc.a"; do
   if nm -C "$lib" 2>/dev/null | grep -q arm_internal_fault_for_test; then fail "test fault seam in $lib"; fi
 done
-echo "package: libspreadc.so.0 exports $(wc -l <"$work/exports.txt") symbols, all spread_*"
+echo "package: libspreadc.so.0 exports $(wc -l <"$work/exports.txt") symbols, libspreadc.a $(wc -l <"$work/archive_globals.txt"), all spread_*"
 
 check_run() {  # program, whether it must link libspreadc.so.0 dynamically
   local needed
@@ -51,6 +57,10 @@ check_run() {  # program, whether it must link libspreadc.so.0 dynamically
   if [ "$2" = static ] && [ "$needed" -ne 0 ]; then fail "$1 needs libspreadc.so.0 though linked statically"; fi
   "$1" "$table" >"$1.out" || { cat "$1.out"; fail "$1 exited $?"; }
   grep -Eq "working width [0-9.]+ m" "$1.out" || { cat "$1.out"; fail "$1 printed no working width"; }
+  # A missing file is a C++ exception thrown and caught inside the library: it must still come out as
+  # its status (exception tables and type information survive the pre-link and the hiding).
+  if "$1" "$(dirname "$table")/no-such-table.sqlite" >"$1.missing" 2>&1; then fail "$1 opened a missing file"; fi
+  grep -q "SPREAD_ERROR_FILE_MISSING" "$1.missing" || { cat "$1.missing"; fail "$1: no FILE_MISSING for a missing file"; }
   echo "package: $(basename "$1") ($2): $(head -1 "$1.out")"
 }
 cflags=(-std=c99 -Wall -Wextra -pedantic -Werror)
