@@ -2,6 +2,10 @@
 find_package(Threads REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(SQLite3 REQUIRED)
+# The C API (capi/) needs only the three above; SPREAD_CAPI_ONLY stops here.
+if(SPREAD_CAPI_ONLY)
+  return()
+endif()
 find_package(tomlplusplus REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)

@@ -110,6 +110,8 @@ extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spr
     put(landing.state.spin_rad_s, out_landing->spin_rad_s);
     out_landing->flight_time_s = landing.flight_time_s;
     out_landing->steps = landing.steps;
+    // Only a caller whose header has the reserved fields is sure to have room for this one.
+    if (def->struct_size >= spread::capi::kTrajectoryDefReservedSize) out_landing->reserved = 0;
     if (landing.landed) return SPREAD_OK;
     return fail(SPREAD_ERROR_NOT_LANDED, "spread_trajectory: not on the ground after %g s of flight and %d steps (limits %g s, %d steps)",
                 landing.flight_time_s, landing.steps, settings.max_time_s, settings.max_steps);

@@ -52,6 +52,11 @@ int main(int argc, char** argv) {
   CHECK(def.cv_target_percent == 15.0);
   CHECK(def.effects == SPREAD_EFFECTS_AS_TABLE);
   CHECK(isnan(def.kernel_half_width_m));
+  /* The layouts a C compiler gives end in no padding either (docs/c-api.md "ABI rules"). */
+  CHECK(traj.reserved == 0u);
+  CHECK(sizeof(spread_trajectory_def) == offsetof(spread_trajectory_def, reserved) + sizeof traj.reserved);
+  CHECK(sizeof(spread_landing) == offsetof(spread_landing, reserved) + sizeof landing.reserved);
+  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, kernel_half_width_m) + sizeof(double));
   CHECK(spread_version() == SPREAD_VERSION_NUMBER);
   CHECK(strcmp(spread_version_string(), SPREAD_VERSION_STRING) == 0);
   CHECK(strncmp(spread_status_str(SPREAD_ERROR_FILE_CORRUPT), "SPREAD_ERROR_FILE_CORRUPT", 25) == 0);
@@ -82,6 +87,7 @@ int main(int argc, char** argv) {
   traj.velocity_m_s[0] = 10.0;
   CHECK(spread_trajectory(&traj, &landing) == SPREAD_OK);
   CHECK(landing.position_m[0] > 1.0 && landing.position_m[0] < 10.0);
+  CHECK(landing.reserved == 0);
 
   CHECK(strstr(spread_last_error_detail(), "sand") != NULL);
 

@@ -2,6 +2,7 @@
 // single trajectories, version and status names, and that docs/c-api.md carries the compiled example.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <numeric>
@@ -11,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "capi/src/abi_layout.hpp"
 #include "capi/src/fault_seam.hpp"
 #include "spread/spread.h"
 #include "tests/capi/capi_test_files.hpp"
@@ -336,6 +338,62 @@ TEST(CapiTrajectory, StrongUpdraughtNeverLands) {
   spread_landing l{};
   EXPECT_EQ(spread_trajectory(&t, &l), SPREAD_ERROR_NOT_LANDED);
   EXPECT_GT(l.position_m[2], 1.0);
+}
+
+// A caller compiled against the first release's header passes its smaller struct_size: the library
+// reads only that version's definition fields and writes only that version's result fields.
+TEST_F(Capi, OlderDefinitionIsReadAndAnsweredAsItsVersion) {
+  spread_prediction current{};
+  spread_prediction_def d = def();
+  ASSERT_EQ(spread_predict(tables_, &d, &current, nullptr, 0), SPREAD_OK);
+  // Point masses instead of the automatic kernel: a different result, if the field were read.
+  d.kernel_half_width_m = 0.0;
+  spread_prediction point{};
+  ASSERT_EQ(spread_predict(tables_, &d, &point, nullptr, 0), SPREAD_OK);
+  ASSERT_NE(point.cv_percent, current.cv_percent);
+
+  // Every size from the first release's up to (not including) the current one is the first version.
+  for (std::size_t size : {spread::capi::kPredictionDefV1Size, spread::capi::kPredictionDefV2Size - 1}) {
+    d.struct_size = static_cast<uint32_t>(size);
+    spread_prediction older;
+    std::memset(&older, 0xAB, sizeof older);
+    ASSERT_EQ(spread_predict(tables_, &d, &older, nullptr, 0), SPREAD_OK) << size;
+    EXPECT_EQ(older.cv_percent, current.cv_percent) << "kernel_half_width_m read from a " << size << "-byte definition";
+    EXPECT_EQ(older.flights, current.flights);
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&older);
+    for (std::size_t i = spread::capi::kPredictionV1Size; i < sizeof older; ++i) {
+      ASSERT_EQ(bytes[i], 0xAB) << "result byte " << i << " written for a " << size << "-byte definition";
+    }
+  }
+  d.struct_size = static_cast<uint32_t>(spread::capi::kPredictionDefV1Size - 1);
+  EXPECT_EQ(spread_predict(tables_, &d, &current, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+}
+
+TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {
+  spread_trajectory_def t = spread_trajectory_def_default();
+  EXPECT_EQ(t.reserved, 0u);
+  t.velocity_m_s[0] = 12.0;
+  spread_landing clean;
+  std::memset(&clean, 0xAB, sizeof clean);
+  ASSERT_EQ(spread_trajectory(&t, &clean), SPREAD_OK);
+  EXPECT_EQ(clean.reserved, 0);
+
+  // What an older caller has there is padding: anything at all. The landing must not change.
+  t.reserved = 0xDEADBEEFu;
+  spread_landing dirty{};
+  ASSERT_EQ(spread_trajectory(&t, &dirty), SPREAD_OK);
+  EXPECT_EQ(std::memcmp(&dirty, &clean, sizeof clean), 0);
+
+  // A definition without the reserved field (the first release where doubles are 4-byte aligned):
+  // accepted, and the landing's reserved field, which that caller may not have, is not written.
+  t.struct_size = static_cast<uint32_t>(spread::capi::kTrajectoryDefV1Size);
+  spread_landing older;
+  std::memset(&older, 0xAB, sizeof older);
+  ASSERT_EQ(spread_trajectory(&t, &older), SPREAD_OK);
+  EXPECT_EQ(older.flight_time_s, clean.flight_time_s);
+  EXPECT_EQ(older.reserved, static_cast<int32_t>(0xABABABABu));
+  t.struct_size = static_cast<uint32_t>(spread::capi::kTrajectoryDefV1Size - 1);
+  EXPECT_EQ(spread_trajectory(&t, &older), SPREAD_ERROR_OUT_OF_RANGE);
 }
 
 TEST_F(Capi, UnexpectedExceptionIsInternalNotACrash) {

@@ -37,6 +37,9 @@
  *   the caller used, and reads/writes only the fields that version has (the definition and its result).
  *   New fields are only ever appended; existing fields, enum values and function signatures never change
  *   within a major version. Always start from *_default() and then set the fields you need.
+ *   No published struct ends in padding: where alignment would leave some, a `reserved` field fills it
+ *   (zeroed by *_default() and by the library, never read), so a field appended later always makes
+ *   sizeof() larger and an older caller's struct_size can never cover it (docs/c-api.md "ABI rules").
  */
 #ifndef SPREAD_SPREAD_H
 #define SPREAD_SPREAD_H
@@ -245,6 +248,7 @@ typedef struct spread_trajectory_def {
   double air_viscosity_pa_s;   /* dynamic viscosity, Pa·s, in (0, 1] (default 1.81e-5) */
   double wind_m_s[3];          /* m/s, each within ±100; used when SPREAD_EFFECT_WIND is set */
   uint32_t effects;            /* SPREAD_EFFECT_* bits (default: all) */
+  uint32_t reserved;           /* fills the trailing padding; 0 from _default(), never read */
 } spread_trajectory_def;
 
 static inline spread_trajectory_def spread_trajectory_def_default(void) {
@@ -264,6 +268,7 @@ static inline spread_trajectory_def spread_trajectory_def_default(void) {
   def.air_density_kg_m3 = 1.225;
   def.air_viscosity_pa_s = 1.81e-5;
   def.effects = SPREAD_EFFECT_ALL;
+  def.reserved = 0u;
   return def;
 }
 
@@ -273,6 +278,7 @@ typedef struct spread_landing {
   double spin_rad_s[3];        /* its angular velocity there, rad/s */
   double flight_time_s;        /* s */
   int32_t steps;               /* accepted integrator steps */
+  int32_t reserved;            /* fills the trailing padding; the library writes 0 */
 } spread_landing;
 
 /* Flies one granule to the ground (adaptive Dormand–Prince 5(4), the same settings as spread_predict).
