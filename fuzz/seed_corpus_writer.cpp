@@ -68,7 +68,8 @@ void table_seeds(const fs::path& source, const fs::path& out) {
   fs::remove(table);
   const spread::scene::Scene scene = spread::scene::load_scene_file(
       (source / "scenes/default.toml").string(),
-      {"sweep.samples_per_run=4", "sweep.rpm=[450.0, 600.0]", "sweep.materials=[\"Urea\"]"});
+      {"sweep.source=\"analytic\"", "sweep.samples_per_run=4", "sweep.rpm=[450.0, 600.0]",
+       "sweep.materials=[\"Urea\"]"});
   spread::lookup::BuildOptions options;
   options.output_path = table.string();
   spread::lookup::build_tables(scene, options);

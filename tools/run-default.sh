@@ -10,7 +10,7 @@ out=${OUT:-$root/out}
 mkdir -p "$out"
 bin=$root/build
 # A fresh table each time (an existing file would be extended, not rebuilt), swapped in when complete.
-rm -f "$out/default.sqlite.new"
+rm -f "$out/default.sqlite.new" "$out/default.sqlite.new-journal"
 "$bin/lookup_builder/lookup_builder" "$root/scenes/default.toml" --output "$out/default.sqlite.new" --jobs 2
 mv -f "$out/default.sqlite.new" "$out/default.sqlite"
 "$bin/tools/spread/spread" inspect "$out/default.sqlite"
