@@ -4,6 +4,7 @@
 #include "libspread/tables/sample_codec.hpp"
 #include "libspread/tables/sqlite_connection.hpp"
 #include "libspread/tables/table_file.hpp"
+#include "libspread/tables/table_rows.hpp"
 
 namespace spread::tables {
 
@@ -12,9 +13,9 @@ using detail::Statement;
 
 namespace {
 
-[[noreturn]] void raise(TableErrorKind kind, const std::string& path, const std::string& problem) {
-  throw TableError(kind, path + ": " + problem);
-}
+using detail::raise;
+using detail::required_double;
+using detail::verify_checksum;
 
 // SQLite opens any file without complaint; the first read of the header is where garbage shows.
 std::int64_t read_application_id(Connection& db) {
@@ -33,75 +34,12 @@ void run_quick_check(Connection& db) {
   if (verdict != "ok") raise(TableErrorKind::kCorrupt, db.path(), "PRAGMA quick_check: " + verdict);
 }
 
-// A REAL column of a record. The schema says NOT NULL, but a hand-edited file may not: a NULL (which is
-// also what SQLite stores for a bound NaN) is a missing value, not 0.
-double required_double(const Statement& query, int column, Connection& db, const std::string& field) {
-  if (query.column_is_null(column)) raise(TableErrorKind::kCorrupt, db.path(), field + " is missing (NULL)");
-  return query.column_double(column);
-}
-
-// After the values passed their plausibility check (which names the field), the row's checksum says
-// whether they are the values that were written (row_checksum.hpp).
-void verify_checksum(Connection& db, const std::string& row, const std::string& stored, const std::string& computed) {
-  if (stored != computed) {
-    raise(TableErrorKind::kCorrupt, db.path(),
-          row + ": checksum mismatch (stored " + (stored.empty() ? std::string("nothing") : stored) + ", content gives " +
-              computed + "): the row was changed or damaged after it was written; rebuild the table with lookup_builder");
-  }
-}
-
 void require_tables(Connection& db) {
   for (const char* table : {"machine", "materials", "runs", "meta"}) {
     Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
     query.bind(1, std::string(table));
     if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), std::string("table `") + table + "` is missing");
   }
-}
-
-Machine read_machine(Connection& db) {
-  Statement query(db,
-                  "SELECT name, disc_radius_m, disc_height_m, disc_spacing_m, disc_count, vane_count, "
-                  "cone_angle_rad, rotation_sense, checksum FROM machine WHERE id = 1");
-  if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row is missing");
-  Machine m;
-  m.name = query.column_text(0);
-  m.disc_radius_m = required_double(query, 1, db, "machine.disc_radius_m");
-  m.disc_height_m = required_double(query, 2, db, "machine.disc_height_m");
-  m.disc_spacing_m = required_double(query, 3, db, "machine.disc_spacing_m");
-  m.disc_count = static_cast<int>(query.column_int(4));
-  m.vane_count = static_cast<int>(query.column_int(5));
-  m.cone_angle_rad = required_double(query, 6, db, "machine.cone_angle_rad");
-  m.rotation_sense = static_cast<int>(query.column_int(7));
-  const std::string problem = machine_problem(m);
-  if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row has an impossible value: " + problem);
-  verify_checksum(db, "the `machine` row", query.column_text(8), machine_checksum(m));
-  return m;
-}
-
-std::vector<Material> read_materials(Connection& db) {
-  Statement query(db,
-                  "SELECT name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, friction_particle, "
-                  "restitution, youngs_modulus_pa, poisson_ratio, rolling_friction, checksum FROM materials ORDER BY name");
-  std::vector<Material> materials;
-  while (query.step()) {
-    Material m;
-    m.name = query.column_text(0);
-    const std::string at = "materials." + m.name + ".";
-    m.density_kg_m3 = required_double(query, 1, db, at + "density_kg_m3");
-    m.diameter_mean_m = required_double(query, 2, db, at + "diameter_mean_m");
-    m.diameter_sd_m = required_double(query, 3, db, at + "diameter_sd_m");
-    m.friction_wall = required_double(query, 4, db, at + "friction_wall");
-    m.friction_particle = required_double(query, 5, db, at + "friction_particle");
-    m.restitution = required_double(query, 6, db, at + "restitution");
-    m.youngs_modulus_pa = required_double(query, 7, db, at + "youngs_modulus_pa");
-    m.poisson_ratio = required_double(query, 8, db, at + "poisson_ratio");
-    m.rolling_friction = required_double(query, 9, db, at + "rolling_friction");
-    const std::string problem = material_problem(m);
-    if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "impossible material value: " + problem);
-    verify_checksum(db, "material \"" + m.name + "\"", query.column_text(10), material_checksum(m));
-    materials.push_back(std::move(m));
-  }
-  return materials;
 }
 
 std::vector<Run> read_runs(Connection& db) {
@@ -182,8 +120,10 @@ TableContents read_table_file(const std::string& path) {
   }
   require_tables(db);
   TableContents contents;
-  contents.machine = read_machine(db);
-  contents.materials = read_materials(db);
+  const std::optional<Machine> machine = detail::read_machine_row(db);
+  if (!machine) raise(TableErrorKind::kCorrupt, path, "the `machine` row is missing");
+  contents.machine = *machine;
+  contents.materials = detail::read_material_rows(db);
   contents.runs = read_runs(db);
   if (contents.runs.empty()) raise(TableErrorKind::kEmpty, path, "no runs (the table has no launch data)");
   for (const Run& run : contents.runs) {

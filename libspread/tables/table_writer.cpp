@@ -15,6 +15,7 @@
 #include "libspread/tables/sample_codec.hpp"
 #include "libspread/tables/sqlite_connection.hpp"
 #include "libspread/tables/table_file.hpp"
+#include "libspread/tables/table_rows.hpp"
 #include "libspread/tables/table_schema.hpp"
 
 namespace spread::tables {
@@ -176,44 +177,10 @@ TableWriter& TableWriter::operator=(TableWriter&&) noexcept = default;
 const std::string& TableWriter::path() const { return impl_->connection->path(); }
 bool TableWriter::recovered_interrupted_write() const { return impl_->recovered; }
 
-std::optional<Machine> TableWriter::stored_machine() {
-  Statement query(*impl_->connection,
-                  "SELECT name, disc_radius_m, disc_height_m, disc_spacing_m, disc_count, vane_count, cone_angle_rad, "
-                  "rotation_sense FROM machine WHERE id = 1");
-  if (!query.step()) return std::nullopt;
-  Machine m;
-  m.name = query.column_text(0);
-  m.disc_radius_m = query.column_double(1);
-  m.disc_height_m = query.column_double(2);
-  m.disc_spacing_m = query.column_double(3);
-  m.disc_count = static_cast<int>(query.column_int(4));
-  m.vane_count = static_cast<int>(query.column_int(5));
-  m.cone_angle_rad = query.column_double(6);
-  m.rotation_sense = static_cast<int>(query.column_int(7));
-  return m;
-}
+// Read with the reader's checks: a builder must not extend a file whose rows were damaged.
+std::optional<Machine> TableWriter::stored_machine() { return detail::read_machine_row(*impl_->connection); }
 
-std::vector<Material> TableWriter::stored_materials() {
-  Statement query(*impl_->connection,
-                  "SELECT name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, friction_particle, "
-                  "restitution, youngs_modulus_pa, poisson_ratio, rolling_friction FROM materials ORDER BY name");
-  std::vector<Material> out;
-  while (query.step()) {
-    Material m;
-    m.name = query.column_text(0);
-    m.density_kg_m3 = query.column_double(1);
-    m.diameter_mean_m = query.column_double(2);
-    m.diameter_sd_m = query.column_double(3);
-    m.friction_wall = query.column_double(4);
-    m.friction_particle = query.column_double(5);
-    m.restitution = query.column_double(6);
-    m.youngs_modulus_pa = query.column_double(7);
-    m.poisson_ratio = query.column_double(8);
-    m.rolling_friction = query.column_double(9);
-    out.push_back(std::move(m));
-  }
-  return out;
-}
+std::vector<Material> TableWriter::stored_materials() { return detail::read_material_rows(*impl_->connection); }
 
 std::vector<TableWriter::StoredRun> TableWriter::stored_runs() {
   Statement query(*impl_->connection, "SELECT material, rpm, source, inputs_hash FROM runs ORDER BY material, rpm");
