@@ -1,5 +1,8 @@
 #pragma once
-// A small valid table (machine, two materials, runs) for the table tests.
+// A small valid table (machine, two materials, runs) for the table tests, and raw SQL on a file.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
 #include <string>
 
 #include "libspread/tables/table_writer.hpp"
@@ -66,6 +69,17 @@ inline void write_sample_table(const std::string& path, int samples = 64) {
   writer.write_run(sample_run("A", 450.0, samples));
   writer.write_run(sample_run("A", 600.0, samples));
   writer.write_run(sample_run("B", 450.0, samples));
+}
+
+// Runs SQL on a file with the plain sqlite3 API, as a foreign tool (or a vandal) would.
+inline void raw_exec(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  char* error = nullptr;
+  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
+  EXPECT_EQ(rc, SQLITE_OK) << (error != nullptr ? error : "");
+  sqlite3_free(error);
+  sqlite3_close(db);
 }
 
 }  // namespace spread::testing

@@ -18,18 +18,8 @@ namespace spread::tables {
 namespace {
 
 using spread::testing::file_bytes;
+using spread::testing::raw_exec;
 using spread::testing::TempPath;
-
-// Runs SQL on a file with the plain sqlite3 API, as a foreign tool (or a vandal) would.
-void raw_exec(const std::string& path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* error = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-  EXPECT_EQ(rc, SQLITE_OK) << (error != nullptr ? error : "");
-  sqlite3_free(error);
-  sqlite3_close(db);
-}
 
 // Reads the file, expects a TableError of `kind` whose message names the file, and checks the file
 // was not modified.

@@ -20,19 +20,9 @@
 namespace spread::tables {
 namespace {
 
+using spread::testing::raw_exec;
 using spread::testing::TempPath;
 using spread::testing::write_sample_table;
-
-void raw_exec(const std::string& path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* error = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-  const std::string message = error != nullptr ? error : "";
-  sqlite3_free(error);
-  sqlite3_close(db);
-  ASSERT_EQ(rc, SQLITE_OK) << message;
-}
 
 // The reader's verdict on a file: "" when it opens, else the error kind and message.
 std::string read_problem(const std::string& path, TableErrorKind* kind = nullptr) {
