@@ -100,10 +100,12 @@ TEST(CapiStack, PredictionNeedsLessThanTheStatedStackAndGivesTheSameResult) {
       expect_same(on_main, small, "16 KiB stack");
     }
   }
+  // Under AddressSanitizer locals may live on its fake stack (detect_stack_use_after_return), so the
+  // painted thread stack shows nothing: the need is measured in the plain build only.
   if (!kSanitizedBuild) {
     EXPECT_LE(need, kStatedStackBytes) << "stack need " << need << " bytes";
+    EXPECT_GT(need, 0u);
   }
-  EXPECT_GT(need, 0u);
   std::printf("spread_predict stack need: %zu bytes\n", need);
   spread_close(tables);
 }
