@@ -35,10 +35,6 @@ inline constexpr std::uint64_t kTablesTag = 0x5350524541445442u;     // "SPREADT
 inline constexpr std::uint64_t kWorkspaceTag = 0x5350524541445753u;  // "SPREADWS"
 inline constexpr std::uint64_t kDeadTag = 0xDEADDEADDEADDEADu;
 
-// Accepted integrator steps after which spread_trajectory gives up (SPREAD_ERROR_NOT_LANDED): 3072 steps
-// of about 0.45 µs each keep one call near 1.4 ms (bench_capi BM_TrajectoryWorstCase).
-inline constexpr int kTrajectoryMaxSteps = 3072;
-
 }  // namespace spread::capi
 
 struct spread_tables {

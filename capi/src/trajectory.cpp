@@ -98,12 +98,8 @@ extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spr
     air.density_kg_m3 = def->air_density_kg_m3;
     air.viscosity_pa_s = def->air_viscosity_pa_s;
     air.wind_m_s = vec(def->wind_m_s);
-    // A step cap bounds the worst case (docs/c-api.md "Worst-case time"): the explicit integrator's step
-    // is bounded by stability at about the drag relaxation time τ = ρ d² / (18 μ) (Stokes), 3 ns for 1 µm
-    // dust, so such a flight would otherwise run into the flight module's cap of a million steps (0.44 s)
-    // long before 60 s of flight. Granules of a spreader (>= 0.5 mm) land in tens of steps.
-    spread::flight::Settings settings = spread::predict::default_flight_settings();
-    settings.max_steps = spread::capi::kTrajectoryMaxSteps;
+    // The step cap of the default settings bounds the worst case (docs/c-api.md "Worst-case time").
+    const spread::flight::Settings settings = spread::predict::default_flight_settings();
     const auto landing = spread::flight::fly_to_ground(granule, launch, def->ground_z_m, air, def->effects, settings);
     put(landing.state.position_m, out_landing->position_m);
     put(landing.state.velocity_m_s, out_landing->velocity_m_s);

@@ -11,6 +11,12 @@ flight::Settings default_flight_settings() {
   s.rel_tol = 1e-3;
   s.abs_tol = 1e-3;     // m, m/s, rad/s
   s.max_time_s = 60.0;
+  // A step cap bounds the worst case of a prediction and of spread_trajectory by design (docs/c-api.md
+  // "Worst-case time"): the explicit integrator's step is bounded by stability at about the drag
+  // relaxation time τ = ρ d² / (18 μ) (Stokes), 3 ns for 1 µm dust, so such a flight would otherwise
+  // run into the flight module's general cap of a million steps long before 60 s of flight. Granules of
+  // a spreader (>= 0.5 mm) land in 5-73 steps; a flight stopped by the cap is counted as not landed.
+  s.max_steps = kMaxFlightSteps;
   return s;
 }
 

@@ -8,6 +8,9 @@
 
 namespace spread::predict {
 
+// Accepted integrator steps after which a default flight gives up: about 1.4 ms for one flight
+// (bench_capi BM_TrajectoryWorstCase).
+inline constexpr int kMaxFlightSteps = 3072;
 flight::Settings default_flight_settings();
 // Tight reference for accuracy checks (slow).
 flight::Settings reference_flight_settings();

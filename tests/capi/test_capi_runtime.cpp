@@ -343,7 +343,7 @@ TEST(CapiTrajectory, DustStopsAtTheStepCapNotAfterAMillionSteps) {
   spread_landing landing{};
   EXPECT_EQ(spread_trajectory(&def, &landing), SPREAD_ERROR_NOT_LANDED);
   EXPECT_GT(landing.steps, 1000);
-  EXPECT_LE(landing.steps, 3072);
+  EXPECT_LE(landing.steps, 3072);  // predict::kMaxFlightSteps
   EXPECT_NE(std::string(spread_last_error_detail()).find("steps"), std::string::npos);
   // A spreader granule still lands well within it.
   def = spread_trajectory_def_default();
