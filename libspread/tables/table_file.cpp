@@ -17,6 +17,11 @@ bool non_empty_file(const std::string& path) {
   return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
 }
 
+std::int32_t big_endian_int32(const unsigned char* bytes) {
+  return static_cast<std::int32_t>((std::uint32_t{bytes[0]} << 24) | (std::uint32_t{bytes[1]} << 16) |
+                                   (std::uint32_t{bytes[2]} << 8) | std::uint32_t{bytes[3]});
+}
+
 }  // namespace
 
 TableFileInfo inspect_table_file(const std::string& path, bool allow_missing) {
@@ -48,8 +53,8 @@ TableFileInfo inspect_table_file(const std::string& path, bool allow_missing) {
   if (got == static_cast<ssize_t>(sizeof header)) {
     info.sqlite = std::memcmp(header, "SQLite format 3", 16) == 0;
     info.wal = info.sqlite && header[18] == 2 && header[19] == 2;
-    info.application_id = static_cast<std::int32_t>((std::uint32_t{header[68]} << 24) | (std::uint32_t{header[69]} << 16) |
-                                                    (std::uint32_t{header[70]} << 8) | std::uint32_t{header[71]});
+    info.application_id = big_endian_int32(header + 68);
+    info.user_version = big_endian_int32(header + 60);
   }
   info.wal_has_content = non_empty_file(path + "-wal");
   info.hot_journal = non_empty_file(path + "-journal");

@@ -15,6 +15,7 @@ struct TableFileInfo {
   bool wal_has_content = false; // a non-empty PATH-wal beside it
   bool hot_journal = false;     // a non-empty PATH-journal beside it (a writer stopped mid-transaction)
   std::int32_t application_id = 0;  // header bytes 68..71, big-endian
+  std::int32_t user_version = 0;    // header bytes 60..63, big-endian (the format version)
 };
 
 // Throws TableError: kMissing (no such file, unless allow_missing), kNotOurs (a directory, a FIFO,

@@ -86,13 +86,8 @@ void check_existing_file_is_ours(const std::string& path, const detail::TableFil
     throw TableError(TableErrorKind::kNotOurs, path + ": exists and is not a libspread table (application_id " +
                                                    std::to_string(file.application_id) + "); refusing to write into it");
   }
-  std::int64_t version = 0;
-  {
-    Connection probe(path, Connection::Mode::kReadOnly);
-    version = probe.pragma_int("user_version");
-  }
-  if (version != kFormatVersion) {
-    throw TableError(TableErrorKind::kWrongVersion, path + ": table format version " + std::to_string(version) +
+  if (file.user_version != kFormatVersion) {
+    throw TableError(TableErrorKind::kWrongVersion, path + ": table format version " + std::to_string(file.user_version) +
                                                         ", this build writes version " +
                                                         std::to_string(kFormatVersion) + "; refusing to write");
   }
@@ -154,6 +149,7 @@ TableWriter::TableWriter(const std::string& path) : impl_(std::make_unique<Impl>
       Connection recover(path, Connection::Mode::kReadWrite);
       recover.pragma_int("user_version");
       impl_->recovered = true;
+      file = detail::inspect_table_file(path, /*allow_missing=*/false);  // the header as after the rollback
     }
     check_existing_file_is_ours(path, file);
     impl_->connection = std::make_unique<Connection>(path, Connection::Mode::kReadWrite);

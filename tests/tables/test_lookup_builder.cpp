@@ -176,6 +176,25 @@ TEST(LookupBuilderConflicts, ASecondBuilderIsRefusedBeforeItComputes) {
   }
 }
 
+TEST(LookupBuilderConflicts, ARunAlreadyWrittenIsSkippedNotFatal) {
+  // The same run handed to the writer twice (a run another process finished meanwhile looks the same
+  // to it): the second is counted as skipped and the build completes.
+  TempPath file("twice.sqlite");
+  const scene::Scene scene = default_scene({"sweep.samples_per_run=32", "sweep.rpm=[600.0]",
+                                            "sweep.materials=[\"Urea\"]"});
+  BuildOptions options;
+  options.output_path = file.path();
+  SweepWriter writer(scene, options);
+  ASSERT_EQ(writer.pending().size(), 1u);
+  const SweepJob& job = writer.pending().front();
+  const tables::Run run = analytic_run(scene, *job.material, job.rpm);
+  writer.finished(job, run, 0.0);
+  EXPECT_NO_THROW(writer.finished(job, run, 0.0));
+  const BuildSummary summary = writer.finish();
+  EXPECT_EQ(summary.runs_written, 1);
+  EXPECT_EQ(summary.runs_skipped, 1);
+}
+
 TEST(LookupBuilderProvenance, RunsRecordTheSourceRevision) {
   TempPath file("revision.sqlite");
   const scene::Scene scene = default_scene({"sweep.samples_per_run=32", "sweep.rpm=[600.0]"});
