@@ -145,17 +145,15 @@ std::vector<std::string> table_conflicts(tables::TableWriter& writer, const scen
 
 struct SweepWriter::Impl {
   Impl(std::ostream* out, bool terminal, int total) : progress(out, terminal, total) {}
-  // The file named by the user. When a --rebuild replaces a file built from another scene, `existing`
-  // keeps it open (and locked) while the new table is written to `writer` at `staging_path`, renamed
-  // over it once every run is written: until then the old table stays intact.
+  // When a --rebuild replaces a file built from another scene, `existing` keeps the file named by the
+  // user (summary.output_path) open and locked while the new table is written to `writer` at
+  // `staging_path`, renamed over it once every run is written: until then the old table stays intact.
   std::optional<tables::TableWriter> existing;
   std::optional<tables::TableWriter> writer;
-  std::string final_path;
   std::string staging_path;
   Progress progress;
   BuildSummary summary;
   bool rebuild = false;
-  std::size_t pending_count = 0;
   std::size_t pending_done = 0;  // pending runs written (or found already written)
   std::string scene_hash;
 };
@@ -165,7 +163,6 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
   const std::vector<SweepJob> all = sweep_jobs(scene);
   impl_ = std::make_unique<Impl>(options.progress, options.terminal, static_cast<int>(all.size()));
   impl_->summary.output_path = path;
-  impl_->final_path = path;
   impl_->rebuild = options.rebuild;
   impl_->scene_hash = scene.hash();
   impl_->writer.emplace(path);
@@ -206,7 +203,6 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
     }
     pending_.push_back(job);
   }
-  impl_->pending_count = pending_.size();
 }
 
 SweepWriter::~SweepWriter() = default;
@@ -234,13 +230,13 @@ void SweepWriter::failed(const SweepJob& job, const std::string& message) {
 
 BuildSummary SweepWriter::finish() {
   impl_->progress.close();
-  if (impl_->pending_done != impl_->pending_count) return impl_->summary;  // a run failed: not complete
+  if (impl_->pending_done != pending_.size()) return impl_->summary;  // a run failed: not complete
   // The scene that completed this file; a failed or interrupted build leaves the previous value.
   impl_->writer->write_meta("machine_scene_hash", impl_->scene_hash);
   if (!impl_->staging_path.empty()) {
     impl_->writer.reset();
-    if (std::rename(impl_->staging_path.c_str(), impl_->final_path.c_str()) != 0) {
-      throw tables::TableError(tables::TableErrorKind::kIo, impl_->final_path + ": cannot replace it with the rebuilt " +
+    if (std::rename(impl_->staging_path.c_str(), impl_->summary.output_path.c_str()) != 0) {
+      throw tables::TableError(tables::TableErrorKind::kIo, impl_->summary.output_path + ": cannot replace it with the rebuilt " +
                                                                 impl_->staging_path + ": " + std::strerror(errno));
     }
     impl_->existing.reset();
