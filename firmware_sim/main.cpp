@@ -169,7 +169,13 @@ int main(int argc, char** argv) {
     if (!record_path.empty()) {
       record_file.open(record_path);
       if (!record_file) throw std::runtime_error("cannot write candump log '" + record_path + "'");
-      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can_interface.empty() ? "can0" : can_interface);
+      // candump stamps wall-clock time; a replay's clock already runs on the log's own timestamps.
+      const Nanoseconds epoch_offset =
+          replay_log ? Nanoseconds::zero()
+                     : std::chrono::duration_cast<Nanoseconds>(std::chrono::system_clock::now().time_since_epoch()) -
+                           clock->now();
+      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can_interface.empty() ? "can0" : can_interface,
+                                                      epoch_offset);
     }
 
     can::CanEcuSettings can_settings;

@@ -103,6 +103,7 @@ void lcm_seeds(const fs::path& out) {
   command.ground_speed_m_s = 3.0;
   command.material = "Urea";
   command.rpm_setpoint = 600.0;
+  command.work_state = true;
   command.num_sections = 4;
   command.section_on = {true, true, false, true};
   write_bytes(out / "lcm_handlers" / "command_manual.bin", lcm_payload(0, command));

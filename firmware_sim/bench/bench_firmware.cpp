@@ -114,6 +114,7 @@ EcuCommand command(Mode mode, double width_m, const std::string& material) {
   c.material = material;
   c.section_count = 8;
   c.section_on.fill(true);
+  c.work_state = true;
   return c;
 }
 

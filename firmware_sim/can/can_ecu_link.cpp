@@ -83,9 +83,17 @@ void CanEcuProcessor::handle_read_outcome(ReadOutcome outcome) {
 
 void CanEcuProcessor::handle_frame(const can_frame& frame) {
   ++counters_.frames_received;
-  // ISOBUS uses only extended data frames; anything else on the bus is not a valid message for us.
-  if ((frame.can_id & (CAN_ERR_FLAG | CAN_RTR_FLAG)) != 0 || (frame.can_id & CAN_EFF_FLAG) == 0 ||
-      frame.len > CAN_MAX_DLEN) {
+  if ((frame.can_id & CAN_ERR_FLAG) != 0) {
+    ++counters_.error_frames;
+    return;
+  }
+  // ISOBUS messages are extended data frames. Other nodes may legally send standard (11-bit) frames
+  // (ISO 11783-3 leaves them to proprietary use) and remote frames: not ours, and no fault of ours.
+  if ((frame.can_id & (CAN_RTR_FLAG)) != 0 || (frame.can_id & CAN_EFF_FLAG) == 0) {
+    ++counters_.frames_ignored;
+    return;
+  }
+  if (frame.len > CAN_MAX_DLEN) {
     ecu_.record_fault(Fault::kCanMalformedFrame);
     return;
   }
@@ -110,11 +118,14 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
       return;
     case kWheelBasedSpeedPgn:
     case kGroundBasedSpeedPgn:
+    case kMachineSelectedSpeedPgn:
       if (frame.len != 8) {
         ecu_.record_fault(Fault::kCanMalformedFrame);
         return;
       }
-      handle_speed(frame, id.pgn == kGroundBasedSpeedPgn);
+      handle_speed(frame, id.pgn == kMachineSelectedSpeedPgn ? SpeedSource::kMachineSelected
+                          : id.pgn == kGroundBasedSpeedPgn   ? SpeedSource::kGroundBased
+                                                             : SpeedSource::kWheelBased);
       return;
     case kRequestPgn:
       if (frame.len < 3) {
@@ -139,22 +150,32 @@ void CanEcuProcessor::handle_request(const can_frame& frame) {
   }
 }
 
-void CanEcuProcessor::handle_speed(const can_frame& frame, bool ground_based) {
+void CanEcuProcessor::handle_speed(const can_frame& frame, SpeedSource source) {
   const Nanoseconds now = clock_.now();
   std::array<std::uint8_t, 8> bytes{};
   std::copy(frame.data, frame.data + 8, bytes.begin());
   const auto speed = decode_speed(bytes);
-  if (!speed) {
+  SpeedReading& reading = speeds_[static_cast<std::size_t>(source)];
+  if (speed) {
+    ++counters_.speed_messages;
+    reading.time = now;
+    reading.speed_m_s = speed->speed_m_s;
+    reading.direction = speed->direction == Direction::kReverse   ? TravelDirection::kReverse
+                        : speed->direction == Direction::kForward ? TravelDirection::kForward
+                                                                  : TravelDirection::kUnknown;
+  } else {
+    // The source itself says it has no valid speed: it is out at once, not after its timeout.
     ++counters_.speed_not_available;
-    return;
+    reading.time.reset();
   }
-  if (ground_based) {
-    last_ground_speed_ = now;
-  } else if (last_ground_speed_ && now - *last_ground_speed_ < settings_.ground_speed_precedence) {
-    return;  // wheels slip; the ground-based speed is fresher and better
+  // The best source heard within its timeout gives the speed, valid for what is left of that timeout.
+  for (const SpeedReading& r : speeds_) {
+    if (r.time && now - *r.time <= settings_.speed_timeout) {
+      ecu_.set_ground_speed(r.speed_m_s, r.direction, settings_.speed_timeout - (now - *r.time));
+      return;  // out of range is counted by the ECU
+    }
   }
-  ++counters_.speed_messages;
-  ecu_.set_ground_speed(speed->speed_m_s);  // out of range is counted by the ECU
+  ecu_.set_ground_speed_unavailable();
 }
 
 std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, const EcuStatus& s) const {
@@ -241,8 +262,15 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
     const ProcessDataBytes out = encode_pdack(m, bits);
     send(kProcessDataPgn, source, kProcessDataPriority, out.data());
   };
-  if (command == ProcessDataCommand::kTaskControllerStatus || command == ProcessDataCommand::kAcknowledge) {
-    ++counters_.frames_not_for_us;  // TC status broadcasts and acks need no answer from a simulator
+  if (command == ProcessDataCommand::kTaskControllerStatus) {
+    // ISO 11783-10: the task controller broadcasts its status every 2 s; it is how a client knows the
+    // TC is still there. No answer is due.
+    ++counters_.task_controller_status;
+    ecu_.note_task_controller_alive();
+    return;
+  }
+  if (command == ProcessDataCommand::kAcknowledge) {
+    ++counters_.frames_not_for_us;  // PDACKs from others need no answer
     return;
   }
   const bool is_request = command == ProcessDataCommand::kRequestValue;
@@ -272,6 +300,7 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
     send(kProcessDataPgn, addressed_to_us ? source : kGlobalAddress, kProcessDataPriority, out.data());
     return;
   }
+  ecu_.note_task_controller_alive();  // a set-value is a sign of life of the task controller too
   const std::uint8_t errors = apply_set_value(m);
   if (errors != kPdackNoError) {
     nack(errors);

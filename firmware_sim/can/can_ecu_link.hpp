@@ -2,6 +2,7 @@
 // The ECU on an ISOBUS: turns received frames into ECU set-points and answers, and drives the
 // transport from the fixed-rate loop. Answers go to whatever CanFrameSink is given (a bus port, a
 // recording, both), so the same code runs on can0, on the virtual bus and in log replay.
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -21,8 +22,10 @@ struct CanEcuSettings {
   // ISO 11783-5 NAME: self-configurable 0, industry group 2 (agriculture), device class 5
   // (fertilisers), function 0, identity 0x1234, manufacturer 0 (simulator).
   std::uint64_t name = (std::uint64_t{2} << 60) | (std::uint64_t{5} << 49) | 0x1234u;
-  // Ground-based speed (radar/GNSS) wins over wheel-based speed for this long after it was seen.
-  Nanoseconds ground_speed_precedence = std::chrono::seconds(1);
+  // Each speed source is believed for this long after its last valid message (ISO 11783-7 sends them
+  // every 100 ms: three missed). Machine selected speed wins over ground-based (radar/GNSS), which wins
+  // over wheel-based (wheels slip); a lost source hands over to the next, none left means no speed.
+  Nanoseconds speed_timeout = std::chrono::milliseconds(300);
 };
 
 struct CanLinkCounters {
@@ -33,7 +36,14 @@ struct CanLinkCounters {
   std::uint64_t send_failures = 0;
   std::uint64_t speed_messages = 0;        // accepted speed broadcasts
   std::uint64_t speed_not_available = 0;   // speed broadcasts saying "error" / "not available"
+  std::uint64_t frames_ignored = 0;        // standard (11-bit) and remote frames: legal, not ISOBUS messages
+  std::uint64_t error_frames = 0;          // error frames reported by the CAN controller
+  std::uint64_t task_controller_status = 0;  // TC status messages (process data command 0xE)
 };
+
+// The speed sources a tractor broadcasts, in order of precedence.
+enum class SpeedSource : std::uint8_t { kMachineSelected = 0, kGroundBased = 1, kWheelBased = 2 };
+inline constexpr std::size_t kSpeedSourceCount = 3;
 
 class CanEcuProcessor {
  public:
@@ -50,7 +60,7 @@ class CanEcuProcessor {
 
  private:
   void handle_process_data(const can_frame& frame, std::uint8_t source, bool addressed_to_us);
-  void handle_speed(const can_frame& frame, bool ground_based);
+  void handle_speed(const can_frame& frame, SpeedSource source);
   void handle_request(const can_frame& frame);
   std::optional<std::int32_t> actual_value(std::uint16_t ddi, const EcuStatus& status) const;
   // Applies a set-value; returns the PDACK error bits (0 = accepted).
@@ -62,7 +72,12 @@ class CanEcuProcessor {
   CanFrameSink& tx_;
   CanEcuSettings settings_;
   CanLinkCounters counters_;
-  std::optional<Nanoseconds> last_ground_speed_;
+  struct SpeedReading {
+    std::optional<Nanoseconds> time;  // last valid message; none: never, or the source said error / n.a.
+    double speed_m_s = 0.0;
+    TravelDirection direction = TravelDirection::kUnknown;
+  };
+  std::array<SpeedReading, kSpeedSourceCount> speeds_{};
 };
 
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).

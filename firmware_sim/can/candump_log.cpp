@@ -104,8 +104,16 @@ std::optional<CandumpRecord> parse_candump_line(std::string_view line, std::stri
     return std::nullopt;
   }
   if (!data_text.empty() && (data_text.front() == 'R' || data_text.front() == 'r')) {
+    // can-utils writes a remote frame as `ID#R`, optionally followed by its DLC as one digit (`ID#R8`).
     record.frame.can_id |= CAN_RTR_FLAG;
     record.frame.len = 0;
+    const std::string_view dlc = data_text.substr(1);
+    if (dlc.size() == 1 && dlc[0] >= '0' && dlc[0] <= '8') {
+      record.frame.len = static_cast<std::uint8_t>(dlc[0] - '0');
+    } else if (!dlc.empty()) {
+      error = "remote frame length '" + std::string(dlc) + "' is not one digit 0..8";
+      return std::nullopt;
+    }
   } else {
     if (data_text.size() % 2 != 0 || data_text.size() > 2 * CAN_MAX_DLEN) {
       error = "data must be 0..8 bytes as pairs of hex digits";
@@ -142,6 +150,7 @@ std::string format_candump_line(Nanoseconds time, std::string_view interface, co
   out += id;
   if ((frame.can_id & CAN_RTR_FLAG) != 0) {
     out += 'R';
+    if (frame.len > 0 && frame.len <= CAN_MAX_DLEN) out += static_cast<char>('0' + frame.len);
   } else {
     const std::size_t n = frame.len > CAN_MAX_DLEN ? CAN_MAX_DLEN : frame.len;
     for (std::size_t i = 0; i < n; ++i) {
@@ -177,11 +186,11 @@ CandumpLog read_candump_file(const std::string& path) {
   return read_candump_log(in);
 }
 
-CandumpWriter::CandumpWriter(std::ostream& out, const Clock& clock, std::string interface)
-    : out_(out), clock_(clock), interface_(std::move(interface)) {}
+CandumpWriter::CandumpWriter(std::ostream& out, const Clock& clock, std::string interface, Nanoseconds epoch_offset)
+    : out_(out), clock_(clock), interface_(std::move(interface)), epoch_offset_(epoch_offset) {}
 
 bool CandumpWriter::send(const can_frame& frame) {
-  out_ << format_candump_line(clock_.now(), interface_, frame) << '\n';
+  out_ << format_candump_line(clock_.now() + epoch_offset_, interface_, frame) << '\n';
   ++lines_;
   return static_cast<bool>(out_);
 }

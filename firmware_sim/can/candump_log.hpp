@@ -38,10 +38,13 @@ CandumpLog read_candump_log(std::istream& in);
 // Throws std::runtime_error when the file cannot be opened.
 CandumpLog read_candump_file(const std::string& path);
 
-// Appends every frame sent through it to a log, stamped with the injected clock.
+// Appends every frame sent through it to a log, stamped with the injected clock plus `epoch_offset`:
+// candump stamps wall-clock time since the Unix epoch, so a live recording on the monotonic clock
+// passes (wall clock - monotonic clock) at start; a replay already runs on the log's own time (0).
 class CandumpWriter final : public CanFrameSink {
  public:
-  CandumpWriter(std::ostream& out, const Clock& clock, std::string interface);
+  CandumpWriter(std::ostream& out, const Clock& clock, std::string interface,
+                Nanoseconds epoch_offset = Nanoseconds::zero());
   bool send(const can_frame& frame) override;
   std::uint64_t lines_written() const { return lines_; }
 
@@ -49,6 +52,7 @@ class CandumpWriter final : public CanFrameSink {
   std::ostream& out_;
   const Clock& clock_;
   std::string interface_;
+  Nanoseconds epoch_offset_;
   std::uint64_t lines_ = 0;
 };
 

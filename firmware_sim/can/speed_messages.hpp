@@ -1,9 +1,11 @@
 #pragma once
-// Tractor speed broadcasts (ISO 11783-7, PDU2, 8 bytes):
-//   PGN 0xFE48 wheel-based speed and distance, PGN 0xFE49 ground-based speed and distance
+// Tractor speed broadcasts (ISO 11783-7, 8 bytes, every 100 ms):
+//   PGN 0xFE48 wheel-based speed and distance, PGN 0xFE49 ground-based speed and distance,
+//   PGN 0xF022 machine selected speed (the tractor's own choice among its sources)
 //   bytes 0-1 speed [mm/s] (0.001 m/s per bit, LE; 0xFB00.. = error / not available)
-//   bytes 2-5 distance [mm] (LE), byte 6 (wheel-based: max. time of tractor power [min]),
-//   byte 7 bits 0-1 direction (00 reverse, 01 forward, 10 error, 11 not available).
+//   bytes 2-5 distance [mm] (LE), byte 6 (wheel-based: max. time of tractor power [min];
+//   machine selected: exit/reason code), byte 7 bits 0-1 direction (00 reverse, 01 forward, 10 error,
+//   11 not available); the direction sits in the same place in all three.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -12,6 +14,7 @@ namespace spread::firmware::can {
 
 inline constexpr std::uint32_t kWheelBasedSpeedPgn = 0xFE48;
 inline constexpr std::uint32_t kGroundBasedSpeedPgn = 0xFE49;
+inline constexpr std::uint32_t kMachineSelectedSpeedPgn = 0xF022;
 inline constexpr std::uint16_t kSpeedLargestValid = 0xFAFF;  // [mm/s]; above: error / not available
 
 enum class Direction : std::uint8_t { kReverse = 0, kForward = 1, kError = 2, kNotAvailable = 3 };

@@ -80,16 +80,30 @@ Rejection Ecu::check_material(std::string_view material, Mode mode) const {
   return std::nullopt;
 }
 
-void Ecu::accept_input() { last_input_time_ = clock_.now(); }
-
 std::uint32_t Ecu::installed_mask() const { return (std::uint32_t{1} << section_count_) - 1u; }
 
-Rejection Ecu::apply_command(const EcuCommand& c) {
+Rejection Ecu::check_sequence(std::int64_t sequence) {
+  if (!has_sequence_) return std::nullopt;
+  // Distances in unsigned arithmetic: any two int64 values, no overflow.
+  const auto last = static_cast<std::uint64_t>(last_sequence_);
+  const auto seq = static_cast<std::uint64_t>(sequence);
   // A replayed or reordered old command must not roll the state back.
-  if (has_sequence_ && c.sequence <= last_sequence_ &&
-      last_sequence_ - c.sequence <= parameters_.sequence_reorder_window) {
-    return reject(Fault::kStaleSequence);
+  if (sequence <= last_sequence_ && last - seq <= static_cast<std::uint64_t>(parameters_.sequence_reorder_window)) {
+    return Fault::kStaleSequence;
   }
+  const bool in_step = sequence > last_sequence_ && seq - last <= static_cast<std::uint64_t>(parameters_.sequence_max_jump);
+  if (in_step) return std::nullopt;
+  // Far ahead, or far behind (a restarted sender): believed only when the next command continues from it.
+  if (jump_sequence_ && sequence > *jump_sequence_ &&
+      seq - static_cast<std::uint64_t>(*jump_sequence_) == 1u) {
+    return std::nullopt;
+  }
+  jump_sequence_ = sequence;
+  return Fault::kSequenceJump;
+}
+
+Rejection Ecu::apply_command(const EcuCommand& c) {
+  if (auto bad = check_sequence(c.sequence)) return reject(*bad);
   for (const double v : {c.rate_setpoint_kg_ha, c.width_setpoint_m, c.ground_speed_m_s, c.rpm_setpoint}) {
     if (auto bad = check_finite(v)) return reject(*bad);
   }
@@ -101,22 +115,24 @@ Rejection Ecu::apply_command(const EcuCommand& c) {
   if (auto bad = check_range(c.width_setpoint_m, 0.0, parameters_.width_max_m)) return reject(*bad);
   if (auto bad = check_range(c.ground_speed_m_s, 0.0, parameters_.speed_max_m_s)) return reject(*bad);
   if (auto bad = check_range(c.rpm_setpoint, 0.0, parameters_.rpm_max)) return reject(*bad);
-  if (c.section_count < 1 || c.section_count > kMaxSections) return reject(Fault::kSetpointOutOfRange);
+  // A command may use fewer sections than the machine has, never more.
+  if (c.section_count < 1 || c.section_count > parameters_.section_count) return reject(Fault::kSetpointOutOfRange);
   if (mode == Mode::kAutomatic && predictor_ == nullptr) return reject(Fault::kAutomaticUnavailable);
   // Automatic mode solves for a width: zero width has no disc speed.
   if (mode == Mode::kAutomatic && !(c.width_setpoint_m > 0.0)) return reject(Fault::kSetpointOutOfRange);
   if (auto bad = check_material(c.material, mode)) return reject(*bad);
 
+  const Nanoseconds now = clock_.now();
   const bool material_changed = c.material != material_;
   const bool width_changed = c.width_setpoint_m != width_setpoint_m_;
   if (mode == Mode::kAutomatic && (mode_ != Mode::kAutomatic || material_changed || width_changed)) {
     solve_pending_ = true;
+    width_margin_m_ = parameters_.solver.width_margin_m;
   }
   if (material_changed || width_changed) prediction_pending_ = true;
   mode_ = mode;
   rate_setpoint_kg_ha_ = c.rate_setpoint_kg_ha;
   width_setpoint_m_ = c.width_setpoint_m;
-  ground_speed_m_s_ = c.ground_speed_m_s;
   rpm_setpoint_manual_ = c.rpm_setpoint;
   material_.assign(c.material);
   section_count_ = c.section_count;
@@ -124,21 +140,32 @@ Rejection Ecu::apply_command(const EcuCommand& c) {
   for (int i = 0; i < c.section_count; ++i) {
     if (c.section_on[static_cast<std::size_t>(i)]) section_mask_ |= std::uint32_t{1} << i;
   }
-  work_state_setpoint_ = true;
+  // The work state follows a change of this sender's request (or its first request), so a repeated
+  // command cannot undo a task controller's switch-off.
+  if (!lcm_work_state_ || *lcm_work_state_ != c.work_state) {
+    work_state_setpoint_ = c.work_state;
+    work_state_owner_ = WorkStateOwner::kLcm;
+  }
+  lcm_work_state_ = c.work_state;
+  // The command's speed carries no direction (LCM clients send forward speed) and is as fresh as the command.
+  ground_speed_m_s_ = c.ground_speed_m_s;
+  direction_ = TravelDirection::kForward;
+  speed_never_expires_ = parameters_.command_timeout == Nanoseconds::zero();
+  speed_valid_until_ = now + parameters_.command_timeout;
   if (mode_ == Mode::kManual) {
     width_reachable_ = true;
-    faults_.set_state(Fault::kWidthOutOfReach, false, clock_.now());
+    faults_.set_state(Fault::kWidthOutOfReach, false, now);
   }
   last_sequence_ = c.sequence;
   has_sequence_ = true;
-  accept_input();
+  jump_sequence_.reset();
+  last_command_time_ = now;
   return std::nullopt;
 }
 
 Rejection Ecu::set_rate_setpoint(double rate_kg_ha) {
   if (auto bad = check_range(rate_kg_ha, 0.0, parameters_.rate_max_kg_ha)) return reject(*bad);
   rate_setpoint_kg_ha_ = rate_kg_ha;
-  accept_input();
   return std::nullopt;
 }
 
@@ -147,10 +174,12 @@ Rejection Ecu::set_width_setpoint(double width_m) {
   if (mode_ == Mode::kAutomatic && !(width_m > 0.0)) return reject(Fault::kSetpointOutOfRange);
   if (width_m != width_setpoint_m_) {
     prediction_pending_ = true;
-    if (mode_ == Mode::kAutomatic) solve_pending_ = true;
+    if (mode_ == Mode::kAutomatic) {
+      solve_pending_ = true;
+      width_margin_m_ = parameters_.solver.width_margin_m;
+    }
   }
   width_setpoint_m_ = width_m;
-  accept_input();
   return std::nullopt;
 }
 
@@ -159,29 +188,36 @@ Rejection Ecu::set_rpm_setpoint(double rpm) {
   // In automatic mode the ECU owns the disc speed: a manual set-point would be silently overridden.
   if (mode_ == Mode::kAutomatic) return reject(Fault::kCanNotSettable);
   rpm_setpoint_manual_ = rpm;
-  accept_input();
   return std::nullopt;
 }
 
 Rejection Ecu::set_work_state(bool on) {
   work_state_setpoint_ = on;
-  accept_input();
+  work_state_owner_ = WorkStateOwner::kTaskController;
   return std::nullopt;
 }
 
 Rejection Ecu::set_section_mask(std::uint32_t mask) {
   if ((mask & ~installed_mask()) != 0) return reject(Fault::kSetpointOutOfRange);
   section_mask_ = mask;
-  accept_input();
   return std::nullopt;
 }
 
-Rejection Ecu::set_ground_speed(double speed_m_s) {
+Rejection Ecu::set_ground_speed(double speed_m_s, TravelDirection direction, Nanoseconds valid_for) {
   if (auto bad = check_range(speed_m_s, 0.0, parameters_.speed_max_m_s)) return reject(*bad);
   ground_speed_m_s_ = speed_m_s;
-  accept_input();
+  direction_ = direction;
+  speed_never_expires_ = false;
+  speed_valid_until_ = clock_.now() + valid_for;
   return std::nullopt;
 }
+
+void Ecu::set_ground_speed_unavailable() {
+  speed_never_expires_ = false;
+  speed_valid_until_.reset();
+}
+
+void Ecu::note_task_controller_alive() { last_task_controller_time_ = clock_.now(); }
 
 void Ecu::record_fault(Fault fault) { faults_.record(fault, clock_.now()); }
 
@@ -194,12 +230,15 @@ void Ecu::solve_rpm_for_width() {
     faults_.set_state(Fault::kWidthOutOfReach, true, clock_.now());
     return;
   }
-  const RpmSolution solution = solver_.solve(*predictor_, *curve, width_setpoint_m_);
+  // Aim past the set-point by the margin: a speed exactly at the edge of what reaches the width misses it
+  // as soon as the disc settles a hair below the target.
+  const RpmSolution solution = solver_.solve(*predictor_, *curve, width_setpoint_m_ + width_margin_m_);
   // A failed refinement still leaves a curve sample known to reach the width: use it, but say so.
   if (solution.prediction_failed) faults_.record(Fault::kPredictionFailed, clock_.now());
   rpm_target_ = solution.rpm;
   width_reachable_ = solution.reachable;
   faults_.set_state(Fault::kWidthOutOfReach, !solution.reachable, clock_.now());
+  predicted_settled_ = false;  // judge the new speed once the disc has reached it
 }
 
 void Ecu::predict_pattern() {
@@ -207,6 +246,7 @@ void Ecu::predict_pattern() {
   if (predictor_ == nullptr || material_.empty()) return;
   const double rpm = disc_.rpm();
   predicted_at_rpm_ = rpm;
+  predicted_settled_ = std::abs(rpm - rpm_target_) < parameters_.reprediction_rpm_step;
   prediction_pending_ = false;
   const RpmRange range = predictor_->rpm_range(material_);
   // Outside the tables (e.g. while the disc spins up) there is simply no prediction: not a fault. A disc
@@ -224,26 +264,81 @@ void Ecu::predict_pattern() {
   }
 }
 
+void Ecu::check_achieved_width() {
+  // Automatic mode, disc settled: the width the pattern actually gives at this speed is the answer that
+  // counts, not the solver's curve. A miss asks the solver for a wider margin; out of margin, the width
+  // is out of reach and the status says so.
+  if (mode_ != Mode::kAutomatic || !prediction_valid_ || !predicted_settled_) return;
+  if (!(prediction_.effective_width_m < width_setpoint_m_)) return;
+  const RpmSolverSettings& solver = parameters_.solver;
+  if (width_margin_m_ + solver.width_margin_step_m <= solver.max_width_margin_m + 1e-9) {
+    width_margin_m_ += solver.width_margin_step_m;
+    solve_pending_ = true;
+  } else {
+    width_reachable_ = false;
+    faults_.set_state(Fault::kWidthOutOfReach, true, clock_.now());
+  }
+}
+
+bool Ecu::disc_at_speed() const {
+  if (!(rpm_target_ >= parameters_.spreading_rpm_min) || !(rpm_target_ > 0.0)) return false;
+  return std::abs(disc_.rpm() - rpm_target_) <= parameters_.disc_speed_tolerance * rpm_target_;
+}
+
+void Ecu::supervise_controllers(Nanoseconds now) {
+  // The controller that switched the work state on must stay alive; when it falls silent the work state
+  // goes off and stays off until a controller switches it on again (a fresh request: the silent LCM
+  // sender's next command counts as its first). The fault shows until that controller is heard again.
+  const bool lcm_silent = parameters_.command_timeout > Nanoseconds::zero() && last_command_time_.has_value() &&
+                          now - *last_command_time_ > parameters_.command_timeout;
+  const bool tc_silent = !last_task_controller_time_.has_value() ||
+                         now - *last_task_controller_time_ > parameters_.task_controller_timeout;
+  if (work_state_setpoint_ && work_state_owner_ == WorkStateOwner::kLcm && lcm_silent) {
+    work_state_setpoint_ = false;
+    work_state_owner_ = WorkStateOwner::kNone;
+    lcm_work_state_.reset();
+    lcm_lost_ = true;
+  }
+  if (work_state_setpoint_ && work_state_owner_ == WorkStateOwner::kTaskController && tc_silent) {
+    work_state_setpoint_ = false;
+    work_state_owner_ = WorkStateOwner::kNone;
+    tc_lost_ = true;
+  }
+  if (!lcm_silent) lcm_lost_ = false;
+  if (!tc_silent) tc_lost_ = false;
+  faults_.set_state(Fault::kCommandTimeout, lcm_lost_, now);
+  faults_.set_state(Fault::kTaskControllerLost, tc_lost_, now);
+}
+
 void Ecu::step(double dt_s) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) return;
   ++steps_;
   const Nanoseconds now = clock_.now();
+  supervise_controllers(now);
   if (mode_ == Mode::kAutomatic && solve_pending_ && predictor_ != nullptr) solve_rpm_for_width();
   if (mode_ == Mode::kManual) rpm_target_ = rpm_setpoint_manual_;
   disc_.step(rpm_target_, dt_s);
 
-  const bool timed_out = parameters_.command_timeout > Nanoseconds::zero() && last_input_time_.has_value() &&
-                         now - *last_input_time_ > parameters_.command_timeout;
-  faults_.set_state(Fault::kCommandTimeout, timed_out, now);
-
+  const bool speed_valid = speed_never_expires_ || (speed_valid_until_.has_value() && now <= *speed_valid_until_);
+  const bool reverse = speed_valid && direction_ == TravelDirection::kReverse;
+  speed_in_use_m_s_ = speed_valid ? ground_speed_m_s_ : 0.0;
   const std::uint32_t active = section_mask_ & installed_mask();
   const double width_on_m = width_setpoint_m_ * std::popcount(active) / static_cast<double>(section_count_);
-  metering_open_ = work_state_setpoint_ && active != 0 && !timed_out && ground_speed_m_s_ > 0.0 &&
-                   rate_setpoint_kg_ha_ > 0.0;
-  mass_flow_kg_s_ = metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_on_m, ground_speed_m_s_) : 0.0;
+  // What the operator asks for: the master switch, an open section of non-zero width and a rate.
+  const bool requested = work_state_setpoint_ && active != 0 && width_on_m > 0.0 && rate_setpoint_kg_ha_ > 0.0;
+  const bool moving_forward = speed_valid && !reverse && speed_in_use_m_s_ > 0.0;
+  const bool disc_ok = disc_at_speed();
+  metering_open_ = requested && moving_forward && disc_ok;
+  mass_flow_kg_s_ = metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_on_m, speed_in_use_m_s_) : 0.0;
+  faults_.set_state(Fault::kSpeedUnavailable, work_state_setpoint_ && !speed_valid, now);
+  faults_.set_state(Fault::kDrivingReverse, work_state_setpoint_ && reverse, now);
+  faults_.set_state(Fault::kDiscNotAtSpeed, requested && moving_forward && !disc_ok, now);
 
-  if (prediction_pending_ || std::abs(disc_.rpm() - predicted_at_rpm_) >= parameters_.reprediction_rpm_step) {
+  const bool settled_now = std::abs(disc_.rpm() - rpm_target_) < parameters_.reprediction_rpm_step;
+  if (prediction_pending_ || std::abs(disc_.rpm() - predicted_at_rpm_) >= parameters_.reprediction_rpm_step ||
+      (settled_now && !predicted_settled_)) {
     predict_pattern();
+    check_achieved_width();
   }
 }
 
@@ -258,10 +353,9 @@ EcuStatus Ecu::status() const {
   s.rate_actual_kg_ha = metering_open_ ? rate_setpoint_kg_ha_ : 0.0;
   s.width_setpoint_m = width_setpoint_m_;
   const std::uint32_t active = section_mask_ & installed_mask();
-  s.width_actual_m = work_state_setpoint_
-                         ? width_setpoint_m_ * std::popcount(active) / static_cast<double>(section_count_)
-                         : 0.0;
-  s.ground_speed_m_s = ground_speed_m_s_;
+  s.width_actual_m =
+      metering_open_ ? width_setpoint_m_ * std::popcount(active) / static_cast<double>(section_count_) : 0.0;
+  s.ground_speed_m_s = speed_in_use_m_s_;
   s.mass_flow_kg_s = mass_flow_kg_s_;
   s.throw_width_m = prediction_valid_ ? prediction_.throw_width_m : kNaN;
   s.effective_width_m = prediction_valid_ ? prediction_.effective_width_m : kNaN;

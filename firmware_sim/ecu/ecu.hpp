@@ -33,13 +33,20 @@ class Ecu {
   // A whole command: applied entirely or not at all.
   Rejection apply_command(const EcuCommand& command);
 
-  // Single set-values (ISOBUS process data); each validated on its own.
+  // Single set-values from a task controller (ISOBUS process data); each validated on its own.
   Rejection set_rate_setpoint(double rate_kg_ha);
   Rejection set_width_setpoint(double width_m);
   Rejection set_rpm_setpoint(double rpm);
+  // The task controller switches the work state; it is then supervised (note_task_controller_alive).
   Rejection set_work_state(bool on);
   Rejection set_section_mask(std::uint32_t mask);  // bit i = section i+1; only installed sections
-  Rejection set_ground_speed(double speed_m_s);
+
+  // A measured ground speed, valid for `valid_for` (the source's own timeout) unless renewed.
+  Rejection set_ground_speed(double speed_m_s, TravelDirection direction, Nanoseconds valid_for);
+  // The speed source reports "error" or "not available": there is no valid speed from now on.
+  void set_ground_speed_unavailable();
+  // The task controller is alive: its status message (ISO 11783-10, every 2 s) or a set-value from it.
+  void note_task_controller_alive();
 
   // Faults found by a transport before anything reached the ECU (undecodable frames, ...).
   void record_fault(Fault fault);
@@ -55,13 +62,19 @@ class Ecu {
   bool has_predictor() const { return predictor_ != nullptr; }
 
  private:
+  // Which controller last changed the master work state; that one is supervised.
+  enum class WorkStateOwner : std::uint8_t { kNone, kLcm, kTaskController };
+
   Rejection reject(Fault fault);
   Rejection check_finite(double value);
   Rejection check_range(double value, double min, double max);
   Rejection check_material(std::string_view material, Mode mode) const;
-  void accept_input();
+  Rejection check_sequence(std::int64_t sequence);
+  void supervise_controllers(Nanoseconds now);
+  bool disc_at_speed() const;
   void solve_rpm_for_width();
   void predict_pattern();
+  void check_achieved_width();
   std::uint32_t installed_mask() const;
   const WidthCurve* curve_for(std::string_view material) const;
 
@@ -77,24 +90,38 @@ class Ecu {
   Mode mode_ = Mode::kManual;
   double rate_setpoint_kg_ha_ = 0.0;
   double width_setpoint_m_ = 0.0;
-  double ground_speed_m_s_ = 0.0;
   double rpm_setpoint_manual_ = 0.0;
   std::string material_;
   std::int32_t section_count_;
   std::uint32_t section_mask_ = 0;  // set to all installed sections by the constructor
   bool work_state_setpoint_ = false;
+  WorkStateOwner work_state_owner_ = WorkStateOwner::kNone;
+  std::optional<bool> lcm_work_state_;  // last work state an LCM command asked for (none: first is an edge)
   std::int64_t last_sequence_ = -1;
   bool has_sequence_ = false;
-  std::optional<Nanoseconds> last_input_time_;
+  std::optional<std::int64_t> jump_sequence_;  // a refused jump; the command after it confirms it
+  std::optional<Nanoseconds> last_command_time_;
+  std::optional<Nanoseconds> last_task_controller_time_;
+  bool lcm_lost_ = false;  // the LCM controller owned the work state and fell silent (until heard again)
+  bool tc_lost_ = false;   // the same for the task controller
+
+  // Ground speed as last measured; usable only until `speed_valid_until_` (none: no valid speed).
+  double ground_speed_m_s_ = 0.0;
+  TravelDirection direction_ = TravelDirection::kUnknown;
+  std::optional<Nanoseconds> speed_valid_until_;
+  bool speed_never_expires_ = false;  // a command's speed with the command timeout off
 
   // Derived state, updated by step().
   double rpm_target_ = 0.0;
   bool solve_pending_ = false;
   bool width_reachable_ = true;
+  double width_margin_m_ = 0.0;   // automatic mode: extra width asked of the solver after a miss [m]
   bool metering_open_ = false;
+  double speed_in_use_m_s_ = 0.0;  // valid ground speed, 0 when there is none [m/s]
   double mass_flow_kg_s_ = 0.0;
   bool prediction_pending_ = true;
   double predicted_at_rpm_ = 0.0;
+  bool predicted_settled_ = false;  // the last prediction was made with the disc at its target
   SpreadPrediction prediction_{};
   bool prediction_valid_ = false;
   std::int64_t steps_ = 0;

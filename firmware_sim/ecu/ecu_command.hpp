@@ -11,6 +11,9 @@ namespace spread::firmware {
 
 enum class Mode : std::int8_t { kManual = 0, kAutomatic = 1 };
 
+// Direction of travel as a speed source reports it (ISO 11783-7 machine direction).
+enum class TravelDirection : std::int8_t { kForward = 0, kReverse = 1, kUnknown = 2 };
+
 struct EcuCommand {
   std::int64_t sequence = 0;          // strictly increasing per sender
   std::int32_t mode = 0;              // 0 manual, 1 automatic (raw: validated by the ECU)
@@ -18,6 +21,9 @@ struct EcuCommand {
   double width_setpoint_m = 0.0;      // working (bout) width [m]
   double ground_speed_m_s = 0.0;      // forward speed [m/s]
   double rpm_setpoint = 0.0;          // disc speed in manual mode [r/min]; ignored in automatic
+  // Master work state this sender asks for. Applied when it differs from the sender's previous one (or
+  // is its first): repeating a command does not undo another controller's switch-off.
+  bool work_state = false;
   std::string_view material;          // material name as in the tables
   std::int32_t section_count = 0;     // sections in use, 1..16
   std::array<bool, kMaxSections> section_on{};  // first section_count entries are meaningful

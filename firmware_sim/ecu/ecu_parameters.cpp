@@ -28,6 +28,12 @@ void validate(const EcuParameters& p) {
           "must be 1.." + std::to_string(kMaxSections) + ", got " + std::to_string(p.section_count));
   require(p.fault_hold >= Nanoseconds::zero(), "fault_hold", "must be >= 0");
   require(p.command_timeout >= Nanoseconds::zero(), "command_timeout", "must be >= 0 (0 = off)");
+  require(p.task_controller_timeout > Nanoseconds::zero(), "task_controller_timeout", "must be > 0");
+  require(std::isfinite(p.spreading_rpm_min) && p.spreading_rpm_min >= 0.0, "spreading_rpm_min",
+          "must be >= 0 r/min");
+  require(std::isfinite(p.disc_speed_tolerance) && p.disc_speed_tolerance > 0.0 && p.disc_speed_tolerance < 1.0,
+          "disc_speed_tolerance", "must lie in (0, 1)");
+  require(p.sequence_max_jump >= 1, "sequence_max_jump", "must be >= 1");
   require(std::isfinite(p.reprediction_rpm_step) && p.reprediction_rpm_step >= 0.0, "reprediction_rpm_step",
           "must be >= 0 r/min");
   require(p.sequence_reorder_window >= 0, "sequence_reorder_window", "must be >= 0");

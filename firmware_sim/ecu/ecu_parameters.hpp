@@ -18,11 +18,24 @@ struct EcuParameters {
   double rate_max_kg_ha = 3000.0;      // highest accepted application rate set-point [kg/ha]
   double width_max_m = 54.0;           // maximum working width of the machine (DDI 70) [m]
   double speed_max_m_s = 20.0;         // highest accepted ground speed [m/s] (72 km/h)
-  int section_count = 8;               // sections installed at start, 1..16 (a command may change it)
+  int section_count = 8;               // sections installed, 1..16 (a command may use fewer, never more)
   Nanoseconds fault_hold = std::chrono::seconds(2);       // event faults stay visible this long
-  Nanoseconds command_timeout = std::chrono::seconds(2);  // no valid input this long -> metering closed; 0 = off
+  // The LCM controller that switched the work state on must repeat its command within this time, or the
+  // ECU switches the work state off (0 = off). A speed in a command is valid for the same time.
+  Nanoseconds command_timeout = std::chrono::seconds(2);
+  // ISO 11783-10: a task controller sends its status every 2 s; three missed (6 s) and the client treats
+  // it as lost. The work state it switched on is switched off then.
+  Nanoseconds task_controller_timeout = std::chrono::seconds(6);
+  // Metering interlock with the disc: granules dropped on a stopped or slow disc fall in a heap behind
+  // the machine, and a disc off its target throws a different pattern. Metering opens only while the
+  // disc target is at least `spreading_rpm_min` and the disc is within `disc_speed_tolerance` of it.
+  double spreading_rpm_min = 200.0;    // [r/min]
+  double disc_speed_tolerance = 0.05;  // |rpm - target| / target [-]
   double reprediction_rpm_step = 2.0;  // re-predict the status pattern when the disc moved this much [r/min]
   std::int64_t sequence_reorder_window = 1000;  // older sequence numbers within this window are stale
+  // A sequence number further ahead than this is refused unless the next command continues from it (a
+  // sender that really jumped); one corrupt or hostile number cannot make every later command stale.
+  std::int64_t sequence_max_jump = 100;
   RpmSolverSettings solver{};          // automatic mode solver
 };
 

@@ -21,12 +21,27 @@ std::string_view fault_name(Fault fault) {
     case Fault::kPredictionFailed: return "prediction_failed";
     case Fault::kReplayParseError: return "replay_parse_error";
     case Fault::kCanNotSettable: return "can_not_settable";
+    case Fault::kDiscNotAtSpeed: return "disc_not_at_speed";
+    case Fault::kSpeedUnavailable: return "speed_unavailable";
+    case Fault::kDrivingReverse: return "driving_reverse";
+    case Fault::kTaskControllerLost: return "task_controller_lost";
+    case Fault::kSequenceJump: return "sequence_jump";
   }
   return "unknown_fault";
 }
 
 bool is_state_fault(Fault fault) {
-  return fault == Fault::kWidthOutOfReach || fault == Fault::kCommandTimeout;
+  switch (fault) {
+    case Fault::kWidthOutOfReach:
+    case Fault::kCommandTimeout:
+    case Fault::kDiscNotAtSpeed:
+    case Fault::kSpeedUnavailable:
+    case Fault::kDrivingReverse:
+    case Fault::kTaskControllerLost:
+      return true;
+    default:
+      return false;
+  }
 }
 
 void FaultLog::record(Fault fault, Nanoseconds now) {

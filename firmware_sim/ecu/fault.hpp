@@ -14,7 +14,7 @@ namespace spread::firmware {
 enum class Fault : std::uint8_t {
   kLcmUndecodable = 0,        // LCM payload shorter than its fingerprint or failing to decode
   kLcmWrongFingerprint = 1,   // LCM payload of another type or another version of command_t
-  kCanMalformedFrame = 2,     // truncated read, DLC != 8, standard (11-bit) id, RTR/error frame
+  kCanMalformedFrame = 2,     // truncated or oversized record, DLC != 8 for a PGN this ECU reads
   kCanUnknownDdi = 3,         // process data for a DDI this ECU does not implement
   kCanUnsupportedCommand = 4, // process data command nibble this ECU does not implement
   kSetpointOutOfRange = 5,    // a set-point outside its documented range (rate, width, rpm, speed, sections)
@@ -24,13 +24,18 @@ enum class Fault : std::uint8_t {
   kStaleSequence = 9,         // command sequence number repeated or older than the last accepted one
   kAutomaticUnavailable = 10, // automatic mode requested without spread tables loaded
   kWidthOutOfReach = 11,      // state: the set-point working width cannot be reached at the CV target
-  kCommandTimeout = 12,       // state: no valid command or speed for longer than the timeout; metering closed
+  kCommandTimeout = 12,       // state: the LCM controller owning the work state fell silent; work state off
   kLoopOverrun = 13,          // a loop step finished after the next tick was due
   kPredictionFailed = 14,     // the C API returned an error for a prediction
   kReplayParseError = 15,     // a candump log line that could not be parsed
   kCanNotSettable = 16,       // set-value for a DDI that is read-only (e.g. actual values, 70)
+  kDiscNotAtSpeed = 17,       // state: spreading requested but the disc is stopped or off its target; metering closed
+  kSpeedUnavailable = 18,     // state: work state on without a valid ground speed (lost, error, not available)
+  kDrivingReverse = 19,       // state: work state on while the tractor reports reverse; metering closed
+  kTaskControllerLost = 20,   // state: the task controller owning the work state stopped its status; work state off
+  kSequenceJump = 21,         // command sequence far ahead of the last one, not (yet) confirmed by its successor
 };
-inline constexpr std::size_t kFaultCount = 17;
+inline constexpr std::size_t kFaultCount = 22;
 
 // Short stable identifier, e.g. "setpoint_out_of_range".
 std::string_view fault_name(Fault fault);

@@ -20,6 +20,11 @@ struct RpmSolverSettings {
   double curve_rpm_step = 5.0;      // spacing of the precomputed width curve [r/min]
   int max_bisections = 3;           // predictions spent refining between two curve samples per solve
   double width_tolerance_m = 0.5;   // |width - set-point| accepted as "reached" at a range end [m] (one tray)
+  // The ECU asks the solver for the set-point plus a margin, and widens the margin by a step each time
+  // the pattern at the settled disc speed still misses the set-point, up to the maximum.
+  double width_margin_m = 0.5;        // [m]
+  double width_margin_step_m = 0.5;   // [m]
+  double max_width_margin_m = 2.0;    // [m]
 };
 
 // Effective width sampled over a speed range for one material.

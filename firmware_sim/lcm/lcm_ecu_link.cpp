@@ -28,6 +28,7 @@ EcuCommand to_ecu_command(const spread::command_t& m) {
   c.width_setpoint_m = m.width_setpoint_m;
   c.ground_speed_m_s = m.ground_speed_m_s;
   c.rpm_setpoint = m.rpm_setpoint;
+  c.work_state = m.work_state;
   c.material = m.material;
   c.section_count = m.num_sections;
   const std::size_t n = std::min<std::size_t>({m.section_on.size(), static_cast<std::size_t>(kMaxSections),

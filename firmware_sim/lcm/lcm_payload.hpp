@@ -54,7 +54,7 @@ struct LcmLayout<spread::command_t> {  // command_t.lcm
       {LcmField::kFixed, 8},  {LcmField::kFixed, 8},  {LcmField::kFixed, 1},  // timestamp_us, sequence, mode
       {LcmField::kFixed, 8},  {LcmField::kFixed, 8},  {LcmField::kFixed, 8},  // rate, width, ground speed
       {LcmField::kString, 0},                                                 // material
-      {LcmField::kFixed, 8},                                                  // rpm_setpoint
+      {LcmField::kFixed, 8},  {LcmField::kFixed, 1},                          // rpm_setpoint, work_state
       {LcmField::kCount, 1},  {LcmField::kArray, 1},                          // num_sections, section_on
   };
 };

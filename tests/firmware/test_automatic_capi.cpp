@@ -43,6 +43,7 @@ class AutomaticModeCapi : public ::testing::Test {
     c.material = material_;
     c.section_count = 8;
     c.section_on.fill(true);
+    c.work_state = true;
     return c;
   }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <optional>
 #include <fstream>
 #include <sstream>
 
@@ -80,6 +81,26 @@ TEST(Candump, ParsesAndFormatsLines) {
   ASSERT_TRUE(standard.has_value()) << error;
   EXPECT_EQ(standard->frame.can_id, 0x123u);
   EXPECT_EQ(standard->frame.len, 2);
+  // Remote frames as can-utils writes them: `ID#R`, or with the length `ID#R8`.
+  for (const char* line : {"(1.000000) can0 123#R", "(1.000000) can0 18EA0080#R3"}) {
+    const auto remote = parse_candump_line(line, error);
+    ASSERT_TRUE(remote.has_value()) << line << ": " << error;
+    EXPECT_NE(remote->frame.can_id & CAN_RTR_FLAG, 0u);
+    EXPECT_EQ(format_candump_line(remote->time, "can0", remote->frame), std::string(line).replace(1, 0, "000000000"));
+  }
+  EXPECT_FALSE(parse_candump_line("(1.000000) can0 123#R9", error).has_value());
+  EXPECT_NE(error.find("remote frame length"), std::string::npos) << error;
+}
+
+TEST(Candump, RecordingsCarryWallClockTime) {
+  // A live recording runs on the monotonic clock; the writer adds the wall-clock offset, as candump does.
+  ManualClock monotonic(std::chrono::seconds(1234));  // e.g. time since boot
+  const Nanoseconds epoch_offset = std::chrono::seconds(1700000000) - std::chrono::seconds(1234);
+  std::ostringstream out;
+  CandumpWriter writer(out, monotonic, "can0", epoch_offset);
+  const std::uint8_t data[1] = {0xAB};
+  ASSERT_TRUE(writer.send(make_frame(0x18EEFF80, data, 1)));
+  EXPECT_EQ(out.str(), "(1700000000.000000) can0 18EEFF80#AB\n");
 }
 
 TEST(Candump, BadLinesAreReportedWithLineNumbers) {
@@ -171,9 +192,51 @@ class VirtualBus : public ::testing::Test {
     ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, destination, kTractor}), b.data(), 8)));
   }
 
+  // A live tractor and task controller from now on: every loop tick of run() is preceded by a ground-based
+  // speed every 100 ms (ISO 11783-7) and the TC status every 2 s (ISO 11783-10).
+  void go_live(double speed_m_s = 12.0 / 3.6) { live_speed_m_s_ = speed_m_s; }
+  void stop_speed() { live_speed_m_s_ = -1.0; }
+  void stop_tc_status() { live_tc_status_ = false; }
+
+  // Rate 250 kg/ha, 24 m, manual disc speed, all sections, work state on: a spreader asked to spread.
+  void set_spreading(std::int32_t rpm_raw = 7500000) {
+    send_pd(ProcessDataCommand::kValue, 6, 25000);
+    send_pd(ProcessDataCommand::kValue, 66, 24000);
+    send_pd(ProcessDataCommand::kValue, 389, rpm_raw);
+    send_pd(ProcessDataCommand::kValue, 290, 0x5555);
+    send_pd(ProcessDataCommand::kValue, 289, 1);
+  }
+
+  std::int32_t request(std::uint16_t ddi) {
+    send_pd(ProcessDataCommand::kRequestValue, ddi, 0);
+    return single_answer(ddi).value;
+  }
+
+  bool fault_active(Fault fault) { return (ecu_.status().fault_codes & fault_bit(fault)) != 0; }
+
+  void send_speed(std::uint32_t pgn, double speed_m_s, Direction direction) {
+    const auto bytes = encode_speed(speed_m_s, 0, direction);
+    ASSERT_TRUE(tractor().send(make_frame(encode_id({3, pgn, kGlobalAddress, 0xF0}), bytes.data(), 8)));
+  }
+
+  void send_tc_status() {
+    // Process data command 0xE (TC status) to the global address.
+    const std::uint8_t status[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0xFF, 0xFF, 0xFF};
+    ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kGlobalAddress, kTractor}), status, 8)));
+  }
+
   // Runs loop ticks, then returns every frame the ECU sent.
   std::vector<can_frame> run(int ticks) {
-    for (int i = 0; i < ticks; ++i) loop_.tick(ecu_, ecu_io_);
+    for (int i = 0; i < ticks; ++i) {
+      if (live_speed_m_s_) {
+        if (live_ticks_ % 2 == 0 && *live_speed_m_s_ >= 0.0) {
+          send_speed(kGroundBasedSpeedPgn, *live_speed_m_s_, Direction::kForward);
+        }
+        if (live_ticks_ % 40 == 0 && live_tc_status_) send_tc_status();
+        ++live_ticks_;
+      }
+      loop_.tick(ecu_, ecu_io_);
+    }
     std::vector<can_frame> out;
     can_frame f{};
     while (tractor().read(f) == ReadOutcome::kFrame) out.push_back(f);
@@ -210,6 +273,9 @@ class VirtualBus : public ::testing::Test {
 
   CanFramePort& tractor() { return pair_.second; }
 
+  std::optional<double> live_speed_m_s_;  // < 0: the tractor's speed broadcasts have stopped
+  bool live_tc_status_ = true;
+  int live_ticks_ = 0;
   ManualClock clock_;
   std::pair<CanFramePort, CanFramePort> pair_;
   Ecu ecu_;
@@ -224,14 +290,12 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   send_pd(ProcessDataCommand::kValue, 389, 7500000);  // 750 r/min
   send_pd(ProcessDataCommand::kValue, 289, 1);  // work state on
   send_pd(ProcessDataCommand::kValue, 290, 0x5555);  // sections 1-8 on
-  const auto speed = encode_speed(12.0 / 3.6, 0, Direction::kForward);
-  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, 0xF0}), speed.data(), 8)));
+  go_live();
   EXPECT_TRUE(run(1).empty()) << "set-values without acknowledge are answered only on error";
 
   // Wheel-based speed is ignored while the ground-based one is fresh.
-  const auto wheel = encode_speed(5.0, 0, Direction::kForward);
-  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kWheelBasedSpeedPgn, kGlobalAddress, 0xF0}), wheel.data(), 8)));
-  run(200);  // 10 s: the disc settles (tau 0.8 s)
+  send_speed(kWheelBasedSpeedPgn, 5.0, Direction::kForward);
+  EXPECT_TRUE(run(200).empty());  // 10 s: the disc settles (tau 0.8 s)
 
   send_pd(ProcessDataCommand::kRequestValue, 6, 0);
   EXPECT_EQ(single_answer(6).value, 20000);
@@ -245,6 +309,7 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF5555u) << "sections 9-16 not installed";
   send_pd(ProcessDataCommand::kRequestValue, 7, 0);
   EXPECT_EQ(single_answer(7).value, 20000);
+
   send_pd(ProcessDataCommand::kRequestValue, 70, 0);
   EXPECT_EQ(single_answer(70).value, 54000);
   EXPECT_NEAR(ecu_.status().mass_flow_kg_s, 200.0 * 24.0 * 12.0 / 36000.0, 1e-3);
@@ -254,6 +319,112 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   EXPECT_EQ(pdack_errors(290), kPdackNoError);
   send_pd(ProcessDataCommand::kRequestValue, 67, 0);
   EXPECT_EQ(single_answer(67).value, 18000);
+  // The one fault: metering waited while the disc spun up.
+  EXPECT_EQ(ecu_.faults().count(Fault::kDiscNotAtSpeed), 1u);
+  EXPECT_EQ(ecu_.faults().total(), 1u);
+}
+
+// --- Fail-safe rules over the bus: each of these spread, or kept spreading, before the rules. ---
+
+TEST_F(VirtualBus, DiscAtZeroRpmNeverMeters) {
+  set_spreading(0);  // DDI 389 = 0 r/min with a rate and the work state on
+  go_live();
+  run(100);
+  EXPECT_EQ(request(141), 0) << "actual work state";
+  EXPECT_EQ(request(7), 0) << "actual rate";
+  EXPECT_EQ(ecu_.status().mass_flow_kg_s, 0.0);
+  EXPECT_TRUE(fault_active(Fault::kDiscNotAtSpeed));
+}
+
+TEST_F(VirtualBus, SpeedBroadcastsThatStopCloseMetering) {
+  set_spreading();
+  go_live(3.0);
+  run(100);  // 5 s: spreading
+  ASSERT_EQ(request(141), 1);
+  stop_speed();
+  run(172);  // the speed frames stopped 8.6 s ago
+  EXPECT_EQ(request(397), 0) << "no stale 3 m/s";
+  EXPECT_EQ(request(7), 0);
+  EXPECT_EQ(request(141), 0);
+  EXPECT_TRUE(fault_active(Fault::kSpeedUnavailable));
+}
+
+TEST_F(VirtualBus, ErrorAndNotAvailableSpeedsCloseMeteringAtOnce) {
+  set_spreading();
+  go_live(3.0);
+  run(100);
+  ASSERT_EQ(request(141), 1);
+  stop_speed();
+  for (const std::uint16_t raw : {std::uint16_t{0xFE00}, std::uint16_t{0xFFFF}}) {  // error, not available
+    std::uint8_t bytes[8] = {static_cast<std::uint8_t>(raw & 0xFF), static_cast<std::uint8_t>(raw >> 8), 0, 0, 0, 0,
+                             0xFF, 0xFD};
+    ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, 0xF0}), bytes, 8)));
+    run(1);  // the next loop step, not the source's 300 ms timeout
+    EXPECT_EQ(request(141), 0) << std::hex << raw;
+    EXPECT_TRUE(fault_active(Fault::kSpeedUnavailable));
+    go_live(3.0);
+    run(2);
+    ASSERT_EQ(request(141), 1);
+    stop_speed();
+  }
+  EXPECT_EQ(ecu_io_.processor().counters().speed_not_available, 2u);
+}
+
+TEST_F(VirtualBus, ReverseStopsSpreading) {
+  set_spreading();
+  go_live(3.0);
+  run(100);
+  ASSERT_EQ(request(141), 1);
+  stop_speed();
+  send_speed(kGroundBasedSpeedPgn, 1.5, Direction::kReverse);
+  run(1);
+  EXPECT_EQ(request(141), 0);
+  EXPECT_TRUE(fault_active(Fault::kDrivingReverse));
+}
+
+TEST_F(VirtualBus, MachineSelectedSpeedWinsAndEachSourceTimesOut) {
+  send_speed(kWheelBasedSpeedPgn, 2.0, Direction::kForward);
+  send_speed(kGroundBasedSpeedPgn, 2.5, Direction::kForward);
+  send_speed(kMachineSelectedSpeedPgn, 2.2, Direction::kForward);
+  run(1);
+  EXPECT_NEAR(ecu_.status().ground_speed_m_s, 2.2, 1e-9);
+  run(6);  // 350 ms: the machine selected speed is stale; the others were sent at the same time
+  send_speed(kWheelBasedSpeedPgn, 2.1, Direction::kForward);
+  run(1);
+  EXPECT_NEAR(ecu_.status().ground_speed_m_s, 2.1, 1e-9) << "only the wheels are alive";
+}
+
+TEST_F(VirtualBus, SilentTaskControllerSwitchesTheWorkStateOff) {
+  set_spreading();
+  go_live(3.0);
+  run(100);
+  ASSERT_EQ(request(141), 1);
+  stop_tc_status();  // the TC's status stops (last at 4 s); the tractor's speed keeps coming
+  run(80);           // 9 s: within the 6 s the TC is given
+  EXPECT_EQ(request(141), 1);
+  run(40);
+  EXPECT_EQ(request(289), 0) << "work state set-point switched off";
+  EXPECT_EQ(request(141), 0);
+  EXPECT_TRUE(fault_active(Fault::kTaskControllerLost));
+  // The TC returns: the fault clears, the work state stays off until the TC switches it on again.
+  send_tc_status();
+  EXPECT_EQ(request(141), 0);
+  EXPECT_FALSE(fault_active(Fault::kTaskControllerLost));
+  send_pd(ProcessDataCommand::kValue, 289, 1);
+  run(1);
+  EXPECT_EQ(request(141), 1);
+}
+
+TEST_F(VirtualBus, StandardAndRemoteFramesOfOtherNodesAreNoFault) {
+  can_frame standard{};
+  standard.can_id = 0x123;
+  standard.len = 8;
+  ASSERT_TRUE(tractor().send(standard));
+  can_frame remote = make_frame(encode_id({3, kProcessDataPgn, kEcu, kTractor}), nullptr, 0);
+  remote.can_id |= CAN_RTR_FLAG;
+  ASSERT_TRUE(tractor().send(remote));
+  EXPECT_TRUE(run(1).empty());
+  EXPECT_EQ(ecu_io_.processor().counters().frames_ignored, 2u);
   EXPECT_EQ(ecu_.faults().total(), 0u);
 }
 
@@ -267,7 +438,7 @@ TEST_F(VirtualBus, WheelBasedSpeedAloneIsTheGroundSpeed) {
   send_pd(ProcessDataCommand::kRequestValue, 397, 0);
   EXPECT_EQ(single_answer(397).value, 2500);  // mm/s
 
-  // A ground-based speed takes over while fresh (1 s); after it goes quiet the wheels count again.
+  // A ground-based speed takes over while fresh (300 ms); after it goes quiet the wheels count again.
   const auto ground = encode_speed(4.0, 0, Direction::kForward);
   ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, 0xF0}), ground.data(), 8)));
   run(1);
@@ -351,15 +522,6 @@ TEST_F(VirtualBus, MalformedFramesAreCountedAndLoopGoesOn) {
   // Process data with DLC 4.
   const std::uint8_t short_pd[4] = {0x02, 0x00, 0x06, 0x00};
   ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kEcu, kTractor}), short_pd, 4)));
-  // Standard 11-bit frame.
-  can_frame standard{};
-  standard.can_id = 0x123;
-  standard.len = 8;
-  ASSERT_TRUE(tractor().send(standard));
-  // Remote frame.
-  can_frame remote = make_frame(encode_id({3, kProcessDataPgn, kEcu, kTractor}), nullptr, 0);
-  remote.can_id |= CAN_RTR_FLAG;
-  ASSERT_TRUE(tractor().send(remote));
   // Speed with DLC 2.
   const std::uint8_t short_speed[2] = {0x10, 0x00};
   ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, 0xFF, 0xF0}), short_speed, 2)));
@@ -368,7 +530,7 @@ TEST_F(VirtualBus, MalformedFramesAreCountedAndLoopGoesOn) {
   ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kGroundBasedSpeedPgn, 0xFF, 0xF0}), too_fast.data(), 8)));
 
   EXPECT_TRUE(run(3).empty()) << "malformed frames get no answer";
-  EXPECT_EQ(ecu_.faults().count(Fault::kCanMalformedFrame), 6u);
+  EXPECT_EQ(ecu_.faults().count(Fault::kCanMalformedFrame), 4u);
   EXPECT_EQ(ecu_.faults().count(Fault::kSetpointOutOfRange), 1u);
   EXPECT_EQ(ecu_.status().ground_speed_m_s, 0.0);
   EXPECT_EQ(loop_.statistics().ticks, 3) << "the loop kept running";

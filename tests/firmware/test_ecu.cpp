@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
@@ -26,8 +27,19 @@ EcuCommand manual_command(std::int64_t sequence) {
   c.material = "urea";
   c.section_count = 8;
   for (int i = 0; i < 8; ++i) c.section_on[static_cast<std::size_t>(i)] = true;
+  c.work_state = true;
   return c;
 }
+
+// Steps the ECU for `duration` at 20 Hz on the manual clock.
+void run_for(Ecu& ecu, ManualClock& clock, Nanoseconds duration) {
+  for (Nanoseconds t{}; t < duration; t += 50ms) {
+    clock.advance(50ms);
+    ecu.step(0.05);
+  }
+}
+
+bool fault_active(const Ecu& ecu, Fault fault) { return (ecu.status().fault_codes & fault_bit(fault)) != 0; }
 
 class NullIo final : public LoopIo {
  public:
@@ -78,7 +90,7 @@ TEST(Ecu, SectionsOffScaleTheFlow) {
   EcuCommand c = manual_command(1);
   for (int i = 4; i < 8; ++i) c.section_on[static_cast<std::size_t>(i)] = false;
   ASSERT_FALSE(ecu.apply_command(c).has_value());
-  ecu.step(0.05);
+  run_for(ecu, clock, 5s);  // the disc reaches its speed
   EXPECT_NEAR(ecu.status().mass_flow_kg_s, 0.8, 1e-9);
   EXPECT_NEAR(ecu.status().width_actual_m, 12.0, 1e-12);
   ASSERT_FALSE(ecu.set_work_state(false).has_value());
@@ -138,6 +150,8 @@ INSTANTIATE_TEST_SUITE_P(
                        Fault::kSetpointOutOfRange},
         BadCommandCase{"seventeen_sections", [](EcuCommand& c) { c.section_count = 17; },
                        Fault::kSetpointOutOfRange},
+ BadCommandCase{"more_sections_than_installed", [](EcuCommand& c) { c.section_count = 12; },
+                       Fault::kSetpointOutOfRange},
         BadCommandCase{"zero_sections", [](EcuCommand& c) { c.section_count = 0; }, Fault::kSetpointOutOfRange},
         BadCommandCase{"unknown_mode", [](EcuCommand& c) { c.mode = 7; }, Fault::kUnknownMode},
         BadCommandCase{"unknown_material", [](EcuCommand& c) { c.material = "sand"; }, Fault::kUnknownMaterial},
@@ -157,7 +171,7 @@ TEST(Ecu, BadSingleSetValuesAreRejected) {
   ASSERT_FALSE(ecu.apply_command(manual_command(1)).has_value());
   EXPECT_EQ(ecu.set_rate_setpoint(std::nan("")), Fault::kNotANumber);
   EXPECT_EQ(ecu.set_width_setpoint(-3.0), Fault::kSetpointOutOfRange);
-  EXPECT_EQ(ecu.set_ground_speed(21.0), Fault::kSetpointOutOfRange);
+  EXPECT_EQ(ecu.set_ground_speed(21.0, TravelDirection::kForward, 1s), Fault::kSetpointOutOfRange);
   EXPECT_EQ(ecu.set_section_mask(0x100), Fault::kSetpointOutOfRange) << "section 9 is not installed";
   EXPECT_EQ(ecu.status().rate_setpoint_kg_ha, 200.0);
   EXPECT_EQ(ecu.status().section_mask, 0xFF);
@@ -173,22 +187,191 @@ TEST(Ecu, AutomaticModeNeedsTables) {
   EXPECT_EQ(ecu.status().mode, Mode::kManual);
 }
 
-TEST(Ecu, CommandTimeoutClosesMeteringAndReportsIt) {
+TEST(Ecu, CommandTimeoutSwitchesTheWorkStateOffAndReportsIt) {
   ManualClock clock;
-  Ecu ecu(clock, EcuParameters{});  // timeout 2 s
+  EcuParameters p;  // command timeout 2 s
+  p.disc_time_constant_s = 0.1;
+  Ecu ecu(clock, p);
   ASSERT_FALSE(ecu.apply_command(manual_command(1)).has_value());
-  clock.advance(1s);
-  ecu.step(0.05);
+  run_for(ecu, clock, 1s);
   EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0);
-  clock.advance(1500ms);
-  ecu.step(0.05);
+  run_for(ecu, clock, 1500ms);
   EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
-  EXPECT_NE(ecu.status().fault_codes & fault_bit(Fault::kCommandTimeout), 0u);
+  EXPECT_FALSE(ecu.status().work_state_setpoint) << "the silent controller's work state is switched off";
+  EXPECT_TRUE(fault_active(ecu, Fault::kCommandTimeout));
+  // The sender's next command is a fresh request: its work state applies again.
   ASSERT_FALSE(ecu.apply_command(manual_command(2)).has_value());
-  ecu.step(0.05);
+  run_for(ecu, clock, 50ms);
   EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0);
-  EXPECT_EQ(ecu.status().fault_codes & fault_bit(Fault::kCommandTimeout), 0u);
+  EXPECT_FALSE(fault_active(ecu, Fault::kCommandTimeout));
   EXPECT_EQ(ecu.status().fault_counts[static_cast<std::size_t>(Fault::kCommandTimeout)], 1u);
+}
+
+// --- Safety rules: each case below spread, or kept spreading, on the ECU before these rules. ---
+
+TEST(EcuSafety, NoMeteringWhileTheDiscStandsOrSpinsUp) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p);
+  EcuCommand c = manual_command(1);
+  c.rpm_setpoint = 0.0;  // disc stopped, rate and speed set
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  run_for(ecu, clock, 5s);
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_FALSE(ecu.status().work_state_actual);
+  EXPECT_EQ(ecu.status().rate_actual_kg_ha, 0.0);
+  EXPECT_TRUE(fault_active(ecu, Fault::kDiscNotAtSpeed));
+
+  // Spin-up to 750 r/min: metering opens only once the disc is within 5 % of its target.
+  c = manual_command(2);
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  double rpm_at_opening = -1.0;
+  for (int i = 0; i < 200 && rpm_at_opening < 0.0; ++i) {
+    run_for(ecu, clock, 50ms);
+    if (ecu.status().work_state_actual) rpm_at_opening = ecu.status().rpm_actual;
+    if (rpm_at_opening < 0.0) {
+      EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0) << "at " << ecu.status().rpm_actual << " r/min";
+    }
+  }
+  EXPECT_GE(rpm_at_opening, 0.95 * 750.0);
+  EXPECT_FALSE(fault_active(ecu, Fault::kDiscNotAtSpeed));
+  // A set-point below the spreading speed never meters, however well the disc follows it.
+  c = manual_command(3);
+  c.rpm_setpoint = 100.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  run_for(ecu, clock, 10s);
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_TRUE(fault_active(ecu, Fault::kDiscNotAtSpeed));
+}
+
+TEST(EcuSafety, ALostOrUnavailableSpeedClosesMetering) {
+  ManualClock clock;
+  EcuParameters p;
+  p.disc_time_constant_s = 0.1;
+  Ecu ecu(clock, p);
+  ASSERT_TRUE(!ecu.set_rate_setpoint(250.0) && !ecu.set_width_setpoint(24.0) && !ecu.set_rpm_setpoint(750.0));
+  ecu.note_task_controller_alive();
+  ASSERT_FALSE(ecu.set_work_state(true).has_value());
+  for (int i = 0; i < 20; ++i) {  // 1 s of speed broadcasts every 100 ms, valid 300 ms each
+    ASSERT_FALSE(ecu.set_ground_speed(3.0, TravelDirection::kForward, 300ms).has_value());
+    run_for(ecu, clock, 100ms);
+  }
+  EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_NEAR(ecu.status().ground_speed_m_s, 3.0, 1e-12);
+  run_for(ecu, clock, 400ms);  // the broadcasts stop
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_EQ(ecu.status().ground_speed_m_s, 0.0) << "a lost speed is not reported as the last value";
+  EXPECT_TRUE(fault_active(ecu, Fault::kSpeedUnavailable));
+  // Back: metering resumes by itself (the work state was never switched off).
+  ASSERT_FALSE(ecu.set_ground_speed(3.0, TravelDirection::kForward, 300ms).has_value());
+  run_for(ecu, clock, 50ms);
+  EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_FALSE(fault_active(ecu, Fault::kSpeedUnavailable));
+  // The source says "error / not available": closed at once, not after its timeout.
+  ecu.set_ground_speed_unavailable();
+  run_for(ecu, clock, 50ms);
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_TRUE(fault_active(ecu, Fault::kSpeedUnavailable));
+  // Reverse: no spreading.
+  ASSERT_FALSE(ecu.set_ground_speed(2.0, TravelDirection::kReverse, 300ms).has_value());
+  run_for(ecu, clock, 50ms);
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_TRUE(fault_active(ecu, Fault::kDrivingReverse));
+  EXPECT_FALSE(fault_active(ecu, Fault::kSpeedUnavailable));
+}
+
+TEST(EcuSafety, SpeedInputsDoNotKeepASilentTaskControllerAlive) {
+  ManualClock clock;
+  EcuParameters p;
+  p.disc_time_constant_s = 0.1;
+  Ecu ecu(clock, p);  // task controller timeout 6 s
+  ASSERT_TRUE(!ecu.set_rate_setpoint(250.0) && !ecu.set_width_setpoint(24.0) && !ecu.set_rpm_setpoint(750.0));
+  ecu.note_task_controller_alive();
+  ASSERT_FALSE(ecu.set_work_state(true).has_value());
+  // TC status at 0 and 2 s, then only the tractor's speed broadcasts.
+  for (int i = 0; i < 100; ++i) {
+    if (i % 20 == 0 && i <= 20) ecu.note_task_controller_alive();
+    ASSERT_FALSE(ecu.set_ground_speed(3.0, TravelDirection::kForward, 300ms).has_value());
+    run_for(ecu, clock, 100ms);
+    if (i == 75) EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0) << "5.6 s after the last TC status: still alive";
+  }
+  // 10 s: 8 s since the last status.
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  EXPECT_FALSE(ecu.status().work_state_setpoint);
+  EXPECT_TRUE(fault_active(ecu, Fault::kTaskControllerLost));
+  // The TC comes back: the fault clears, but the work state stays off until it is switched on again.
+  ecu.note_task_controller_alive();
+  ASSERT_FALSE(ecu.set_ground_speed(3.0, TravelDirection::kForward, 300ms).has_value());
+  run_for(ecu, clock, 50ms);
+  EXPECT_FALSE(fault_active(ecu, Fault::kTaskControllerLost));
+  EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
+  ASSERT_FALSE(ecu.set_work_state(true).has_value());
+  run_for(ecu, clock, 50ms);
+  EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0);
+}
+
+TEST(EcuSafety, RepeatedCommandsDoNotUndoATaskControllersSwitchOff) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  p.disc_time_constant_s = 0.1;
+  Ecu ecu(clock, p);
+  ASSERT_FALSE(ecu.apply_command(manual_command(1)).has_value());
+  run_for(ecu, clock, 1s);
+  EXPECT_TRUE(ecu.status().work_state_actual);
+  ecu.note_task_controller_alive();
+  ASSERT_FALSE(ecu.set_work_state(false).has_value());  // DDI 289 = 0
+  for (int i = 2; i < 12; ++i) {
+    ASSERT_FALSE(ecu.apply_command(manual_command(i)).has_value());
+    run_for(ecu, clock, 100ms);
+  }
+  EXPECT_FALSE(ecu.status().work_state_setpoint);
+  EXPECT_FALSE(ecu.status().work_state_actual);
+  // The LCM operator switches off and on again: that change is applied.
+  EcuCommand off = manual_command(12);
+  off.work_state = false;
+  ASSERT_FALSE(ecu.apply_command(off).has_value());
+  ASSERT_FALSE(ecu.apply_command(manual_command(13)).has_value());
+  run_for(ecu, clock, 50ms);
+  EXPECT_TRUE(ecu.status().work_state_actual);
+}
+
+TEST(EcuSafety, OneSequenceNumberFarAheadCannotStallTheRealSender) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p);
+  ASSERT_FALSE(ecu.apply_command(manual_command(100)).has_value());
+  EcuCommand rogue = manual_command(1000);
+  rogue.rate_setpoint_kg_ha = 999.0;
+  EXPECT_EQ(ecu.apply_command(rogue), Fault::kSequenceJump);
+  EXPECT_EQ(ecu.status().rate_setpoint_kg_ha, 200.0);
+  for (int i = 101; i < 110; ++i) EXPECT_FALSE(ecu.apply_command(manual_command(i)).has_value()) << i;
+  EXPECT_EQ(ecu.status().last_command_sequence, 109);
+  EXPECT_EQ(ecu.faults().count(Fault::kStaleSequence), 0u);
+  // A sender that really jumped (or restarted at 0) continues from its new number: believed on the second.
+  EXPECT_EQ(ecu.apply_command(manual_command(5000)), Fault::kSequenceJump);
+  EXPECT_FALSE(ecu.apply_command(manual_command(5001)).has_value());
+  EXPECT_EQ(ecu.apply_command(manual_command(0)), Fault::kSequenceJump);
+  EXPECT_FALSE(ecu.apply_command(manual_command(1)).has_value());
+  EXPECT_EQ(ecu.status().last_command_sequence, 1);
+  // Extreme values do not overflow the distance arithmetic.
+  EXPECT_EQ(ecu.apply_command(manual_command(std::numeric_limits<std::int64_t>::max())), Fault::kSequenceJump);
+  EXPECT_EQ(ecu.apply_command(manual_command(std::numeric_limits<std::int64_t>::min())), Fault::kSequenceJump);
+}
+
+TEST(EcuSafety, ZeroWidthIsNotSpreading) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  Ecu ecu(clock, p);
+  EcuCommand c = manual_command(1);
+  c.width_setpoint_m = 0.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  run_for(ecu, clock, 5s);
+  EXPECT_FALSE(ecu.status().work_state_actual);
+  EXPECT_EQ(ecu.status().rate_actual_kg_ha, 0.0);
 }
 
 TEST(Ecu, AutomaticModeReachesRequestedWidth) {
@@ -206,11 +389,13 @@ TEST(Ecu, AutomaticModeReachesRequestedWidth) {
     ecu.step(0.05);
   }
   const EcuStatus s = ecu.status();
-  const double exact_rpm = AnalyticPredictor::urea_rpm_for_effective_width(18.0);
-  EXPECT_NEAR(s.rpm_target, exact_rpm, 1.0);
-  EXPECT_NEAR(s.rpm_actual, exact_rpm, 1.0);
-  EXPECT_NEAR(s.effective_width_m, 18.0, 0.1);
-  EXPECT_GE(s.rpm_target, exact_rpm) << "the solver picks the slowest speed known to reach the width";
+  // The solver aims at the set-point plus its margin (0.5 m): the settled pattern reaches the set-point.
+  const double margin_rpm = AnalyticPredictor::urea_rpm_for_effective_width(18.5);
+  EXPECT_NEAR(s.rpm_target, margin_rpm, 1.0);
+  EXPECT_NEAR(s.rpm_actual, margin_rpm, 1.0);
+  EXPECT_GE(s.effective_width_m, 18.0);
+  EXPECT_NEAR(s.effective_width_m, 18.5, 0.1);
+  EXPECT_GE(s.rpm_target, margin_rpm) << "the solver picks the slowest speed known to reach the width";
   EXPECT_TRUE(s.width_reachable);
   EXPECT_EQ(s.fault_codes, 0u);
 }
@@ -265,8 +450,8 @@ TEST(Ecu, PredictionFailureIsCountedAndFallsBackToTheCurve) {
   ASSERT_FALSE(ecu.set_width_setpoint(20.0).has_value());
   ecu.step(0.05);
   EXPECT_GE(ecu.faults().count(Fault::kPredictionFailed), 1u);
-  // The curve sample that reaches 20 m is used: within one curve step (5 r/min) above the exact speed.
-  const double exact_rpm = AnalyticPredictor::urea_rpm_for_effective_width(20.0);
+  // The curve sample that reaches 20 m + margin is used: within one curve step (5 r/min) above the exact speed.
+  const double exact_rpm = AnalyticPredictor::urea_rpm_for_effective_width(20.5);
   EXPECT_GE(ecu.status().rpm_target, exact_rpm);
   EXPECT_LE(ecu.status().rpm_target, exact_rpm + 5.0);
 }

@@ -32,6 +32,7 @@ spread::command_t manual_command(std::int64_t sequence) {
   c.ground_speed_m_s = 12.0 / 3.6;
   c.material = "urea";
   c.rpm_setpoint = 750.0;
+  c.work_state = true;
   c.num_sections = 8;
   c.section_on.assign(8, true);
   return c;
@@ -101,7 +102,7 @@ TEST_F(Memq, SectionsFromTheCommand) {
   c.section_on[6] = false;
   c.section_on[7] = false;
   ASSERT_TRUE(tractor_.send(c));
-  ticks(2);
+  ticks(100);  // the disc reaches its speed: metering opens
   EXPECT_NEAR(status().width_actual_m, 18.0, 1e-12);
   EXPECT_FALSE(status().section_on[7]);
 }
@@ -133,7 +134,7 @@ TEST_F(Memq, UndecodablePayloadsAreCountedNotFatal) {
   for (int i = 0; i < 4; ++i) bad_string[string_length_at + static_cast<std::size_t>(i)] = 0xFF;
   ASSERT_TRUE(tractor_.send_raw(bad_string.data(), static_cast<unsigned>(bad_string.size())));
   std::vector<std::uint8_t> bad_count = good;
-  const std::size_t count_at = string_length_at + 4 + 5 /* "urea\0" */ + 8;
+  const std::size_t count_at = string_length_at + 4 + 5 /* "urea\0" */ + 8 + 1 /* rpm, work_state */;
   ASSERT_EQ(bad_count[count_at], 8);
   bad_count[count_at] = 0xFF;
   ASSERT_TRUE(tractor_.send_raw(bad_count.data(), static_cast<unsigned>(bad_count.size())));
@@ -359,10 +360,14 @@ TEST(Udpm, EndToEndInPrivateNetworkNamespace) {
         return tractor.latest_status() && tractor.latest_status()->last_command_sequence == 42;
       },
       5s);
+  // Metering opens once the disc has spun up to within 5 % of 750 r/min (3 time constants, 2.4 s).
+  const bool metering = tractor.wait_for(
+      [&] { return tractor.latest_status() && tractor.latest_status()->work_state_actual; }, 6s);
   const bool heartbeat = tractor.wait_for([&] { return tractor.heartbeats_received() > 0; }, 3s);
   stop = true;
   ecu_thread.join();
   ASSERT_TRUE(accepted) << "no status acknowledging the command over udpm";
+  EXPECT_TRUE(metering);
   EXPECT_TRUE(heartbeat);
   EXPECT_EQ(tractor.latest_status()->material, "urea");
   EXPECT_NEAR(tractor.latest_status()->mass_flow_kg_s, 1.6, 1e-9);

@@ -25,6 +25,7 @@ spread::command_t build_command(const LcmSessionOptions& o, std::int64_t sequenc
   c.ground_speed_m_s = o.speed_m_s;
   c.material = o.material;
   c.rpm_setpoint = o.rpm;
+  c.work_state = o.work_state == "on";
   // Out-of-range counts are passed on as they are: the ECU is the one that judges and counts them.
   c.num_sections = static_cast<std::int8_t>(o.sections);
   c.section_on.assign(o.sections > 0 ? static_cast<std::size_t>(o.sections) : 0u, true);
@@ -62,14 +63,20 @@ int run_lcm_session(const LcmSessionOptions& o) {
       std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 
   if (o.once) {
-    // Resend until the ECU's status shows our sequence, or give up.
+    // Resend until the ECU's status shows one of our sequence numbers, or give up. Each resend is the
+    // next number: the ECU refuses a repeat, and believes a jump (a new sender) only when the next
+    // command continues from it.
     const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(o.once_timeout_s));
-    const spread::command_t command = build_command(o, sequence);
-    while (Clock::now() < end && !stop_requested()) {
-      if (!link.send(command)) std::cerr << "spread-tractor: warning: LCM publish failed\n";
-      if (link.wait_for([&] { return link.latest_status() && link.latest_status()->last_command_sequence == sequence; },
-                        std::chrono::milliseconds(300))) {
+    const std::int64_t first = sequence;
+    auto ours = [&] {
+      return link.latest_status() && link.latest_status()->last_command_sequence >= first &&
+             link.latest_status()->last_command_sequence <= sequence;
+    };
+    for (bool sent = false; Clock::now() < end && !stop_requested(); sent = true) {
+      if (sent) ++sequence;
+      if (!link.send(build_command(o, sequence))) std::cerr << "spread-tractor: warning: LCM publish failed\n";
+      if (link.wait_for(ours, std::chrono::milliseconds(300))) {
         std::cout << format_status(*link.latest_status()) << std::endl;
         return kExitOk;
       }

@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
   auto* rpm = lcm->add_option("--rpm", lcm_options.rpm, "disc speed set-point, manual mode [r/min]");
   auto* sections = lcm->add_option("--sections", lcm_options.sections, "sections in use (1..16)")->capture_default_str();
   auto* off = lcm->add_option("--off", lcm_options.sections_off, "sections to close, 1-based (e.g. --off 7 8)");
+  auto* work = lcm->add_option("--work-state", lcm_options.work_state,
+                               "master switch: on or off (the ECU applies a change, not a repeat)")
+                   ->check(CLI::IsMember({"on", "off"}))
+                   ->capture_default_str();
   lcm->add_option("--hz", lcm_options.send_hz, "command repetition rate [Hz]")->check(CLI::Range(0.1, 100.0))->capture_default_str();
   lcm->add_option("--duration", lcm_options.duration_s, "run this long [s] (0: until Ctrl-C)")->check(CLI::NonNegativeNumber);
   lcm->add_flag("--once", lcm_options.once, "send one command, print the status that shows it accepted, exit (3: rejected)");
@@ -72,7 +76,7 @@ int main(int argc, char** argv) {
   try {
     if (lcm->parsed()) {
       lcm_options.send = rate->count() + width->count() + speed->count() + material->count() + rpm->count() +
-                             sections->count() + off->count() > 0 ||
+                             sections->count() + off->count() + work->count() > 0 ||
                          lcm_options.mode != "manual";
       if (lcm_options.once && !lcm_options.send) {
         std::cerr << "spread-tractor: error: --once needs set-points to send (e.g. --rate 200 --width 24)\n";

@@ -25,6 +25,7 @@ struct LcmSessionOptions {
   double rpm = 0.0;
   int sections = 8;
   std::vector<int> sections_off;   // 1-based section numbers to close
+  std::string work_state = "on";  // master switch asked for: on or off
   double send_hz = 5.0;            // command repetition [Hz]
   double duration_s = 0.0;         // 0: until Ctrl-C (or --once)
   bool once = false;               // send one command, print the status that reflects it, exit
