@@ -28,8 +28,23 @@ inline void check_ecu_status(const char* harness, const firmware::Ecu& ecu) {
   finite_in(s.rate_actual_kg_ha, 0.0, 1e9, "rate_actual_kg_ha");
   finite_in(s.width_actual_m, 0.0, 1e6, "width_actual_m");
   finite_in(s.mass_flow_kg_s, 0.0, 1e9, "mass_flow_kg_s");
-  if (s.section_count < 1 || s.section_count > firmware::kMaxSections) {
-    fail(harness, "section_count " + std::to_string(s.section_count));
+  if (s.section_count < 1 || s.section_count > p.section_count) {
+    fail(harness, "section_count " + std::to_string(s.section_count) + " beyond the installed " +
+                      std::to_string(p.section_count));
+  }
+  // Fail-safe: metering only with the master switch on, a section open, the disc at its spreading speed
+  // and the tractor moving forward at a valid speed.
+  if (s.work_state_actual) {
+    if (!s.work_state_setpoint) fail(harness, "metering with the work state set-point off");
+    if (s.section_mask == 0 || !(s.width_actual_m > 0.0)) fail(harness, "metering with no open section width");
+    if (!(s.ground_speed_m_s > 0.0)) fail(harness, "metering without a valid ground speed");
+    if (!(s.rpm_target >= p.spreading_rpm_min) ||
+        !(std::abs(s.rpm_actual - s.rpm_target) <= p.disc_speed_tolerance * s.rpm_target)) {
+      fail(harness, "metering with the disc at " + std::to_string(s.rpm_actual) + " r/min for a target of " +
+                        std::to_string(s.rpm_target));
+    }
+  } else if (s.mass_flow_kg_s != 0.0 || s.rate_actual_kg_ha != 0.0) {
+    fail(harness, "mass flow or actual rate while not metering");
   }
   if (s.section_count < firmware::kMaxSections && (s.section_mask >> s.section_count) != 0) {
     fail(harness, "section_mask has bits above section_count");
