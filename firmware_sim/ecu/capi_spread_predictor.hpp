@@ -23,6 +23,7 @@ class CapiSpreadPredictor final : public SpreadPredictor {
   std::size_t material_count() const override { return names_.size(); }
   std::string_view material_name(std::size_t index) const override { return names_.at(index); }
   bool has_material(std::string_view material) const override;
+  double cv_target_percent() const override { return cv_target_percent_; }
   RpmRange rpm_range(std::string_view material) const override;
   PredictionOutcome predict(std::string_view material, double rpm, double bout_width_m,
                             SpreadPrediction& out) override;

@@ -265,11 +265,15 @@ void Ecu::predict_pattern() {
 }
 
 void Ecu::check_achieved_width() {
-  // Automatic mode, disc settled: the width the pattern actually gives at this speed is the answer that
-  // counts, not the solver's curve. A miss asks the solver for a wider margin; out of margin, the width
-  // is out of reach and the status says so.
+  // Automatic mode, disc settled: the pattern actually thrown at this speed is the answer that counts,
+  // not the solver's curve. It misses when its effective width falls short of the set-point or its CV
+  // at the set-point exceeds the target (the effective width is found on the tray grid; a set-point
+  // between grid widths can miss the target although the grid width next above meets it). A miss asks
+  // the solver for a wider margin; out of margin, the width is out of reach and the status says so.
   if (mode_ != Mode::kAutomatic || !prediction_valid_ || !predicted_settled_) return;
-  if (!(prediction_.effective_width_m < width_setpoint_m_)) return;
+  const bool misses = prediction_.effective_width_m < width_setpoint_m_ ||
+                      prediction_.cv_percent > predictor_->cv_target_percent();
+  if (!misses) return;
   const RpmSolverSettings& solver = parameters_.solver;
   if (width_margin_m_ + solver.width_margin_step_m <= solver.max_width_margin_m + 1e-9) {
     width_margin_m_ += solver.width_margin_step_m;

@@ -32,6 +32,8 @@ class SpreadPredictor {
   virtual std::size_t material_count() const = 0;
   virtual std::string_view material_name(std::size_t index) const = 0;
   virtual bool has_material(std::string_view material) const = 0;
+  // CV target the effective width is taken at [%].
+  virtual double cv_target_percent() const = 0;
   // Disc speeds the predictor is valid for, for this material [r/min].
   virtual RpmRange rpm_range(std::string_view material) const = 0;
   // Predicts the pattern of `material` at disc speed `rpm` [r/min]; CV evaluated at bout width

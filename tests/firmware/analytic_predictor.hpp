@@ -21,6 +21,7 @@ class AnalyticPredictor final : public SpreadPredictor {
   bool has_material(std::string_view material) const override {
     return material == "urea" || material == "can27";
   }
+  double cv_target_percent() const override { return 15.0; }
   RpmRange rpm_range(std::string_view) const override { return {300.0, 1100.0}; }
   PredictionOutcome predict(std::string_view material, double rpm, double bout_width_m,
                             SpreadPrediction& out) override {

@@ -97,6 +97,42 @@ TEST_F(AutomaticModeCapi, ReachesARequestedWidth) {
   EXPECT_LE(s.effective_width_m, s.throw_width_m + 1.0);
 }
 
+// Settled on its chosen speed, the ECU's own status must deliver what it reports as reachable: the
+// effective width at least the set-point and the CV at the set-point within the target. Choosing the
+// speed exactly at the edge of what reaches the width, and judging only the solver's curve, broke this
+// for set-points between the 0.5 m tray widths: on the default DEM table (Urea, set-points 6.0-10.0 m
+// every 0.1 m) 12 of 41 were reported reachable with a settled CV of 16.3-18.0 %. The solver's margin
+// and the check of the settled prediction keep it true (41 of 41 then deliver).
+TEST_F(AutomaticModeCapi, ReachableMeansTheSettledPatternDelivers) {
+  EcuParameters p;
+  p.command_timeout = 0s;
+  const RpmRange range = predictor_->rpm_range(material_);
+  p.auto_rpm_min = std::max(range.min_rpm, p.auto_rpm_min);
+  p.auto_rpm_max = std::min(range.max_rpm, p.auto_rpm_max);
+  const double narrowest = effective_width_at(p.auto_rpm_min);
+  const double widest = effective_width_at(p.auto_rpm_max);
+  ASSERT_LT(narrowest, widest);
+  int reachable = 0;
+  for (double width_m = std::ceil(narrowest); width_m <= std::floor(widest); width_m += 0.1) {
+    ManualClock clock;
+    Ecu ecu(clock, p, predictor_.get());
+    FixedRateLoop loop(clock, 20.0);
+    NoIo io;
+    ASSERT_FALSE(ecu.apply_command(automatic(1, width_m)).has_value());
+    loop.run(ecu, io, 15s);
+    const EcuStatus s = ecu.status();
+    if (s.width_reachable) {
+      ++reachable;
+      EXPECT_GE(s.effective_width_m, width_m) << "set-point " << width_m << " m at " << s.rpm_actual << " r/min";
+      EXPECT_LE(s.cv_percent, 15.0) << "set-point " << width_m << " m at " << s.rpm_actual << " r/min";
+      EXPECT_EQ(s.fault_codes & fault_bit(Fault::kWidthOutOfReach), 0u);
+    } else {
+      EXPECT_NE(s.fault_codes & fault_bit(Fault::kWidthOutOfReach), 0u) << "unreachable is a fault";
+    }
+  }
+  EXPECT_GT(reachable, 0);
+}
+
 TEST_F(AutomaticModeCapi, ReportsAWidthOutOfReach) {
   EcuParameters p;
   p.command_timeout = 0s;
