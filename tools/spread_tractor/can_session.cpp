@@ -86,7 +86,14 @@ int run_can_session(const CanSessionOptions& o) {
   const auto start = Clock::now();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.send_hz));
   std::uint32_t distance_mm = 0;
+  auto next_tc_status = start;
   while (!stop_requested() && Clock::now() - start < std::chrono::duration<double>(o.duration_s)) {
+    // As the task controller: its status every 2 s (ISO 11783-10), which keeps the work state it set alive.
+    if (Clock::now() >= next_tc_status) {
+      const std::uint8_t status[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0xFF, 0xFF, 0xFF};
+      port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), status, 8));
+      next_tc_status += std::chrono::seconds(2);
+    }
     if (o.speed_m_s >= 0.0) {
       const auto bytes = encode_speed(o.speed_m_s, distance_mm, Direction::kForward);
       distance_mm += static_cast<std::uint32_t>(o.speed_m_s * 1000.0 / o.send_hz);
