@@ -1,0 +1,174 @@
+#include "firmware_sim/isobus/spreader_ddop.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "firmware_sim/can/ddi.hpp"
+
+namespace spread::firmware::isobus {
+namespace {
+
+using can::Ddi;
+
+constexpr std::uint16_t kDeviceElement = 0;
+constexpr std::uint16_t kBoomElement = 1;
+constexpr std::uint16_t kBinElement = 2;
+constexpr std::uint16_t kDiscElement = 3;
+constexpr std::uint16_t kFirstSectionElement = 4;
+
+// Object IDs: fixed for the fixed part, sections from 100 on (three objects each after their DET).
+enum : std::uint16_t {
+  kDvc = 0,
+  kDetDevice = 1,
+  kDetBoom = 2,
+  kDetBin = 3,
+  kDetDisc = 4,
+  kDvpRate = 10,
+  kDvpMetre = 11,
+  kDvpRpm = 12,
+  kDvpSpeed = 13,
+  kDpdActualWorkState = 20,
+  kDpdSetpointWorkState = 21,
+  kDpdActualSpeed = 22,
+  kDpdSetpointWidth = 30,
+  kDpdActualWidth = 31,
+  kDpdMaximumWidth = 32,
+  kDpdSetpointCondensed = 33,
+  kDpdActualCondensed = 34,
+  kDptBoomX = 35,
+  kDptBoomY = 36,
+  kDptBoomZ = 37,
+  kDpdSetpointRate = 40,
+  kDpdActualRate = 41,
+  kDpdSetpointRpm = 50,
+  kDpdActualRpm = 51,
+  kFirstSection = 100,
+};
+
+constexpr std::uint8_t kSetpoint = kPropertyDefaultSet | kPropertySettable;
+// Actual values: the TC may ask for them on a time or distance interval, on thresholds or on change.
+constexpr std::uint8_t kMeasured = kTriggerTimeInterval | kTriggerDistanceInterval | kTriggerThresholdLimits |
+                                   kTriggerOnChange;
+
+std::uint16_t ddi(Ddi d) { return static_cast<std::uint16_t>(d); }
+
+std::int32_t millimetres(double metres) { return static_cast<std::int32_t>(std::lround(metres * 1000.0)); }
+
+}  // namespace
+
+std::optional<std::uint16_t> element_for_ddi(std::uint16_t value) {
+  switch (static_cast<Ddi>(value)) {
+    case Ddi::kActualWorkState:
+    case Ddi::kSetpointWorkState:
+    case Ddi::kActualSpeed:
+      return kDeviceElement;
+    case Ddi::kSetpointWorkingWidth:
+    case Ddi::kActualWorkingWidth:
+    case Ddi::kMaximumWorkingWidth:
+    case Ddi::kSetpointCondensedWorkState1_16:
+    case Ddi::kActualCondensedWorkState1_16:
+      return kBoomElement;
+    case Ddi::kSetpointMassPerArea:
+    case Ddi::kActualMassPerArea:
+      return kBinElement;
+    case Ddi::kSetpointRevolutions:
+    case Ddi::kActualRevolutions:
+      return kDiscElement;
+  }
+  return std::nullopt;
+}
+
+Ddop make_spreader_ddop(const SpreaderDescription& d) {
+  if (d.section_count < 1 || d.section_count > 16) {
+    throw std::invalid_argument("SpreaderDescription.section_count: must be 1..16, got " +
+                                std::to_string(d.section_count));
+  }
+  if (!(d.working_width_m > 0.0) || !(d.working_width_m <= d.maximum_width_m) || !std::isfinite(d.maximum_width_m)) {
+    throw std::invalid_argument("SpreaderDescription.working_width_m: must lie in (0, maximum_width_m]");
+  }
+  if (!std::isfinite(d.boom_offset_x_m) || std::abs(d.boom_offset_x_m) > 100.0) {
+    throw std::invalid_argument("SpreaderDescription.boom_offset_x_m: must be finite and within 100 m");
+  }
+  Ddop pool;
+  auto& o = pool.objects;
+
+  DeviceObject device;
+  device.id = kDvc;
+  device.designator = d.designator;
+  device.software_version = d.software_version;
+  device.working_set_master_name = d.name;
+  device.serial_number = d.serial_number;
+  // The structure label changes with the layout, so a TC holding an older pool of this machine reloads it.
+  const auto width_cm = static_cast<std::uint32_t>(std::lround(d.working_width_m * 100.0));
+  device.structure_label = {'L', 'S', 'P', static_cast<std::uint8_t>(d.section_count),
+                            static_cast<std::uint8_t>(width_cm & 0xFFu), static_cast<std::uint8_t>(width_cm >> 8),
+                            0x01};
+  // ISO 11783-6 language command bytes: "en", decimal point and 24 h, day-month-year, metric units.
+  device.localization_label = {'e', 'n', 0x50, 0x00, 0x00, 0x00, 0xFF};
+  o.emplace_back(device);
+
+  DeviceElement root{kDetDevice, ElementType::kDevice, "Spreader", kDeviceElement, kDvc,
+                     {kDpdActualWorkState, kDpdSetpointWorkState, kDpdActualSpeed, kDetBoom, kDetBin, kDetDisc}};
+  o.emplace_back(root);
+  DeviceElement boom{kDetBoom, ElementType::kFunction, "Boom", kBoomElement, kDetDevice,
+                     {kDpdSetpointWidth, kDpdActualWidth, kDpdMaximumWidth, kDpdSetpointCondensed,
+                      kDpdActualCondensed, kDptBoomX, kDptBoomY, kDptBoomZ}};
+  for (int i = 0; i < d.section_count; ++i) boom.children.push_back(static_cast<std::uint16_t>(kFirstSection + 4 * i));
+  o.emplace_back(boom);
+  o.emplace_back(DeviceElement{kDetBin, ElementType::kBin, "Hopper", kBinElement, kDetDevice,
+                               {kDpdSetpointRate, kDpdActualRate}});
+  o.emplace_back(DeviceElement{kDetDisc, ElementType::kFunction, "Discs", kDiscElement, kDetDevice,
+                               {kDpdSetpointRpm, kDpdActualRpm}});
+
+  // Presentations: raw value + offset, times scale, gives the unit shown.
+  o.emplace_back(DeviceValuePresentation{kDvpRate, 0, 0.01f, 1, "kg/ha"});   // mg/m² -> kg/ha
+  o.emplace_back(DeviceValuePresentation{kDvpMetre, 0, 0.001f, 2, "m"});     // mm -> m
+  o.emplace_back(DeviceValuePresentation{kDvpRpm, 0, 1e-4f, 1, "r/min"});    // r/min * 1e-4 -> r/min
+  o.emplace_back(DeviceValuePresentation{kDvpSpeed, 0, 0.0036f, 1, "km/h"});  // mm/s -> km/h
+
+  o.emplace_back(DeviceProcessData{kDpdActualWorkState, ddi(Ddi::kActualWorkState), kPropertyDefaultSet,
+                                   kMeasured, "Work state", kNullObjectId});
+  o.emplace_back(DeviceProcessData{kDpdSetpointWorkState, ddi(Ddi::kSetpointWorkState), kSetpoint, kTriggerOnChange,
+                                   "Work state set-point", kNullObjectId});
+  o.emplace_back(DeviceProcessData{kDpdActualSpeed, ddi(Ddi::kActualSpeed), 0, kMeasured, "Speed", kDvpSpeed});
+  o.emplace_back(DeviceProcessData{kDpdSetpointWidth, ddi(Ddi::kSetpointWorkingWidth), kSetpoint, kTriggerOnChange,
+                                   "Working width set-point", kDvpMetre});
+  o.emplace_back(DeviceProcessData{kDpdActualWidth, ddi(Ddi::kActualWorkingWidth), kPropertyDefaultSet, kMeasured,
+                                   "Working width", kDvpMetre});
+  o.emplace_back(DeviceProcessData{kDpdMaximumWidth, ddi(Ddi::kMaximumWorkingWidth), 0, kTriggerOnChange,
+                                   "Maximum working width", kDvpMetre});
+  o.emplace_back(DeviceProcessData{kDpdSetpointCondensed, ddi(Ddi::kSetpointCondensedWorkState1_16), kSetpoint,
+                                   kTriggerOnChange, "Sections set-point", kNullObjectId});
+  o.emplace_back(DeviceProcessData{kDpdActualCondensed, ddi(Ddi::kActualCondensedWorkState1_16),
+                                   kPropertyDefaultSet, kTriggerOnChange | kTriggerTimeInterval, "Sections",
+                                   kNullObjectId});
+  o.emplace_back(DeviceProperty{kDptBoomX, 134, millimetres(d.boom_offset_x_m), "Offset X", kDvpMetre});
+  o.emplace_back(DeviceProperty{kDptBoomY, 135, 0, "Offset Y", kDvpMetre});
+  o.emplace_back(DeviceProperty{kDptBoomZ, 136, 0, "Offset Z", kDvpMetre});
+  o.emplace_back(DeviceProcessData{kDpdSetpointRate, ddi(Ddi::kSetpointMassPerArea), kSetpoint,
+                                   kTriggerOnChange | kTriggerTimeInterval, "Rate set-point", kDvpRate});
+  o.emplace_back(DeviceProcessData{kDpdActualRate, ddi(Ddi::kActualMassPerArea), kPropertyDefaultSet, kMeasured,
+                                   "Rate", kDvpRate});
+  o.emplace_back(DeviceProcessData{kDpdSetpointRpm, ddi(Ddi::kSetpointRevolutions), kSetpoint, kTriggerOnChange,
+                                   "Disc speed set-point", kDvpRpm});
+  o.emplace_back(DeviceProcessData{kDpdActualRpm, ddi(Ddi::kActualRevolutions), kPropertyDefaultSet, kMeasured,
+                                   "Disc speed", kDvpRpm});
+
+  const double section_width_m = d.working_width_m / d.section_count;
+  for (int i = 0; i < d.section_count; ++i) {
+    const auto id = static_cast<std::uint16_t>(kFirstSection + 4 * i);
+    const double y_m = -0.5 * d.working_width_m + (i + 0.5) * section_width_m;  // section 1 leftmost
+    o.emplace_back(DeviceElement{id, ElementType::kSection, "Section " + std::to_string(i + 1),
+                                 static_cast<std::uint16_t>(kFirstSectionElement + i), kDetBoom,
+                                 {static_cast<std::uint16_t>(id + 1), static_cast<std::uint16_t>(id + 2),
+                                  static_cast<std::uint16_t>(id + 3)}});
+    o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(id + 1), 134, millimetres(d.boom_offset_x_m),
+                                  "Offset X", kDvpMetre});
+    o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(id + 2), 135, millimetres(y_m), "Offset Y", kDvpMetre});
+    o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(id + 3), ddi(Ddi::kActualWorkingWidth),
+                                  millimetres(section_width_m), "Width", kDvpMetre});
+  }
+  return pool;
+}
+
+}  // namespace spread::firmware::isobus
