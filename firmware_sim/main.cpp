@@ -15,7 +15,7 @@
 
 #include "firmware_sim/can/can_ecu_link.hpp"
 #include "firmware_sim/can/candump_log.hpp"
-#include "firmware_sim/can/socketcan.hpp"
+#include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 #include "firmware_sim/lcm/lcm_ecu_link.hpp"
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
   app.add_option("--status-channel", status_channel, "full name of the status_t channel (overrides the prefix)");
   app.add_option("--heartbeat-channel", heartbeat_channel,
                  "full name of the heartbeat_t channel (overrides the prefix)");
-  app.add_option("--can", can_interface, "SocketCAN interface (e.g. can0) for ISOBUS process data");
+  app.add_option("--can", can_interface, "ISOBUS: a SocketCAN interface (can0) or a spread-canbus socket (unix:PATH)");
   app.add_option("--can-address", can_address, "this ECU's ISOBUS source address (0..253)")
       ->check(CLI::Range(0, 253))
       ->capture_default_str();
@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
     if (!record_path.empty()) {
       record_file.open(record_path);
       if (!record_file) throw std::runtime_error("cannot write candump log '" + record_path + "'");
-      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can_interface.empty() ? "can0" : can_interface);
+      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can::can_bus_log_name(can_interface));
     }
 
     can::CanEcuSettings can_settings;
@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
     can::CanFramePort can_port;
     std::unique_ptr<can::CanPortIo> can_io;
     if (!can_interface.empty()) {
-      can_port = can::open_socketcan(can_interface);
+      can_port = can::open_can_bus(can_interface);
       can_io = std::make_unique<can::CanPortIo>(can_port, ecu, *clock, can_settings, recorder.get());
       can_io->processor().send_address_claim();
       io.add(*can_io);
