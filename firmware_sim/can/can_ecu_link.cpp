@@ -286,6 +286,11 @@ CanPortIo::CanPortIo(CanFramePort& port, Ecu& ecu, const Clock& clock, const Can
 
 void CanPortIo::pump(Nanoseconds max_wait) {
   processor_.service();  // a claim that has stood its 250 ms counts before the frames that follow it
+  if (bus_closed_) {
+    // Nothing will arrive any more: wait out the time like an idle bus instead of spinning on the hang-up.
+    if (max_wait > Nanoseconds::zero()) std::this_thread::sleep_for(max_wait);
+    return;
+  }
   if (max_wait > Nanoseconds::zero() && !port_.wait_readable(max_wait)) return;
   processor_.service();
   can_frame frame{};
@@ -297,6 +302,7 @@ void CanPortIo::pump(Nanoseconds max_wait) {
     } else if (outcome == ReadOutcome::kTruncated || outcome == ReadOutcome::kOversized) {
       processor_.handle_read_outcome(outcome);
     } else {
+      if (outcome == ReadOutcome::kClosed) bus_closed_ = true;
       break;  // nothing pending, peer closed or error: the loop goes on
     }
   }

@@ -82,11 +82,15 @@ class CanPortIo final : public LoopIo {
             CanFrameSink* recorder = nullptr);
   void pump(Nanoseconds max_wait) override;
   void after_step(const EcuStatus&) override { processor_.service(); }
-  int wait_fd() const override { return port_.fd(); }
+  // -1 once the bus has gone away: a closed socket is always "readable" and would make the loop spin.
+  int wait_fd() const override { return bus_closed_ ? -1 : port_.fd(); }
   CanEcuProcessor& processor() { return processor_; }
+  // The other end closed (a spread-canbus that stopped, a socketpair peer that left).
+  bool bus_closed() const { return bus_closed_; }
 
  private:
   CanFramePort& port_;
+  bool bus_closed_ = false;
   CanFrameSink* recorder_;
   TeeSink tx_;
   CanEcuProcessor processor_;

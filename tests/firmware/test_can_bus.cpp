@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "firmware_sim/can/can_bus_relay.hpp"
+#include "firmware_sim/can/can_ecu_link.hpp"
 #include "firmware_sim/can/unix_can_bus.hpp"
 
 namespace spread::firmware::can {
@@ -203,6 +204,24 @@ TEST(UnixCanBus, ConnectErrorsNameThePath) {
   EXPECT_THROW(connect_unix_can_bus(std::string(200, 'x')), std::runtime_error);
   EXPECT_EQ(can_bus_log_name("unix:/tmp/x"), "can0");
   EXPECT_EQ(can_bus_log_name("can1"), "can1");
+}
+
+// An ECU whose bus goes away keeps running without spinning on the hung-up socket.
+TEST(UnixCanBus, TheEcuLoopIdlesWhenTheBusCloses) {
+  TempDir dir;
+  SteadyClock clock;
+  Ecu ecu(clock, EcuParameters{}, nullptr);
+  std::optional<CanBusRelay> bus(std::in_place, dir.file("bus"));
+  CanFramePort port = connect_unix_can_bus(bus->path());
+  CanPortIo io(port, ecu, clock);
+  settle(*bus);
+  bus.reset();  // the bus stops
+  io.pump(20ms);
+  EXPECT_TRUE(io.bus_closed());
+  EXPECT_EQ(io.wait_fd(), -1);
+  const auto start = std::chrono::steady_clock::now();
+  io.pump(30ms);
+  EXPECT_GE(std::chrono::steady_clock::now() - start, 30ms) << "returned at once: the loop would spin";
 }
 
 #ifdef SPREAD_CANBUS_EXE
