@@ -21,9 +21,10 @@ namespace spread::firmware::isobus {
 
 inline constexpr std::uint8_t kIndustryGroupAgriculture = 2;
 inline constexpr std::uint8_t kDeviceClassFertilisers = 5;
-// Function 128 with industry group 2 and device class 5 is "Rate Control" (ISO 11783-1 Annex B function
-// table, as published in the ISOBUS data dictionary at isobus.net, "NAME Functions"): the function of a
-// spreader ECU that meters product to a set-point rate.
+// Functions 128-254 depend on industry group and device class (ISO 11783-1 NAME function table, kept in
+// the ISOBUS data dictionary at isobus.net, "Device Class/Function"). For industry group 2, device class 5
+// (fertilisers): 128 fertiliser rate control, 129 section on/off control, 130 product pressure,
+// 132 fertilisers machine control. This ECU meters product to a set-point rate: 128.
 inline constexpr std::uint8_t kFunctionRateControl = 128;
 
 struct IsoName {
