@@ -15,9 +15,10 @@
 
 #include "firmware_sim/can/can_ecu_link.hpp"
 #include "firmware_sim/can/candump_log.hpp"
-#include "firmware_sim/can/socketcan.hpp"
+#include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
+#include "firmware_sim/isobus/iso_name.hpp"
 #include "firmware_sim/lcm/lcm_ecu_link.hpp"
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
 #include "firmware_sim/ecu/capi_spread_predictor.hpp"
@@ -84,6 +85,8 @@ int main(int argc, char** argv) {
   bool print_status = false;
   EcuParameters parameters;
   double command_timeout_s = 2.0;
+  isobus::IsoName iso_name;  // defaults: agriculture, fertilisers, rate control (isobus/iso_name.hpp)
+  std::string iso_name_hex;
 
   app.add_option("--lcm-url", lcm_url, "LCM provider URL (default: LCM's default udpm://239.255.76.67:7667?ttl=0)");
   app.add_flag("--no-lcm", no_lcm, "do not use LCM at all");
@@ -93,10 +96,31 @@ int main(int argc, char** argv) {
   app.add_option("--status-channel", status_channel, "full name of the status_t channel (overrides the prefix)");
   app.add_option("--heartbeat-channel", heartbeat_channel,
                  "full name of the heartbeat_t channel (overrides the prefix)");
-  app.add_option("--can", can_interface, "SocketCAN interface (e.g. can0) for ISOBUS process data");
+  app.add_option("--can", can_interface, "ISOBUS: a SocketCAN interface (can0) or a spread-canbus socket (unix:PATH)");
   app.add_option("--can-address", can_address, "this ECU's ISOBUS source address (0..253)")
       ->check(CLI::Range(0, 253))
       ->capture_default_str();
+  // ISO 11783-5 NAME of the ECU: a whole 64-bit value, or the fields a user normally sets per unit.
+  auto* name_hex = app.add_option("--isobus-name", iso_name_hex,
+                                  "ISO 11783-5 NAME as 16 hex digits (overrides the --isobus-* fields)");
+  auto* name_fields = app.add_option_group("isobus NAME fields");
+  name_fields->add_flag("--isobus-self-configurable", iso_name.self_configurable,
+                        "may take another address in 128..247 when it loses its own");
+  name_fields->add_option("--isobus-function", iso_name.function, "NAME function (128: rate control)")
+      ->capture_default_str();
+  name_fields->add_option("--isobus-function-instance", iso_name.function_instance, "NAME function instance (0..31)")
+      ->check(CLI::Range(0, 31));
+  name_fields->add_option("--isobus-ecu-instance", iso_name.ecu_instance, "NAME ECU instance (0..7)")
+      ->check(CLI::Range(0, 7));
+  name_fields->add_option("--isobus-device-class-instance", iso_name.device_class_instance,
+                          "NAME device class instance (0..15)")
+      ->check(CLI::Range(0, 15));
+  name_fields->add_option("--isobus-manufacturer", iso_name.manufacturer_code, "NAME manufacturer code (0..2047)")
+      ->check(CLI::Range(0, 2047));
+  name_fields->add_option("--isobus-identity", iso_name.identity_number, "NAME identity number (0..2097151)")
+      ->check(CLI::Range(0, 2097151))
+      ->capture_default_str();
+  name_fields->excludes(name_hex);
   app.add_option("--tables", tables_path, "launch-table file (lookup_builder output); enables automatic mode")
       ->check(CLI::ExistingFile);
   app.add_option("--cv-target", cv_target_percent, "CV target of the effective working width [%]")
@@ -123,6 +147,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   parameters.command_timeout = from_seconds(command_timeout_s);
+  std::uint64_t name_value = isobus::encode_name(iso_name);
+  if (!iso_name_hex.empty()) {
+    const auto parsed = isobus::parse_name_hex(iso_name_hex);
+    if (!parsed) {
+      std::cerr << "firmware_sim: error: --isobus-name '" << iso_name_hex << "' is not 1 to 16 hex digits\n";
+      return 2;
+    }
+    name_value = *parsed;
+  }
 
   try {
     std::unique_ptr<SpreadPredictor> predictor;
@@ -174,18 +207,19 @@ int main(int argc, char** argv) {
           replay_log ? Nanoseconds::zero()
                      : std::chrono::duration_cast<Nanoseconds>(std::chrono::system_clock::now().time_since_epoch()) -
                            clock->now();
-      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can_interface.empty() ? "can0" : can_interface,
+      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can::can_bus_log_name(can_interface),
                                                       epoch_offset);
     }
 
     can::CanEcuSettings can_settings;
     can_settings.address = static_cast<std::uint8_t>(can_address);
+    can_settings.name = name_value;
     can::CanFramePort can_port;
     std::unique_ptr<can::CanPortIo> can_io;
     if (!can_interface.empty()) {
-      can_port = can::open_socketcan(can_interface);
+      can_port = can::open_can_bus(can_interface);
       can_io = std::make_unique<can::CanPortIo>(can_port, ecu, *clock, can_settings, recorder.get());
-      can_io->processor().send_address_claim();
+      can_io->processor().start_address_claim();
       io.add(*can_io);
     }
 
@@ -213,13 +247,26 @@ int main(int argc, char** argv) {
     if (replay_io && !duration) duration = replay_io->span() + std::chrono::seconds(1);
     std::cerr << "firmware_sim: running at " << rate_hz << " Hz"
               << (lcm_io ? ", LCM channels " + lcm_io->channels().command + "/" + lcm_io->channels().status : "")
-              << (can_io ? ", CAN " + can_interface : "") << (replay_io ? ", replaying " + replay_path : "")
+              << (can_io ? ", CAN " + can_interface + ", " + isobus::describe_name(name_value) : "") << (replay_io ? ", replaying " + replay_path : "")
               << (predictor ? ", tables " + tables_path : ", no tables (manual mode only)") << "\n";
     loop.run(ecu, io, duration, &g_stop);
     std::cerr << "firmware_sim: " << loop.statistics().ticks << " ticks, " << loop.statistics().overruns
               << " overruns, worst step " << std::chrono::duration<double, std::micro>(loop.statistics().worst_step).count()
               << " us\n";
     print_fault_summary(ecu);
+    if (can_io) {
+      const auto& network = can_io->processor().network();
+      const auto& claim = network.claim().counters();
+      std::fprintf(stderr,
+                   "firmware_sim: ISOBUS address %s0x%02X, claims sent %llu, contentions won %llu lost %llu, "
+                   "cannot-claim sent %llu, requests NACKed %llu\n",
+                   network.has_address() ? "" : "none, last ", unsigned{network.address()},
+                   static_cast<unsigned long long>(claim.claims_sent),
+                   static_cast<unsigned long long>(claim.contentions_won),
+                   static_cast<unsigned long long>(claim.contentions_lost),
+                   static_cast<unsigned long long>(claim.cannot_claim_sent),
+                   static_cast<unsigned long long>(network.counters().requests_nacked));
+    }
   } catch (const std::exception& e) {
     std::cerr << "firmware_sim: error: " << e.what() << "\n";
     return 1;

@@ -1,11 +1,12 @@
 // Writes the seed corpora of the fuzz harnesses into fuzz/corpus/<harness>/ from real inputs:
 // the shipped scenes, a small table built by the lookup_builder library, the recorded candump session of
 // the firmware tests (as text and as raw can_frame records), LCM messages encoded by the generated types,
-// and well-formed C API definitions. Run once after a format change:
+// well-formed C API definitions, and complete TP / ETP / BAM transfers as the receiver sees them. Run once after a format change:
 //   build-fuzz/fuzz/seed_corpus_writer fuzz/corpus
 // The corpora are committed; run-fuzz.sh and the replay tests use them as they are.
 #include <linux/can.h>
 
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/isobus/transport_protocol.hpp"
 #include "libspread/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "spread/command_t.hpp"
@@ -91,6 +93,62 @@ void can_seeds(const fs::path& source, const fs::path& out) {
     session.insert(session.end(), one.begin(), one.end());
   }
   write_bytes(out / "can_frames" / "session.bin", session);
+}
+
+// fuzz_transport_protocol input: flag byte, then per frame: PGN selector, source, destination, 8 data bytes,
+// milliseconds to advance. A real sender session talks to the node under test (0x80); every frame that
+// reaches 0x80 is recorded.
+void transport_seeds(const fs::path& out) {
+  namespace iso = spread::firmware::isobus;
+  auto selector = [](std::uint32_t pgn) -> std::uint8_t {
+    if (pgn == iso::kTpConnectionManagementPgn) return 0;
+    if (pgn == iso::kTpDataTransferPgn) return 1;
+    if (pgn == iso::kEtpConnectionManagementPgn) return 2;
+    return 3;
+  };
+  struct Case {
+    const char* name;
+    std::uint8_t flags;
+    std::uint8_t peer;
+    std::uint8_t destination;
+    std::size_t size;
+    int step_ms;
+  };
+  const Case cases[] = {{"tp_100", 0, 0x81, 0x80, 100, 0},      {"tp_1785", 0, 0x81, 0x80, 1785, 0},
+                        {"etp_3000", 0, 0x82, 0x80, 3000, 0},    {"bam_30", 0, 0x83, 0xFF, 30, 50},
+                        {"we_send_tp", 1, 0x81, 0x80, 0, 0},     {"we_send_etp", 2, 0x82, 0x80, 0, 0}};
+  for (const Case& c : cases) {
+    std::vector<std::uint8_t> bytes{c.flags};
+    std::chrono::nanoseconds now{0};
+    iso::TransportProtocol node(0x80, iso::TransportLimits{8192, 8, 16});
+    iso::TransportProtocol peer(c.peer);
+    std::vector<std::uint8_t> data(c.size);
+    for (std::size_t i = 0; i < data.size(); ++i) data[i] = static_cast<std::uint8_t>(i * 13);
+    if (c.size > 0) peer.send({0xCB00, c.peer, c.destination, data}, now);
+    if ((c.flags & 1u) != 0) node.send({0xCB00, 0x80, 0x81, std::vector<std::uint8_t>(100, 0x55)}, now);
+    if ((c.flags & 2u) != 0) node.send({0xCB00, 0x80, 0x82, std::vector<std::uint8_t>(2000, 0x66)}, now);
+    for (int round = 0; round < 2000; ++round) {
+      auto to_node = peer.take_frames();
+      auto to_peer = node.take_frames();
+      if (to_node.empty() && to_peer.empty()) {
+        if (peer.session_count() == 0 && node.session_count() == 0) break;
+        now += std::chrono::milliseconds(c.step_ms > 0 ? c.step_ms : 10);
+        peer.update(now);
+        node.update(now);
+        continue;
+      }
+      for (const auto& f : to_node) {
+        bytes.push_back(selector(f.pgn));
+        bytes.push_back(f.source);
+        bytes.push_back(f.destination);
+        bytes.insert(bytes.end(), f.data.begin(), f.data.end());
+        bytes.push_back(static_cast<std::uint8_t>(c.step_ms));
+        node.handle_frame(f, now);
+      }
+      for (const auto& f : to_peer) peer.handle_frame(f, now);
+    }
+    write_bytes(out / "transport_protocol" / (std::string(c.name) + ".bin"), bytes);
+  }
 }
 
 void lcm_seeds(const fs::path& out) {
@@ -186,6 +244,7 @@ int main(int argc, char** argv) {
     scene_seeds(source, out);
     table_seeds(source, out);
     can_seeds(source, out);
+    transport_seeds(out);
     lcm_seeds(out);
     capi_seeds(out);
   } catch (const std::exception& e) {

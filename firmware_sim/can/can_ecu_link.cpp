@@ -56,11 +56,12 @@ ProcessDataBytes frame_bytes(const can_frame& frame) {
 }  // namespace
 
 CanEcuProcessor::CanEcuProcessor(Ecu& ecu, const Clock& clock, CanFrameSink& tx, const CanEcuSettings& settings)
-    : ecu_(ecu), clock_(clock), tx_(tx), settings_(settings) {}
+    : ecu_(ecu), clock_(clock), tx_(tx), settings_(settings), network_(clock, tx, settings.name, settings.address) {}
 
 void CanEcuProcessor::send(std::uint32_t pgn, std::uint8_t destination, std::uint8_t priority,
                            const std::uint8_t* data) {
-  const IsobusId id{priority, pgn, destination, settings_.address};
+  if (!network_.has_address()) return;  // ISO 11783-5 §4.4.2: nothing but claims without a standing claim
+  const IsobusId id{priority, pgn, destination, network_.address()};
   if (tx_.send(make_frame(encode_id(id), data, 8))) {
     ++counters_.responses_sent;
   } else {
@@ -68,10 +69,12 @@ void CanEcuProcessor::send(std::uint32_t pgn, std::uint8_t destination, std::uin
   }
 }
 
-void CanEcuProcessor::send_address_claim() {
-  std::uint8_t name[8];
-  for (int i = 0; i < 8; ++i) name[i] = static_cast<std::uint8_t>(settings_.name >> (8 * i));
-  send(kAddressClaimedPgn, kGlobalAddress, 6, name);
+void CanEcuProcessor::start_address_claim() { network_.start(); }
+
+void CanEcuProcessor::service() {
+  // Fail safe on losing the address: a spreader nobody can address or supervise closes metering; the task
+  // controller switches it on again once the ECU is back on the bus.
+  if (network_.service()) ecu_.set_work_state(false);
 }
 
 void CanEcuProcessor::handle_read_outcome(ReadOutcome outcome) {
@@ -98,11 +101,18 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
     return;
   }
   const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
-  if (id.source == settings_.address) {
+  // Network management first: another node's claim for our address carries our source address and must
+  // not be mistaken for our own echo below.
+  switch (network_.handle(id, frame)) {
+    case NetworkLink::Verdict::kNotNetwork: break;
+    case NetworkLink::Verdict::kHandled: return;
+    case NetworkLink::Verdict::kMalformed: ecu_.record_fault(Fault::kCanMalformedFrame); return;
+  }
+  if (id.source == network_.address()) {
     ++counters_.frames_not_for_us;  // our own transmission echoed back by the bus
     return;
   }
-  const bool to_us = id.destination == settings_.address;
+  const bool to_us = id.destination == network_.address();
   const bool to_all = id.destination == kGlobalAddress;
   if (!to_us && !to_all) {
     ++counters_.frames_not_for_us;
@@ -127,26 +137,9 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
                           : id.pgn == kGroundBasedSpeedPgn   ? SpeedSource::kGroundBased
                                                              : SpeedSource::kWheelBased);
       return;
-    case kRequestPgn:
-      if (frame.len < 3) {
-        ecu_.record_fault(Fault::kCanMalformedFrame);
-        return;
-      }
-      handle_request(frame);
-      return;
     default:
       ++counters_.frames_not_for_us;
       return;
-  }
-}
-
-void CanEcuProcessor::handle_request(const can_frame& frame) {
-  const std::uint32_t pgn = std::uint32_t{frame.data[0]} | (std::uint32_t{frame.data[1]} << 8) |
-                            (std::uint32_t{frame.data[2]} << 16);
-  if (pgn == kAddressClaimedPgn) {
-    send_address_claim();
-  } else {
-    ++counters_.frames_not_for_us;
   }
 }
 
@@ -253,6 +246,12 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
 }
 
 void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t source, bool addressed_to_us) {
+  // Without a standing address claim the ECU could not answer, and nobody could supervise it: process
+  // data is not acted on (ISO 11783-5 §4.4.2).
+  if (!network_.has_address()) {
+    ++counters_.frames_not_for_us;
+    return;
+  }
   ++counters_.process_data_handled;
   const ProcessData m = decode_process_data(frame_bytes(frame));
   const auto command = static_cast<ProcessDataCommand>(m.command);
@@ -315,7 +314,14 @@ CanPortIo::CanPortIo(CanFramePort& port, Ecu& ecu, const Clock& clock, const Can
     : port_(port), recorder_(recorder), tx_(port, recorder), processor_(ecu, clock, tx_, settings) {}
 
 void CanPortIo::pump(Nanoseconds max_wait) {
+  processor_.service();  // a claim that has stood its 250 ms counts before the frames that follow it
+  if (bus_closed_) {
+    // Nothing will arrive any more: wait out the time like an idle bus instead of spinning on the hang-up.
+    if (max_wait > Nanoseconds::zero()) std::this_thread::sleep_for(max_wait);
+    return;
+  }
   if (max_wait > Nanoseconds::zero() && !port_.wait_readable(max_wait)) return;
+  processor_.service();
   can_frame frame{};
   for (;;) {
     const ReadOutcome outcome = port_.read(frame);
@@ -325,9 +331,11 @@ void CanPortIo::pump(Nanoseconds max_wait) {
     } else if (outcome == ReadOutcome::kTruncated || outcome == ReadOutcome::kOversized) {
       processor_.handle_read_outcome(outcome);
     } else {
-      return;  // nothing pending, peer closed or error: the loop goes on
+      if (outcome == ReadOutcome::kClosed) bus_closed_ = true;
+      break;  // nothing pending, peer closed or error: the loop goes on
     }
   }
+  processor_.service();
 }
 
 CandumpReplayIo::CandumpReplayIo(const CandumpLog& log, CanEcuProcessor& processor, const Clock& clock,

@@ -8,20 +8,22 @@
 
 #include "firmware_sim/can/can_frame_port.hpp"
 #include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/can/network_link.hpp"
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
+#include "firmware_sim/isobus/iso_name.hpp"
 
 namespace spread::firmware::can {
 
 inline constexpr std::uint32_t kRequestPgn = 0xEA00;         // request for a PGN (3 data bytes)
-inline constexpr std::uint32_t kAddressClaimedPgn = 0xEE00;  // address claimed, data = 64-bit NAME
+inline constexpr std::uint32_t kAddressClaimedPgn = isobus::kAddressClaimedPgn;  // data = 64-bit NAME
 
 struct CanEcuSettings {
-  std::uint8_t address = 0x80;   // this ECU's source address
+  std::uint8_t address = 0x80;   // this ECU's preferred source address (the one it claims first)
   std::uint16_t element = 0;     // device element number all DDIs live on
-  // ISO 11783-5 NAME: self-configurable 0, industry group 2 (agriculture), device class 5
-  // (fertilisers), function 0, identity 0x1234, manufacturer 0 (simulator).
-  std::uint64_t name = (std::uint64_t{2} << 60) | (std::uint64_t{5} << 49) | 0x1234u;
+  // ISO 11783-5 NAME: not self-configurable, industry group 2 (agriculture), device class 5
+  // (fertilisers), function 128 (rate control), identity 0x1234, manufacturer 0 (see isobus/iso_name.hpp).
+  std::uint64_t name = isobus::encode_name(isobus::IsoName{});
   // Each speed source is believed for this long after its last valid message (ISO 11783-7 sends them
   // every 100 ms: three missed). Machine selected speed wins over ground-based (radar/GNSS), which wins
   // over wheel-based (wheels slip); a lost source hands over to the next, none left means no speed.
@@ -52,8 +54,16 @@ class CanEcuProcessor {
   // Reports a read that did not yield a frame: truncated/oversized records are malformed input.
   void handle_read_outcome(ReadOutcome outcome);
   void handle_frame(const can_frame& frame);
-  // Broadcasts this ECU's address claim (sent at start and on request).
-  void send_address_claim();
+  // Starts the ISO 11783-5 address claim (a live bus). Until its claim stands the ECU sends nothing else
+  // and ignores process data; see NetworkLink for the mode without a claim (replay).
+  void start_address_claim();
+  // Timers of the network layer (claim settle time, delayed cannot-claim); called by the loop I/O.
+  void service();
+  // False while the ECU has no standing address claim: it then neither answers nor applies process data,
+  // and the work state was switched off when the address was lost. The ECU core reads it to keep metering
+  // closed (metering must not continue without a bus address).
+  bool has_address() const { return network_.has_address(); }
+  const NetworkLink& network() const { return network_; }
 
   const CanLinkCounters& counters() const { return counters_; }
   const CanEcuSettings& settings() const { return settings_; }
@@ -61,7 +71,6 @@ class CanEcuProcessor {
  private:
   void handle_process_data(const can_frame& frame, std::uint8_t source, bool addressed_to_us);
   void handle_speed(const can_frame& frame, SpeedSource source);
-  void handle_request(const can_frame& frame);
   std::optional<std::int32_t> actual_value(std::uint16_t ddi, const EcuStatus& status) const;
   // Applies a set-value; returns the PDACK error bits (0 = accepted).
   std::uint8_t apply_set_value(const ProcessData& message);
@@ -78,6 +87,7 @@ class CanEcuProcessor {
     TravelDirection direction = TravelDirection::kUnknown;
   };
   std::array<SpeedReading, kSpeedSourceCount> speeds_{};
+  NetworkLink network_;
 };
 
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).
@@ -86,12 +96,16 @@ class CanPortIo final : public LoopIo {
   CanPortIo(CanFramePort& port, Ecu& ecu, const Clock& clock, const CanEcuSettings& settings = {},
             CanFrameSink* recorder = nullptr);
   void pump(Nanoseconds max_wait) override;
-  void after_step(const EcuStatus&) override {}
-  int wait_fd() const override { return port_.fd(); }
+  void after_step(const EcuStatus&) override { processor_.service(); }
+  // -1 once the bus has gone away: a closed socket is always "readable" and would make the loop spin.
+  int wait_fd() const override { return bus_closed_ ? -1 : port_.fd(); }
   CanEcuProcessor& processor() { return processor_; }
+  // The other end closed (a spread-canbus that stopped, a socketpair peer that left).
+  bool bus_closed() const { return bus_closed_; }
 
  private:
   CanFramePort& port_;
+  bool bus_closed_ = false;
   CanFrameSink* recorder_;
   TeeSink tx_;
   CanEcuProcessor processor_;

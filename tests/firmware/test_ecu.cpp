@@ -294,7 +294,9 @@ TEST(EcuSafety, SpeedInputsDoNotKeepASilentTaskControllerAlive) {
     if (i % 20 == 0 && i <= 20) ecu.note_task_controller_alive();
     ASSERT_FALSE(ecu.set_ground_speed(3.0, TravelDirection::kForward, 300ms).has_value());
     run_for(ecu, clock, 100ms);
-    if (i == 75) EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0) << "5.6 s after the last TC status: still alive";
+    if (i == 75) {
+      EXPECT_GT(ecu.status().mass_flow_kg_s, 0.0) << "5.6 s after the last TC status: still alive";
+    }
   }
   // 10 s: 8 s since the last status.
   EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <iostream>
@@ -8,7 +9,7 @@
 #include "firmware_sim/can/frame_description.hpp"
 #include "firmware_sim/can/isobus_id.hpp"
 #include "firmware_sim/can/process_data.hpp"
-#include "firmware_sim/can/socketcan.hpp"
+#include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/can/speed_messages.hpp"
 #include "tools/spread_tractor/sessions.hpp"
 
@@ -49,6 +50,31 @@ void drain(CanFramePort& port, Clock::duration wait, std::uint8_t own_address) {
   }
 }
 
+// Asks every node for its address claim (ISO 11783-5 §4.4.3: request for PGN 0xEE00) until the ECU
+// answers, then waits out the 250 ms in which its claim can still be contested (§4.4.2), so that set-points
+// are sent to an ECU that is on the bus and owns its address. The request is repeated because the ECU may
+// join the bus after us.
+bool wait_for_address_claim(CanFramePort& port, std::uint8_t own, std::uint8_t ecu, double timeout_s) {
+  const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s));
+  const std::uint8_t request[8] = {0x00, 0xEE, 0x00, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+  while (Clock::now() < end && !stop_requested()) {
+    port.send(make_frame(encode_id({6, 0xEA00, kGlobalAddress, own}), request, 3));
+    const auto retry = std::min(end, Clock::now() + std::chrono::milliseconds(250));
+    can_frame frame{};
+    while (Clock::now() < retry) {
+      if (!port.wait_readable(std::chrono::duration_cast<std::chrono::nanoseconds>(retry - Clock::now()))) continue;
+      while (port.read(frame) == ReadOutcome::kFrame) {
+        const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
+        if (id.pgn != 0xEE00 || id.source != ecu) continue;
+        std::cout << "rx " << describe_frame(frame) << std::endl;
+        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 int run_can_session(const CanSessionOptions& o) {
@@ -69,9 +95,13 @@ int run_can_session(const CanSessionOptions& o) {
     }
     sets.push_back({static_cast<std::uint16_t>(ddi), static_cast<std::int32_t>(value)});
   }
-  CanFramePort port = open_socketcan(o.interface);
+  CanFramePort port = open_can_bus(o.interface);
   const auto own = static_cast<std::uint8_t>(o.own_address);
   const auto ecu = static_cast<std::uint8_t>(o.ecu_address);
+  if (o.wait_for_ecu_s > 0.0 && !wait_for_address_claim(port, own, ecu, o.wait_for_ecu_s)) {
+    std::cerr << "spread-tractor: warning: no address claim from 0x" << std::hex << int{ecu} << std::dec
+              << " within " << o.wait_for_ecu_s << " s; sending anyway\n";
+  }
   auto send_pd = [&](ProcessDataCommand command, std::uint16_t ddi, std::int32_t value) {
     const ProcessDataBytes bytes = encode_process_data({static_cast<std::uint8_t>(command), 0, ddi, value});
     const can_frame frame = make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, ecu, own}), bytes.data(), 8);
@@ -114,7 +144,7 @@ int run_replay(const ReplayOptions& o) {
     }
     return log.errors.empty() ? kExitOk : kExitFailure;
   }
-  CanFramePort port = open_socketcan(o.interface);
+  CanFramePort port = open_can_bus(o.interface);
   const auto start = Clock::now();
   for (const auto& r : log.records) {
     if (stop_requested()) break;

@@ -1,5 +1,5 @@
 // spread-tractor: the tractor side of firmware_sim. Sends set-points and prints the ECU's status over
-// LCM or over an ISOBUS (SocketCAN), or replays a candump log. Usage examples: docs/can-integration.md
+// LCM or over an ISOBUS (SocketCAN or a spread-canbus socket), or replays a candump log. Usage examples: docs/can-integration.md
 // and docs/messages.md.
 #include <CLI/CLI.hpp>
 
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
 
   CanSessionOptions can_options;
   auto* can = app.add_subcommand("can", "send ISOBUS process data / speed to the ECU and print its answers");
-  can->add_option("--iface", can_options.interface, "SocketCAN interface")->required();
+  can->add_option("--iface", can_options.interface, "SocketCAN interface (can0) or spread-canbus socket (unix:PATH)")->required();
   can->add_option("--ecu", can_options.ecu_address, "ECU source address")->check(CLI::Range(0, 253))->capture_default_str();
   can->add_option("--address", can_options.own_address, "our source address")->check(CLI::Range(0, 253))->capture_default_str();
   can->add_option("--set", can_options.set_values, "set-value DDI=VALUE in raw DDI units (e.g. 6=20000 for 200 kg/ha)");
@@ -64,11 +64,15 @@ int main(int argc, char** argv) {
   can->add_option("--speed", can_options.speed_m_s, "broadcast ground-based speed (PGN 0xFE49) [m/s]");
   can->add_option("--hz", can_options.send_hz, "speed broadcast rate [Hz]")->check(CLI::Range(0.1, 100.0))->capture_default_str();
   can->add_option("--duration", can_options.duration_s, "listen this long for answers [s]")->capture_default_str();
+  can->add_option("--wait-for-ecu", can_options.wait_for_ecu_s,
+                  "first wait this long for the ECU's address claim [s] (0: send at once)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
 
   ReplayOptions replay_options;
   auto* replay = app.add_subcommand("replay", "print a candump log decoded, or send it onto a CAN interface in real time");
   replay->add_option("log", replay_options.log_path, "candump log file")->required()->check(CLI::ExistingFile);
-  replay->add_option("--iface", replay_options.interface, "send onto this SocketCAN interface (default: only print)");
+  replay->add_option("--iface", replay_options.interface, "send onto this SocketCAN interface or unix:PATH bus (default: only print)");
 
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, on_signal);

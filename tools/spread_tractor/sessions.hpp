@@ -44,6 +44,7 @@ struct CanSessionOptions {
   double speed_m_s = -1.0;              // broadcast ground-based speed at send_hz when >= 0
   double send_hz = 10.0;
   double duration_s = 2.0;
+  double wait_for_ecu_s = 3.0;          // wait this long for the ECU's address claim first (0: do not wait)
 };
 
 struct ReplayOptions {

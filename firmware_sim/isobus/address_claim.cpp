@@ -1,0 +1,119 @@
+#include "firmware_sim/isobus/address_claim.hpp"
+
+#include <algorithm>
+
+namespace spread::firmware::isobus {
+
+AddressClaim::AddressClaim(std::uint64_t name, std::uint8_t preferred_address)
+    : name_(name), preferred_(preferred_address) {}
+
+void AddressClaim::queue(ClaimMessage message, Nanoseconds due) { pending_.push_back({message, due}); }
+
+Nanoseconds AddressClaim::cannot_claim_delay() const {
+  // Pseudo-random but reproducible: two functions with different NAMEs (identity numbers differ between
+  // units) usually draw different delays, and a test sees the same delay every run.
+  std::uint64_t x = name_ * 0x9E3779B97F4A7C15ull;
+  x ^= x >> 29;
+  return kCannotClaimDelayUnit * static_cast<std::int64_t>(x & 0xFFu);
+}
+
+void AddressClaim::claim(std::uint8_t address, Nanoseconds now) {
+  address_ = address;
+  state_ = ClaimState::kClaiming;
+  claim_sent_at_ = now;
+  queue({address_, name_}, now);
+}
+
+void AddressClaim::start(Nanoseconds now) {
+  if (state_ != ClaimState::kNotStarted) return;
+  if (preferred_ < kNullAddress) {
+    claim(preferred_, now);
+    return;
+  }
+  lose(now);  // no usable preferred address: try the self-configurable range, else cannot claim
+}
+
+std::optional<std::uint8_t> AddressClaim::next_candidate() const {
+  if (!self_configurable()) return std::nullopt;
+  // First an address nobody has claimed, then one whose holder has a higher NAME (we would win it).
+  // The search starts after the current address so that two losers do not chase the same address.
+  const int span = kSelfConfigurableLast - kSelfConfigurableFirst + 1;
+  const int start = (address_ >= kSelfConfigurableFirst && address_ <= kSelfConfigurableLast)
+                        ? address_ - kSelfConfigurableFirst + 1
+                        : 0;
+  for (const bool allow_weaker_holder : {false, true}) {
+    for (int i = 0; i < span; ++i) {
+      const auto candidate = static_cast<std::uint8_t>(kSelfConfigurableFirst + (start + i) % span);
+      if (candidate == address_) continue;
+      const auto& holder = holders_[candidate];
+      if (!holder) return candidate;
+      if (allow_weaker_holder && *holder > name_) return candidate;
+    }
+  }
+  return std::nullopt;
+}
+
+void AddressClaim::lose(Nanoseconds now) {
+  if (const auto next = next_candidate()) {
+    claim(*next, now);
+    return;
+  }
+  // §4.4.4.3: a function that cannot claim an address says so from the null address and stays silent.
+  state_ = ClaimState::kCannotClaim;
+  address_ = kNullAddress;
+  queue({kNullAddress, name_}, now + cannot_claim_delay());
+}
+
+void AddressClaim::on_address_claimed(std::uint8_t source, std::uint64_t name, Nanoseconds now) {
+  if (source >= kNullAddress) return;  // another function's cannot-claim: it holds nothing
+  holders_[source] = name;
+  if (state_ != ClaimState::kClaiming && state_ != ClaimState::kClaimed) return;
+  if (source != address_) return;
+  // The same NAME at our address is our own claim coming back (a bus with echo): not a contention.
+  if (name == name_) return;
+  if (name_ < name) {
+    // §4.4.3.3: the lower NAME wins; the winner repeats its claim so the loser and every other node see it.
+    ++counters_.contentions_won;
+    queue({address_, name_}, now);
+    return;
+  }
+  ++counters_.contentions_lost;
+  lose(now);
+}
+
+void AddressClaim::on_request_for_claim(Nanoseconds now) {
+  switch (state_) {
+    case ClaimState::kClaiming:
+    case ClaimState::kClaimed:
+      queue({address_, name_}, now);
+      return;
+    case ClaimState::kCannotClaim:
+      queue({kNullAddress, name_}, now + cannot_claim_delay());
+      return;
+    case ClaimState::kNotStarted:
+      return;
+  }
+}
+
+std::vector<ClaimMessage> AddressClaim::poll(Nanoseconds now) {
+  if (state_ == ClaimState::kClaiming && now - claim_sent_at_ >= kClaimSettleTime) state_ = ClaimState::kClaimed;
+  std::vector<ClaimMessage> due;
+  // Stable: equal due times keep their queueing order.
+  std::stable_sort(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) { return a.due < b.due; });
+  auto it = pending_.begin();
+  for (; it != pending_.end() && it->due <= now; ++it) {
+    // A message queued for an address we no longer hold is stale (we lost it meanwhile).
+    if (it->message.source != kNullAddress && it->message.source != address_) continue;
+    if (it->message.source == kNullAddress && state_ != ClaimState::kCannotClaim) continue;
+    due.push_back(it->message);
+    if (it->message.source == kNullAddress) {
+      ++counters_.cannot_claim_sent;
+    } else {
+      ++counters_.claims_sent;
+    }
+  }
+  pending_.erase(pending_.begin(), it);
+  return due;
+}
+
+}  // namespace spread::firmware::isobus

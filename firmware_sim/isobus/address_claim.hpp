@@ -1,0 +1,95 @@
+#pragma once
+// ISO 11783-5 address claim of one control function, as a state machine without I/O: the caller feeds it
+// the address-claimed messages and requests it receives, with the time, and sends what poll() returns.
+//
+//   not started --start()--> claiming --250 ms uncontested--> claimed
+//        claiming/claimed --a lower NAME claims our address--> claiming (next free address, if
+//                                       self-configurable) or cannot claim (cannot-claim message)
+//
+// Only in `claimed` may the function send anything but address claims (§4.4.2: no transmission until
+// 250 ms after a successful claim, to give a contender with a lower NAME time to object).
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace spread::firmware::isobus {
+
+using Nanoseconds = std::chrono::nanoseconds;
+
+inline constexpr std::uint32_t kAddressClaimedPgn = 0xEE00;
+inline constexpr std::uint8_t kNullAddress = 0xFE;    // source of a cannot-claim message
+inline constexpr std::uint8_t kGlobalAddress = 0xFF;
+// Addresses a self-configurable function may take (ISO 11783-5 §4.4.3.4; J1939 "dynamic" range).
+inline constexpr std::uint8_t kSelfConfigurableFirst = 128;
+inline constexpr std::uint8_t kSelfConfigurableLast = 247;
+// The claim stands once it has gone this long without a contender (§4.4.2).
+inline constexpr Nanoseconds kClaimSettleTime = std::chrono::milliseconds(250);
+// A cannot-claim message is delayed by 0.6 ms × a pseudo-random 0..255 (0-153 ms) so that several losers
+// answering the same request do not collide on the bus (§4.4.4.3).
+inline constexpr Nanoseconds kCannotClaimDelayUnit = std::chrono::microseconds(600);
+
+enum class ClaimState { kNotStarted, kClaiming, kClaimed, kCannotClaim };
+
+// One PGN 0xEE00 message to the global address: `source` is the claimed address (kNullAddress for
+// cannot-claim), the data is the NAME.
+struct ClaimMessage {
+  std::uint8_t source = kNullAddress;
+  std::uint64_t name = 0;
+};
+
+struct AddressClaimCounters {
+  std::uint64_t claims_sent = 0;
+  std::uint64_t contentions_won = 0;   // a higher NAME claimed our address: we re-asserted our claim
+  std::uint64_t contentions_lost = 0;  // a lower NAME claimed our address
+  std::uint64_t cannot_claim_sent = 0;
+};
+
+class AddressClaim {
+ public:
+  // `name`: the 64-bit NAME (bit 63 says whether it may choose another address); `preferred_address`:
+  // the address it claims first (0-253).
+  AddressClaim(std::uint64_t name, std::uint8_t preferred_address);
+
+  void start(Nanoseconds now);
+  // An address-claimed message (PGN 0xEE00) from `source` carrying `name`, received at `now`.
+  void on_address_claimed(std::uint8_t source, std::uint64_t name, Nanoseconds now);
+  // A request for PGN 0xEE00 sent to the global address or to our address (the caller filters others).
+  void on_request_for_claim(Nanoseconds now);
+  // Advances the timers and returns the claim messages due now, oldest first.
+  std::vector<ClaimMessage> poll(Nanoseconds now);
+
+  ClaimState state() const { return state_; }
+  // Only a standing claim allows sending (§4.4.2).
+  bool has_address() const { return state_ == ClaimState::kClaimed; }
+  // The address being claimed or held; kNullAddress before start and after losing for good.
+  std::uint8_t address() const { return address_; }
+  std::uint64_t name() const { return name_; }
+  bool self_configurable() const { return (name_ >> 63) != 0; }
+  const AddressClaimCounters& counters() const { return counters_; }
+
+ private:
+  void claim(std::uint8_t address, Nanoseconds now);
+  void lose(Nanoseconds now);
+  void queue(ClaimMessage message, Nanoseconds due);
+  std::optional<std::uint8_t> next_candidate() const;
+  Nanoseconds cannot_claim_delay() const;
+
+  std::uint64_t name_;
+  std::uint8_t preferred_;
+  ClaimState state_ = ClaimState::kNotStarted;
+  std::uint8_t address_ = kNullAddress;
+  Nanoseconds claim_sent_at_{};
+  // The NAME last seen claiming each address (0-253): a self-configurable function skips addresses whose
+  // holder would beat it.
+  std::array<std::optional<std::uint64_t>, 254> holders_{};
+  struct Pending {
+    ClaimMessage message;
+    Nanoseconds due;
+  };
+  std::vector<Pending> pending_;
+  AddressClaimCounters counters_;
+};
+
+}  // namespace spread::firmware::isobus
