@@ -1,6 +1,6 @@
 // firmware_sim: the simulated spreader ECU. Talks LCM (command_t / status_t / heartbeat_t) and ISOBUS
-// process data over SocketCAN, or replays a candump log deterministically. See docs/messages.md and
-// docs/can-integration.md.
+// (address claim, process data) over SocketCAN or a spread-canbus socket, or replays a candump log
+// deterministically. See docs/messages.md and docs/can-integration.md.
 #include <CLI/CLI.hpp>
 #include <lcm/lcm-cpp.hpp>
 
