@@ -72,9 +72,11 @@ void CanEcuProcessor::send(std::uint32_t pgn, std::uint8_t destination, std::uin
 void CanEcuProcessor::start_address_claim() { network_.start(); }
 
 void CanEcuProcessor::service() {
-  // Fail safe on losing the address: a spreader nobody can address or supervise closes metering; the task
-  // controller switches it on again once the ECU is back on the bus.
-  if (network_.service()) ecu_.set_work_state(false);
+  // Fail safe without an address: a spreader nobody can address or supervise closes metering (and on
+  // losing the address its work state goes off); the task controller switches it on again once the ECU
+  // is back on the bus.
+  network_.service();
+  ecu_.set_bus_address(network_.has_address());
 }
 
 void CanEcuProcessor::handle_read_outcome(ReadOutcome outcome) {

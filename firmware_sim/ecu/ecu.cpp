@@ -219,6 +219,15 @@ void Ecu::set_ground_speed_unavailable() {
 
 void Ecu::note_task_controller_alive() { last_task_controller_time_ = clock_.now(); }
 
+void Ecu::set_bus_address(bool has_address) {
+  if (has_bus_address_ && !has_address) {
+    work_state_setpoint_ = false;
+    work_state_owner_ = WorkStateOwner::kNone;
+  }
+  has_bus_address_ = has_address;
+  faults_.set_state(Fault::kNoBusAddress, !has_address, clock_.now());
+}
+
 void Ecu::record_fault(Fault fault) { faults_.record(fault, clock_.now()); }
 
 void Ecu::solve_rpm_for_width() {
@@ -332,7 +341,7 @@ void Ecu::step(double dt_s) {
   const bool requested = work_state_setpoint_ && active != 0 && width_on_m > 0.0 && rate_setpoint_kg_ha_ > 0.0;
   const bool moving_forward = speed_valid && !reverse && speed_in_use_m_s_ > 0.0;
   const bool disc_ok = disc_at_speed();
-  metering_open_ = requested && moving_forward && disc_ok;
+  metering_open_ = requested && moving_forward && disc_ok && has_bus_address_;
   mass_flow_kg_s_ = metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_on_m, speed_in_use_m_s_) : 0.0;
   faults_.set_state(Fault::kSpeedUnavailable, work_state_setpoint_ && !speed_valid, now);
   faults_.set_state(Fault::kDrivingReverse, work_state_setpoint_ && reverse, now);

@@ -47,6 +47,9 @@ class Ecu {
   void set_ground_speed_unavailable();
   // The task controller is alive: its status message (ISO 11783-10, every 2 s) or a set-value from it.
   void note_task_controller_alive();
+  // The CAN link's address claim (ISO 11783-5): without a standing claim nobody can address or supervise
+  // the ECU, so metering stays closed; losing the claim also switches the work state off.
+  void set_bus_address(bool has_address);
 
   // Faults found by a transport before anything reached the ECU (undecodable frames, ...).
   void record_fault(Fault fault);
@@ -104,6 +107,7 @@ class Ecu {
   std::optional<Nanoseconds> last_task_controller_time_;
   bool lcm_lost_ = false;  // the LCM controller owned the work state and fell silent (until heard again)
   bool tc_lost_ = false;   // the same for the task controller
+  bool has_bus_address_ = true;  // no CAN link, or one with a standing address claim
 
   // Ground speed as last measured; usable only until `speed_valid_until_` (none: no valid speed).
   double ground_speed_m_s_ = 0.0;

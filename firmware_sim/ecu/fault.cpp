@@ -26,6 +26,7 @@ std::string_view fault_name(Fault fault) {
     case Fault::kDrivingReverse: return "driving_reverse";
     case Fault::kTaskControllerLost: return "task_controller_lost";
     case Fault::kSequenceJump: return "sequence_jump";
+    case Fault::kNoBusAddress: return "no_bus_address";
   }
   return "unknown_fault";
 }
@@ -38,6 +39,7 @@ bool is_state_fault(Fault fault) {
     case Fault::kSpeedUnavailable:
     case Fault::kDrivingReverse:
     case Fault::kTaskControllerLost:
+    case Fault::kNoBusAddress:
       return true;
     default:
       return false;

@@ -34,8 +34,9 @@ enum class Fault : std::uint8_t {
   kDrivingReverse = 19,       // state: work state on while the tractor reports reverse; metering closed
   kTaskControllerLost = 20,   // state: the task controller owning the work state stopped its status; work state off
   kSequenceJump = 21,         // command sequence far ahead of the last one, not (yet) confirmed by its successor
+  kNoBusAddress = 22,         // state: the ECU has no standing ISO 11783-5 address claim; metering closed
 };
-inline constexpr std::size_t kFaultCount = 22;
+inline constexpr std::size_t kFaultCount = 23;
 
 // Short stable identifier, e.g. "setpoint_out_of_range".
 std::string_view fault_name(Fault fault);

@@ -363,6 +363,26 @@ TEST(EcuSafety, OneSequenceNumberFarAheadCannotStallTheRealSender) {
   EXPECT_EQ(ecu.apply_command(manual_command(std::numeric_limits<std::int64_t>::min())), Fault::kSequenceJump);
 }
 
+TEST(EcuSafety, NoBusAddressNoMetering) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  p.disc_time_constant_s = 0.1;
+  Ecu ecu(clock, p);
+  ASSERT_FALSE(ecu.apply_command(manual_command(1)).has_value());
+  run_for(ecu, clock, 1s);
+  ASSERT_TRUE(ecu.status().work_state_actual);
+  ecu.set_bus_address(false);  // another node won the address claim
+  run_for(ecu, clock, 50ms);
+  EXPECT_FALSE(ecu.status().work_state_actual);
+  EXPECT_FALSE(ecu.status().work_state_setpoint) << "losing the address switches the work state off";
+  EXPECT_TRUE(fault_active(ecu, Fault::kNoBusAddress));
+  ecu.set_bus_address(true);
+  run_for(ecu, clock, 50ms);
+  EXPECT_FALSE(fault_active(ecu, Fault::kNoBusAddress));
+  EXPECT_FALSE(ecu.status().work_state_actual) << "back on the bus, off until switched on again";
+}
+
 TEST(EcuSafety, ZeroWidthIsNotSpreading) {
   ManualClock clock;
   EcuParameters p;
