@@ -1,0 +1,417 @@
+#include "firmware_sim/isobus/tc_server.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <unordered_map>
+
+#include "firmware_sim/can/process_data.hpp"
+
+namespace spread::firmware::isobus {
+namespace {
+
+std::string hex8(std::uint8_t v) {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "0x%02X", v);
+  return buf;
+}
+
+std::string label_text(const std::array<std::uint8_t, 7>& label) {
+  std::string s;
+  char buf[4];
+  for (const std::uint8_t b : label) {
+    std::snprintf(buf, sizeof buf, "%02X", b);
+    s += buf;
+  }
+  return s;
+}
+
+bool is_transport_pgn(std::uint32_t pgn) {
+  return pgn == kTpConnectionManagementPgn || pgn == kTpDataTransferPgn || pgn == kEtpConnectionManagementPgn ||
+         pgn == kEtpDataTransferPgn;
+}
+
+constexpr std::array<std::uint8_t, 7> kNoLabel{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
+
+}  // namespace
+
+const char* to_string(TcClientState state) {
+  switch (state) {
+    case TcClientState::kNone: return "no client";
+    case TcClientState::kConnecting: return "connecting";
+    case TcClientState::kPoolReceiving: return "receiving pool";
+    case TcClientState::kActive: return "active";
+    case TcClientState::kDeactivated: return "deactivated";
+  }
+  return "?";
+}
+
+TcServer::TcServer(TcServerConfig config)
+    // The pool transfer message is the pool plus its sub-command byte; anything larger is refused by the
+    // transport already (abort reason 2), before it fills memory.
+    : config_(config), transport_(0xFE, TransportLimits{config.max_pool_bytes + 1, 8, 16}) {}
+
+void TcServer::start(std::uint8_t address, Nanoseconds now) {
+  started_ = true;
+  set_address(address);
+  next_status_ = now;
+  update(now);
+}
+
+void TcServer::set_address(std::uint8_t address) {
+  address_ = address;
+  transport_.set_address(address);
+}
+
+void TcServer::handle_frame(std::uint32_t pgn, std::uint8_t source, std::uint8_t destination,
+                            std::span<const std::uint8_t> data, Nanoseconds now) {
+  if (!started_ || source == address_) return;
+  const bool for_us = destination == address_ || destination == 0xFF;
+  // Any traffic from the client while it connects proves it alive: a pool transfer of a few hundred
+  // packets must not make it look silent (the client task message only starts once it is connected).
+  if (client_ && *client_ == source && state_ != TcClientState::kActive) client_seen_ = now;
+
+  if (is_transport_pgn(pgn)) {
+    if (!for_us) return;
+    if (data.size() != 8) {
+      ++counters_.malformed_frames;
+      event("malformed transport frame from " + hex8(source) + ": " + std::to_string(data.size()) +
+            " bytes instead of 8");
+      return;
+    }
+    TransportFrame f;
+    f.pgn = pgn;
+    f.source = source;
+    f.destination = destination;
+    std::copy(data.begin(), data.end(), f.data.begin());
+    transport_.handle_frame(f, now);
+    for (TransportMessage& m : transport_.take_received()) {
+      if (m.pgn != kTcProcessDataPgn) continue;
+      if (!m.data.empty() && m.data[0] == static_cast<std::uint8_t>(TcMessage::kPoolTransfer)) {
+        if (!client_ || *client_ != m.source) {
+          ++counters_.other_clients_ignored;
+          event("pool transfer from " + hex8(m.source) + ", which is not the connected client: ignored");
+          continue;
+        }
+        handle_pool(m.source, std::span<const std::uint8_t>(m.data).subspan(1));
+      } else {
+        event("transported PGN 0xCB00 message from " + hex8(m.source) + " is not a pool transfer: ignored");
+      }
+    }
+    update(now);
+    return;
+  }
+
+  if (pgn == kWorkingSetMasterPgn) {
+    // ISO 11783-10 §6.2 / ISO 11783-7: the working-set master announces itself before talking to the TC.
+    if (data.size() != 8) {
+      ++counters_.malformed_frames;
+      event("malformed working-set master message from " + hex8(source));
+      return;
+    }
+    accept_client(source, now);
+    return;
+  }
+
+  if (pgn != kTcProcessDataPgn || destination != address_) return;
+  if (data.size() != 8) {
+    ++counters_.malformed_frames;
+    event("malformed process data frame from " + hex8(source) + ": " + std::to_string(data.size()) +
+          " bytes instead of 8");
+    return;
+  }
+  const std::uint8_t command = data[0] & 0x0F;
+  switch (command) {
+    case 0x0: case 0x1: case 0xF:
+      handle_tc_message(source, data, now);
+      break;
+    case 0x3: case 0xD:
+      handle_process_data(source, data, now);
+      break;
+    default:
+      // Set-values, measurement commands and peer control go from the TC to clients, not back.
+      ++counters_.malformed_frames;
+      event("process data command " + std::to_string(command) + " from " + hex8(source) + " not expected by a TC");
+      break;
+  }
+}
+
+bool TcServer::accept_client(std::uint8_t source, Nanoseconds now) {
+  if (client_ && *client_ == source) return true;
+  if (client_) {
+    ++counters_.other_clients_ignored;
+    event("second client " + hex8(source) + " ignored: this TC serves one working set (" + hex8(*client_) + ")");
+    return false;
+  }
+  client_ = source;
+  client_version_.reset();
+  state_ = TcClientState::kConnecting;
+  client_seen_ = now;
+  event("client " + hex8(source) + " connecting");
+  return true;
+}
+
+void TcServer::handle_tc_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now) {
+  const auto kind = tc_message_kind(data);
+  if (!kind) {
+    ++counters_.malformed_frames;
+    event("unsupported TC message " + hex8(data[0]) + " from " + hex8(source) + ": ignored");
+    return;
+  }
+  if (*kind == TcMessage::kClientTask) {
+    // ISO 11783-10: the client task message every 2 s is what keeps a connected client alive.
+    if (client_ && *client_ == source) client_seen_ = now;
+    return;
+  }
+  if (!accept_client(source, now)) return;
+  switch (*kind) {
+    case TcMessage::kRequestVersion:
+      send_to_client(encode_version(config_.version));
+      // The TC learns the client's capabilities too (ISO 11783-10 §6.4: both sides ask once).
+      if (!client_version_) send_to_client(tc_frame(TcMessage::kRequestVersion));
+      break;
+    case TcMessage::kVersion:
+      client_version_ = decode_version(data);
+      event("client " + hex8(source) + " version " + std::to_string(client_version_->version) + ", " +
+            std::to_string(client_version_->booms) + " boom(s), " + std::to_string(client_version_->sections) +
+            " section(s)");
+      break;
+    case TcMessage::kRequestStructureLabel:
+    case TcMessage::kRequestLocalizationLabel: {
+      // All 0xFF: no pool held, the client must transfer one (ISO 11783-10 §6.6.1). A held pool's label
+      // lets a client that reconnects with the same pool go straight to activation.
+      const bool structure = *kind == TcMessage::kRequestStructureLabel;
+      std::array<std::uint8_t, 7> label = kNoLabel;
+      if (pool_) {
+        for (const DdopObject& o : pool_->objects) {
+          if (const auto* d = std::get_if<DeviceObject>(&o)) {
+            label = structure ? d->structure_label : d->localization_label;
+          }
+        }
+      }
+      send_to_client(encode_label(structure ? TcMessage::kStructureLabel : TcMessage::kLocalizationLabel, label));
+      break;
+    }
+    case TcMessage::kRequestPoolTransfer: {
+      const std::uint32_t size = std::uint32_t{data[1]} | (std::uint32_t{data[2]} << 8) |
+                                 (std::uint32_t{data[3]} << 16) | (std::uint32_t{data[4]} << 24);
+      const bool fits = size <= config_.max_pool_bytes;
+      send_to_client(encode_error_answer(TcMessage::kRequestPoolTransferResponse, fits ? 0 : 1));
+      if (fits) {
+        granted_pool_bytes_ = size;
+        state_ = TcClientState::kPoolReceiving;
+      } else {
+        event("pool transfer of " + std::to_string(size) + " bytes refused: this TC takes at most " +
+              std::to_string(config_.max_pool_bytes));
+      }
+      break;
+    }
+    case TcMessage::kPoolTransfer:
+      // Only a pool of 7 bytes or fewer fits one frame, and none that small is valid; parse_ddop says why.
+      handle_pool(source, data.subspan(1));
+      break;
+    case TcMessage::kActivatePool: {
+      if (data[1] == 0x00) {
+        send_to_client(encode_error_answer(TcMessage::kActivatePoolResponse, 0));
+        state_ = TcClientState::kDeactivated;
+        event("client " + hex8(source) + " deactivated its pool");
+      } else if (data[1] != 0xFF) {
+        ++counters_.malformed_frames;
+        event("activate message with byte 1 = " + hex8(data[1]) + " (neither 0x00 nor 0xFF): ignored");
+      } else if (!pool_) {
+        // Error bit 0: no valid pool to activate (never received, or refused).
+        send_to_client(encode_error_answer(TcMessage::kActivatePoolResponse, 0x01));
+        event("activation refused: no valid pool held for client " + hex8(source));
+      } else {
+        send_to_client(encode_error_answer(TcMessage::kActivatePoolResponse, 0));
+        state_ = TcClientState::kActive;
+        client_seen_ = now;  // from here the client task message is supervised
+        event("pool of client " + hex8(source) + " activated: " + std::to_string(section_elements_.size()) +
+              " section(s)");
+      }
+      break;
+    }
+    default:
+      // Answers only a TC sends (version answer aside) coming from a client: nothing to do.
+      ++counters_.malformed_frames;
+      event("TC message " + hex8(data[0]) + " from client " + hex8(source) + " is one a TC sends: ignored");
+      break;
+  }
+}
+
+void TcServer::handle_pool(std::uint8_t source, std::span<const std::uint8_t> pool_bytes) {
+  TcFrame answer = tc_frame(TcMessage::kPoolTransferResponse);
+  const auto size = static_cast<std::uint32_t>(pool_bytes.size());
+  for (int i = 0; i < 4; ++i) answer[static_cast<std::size_t>(2 + i)] = static_cast<std::uint8_t>(size >> (8 * i));
+  if (state_ != TcClientState::kPoolReceiving) {
+    event("pool from " + hex8(source) + " arrived without a granted transfer request; parsing it anyway");
+  } else if (size != granted_pool_bytes_) {
+    event("pool from " + hex8(source) + " has " + std::to_string(size) + " bytes, " +
+          std::to_string(granted_pool_bytes_) + " were announced");
+  }
+  state_ = TcClientState::kConnecting;
+  // A new pool replaces the held one whether or not it parses: a refused pool cannot be activated.
+  pool_.reset();
+  ddi_elements_.clear();
+  section_elements_.clear();
+  if (size > config_.max_pool_bytes) {
+    answer[1] = 0x02;  // bit 1: not enough memory
+    ++counters_.pools_refused;
+    event("pool from " + hex8(source) + " refused: " + std::to_string(size) + " bytes exceed the limit");
+    send_to_client(answer);
+    return;
+  }
+  DdopParseResult parsed = parse_ddop(pool_bytes);
+  if (!parsed.pool) {
+    answer[1] = 0x01;  // bit 0: error in the pool (ISO 11783-10 object-pool transfer response)
+    ++counters_.pools_refused;
+    event("pool from " + hex8(source) + " refused: " + parsed.error);
+    send_to_client(answer);
+    return;
+  }
+  pool_ = std::move(parsed.pool);
+  index_pool();
+  ++counters_.pools_accepted;
+  answer[1] = 0x00;
+  std::string label;
+  for (const DdopObject& o : pool_->objects) {
+    if (const auto* d = std::get_if<DeviceObject>(&o)) label = label_text(d->structure_label);
+  }
+  event("pool from " + hex8(source) + " accepted: " + std::to_string(size) + " bytes, " +
+        std::to_string(pool_->objects.size()) + " objects, " + std::to_string(section_elements_.size()) +
+        " section(s), structure label " + label);
+  send_to_client(answer);
+}
+
+void TcServer::index_pool() {
+  ddi_elements_.clear();
+  section_elements_.clear();
+  std::unordered_map<std::uint16_t, const DdopObject*> by_id;
+  for (const DdopObject& o : pool_->objects) by_id[object_id(o)] = &o;
+  for (const DdopObject& o : pool_->objects) {
+    const auto* e = std::get_if<DeviceElement>(&o);
+    if (!e) continue;
+    if (e->type == ElementType::kSection) section_elements_.push_back(e->element_number);
+    for (const std::uint16_t child : e->children) {
+      const auto it = by_id.find(child);
+      if (it == by_id.end()) continue;
+      if (const auto* p = std::get_if<DeviceProcessData>(it->second)) ddi_elements_[p->ddi].push_back(e->element_number);
+    }
+  }
+  std::sort(section_elements_.begin(), section_elements_.end());
+  for (auto& [ddi, elements] : ddi_elements_) std::sort(elements.begin(), elements.end());
+}
+
+void TcServer::handle_process_data(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now) {
+  if (!client_ || *client_ != source) {
+    ++counters_.other_clients_ignored;
+    return;
+  }
+  can::ProcessDataBytes bytes{};
+  std::copy(data.begin(), data.end(), bytes.begin());
+  if ((data[0] & 0x0F) == 0xD) {
+    ++counters_.pdacks_received;
+    const auto ack = can::decode_pdack(bytes);
+    if (ack && ack->error_bits != 0) {
+      ++counters_.pdack_errors;
+      event("client " + hex8(source) + " refused command " + std::to_string(ack->acknowledged_command) +
+            " on element " + std::to_string(ack->element) + " DDI " + std::to_string(ack->ddi) + ": error bits " +
+            hex8(ack->error_bits));
+    }
+    return;
+  }
+  const can::ProcessData pd = can::decode_process_data(bytes);
+  as_applied_.push_back({now, source, pd.element, pd.ddi, pd.value});
+  ++counters_.values_logged;
+}
+
+void TcServer::update(Nanoseconds now) {
+  if (!started_) return;
+  transport_.update(now);
+  for (const TransportSessionEnd& e : transport_.take_ended()) {
+    if (e.outcome == TransportOutcome::kCompleted) continue;
+    event(std::string("transport session ") + (e.sending ? "to " : "from ") + hex8(e.peer) + " ended " +
+          (e.outcome == TransportOutcome::kTimedOut ? "by timeout" : "by abort") + " (reason " +
+          std::to_string(static_cast<int>(e.reason)) + ")");
+  }
+  for (const TransportFrame& f : transport_.take_frames()) out_.push_back(f);
+  if (now >= next_status_) {
+    send_status(now);
+    // Keep the 2 s grid; after a long stall start a new one rather than sending a burst.
+    next_status_ += kTcStatusInterval;
+    if (next_status_ <= now) next_status_ = now + kTcStatusInterval;
+  }
+  if (client_ && now - client_seen_ > kTcPartnerTimeout) {
+    ++counters_.client_timeouts;
+    event("client " + hex8(*client_) + " silent for " + std::to_string(kTcPartnerTimeout.count()) + " s (" +
+          (state_ == TcClientState::kActive ? "no client task message" : "connection stalled") +
+          "): disconnected, its pool kept");
+    client_.reset();
+    client_version_.reset();
+    state_ = TcClientState::kNone;
+  }
+}
+
+void TcServer::send_status(Nanoseconds) {
+  TransportFrame f;
+  f.priority = kTcMessagePriority;
+  f.pgn = kTcProcessDataPgn;
+  f.source = address_;
+  f.destination = 0xFF;
+  f.data = encode_tc_status(config_.task_active);
+  out_.push_back(f);
+  ++counters_.status_sent;
+}
+
+void TcServer::send_to_client(const TcFrame& frame) {
+  if (!client_) return;
+  TransportFrame f;
+  f.priority = kTcMessagePriority;
+  f.pgn = kTcProcessDataPgn;
+  f.source = address_;
+  f.destination = *client_;
+  f.data = frame;
+  out_.push_back(f);
+}
+
+std::vector<std::uint16_t> TcServer::elements_for_ddi(std::uint16_t ddi) const {
+  const auto it = ddi_elements_.find(ddi);
+  return it == ddi_elements_.end() ? std::vector<std::uint16_t>{} : it->second;
+}
+
+std::string TcServer::send_process_data(std::uint8_t command, std::uint16_t element, std::uint16_t ddi,
+                                        std::int32_t value) {
+  if (!active()) return std::string("no active client (") + to_string(state_) + ")";
+  if (element > 0x0FFF) return "element " + std::to_string(element) + " does not fit 12 bits";
+  TransportFrame f;
+  f.priority = can::kProcessDataPriority;
+  f.pgn = kTcProcessDataPgn;
+  f.source = address_;
+  f.destination = *client_;
+  f.data = can::encode_process_data({command, element, ddi, value});
+  out_.push_back(f);
+  return "";
+}
+
+std::string TcServer::set_value(std::uint16_t ddi, std::int32_t value) {
+  const auto elements = elements_for_ddi(ddi);
+  if (active() && elements.empty()) return "the client's pool has no process data with DDI " + std::to_string(ddi);
+  return send_process_data(static_cast<std::uint8_t>(can::ProcessDataCommand::kValue),
+                           elements.empty() ? 0 : elements.front(), ddi, value);
+}
+
+std::string TcServer::request_value(std::uint16_t ddi) {
+  const auto elements = elements_for_ddi(ddi);
+  if (active() && elements.empty()) return "the client's pool has no process data with DDI " + std::to_string(ddi);
+  return send_process_data(static_cast<std::uint8_t>(can::ProcessDataCommand::kRequestValue),
+                           elements.empty() ? 0 : elements.front(), ddi, 0);
+}
+
+std::string TcServer::set_value(std::uint16_t element, std::uint16_t ddi, std::int32_t value) {
+  return send_process_data(static_cast<std::uint8_t>(can::ProcessDataCommand::kValue), element, ddi, value);
+}
+
+std::string TcServer::request_value(std::uint16_t element, std::uint16_t ddi) {
+  return send_process_data(static_cast<std::uint8_t>(can::ProcessDataCommand::kRequestValue), element, ddi, 0);
+}
+
+}  // namespace spread::firmware::isobus
