@@ -137,6 +137,9 @@ json_names)
   done
   hasnt "$out.stdout" '"width_m"'
   hasnt "$out.stdout" '"file"'
+  # `passes` is a count wherever it appears (tray, synth, pass_scatter); the column names are `pass_columns`.
+  has "$out.stdout" '"passes": 3,'
+  has "$out.stdout" '"pass_columns": ['
   pass ;;
 *)
   echo "FAIL: unknown case $case_name"; exit 1 ;;
