@@ -5,7 +5,7 @@
 namespace spread::calibration {
 
 // kResidualToScatterLimit = 3: a correct model leaves a residual rms about equal to the scatter of the
-// mean (ratio 1, ±13 % from the estimate of the scatter, plus the model's own sampling of the launch):
+// mean (ratio 1, ±11 % from the estimate of the scatter, plus the model's own sampling of the launch):
 // 0.86 for the example file fitted at its 600 rpm, 1.01 for a synthetic 750 rpm test fitted at 750 rpm,
 // but 12.3 for that test fitted at 600 rpm (docs/field-calibration.md). A ratio of 3 is a residual
 // variance 9 times the tray test's noise — the prediction then misses the pattern by far more than the

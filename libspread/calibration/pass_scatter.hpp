@@ -10,7 +10,8 @@
 // which is what the fit's residual_rms_fraction (sqrt(Σ r_i² / n) over the same trays) comes to when the
 // model is right and only the tray test's noise is left. E[s_i²] = σ_i² whatever the noise's form
 // (relative, counting, floor), so no noise model is assumed. With P passes the estimate has about
-// (P − 1)·(trays holding mass) degrees of freedom: 3 passes over 30 trays, ±13 % (1 sd) in the rms.
+// ν = (P − 1)·(trays holding mass) degrees of freedom, a relative sd of √(1/(2ν)) in the rms: ±11 % for
+// 3 passes over the 20 trays of the example file (less sure when a few full trays dominate the sum).
 #include "libspread/calibration/tray_csv.hpp"
 
 namespace spread::calibration {
