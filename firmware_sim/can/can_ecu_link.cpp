@@ -8,6 +8,7 @@
 #include "firmware_sim/can/ddi.hpp"
 #include "firmware_sim/can/isobus_id.hpp"
 #include "firmware_sim/can/speed_messages.hpp"
+#include "firmware_sim/isobus/spreader_ddop.hpp"
 #include "firmware_sim/ecu/metering.hpp"
 
 namespace spread::firmware::can {
@@ -55,8 +56,56 @@ ProcessDataBytes frame_bytes(const can_frame& frame) {
 
 }  // namespace
 
+namespace {
+
+isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings& settings) {
+  isobus::SpreaderDescription d;
+  d.name = settings.name;
+  d.section_count = ecu.parameters().section_count;
+  d.maximum_width_m = ecu.parameters().width_max_m;
+  d.working_width_m = std::min(settings.nominal_width_m, d.maximum_width_m);
+  const isobus::Ddop pool = isobus::make_spreader_ddop(d);
+  isobus::TcClientSettings tc;
+  tc.version.sections = static_cast<std::uint8_t>(d.section_count);
+  return isobus::TaskControllerClient(isobus::write_ddop(pool),
+                                      std::get<isobus::DeviceObject>(pool.objects.front()).structure_label, tc);
+}
+
+}  // namespace
+
 CanEcuProcessor::CanEcuProcessor(Ecu& ecu, const Clock& clock, CanFrameSink& tx, const CanEcuSettings& settings)
-    : ecu_(ecu), clock_(clock), tx_(tx), settings_(settings), network_(clock, tx, settings.name, settings.address) {}
+    : ecu_(ecu),
+      clock_(clock),
+      tx_(tx),
+      settings_(settings),
+      network_(clock, tx, settings.name, settings.address),
+      transport_(settings.address),
+      tc_client_(make_tc_client(ecu, settings)) {}
+
+void CanEcuProcessor::flush_isobus(Nanoseconds now) {
+  if (!network_.has_address()) return;  // nothing but claims without a standing claim
+  if (transport_.address() != network_.address()) transport_.set_address(network_.address());
+  for (const isobus::TcOutgoing& m : tc_client_.take_outgoing()) {
+    if (m.data.size() <= 8) {
+      std::uint8_t data[8];
+      std::fill(std::begin(data), std::end(data), std::uint8_t{0xFF});
+      std::copy(m.data.begin(), m.data.end(), data);
+      send(m.pgn, m.destination, isobus::kTcMessagePriority, data);
+    } else if (!transport_.send({m.pgn, network_.address(), m.destination, m.data}, now)) {
+      ++counters_.send_failures;  // the client times out and tries again
+    }
+  }
+  transport_.update(now);
+  for (const isobus::TransportFrame& f : transport_.take_frames()) {
+    const IsobusId id{f.priority, f.pgn, f.destination, network_.address()};
+    if (tx_.send(make_frame(encode_id(id), f.data.data(), 8))) {
+      ++counters_.transport_frames_sent;
+    } else {
+      ++counters_.send_failures;
+    }
+  }
+  transport_.take_ended();  // the client learns the outcome from the TC's answer (or its timeout)
+}
 
 void CanEcuProcessor::send(std::uint32_t pgn, std::uint8_t destination, std::uint8_t priority,
                            const std::uint8_t* data) {
@@ -77,6 +126,9 @@ void CanEcuProcessor::service() {
   // is back on the bus.
   network_.service();
   ecu_.set_bus_address(network_.has_address());
+  const Nanoseconds now = clock_.now();
+  tc_client_.update(now);
+  flush_isobus(now);
 }
 
 void CanEcuProcessor::handle_read_outcome(ReadOutcome outcome) {
@@ -121,6 +173,26 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
     return;
   }
   switch (id.pgn) {
+    case isobus::kTpConnectionManagementPgn:
+    case isobus::kTpDataTransferPgn:
+    case isobus::kEtpConnectionManagementPgn:
+    case isobus::kEtpDataTransferPgn: {
+      // ISO 11783-3/-6 transport: the pool transfer's flow control (and any long message to us).
+      isobus::TransportFrame f;
+      f.priority = id.priority;
+      f.pgn = id.pgn;
+      f.source = id.source;
+      f.destination = id.destination;
+      std::fill(f.data.begin(), f.data.end(), std::uint8_t{0xFF});
+      std::copy(frame.data, frame.data + std::min<std::size_t>(frame.len, 8), f.data.begin());
+      const Nanoseconds now = clock_.now();
+      transport_.handle_frame(f, now);
+      for (const isobus::TransportMessage& m : transport_.take_received()) {
+        if (m.pgn == kProcessDataPgn) tc_client_.handle_message(m.source, m.data, now);
+      }
+      flush_isobus(now);
+      return;
+    }
     case kProcessDataPgn:
       if (frame.len != 8) {
         ecu_.record_fault(Fault::kCanMalformedFrame);
@@ -263,11 +335,21 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
     const ProcessDataBytes out = encode_pdack(m, bits);
     send(kProcessDataPgn, source, kProcessDataPriority, out.data());
   };
-  if (command == ProcessDataCommand::kTaskControllerStatus) {
-    // ISO 11783-10: the task controller broadcasts its status every 2 s; it is how a client knows the
-    // TC is still there. No answer is due.
-    ++counters_.task_controller_status;
-    ecu_.note_task_controller_alive();
+  if (command == ProcessDataCommand::kTaskControllerStatus || command == ProcessDataCommand::kTechnicalCapabilities ||
+      command == ProcessDataCommand::kDeviceDescriptor) {
+    // ISO 11783-10 connection messages go to the TC client. The TC status (every 2 s) is also how the
+    // ECU core knows the TC is still there.
+    if (command == ProcessDataCommand::kTaskControllerStatus) {
+      ++counters_.task_controller_status;
+      ecu_.note_task_controller_alive();
+    }
+    const Nanoseconds now = clock_.now();
+    tc_client_.handle_message(source, std::span<const std::uint8_t>(frame.data, 8), now);
+    flush_isobus(now);
+    return;
+  }
+  if (command == ProcessDataCommand::kClientTask) {
+    ++counters_.frames_not_for_us;  // another client's task message
     return;
   }
   if (command == ProcessDataCommand::kAcknowledge) {
@@ -281,7 +363,10 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
     nack(kPdackCommandNotSupported);
     return;
   }
-  if (m.element != settings_.element) {
+  // Each DDI lives on the element the device descriptor object pool gives it; element 0, the device
+  // element, is accepted for every DDI as well, for tools that address the machine as a whole.
+  const auto element = isobus::element_for_ddi(m.ddi);
+  if (m.element != 0 && (!element || m.element != *element)) {
     ecu_.record_fault(Fault::kCanUnknownDdi);
     nack(kPdackInvalidElement);
     return;

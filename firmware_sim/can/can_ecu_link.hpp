@@ -12,6 +12,8 @@
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 #include "firmware_sim/isobus/iso_name.hpp"
+#include "firmware_sim/isobus/tc_client.hpp"
+#include "firmware_sim/isobus/transport_protocol.hpp"
 
 namespace spread::firmware::can {
 
@@ -20,7 +22,9 @@ inline constexpr std::uint32_t kAddressClaimedPgn = isobus::kAddressClaimedPgn; 
 
 struct CanEcuSettings {
   std::uint8_t address = 0x80;   // this ECU's preferred source address (the one it claims first)
-  std::uint16_t element = 0;     // device element number all DDIs live on
+  // The machine as its device descriptor object pool describes it to a task controller: the sections
+  // divide this nominal working width evenly.
+  double nominal_width_m = 24.0;  // [m]
   // ISO 11783-5 NAME: not self-configurable, industry group 2 (agriculture), device class 5
   // (fertilisers), function 128 (rate control), identity 0x1234, manufacturer 0 (see isobus/iso_name.hpp).
   std::uint64_t name = isobus::encode_name(isobus::IsoName{});
@@ -41,6 +45,7 @@ struct CanLinkCounters {
   std::uint64_t frames_ignored = 0;        // standard (11-bit) and remote frames: legal, not ISOBUS messages
   std::uint64_t error_frames = 0;          // error frames reported by the CAN controller
   std::uint64_t task_controller_status = 0;  // TC status messages (process data command 0xE)
+  std::uint64_t transport_frames_sent = 0;   // TP/ETP frames (the pool transfer)
 };
 
 // The speed sources a tractor broadcasts, in order of precedence.
@@ -64,6 +69,9 @@ class CanEcuProcessor {
   // closed (metering must not continue without a bus address).
   bool has_address() const { return network_.has_address(); }
   const NetworkLink& network() const { return network_; }
+  // The task-controller client: connection state, the TC's address, why the last connection ended.
+  const isobus::TaskControllerClient& task_controller_client() const { return tc_client_; }
+  const isobus::TransportProtocol& transport() const { return transport_; }
 
   const CanLinkCounters& counters() const { return counters_; }
   const CanEcuSettings& settings() const { return settings_; }
@@ -75,6 +83,8 @@ class CanEcuProcessor {
   // Applies a set-value; returns the PDACK error bits (0 = accepted).
   std::uint8_t apply_set_value(const ProcessData& message);
   void send(std::uint32_t pgn, std::uint8_t destination, std::uint8_t priority, const std::uint8_t* data);
+  // Sends what the TC client and the transport protocol have queued.
+  void flush_isobus(Nanoseconds now);
 
   Ecu& ecu_;
   const Clock& clock_;
@@ -88,6 +98,8 @@ class CanEcuProcessor {
   };
   std::array<SpeedReading, kSpeedSourceCount> speeds_{};
   NetworkLink network_;
+  isobus::TransportProtocol transport_;
+  isobus::TaskControllerClient tc_client_;
 };
 
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).

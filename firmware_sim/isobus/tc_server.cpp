@@ -34,13 +34,13 @@ constexpr std::array<std::uint8_t, 7> kNoLabel{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xF
 
 }  // namespace
 
-const char* to_string(TcClientState state) {
+const char* tc_connection_state_name(TcConnectionState state) {
   switch (state) {
-    case TcClientState::kNone: return "no client";
-    case TcClientState::kConnecting: return "connecting";
-    case TcClientState::kPoolReceiving: return "receiving pool";
-    case TcClientState::kActive: return "active";
-    case TcClientState::kDeactivated: return "deactivated";
+    case TcConnectionState::kNone: return "no client";
+    case TcConnectionState::kConnecting: return "connecting";
+    case TcConnectionState::kPoolReceiving: return "receiving pool";
+    case TcConnectionState::kActive: return "active";
+    case TcConnectionState::kDeactivated: return "deactivated";
   }
   return "?";
 }
@@ -68,7 +68,7 @@ void TcServer::handle_frame(std::uint32_t pgn, std::uint8_t source, std::uint8_t
   const bool for_us = destination == address_ || destination == 0xFF;
   // Any traffic from the client while it connects proves it alive: a pool transfer of a few hundred
   // packets must not make it look silent (the client task message only starts once it is connected).
-  if (client_ && *client_ == source && state_ != TcClientState::kActive) client_seen_ = now;
+  if (client_ && *client_ == source && state_ != TcConnectionState::kActive) client_seen_ = now;
 
   if (is_transport_pgn(pgn)) {
     if (!for_us) return;
@@ -144,7 +144,7 @@ bool TcServer::accept_client(std::uint8_t source, Nanoseconds now) {
   }
   client_ = source;
   client_version_.reset();
-  state_ = TcClientState::kConnecting;
+  state_ = TcConnectionState::kConnecting;
   client_seen_ = now;
   event("client " + hex8(source) + " connecting");
   return true;
@@ -198,7 +198,7 @@ void TcServer::handle_tc_message(std::uint8_t source, std::span<const std::uint8
       send_to_client(encode_error_answer(TcMessage::kRequestPoolTransferResponse, fits ? 0 : 1));
       if (fits) {
         granted_pool_bytes_ = size;
-        state_ = TcClientState::kPoolReceiving;
+        state_ = TcConnectionState::kPoolReceiving;
       } else {
         event("pool transfer of " + std::to_string(size) + " bytes refused: this TC takes at most " +
               std::to_string(config_.max_pool_bytes));
@@ -212,7 +212,7 @@ void TcServer::handle_tc_message(std::uint8_t source, std::span<const std::uint8
     case TcMessage::kActivatePool: {
       if (data[1] == 0x00) {
         send_to_client(encode_error_answer(TcMessage::kActivatePoolResponse, 0));
-        state_ = TcClientState::kDeactivated;
+        state_ = TcConnectionState::kDeactivated;
         event("client " + hex8(source) + " deactivated its pool");
       } else if (data[1] != 0xFF) {
         ++counters_.malformed_frames;
@@ -223,7 +223,7 @@ void TcServer::handle_tc_message(std::uint8_t source, std::span<const std::uint8
         event("activation refused: no valid pool held for client " + hex8(source));
       } else {
         send_to_client(encode_error_answer(TcMessage::kActivatePoolResponse, 0));
-        state_ = TcClientState::kActive;
+        state_ = TcConnectionState::kActive;
         client_seen_ = now;  // from here the client task message is supervised
         event("pool of client " + hex8(source) + " activated: " + std::to_string(section_elements_.size()) +
               " section(s)");
@@ -242,13 +242,13 @@ void TcServer::handle_pool(std::uint8_t source, std::span<const std::uint8_t> po
   TcFrame answer = tc_frame(TcMessage::kPoolTransferResponse);
   const auto size = static_cast<std::uint32_t>(pool_bytes.size());
   for (int i = 0; i < 4; ++i) answer[static_cast<std::size_t>(2 + i)] = static_cast<std::uint8_t>(size >> (8 * i));
-  if (state_ != TcClientState::kPoolReceiving) {
+  if (state_ != TcConnectionState::kPoolReceiving) {
     event("pool from " + hex8(source) + " arrived without a granted transfer request; parsing it anyway");
   } else if (size != granted_pool_bytes_) {
     event("pool from " + hex8(source) + " has " + std::to_string(size) + " bytes, " +
           std::to_string(granted_pool_bytes_) + " were announced");
   }
-  state_ = TcClientState::kConnecting;
+  state_ = TcConnectionState::kConnecting;
   // A new pool replaces the held one whether or not it parses: a refused pool cannot be activated.
   pool_.reset();
   ddi_elements_.clear();
@@ -343,11 +343,11 @@ void TcServer::update(Nanoseconds now) {
   if (client_ && now - client_seen_ > kTcPartnerTimeout) {
     ++counters_.client_timeouts;
     event("client " + hex8(*client_) + " silent for " + std::to_string(kTcPartnerTimeout.count()) + " s (" +
-          (state_ == TcClientState::kActive ? "no client task message" : "connection stalled") +
+          (state_ == TcConnectionState::kActive ? "no client task message" : "connection stalled") +
           "): disconnected, its pool kept");
     client_.reset();
     client_version_.reset();
-    state_ = TcClientState::kNone;
+    state_ = TcConnectionState::kNone;
   }
 }
 
@@ -380,7 +380,7 @@ std::vector<std::uint16_t> TcServer::elements_for_ddi(std::uint16_t ddi) const {
 
 std::string TcServer::send_process_data(std::uint8_t command, std::uint16_t element, std::uint16_t ddi,
                                         std::int32_t value) {
-  if (!active()) return std::string("no active client (") + to_string(state_) + ")";
+  if (!active()) return std::string("no active client (") + tc_connection_state_name(state_) + ")";
   if (element > 0x0FFF) return "element " + std::to_string(element) + " does not fit 12 bits";
   TransportFrame f;
   f.priority = can::kProcessDataPriority;

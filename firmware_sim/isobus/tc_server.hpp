@@ -31,14 +31,14 @@ namespace spread::firmware::isobus {
 
 inline constexpr std::uint32_t kTcProcessDataPgn = 0xCB00;
 
-enum class TcClientState : std::uint8_t {
+enum class TcConnectionState : std::uint8_t {
   kNone,           // no client yet, or the last one timed out
   kConnecting,     // version / labels exchanged, no valid pool activated yet
   kPoolReceiving,  // pool transfer granted, waiting for the pool
   kActive,         // pool activated: process data flow
   kDeactivated,    // the client deactivated its pool (it may activate again)
 };
-const char* to_string(TcClientState state);
+const char* tc_connection_state_name(TcConnectionState state);
 
 struct TcServerConfig {
   TcVersion version{};                  // what this TC announces (booms, sections, channels it supports)
@@ -90,8 +90,8 @@ class TcServer {
   std::vector<std::string> take_events() { return std::exchange(events_, {}); }
   std::vector<AsAppliedRecord> take_as_applied() { return std::exchange(as_applied_, {}); }
 
-  TcClientState state() const { return state_; }
-  bool active() const { return state_ == TcClientState::kActive; }
+  TcConnectionState state() const { return state_; }
+  bool active() const { return state_ == TcConnectionState::kActive; }
   std::optional<std::uint8_t> client_address() const { return client_; }
   std::optional<TcVersion> client_version() const { return client_version_; }
   // The pool last received and parsed (held across client timeouts).
@@ -129,7 +129,7 @@ class TcServer {
   TransportProtocol transport_;
   Nanoseconds next_status_{};
 
-  TcClientState state_ = TcClientState::kNone;
+  TcConnectionState state_ = TcConnectionState::kNone;
   std::optional<std::uint8_t> client_;
   std::optional<TcVersion> client_version_;
   Nanoseconds client_seen_{};           // last message that keeps the client alive

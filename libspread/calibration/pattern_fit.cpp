@@ -101,6 +101,11 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   check_parameters(result.initial);
   result.measured_fraction = normalised(test.layout_mass_kg);
   const auto n = static_cast<Eigen::Index>(result.measured_fraction.size());
+  // Missing trays (no reading) are left out: residual weight 0, and the prediction is normalised over
+  // the trays that were read, as the measurement is.
+  std::vector<bool> present(result.measured_fraction.size(), true);
+  for (std::size_t i = 0; i < present.size() && i < test.layout_missing.size(); ++i) present[i] = !test.layout_missing[i];
+  const auto present_count = static_cast<Eigen::Index>(std::count(present.begin(), present.end(), true));
   result.fitted_mask = {options.fit_friction, options.fit_drag_diameter, options.fit_angle_offset};
   // Index of each fitted parameter in the full (μ, k, δ) triple.
   std::vector<std::size_t> free;
@@ -109,7 +114,7 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   }
   const auto p_count = static_cast<Eigen::Index>(free.size());
   if (p_count == 0) throw std::invalid_argument("pattern fit: no parameter to fit");
-  if (n <= p_count) throw std::invalid_argument("pattern fit: needs more trays than fitted parameters");
+  if (present_count <= p_count) throw std::invalid_argument("pattern fit: needs more trays than fitted parameters");
   const std::array<double, 3> fixed = as_array(result.initial);
   auto full = [&](const Eigen::VectorXd& v) {
     std::array<double, 3> a = fixed;
@@ -126,7 +131,7 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
       return false;
     }
     double sum = 0.0;
-    for (double v : out) sum += v;
+    for (std::size_t i = 0; i < out.size(); ++i) sum += present[i] ? out[i] : 0.0;
     if (!(sum > 1e-6)) return false;
     for (double& v : out) v /= sum;
     return true;
@@ -145,6 +150,9 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   }
   // Residual i is sqrt(w_i) (y_i − q_i): w_i = 1 in the first round, 1 / v_i (the variance model) after.
   Eigen::VectorXd sqrt_weight = Eigen::VectorXd::Ones(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!present[static_cast<std::size_t>(i)]) sqrt_weight[i] = 0.0;
+  }
   problem.evaluate = [&](const Eigen::VectorXd& v, Eigen::VectorXd& r) {
     std::vector<double> q;
     if (!predicted(full(v), q)) return false;
@@ -170,11 +178,16 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   for (int round = 0; round < rounds; ++round) {
     std::vector<double> q;
     if (!predicted(full(fit.parameters), q)) break;
-    std::vector<double> e(q.size());
-    for (std::size_t i = 0; i < q.size(); ++i) e[i] = result.measured_fraction[i] - q[i];
-    result.variance_model = fit_variance_model(q, e, largest);
+    std::vector<double> q_read, e_read;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      if (!present[i]) continue;
+      q_read.push_back(q[i]);
+      e_read.push_back(result.measured_fraction[i] - q[i]);
+    }
+    result.variance_model = fit_variance_model(q_read, e_read, largest);
     for (Eigen::Index i = 0; i < n; ++i) {
-      sqrt_weight[i] = 1.0 / std::sqrt(result.variance_model.variance(q[static_cast<std::size_t>(i)]));
+      const auto iu = static_cast<std::size_t>(i);
+      sqrt_weight[i] = present[iu] ? 1.0 / std::sqrt(result.variance_model.variance(q[iu])) : 0.0;
     }
     fit = levenberg_marquardt(problem, fit.parameters, ls);
     iterations += fit.iterations;
@@ -190,6 +203,7 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   result.informative_trays = 0;
   double unweighted_sum_of_squares = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
+    if (!present[static_cast<std::size_t>(i)]) continue;
     const double y = result.measured_fraction[static_cast<std::size_t>(i)];
     const double q = result.fitted_fraction.empty() ? 0.0 : result.fitted_fraction[static_cast<std::size_t>(i)];
     if (informative(y, q, largest)) ++result.informative_trays;
@@ -232,7 +246,7 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   }
   result.standard_error = from_array(error);
   result.robust_standard_error = from_array(robust);
-  const double count = static_cast<double>(n);
+  const double count = static_cast<double>(present_count);
   result.residual_rms_fraction = std::sqrt(unweighted_sum_of_squares / count);
   result.residual_rms_kg = result.residual_rms_fraction * test.total_mass_kg();
   result.initial_residual_rms_fraction = std::sqrt(initial_sum_of_squares / count);

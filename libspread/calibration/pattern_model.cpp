@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -61,6 +62,22 @@ PatternSetup pattern_setup_from_table(const tables::TableContents& contents, con
     if (nearest == nullptr || std::abs(run.rpm - rpm) < std::abs(nearest->rpm - rpm)) nearest = &run;
   }
   if (nearest == nullptr) throw std::invalid_argument("material '" + material + "' has no runs in the table");
+  // The fitted material is written as one row per rpm of the table: a tray test at a disc speed the
+  // table does not cover would calibrate rows it says nothing about (and a mistyped --rpm fits a wrong
+  // friction "converged").
+  double low_rpm = nearest->rpm, high_rpm = nearest->rpm;
+  for (const tables::Run& run : contents.runs) {
+    if (run.material != material) continue;
+    low_rpm = std::min(low_rpm, run.rpm);
+    high_rpm = std::max(high_rpm, run.rpm);
+  }
+  constexpr double kRpmTolerance = 1e-6;  // relative: rows are stored as the scene's rpm list
+  if (rpm < low_rpm * (1.0 - kRpmTolerance) || rpm > high_rpm * (1.0 + kRpmTolerance)) {
+    char text[256];
+    std::snprintf(text, sizeof text, "rpm %g is outside the table's range for '%s' (%g to %g rpm)", rpm,
+                  material.c_str(), low_rpm, high_rpm);
+    throw std::invalid_argument(text);
+  }
 
   const scene::Scene scene = scene_of_run(*nearest);
   PatternSetup setup;

@@ -57,7 +57,8 @@ struct PatternSetup {
 
 // From a table's contents: the scene of the material's run nearest in rpm (scene_of_run.hpp), the
 // table's material row and disc height. Throws std::invalid_argument naming an unknown material (and
-// listing the known ones) or a material without runs; scene::SceneError for an unreadable stored scene.
+// listing the known ones), a material without runs or an rpm outside the range of the material's runs;
+// scene::SceneError for an unreadable stored scene.
 PatternSetup pattern_setup_from_table(const tables::TableContents& contents, const std::string& material,
                                       double rpm);
 

@@ -3,6 +3,7 @@
 // to-and-fro and racetrack driving, the CV(W) curves, and the effective working widths — all from the
 // measured trays, through spread::metrics on the tray test's symmetric layout.
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "libspread/calibration/tray_csv.hpp"
@@ -28,6 +29,13 @@ struct TrayTestAnalysis {
   std::vector<double> cv_to_and_fro_curve;
   std::vector<double> cv_racetrack_curve;
 };
+
+// The CV target a technician gives in per cent, as a fraction. Targets are 10–20 % in practice
+// (EN 13739-2 reports the CV against 15 %) and no spreader is uniform to 1 %, so a value below
+// kLeastCvTargetPercent is a fraction typed where a percentage belongs ("0.15" for 15 %): refused with
+// that hint (std::invalid_argument naming `option`), as is a value above 100 %.
+inline constexpr double kLeastCvTargetPercent = 1.0;
+double cv_target_from_percent(double percent, const std::string& option);
 
 // cv_target as a fraction (0.15 = 15 %) in (0, 1]; bout_width_m >= 0 (0: no CV at a single width; a
 // width that is not a whole number of trays is rounded to one, see bout_width_m above).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace spread::calibration {
@@ -137,6 +138,32 @@ double TrayTest::total_mass_kg() const {
   return sum;
 }
 
+int TrayTest::missing_trays() const {
+  return static_cast<int>(std::count(missing.begin(), missing.end(), true));
+}
+
+std::vector<double> TrayTest::missing_positions_m() const {
+  std::vector<double> positions;
+  for (std::size_t i = 0; i < position_m.size() && i < missing.size(); ++i) {
+    if (missing[i]) positions.push_back(position_m[i]);
+  }
+  return positions;
+}
+
+std::vector<double> TrayTest::partly_missing_positions_m() const {
+  std::vector<double> positions;
+  for (std::size_t i = 0; i < position_m.size() && i < missing.size(); ++i) {
+    if (missing[i]) continue;
+    for (const auto& pass : pass_mass_kg) {
+      if (i < pass.size() && std::isnan(pass[i])) {
+        positions.push_back(position_m[i]);
+        break;
+      }
+    }
+  }
+  return positions;
+}
+
 TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
   TrayTest test;
   test.source = source;
@@ -153,6 +180,12 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
   bool have_header = false;
   std::vector<int> row_line;  // source line of each tray, for the spacing messages
 
+  // Spreadsheets save "CSV UTF-8" with a byte-order mark: invisible in the header the error would quote.
+  constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+  if (text.substr(0, kUtf8Bom.size()) == kUtf8Bom) text.remove_prefix(kUtf8Bom.size());
+  if (text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'))) {
+    throw TrayCsvError(source, 1, "the file is UTF-16 text (\"Unicode text\"): save it as CSV (UTF-8 or plain)");
+  }
   std::istringstream in{std::string(text)};
   std::string raw;
   int line_number = 0;
@@ -192,6 +225,7 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
                            "missing mass column: name at least one column *_g (grams) or *_kg, e.g. mass_g or "
                            "pass1_g,pass2_g; header is '" + line + "'");
       }
+      test.pass_mass_kg.resize(mass_columns.size());
       continue;
     }
 
@@ -199,9 +233,14 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
     if (!problem.empty()) throw TrayCsvError(source, line_number, problem);
     const std::vector<std::string>& cells = split_cells.text;
     if (cells.size() != cell_count) {
+      // With ',' separators a decimal comma splits a number in two: more cells than the header names.
+      const bool comma_hint = separator == ',' && cells.size() > cell_count;
       throw TrayCsvError(source, line_number,
                          "expected " + std::to_string(cell_count) + " cells as in the header, found " +
-                             std::to_string(cells.size()));
+                             std::to_string(cells.size()) +
+                             (comma_hint ? " (decimal commas? with ',' separators '0,221' is two cells: write "
+                                           "0.221, or save the file with ';' separators)"
+                                         : ""));
     }
     auto number = [&](std::size_t column, const std::string& what) {
       std::string cell = trim(cells[column]);
@@ -228,13 +267,21 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
     };
     const double position = number(position_column, "position_m");
     double sum_kg = 0.0;
+    int read = 0;
     for (std::size_t c = 0; c < mass_columns.size(); ++c) {
+      const std::string& cell = cells[mass_columns[c].index];
+      if (cell.empty() || lower(cell) == "na") {
+        test.pass_mass_kg[c].push_back(std::numeric_limits<double>::quiet_NaN());
+        ++test.missing_cells;
+        continue;
+      }
       const double mass = number(mass_columns[c].index, test.mass_columns[c]);
       if (mass < 0.0) {
-        throw TrayCsvError(source, line_number,
-                           test.mass_columns[c] + ": negative mass " + cells[mass_columns[c].index]);
+        throw TrayCsvError(source, line_number, test.mass_columns[c] + ": negative mass " + cell);
       }
+      test.pass_mass_kg[c].push_back(mass * mass_columns[c].to_kg);
       sum_kg += mass * mass_columns[c].to_kg;
+      ++read;
     }
     if (!test.position_m.empty() && !(position > test.position_m.back())) {
       throw TrayCsvError(source, line_number,
@@ -242,7 +289,8 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
                              format_m(test.position_m.back()) + " (list the trays from left to right)");
     }
     test.position_m.push_back(position);
-    test.mass_kg.push_back(sum_kg / static_cast<double>(mass_columns.size()));
+    test.mass_kg.push_back(read > 0 ? sum_kg / read : 0.0);
+    test.missing.push_back(read == 0);
     row_line.push_back(line_number);
   }
 
@@ -261,7 +309,7 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
     if (std::abs(step - spacing) > kPositionTolerance_m) {
       throw TrayCsvError(source, row_line[ku],
                          "non-uniform tray spacing: " + format_m(step) + " m from the previous tray, but " +
-                             format_m(spacing) + " m between the first two (a missing tray? enter it with mass 0)");
+                             format_m(spacing) + " m between the first two (a missing tray? enter its row with NA as the mass)");
     }
   }
   test.tray_width_m = (test.position_m.back() - test.position_m.front()) / (trays - 1);
@@ -284,12 +332,24 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
   test.layout.tray_width_m = w;
   test.layout.tray_count = count;
   test.layout_mass_kg.assign(static_cast<std::size_t>(count), 0.0);
+  test.layout_missing.assign(static_cast<std::size_t>(count), false);
+  long first_index = 0;
   for (int k = 0; k < trays; ++k) {
     const auto ku = static_cast<std::size_t>(k);
-    const long index = std::lround((test.position_m[ku] - test.layout.left_edge_m()) / w - 0.5);
-    test.layout_mass_kg[static_cast<std::size_t>(std::clamp(index, 0L, static_cast<long>(count - 1)))] = test.mass_kg[ku];
+    const long index = std::clamp(std::lround((test.position_m[ku] - test.layout.left_edge_m()) / w - 0.5), 0L,
+                                  static_cast<long>(count - 1));
+    if (k == 0) first_index = index;
+    test.layout_mass_kg[static_cast<std::size_t>(index)] = test.mass_kg[ku];
+    test.layout_missing[static_cast<std::size_t>(index)] = test.missing[ku];
   }
   test.padded_trays = count - trays;
+  test.padded_left = static_cast<int>(first_index);
+  if (test.missing_trays() > trays - kMinimumTrays) {
+    throw TrayCsvError(source, 0,
+                       std::to_string(test.missing_trays()) + " of " + std::to_string(trays) +
+                           " trays are missing (NA or empty in every pass): need at least " +
+                           std::to_string(kMinimumTrays) + " with a reading");
+  }
 
   if (!(test.total_mass_kg() > 0.0)) throw TrayCsvError(source, 0, "no mass in any tray");
   return test;

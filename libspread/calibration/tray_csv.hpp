@@ -8,7 +8,10 @@
 //   ...
 //
 // Cells may be quoted as spreadsheets export them (RFC 4180: "3", a separator or '#' inside quotes, ""
-// for a quote); with ';' or tab separators a decimal comma ("0,221") is read as a decimal point.
+// for a quote); with ';' or tab separators a decimal comma ("0,221") is read as a decimal point. A UTF-8
+// byte-order mark (spreadsheets' "CSV UTF-8") is skipped. A mass cell that is empty or `NA` is a missing
+// reading (a tray knocked over, a bag lost): a tray missing in every pass is left out of the CVs and the
+// fit; a tray missing in some passes is the mean of the others.
 // Columns (separator ',' — or ';' / tab when the header uses it):
 //   position_m (or x_m)  tray centre, lateral, metres from the tractor centre line, left negative;
 //   one or more mass columns named *_g (grams) or *_kg (kilograms): one per pass, averaged per tray;
@@ -18,7 +21,8 @@
 // and at least one mass column; every row the header's cell count; numbers that parse completely and are
 // finite; masses >= 0; positions strictly increasing with one uniform spacing (within 1 mm); the
 // tray centres on the half-tray grid of the centre line (centres at multiples of the spacing, or
-// midway between), so the pattern can be overlapped about x = 0; at least kMinimumTrays trays; some mass.
+// midway between), so the pattern can be overlapped about x = 0; at least kMinimumTrays trays with a
+// reading; some mass.
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -44,15 +48,26 @@ struct TrayTest {
   std::vector<std::string> mass_columns;    // the pass columns, as named in the header
   double tray_width_m = 0.5;                // the spacing of the tray centres
   std::vector<double> position_m;           // tray centres as read (ascending)
-  std::vector<double> mass_kg;              // per tray, mean over the passes
+  std::vector<double> mass_kg;              // per tray, mean over the passes read (0 for a missing tray)
+  // Per pass (mass column) and tray as read, kg; NaN where the cell was empty or NA.
+  std::vector<std::vector<double>> pass_mass_kg;
+  std::vector<bool> missing;                // per tray as read: no reading in any pass
+  int missing_cells = 0;                    // empty or NA mass cells, of missing trays too
   // The same trays on the symmetric layout the metrics use (centre line x = 0): trays missing on the
   // shorter side are added with zero mass, so a one-sided or off-centre row of trays is still overlapped
   // about the centre line.
   metrics::TrayLayout layout;
   std::vector<double> layout_mass_kg;
+  std::vector<bool> layout_missing;         // per layout tray: a missing tray (padded trays are not missing)
   int padded_trays = 0;                     // trays added with zero mass
+  int padded_left = 0;                      // of which on the left (x < 0) side
 
   double total_mass_kg() const;
+  int missing_trays() const;                // trays with no reading in any pass
+  bool has_missing_trays() const { return missing_trays() > 0; }
+  // Positions (m) of the trays with no reading in any pass, and of those read in some passes only.
+  std::vector<double> missing_positions_m() const;
+  std::vector<double> partly_missing_positions_m() const;
 };
 
 TrayTest parse_tray_csv(std::string_view text, const std::string& source);

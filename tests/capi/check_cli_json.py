@@ -3,7 +3,8 @@
 every key issue 2 names for that command (types and plausible values), printing "ok" or the first
 problem (exit 1).
 
-  predict    throw_width_m, working_width_m {to_and_fro, racetrack}, cv_percent, mean_radius_m,
+  predict    throw_width_m, working_width_to_and_fro_m, working_width_racetrack_m, cv_to_and_fro_percent,
+             mean_radius_m,
              radial_width_m, and with --repeat the median time_per_prediction_us
   trajectory landing_position [x, y, z] (m, z on the ground), flight_time (s), steps
   inspect    materials[].name with their rpm rows and sample counts (EXPECT_* environment variables
@@ -43,26 +44,29 @@ def number(obj, key, where, positive=False):
 
 
 def check_predict(out, args):
-    for key in ("throw_width_m", "cv_percent", "mean_radius_m", "radial_width_m"):
+    for key in ("throw_width_m", "cv_to_and_fro_percent", "mean_radius_m", "radial_width_m"):
         number(out, key, "predict", positive=True)
-    widths = out.get("working_width_m")
-    if not isinstance(widths, dict):
-        fail(f"predict: 'working_width_m' is not an object: {widths!r}")
-    for key in ("to_and_fro", "racetrack"):
-        number(widths, key, "predict.working_width_m", positive=True)
-        if widths[key] > out["throw_width_m"] + 1e-9:
-            fail(f"predict: working width {key} {widths[key]} m exceeds the throw width {out['throw_width_m']} m")
-    if out["cv_percent"] > 1000:
-        fail(f"predict: cv_percent {out['cv_percent']} implausible")
+    # One name per quantity across the commands (`calibrate tray` writes the same keys).
+    widths = {}
+    for mode in ("to_and_fro", "racetrack"):
+        key = f"working_width_{mode}_m"
+        widths[mode] = number(out, key, "predict", positive=True)
+        if widths[mode] > out["throw_width_m"] + 1e-9:
+            fail(f"predict: {key} {widths[mode]} m exceeds the throw width {out['throw_width_m']} m")
+        number(out, f"working_width_{mode}_se_m", "predict", positive=True)
+    if out["cv_to_and_fro_percent"] > 1000:
+        fail(f"predict: cv_to_and_fro_percent {out['cv_to_and_fro_percent']} implausible")
     # Uncertainty, crossings, the CV(W) curve and the wider bands it allows, per overlap.
-    for key in ("throw_width_se_m", "cv_se_percent"):
+    for key in ("throw_width_se_m", "cv_to_and_fro_se_percent"):
         number(out, key, "predict", positive=True)
-    for key in ("working_width_se_m", "cv_target_crossings", "wider_bands_within_target_m"):
+    for key in ("cv_target_crossings", "wider_bands_within_target_m"):
         if not isinstance(out.get(key), dict) or set(out[key]) != {"to_and_fro", "racetrack"}:
             fail(f"predict: '{key}' is not an object with to_and_fro and racetrack: {out.get(key)!r}")
     curve = out.get("cv_curve")
-    if not isinstance(curve, dict) or len(curve.get("bout_width_m", [])) != len(curve.get("to_and_fro_percent", [None])):
-        fail(f"predict: 'cv_curve' malformed: {curve!r}")
+    if not isinstance(curve, list) or not curve or not all(
+            isinstance(p, dict) and {"bout_width_m", "cv_to_and_fro_percent", "cv_racetrack_percent"} <= set(p)
+            for p in curve):
+        fail(f"predict: 'cv_curve' is not a list of {{bout_width_m, cv_to_and_fro_percent, cv_racetrack_percent}}: {curve!r}")
     for mode, bands in out["wider_bands_within_target_m"].items():
         for band in bands:
             if not (isinstance(band, list) and len(band) == 2 and widths[mode] < band[0] <= band[1]):

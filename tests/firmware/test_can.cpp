@@ -16,6 +16,9 @@
 #include "firmware_sim/can/socketcan.hpp"
 #include "firmware_sim/can/speed_messages.hpp"
 #include "firmware_sim/can/virtual_can_bus.hpp"
+#include "firmware_sim/isobus/ddop.hpp"
+#include "firmware_sim/isobus/tc_messages.hpp"
+#include "firmware_sim/isobus/transport_protocol.hpp"
 
 namespace spread::firmware::can {
 namespace {
@@ -239,7 +242,14 @@ class VirtualBus : public ::testing::Test {
     }
     std::vector<can_frame> out;
     can_frame f{};
-    while (tractor().read(f) == ReadOutcome::kFrame) out.push_back(f);
+    while (tractor().read(f) == ReadOutcome::kFrame) {
+      // The ECU's task-controller client answers the TC status with its connection handshake (this
+      // fixture's TC never answers it): kept apart from the answers the tests look at.
+      const IsobusId id = decode_id(f.can_id & CAN_EFF_MASK);
+      const bool handshake = id.pgn == isobus::kWorkingSetMasterPgn ||
+                             (id.pgn == kProcessDataPgn && isobus::tc_message_kind({f.data, 8}).has_value());
+      (handshake ? connection_frames_ : out).push_back(f);
+    }
     return out;
   }
 
@@ -273,6 +283,7 @@ class VirtualBus : public ::testing::Test {
 
   CanFramePort& tractor() { return pair_.second; }
 
+  std::vector<can_frame> connection_frames_;  // the ECU's TC-client handshake frames
   std::optional<double> live_speed_m_s_;  // < 0: the tractor's speed broadcasts have stopped
   bool live_tc_status_ = true;
   int live_ticks_ = 0;
@@ -413,6 +424,84 @@ TEST_F(VirtualBus, SilentTaskControllerSwitchesTheWorkStateOff) {
   send_pd(ProcessDataCommand::kValue, 289, 1);
   run(1);
   EXPECT_EQ(request(141), 1);
+}
+
+// The ISO 11783-10 connection, with this test as the task controller: the ECU hands over its device
+// descriptor object pool by TP, activates it, and then takes set-points on the pool's elements.
+TEST_F(VirtualBus, TaskControllerReceivesActivatesAndDrivesThePool) {
+  isobus::TransportProtocol tp(kTractor);
+  auto tc_send = [&](const isobus::TcFrame& f) {
+    ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kEcu, kTractor}), f.data(), 8)));
+  };
+  auto last_connection_frame = [&]() -> std::array<std::uint8_t, 8> {
+    EXPECT_FALSE(connection_frames_.empty());
+    std::array<std::uint8_t, 8> b{};
+    if (!connection_frames_.empty()) std::copy(connection_frames_.back().data, connection_frames_.back().data + 8, b.begin());
+    return b;
+  };
+  send_tc_status();
+  run(1);
+  ASSERT_EQ(connection_frames_.size(), 2u);
+  EXPECT_EQ(decode_id(connection_frames_[0].can_id & CAN_EFF_MASK).pgn, isobus::kWorkingSetMasterPgn);
+  EXPECT_EQ(last_connection_frame()[0], 0x00) << "request version";
+  tc_send(isobus::encode_version({}));
+  run(1);
+  EXPECT_EQ(last_connection_frame()[0], 0x01) << "request structure label";
+  tc_send(isobus::encode_label(isobus::TcMessage::kStructureLabel, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}));
+  run(1);
+  const auto transfer_request = last_connection_frame();
+  ASSERT_EQ(transfer_request[0], 0x41) << "request object-pool transfer";
+  const std::uint32_t size = transfer_request[1] | (transfer_request[2] << 8) | (transfer_request[3] << 16) |
+                             (std::uint32_t{transfer_request[4]} << 24);
+  tc_send(isobus::encode_error_answer(isobus::TcMessage::kRequestPoolTransferResponse, 0));
+  // The pool by TP: the TC's side of the protocol answers the ECU's RTS and data packets.
+  std::vector<isobus::TransportMessage> received;
+  for (int tick = 0; tick < 200 && received.empty(); ++tick) {
+    for (const can_frame& f : run(1)) {
+      const IsobusId id = decode_id(f.can_id & CAN_EFF_MASK);
+      isobus::TransportFrame t{id.priority, id.pgn, id.source, id.destination, {}};
+      std::copy(f.data, f.data + 8, t.data.begin());
+      tp.handle_frame(t, clock_.now());
+    }
+    tp.update(clock_.now());
+    for (const auto& t : tp.take_frames()) {
+      ASSERT_TRUE(tractor().send(make_frame(encode_id({t.priority, t.pgn, t.destination, kTractor}), t.data.data(), 8)));
+    }
+    received = tp.take_received();
+  }
+  ASSERT_EQ(received.size(), 1u) << "the pool arrived";
+  ASSERT_EQ(received[0].data.size(), size + 1);
+  EXPECT_EQ(received[0].data[0], 0x61);
+  const isobus::DdopParseResult pool =
+      isobus::parse_ddop(std::span<const std::uint8_t>(received[0].data).subspan(1));
+  ASSERT_TRUE(pool.pool.has_value()) << pool.error;
+  int sections = 0;
+  for (const auto& o : pool.pool->objects) {
+    if (const auto* e = std::get_if<isobus::DeviceElement>(&o); e && e->type == isobus::ElementType::kSection) ++sections;
+  }
+  EXPECT_EQ(sections, 8);
+  tc_send(isobus::encode_error_answer(isobus::TcMessage::kPoolTransferResponse, 0));
+  run(1);
+  EXPECT_EQ(last_connection_frame()[0], 0x81) << "activate";
+  tc_send(isobus::encode_error_answer(isobus::TcMessage::kActivatePoolResponse, 0));
+  run(2);
+  EXPECT_TRUE(ecu_io_.processor().task_controller_client().connected());
+  EXPECT_EQ(last_connection_frame()[0], 0xFF) << "client task message";
+
+  // Set-points on the pool's elements: rate on the bin (2), sections 1-4 on the boom (1).
+  go_live(3.0);
+  send_pd(ProcessDataCommand::kValue, 6, 25000, 2);
+  send_pd(ProcessDataCommand::kValue, 66, 24000, 1);
+  send_pd(ProcessDataCommand::kValue, 389, 7500000, 3);
+  send_pd(ProcessDataCommand::kValue, 290, static_cast<std::int32_t>(0xFFFF0055u), 1);
+  send_pd(ProcessDataCommand::kValue, 289, 1, 0);
+  run(100);
+  send_pd(ProcessDataCommand::kRequestValue, 161, 0, 1);
+  EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF0055u) << "sections 1-4 on, 5-8 off";
+  EXPECT_EQ(request(141), 1);
+  // A DDI on an element that does not carry it is refused.
+  send_pd(ProcessDataCommand::kRequestValue, 6, 0, 1);
+  EXPECT_EQ(pdack_errors(6), kPdackInvalidElement);
 }
 
 TEST_F(VirtualBus, StandardAndRemoteFramesOfOtherNodesAreNoFault) {

@@ -106,7 +106,7 @@ TEST(TcServer, BroadcastsItsStatusEveryTwoSeconds) {
   }
   EXPECT_EQ(status, 3);  // t = 0, 2, 4 s
   EXPECT_EQ(h.to_client.front().data[4], 0x01);  // task active
-  EXPECT_EQ(h.tc.state(), TcClientState::kNone);
+  EXPECT_EQ(h.tc.state(), TcConnectionState::kNone);
 }
 
 TEST(TcServer, ConnectsTransfersParsesAndActivatesThePool) {
@@ -250,7 +250,7 @@ TEST(TcServer, SilentClientIsDroppedAndReconnectsWithItsHeldPool) {
     h.advance(milliseconds(100));
   }
   EXPECT_FALSE(h.tc.active());
-  EXPECT_EQ(h.tc.state(), TcClientState::kNone);
+  EXPECT_EQ(h.tc.state(), TcConnectionState::kNone);
   EXPECT_EQ(h.tc.counters().client_timeouts, 1u);
   EXPECT_NE(h.tc.set_value(6, 1), "");
 
@@ -272,9 +272,9 @@ TEST(TcServer, SilentClientIsDroppedAndReconnectsWithItsHeldPool) {
 TEST(TcServer, ClientThatStallsWhileConnectingIsDropped) {
   Harness h;
   h.send(tc_frame(TcMessage::kRequestVersion));
-  EXPECT_EQ(h.tc.state(), TcClientState::kConnecting);
+  EXPECT_EQ(h.tc.state(), TcConnectionState::kConnecting);
   h.advance(milliseconds(6100));
-  EXPECT_EQ(h.tc.state(), TcClientState::kNone);
+  EXPECT_EQ(h.tc.state(), TcConnectionState::kNone);
   // A second node may connect now.
   h.tc.handle_frame(kTcProcessDataPgn, 0x90, kTc, tc_frame(TcMessage::kRequestVersion), h.now);
   EXPECT_EQ(h.tc.client_address(), 0x90);

@@ -289,3 +289,43 @@ TEST_F(PatternFit, ModelIsSmoothInTheParameters) {
   EXPECT_GT(big, 0.0);
   EXPECT_NEAR(small / big, 0.5, 0.02);
 }
+
+TEST_F(PatternFit, RpmOutsideTheTableIsRefused) {
+  // The table has rows at 500 and 600 rpm: a tray test at 3000 rpm (or 450) is not one it can calibrate.
+  try {
+    cal::pattern_setup_from_table(*contents_, "Urea", 3000.0);
+    FAIL() << "3000 rpm must be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("rpm 3000 is outside the table's range for 'Urea' (500 to 600 rpm)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(cal::pattern_setup_from_table(*contents_, "Urea", 450.0), std::invalid_argument);
+  EXPECT_NO_THROW(cal::pattern_setup_from_table(*contents_, "Urea", 550.0));
+}
+
+TEST_F(PatternFit, MissingTrayIsLeftOutOfTheFit) {
+  // The fullest tray knocked over: marked missing, the fit gives what the whole test gives (within a
+  // standard error); entered as 0 it has to explain a hole the pattern does not have.
+  cal::PatternFitOptions options = fast_options();
+  options.fit_angle_offset = false;
+  const cal::PatternFitResult whole = cal::fit_pattern(*setup_, *test_, options);
+  std::size_t fullest = 0;
+  for (std::size_t i = 0; i < test_->layout_mass_kg.size(); ++i) {
+    if (test_->layout_mass_kg[i] > test_->layout_mass_kg[fullest]) fullest = i;
+  }
+  cal::TrayTest zero = *test_;  // the layout is the row of trays here (64 trays, none padded)
+  zero.mass_kg[fullest] = zero.layout_mass_kg[fullest] = 0.0;
+  cal::TrayTest missing = zero;
+  missing.missing[fullest] = missing.layout_missing[fullest] = true;
+  const cal::PatternFitResult left_out = cal::fit_pattern(*setup_, missing, options);
+  const cal::PatternFitResult as_zero = cal::fit_pattern(*setup_, zero, options);
+  report(left_out);
+  report(as_zero);
+  EXPECT_TRUE(left_out.converged);
+  EXPECT_LT(std::abs(left_out.fitted.friction_wall - whole.fitted.friction_wall), whole.standard_error.friction_wall);
+  EXPECT_LT(std::abs(left_out.fitted.drag_diameter_factor - whole.fitted.drag_diameter_factor),
+            whole.standard_error.drag_diameter_factor);
+  EXPECT_EQ(left_out.informative_trays, whole.informative_trays - 1);
+  EXPECT_GT(as_zero.residual_rms_fraction, 2.0 * left_out.residual_rms_fraction);
+}

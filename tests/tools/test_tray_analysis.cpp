@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "libspread/calibration/tray_analysis.hpp"
 
@@ -65,4 +67,17 @@ TEST(TrayAnalysis, WidthIsReportedAsTheWholeTraysUsed) {
   EXPECT_EQ(a.cv_racetrack, exact.cv_racetrack);
   EXPECT_EQ(a.cv_to_and_fro, exact.cv_to_and_fro);
   EXPECT_NEAR(cal::analyse_tray_test(ramp(), 0.15, 1.3).bout_width_m, 1.5, 1e-12);
+}
+
+TEST(TrayAnalysis, CvTargetIsAPercentage) {
+  EXPECT_NEAR(cal::cv_target_from_percent(15.0, "--cv-target"), 0.15, 1e-15);
+  // 0.15 typed for 15 %: refused with the hint, never a target of 0.15 % that no width meets.
+  try {
+    cal::cv_target_from_percent(0.15, "--cv-target");
+    FAIL() << "0.15 % must be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("for 15 % write --cv-target 15"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(cal::cv_target_from_percent(150.0, "--cv-target"), std::invalid_argument);
+  EXPECT_THROW(cal::cv_target_from_percent(-5.0, "--cv-target"), std::invalid_argument);
 }

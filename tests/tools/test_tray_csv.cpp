@@ -130,3 +130,21 @@ TEST(TrayCsv, BadQuotingNamesTheLine) {
             std::string::npos);
   EXPECT_NE(error_of("\"position_m,mass_g\n" + rows).find("t.csv:1: header: unterminated quote"), std::string::npos);
 }
+
+TEST(TrayCsv, Utf8ByteOrderMarkIsSkipped) {
+  // "CSV UTF-8" from a spreadsheet starts with EF BB BF: invisible, and before this the header was refused.
+  const cal::TrayTest t = cal::parse_tray_csv(
+      "\xEF\xBB\xBFposition_m,mass_g\n-1.0,1\n-0.5,2\n0.0,3\n0.5,2\n1.0,1\n", "bom.csv");
+  EXPECT_EQ(t.mass_kg.size(), 5u);
+  EXPECT_NE(error_of(std::string("\xFF\xFE", 2) + "position_m,mass_g\n").find("UTF-16"), std::string::npos);
+}
+
+TEST(TrayCsv, DecimalCommaHintInUnquotedCells) {
+  // With ',' separators an unquoted 0,5 splits into two cells: the row has more cells than the header.
+  const std::string rows = "-0.5,1\n0.0,1\n0.5,1\n1.0,1\n";
+  const std::string message = error_of("position_m,mass_g\n-1,0,0,5\n" + rows);
+  EXPECT_NE(message.find("t.csv:2: expected 2 cells as in the header, found 4 (decimal commas?"), std::string::npos)
+      << message;
+  // Fewer cells is a short row, not a decimal comma.
+  EXPECT_EQ(error_of("position_m,mass_g,pass2_g\n-1.0,1\n" + rows).find("decimal commas"), std::string::npos);
+}

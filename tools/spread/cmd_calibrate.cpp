@@ -5,9 +5,12 @@
 //   pattern  fit friction, drag-diameter factor and launch-angle offset of a material to a tray test and
 //            write the calibrated material into a NEW table file (the original is only read)
 // Every command prints a short report, or JSON with --json. Bad input → a message naming it on stderr,
-// exit code 2 (for a CSV: file and line).
+// exit code 2 (for a CSV: file and line). A run that cannot complete (a refused fit, a plot that cannot
+// be written) → exit code 1, after the report.
 #include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,8 +18,11 @@
 #include <nlohmann/json.hpp>
 
 #include "libspread/calibration/calibrated_table.hpp"
+#include "libspread/calibration/fit_acceptance.hpp"
+#include "libspread/calibration/pass_scatter.hpp"
 #include "libspread/calibration/pattern_fit.hpp"
 #include "libspread/calibration/rate_calibration.hpp"
+#include "libspread/calibration/rate_plausibility.hpp"
 #include "libspread/calibration/synthetic_tray_test.hpp"
 #include "libspread/calibration/tray_analysis.hpp"
 #include "libspread/calibration/tray_csv.hpp"
@@ -24,6 +30,7 @@
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/output_paths.hpp"
 
 namespace {
 
@@ -39,6 +46,18 @@ constexpr double kDegPerRad = 180.0 / spread::kPi;
 
 // JSON has no infinity: an empty bout's CV (+inf) is written as null.
 json finite_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+// The report is printed, then the command fails: a refused fit, plots that could not be written.
+class FailedAfterReport : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
 
 // Runs `body`, mapping the failure classes to exit codes and one stderr line naming the problem.
 template <typename Body>
@@ -85,24 +104,27 @@ void run_rate(const RateOptions& o) {
     throw BadInput("a second catch needs all of --mass2, --time2 and --gate2");
   }
   const bool two_point = second_given == 3;
-  const cal::MeteringModel model =
-      two_point ? cal::metering_from_two_catches(first, {o.mass2_kg, o.time2_s, o.gate2}) : cal::metering_from_catch(first);
+  const std::optional<cal::CatchTest> second =
+      two_point ? std::optional<cal::CatchTest>(cal::CatchTest{o.mass2_kg, o.time2_s, o.gate2}) : std::nullopt;
+  const cal::MeteringModel model = two_point ? cal::metering_from_two_catches(first, *second) : cal::metering_from_catch(first);
   const double current = std::isnan(o.current_gate) ? o.gate : o.current_gate;
   const cal::RateSetting s = cal::rate_setting(model, o.target_rate_kg_ha, o.width_m, o.speed_km_h, current);
+  const std::vector<std::string> warnings = cal::rate_warnings(first, second, s);
   if (o.json) {
     json out{{"model", two_point ? "two-point line" : "line through zero"},
              {"flow_factor_kg_s_per_unit", model.flow_factor_kg_s_per_unit},
              {"zero_opening", model.zero_opening},
              {"catch_mass_flow_kg_s", cal::catch_mass_flow_kg_s(first)},
              {"target_rate_kg_ha", o.target_rate_kg_ha},
-             {"working_width_m", o.width_m},
+             {"bout_width_m", o.width_m},
              {"speed_km_h", o.speed_km_h},
              {"required_mass_flow_kg_s", s.required_mass_flow_kg_s},
              {"required_gate_opening", s.required_gate_opening},
              {"current_gate_opening", s.current_gate_opening},
              {"current_mass_flow_kg_s", s.current_mass_flow_kg_s},
              {"current_rate_kg_ha", s.current_rate_kg_ha},
-             {"rate_error_percent", 100.0 * s.rate_error}};
+             {"rate_error_percent", 100.0 * s.rate_error},
+             {"warnings", warnings}};
     std::cout << out.dump(2) << "\n";
     return;
   }
@@ -112,6 +134,7 @@ void run_rate(const RateOptions& o) {
               o.target_rate_kg_ha, o.width_m, o.speed_km_h, s.required_mass_flow_kg_s, s.required_gate_opening);
   std::printf("gate at %.2f spreads %.1f kg/ha: %+.1f %% against the target\n", s.current_gate_opening,
               s.current_rate_kg_ha, 100.0 * s.rate_error);
+  for (const std::string& w : warnings) std::printf("warning: %s\n", w.c_str());
 }
 
 // ---------------------------------------------------------------------------------------------- tray
@@ -124,18 +147,55 @@ struct TrayOptions {
   bool json = false;
 };
 
+std::string positions_text(const std::vector<double>& positions_m) {
+  std::string text;
+  for (std::size_t i = 0; i < positions_m.size() && i < 8; ++i) {
+    text += (i > 0 ? ", " : "") + format("%.2f", positions_m[i]);
+  }
+  if (positions_m.size() > 8) text += ", ...";
+  return text + " m";
+}
+
+// What the report says about missing readings (empty when there are none).
+std::vector<std::string> missing_notes(const cal::TrayTest& t) {
+  const std::vector<double> missing = t.missing_positions_m(), partly = t.partly_missing_positions_m();
+  std::vector<std::string> notes;
+  if (!missing.empty()) {
+    notes.push_back(std::to_string(missing.size()) + " tray(s) missing (NA or empty in every pass) at " +
+                    positions_text(missing) + ": left out of the CVs and the fit, not counted as empty");
+  }
+  if (!partly.empty()) {
+    notes.push_back(std::to_string(partly.size()) + " tray(s) missing in some passes at " +
+                    positions_text(partly) + ": the mean of the passes read");
+  }
+  return notes;
+}
+
+json pass_scatter_json(const cal::PassScatter& p) {
+  if (!p.available) return nullptr;
+  return {{"passes", p.passes},
+          {"trays", p.trays},
+          {"rms_one_pass_g", p.rms_one_pass_g},
+          {"rms_one_pass_fraction", p.rms_one_pass_fraction},
+          {"rms_mean_fraction", p.rms_mean_fraction}};
+}
+
 json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
   json curve = json::array();
   for (std::size_t i = 0; i < a.widths_m.size(); ++i) {
-    curve.push_back({{"width_m", a.widths_m[i]},
+    curve.push_back({{"bout_width_m", a.widths_m[i]},
                      {"cv_to_and_fro_percent", finite_or_null(100.0 * a.cv_to_and_fro_curve[i])},
                      {"cv_racetrack_percent", finite_or_null(100.0 * a.cv_racetrack_curve[i])}});
   }
-  json out{{"file", t.source},
+  json out{{"tray_test", t.source},
            {"trays", t.mass_kg.size()},
            {"tray_width_m", t.tray_width_m},
-           {"passes", t.mass_columns},
+           {"passes", t.mass_columns.size()},
+           {"pass_columns", t.mass_columns},
            {"padded_trays", t.padded_trays},
+           {"missing_trays_m", t.missing_positions_m()},
+           {"partly_missing_trays_m", t.partly_missing_positions_m()},
+           {"pass_scatter", pass_scatter_json(cal::pass_scatter(t))},
            {"total_mass_g", 1e3 * a.total_mass_kg},
            {"throw_width_m", a.throw_width_m},
            {"cv_target_percent", 100.0 * a.cv_target},
@@ -174,20 +234,51 @@ std::vector<std::string> tray_warnings(const cal::TrayTest& t, const cal::TrayTe
                   a.requested_bout_width_m, t.tray_width_m, a.bout_width_m);
     warnings.emplace_back(text);
   }
+  if (t.padded_trays > 0) {
+    // The overlap needs the pattern on both sides of the centre line; what was not measured is taken
+    // as empty, which is only true when the throw does not reach there.
+    const int right = t.padded_trays - t.padded_left;
+    std::string sides;
+    if (t.padded_left > 0) sides = std::to_string(t.padded_left) + " on the left";
+    if (right > 0) sides += (sides.empty() ? "" : ", ") + std::to_string(right) + " on the right";
+    warnings.push_back("the trays do not cover both sides alike: " + std::to_string(t.padded_trays) +
+                       " empty tray(s) were added (" + sides +
+                       ") to centre the layout on the tractor; if the spread reaches there, the CVs and working "
+                       "widths are wrong — lay trays across the whole throw on both sides");
+  }
   return warnings;
 }
 
+// Runs the plots; a failure is kept (the report is printed first) rather than thrown.
+template <typename Plot>
+std::string plot_or_error(Plot plot) {
+  try {
+    plot();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
 void run_tray(const TrayOptions& o) {
+  const double cv_target = cal::cv_target_from_percent(o.cv_target_percent, "--cv-target");
+  if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
   const cal::TrayTest t = cal::read_tray_csv(o.file);
-  const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, o.cv_target_percent / 100.0, o.width_m);
+  const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, cv_target, o.width_m);
   const std::vector<std::string> warnings = tray_warnings(t, a);
+  const std::vector<std::string> notes = missing_notes(t);
+  const cal::PassScatter scatter = cal::pass_scatter(t);
   json written = json::object();
-  if (!o.plot_prefix.empty()) plot_tray(t, a, o.plot_prefix, written);
+  const std::string plot_error =
+      o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, written); });
   if (o.json) {
     json out = tray_json(t, a);
     out["warnings"] = warnings;
+    out["notes"] = notes;
     out["written"] = written;
+    if (!plot_error.empty()) out["plot_error"] = plot_error;
     std::cout << out.dump(2) << "\n";
+    if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
     return;
   }
   std::printf("%s: %zu trays of %.2f m, %zu pass(es), %.1f g in total, throw width %.1f m\n", t.source.c_str(),
@@ -197,9 +288,17 @@ void run_tray(const TrayOptions& o) {
                 100.0 * a.cv_racetrack);
   }
   for (const std::string& w : warnings) std::printf("warning: %s\n", w.c_str());
-  std::printf("effective working width (CV <= %.0f %%): %.2f m to-and-fro, %.2f m racetrack\n", 100.0 * a.cv_target,
+  for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
+  std::printf("effective working width (CV <= %.3g %%): %.2f m to-and-fro, %.2f m racetrack\n", 100.0 * a.cv_target,
               a.working_width_to_and_fro_m, a.working_width_racetrack_m);
+  if (scatter.available) {
+    std::printf("pass-to-pass scatter: rms %.2f g per tray between the %d passes (%.3f %% of a pass per tray; "
+                "%.3f %% for their mean)\n",
+                scatter.rms_one_pass_g, scatter.passes, 100.0 * scatter.rms_one_pass_fraction,
+                100.0 * scatter.rms_mean_fraction);
+  }
   for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+  if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
 }
 
 // ------------------------------------------------------------------------------------------- pattern
@@ -274,7 +373,6 @@ json fit_json(const cal::PatternFitResult& f) {
 std::vector<std::string> fit_warnings(const cal::PatternFitResult& f) {
   static const char* names[3] = {"friction", "drag", "offset"};
   std::vector<std::string> warnings;
-  if (!f.converged) warnings.push_back("the fit did not converge: " + f.stop_reason);
   for (std::size_t i = 0; i < 3; ++i) {
     for (std::size_t j = i + 1; j < 3; ++j) {
       if (f.fitted_mask[i] && f.fitted_mask[j] && std::abs(f.correlation[i][j]) > 0.95) {
@@ -290,10 +388,48 @@ std::vector<std::string> fit_warnings(const cal::PatternFitResult& f) {
   return warnings;
 }
 
+void plot_pattern(const PatternOptions& o, const cal::TrayTest& test, const cal::PatternFitResult& fit,
+                  const std::string& material_name, double cv_target, json& written) {
+  // Both series in grams of the tray test: the fitted fractions scaled to the measured total.
+  std::vector<double> predicted_kg(fit.fitted_fraction.size());
+  const double total_kg = test.total_mass_kg();
+  for (std::size_t i = 0; i < predicted_kg.size(); ++i) predicted_kg[i] = fit.fitted_fraction[i] * total_kg;
+  spread::plot::TransverseOptions plot_options;
+  plot_options.series_label = "predicted (calibrated)";
+  plot_options.second_tray_mass_kg = test.layout_mass_kg;
+  plot_options.second_label = "measured";
+  const std::string transverse = o.plot_prefix + "_transverse.png";
+  spread::plot::write_transverse_png(predicted_kg, test.layout, transverse,
+                                     material_name + " at " + std::to_string(static_cast<int>(o.rpm)) +
+                                         " rpm: measured vs predicted",
+                                     plot_options);
+  written["transverse"] = transverse;
+  const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, cv_target, 0.0);
+  std::vector<double> tf(measured.widths_m.size()), rt(measured.widths_m.size());
+  spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kToAndFro, tf);
+  spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kRacetrack, rt);
+  const std::string cv = o.plot_prefix + "_cv.png";
+  spread::plot::write_cv_curve_png(measured.widths_m, tf, rt, measured.cv_target, cv,
+                                   material_name + ": CV(W) predicted");
+  written["cv"] = cv;
+  const std::string cv_measured = o.plot_prefix + "_cv_measured.png";
+  spread::plot::write_cv_curve_png(measured.widths_m, measured.cv_to_and_fro_curve, measured.cv_racetrack_curve,
+                                   measured.cv_target, cv_measured, "tray test: CV(W) measured");
+  written["cv_measured"] = cv_measured;
+}
+
 void run_pattern(const PatternOptions& o) {
   if (o.output.empty()) throw BadInput("--output: give the path of the new table file");
   if (o.samples < 16 || o.samples > 100000) throw BadInput("--samples must be in [16, 100000]");
   if (!(o.kernel_m >= 0.0)) throw BadInput("--kernel must be >= 0 m");
+  const double cv_target = cal::cv_target_from_percent(o.cv_target_percent, "--cv-target");
+  // Before the fit (which takes seconds): the folders the results go to.
+  spread::cli::require_output_folder("--output", o.output);
+  if (std::filesystem::exists(o.output)) {
+    throw BadInput("--output " + o.output + ": the file exists; the calibrated table is always a new file — choose "
+                   "another name");
+  }
+  if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
   cal::PatternFitOptions options;
   parse_fit_list(o.fit, options);
   options.model.sample_count = o.samples;
@@ -301,91 +437,105 @@ void run_pattern(const PatternOptions& o) {
 
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
-  // Before the fit (which takes seconds): a table of DEM rows is refused unless --allow-analytic.
+  // Before the fit: a table of DEM rows is refused unless --allow-analytic.
   const std::vector<double> dem_rpm = cal::non_analytic_rows(contents, o.material);
   if (!dem_rpm.empty() && !o.allow_analytic) throw BadInput(cal::dem_rows_message(o.material, dem_rpm));
   const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
   const cal::PatternFitResult fit = cal::fit_pattern(setup, test, options);
+  const cal::PassScatter scatter = cal::pass_scatter(test);
+  const cal::FitAcceptance acceptance = cal::assess_fit(fit, scatter);
   std::vector<std::string> warnings = fit_warnings(fit);
+  warnings.insert(warnings.end(), acceptance.warnings.begin(), acceptance.warnings.end());
   if (!dem_rpm.empty()) {
     warnings.push_back("the table's rows of '" + o.material + "' came from the DEM; the fit used the analytic "
                        "launch model and the calibrated material's rows are analytic (--allow-analytic)");
   }
+  const std::vector<std::string> notes = missing_notes(test);
 
   json report = fit_json(fit);
   report["tray_test"] = o.trays;
   report["rpm"] = o.rpm;
   report["material"] = o.material;
-  report["samples"] = o.samples;
+  report["sample_count"] = o.samples;
   report["kernel_sigma_m"] = o.kernel_m > 0.0 ? o.kernel_m : 0.5 * test.tray_width_m;
+  report["pass_scatter"] = pass_scatter_json(scatter);
+  report["residual_to_scatter"] = scatter.available ? json(acceptance.residual_to_scatter) : json(nullptr);
+  report["missing_trays_m"] = test.missing_positions_m();
+  report["partly_missing_trays_m"] = test.partly_missing_positions_m();
+  report["accepted"] = acceptance.accepted();
+  report["refusals"] = acceptance.refusals;
 
-  cal::CalibratedTableRequest request;
-  request.original_path = o.tables;
-  request.output_path = o.output;
-  request.material = o.material;
-  request.new_material_name = o.name.empty() ? cal::calibrated_material_name(o.material, cal::utc_date_today()) : o.name;
-  request.parameters = fit.fitted;
-  request.calibration_json = report.dump();
-  request.allow_analytic_for_dem = o.allow_analytic;
-  const cal::CalibratedTableSummary summary = cal::write_calibrated_table(request);
-
+  const std::string material_name =
+      o.name.empty() ? cal::calibrated_material_name(o.material, cal::utc_date_today()) : o.name;
+  std::optional<cal::CalibratedTableSummary> summary;
   json written = json::object();
-  if (!o.plot_prefix.empty()) {
-    // Both series in grams of the tray test: the fitted fractions scaled to the measured total.
-    std::vector<double> predicted_kg(fit.fitted_fraction.size());
-    const double total_kg = test.total_mass_kg();
-    for (std::size_t i = 0; i < predicted_kg.size(); ++i) predicted_kg[i] = fit.fitted_fraction[i] * total_kg;
-    spread::plot::TransverseOptions plot_options;
-    plot_options.series_label = "predicted (calibrated)";
-    plot_options.second_tray_mass_kg = test.layout_mass_kg;
-    plot_options.second_label = "measured";
-    const std::string transverse = o.plot_prefix + "_transverse.png";
-    spread::plot::write_transverse_png(predicted_kg, test.layout, transverse,
-                                       request.new_material_name + " at " + std::to_string(static_cast<int>(o.rpm)) +
-                                           " rpm: measured vs predicted",
-                                       plot_options);
-    written["transverse"] = transverse;
-    const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, o.cv_target_percent / 100.0, 0.0);
-    std::vector<double> tf(measured.widths_m.size()), rt(measured.widths_m.size());
-    spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kToAndFro, tf);
-    spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kRacetrack, rt);
-    const std::string cv = o.plot_prefix + "_cv.png";
-    spread::plot::write_cv_curve_png(measured.widths_m, tf, rt, measured.cv_target, cv,
-                                     request.new_material_name + ": CV(W) predicted");
-    written["cv"] = cv;
-    const std::string cv_measured = o.plot_prefix + "_cv_measured.png";
-    spread::plot::write_cv_curve_png(measured.widths_m, measured.cv_to_and_fro_curve, measured.cv_racetrack_curve,
-                                     measured.cv_target, cv_measured, "tray test: CV(W) measured");
-    written["cv_measured"] = cv_measured;
+  std::string plot_error;
+  // A refused fit writes nothing: neither the table nor plots that would look like a calibration.
+  if (acceptance.accepted()) {
+    cal::CalibratedTableRequest request;
+    request.original_path = o.tables;
+    request.output_path = o.output;
+    request.material = o.material;
+    request.new_material_name = material_name;
+    request.parameters = fit.fitted;
+    request.calibration_json = report.dump();
+    request.allow_analytic_for_dem = o.allow_analytic;
+    summary = cal::write_calibrated_table(request);
+    if (!o.plot_prefix.empty()) {
+      plot_error = plot_or_error([&] { plot_pattern(o, test, fit, material_name, cv_target, written); });
+    }
   }
 
   if (o.json) {
     report["warnings"] = warnings;
-    report["output"] = {{"path", summary.output_path},
-                        {"material", summary.material},
-                        {"rpm_rows", summary.rpm_rows},
-                        {"samples_per_run", summary.samples_per_run}};
+    report["notes"] = notes;
+    if (summary) {
+      report["output"] = {{"path", summary->output_path},
+                          {"material", summary->material},
+                          {"rpm_rows", summary->rpm_rows},
+                          {"samples_per_run", summary->samples_per_run}};
+    } else {
+      report["output"] = nullptr;
+    }
     report["written"] = written;
+    if (!plot_error.empty()) report["plot_error"] = plot_error;
     std::cout << report.dump(2) << "\n";
-    return;
+  } else {
+    std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
+                fit.iterations, fit.converged ? "converged" : "NOT converged");
+    auto line = [&](const char* label, double value, double error, bool fitted, const char* unit) {
+      if (fitted) std::printf("  %-22s %8.4f ± %.4f%s\n", label, value, error, unit);
+      else std::printf("  %-22s %8.4f (fixed)%s\n", label, value, unit);
+    };
+    line("friction on vanes", fit.fitted.friction_wall, fit.standard_error.friction_wall, fit.fitted_mask[0], "");
+    line("drag diameter factor", fit.fitted.drag_diameter_factor, fit.standard_error.drag_diameter_factor,
+         fit.fitted_mask[1], "");
+    line("launch angle offset", fit.fitted.launch_angle_offset_rad * kDegPerRad,
+         fit.standard_error.launch_angle_offset_rad * kDegPerRad, fit.fitted_mask[2], " °");
+    std::printf("  residual: rms %.2f g per tray (%.3f %% of the mass per tray; %.3f %% before the fit)\n",
+                1e3 * fit.residual_rms_kg, 100.0 * fit.residual_rms_fraction, 100.0 * fit.initial_residual_rms_fraction);
+    if (scatter.available) {
+      std::printf("  pass-to-pass scatter of the tray test: %.3f %% of the mass per tray for the mean of %d passes; "
+                  "residual / scatter %.2f (warning above %.0f)\n",
+                  100.0 * scatter.rms_mean_fraction, scatter.passes, acceptance.residual_to_scatter,
+                  cal::kResidualToScatterLimit);
+    }
+    for (const std::string& n : notes) std::printf("  missing: %s\n", n.c_str());
+    for (const std::string& w : warnings) std::printf("  warning: %s\n", w.c_str());
+    for (const std::string& r : acceptance.refusals) std::printf("  refused: %s\n", r.c_str());
+    if (summary) {
+      std::printf("wrote '%s' (%zu rpm rows) into %s\n", summary->material.c_str(), summary->rpm_rows.size(),
+                  summary->output_path.c_str());
+    } else {
+      std::printf("nothing written: %s was not created\n", o.output.c_str());
+    }
+    for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
   }
-  std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
-              fit.iterations, fit.converged ? "converged" : "NOT converged");
-  auto line = [&](const char* label, double value, double error, bool fitted, const char* unit) {
-    if (fitted) std::printf("  %-22s %8.4f ± %.4f%s\n", label, value, error, unit);
-    else std::printf("  %-22s %8.4f (fixed)%s\n", label, value, unit);
-  };
-  line("friction on vanes", fit.fitted.friction_wall, fit.standard_error.friction_wall, fit.fitted_mask[0], "");
-  line("drag diameter factor", fit.fitted.drag_diameter_factor, fit.standard_error.drag_diameter_factor,
-       fit.fitted_mask[1], "");
-  line("launch angle offset", fit.fitted.launch_angle_offset_rad * kDegPerRad,
-       fit.standard_error.launch_angle_offset_rad * kDegPerRad, fit.fitted_mask[2], " °");
-  std::printf("  residual: rms %.2f g per tray (%.2f %% of the mass per tray; %.2f %% before the fit)\n",
-              1e3 * fit.residual_rms_kg, 100.0 * fit.residual_rms_fraction, 100.0 * fit.initial_residual_rms_fraction);
-  for (const std::string& w : warnings) std::printf("  warning: %s\n", w.c_str());
-  std::printf("wrote '%s' (%zu rpm rows) into %s\n", summary.material.c_str(), summary.rpm_rows.size(),
-              summary.output_path.c_str());
-  for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+  if (!acceptance.accepted()) {
+    throw FailedAfterReport("the fit is refused (" + std::to_string(acceptance.refusals.size()) +
+                            " reason(s) in the report above); nothing written");
+  }
+  if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
 }
 
 // --------------------------------------------------------------------------------------------- synth
@@ -400,11 +550,14 @@ struct SynthOptions {
   double relative_noise_percent = 8.0, granule_mass_g = 0.0, floor_g = 0.0, resolution_g = 0.001;
   int samples = 1024;
   std::uint64_t seed = 1;
+  bool force = false;
   bool json = false;
 };
 
 void run_synth(const SynthOptions& o) {
   if (o.output.empty()) throw BadInput("--output: give the path of the CSV to write");
+  spread::cli::require_output_folder("--output", o.output);
+  spread::cli::refuse_existing_file("--output", o.output, o.force, "--force");
   if (o.samples < 16 || o.samples > 100000) throw BadInput("--samples must be in [16, 100000]");
   if (!(o.tray_width_m > 0.0) || !(o.half_width_m >= 2.5 * o.tray_width_m)) {
     throw BadInput("--tray-width must be > 0 and --half-width at least 2.5 tray widths");
@@ -486,7 +639,7 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   auto* t = sub->add_subcommand("tray", "tray test: CV at a bout width, CV(W), effective working widths");
   t->add_option("file", tray.file, "tray-test CSV (position_m and one *_g or *_kg column per pass)")->required();
   t->add_option("--width", tray.width_m, "bout width W (m) for the CVs (default: none)");
-  t->add_option("--cv-target", tray.cv_target_percent, "CV target (%) of the effective working width");
+  t->add_option("--cv-target", tray.cv_target_percent, "CV target (%) of the effective working width")->capture_default_str();
   t->add_option("--plot", tray.plot_prefix, "write PREFIX_transverse.png and PREFIX_cv.png");
   t->add_flag("--json", tray.json, "machine-readable output on stdout");
   t->callback([&exit_code] { guarded("tray", exit_code, [] { run_tray(tray); }); });
@@ -499,10 +652,10 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   p->add_option("--trays", pattern.trays, "tray-test CSV")->required();
   p->add_option("--output", pattern.output, "NEW table file: a copy of --tables plus the calibrated material")->required();
   p->add_option("--name", pattern.name, "name of the calibrated material (default: 'NAME (calibrated YYYY-MM-DD)')");
-  p->add_option("--fit", pattern.fit, "parameters to fit: friction,drag,offset (the others keep the table's values)");
-  p->add_option("--samples", pattern.samples, "trajectories per model evaluation");
+  p->add_option("--fit", pattern.fit, "parameters to fit: friction,drag,offset (the others keep the table's values)")->capture_default_str();
+  p->add_option("--samples", pattern.samples, "trajectories per model evaluation")->capture_default_str();
   p->add_option("--kernel", pattern.kernel_m, "landing kernel sd (m); default half the tray width");
-  p->add_option("--cv-target", pattern.cv_target_percent, "CV target (%) of the plots");
+  p->add_option("--cv-target", pattern.cv_target_percent, "CV target (%) of the plots")->capture_default_str();
   p->add_flag("--allow-analytic", pattern.allow_analytic,
               "accept a material whose table rows came from the DEM: fit and new rows use the analytic model");
   p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
@@ -516,18 +669,19 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   y->add_option("--rpm", synth.rpm, "disc speed (r/min)")->required();
   y->add_option("--output", synth.output, "CSV to write")->required();
   y->add_option("--friction", synth.friction, "friction on the vanes (default: the table's)");
-  y->add_option("--drag", synth.drag, "drag diameter factor k");
-  y->add_option("--offset", synth.offset_deg, "launch-angle offset (deg)");
-  y->add_option("--half-width", synth.half_width_m, "trays cover [-this, this] m");
-  y->add_option("--tray-width", synth.tray_width_m, "tray width (m)");
-  y->add_option("--passes", synth.passes, "passes (one mass column each)");
-  y->add_option("--mass", synth.mass_g, "expected mass in all trays per pass (g)");
-  y->add_option("--relative-noise", synth.relative_noise_percent, "noise sd, % of each tray's mass");
-  y->add_option("--granule-mass", synth.granule_mass_g, "counting noise: mass of one granule (g); 0 = none");
-  y->add_option("--floor", synth.floor_g, "additive noise sd (g); readings below 0 are written as 0");
-  y->add_option("--resolution", synth.resolution_g, "readings rounded to this (g)");
-  y->add_option("--samples", synth.samples, "trajectories of the model");
-  y->add_option("--seed", synth.seed, "noise seed");
+  y->add_option("--drag", synth.drag, "drag diameter factor k")->capture_default_str();
+  y->add_option("--offset", synth.offset_deg, "launch-angle offset (deg)")->capture_default_str();
+  y->add_option("--half-width", synth.half_width_m, "trays cover [-this, this] m")->capture_default_str();
+  y->add_option("--tray-width", synth.tray_width_m, "tray width (m)")->capture_default_str();
+  y->add_option("--passes", synth.passes, "passes (one mass column each)")->capture_default_str();
+  y->add_option("--mass", synth.mass_g, "expected mass in all trays per pass (g)")->capture_default_str();
+  y->add_option("--relative-noise", synth.relative_noise_percent, "noise sd, % of each tray's mass")->capture_default_str();
+  y->add_option("--granule-mass", synth.granule_mass_g, "counting noise: mass of one granule (g); 0 = none")->capture_default_str();
+  y->add_option("--floor", synth.floor_g, "additive noise sd (g); readings below 0 are written as 0")->capture_default_str();
+  y->add_option("--resolution", synth.resolution_g, "readings rounded to this (g)")->capture_default_str();
+  y->add_option("--samples", synth.samples, "trajectories of the model")->capture_default_str();
+  y->add_option("--seed", synth.seed, "noise seed")->capture_default_str();
+  y->add_flag("--force", synth.force, "replace --output when it exists");
   y->add_flag("--json", synth.json, "machine-readable output on stdout");
   y->callback([&exit_code] { guarded("synth", exit_code, [] { run_synth(synth); }); });
 }};

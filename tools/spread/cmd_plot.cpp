@@ -119,8 +119,8 @@ void run(const Options& o, int& exit_code) {
 
   if (o.json) {
     std::cout << json{{"written", written},
-                      {"working_width_m", {{"to_and_fro", p.working_width_to_and_fro_m},
-                                           {"racetrack", p.working_width_racetrack_m}}},
+                      {"working_width_to_and_fro_m", p.working_width_to_and_fro_m},
+                      {"working_width_racetrack_m", p.working_width_racetrack_m},
                       {"throw_width_m", p.throw_width_m}}
                      .dump(2)
               << "\n";

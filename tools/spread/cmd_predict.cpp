@@ -107,13 +107,18 @@ json cv_curve_json(const spread_prediction& r, const std::vector<double>& trays)
   layout.tray_width_m = r.tray_width_m;
   layout.tray_count = r.tray_count;
   const std::span<const double> mass(trays.data(), static_cast<std::size_t>(r.tray_count));
-  json widths = json::array(), to_and_fro = json::array(), racetrack = json::array();
+  // One point per whole-tray bout width, named as the scalars at --width are (and as `calibrate tray`
+  // writes its curve).
+  json curve = json::array();
   for (int n = 2; n <= r.tray_count; ++n) {
-    widths.push_back(n * r.tray_width_m);
-    to_and_fro.push_back(number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kToAndFro)));
-    racetrack.push_back(number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kRacetrack)));
+    curve.push_back(
+        {{"bout_width_m", n * r.tray_width_m},
+         {"cv_to_and_fro_percent",
+          number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kToAndFro))},
+         {"cv_racetrack_percent",
+          number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kRacetrack))}});
   }
-  return {{"bout_width_m", widths}, {"to_and_fro_percent", to_and_fro}, {"racetrack_percent", racetrack}};
+  return curve;
 }
 
 // The whole-tray bout widths beyond the working width where CV(W) is back within the target, as runs
@@ -210,15 +215,15 @@ void run(const Options& o, int& exit_code) {
                 {"cv_target_percent", o.cv_target_percent},
                 {"throw_width_m", result.throw_width_m},
                 {"throw_width_se_m", number_or_null(result.throw_width_se_m)},
-                {"working_width_m", {{"to_and_fro", result.working_width_to_and_fro_m},
-                                     {"racetrack", result.working_width_racetrack_m}}},
-                {"working_width_se_m", {{"to_and_fro", number_or_null(result.working_width_to_and_fro_se_m)},
-                                        {"racetrack", number_or_null(result.working_width_racetrack_se_m)}}},
+                {"working_width_to_and_fro_m", result.working_width_to_and_fro_m},
+                {"working_width_racetrack_m", result.working_width_racetrack_m},
+                {"working_width_to_and_fro_se_m", number_or_null(result.working_width_to_and_fro_se_m)},
+                {"working_width_racetrack_se_m", number_or_null(result.working_width_racetrack_se_m)},
                 {"cv_target_crossings", {{"to_and_fro", result.cv_crossings_to_and_fro},
                                          {"racetrack", result.cv_crossings_racetrack}}},
                 {"bout_width_m", result.bout_width_m},
-                {"cv_percent", number_or_null(result.cv_percent)},
-                {"cv_se_percent", number_or_null(result.cv_se_percent)},
+                {"cv_to_and_fro_percent", number_or_null(result.cv_percent)},
+                {"cv_to_and_fro_se_percent", number_or_null(result.cv_se_percent)},
                 {"cv_racetrack_percent", number_or_null(result.cv_racetrack_percent)},
                 {"cv_racetrack_se_percent", number_or_null(result.cv_racetrack_se_percent)},
                 {"mean_radius_m", result.mean_radius_m},

@@ -1,0 +1,152 @@
+#include "firmware_sim/isobus/tc_client.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace spread::firmware::isobus {
+
+const char* tc_client_state_name(TcClientState state) {
+  switch (state) {
+    case TcClientState::kWaitForTc: return "wait_for_tc";
+    case TcClientState::kWaitVersion: return "wait_version";
+    case TcClientState::kWaitStructureLabel: return "wait_structure_label";
+    case TcClientState::kWaitTransferAnswer: return "wait_transfer_answer";
+    case TcClientState::kWaitPoolAnswer: return "wait_pool_answer";
+    case TcClientState::kWaitActivateAnswer: return "wait_activate_answer";
+    case TcClientState::kConnected: return "connected";
+    case TcClientState::kRetryWait: return "retry_wait";
+  }
+  return "unknown";
+}
+
+TaskControllerClient::TaskControllerClient(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
+                                           TcClientSettings settings)
+    : pool_(std::move(pool)), structure_label_(structure_label), settings_(settings) {}
+
+void TaskControllerClient::send(std::uint32_t pgn, std::uint8_t destination, std::span<const std::uint8_t> data) {
+  out_.push_back(TcOutgoing{pgn, destination, std::vector<std::uint8_t>(data.begin(), data.end())});
+}
+
+std::vector<TcOutgoing> TaskControllerClient::take_outgoing() { return std::exchange(out_, {}); }
+
+void TaskControllerClient::expect(TcClientState state, Nanoseconds now, Nanoseconds timeout) {
+  state_ = state;
+  deadline_ = now + timeout;
+}
+
+void TaskControllerClient::end_connection(std::string why, Nanoseconds now) {
+  last_error_ = std::move(why);
+  state_ = TcClientState::kRetryWait;
+  deadline_ = now + settings_.retry_delay;
+  tc_.reset();
+}
+
+void TaskControllerClient::handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now) {
+  const auto kind = tc_message_kind(data);
+  if (!kind) return;
+  if (*kind == TcMessage::kTcStatus) {
+    if (state_ == TcClientState::kWaitForTc) {
+      // A TC is there: name our working set (one member, this ECU) and start the handshake.
+      tc_ = source;
+      last_tc_status_ = now;
+      send(kWorkingSetMasterPgn, 0xFF, encode_working_set_master(1));
+      send_tc(tc_frame(TcMessage::kRequestVersion));
+      expect(TcClientState::kWaitVersion, now, settings_.answer_timeout);
+    } else if (tc_ && source == *tc_) {
+      last_tc_status_ = now;
+    }
+    return;
+  }
+  if (!tc_ || source != *tc_) return;  // only the TC we are connecting to
+  if (data.size() < 8 && *kind != TcMessage::kPoolTransfer) return;  // single-frame messages have 8 bytes
+  switch (*kind) {
+    case TcMessage::kRequestVersion: {
+      // The TC asks our capabilities: answered in any state (ISO 11783-10 technical capabilities).
+      send_tc(encode_version(settings_.version));
+      return;
+    }
+    case TcMessage::kVersion:
+      if (state_ != TcClientState::kWaitVersion) return;
+      send_tc(tc_frame(TcMessage::kRequestStructureLabel));
+      expect(TcClientState::kWaitStructureLabel, now, settings_.answer_timeout);
+      return;
+    case TcMessage::kStructureLabel: {
+      if (state_ != TcClientState::kWaitStructureLabel) return;
+      const bool known = std::equal(structure_label_.begin(), structure_label_.end(), data.begin() + 1);
+      if (known) {
+        send_tc(encode_activate(true));  // the TC kept our pool: no transfer needed
+        expect(TcClientState::kWaitActivateAnswer, now, settings_.answer_timeout);
+      } else {
+        send_tc(encode_request_pool_transfer(static_cast<std::uint32_t>(pool_.size())));
+        expect(TcClientState::kWaitTransferAnswer, now, settings_.answer_timeout);
+      }
+      return;
+    }
+    case TcMessage::kRequestPoolTransferResponse:
+      if (state_ != TcClientState::kWaitTransferAnswer) return;
+      if (data[1] != 0) {
+        end_connection("the TC has no room for the " + std::to_string(pool_.size()) + "-byte pool", now);
+        return;
+      }
+      {
+        const std::vector<std::uint8_t> message = encode_pool_transfer(pool_);
+        send(0xCB00, *tc_, message);
+      }
+      // The transfer itself takes time on a loaded bus (TP windows of 7-byte packets).
+      expect(TcClientState::kWaitPoolAnswer, now, 5 * settings_.answer_timeout);
+      return;
+    case TcMessage::kPoolTransferResponse:
+      if (state_ != TcClientState::kWaitPoolAnswer) return;
+      if (data[1] != 0) {
+        end_connection("the TC refused the pool (error bits 0x" + std::to_string(data[1]) + ")", now);
+        return;
+      }
+      send_tc(encode_activate(true));
+      expect(TcClientState::kWaitActivateAnswer, now, settings_.answer_timeout);
+      return;
+    case TcMessage::kActivatePoolResponse:
+      if (state_ != TcClientState::kWaitActivateAnswer) return;
+      if (data[1] != 0) {
+        end_connection("the TC could not activate the pool (error bits " + std::to_string(data[1]) +
+                           ", object " + std::to_string(data[4] | (data[5] << 8)) + ")",
+                       now);
+        return;
+      }
+      state_ = TcClientState::kConnected;
+      ++connections_;
+      last_error_.clear();
+      next_client_task_ = now;  // the first client task message goes out with the next update
+      return;
+    default:
+      return;
+  }
+}
+
+void TaskControllerClient::update(Nanoseconds now) {
+  switch (state_) {
+    case TcClientState::kWaitForTc:
+      return;
+    case TcClientState::kRetryWait:
+      if (now >= deadline_) state_ = TcClientState::kWaitForTc;
+      return;
+    case TcClientState::kConnected:
+      if (now - last_tc_status_ > kTcPartnerTimeout) {
+        end_connection("the TC status stopped", now);
+        return;
+      }
+      if (now >= next_client_task_) {
+        send_tc(encode_client_task(true));
+        next_client_task_ = now + kTcStatusInterval;
+      }
+      return;
+    default:
+      if (now - last_tc_status_ > kTcPartnerTimeout) {
+        end_connection("the TC status stopped", now);
+      } else if (now > deadline_) {
+        end_connection(std::string("no answer from the TC in state ") + tc_client_state_name(state_), now);
+      }
+      return;
+  }
+}
+
+}  // namespace spread::firmware::isobus

@@ -1,0 +1,91 @@
+#pragma once
+// The ECU's task-controller client (ISO 11783-10 connection procedure) as a state machine without I/O:
+// received PGN 0xCB00 messages and the time go in, messages to send come out (the caller sends those over
+// 8 bytes by TP/ETP). The sequence, one step per answer:
+//   TC status seen  -> working-set master message, request version
+//   version         -> request structure label
+//   structure label -> the TC holds our pool (same label): activate; else request object-pool transfer
+//   transfer answer -> object-pool transfer (the pool, by TP/ETP)
+//   pool answer     -> activate
+//   activate answer -> connected: client task message every 2 s
+// Any refusal or a TC silent for 6 s (three missed status messages) ends the connection; the client starts
+// again with the next TC status after `retry_delay`. The ECU core's own supervision of the TC (work state
+// off after 6 s) does not depend on this state machine.
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "firmware_sim/isobus/tc_messages.hpp"
+
+namespace spread::firmware::isobus {
+
+using Nanoseconds = std::chrono::nanoseconds;
+
+enum class TcClientState : std::uint8_t {
+  kWaitForTc,             // no TC status seen yet (or the last connection ended)
+  kWaitVersion,           // request version sent
+  kWaitStructureLabel,    // request structure label sent
+  kWaitTransferAnswer,    // request object-pool transfer sent
+  kWaitPoolAnswer,        // object-pool transfer sent
+  kWaitActivateAnswer,    // activate sent
+  kConnected,             // pool active: process data flows
+  kRetryWait,             // refused or timed out: waiting before the next attempt
+};
+
+const char* tc_client_state_name(TcClientState state);
+
+struct TcClientSettings {
+  TcVersion version{};                                   // what this client answers to a request version
+  Nanoseconds answer_timeout = std::chrono::seconds(6);  // per request; the pool transfer gets 5x
+  Nanoseconds retry_delay = std::chrono::seconds(6);     // after a refusal or a timeout
+};
+
+struct TcOutgoing {
+  std::uint32_t pgn = 0;            // 0xCB00 or the working-set master PGN
+  std::uint8_t destination = 0xFF;  // the TC, or global
+  std::vector<std::uint8_t> data;   // 8 bytes, or the object-pool transfer (by TP/ETP)
+};
+
+class TaskControllerClient {
+ public:
+  // `pool` is the DDOP as write_ddop gives it; `structure_label` the label inside it.
+  TaskControllerClient(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
+                       TcClientSettings settings = {});
+
+  // A PGN 0xCB00 message from `source` addressed to us or to all (single frame or reassembled). Messages
+  // that are not connection messages (process data values, ...) are ignored here.
+  void handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now);
+  // Timeouts and the periodic client task message.
+  void update(Nanoseconds now);
+  std::vector<TcOutgoing> take_outgoing();
+
+  TcClientState state() const { return state_; }
+  bool connected() const { return state_ == TcClientState::kConnected; }
+  std::optional<std::uint8_t> task_controller() const { return tc_; }
+  const std::string& last_error() const { return last_error_; }  // why the last connection ended
+  std::uint64_t connections() const { return connections_; }     // times the pool was activated
+
+ private:
+  void send(std::uint32_t pgn, std::uint8_t destination, std::span<const std::uint8_t> data);
+  void send_tc(const TcFrame& frame) { send(0xCB00, *tc_, frame); }
+  void expect(TcClientState state, Nanoseconds now, Nanoseconds timeout);
+  void end_connection(std::string why, Nanoseconds now);
+
+  std::vector<std::uint8_t> pool_;
+  std::array<std::uint8_t, 7> structure_label_;
+  TcClientSettings settings_;
+  TcClientState state_ = TcClientState::kWaitForTc;
+  std::optional<std::uint8_t> tc_;
+  Nanoseconds deadline_{};
+  Nanoseconds last_tc_status_{};
+  Nanoseconds next_client_task_{};
+  std::string last_error_;
+  std::uint64_t connections_ = 0;
+  std::vector<TcOutgoing> out_;
+};
+
+}  // namespace spread::firmware::isobus

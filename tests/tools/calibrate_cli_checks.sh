@@ -1,0 +1,146 @@
+#!/bin/sh
+# `spread calibrate` end to end: refusals, warnings and missing readings as a technician meets them.
+# Usage: calibrate_cli_checks.sh CASE SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR
+# Prints "PASS: CASE" (exit 0) or "FAIL: CASE: why" (exit 1). Case `fixture` builds what the others use:
+# a small analytic Urea table (narrow inlet, 256 samples per run, 450–750 rpm) and a synthetic 750 rpm
+# tray test.
+set -u
+case_name=$1 spread=$2 builder=$3 src=$4 work=$5
+example=$src/scenes/field/tray_test_3passes.csv
+out=$work/$case_name
+fail() { echo "FAIL: $case_name: $*"; echo "--- stdout"; cat "$out.stdout" 2>/dev/null; echo "--- stderr"; cat "$out.stderr" 2>/dev/null; exit 1; }
+pass() { echo "PASS: $case_name"; exit 0; }
+# run ARGS...: stdout to $out.stdout, stderr to $out.stderr, exit code in $rc.
+run() { "$spread" "$@" > "$out.stdout" 2> "$out.stderr"; rc=$?; }
+has() { grep -qF -- "$2" "$1" || fail "expected '$2' in $(basename "$1")"; }
+hasnt() { ! grep -qF -- "$2" "$1" || fail "did not expect '$2' in $(basename "$1")"; }
+mkdir -p "$work"
+
+case $case_name in
+fixture)
+  rm -f "$work/urea.sqlite" "$work/t750.csv"
+  "$builder" "$src/scenes/default.toml" --output "$work/urea.sqlite" --set sweep.source=analytic \
+      --set 'sweep.materials=["Urea"]' --set sweep.samples_per_run=256 --set inlet.radius_m=0.0145 \
+      --set inlet.offset_m=0.1 --set inlet.angle_rad=1.0 > "$out.stdout" 2> "$out.stderr" || fail "lookup_builder"
+  run calibrate synth --tables "$work/urea.sqlite" --material Urea --rpm 750 --friction 0.32 --drag 1.1 \
+      --mass 150 --granule-mass 0.02 --samples 128 --seed 7 --output "$work/t750.csv"
+  [ $rc -eq 0 ] || fail "synth exit $rc"
+  pass ;;
+refused_fit)
+  # A 750 rpm tray test fitted at 600 rpm: the drag factor runs into its bound; nothing is written.
+  rm -f "$work/refused.sqlite"
+  run calibrate pattern --tables "$work/urea.sqlite" --material Urea --rpm 600 --trays "$work/t750.csv" \
+      --output "$work/refused.sqlite" --fit friction,drag --samples 128
+  [ $rc -eq 1 ] || fail "exit $rc, expected 1"
+  [ ! -e "$work/refused.sqlite" ] || fail "the table was written"
+  has "$out.stdout" "refused: drag diameter factor ended on its lower bound"
+  has "$out.stdout" "nothing written"
+  has "$out.stderr" "the fit is refused"
+  pass ;;
+rpm_outside)
+  rm -f "$work/rpm.sqlite"
+  run calibrate pattern --tables "$work/urea.sqlite" --material Urea --rpm 3000 --trays "$example" \
+      --output "$work/rpm.sqlite" --samples 128
+  [ $rc -eq 2 ] || fail "exit $rc, expected 2"
+  [ ! -e "$work/rpm.sqlite" ] || fail "the table was written"
+  has "$out.stderr" "rpm 3000 is outside the table's range for 'Urea' (450 to 750 rpm)"
+  pass ;;
+missing_tray)
+  # The example's fullest tray (4.75 m) knocked over: as 0 it is a hole in every pass, as NA it is left out.
+  sed 's/^4\.750,.*/4.750,NA,NA,NA/' "$example" > "$work/na.csv"
+  sed 's/^4\.750,.*/4.750,0,0,0/' "$example" > "$work/zero.csv"
+  sed 's/^4\.750,.*/4.750,,,/' "$example" > "$work/empty.csv"
+  run calibrate tray "$example" --width 3.5
+  has "$out.stdout" "at W = 3.50 m: CV 15.1 % to-and-fro, 14.8 % racetrack"
+  run calibrate tray "$work/zero.csv" --width 3.5
+  has "$out.stdout" "at W = 3.50 m: CV 32.3 % to-and-fro, 32.4 % racetrack"
+  run calibrate tray "$work/na.csv" --width 3.5
+  [ $rc -eq 0 ] || fail "NA refused (exit $rc)"
+  has "$out.stdout" "at W = 3.50 m: CV 16.1 % to-and-fro, 15.8 % racetrack"
+  has "$out.stdout" "missing: 1 tray(s) missing (NA or empty in every pass) at 4.75 m"
+  run calibrate tray "$work/empty.csv" --width 3.5 --json
+  [ $rc -eq 0 ] || fail "empty cells refused (exit $rc)"
+  has "$out.stdout" '"missing_trays_m": ['
+  has "$out.stdout" '4.75'
+  pass ;;
+bom)
+  printf '\357\273\277' > "$work/bom.csv" && cat "$example" >> "$work/bom.csv"
+  run calibrate tray "$work/bom.csv" --width 3.5
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "CV 15.1 % to-and-fro"
+  pass ;;
+decimal_comma)
+  grep -v '^#' "$example" | sed '2,$ s/\./,/g' > "$work/comma.csv"
+  run calibrate tray "$work/comma.csv"
+  [ $rc -eq 2 ] || fail "exit $rc"
+  has "$out.stderr" "comma.csv:2: expected 4 cells as in the header, found 8 (decimal commas?"
+  pass ;;
+cv_target_fraction)
+  run calibrate tray "$example" --width 3.5 --cv-target 0.15
+  [ $rc -eq 2 ] || fail "exit $rc"
+  has "$out.stderr" "--cv-target 0.15: the target is in per cent"
+  has "$out.stderr" "for 15 % write --cv-target 15"
+  pass ;;
+rate_warnings)
+  run calibrate rate --mass 25 --time 60 --gate 40 --target-rate 50 --width 24 --speed 12
+  hasnt "$out.stdout" "warning"
+  run calibrate rate --mass 25 --time 60 --gate 40 --target-rate 5000 --width 24 --speed 12
+  has "$out.stdout" "warning: the required gate opening 3840 is far outside the caught opening 40"
+  run calibrate rate --mass 25000 --time 60 --gate 40 --target-rate 50 --width 24 --speed 12
+  has "$out.stdout" "52083.3 kg/ha"
+  has "$out.stdout" "is --mass in grams?"
+  run calibrate rate --mass 25 --time 60 --gate 40 --mass2 25.1 --time2 60 --gate2 40.1 --target-rate 50 \
+      --width 24 --speed 12 --json
+  has "$out.stdout" "0.1 gate units apart"
+  has "$out.stdout" '"bout_width_m": 24'
+  pass ;;
+synth_overwrite)
+  echo "keep me" > "$work/keep.csv"
+  run calibrate synth --tables "$work/urea.sqlite" --material Urea --rpm 600 --samples 32 --output "$work/keep.csv"
+  [ $rc -eq 2 ] || fail "exit $rc"
+  has "$out.stderr" "the file exists"
+  has "$out.stderr" "--force"
+  [ "$(cat "$work/keep.csv")" = "keep me" ] || fail "the file was overwritten"
+  run calibrate synth --tables "$work/urea.sqlite" --material Urea --rpm 600 --samples 32 --output "$work/keep.csv" --force
+  [ $rc -eq 0 ] || fail "--force: exit $rc"
+  pass ;;
+help_defaults)
+  run calibrate synth --help
+  has "$out.stdout" "--mass FLOAT=400"
+  run calibrate tray --help
+  has "$out.stdout" "--cv-target FLOAT=15"
+  pass ;;
+plot_missing_folder)
+  run calibrate tray "$example" --plot "$work/no-such-folder/tray"
+  [ $rc -eq 2 ] || fail "exit $rc"
+  has "$out.stderr" "the folder '$work/no-such-folder' does not exist"
+  pass ;;
+plot_fails_late)
+  # The folder exists but the PNG cannot be written (a folder in its place): the report is still printed.
+  rm -rf "$work/late" && mkdir -p "$work/late/tray_transverse.png"
+  run calibrate tray "$example" --width 3.5 --plot "$work/late/tray"
+  [ $rc -eq 1 ] || fail "exit $rc"
+  has "$out.stdout" "CV 15.1 % to-and-fro"
+  has "$out.stderr" "--plot"
+  pass ;;
+one_sided)
+  grep -v '^#' "$example" | awk -F, 'NR == 1 || $1 > 0' > "$work/right.csv"
+  run calibrate tray "$work/right.csv" --width 3.5
+  has "$out.stdout" "warning: the trays do not cover both sides alike: 36 empty tray(s) were added (36 on the left)"
+  pass ;;
+json_names)
+  # One name per quantity across the commands: the keys `predict --json` uses for the same CVs and widths.
+  run calibrate tray "$example" --width 3.5 --json
+  for key in '"tray_test":' '"bout_width_m": 3.5' '"cv_to_and_fro_percent":' '"cv_racetrack_percent":' \
+             '"working_width_to_and_fro_m":' '"working_width_racetrack_m":'; do
+    has "$out.stdout" "$key"
+  done
+  hasnt "$out.stdout" '"width_m"'
+  hasnt "$out.stdout" '"file"'
+  # `passes` is a count wherever it appears (tray, synth, pass_scatter); the column names are `pass_columns`.
+  has "$out.stdout" '"passes": 3,'
+  has "$out.stdout" '"pass_columns": ['
+  pass ;;
+*)
+  echo "FAIL: unknown case $case_name"; exit 1 ;;
+esac
