@@ -8,6 +8,7 @@
 #include "firmware_sim/can/ddi.hpp"
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/isobus/spreader_ddop.hpp"
+#include "firmware_sim/isobus/tc_client.hpp"
 #include "firmware_sim/isobus/tc_server.hpp"
 
 namespace spread::firmware::isobus {
@@ -318,6 +319,66 @@ TEST(TcServer, MalformedFramesAreCountedNeverCrash) {
   }
   (void)h.tc.take_frames();
   SUCCEED();
+}
+
+// Both ends of this code base in one process: the ECU's TC client, its transport, and this server.
+TEST(TcServer, ConnectsTheEcusOwnTcClient) {
+  SpreaderDescription d;
+  d.name = 0xA00A8000001234ull;
+  const Ddop ddop = make_spreader_ddop(d);
+  const auto& dvc = std::get<DeviceObject>(ddop.objects.front());
+  TaskControllerClient client(write_ddop(ddop), dvc.structure_label);
+  TcServer tc;
+  TransportProtocol client_tp{kClient};
+  Nanoseconds now{};
+  tc.start(kTc, now);
+  auto pump = [&] {
+    for (int round = 0; round < 1000; ++round) {
+      bool moved = false;
+      for (const TransportFrame& f : tc.take_frames()) {
+        moved = true;
+        if (f.pgn == kTcProcessDataPgn) {
+          if (f.destination == kClient || f.destination == 0xFF) client.handle_message(f.source, f.data, now);
+        } else {
+          client_tp.handle_frame(f, now);
+        }
+      }
+      for (const TcOutgoing& m : client.take_outgoing()) {
+        moved = true;
+        if (m.data.size() > 8) {
+          ASSERT_TRUE(client_tp.send({m.pgn, kClient, m.destination, m.data}, now));
+        } else {
+          tc.handle_frame(m.pgn, kClient, m.destination, m.data, now);
+        }
+      }
+      for (const TransportFrame& f : client_tp.take_frames()) {
+        moved = true;
+        tc.handle_frame(f.pgn, f.source, f.destination, f.data, now);
+      }
+      if (!moved) return;
+    }
+  };
+  for (int i = 0; i < 100 && !client.connected(); ++i) {
+    now += milliseconds(100);
+    tc.update(now);
+    client.update(now);
+    client_tp.update(now);
+    pump();
+  }
+  ASSERT_TRUE(client.connected()) << tc_client_state_name(client.state()) << " " << client.last_error();
+  EXPECT_TRUE(tc.active());
+  EXPECT_EQ(tc.section_elements().size(), 8u);
+  // Client task messages keep the connection for a minute.
+  for (int i = 0; i < 600; ++i) {
+    now += milliseconds(100);
+    tc.update(now);
+    client.update(now);
+    client_tp.update(now);
+    pump();
+  }
+  EXPECT_TRUE(tc.active());
+  EXPECT_TRUE(client.connected());
+  EXPECT_EQ(tc.counters().client_timeouts, 0u);
 }
 
 }  // namespace
