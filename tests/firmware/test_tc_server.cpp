@@ -10,6 +10,7 @@
 #include "firmware_sim/isobus/spreader_ddop.hpp"
 #include "firmware_sim/isobus/tc_client.hpp"
 #include "firmware_sim/isobus/tc_server.hpp"
+#include "tools/spread_tractor/section_pattern.hpp"
 
 namespace spread::firmware::isobus {
 namespace {
@@ -379,6 +380,18 @@ TEST(TcServer, ConnectsTheEcusOwnTcClient) {
   EXPECT_TRUE(tc.active());
   EXPECT_TRUE(client.connected());
   EXPECT_EQ(tc.counters().client_timeouts, 0u);
+}
+
+// The pattern a person types for the TC's section set-point, as DDI 290's 2 bits per section.
+TEST(TcServer, SectionPatternBecomesTheCondensedWorkState) {
+  using spread::tractor::condensed_work_state_from_pattern;
+  // Sections 1-4 on (01), 5-8 off (00), 9-16 not named (11).
+  EXPECT_EQ(condensed_work_state_from_pattern("11110000"), static_cast<std::int32_t>(0xFFFF0055u));
+  EXPECT_EQ(condensed_work_state_from_pattern("0"), static_cast<std::int32_t>(0xFFFFFFFCu));
+  EXPECT_EQ(condensed_work_state_from_pattern("1111111111111111"), static_cast<std::int32_t>(0x55555555u));
+  EXPECT_FALSE(condensed_work_state_from_pattern(""));
+  EXPECT_FALSE(condensed_work_state_from_pattern("11112"));
+  EXPECT_FALSE(condensed_work_state_from_pattern("11111111111111111"));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // spread-tractor: the tractor side of firmware_sim. Sends set-points and prints the ECU's status over
-// LCM or over an ISOBUS (SocketCAN or a spread-canbus socket), or replays a candump log. Usage examples: docs/can-integration.md
+// LCM or over an ISOBUS (SocketCAN or a spread-canbus socket), acts as the ISO 11783-10 task controller,
+// or replays a candump log. Usage examples: docs/can-integration.md
 // and docs/messages.md.
 #include <CLI/CLI.hpp>
 
@@ -74,6 +75,41 @@ int main(int argc, char** argv) {
   replay->add_option("log", replay_options.log_path, "candump log file")->required()->check(CLI::ExistingFile);
   replay->add_option("--iface", replay_options.interface, "send onto this SocketCAN interface or unix:PATH bus (default: only print)");
 
+  TcSessionOptions tc_options;
+  auto* tc = app.add_subcommand("tc", "be the ISO 11783-10 task controller: take the ECU's pool, activate it, send "
+                                      "set-points, request and log actual values");
+  tc->add_option("--iface", tc_options.interface, "SocketCAN interface (can0) or spread-canbus socket (unix:PATH)")
+      ->required();
+  tc->add_option("--address", tc_options.preferred_address, "preferred source address of the TC")
+      ->check(CLI::Range(0, 253))
+      ->capture_default_str();
+  tc->add_option("--speed", tc_options.speed_m_s, "broadcast ground-based speed (PGN 0xFE49) every 100 ms [m/s]")
+      ->check(CLI::NonNegativeNumber);
+  tc->add_option("--rate", tc_options.rate_kg_ha, "application rate set-point, DDI 6 [kg/ha]")->check(CLI::NonNegativeNumber);
+  tc->add_option("--width", tc_options.width_m, "working width set-point, DDI 66 [m]")->check(CLI::NonNegativeNumber);
+  tc->add_option("--rpm", tc_options.rpm, "disc speed set-point, DDI 389 [r/min]")->check(CLI::NonNegativeNumber);
+  tc->add_option("--sections", tc_options.sections,
+                 "section pattern, section 1 first, 1 on 0 off (e.g. 11110000): condensed work state DDI 290");
+  tc->add_option("--work-state", tc_options.work_state, "master work state set-point, DDI 289")
+      ->check(CLI::IsMember({"on", "off"}));
+  tc->add_option("--request-interval", tc_options.request_interval_s,
+                 "request DDIs 7, 141, 161 and 390 this often [s]")
+      ->check(CLI::Range(0.05, 3600.0))
+      ->capture_default_str();
+  tc->add_option("--duration", tc_options.duration_s, "run this long [s] (0: until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  tc->add_option("--connect-timeout", tc_options.connect_timeout_s,
+                 "exit 3 when no client has activated a pool by then [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  tc->add_flag("--print-ddop", tc_options.print_ddop, "print the client's device descriptor object pool as a tree");
+  tc->add_option("--log", tc_options.log_path, "write the as-applied log (every value the client reports) as CSV");
+  tc->add_option("--max-pool-bytes", tc_options.max_pool_bytes, "refuse pools larger than this [bytes]")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 24))
+      ->capture_default_str();
+  tc->add_flag("--quiet-values", tc_options.quiet_values, "do not print each reported value (the log keeps them)");
+
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -90,6 +126,7 @@ int main(int argc, char** argv) {
     }
     if (can->parsed()) return run_can_session(can_options);
     if (replay->parsed()) return run_replay(replay_options);
+    if (tc->parsed()) return run_tc_session(tc_options);
   } catch (const std::exception& e) {
     std::cerr << "spread-tractor: error: " << e.what() << "\n";
     return kExitFailure;

@@ -47,6 +47,27 @@ struct CanSessionOptions {
   double wait_for_ecu_s = 3.0;          // wait this long for the ECU's address claim first (0: do not wait)
 };
 
+// The task-controller role (ISO 11783-10 server) on a bus: claims an address as a TC, takes the ECU's pool,
+// activates it, sends the set-points below once activated, requests actual values and logs what the ECU
+// reports. A set-point left at its "unset" value is not sent.
+struct TcSessionOptions {
+  std::string interface;
+  int preferred_address = 0xF7;        // the address ISO 11783 reserves for the (first) task controller
+  double speed_m_s = -1.0;             // broadcast ground-based speed every 100 ms when >= 0 [m/s]
+  double rate_kg_ha = -1.0;            // DDI 6 when >= 0 [kg/ha]
+  double width_m = -1.0;               // DDI 66 when >= 0 [m]
+  double rpm = -1.0;                   // DDI 389 when >= 0 [r/min]
+  std::string sections;                // DDI 290 pattern, section 1 first ("11110000"); "" = not sent
+  std::string work_state;              // DDI 289: "on", "off" or "" (not sent)
+  double request_interval_s = 1.0;     // actual values (7, 141, 161, 390) are requested this often [s]
+  double duration_s = 10.0;            // run this long [s] (0: until Ctrl-C)
+  double connect_timeout_s = 15.0;     // give up (exit 3) when no client activated a pool by then [s]
+  bool print_ddop = false;             // print the received pool as a tree
+  std::string log_path;                // as-applied CSV ("" = none)
+  std::size_t max_pool_bytes = 65536;  // larger pools are refused
+  bool quiet_values = false;           // do not print each reported value (the log still has them)
+};
+
 struct ReplayOptions {
   std::string log_path;
   std::string interface;  // empty: only print the decoded log
@@ -55,6 +76,7 @@ struct ReplayOptions {
 int run_lcm_session(const LcmSessionOptions& options);
 int run_can_session(const CanSessionOptions& options);
 int run_replay(const ReplayOptions& options);
+int run_tc_session(const TcSessionOptions& options);
 
 // Set by SIGINT/SIGTERM handlers in main.
 bool stop_requested();
