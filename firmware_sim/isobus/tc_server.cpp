@@ -102,7 +102,7 @@ void TcServer::handle_frame(std::uint32_t pgn, std::uint8_t source, std::uint8_t
   }
 
   if (pgn == kWorkingSetMasterPgn) {
-    // ISO 11783-10 §6.2 / ISO 11783-7: the working-set master announces itself before talking to the TC.
+    // ISO 11783-7 / -1: the working-set master announces its working set before it talks to the TC.
     if (data.size() != 8) {
       ++counters_.malformed_frames;
       event("malformed working-set master message from " + hex8(source));
@@ -166,7 +166,7 @@ void TcServer::handle_tc_message(std::uint8_t source, std::span<const std::uint8
   switch (*kind) {
     case TcMessage::kRequestVersion:
       send_to_client(encode_version(config_.version));
-      // The TC learns the client's capabilities too (ISO 11783-10 §6.4: both sides ask once).
+      // The TC learns the client's capabilities too (ISO 11783-10 technical capabilities: both sides ask).
       if (!client_version_) send_to_client(tc_frame(TcMessage::kRequestVersion));
       break;
     case TcMessage::kVersion:
@@ -177,8 +177,9 @@ void TcServer::handle_tc_message(std::uint8_t source, std::span<const std::uint8
       break;
     case TcMessage::kRequestStructureLabel:
     case TcMessage::kRequestLocalizationLabel: {
-      // All 0xFF: no pool held, the client must transfer one (ISO 11783-10 §6.6.1). A held pool's label
-      // lets a client that reconnects with the same pool go straight to activation.
+      // All 0xFF: no pool held, the client must transfer one (ISO 11783-10 device descriptor: the
+      // structure label names a stored pool). A held pool's label lets a client that reconnects with the
+      // same pool go straight to activation.
       const bool structure = *kind == TcMessage::kRequestStructureLabel;
       std::array<std::uint8_t, 7> label = kNoLabel;
       if (pool_) {

@@ -4,7 +4,7 @@
 // messages (tc_messages.hpp) and the DDOP reader because both ends of the connection must agree on them
 // byte for byte; tests drive both ends in one process.
 //
-// One client (working set) at a time, the connection sequence of ISO 11783-10 §6 / Annex D:
+// One client (working set) at a time, the connection sequence of ISO 11783-10:
 //   TC status every 2 s ─► client: working-set master, request version ─► TC: version, request version
 //   ─► client: structure label request ─► TC: label (all 0xFF: no pool held, else the held pool's label)
 //   ─► [request pool transfer (size) ─► 0 if it fits, else 1 ─► pool transfer by TP/ETP ─► parse_ddop:
@@ -13,7 +13,7 @@
 // request_value address them; every value the client reports goes to the as-applied log. The client task
 // message (every 2 s) is supervised: 6 s without it (or, while connecting, without any message) and the
 // client is dropped; the pool stays held, so a reconnecting client whose structure label matches skips the
-// transfer (ISO 11783-10 §6.6.1: the label identifies a stored pool).
+// transfer (ISO 11783-10: the structure label identifies a stored pool).
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -103,7 +103,7 @@ class TcServer {
   // Element numbers of the section-type elements, lowest first (their count is the section count).
   const std::vector<std::uint16_t>& section_elements() const { return section_elements_; }
 
-  // Process data to the active client (ISO 11783-10 §9 commands 0x3 / 0x2). The element is the lowest one
+  // Process data to the active client (ISO 11783-10 value 0x3 / request value 0x2). The element is the lowest one
   // carrying `ddi` in the pool. Returns an error text ("" = queued): not active, or no such DDI in the pool.
   std::string set_value(std::uint16_t ddi, std::int32_t value);
   std::string request_value(std::uint16_t ddi);
