@@ -219,6 +219,21 @@ TEST(TcServer, CorruptPoolIsRefusedWithTheReasonAndCannotBeActivated) {
     EXPECT_EQ((*h.last(0x71))[1], 0x01) << cut;
   }
   EXPECT_FALSE(h.tc.pool());
+
+  // Single-byte corruptions anywhere in the pool: each is answered (accepted when the byte is only a
+  // value, refused otherwise), and an accepted pool still indexes without reading outside it.
+  std::uint32_t seed = 7;
+  const auto good = spreader_pool();
+  for (int i = 0; i < 300; ++i) {
+    seed = seed * 1664525u + 1013904223u;
+    auto mutated = good;
+    mutated[seed % mutated.size()] ^= static_cast<std::uint8_t>(1u + ((seed >> 16) % 255u));
+    h.to_client.clear();
+    h.transfer(mutated);
+    ASSERT_TRUE(h.last(0x71)) << i;
+    const bool accepted = (*h.last(0x71))[1] == 0;
+    EXPECT_EQ(accepted, h.tc.pool().has_value()) << i;
+  }
 }
 
 TEST(TcServer, OversizedPoolTransferRequestIsRefused) {
