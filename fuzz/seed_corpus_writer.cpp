@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/isobus/spreader_ddop.hpp"
 #include "firmware_sim/isobus/transport_protocol.hpp"
 #include "libspread/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
@@ -151,6 +152,18 @@ void transport_seeds(const fs::path& out) {
   }
 }
 
+// fuzz_ddop input: a pool's bytes. The spreader's pool for 1, 8 and 16 sections.
+void ddop_seeds(const fs::path& out) {
+  namespace iso = spread::firmware::isobus;
+  for (const int sections : {1, 8, 16}) {
+    iso::SpreaderDescription d;
+    d.section_count = sections;
+    d.name = 0xA00A8000001234ull;
+    write_bytes(out / "ddop" / ("spreader_" + std::to_string(sections) + ".bin"),
+                iso::write_ddop(iso::make_spreader_ddop(d)));
+  }
+}
+
 void lcm_seeds(const fs::path& out) {
   spread::command_t command{};
   command.timestamp_us = 1000;
@@ -245,6 +258,7 @@ int main(int argc, char** argv) {
     table_seeds(source, out);
     can_seeds(source, out);
     transport_seeds(out);
+    ddop_seeds(out);
     lcm_seeds(out);
     capi_seeds(out);
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 
 #include "firmware_sim/can/ddi.hpp"
 #include "firmware_sim/can/isobus_id.hpp"
+#include "firmware_sim/can/fault_dtc.hpp"
 #include "firmware_sim/can/speed_messages.hpp"
 #include "firmware_sim/isobus/spreader_ddop.hpp"
 #include "firmware_sim/ecu/metering.hpp"
@@ -128,7 +129,38 @@ void CanEcuProcessor::service() {
   ecu_.set_bus_address(network_.has_address());
   const Nanoseconds now = clock_.now();
   tc_client_.update(now);
+  send_dm1(now);
   flush_isobus(now);
+}
+
+void CanEcuProcessor::send_dm1(Nanoseconds now) {
+  if (!network_.has_address()) return;
+  if (next_dm1_ && now < *next_dm1_) return;
+  next_dm1_ = now + std::chrono::seconds(1);
+  const EcuStatus s = ecu_.status();
+  std::array<isobus::Dtc, kFaultCount> active{};
+  std::size_t n = 0;
+  bool warning = false;
+  for (std::size_t i = 0; i < kFaultCount; ++i) {
+    const auto fault = static_cast<Fault>(i);
+    if ((s.fault_codes & fault_bit(fault)) == 0) continue;
+    active[n++] = dtc_for(fault, s.fault_counts[i]);
+    // The amber lamp: a condition that holds now (metering held closed, a width out of reach), not a
+    // refused message of the last seconds.
+    warning = warning || is_state_fault(fault);
+  }
+  const std::vector<std::uint8_t> dm1 =
+      isobus::encode_dm1(isobus::Lamps{false, false, warning, false}, std::span(active.data(), n));
+  if (dm1.size() <= 8) {
+    std::uint8_t data[8];
+    std::fill(std::begin(data), std::end(data), std::uint8_t{0xFF});
+    std::copy(dm1.begin(), dm1.end(), data);
+    send(isobus::kDm1Pgn, kGlobalAddress, isobus::kDm1Priority, data);
+  } else if (!transport_.send({isobus::kDm1Pgn, network_.address(), kGlobalAddress, dm1}, now)) {
+    ++counters_.send_failures;  // the last second's BAM is still going out
+    return;
+  }
+  ++counters_.dm1_sent;
 }
 
 void CanEcuProcessor::handle_read_outcome(ReadOutcome outcome) {

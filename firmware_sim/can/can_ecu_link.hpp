@@ -45,7 +45,8 @@ struct CanLinkCounters {
   std::uint64_t frames_ignored = 0;        // standard (11-bit) and remote frames: legal, not ISOBUS messages
   std::uint64_t error_frames = 0;          // error frames reported by the CAN controller
   std::uint64_t task_controller_status = 0;  // TC status messages (process data command 0xE)
-  std::uint64_t transport_frames_sent = 0;   // TP/ETP frames (the pool transfer)
+  std::uint64_t transport_frames_sent = 0;   // TP/ETP frames (the pool transfer, DM1 with several faults)
+  std::uint64_t dm1_sent = 0;                // DM1 messages (one a second)
 };
 
 // The speed sources a tractor broadcasts, in order of precedence.
@@ -85,6 +86,8 @@ class CanEcuProcessor {
   void send(std::uint32_t pgn, std::uint8_t destination, std::uint8_t priority, const std::uint8_t* data);
   // Sends what the TC client and the transport protocol have queued.
   void flush_isobus(Nanoseconds now);
+  // DM1: the active faults, once a second (ISO 11783-12).
+  void send_dm1(Nanoseconds now);
 
   Ecu& ecu_;
   const Clock& clock_;
@@ -100,6 +103,7 @@ class CanEcuProcessor {
   NetworkLink network_;
   isobus::TransportProtocol transport_;
   isobus::TaskControllerClient tc_client_;
+  std::optional<Nanoseconds> next_dm1_;
 };
 
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).

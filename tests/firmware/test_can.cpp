@@ -17,6 +17,7 @@
 #include "firmware_sim/can/speed_messages.hpp"
 #include "firmware_sim/can/virtual_can_bus.hpp"
 #include "firmware_sim/isobus/ddop.hpp"
+#include "firmware_sim/isobus/dm1.hpp"
 #include "firmware_sim/isobus/tc_messages.hpp"
 #include "firmware_sim/isobus/transport_protocol.hpp"
 
@@ -248,7 +249,11 @@ class VirtualBus : public ::testing::Test {
       const IsobusId id = decode_id(f.can_id & CAN_EFF_MASK);
       const bool handshake = id.pgn == isobus::kWorkingSetMasterPgn ||
                              (id.pgn == kProcessDataPgn && isobus::tc_message_kind({f.data, 8}).has_value());
-      (handshake ? connection_frames_ : out).push_back(f);
+      if (id.pgn == isobus::kDm1Pgn) {
+        dm1_frames_.push_back(f);  // the once-a-second diagnostics, looked at by their own test
+      } else {
+        (handshake ? connection_frames_ : out).push_back(f);
+      }
     }
     return out;
   }
@@ -284,6 +289,7 @@ class VirtualBus : public ::testing::Test {
   CanFramePort& tractor() { return pair_.second; }
 
   std::vector<can_frame> connection_frames_;  // the ECU's TC-client handshake frames
+  std::vector<can_frame> dm1_frames_;         // DM1 single frames
   std::optional<double> live_speed_m_s_;  // < 0: the tractor's speed broadcasts have stopped
   bool live_tc_status_ = true;
   int live_ticks_ = 0;
@@ -502,6 +508,40 @@ TEST_F(VirtualBus, TaskControllerReceivesActivatesAndDrivesThePool) {
   // A DDI on an element that does not carry it is refused.
   send_pd(ProcessDataCommand::kRequestValue, 6, 0, 1);
   EXPECT_EQ(pdack_errors(6), kPdackInvalidElement);
+}
+
+// DM1 (ISO 11783-12): once a second the active faults, each as its proprietary SPN with a failure mode;
+// none active is the all-zero DTC; several go by BAM.
+TEST_F(VirtualBus, ActiveFaultsAreBroadcastInDm1) {
+  auto latest_dm1 = [&]() -> std::optional<isobus::Dm1> {
+    if (dm1_frames_.empty()) return std::nullopt;
+    return isobus::decode_dm1(std::span<const std::uint8_t>(dm1_frames_.back().data, 6));
+  };
+  run(1);
+  ASSERT_FALSE(dm1_frames_.empty());
+  EXPECT_EQ(decode_id(dm1_frames_.back().can_id & CAN_EFF_MASK).priority, 6);
+  ASSERT_TRUE(latest_dm1().has_value());
+  EXPECT_TRUE(latest_dm1()->active.empty()) << "no active fault";
+  EXPECT_FALSE(latest_dm1()->lamps.amber_warning);
+  // One refused set-point: one DTC, SPN 520192 + 5, FMI 2 (data erratic), occurrence 1, lamp off (an event).
+  send_pd(ProcessDataCommand::kValue, 66, 100000);
+  run(20);
+  auto dm1 = latest_dm1();
+  ASSERT_TRUE(dm1.has_value());
+  ASSERT_EQ(dm1->active.size(), 1u);
+  EXPECT_EQ(dm1->active[0].spn, isobus::kProprietarySpnBase + 5);
+  EXPECT_EQ(dm1->active[0].fmi, isobus::Fmi::kDataErratic);
+  EXPECT_EQ(dm1->active[0].occurrences, 1);
+  EXPECT_FALSE(dm1->lamps.amber_warning);
+  // Spreading asked for without a speed and with the disc at rest: two held conditions and the event,
+  // more than 8 bytes: a BAM announcing PGN 0xFECA.
+  set_spreading(0);
+  const auto frames = run(20);
+  const bool bam = std::any_of(frames.begin(), frames.end(), [](const can_frame& f) {
+    const IsobusId id = decode_id(f.can_id & CAN_EFF_MASK);
+    return id.pgn == isobus::kTpConnectionManagementPgn && f.data[0] == 32 && f.data[5] == 0xCA && f.data[6] == 0xFE;
+  });
+  EXPECT_TRUE(bam) << "DM1 with several DTCs by BAM";
 }
 
 TEST_F(VirtualBus, StandardAndRemoteFramesOfOtherNodesAreNoFault) {
