@@ -17,6 +17,7 @@
 
 #include "firmware_sim/can/candump_log.hpp"
 #include "firmware_sim/isobus/spreader_ddop.hpp"
+#include "firmware_sim/isobus/tc_messages.hpp"
 #include "firmware_sim/isobus/transport_protocol.hpp"
 #include "libspread/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
@@ -152,6 +153,43 @@ void transport_seeds(const fs::path& out) {
   }
 }
 
+// fuzz_tc_server input: flag byte (bit 0: a client connects with the spreader's pool first), then records
+// of kind, destination, 8 data bytes, milliseconds to advance. Seeds: the handshake without a pool, and an
+// active client reporting values, sending client task messages, deactivating and activating again.
+void tc_server_seeds(const fs::path& out) {
+  namespace iso = spread::firmware::isobus;
+  constexpr std::uint8_t kTc = 0xF7;
+  auto record = [](std::vector<std::uint8_t>& bytes, std::uint8_t op, std::uint8_t destination,
+                   const std::array<std::uint8_t, 8>& data, std::uint8_t advance_ms) {
+    bytes.push_back(static_cast<std::uint8_t>(op | (8u << 4)));  // source 0x80, 8 bytes
+    bytes.push_back(destination);
+    bytes.insert(bytes.end(), data.begin(), data.end());
+    bytes.push_back(advance_ms);
+  };
+  constexpr std::uint8_t kPd = 4;
+  constexpr std::uint8_t kWsm = 5;
+  std::vector<std::uint8_t> handshake{0};
+  record(handshake, kWsm, 0xFF, iso::encode_working_set_master(), 10);
+  record(handshake, kPd, kTc, iso::tc_frame(iso::TcMessage::kRequestVersion), 10);
+  record(handshake, kPd, kTc, iso::encode_version(iso::TcVersion{}), 10);
+  record(handshake, kPd, kTc, iso::tc_frame(iso::TcMessage::kRequestStructureLabel), 10);
+  record(handshake, kPd, kTc, iso::tc_frame(iso::TcMessage::kRequestLocalizationLabel), 10);
+  record(handshake, kPd, kTc, iso::encode_request_pool_transfer(1367), 10);
+  record(handshake, kPd, kTc, iso::encode_activate(true), 250);
+  write_bytes(out / "tc_server" / "handshake_no_pool.bin", handshake);
+
+  std::vector<std::uint8_t> active{1};
+  for (int i = 0; i < 4; ++i) {
+    record(active, kPd, kTc, iso::encode_client_task(true), 250);
+    record(active, kPd, kTc, {0x23, 0x00, 0x07, 0x00, 0xA8, 0x61, 0x00, 0x00}, 250);  // value, element 2, DDI 7
+    record(active, 6, 0, {0x22, 0x01, 0x55, 0x00, 0xFF, 0xFF, 0, 0}, 250);            // set DDI 290
+    record(active, 7, 0, {0x07, 0x00, 0, 0, 0, 0, 0, 0}, 250);                        // request DDI 7
+  }
+  record(active, kPd, kTc, iso::encode_activate(false), 100);
+  record(active, kPd, kTc, iso::encode_activate(true), 255);
+  write_bytes(out / "tc_server" / "active_client.bin", active);
+}
+
 // fuzz_ddop input: a pool's bytes. The spreader's pool for 1, 8 and 16 sections.
 void ddop_seeds(const fs::path& out) {
   namespace iso = spread::firmware::isobus;
@@ -259,6 +297,7 @@ int main(int argc, char** argv) {
     can_seeds(source, out);
     transport_seeds(out);
     ddop_seeds(out);
+    tc_server_seeds(out);
     lcm_seeds(out);
     capi_seeds(out);
   } catch (const std::exception& e) {
