@@ -129,8 +129,27 @@ void CanEcuProcessor::service() {
   ecu_.set_bus_address(network_.has_address());
   const Nanoseconds now = clock_.now();
   tc_client_.update(now);
+  // A connection that ended takes its measurement triggers with it; the next one sets them again.
+  if (tc_was_connected_ && !tc_client_.connected()) triggers_.clear();
+  tc_was_connected_ = tc_client_.connected();
+  send_measurements(now);
   send_dm1(now);
   flush_isobus(now);
+}
+
+void CanEcuProcessor::send_measurements(Nanoseconds now) {
+  const EcuStatus s = ecu_.status();
+  const double dt_s = last_measurement_time_ ? to_seconds(now - *last_measurement_time_) : 0.0;
+  last_measurement_time_ = now;
+  if (!network_.has_address()) return;
+  triggers_.evaluate(
+      now, s.ground_speed_m_s * dt_s * 1000.0, [&](std::uint16_t ddi) { return actual_value(ddi, s); },
+      [&](const MeasurementSubscription& m, std::int32_t value) {
+        const ProcessDataBytes out = encode_process_data(
+            {static_cast<std::uint8_t>(ProcessDataCommand::kValue), m.element, m.ddi, value});
+        send(kProcessDataPgn, m.requester, kProcessDataPriority, out.data());
+        ++counters_.measurements_sent;
+      });
 }
 
 void CanEcuProcessor::send_dm1(Nanoseconds now) {
@@ -390,7 +409,9 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   }
   const bool is_request = command == ProcessDataCommand::kRequestValue;
   const bool is_set = command == ProcessDataCommand::kValue || command == ProcessDataCommand::kSetValueAndAcknowledge;
-  if (!is_request && !is_set) {
+  const bool is_measurement = m.command >= static_cast<std::uint8_t>(ProcessDataCommand::kMeasurementTimeInterval) &&
+                              m.command <= static_cast<std::uint8_t>(ProcessDataCommand::kMeasurementChangeThreshold);
+  if (!is_request && !is_set && !is_measurement) {
     ecu_.record_fault(Fault::kCanUnsupportedCommand);
     nack(kPdackCommandNotSupported);
     return;
@@ -401,6 +422,28 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   if (m.element != 0 && (!element || m.element != *element)) {
     ecu_.record_fault(Fault::kCanUnknownDdi);
     nack(kPdackInvalidElement);
+    return;
+  }
+  if (is_measurement) {
+    if (!actual_value(m.ddi, ecu_.status())) {
+      ecu_.record_fault(Fault::kCanUnknownDdi);
+      nack(kPdackDdiNotSupported);
+      return;
+    }
+    // Intervals and the change threshold cannot be negative (0 switches the trigger off).
+    const bool interval = command == ProcessDataCommand::kMeasurementTimeInterval ||
+                          command == ProcessDataCommand::kMeasurementDistanceInterval ||
+                          command == ProcessDataCommand::kMeasurementChangeThreshold;
+    if (interval && m.value < 0) {
+      ecu_.record_fault(Fault::kSetpointOutOfRange);
+      nack(kPdackInvalidInterval);
+      return;
+    }
+    if (!addressed_to_us || !triggers_.apply(source, m.command, m.element, m.ddi, m.value, clock_.now())) {
+      // A trigger asked of everyone has no single receiver; a full table cannot take another.
+      ecu_.record_fault(Fault::kCanUnsupportedCommand);
+      nack(kPdackTriggerNotSupported);
+    }
     return;
   }
   if (is_request) {

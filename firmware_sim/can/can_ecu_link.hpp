@@ -8,6 +8,7 @@
 
 #include "firmware_sim/can/can_frame_port.hpp"
 #include "firmware_sim/can/candump_log.hpp"
+#include "firmware_sim/can/measurement_triggers.hpp"
 #include "firmware_sim/can/network_link.hpp"
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
@@ -47,6 +48,7 @@ struct CanLinkCounters {
   std::uint64_t task_controller_status = 0;  // TC status messages (process data command 0xE)
   std::uint64_t transport_frames_sent = 0;   // TP/ETP frames (the pool transfer, DM1 with several faults)
   std::uint64_t dm1_sent = 0;                // DM1 messages (one a second)
+  std::uint64_t measurements_sent = 0;       // values sent by a measurement trigger (commands 4-8)
 };
 
 // The speed sources a tractor broadcasts, in order of precedence.
@@ -73,6 +75,7 @@ class CanEcuProcessor {
   // The task-controller client: connection state, the TC's address, why the last connection ended.
   const isobus::TaskControllerClient& task_controller_client() const { return tc_client_; }
   const isobus::TransportProtocol& transport() const { return transport_; }
+  const MeasurementTriggers& measurement_triggers() const { return triggers_; }
 
   const CanLinkCounters& counters() const { return counters_; }
   const CanEcuSettings& settings() const { return settings_; }
@@ -88,6 +91,8 @@ class CanEcuProcessor {
   void flush_isobus(Nanoseconds now);
   // DM1: the active faults, once a second (ISO 11783-12).
   void send_dm1(Nanoseconds now);
+  // Values the task controller asked for by measurement commands (ISO 11783-10, commands 4-8).
+  void send_measurements(Nanoseconds now);
 
   Ecu& ecu_;
   const Clock& clock_;
@@ -104,6 +109,9 @@ class CanEcuProcessor {
   isobus::TransportProtocol transport_;
   isobus::TaskControllerClient tc_client_;
   std::optional<Nanoseconds> next_dm1_;
+  MeasurementTriggers triggers_;
+  std::optional<Nanoseconds> last_measurement_time_;
+  bool tc_was_connected_ = false;
 };
 
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).

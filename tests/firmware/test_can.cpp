@@ -544,6 +544,47 @@ TEST_F(VirtualBus, ActiveFaultsAreBroadcastInDm1) {
   EXPECT_TRUE(bam) << "DM1 with several DTCs by BAM";
 }
 
+// ISO 11783-10 measurement commands: the ECU sends values by itself on a time or distance interval, on a
+// change threshold, and within minimum/maximum thresholds, to the TC that asked, on the element asked.
+TEST_F(VirtualBus, MeasurementCommandsMakeTheEcuSendValuesByItself) {
+  auto values_of = [&](const std::vector<can_frame>& frames, std::uint16_t ddi) {
+    std::vector<std::int32_t> v;
+    for (const can_frame& f : frames) {
+      ProcessDataBytes b{};
+      std::copy(f.data, f.data + 8, b.begin());
+      const ProcessData m = decode_process_data(b);
+      const IsobusId id = decode_id(f.can_id & CAN_EFF_MASK);
+      if (id.pgn == kProcessDataPgn && m.command == 3 && m.ddi == ddi && id.destination == kTractor) {
+        v.push_back(m.value);
+      }
+    }
+    return v;
+  };
+  set_spreading();
+  go_live(3.0);
+  send_pd(static_cast<ProcessDataCommand>(0x4), 7, 1000, 2);       // rate every 1 s, on the bin element
+  send_pd(static_cast<ProcessDataCommand>(0x8), 390, 1000000, 3);  // disc speed on every 100 r/min change
+  send_pd(static_cast<ProcessDataCommand>(0x5), 397, 6000, 0);     // speed every 6 m driven
+  const auto frames = run(200);                                     // 10 s
+  const auto rate = values_of(frames, 7);
+  EXPECT_GE(rate.size(), 10u);
+  EXPECT_LE(rate.size(), 11u);
+  EXPECT_EQ(rate.back(), 25000) << "spreading at 250 kg/ha";
+  const auto rpm = values_of(frames, 390);
+  EXPECT_GE(rpm.size(), 6u) << "the spin-up to 750 r/min crosses 100 r/min steps";
+  EXPECT_LE(rpm.size(), 9u) << "a settled disc sends nothing more";
+  const auto speed = values_of(frames, 397);
+  EXPECT_NEAR(static_cast<double>(speed.size()), 5.0, 1.0) << "30 m driven, every 6 m";
+  EXPECT_EQ(ecu_io_.processor().measurement_triggers().active(), 3u);
+  // Cancelled: no more rate values.
+  send_pd(static_cast<ProcessDataCommand>(0x4), 7, 0, 2);
+  run(1);
+  EXPECT_TRUE(values_of(run(60), 7).empty());
+  // A trigger on an element that does not carry the DDI is refused.
+  send_pd(static_cast<ProcessDataCommand>(0x4), 7, 1000, 1);
+  EXPECT_EQ(pdack_errors(7), kPdackInvalidElement);
+}
+
 TEST_F(VirtualBus, StandardAndRemoteFramesOfOtherNodesAreNoFault) {
   can_frame standard{};
   standard.can_id = 0x123;
@@ -627,8 +668,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadProcessDataCase{"unknown_ddi_request", 0x2, 999, 0, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
         BadProcessDataCase{"unknown_ddi_set", 0xA, 1234, 5, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
         BadProcessDataCase{"wrong_element", 0x2, 6, 0, 5, kPdackInvalidElement, Fault::kCanUnknownDdi},
-        BadProcessDataCase{"unsupported_command", 0x4, 6, 1000, 0, kPdackCommandNotSupported,
+        BadProcessDataCase{"unsupported_command", 0x9, 6, 1000, 0, kPdackCommandNotSupported,
                            Fault::kCanUnsupportedCommand},
+        BadProcessDataCase{"negative_time_interval", 0x4, 7, -100, 0, kPdackInvalidInterval,
+                           Fault::kSetpointOutOfRange},
         BadProcessDataCase{"read_only_ddi", 0xA, 7, 100, 0, kPdackNotSettable, Fault::kCanNotSettable},
         BadProcessDataCase{"negative_rate", 0xA, 6, -1, 0, kPdackValueOutOfRange, Fault::kSetpointOutOfRange},
         BadProcessDataCase{"width_too_wide", 0x3, 66, 100000, 0, kPdackValueOutOfRange, Fault::kSetpointOutOfRange},

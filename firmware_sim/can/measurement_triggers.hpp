@@ -1,0 +1,82 @@
+#pragma once
+// ISO 11783-10 measurement commands: a task controller asks the client to send a process data value by
+// itself, per element and DDI,
+//   4 time interval [ms]        every interval
+//   5 distance interval [mm]    every so much distance driven
+//   6 minimum threshold         on a change, while the value is at or above the threshold
+//   7 maximum threshold         on a change, while the value is at or below the threshold
+//   8 change threshold          when the value moved at least this much since it was last sent
+// An interval or change threshold of 0 cancels that trigger. The triggers live in a fixed table (no
+// allocation in the loop); the TC's connection ending clears it.
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <optional>
+
+#include "firmware_sim/ecu/clock.hpp"
+
+namespace spread::firmware::can {
+
+struct MeasurementSubscription {
+  std::uint8_t requester = 0xFF;  // the TC's address: values go there
+  std::uint16_t element = 0;
+  std::uint16_t ddi = 0;
+  std::int32_t time_interval_ms = 0;       // 0: off
+  std::int32_t distance_interval_mm = 0;   // 0: off
+  std::optional<std::int32_t> minimum;     // command 6
+  std::optional<std::int32_t> maximum;     // command 7
+  std::int32_t change_threshold = 0;       // command 8; 0: off
+  Nanoseconds next_time{};
+  double distance_mm = 0.0;                // driven since the last distance-triggered value [mm]
+  std::optional<std::int32_t> last_sent;
+  bool in_use = false;
+};
+
+class MeasurementTriggers {
+ public:
+  static constexpr std::size_t kCapacity = 32;
+
+  // Applies measurement command `command` (4-8) with `value`. False when the table is full.
+  bool apply(std::uint8_t requester, std::uint8_t command, std::uint16_t element, std::uint16_t ddi,
+             std::int32_t value, Nanoseconds now);
+  void clear() { table_ = {}; }
+  std::size_t active() const;
+
+  // Calls `emit(subscription, value)` for every value due now. `value_of(ddi)` gives the current value
+  // (nullopt: none); `driven_mm` is the distance driven since the last call.
+  template <typename ValueOf, typename Emit>
+  void evaluate(Nanoseconds now, double driven_mm, ValueOf value_of, Emit emit) {
+    for (MeasurementSubscription& s : table_) {
+      if (!s.in_use) continue;
+      const std::optional<std::int32_t> v = value_of(s.ddi);
+      if (!v) continue;
+      bool due = false;
+      if (s.time_interval_ms > 0 && now >= s.next_time) {
+        due = true;
+        s.next_time = now + std::chrono::milliseconds(s.time_interval_ms);
+      }
+      if (s.distance_interval_mm > 0) {
+        s.distance_mm += driven_mm;
+        if (s.distance_mm >= s.distance_interval_mm) {
+          due = true;
+          s.distance_mm = 0.0;
+        }
+      }
+      const bool changed = !s.last_sent || *v != *s.last_sent;
+      const bool in_window = (!s.minimum || *v >= *s.minimum) && (!s.maximum || *v <= *s.maximum);
+      if ((s.minimum || s.maximum) && changed && in_window) due = true;
+      if (s.change_threshold > 0 &&
+          (!s.last_sent || std::llabs(static_cast<long long>(*v) - *s.last_sent) >= s.change_threshold)) {
+        due = true;
+      }
+      if (!due) continue;
+      s.last_sent = *v;
+      emit(s, *v);
+    }
+  }
+
+ private:
+  std::array<MeasurementSubscription, kCapacity> table_{};
+};
+
+}  // namespace spread::firmware::can
