@@ -2,8 +2,10 @@
 // Input: 1 flag byte (bit 0: a well-behaved client 0x80 first connects with the spreader's 8-section pool
 // through a real TP session, so the records below also reach the active state), then records of 11 bytes:
 //   kind (bits 0-2: 0 TP.CM, 1 TP.DT, 2 ETP.CM, 3 ETP.DT, 4 PGN 0xCB00, 5 working-set master, 6 set_value,
-//         7 request_value; bit 3: source 0x90 instead of 0x80; bits 4-7: payload length 0-15, above 8 = 8),
-//   destination, 8 data bytes (set/request: DDI in bytes 0-1, value in bytes 2-5), milliseconds to advance.
+//         7 request_value or, when byte 6 is odd, a measurement command 4 + byte 7 mod 5;
+//         bit 3: source 0x90 instead of 0x80; bits 4-7: payload length 0-15, above 8 = 8),
+//   destination, 8 data bytes (set/request/measure: DDI in bytes 0-1, value in bytes 2-5), milliseconds to
+//   advance.
 // Checked: every frame sent is from the TC's address, on PGN 0xCB00 or TP/ETP, never to itself or the null
 // address, and broadcast only as the TC status; active implies a held pool and a client; as-applied
 // records come from a client address; the TC status keeps its 2 s rhythm.
@@ -114,6 +116,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                                    (std::uint32_t{bytes[4]} << 16) | (std::uint32_t{bytes[5]} << 24));
       if (op == 6) {
         (void)tc.set_value(ddi, value);
+      } else if ((bytes[6] & 1u) != 0) {
+        (void)tc.measure(ddi, static_cast<iso::MeasurementCommand>(4 + bytes[7] % 5), value);
       } else {
         (void)tc.request_value(ddi);
       }

@@ -253,6 +253,7 @@ void TcServer::handle_pool(std::uint8_t source, std::span<const std::uint8_t> po
   // A new pool replaces the held one whether or not it parses: a refused pool cannot be activated.
   pool_.reset();
   ddi_elements_.clear();
+  ddi_triggers_.clear();
   section_elements_.clear();
   if (size > config_.max_pool_bytes) {
     answer[1] = 0x02;  // bit 1: not enough memory
@@ -285,6 +286,7 @@ void TcServer::handle_pool(std::uint8_t source, std::span<const std::uint8_t> po
 
 void TcServer::index_pool() {
   ddi_elements_.clear();
+  ddi_triggers_.clear();
   section_elements_.clear();
   std::unordered_map<std::uint16_t, const DdopObject*> by_id;
   for (const DdopObject& o : pool_->objects) by_id[object_id(o)] = &o;
@@ -295,7 +297,10 @@ void TcServer::index_pool() {
     for (const std::uint16_t child : e->children) {
       const auto it = by_id.find(child);
       if (it == by_id.end()) continue;
-      if (const auto* p = std::get_if<DeviceProcessData>(it->second)) ddi_elements_[p->ddi].push_back(e->element_number);
+      if (const auto* p = std::get_if<DeviceProcessData>(it->second)) {
+        ddi_elements_[p->ddi].push_back(e->element_number);
+        ddi_triggers_[p->ddi] |= p->triggers;
+      }
     }
   }
   std::sort(section_elements_.begin(), section_elements_.end());
@@ -413,6 +418,31 @@ std::string TcServer::set_value(std::uint16_t element, std::uint16_t ddi, std::i
 
 std::string TcServer::request_value(std::uint16_t element, std::uint16_t ddi) {
   return send_process_data(static_cast<std::uint8_t>(can::ProcessDataCommand::kRequestValue), element, ddi, 0);
+}
+
+std::uint8_t TcServer::triggers_for_ddi(std::uint16_t ddi) const {
+  const auto it = ddi_triggers_.find(ddi);
+  return it == ddi_triggers_.end() ? 0 : it->second;
+}
+
+std::string TcServer::measure(std::uint16_t ddi, MeasurementCommand command, std::int32_t value) {
+  if (!active()) return std::string("no active client (") + tc_connection_state_name(state_) + ")";
+  const auto elements = elements_for_ddi(ddi);
+  if (elements.empty()) return "the client's pool has no process data with DDI " + std::to_string(ddi);
+  // ISO 11783-10: a TC uses only the trigger methods the DPD lists as available.
+  std::uint8_t needed = 0;
+  switch (command) {
+    case MeasurementCommand::kTimeInterval: needed = kTriggerTimeInterval; break;
+    case MeasurementCommand::kDistanceInterval: needed = kTriggerDistanceInterval; break;
+    case MeasurementCommand::kMinimumThreshold:
+    case MeasurementCommand::kMaximumThreshold: needed = kTriggerThresholdLimits; break;
+    case MeasurementCommand::kChangeThreshold: needed = kTriggerOnChange; break;
+  }
+  if ((triggers_for_ddi(ddi) & needed) == 0) {
+    return "the pool offers no such trigger for DDI " + std::to_string(ddi) + " (available: " +
+           hex8(triggers_for_ddi(ddi)) + ")";
+  }
+  return send_process_data(static_cast<std::uint8_t>(command), elements.front(), ddi, value);
 }
 
 }  // namespace spread::firmware::isobus

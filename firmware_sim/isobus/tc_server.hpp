@@ -55,6 +55,16 @@ struct AsAppliedRecord {
   std::int32_t value = 0;
 };
 
+// Measurement commands (ISO 11783-10 process data commands 4-8): the client then reports the value by
+// itself. Each needs the matching trigger method in the DDI's DPD.
+enum class MeasurementCommand : std::uint8_t {
+  kTimeInterval = 0x4,      // value [ms]
+  kDistanceInterval = 0x5,  // value [mm]
+  kMinimumThreshold = 0x6,  // report on change while at or above value
+  kMaximumThreshold = 0x7,  // report on change while at or below value
+  kChangeThreshold = 0x8,   // report when the value moved by at least value
+};
+
 struct TcServerCounters {
   std::uint64_t status_sent = 0;
   std::uint64_t pools_accepted = 0;
@@ -110,6 +120,11 @@ class TcServer {
   // The same, on an explicit element.
   std::string set_value(std::uint16_t element, std::uint16_t ddi, std::int32_t value);
   std::string request_value(std::uint16_t element, std::uint16_t ddi);
+  // A measurement command on the element carrying `ddi`; refused ("" = queued) when not active, when the
+  // pool has no DPD for `ddi`, or when its DPD does not offer that trigger method.
+  std::string measure(std::uint16_t ddi, MeasurementCommand command, std::int32_t value);
+  // The trigger methods the pool's DPD for `ddi` offers (kTrigger* bits of ddop.hpp; 0: none or no DPD).
+  std::uint8_t triggers_for_ddi(std::uint16_t ddi) const;
 
  private:
   void handle_tc_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now);
@@ -137,6 +152,7 @@ class TcServer {
 
   std::optional<Ddop> pool_;
   std::map<std::uint16_t, std::vector<std::uint16_t>> ddi_elements_;
+  std::map<std::uint16_t, std::uint8_t> ddi_triggers_;
   std::vector<std::uint16_t> section_elements_;
 
   std::vector<TransportFrame> out_;

@@ -409,5 +409,31 @@ TEST(TcServer, SectionPatternBecomesTheCondensedWorkState) {
   EXPECT_FALSE(condensed_work_state_from_pattern("11111111111111111"));
 }
 
+TEST(TcServer, MeasurementCommandsUseOnlyTheTriggersThePoolOffers) {
+  Harness h;
+  h.connect(spreader_pool());
+  ASSERT_TRUE(h.tc.active());
+  EXPECT_EQ(h.tc.measure(7, MeasurementCommand::kTimeInterval, 500), "");
+  EXPECT_EQ(h.tc.measure(161, MeasurementCommand::kChangeThreshold, 1), "");
+  // DDI 161 offers time and on-change triggers only; DDI 6 (a set-point) neither distance nor thresholds.
+  EXPECT_NE(h.tc.measure(161, MeasurementCommand::kDistanceInterval, 1000), "");
+  EXPECT_NE(h.tc.measure(6, MeasurementCommand::kMinimumThreshold, 0), "");
+  EXPECT_NE(h.tc.measure(4242, MeasurementCommand::kTimeInterval, 500), "");
+  h.pump();
+  std::vector<can::ProcessData> sent;
+  for (const auto& f : h.to_client) {
+    if (f.destination == kClient && (f.data[0] & 0x0F) >= 0x4 && (f.data[0] & 0x0F) <= 0x8) {
+      sent.push_back(can::decode_process_data(f.data));
+    }
+  }
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[0].command, 0x4);
+  EXPECT_EQ(sent[0].element, 2);
+  EXPECT_EQ(sent[0].value, 500);
+  EXPECT_EQ(sent[1].command, 0x8);
+  EXPECT_EQ(sent[1].element, 1);
+  EXPECT_EQ(sent[1].ddi, 161);
+}
+
 }  // namespace
 }  // namespace spread::firmware::isobus

@@ -96,6 +96,11 @@ int main(int argc, char** argv) {
                  "request DDIs 7, 141, 161 and 390 this often [s]")
       ->check(CLI::Range(0.05, 3600.0))
       ->capture_default_str();
+  tc->add_option("--measure-ms", tc_options.measure_ms,
+                 "instead of polling, ask the ECU to report DDIs 7, 141, 161, 390 every N ms and 141/161 on "
+                 "every change (ISO 11783-10 measurement commands); 0 = poll")
+      ->check(CLI::Range(0, 60000))
+      ->capture_default_str();
   tc->add_option("--duration", tc_options.duration_s, "run this long [s] (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

@@ -60,6 +60,8 @@ struct TcSessionOptions {
   std::string sections;                // DDI 290 pattern, section 1 first ("11110000"); "" = not sent
   std::string work_state;              // DDI 289: "on", "off" or "" (not sent)
   double request_interval_s = 1.0;     // actual values (7, 141, 161, 390) are requested this often [s]
+  int measure_ms = 0;                  // > 0: ask the ECU to report them itself (measurement commands:
+                                       // time interval, and on change for 141/161) instead of polling
   double duration_s = 10.0;            // run this long [s] (0: until Ctrl-C)
   double connect_timeout_s = 15.0;     // give up (exit 3) when no client activated a pool by then [s]
   bool print_ddop = false;             // print the received pool as a tree

@@ -52,6 +52,7 @@ std::int32_t rounded(double v) {
   return static_cast<std::int32_t>(r);
 }
 
+// Actual rate, work state, section states and disc speed: what an as-applied map needs.
 constexpr std::array<std::uint16_t, 4> kRequestedDdis{7, 141, 161, 390};
 
 struct SetPoint {
@@ -103,6 +104,7 @@ int run_tc_session(const TcSessionOptions& o) {
   Nanoseconds next_speed = start;
   Nanoseconds next_request = start;
   std::uint32_t distance_mm = 0;
+  std::vector<std::uint16_t> polled;  // DDIs requested every request interval (not measured by the ECU)
   bool was_active = false;
   bool ever_active = false;
   std::uint64_t send_failures = 0;
@@ -170,14 +172,25 @@ int run_tc_session(const TcSessionOptions& o) {
                     << " on element " << tc.elements_for_ddi(s.ddi).front() << std::endl;
         }
       }
+      polled.clear();
+      for (const std::uint16_t ddi : kRequestedDdis) {
+        if (tc.elements_for_ddi(ddi).empty()) continue;
+        if (o.measure_ms > 0) {
+          // The ECU reports by itself: every measure_ms, and section and work-state switches at once.
+          std::string error = tc.measure(ddi, iso::MeasurementCommand::kTimeInterval, o.measure_ms);
+          if (error.empty() && (ddi == 141 || ddi == 161)) {
+            error = tc.measure(ddi, iso::MeasurementCommand::kChangeThreshold, 1);
+          }
+          if (error.empty()) continue;
+          std::cout << "tc: DDI " << ddi << " polled instead: " << error << std::endl;
+        }
+        polled.push_back(ddi);
+      }
       next_request = now + request_interval;
     }
     was_active = active;
     if (active && now >= next_request) {
-      // Actual rate, work state, section states and disc speed: what an as-applied map needs.
-      for (const std::uint16_t ddi : kRequestedDdis) {
-        if (!tc.elements_for_ddi(ddi).empty()) (void)tc.request_value(ddi);
-      }
+      for (const std::uint16_t ddi : polled) (void)tc.request_value(ddi);
       next_request += request_interval;
       if (next_request <= now) next_request = now + request_interval;
     }
