@@ -1,4 +1,4 @@
-// Rotating drum throughput (issue 7): particle–particle contact steps per second on one core, a drum of
+// Rotating drum throughput: particle–particle contact steps per second on one core, a drum of
 // ≥ 20,000 particles. Short run: the grid is packed with neighbours just touching (spacing 0.999 d) so
 // every particle starts with its ~6 contacts, as in a settled bed, and the drum turns at Fr 0.1.
 // Counter `particle_steps_per_s` = particles × steps / wall time. SPREAD_BENCH_DRUM_STEPS sets the steps.

@@ -1,4 +1,4 @@
-// One full prediction (issue 2 "Must show"): twin disc, 0.5 m trays, N launch samples per row from the
+// One full prediction: twin disc, 0.5 m trays, N launch samples per row from the
 // analytic launch model of the bundled scene (scenes/default.toml, material "Urea"), at an rpm between
 // two rows (pairwise interpolation). Target: <= 1 ms on one core with every landing within 1 cm of a
 // tight-tolerance reference (Dormand–Prince rel/abs 1e-11). Beside it, in the same run, plain fixed-step

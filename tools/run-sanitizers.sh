@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# AddressSanitizer + UndefinedBehaviorSanitizer build and test run (issue 8). Any sanitizer report fails
+# AddressSanitizer + UndefinedBehaviorSanitizer build and test run. Any sanitizer report fails
 # the run: ASan and UBSan halt on the first error (the build also passes -fno-sanitize-recover=undefined),
 # LeakSanitizer is on. Tests labelled `long` are skipped.
 #

@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy–cost study (issue 9): for each numerical knob of the product — flight integrator and
+// The accuracy–cost study: for each numerical knob of the product — flight integrator and
 // step, DEM steps per contact N_c and mesh size ξ, simulated particle count, table rpm spacing and
 // samples per run, partitioned vs monolithic DEM — measure the error against a tight reference and
 // the cost (wall time, bytes), and name the cheapest setting within 1 % error.

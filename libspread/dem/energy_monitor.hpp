@@ -1,5 +1,5 @@
 #pragma once
-// Energy and penetration diagnostics of a DEM run (issue 8). Attached to a DemEngine
+// Energy and penetration diagnostics of a DEM run. Attached to a DemEngine
 // (DemEngine::set_energy_monitor), it is called twice per step — before the step and after its forces
 // and integration, before the collector removes launched particles — and keeps an exact per-step
 // energy budget of the granules on the disc:

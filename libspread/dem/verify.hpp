@@ -1,5 +1,5 @@
 #pragma once
-// Built-in verification cases (issue 3 "Must show"): head-on impacts against Hertz theory, Patterson &
+// Built-in verification cases: head-on impacts against Hertz theory, Patterson &
 // Reece's vane and the seed's Appendix-1 cone, each returning the simulated and the reference values.
 #include <vector>
 

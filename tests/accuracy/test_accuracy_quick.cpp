@@ -64,7 +64,7 @@ TEST(AccuracyFlight, RecommendationWithinBudgetAndDefaultWithinOneCentimetre) {
   EXPECT_LE(figure(s, "scene_default_max_error_m"), 0.01);
 }
 
-// The defaults are the study's recommendations (issue 9: "which become the defaults").
+// The defaults are the study's recommendations.
 TEST(AccuracyDefaults, FlightToleranceOfPredictorAndSceneIsTheRecommendation) {
   const auto& s = study("flight");
   ASSERT_EQ(figure(s, "recommended_is_rk4"), 0.0) << rows(s);

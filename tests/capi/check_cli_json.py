@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """check_cli_json.py KIND SPREAD ARGS...: runs `SPREAD ARGS...`, parses its stdout as JSON and checks
-every key issue 2 names for that command (types and plausible values), printing "ok" or the first
+every key the CLI documents for that command (types and plausible values), printing "ok" or the first
 problem (exit 1).
 
   predict    throw_width_m, working_width_to_and_fro_m, working_width_racetrack_m, cv_to_and_fro_percent,

@@ -1,6 +1,6 @@
-// The JSON contracts of `spread simulate` and `spread verify cone|vane|impact` (issue 3 lists their
-// keys): the real CLI is run, its stdout parsed as JSON, and every listed key checked for presence and
-// type. One ctest per command (tests/dem/CMakeLists.txt); the commands use short settings.
+// The JSON contracts of `spread simulate` and `spread verify cone|vane|impact`: the real CLI is run, its
+// stdout parsed as JSON, and every key listed below checked for presence and type. One ctest per command
+// (tests/dem/CMakeLists.txt); the commands use short settings.
 #include <gtest/gtest.h>
 
 #include <array>

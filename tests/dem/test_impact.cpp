@@ -8,7 +8,7 @@
 
 using namespace spread::dem;
 
-// Issue 3: "contact time within 2 % of Hertz" — for a damped contact the reference is the damped Hertz
+// Contact time within 2 % of Hertz — for a damped contact the reference is the damped Hertz
 // model itself (its overlap ODE solved to 1e-12, contact_reference), not the elastic Hertz time.
 TEST(DemImpact, SpherePlaneRestitutionAndContactTime) {
   for (double e : {0.1, 0.3, 0.5, 0.7, 0.9}) {

@@ -1,4 +1,4 @@
-// The particle–particle pass (issue 7): one thread adds each pair straight into the sums, several threads
+// The particle–particle pass: one thread adds each pair straight into the sums, several threads
 // store per-pair results and gather them; both must give bit-identical states. The block is large enough
 // (> 4096 particles and pairs) for the threaded path to run.
 #include <gtest/gtest.h>

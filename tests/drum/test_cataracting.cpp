@@ -1,4 +1,4 @@
-// Cataracting on a small drum (issue 7): the bead-lined drum of scenes/drum_cataracting.toml throws
+// Cataracting on a small drum: the bead-lined drum of scenes/drum_cataracting.toml throws
 // particles off its shoulder at Fr 0.6 and rolls at Fr 0.05. Short runs (label drum): 0.6 s of rotation
 // at Fr 0.6 (0.58 revolutions), measured over [0.3, 0.6] s; figures in docs/drum.md ("Cataracting").
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Periodic axis (issue 7): a pair across the periodic boundary interacts exactly as the same pair in the
+// Periodic axis: a pair across the periodic boundary interacts exactly as the same pair in the
 // interior, positions stay wrapped, and a small periodic drum keeps its particles and rolls.
 #include <gtest/gtest.h>
 

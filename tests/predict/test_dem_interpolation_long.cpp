@@ -1,4 +1,4 @@
-// Issue 4, long validation (label `long`): DEM launch rows 450 and 650 rpm of the default machine
+// Long validation (label `long`): DEM launch rows 450 and 650 rpm of the default machine
 // (scenes/case1_sweep.toml), interpolated by quantile cells at 550 rpm, against the DEM row at 550 rpm,
 // for Urea.
 // Each row simulates 0.6 s (~2200 launches): at 0.3 s the reference itself scatters ~8 % in throw width

@@ -115,7 +115,7 @@ TEST(Predictor, StillAirPatternIsMirrorSymmetric) {
   for (std::size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], t[t.size() - 1 - k], 1e-15);
 }
 
-// Default integrator settings land within 1 cm of a tight-tolerance reference (issue 2).
+// Default integrator settings land within 1 cm of a tight-tolerance reference.
 TEST(Predictor, DefaultSettingsLandWithinOneCentimetreOfReference) {
   for (const char* material : {"can", "urea"}) {
     for (double rpm : {500.0, 600.0, 650.0, 700.0}) {

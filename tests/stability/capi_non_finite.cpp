@@ -1,4 +1,4 @@
-// NaN and Inf in every floating-point argument of the C API (issue 8): spread_predict's definition
+// NaN and Inf in every floating-point argument of the C API: spread_predict's definition
 // fields, spread_transverse_bound's tray width and every field of spread_trajectory's definition give
 // SPREAD_ERROR_NOT_FINITE — a clear code, the result untouched — never a NaN result or
 // SPREAD_ERROR_INTERNAL. disc_height_m = NaN is documented as "the machine's stored height", so for it

@@ -1,4 +1,4 @@
-// Dense pile on the mesh disc of scenes/case1.toml (issue 8): granules placed on a loose lattice over the
+// Dense pile on the mesh disc of scenes/case1.toml: granules placed on a loose lattice over the
 // disc centre fall and settle into a pile with thousands of enduring contacts (particle–particle, cone
 // and vane faces, the vanes' top edges). On the stopped disc nothing outside the granules does work
 // (gravity is booked as potential energy), so the mechanical energy T + U + PE may never rise; it is

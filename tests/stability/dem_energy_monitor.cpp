@@ -1,4 +1,4 @@
-// Energy and penetration monitoring over a mesh-disc `simulate` run (issue 8): scenes/case1.toml with
+// Energy and penetration monitoring over a mesh-disc `simulate` run: scenes/case1.toml with
 // the inlet feeding the spinning mesh disc; the monitor (libspread/dem/energy_monitor.hpp) books every
 // step. Asserted: max penetration under a bound, the energy balance closes within the tolerance measured
 // for this step (docs/stability.md), the budget is consistent with the launch records, the monitor does

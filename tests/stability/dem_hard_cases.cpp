@@ -1,4 +1,4 @@
-// DEM hard cases (issue 8), against the engine's public API (libspread/dem): stiff and small granules
+// DEM hard cases, against the engine's public API (libspread/dem): stiff and small granules
 // (the automatic step must follow), soft and large, a step above the stable bound, Thornton unloading as
 // δ → 0, grazing impacts on a vane edge, a particle exactly on a shared edge or vertex, coplanar
 // triangles split differently, a disc at 1500 rpm, degenerate STL input, and repeatability.

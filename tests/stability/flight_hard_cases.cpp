@@ -1,4 +1,4 @@
-// Flight hard cases (issue 8): ω = 0, v = 0 relative to the air, Re → 0, launch straight down, wind
+// Flight hard cases: ω = 0, v = 0 relative to the air, Re → 0, launch straight down, wind
 // stronger than the launch, extreme diameters and densities, a step far above the drag relaxation time.
 // Invariants asserted for every case and both integrators: no NaN/Inf in the result (a refusal is an
 // exception naming the cause, never a silent NaN), the landing on the ground plane, speed bounded by

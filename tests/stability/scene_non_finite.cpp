@@ -1,4 +1,4 @@
-// NaN and Inf in any scene value (issue 8): every numeric key of every shipped scene (scenes/*.toml),
+// NaN and Inf in any scene value: every numeric key of every shipped scene (scenes/*.toml),
 // found by walking the TOML tree — so a key added to a scene later is covered without editing this test —
 // set to nan, inf and -inf, both in the file text and as a --set override. Each must be refused with a
 // SceneError that names the key (for arrays: the array's key).

@@ -1,4 +1,4 @@
-// NaN and Inf in a launch table (issue 8): a run whose samples hold a NaN or Inf (put there by SQL, as a
+// NaN and Inf in a launch table: a run whose samples hold a NaN or Inf (put there by SQL, as a
 // damaged or hand-edited file would), and non-finite or missing numbers in the machine, material and
 // run rows. Through the C API each must be refused with a clear status — the file is corrupt
 // (SPREAD_ERROR_FILE_CORRUPT), or the prediction is refused with a status other than

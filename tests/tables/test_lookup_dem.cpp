@@ -1,4 +1,4 @@
-// lookup_builder with the DEM source (issue 4): runs are deterministic and normalised as the table
+// lookup_builder with the DEM source: runs are deterministic and normalised as the table
 // format says; a build killed mid-run (SIGKILL) resumes to the same content as an uninterrupted build;
 // threads give the same file as one process; damaged, truncated and foreign files are refused and left
 // byte-identical; finished runs survive the MPI message round trip.

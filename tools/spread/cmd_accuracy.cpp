@@ -1,4 +1,4 @@
-// `spread accuracy`: the accuracy–cost study (libspread/accuracy, issue 9). Writes one CSV and PNG
+// `spread accuracy`: the accuracy–cost study (libspread/accuracy). Writes one CSV and PNG
 // plots per study into --out and the markdown report (default <out>/accuracy-cost.md). The committed
 // docs/accuracy-cost.md is produced by, from the source root:
 //   spread accuracy --out docs/accuracy --report docs/accuracy-cost.md

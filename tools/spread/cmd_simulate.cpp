@@ -162,7 +162,7 @@ spread::cli::CommandRegistration reg{"simulate", [](CLI::App& app, int& exit_cod
       ->check(CLI::NonNegativeNumber);
   sub->callback([&exit_code] {
 #if defined(SPREAD_HAS_DRUM)
-    // A scene with a [drum] table is the rotating drum (issue 7), not a disc.
+    // A scene with a [drum] table is the rotating drum, not a disc.
     if (spread::drum::is_drum_scene_file(state->scene_path)) {
       exit_code = spread::drum::run_drum_command(state->scene_path, state->overrides, state->json_out, "", "");
       return;

@@ -1,4 +1,4 @@
-// `spread verify impact|vane|cone [--json]`: the DEM's built-in verification cases (issue 3), each
+// `spread verify impact|vane|cone [--json]`: the DEM's built-in verification cases, each
 // printing the simulated and the reference values with their relative errors.
 #include <cmath>
 #include <iostream>
