@@ -98,7 +98,7 @@ void TaskControllerClient::handle_message(std::uint8_t source, std::span<const s
     case TcMessage::kPoolTransferResponse:
       if (state_ != TcClientState::kWaitPoolAnswer) return;
       if (data[1] != 0) {
-        end_connection("the TC refused the pool (error bits 0x" + std::to_string(data[1]) + ")", now);
+        end_connection("the TC refused the pool (error bits " + std::to_string(data[1]) + ")", now);
         return;
       }
       send_tc(encode_activate(true));
