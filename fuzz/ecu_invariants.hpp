@@ -10,7 +10,9 @@
 
 namespace spread::fuzz {
 
-inline void check_ecu_status(const char* harness, const firmware::Ecu& ecu) {
+// `after_step`: the status was taken right after a loop step. The fail-safe rules are evaluated at each
+// step; between steps a set-value may already have moved a set-point the last step's metering was based on.
+inline void check_ecu_status(const char* harness, const firmware::Ecu& ecu, bool after_step = true) {
   const firmware::EcuStatus s = ecu.status();
   const firmware::EcuParameters& p = ecu.parameters();
   const auto finite_in = [&](double value, double low, double high, const char* what) {
@@ -34,7 +36,7 @@ inline void check_ecu_status(const char* harness, const firmware::Ecu& ecu) {
   }
   // Fail-safe: metering only with the master switch on, a section open, the disc at its spreading speed
   // and the tractor moving forward at a valid speed.
-  if (s.work_state_actual) {
+  if (s.work_state_actual && after_step) {
     if (!s.work_state_setpoint) fail(harness, "metering with the work state set-point off");
     if (s.section_mask == 0 || !(s.width_actual_m > 0.0)) fail(harness, "metering with no open section width");
     if (!(s.ground_speed_m_s > 0.0)) fail(harness, "metering without a valid ground speed");
@@ -43,7 +45,7 @@ inline void check_ecu_status(const char* harness, const firmware::Ecu& ecu) {
       fail(harness, "metering with the disc at " + std::to_string(s.rpm_actual) + " r/min for a target of " +
                         std::to_string(s.rpm_target));
     }
-  } else if (s.mass_flow_kg_s != 0.0 || s.rate_actual_kg_ha != 0.0) {
+  } else if (!s.work_state_actual && (s.mass_flow_kg_s != 0.0 || s.rate_actual_kg_ha != 0.0)) {
     fail(harness, "mass flow or actual rate while not metering");
   }
   if (s.section_count < firmware::kMaxSections && (s.section_mask >> s.section_count) != 0) {

@@ -85,7 +85,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       clock.advance(std::chrono::milliseconds(step_ms));
       ecu.step(step_ms * 1e-3);
     }
-    spread::fuzz::check_ecu_status(kHarness, ecu);
+    spread::fuzz::check_ecu_status(kHarness, ecu, step_ms > 0);
   }
   return 0;
 }
