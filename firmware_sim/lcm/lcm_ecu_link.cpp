@@ -117,7 +117,7 @@ void LcmEcuLink::fill_status(const EcuStatus& s) {
   status_.rejected_invalid = count_of(s, Fault::kNotANumber) + count_of(s, Fault::kSetpointOutOfRange) +
                              count_of(s, Fault::kUnknownMode) + count_of(s, Fault::kUnknownMaterial) +
                              count_of(s, Fault::kAutomaticUnavailable);
-  status_.rejected_stale = count_of(s, Fault::kStaleSequence);
+  status_.rejected_stale = count_of(s, Fault::kStaleSequence) + count_of(s, Fault::kSequenceJump);
   status_.can_malformed_frames = count_of(s, Fault::kCanMalformedFrame);
   status_.can_rejected_process_data = count_of(s, Fault::kCanUnknownDdi) +
                                       count_of(s, Fault::kCanUnsupportedCommand) +
