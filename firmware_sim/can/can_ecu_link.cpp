@@ -68,8 +68,8 @@ isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings
   const isobus::Ddop pool = isobus::make_spreader_ddop(d);
   isobus::TcClientSettings tc;
   tc.version.sections = static_cast<std::uint8_t>(d.section_count);
-  return isobus::TaskControllerClient(isobus::write_ddop(pool),
-                                      std::get<isobus::DeviceObject>(pool.objects.front()).structure_label, tc);
+  const auto& device = std::get<isobus::DeviceObject>(pool.objects.front());
+  return isobus::TaskControllerClient(isobus::write_ddop(pool), device.structure_label, device.localization_label, tc);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@ const char* tc_client_state_name(TcClientState state) {
     case TcClientState::kWaitForTc: return "wait_for_tc";
     case TcClientState::kWaitVersion: return "wait_version";
     case TcClientState::kWaitStructureLabel: return "wait_structure_label";
+    case TcClientState::kWaitLocalizationLabel: return "wait_localization_label";
     case TcClientState::kWaitTransferAnswer: return "wait_transfer_answer";
     case TcClientState::kWaitPoolAnswer: return "wait_pool_answer";
     case TcClientState::kWaitActivateAnswer: return "wait_activate_answer";
@@ -20,8 +21,11 @@ const char* tc_client_state_name(TcClientState state) {
 }
 
 TaskControllerClient::TaskControllerClient(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
-                                           TcClientSettings settings)
-    : pool_(std::move(pool)), structure_label_(structure_label), settings_(settings) {}
+                                           std::array<std::uint8_t, 7> localization_label, TcClientSettings settings)
+    : pool_(std::move(pool)),
+      structure_label_(structure_label),
+      localization_label_(localization_label),
+      settings_(settings) {}
 
 void TaskControllerClient::send(std::uint32_t pgn, std::uint8_t destination, std::span<const std::uint8_t> data) {
   out_.push_back(TcOutgoing{pgn, destination, std::vector<std::uint8_t>(data.begin(), data.end())});
@@ -70,11 +74,20 @@ void TaskControllerClient::handle_message(std::uint8_t source, std::span<const s
       send_tc(tc_frame(TcMessage::kRequestStructureLabel));
       expect(TcClientState::kWaitStructureLabel, now, settings_.answer_timeout);
       return;
-    case TcMessage::kStructureLabel: {
+    case TcMessage::kStructureLabel:
       if (state_ != TcClientState::kWaitStructureLabel) return;
-      const bool known = std::equal(structure_label_.begin(), structure_label_.end(), data.begin() + 1);
+      structure_known_ = std::equal(structure_label_.begin(), structure_label_.end(), data.begin() + 1);
+      send_tc(tc_frame(TcMessage::kRequestLocalizationLabel));
+      expect(TcClientState::kWaitLocalizationLabel, now, settings_.answer_timeout);
+      return;
+    case TcMessage::kLocalizationLabel: {
+      if (state_ != TcClientState::kWaitLocalizationLabel) return;
+      // A pool the TC holds under both our labels is activated as it is; anything else is sent again
+      // (a changed language or unit system changes the pool's designators and presentations).
+      const bool known =
+          structure_known_ && std::equal(localization_label_.begin(), localization_label_.end(), data.begin() + 1);
       if (known) {
-        send_tc(encode_activate(true));  // the TC kept our pool: no transfer needed
+        send_tc(encode_activate(true));
         expect(TcClientState::kWaitActivateAnswer, now, settings_.answer_timeout);
       } else {
         send_tc(encode_request_pool_transfer(static_cast<std::uint32_t>(pool_.size())));

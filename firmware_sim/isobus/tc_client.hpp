@@ -4,7 +4,9 @@
 // 8 bytes by TP/ETP). The sequence, one step per answer:
 //   TC status seen  -> working-set master message, request version
 //   version         -> request structure label
-//   structure label -> the TC holds our pool (same label): activate; else request object-pool transfer
+//   structure label -> request localisation label
+//   localisation label -> the TC holds our pool (both labels ours): activate; else request object-pool
+//                      transfer
 //   transfer answer -> object-pool transfer (the pool, by TP/ETP)
 //   pool answer     -> activate
 //   activate answer -> connected: client task message every 2 s
@@ -29,6 +31,7 @@ enum class TcClientState : std::uint8_t {
   kWaitForTc,             // no TC status seen yet (or the last connection ended)
   kWaitVersion,           // request version sent
   kWaitStructureLabel,    // request structure label sent
+  kWaitLocalizationLabel, // request localisation label sent
   kWaitTransferAnswer,    // request object-pool transfer sent
   kWaitPoolAnswer,        // object-pool transfer sent
   kWaitActivateAnswer,    // activate sent
@@ -52,9 +55,9 @@ struct TcOutgoing {
 
 class TaskControllerClient {
  public:
-  // `pool` is the DDOP as write_ddop gives it; `structure_label` the label inside it.
+  // `pool` is the DDOP as write_ddop gives it; the labels are the ones inside it.
   TaskControllerClient(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
-                       TcClientSettings settings = {});
+                       std::array<std::uint8_t, 7> localization_label, TcClientSettings settings = {});
 
   // A PGN 0xCB00 message from `source` addressed to us or to all (single frame or reassembled). Messages
   // that are not connection messages (process data values, ...) are ignored here.
@@ -77,6 +80,8 @@ class TaskControllerClient {
 
   std::vector<std::uint8_t> pool_;
   std::array<std::uint8_t, 7> structure_label_;
+  std::array<std::uint8_t, 7> localization_label_;
+  bool structure_known_ = false;  // the TC's structure label was ours
   TcClientSettings settings_;
   TcClientState state_ = TcClientState::kWaitForTc;
   std::optional<std::uint8_t> tc_;

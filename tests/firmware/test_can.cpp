@@ -455,6 +455,9 @@ TEST_F(VirtualBus, TaskControllerReceivesActivatesAndDrivesThePool) {
   EXPECT_EQ(last_connection_frame()[0], 0x01) << "request structure label";
   tc_send(isobus::encode_label(isobus::TcMessage::kStructureLabel, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}));
   run(1);
+  EXPECT_EQ(last_connection_frame()[0], 0x21) << "request localisation label";
+  tc_send(isobus::encode_label(isobus::TcMessage::kLocalizationLabel, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}));
+  run(1);
   const auto transfer_request = last_connection_frame();
   ASSERT_EQ(transfer_request[0], 0x41) << "request object-pool transfer";
   const std::uint32_t size = transfer_request[1] | (transfer_request[2] << 8) | (transfer_request[3] << 16) |

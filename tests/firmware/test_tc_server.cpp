@@ -343,7 +343,7 @@ TEST(TcServer, ConnectsTheEcusOwnTcClient) {
   d.name = 0xA00A8000001234ull;
   const Ddop ddop = make_spreader_ddop(d);
   const auto& dvc = std::get<DeviceObject>(ddop.objects.front());
-  TaskControllerClient client(write_ddop(ddop), dvc.structure_label);
+  TaskControllerClient client(write_ddop(ddop), dvc.structure_label, dvc.localization_label);
   TcServer tc;
   TransportProtocol client_tp{kClient};
   Nanoseconds now{};
