@@ -97,6 +97,16 @@ std::uint16_t object_id(const DdopObject& object) {
   return std::visit([](const auto& o) { return o.id; }, object);
 }
 
+std::string label_hex(const std::array<std::uint8_t, 7>& label) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  std::string s;
+  for (const std::uint8_t b : label) {
+    s += kDigits[b >> 4];
+    s += kDigits[b & 0x0F];
+  }
+  return s;
+}
+
 std::vector<std::uint8_t> write_ddop(const Ddop& pool) {
   Writer w;
   for (const DdopObject& object : pool.objects) {

@@ -96,6 +96,9 @@ struct Ddop {
 
 std::uint16_t object_id(const DdopObject& object);
 
+// A structure or localisation label as 14 hex digits, for logs and the pool tree.
+std::string label_hex(const std::array<std::uint8_t, 7>& label);
+
 // Bytes of the pool as transferred with the "object pool transfer" message (ISO 11783-10 B.1), without
 // the leading command byte. Throws std::invalid_argument for a string longer than 255 bytes or more
 // than 65535 children.

@@ -15,16 +15,6 @@ std::string hex8(std::uint8_t v) {
   return buf;
 }
 
-std::string label_text(const std::array<std::uint8_t, 7>& label) {
-  std::string s;
-  char buf[4];
-  for (const std::uint8_t b : label) {
-    std::snprintf(buf, sizeof buf, "%02X", b);
-    s += buf;
-  }
-  return s;
-}
-
 bool is_transport_pgn(std::uint32_t pgn) {
   return pgn == kTpConnectionManagementPgn || pgn == kTpDataTransferPgn || pgn == kEtpConnectionManagementPgn ||
          pgn == kEtpDataTransferPgn;
@@ -276,7 +266,7 @@ void TcServer::handle_pool(std::uint8_t source, std::span<const std::uint8_t> po
   answer[1] = 0x00;
   std::string label;
   for (const DdopObject& o : pool_->objects) {
-    if (const auto* d = std::get_if<DeviceObject>(&o)) label = label_text(d->structure_label);
+    if (const auto* d = std::get_if<DeviceObject>(&o)) label = label_hex(d->structure_label);
   }
   event("pool from " + hex8(source) + " accepted: " + std::to_string(size) + " bytes, " +
         std::to_string(pool_->objects.size()) + " objects, " + std::to_string(section_elements_.size()) +

@@ -225,8 +225,8 @@ class VirtualBus : public ::testing::Test {
 
   void send_tc_status() {
     // Process data command 0xE (TC status) to the global address.
-    const std::uint8_t status[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0xFF, 0xFF, 0xFF};
-    ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kGlobalAddress, kTractor}), status, 8)));
+    const auto status = isobus::encode_tc_status(true);
+    ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kGlobalAddress, kTractor}), status.data(), 8)));
   }
 
   // Runs loop ticks, then returns every frame the ECU sent.

@@ -11,6 +11,7 @@
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/can/speed_messages.hpp"
+#include "firmware_sim/isobus/tc_messages.hpp"
 #include "tools/spread_tractor/sessions.hpp"
 
 namespace spread::tractor {
@@ -120,8 +121,8 @@ int run_can_session(const CanSessionOptions& o) {
   while (!stop_requested() && Clock::now() - start < std::chrono::duration<double>(o.duration_s)) {
     // As the task controller: its status every 2 s (ISO 11783-10), which keeps the work state it set alive.
     if (Clock::now() >= next_tc_status) {
-      const std::uint8_t status[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0xFF, 0xFF, 0xFF};
-      port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), status, 8));
+      const auto status = firmware::isobus::encode_tc_status(true);
+      port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), status.data(), 8));
       next_tc_status += std::chrono::seconds(2);
     }
     if (o.speed_m_s >= 0.0) {

@@ -25,16 +25,6 @@ const char* element_type_name(ElementType type) {
   return "element type ?";
 }
 
-std::string hex_bytes(const std::array<std::uint8_t, 7>& bytes) {
-  std::string s;
-  char buf[4];
-  for (const std::uint8_t b : bytes) {
-    std::snprintf(buf, sizeof buf, "%02X", b);
-    s += buf;
-  }
-  return s;
-}
-
 std::string properties_text(std::uint8_t properties, std::uint8_t triggers) {
   std::string s;
   auto add = [&s](const char* word) {
@@ -73,8 +63,8 @@ class TreeWriter {
       if (!d) continue;
       out_ += "DVC " + std::to_string(d->id) + " \"" + d->designator + "\" software " + d->software_version +
               ", serial " + d->serial_number + "\n    " + describe_name(d->working_set_master_name) +
-              "\n    structure label " + hex_bytes(d->structure_label) + ", localisation label " +
-              hex_bytes(d->localization_label) + "\n";
+              "\n    structure label " + firmware::isobus::label_hex(d->structure_label) + ", localisation label " +
+              firmware::isobus::label_hex(d->localization_label) + "\n";
       elements_under(d->id, "");
     }
     return out_;
