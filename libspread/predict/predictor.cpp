@@ -117,8 +117,102 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   for (std::size_t k = 0; k < runs.size(); ++k) cell_offset_[k + 1] += cell_offset_[k];
   cell_mean_.assign(cell_offset_.back(), tables::LaunchSample{});
   for (const auto& rows : materials_) assign_cells(rows);
+  build_landing_caches(memory);
 
   own_workspace_.emplace(*this, memory);
+}
+
+std::size_t Predictor::interpolate(std::size_t lower_run, std::size_t upper_run, double t,
+                                   std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const {
+  if (lower_run == upper_run || pairwise(lower_run, upper_run)) {
+    return interpolate_launch_samples(run_samples(lower_run), run_samples(upper_run), lower_run == upper_run ? 0.0 : t,
+                                      samples, weight_kg);
+  }
+  const auto celled = [&](std::size_t run) {
+    return CelledRow{run_samples(run), std::span(cell_of_sample_).subspan(run_offset_[run], run_samples(run).size()),
+                     std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
+  };
+  return interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), t, samples, weight_kg);
+}
+
+namespace {
+// Relative and absolute tolerance (m, m/s) of the landing cache's flights.
+constexpr double kCacheTolerance = 1e-4;
+}  // namespace
+
+void Predictor::build_landing_caches(std::pmr::memory_resource* memory) {
+  const auto& runs = contents_.runs;
+  row_cache_.clear();
+  pair_cache_.clear();
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    row_cache_.emplace_back(memory);
+    pair_cache_.emplace_back(memory);
+  }
+  row_cache_effects_.assign(runs.size(), 0);
+  pair_cache_effects_.assign(runs.size(), 0);
+  const auto& machine = contents_.machine;
+  std::vector<tables::LaunchSample> node_samples[LandingCache::kPairNodes];  // construction only: may allocate
+  std::vector<double> weight_kg(largest_pair_);
+  for (auto& samples : node_samples) samples.resize(largest_pair_);
+  for (const auto& rows : materials_) {
+    const double density_kg_m3 = contents_.materials[rows.material].density_kg_m3;
+    const auto flying_at = [&](double rpm, flight::EffectSet effects) {
+      LandingCache::Flying f;
+      f.rim_speed_m_s = rpm * 2.0 * kPi / 60.0 * machine.disc_radius_m;
+      f.disc_height_m = machine.disc_height_m;
+      f.density_kg_m3 = density_kg_m3;
+      f.effects = effects;
+      f.settings = settings_;
+      // Flown once: a tighter tolerance than a flight in predict() costs little and leaves the
+      // interpolation as the cache's only error (docs/c-api.md "Landing cache").
+      f.settings.rel_tol = std::min(settings_.rel_tol, kCacheTolerance);
+      f.settings.abs_tol = std::min(settings_.abs_tol, kCacheTolerance);
+      return f;
+    };
+    for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+      const flight::EffectSet row_effects = run_effects_[k] & ~flight::EffectSet{flight::kWind};
+      if (LandingCache::covers(row_effects)) {
+        const std::span<const tables::LaunchSample> nodes[1] = {run_samples(k)};
+        const LandingCache::Flying flying[1] = {flying_at(runs[k].rpm, row_effects)};
+        if (row_cache_[k].build(nodes, flying)) row_cache_effects_[k] = row_effects;
+      }
+      if (k + 1 >= rows.first_run + rows.run_count) continue;
+      const flight::EffectSet pair_effects = (run_effects_[k] | run_effects_[k + 1]) & ~flight::EffectSet{flight::kWind};
+      if (!LandingCache::covers(pair_effects)) continue;
+      std::span<const tables::LaunchSample> nodes[LandingCache::kPairNodes];
+      LandingCache::Flying flying[LandingCache::kPairNodes];
+      for (std::size_t node = 0; node < LandingCache::kPairNodes; ++node) {
+        const double t = static_cast<double>(node) / static_cast<double>(LandingCache::kPairNodes - 1);
+        const std::size_t n = interpolate(k, k + 1, t, node_samples[node], weight_kg);
+        nodes[node] = std::span(node_samples[node]).first(n);
+        flying[node] = flying_at(runs[k].rpm + t * (runs[k + 1].rpm - runs[k].rpm), pair_effects);
+      }
+      if (pair_cache_[k].build(nodes, flying)) pair_cache_effects_[k] = pair_effects;
+    }
+  }
+}
+
+std::size_t Predictor::landing_cache_bytes() const {
+  if (!landing_cache_enabled_) return 0;
+  std::size_t bytes = 0;
+  for (const auto& cache : row_cache_) bytes += cache.bytes();
+  for (const auto& cache : pair_cache_) bytes += cache.bytes();
+  return bytes;
+}
+
+const LandingCache* Predictor::landing_cache_for(std::size_t lower_run, std::size_t upper_run, double height_m,
+                                                 flight::EffectSet effects, const flight::Air& air) const {
+  if (!landing_cache_enabled_ || height_m != contents_.machine.disc_height_m) return nullptr;
+  if ((effects & flight::kWind) != 0 &&
+      !(std::hypot(air.wind_m_s.x(), air.wind_m_s.y()) <= LandingCache::kWindRadius_m_s && air.wind_m_s.z() == 0.0)) {
+    return nullptr;
+  }
+  const flight::EffectSet still_air = effects & ~flight::EffectSet{flight::kWind};
+  const bool row = lower_run == upper_run;
+  const LandingCache& cache = row ? row_cache_[lower_run] : pair_cache_[lower_run];
+  const flight::EffectSet cached = row ? row_cache_effects_[lower_run] : pair_cache_effects_[lower_run];
+  if (cache.empty() || still_air != cached) return nullptr;
+  return &cache;
 }
 
 PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::memory_resource* memory)
@@ -263,7 +357,7 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
 
 std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double omega_rad_s, double height_m,
                                     const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
-                                    double density_kg_m3) const {
+                                    double density_kg_m3, const LandingCache* cache, double t) const {
   const auto& machine = contents_.machine;
   const bool two_discs = machine.disc_count == 2;
   const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
@@ -294,8 +388,23 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
       const std::size_t f = first + c;
       launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
     }
-    flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
-                     settings_, std::span(w.landings_).first(count));
+    if (cache != nullptr) {
+      const double wind_x_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.x() : 0.0;
+      const double wind_y_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.y() : 0.0;
+      double node_weight[LandingCache::kPairNodes];
+      cache->node_weights(t, node_weight);
+      for (std::size_t c = 0; c < count; ++c) {
+        const std::size_t f = first + c;
+        flight::Landing& landing = w.landings_[c];
+        double x = 0.0, y = 0.0;
+        cache->landing(f < n ? f : f - n, node_weight, w.launches_[c], wind_x_m_s, wind_y_m_s, x, y);
+        landing.state.position_m = Vec3(x, y, 0.0);
+        landing.landed = true;
+      }
+    } else {
+      flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
+                       settings_, std::span(w.landings_).first(count));
+    }
     for (std::size_t c = 0; c < count; ++c) {
       const std::size_t f = first + c;
       const flight::Landing& landing = w.landings_[c];
@@ -329,7 +438,7 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
                                                 std::span(w.radial_weight_).first(radial_count));
   w.radial_mean_m_ = stats.mean_radius_m;
   w.radial_width_m_ = stats.radial_width_m;
-  return flights;
+  return cache != nullptr ? 0 : flights;
 }
 
 PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
@@ -351,19 +460,10 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   if (!bracket) return PredictStatus::kRpmOutsideTable;
 
   // 1–2. Launch samples at this rpm (normalised), then scaled during the flight loop.
-  const std::size_t lower_run = rows.first_run + bracket->lower, upper_run = rows.first_run + bracket->upper;
-  std::size_t n = 0;
-  if (bracket->upper_weight == 0.0 || pairwise(lower_run, upper_run)) {
-    n = interpolate_launch_samples(run_samples(lower_run), run_samples(upper_run),
-                                   bracket->upper_weight, w.samples_, w.sample_weight_kg_);
-  } else {
-    const auto celled = [&](std::size_t run) {
-      return CelledRow{run_samples(run), std::span(cell_of_sample_).subspan(run_offset_[run], run_samples(run).size()),
-                       std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
-    };
-    n = interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), bracket->upper_weight, w.samples_,
-                                      w.sample_weight_kg_);
-  }
+  // On a row (t = 0) that row alone.
+  const std::size_t lower_run = rows.first_run + bracket->lower;
+  const std::size_t upper_run = bracket->upper_weight == 0.0 ? lower_run : rows.first_run + bracket->upper;
+  const std::size_t n = interpolate(lower_run, upper_run, bracket->upper_weight, w.samples_, w.sample_weight_kg_);
   const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
 
   // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
@@ -384,8 +484,10 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const bool fly_right_disc = two_discs && windy && request.wind_x_m_s != 0.0;
 
   // 3–4. Flights, machine frame.
+  const LandingCache* cache = landing_cache_for(lower_run, upper_run, height_m, effects, air);
   const int flights = static_cast<int>(fly_launches(w, n, omega_rad_s, height_m, air, effects, fly_right_disc,
-                                                    contents_.materials[rows.material].density_kg_m3));
+                                                    contents_.materials[rows.material].density_kg_m3, cache,
+                                                    bracket->upper_weight));
   const std::size_t landings = two_discs ? 2 * n : n;
   const std::span<const double> xs = std::span(w.landing_x_m_).first(landings);
   const std::span<const double> ys = std::span(w.landing_y_m_).first(landings);

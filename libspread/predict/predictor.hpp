@@ -31,6 +31,7 @@
 
 #include "libspread/flight/flight.hpp"
 #include "libspread/metrics/metrics.hpp"
+#include "libspread/predict/landing_cache.hpp"
 #include "libspread/predict/launch_quantile_cells.hpp"
 #include "libspread/tables/table_reader.hpp"
 
@@ -188,9 +189,18 @@ class Predictor {
   // 0 when the tray width is outside the limits.
   int tray_capacity(double tray_width_m) const;
 
-  // Integrator used by predict(); default_flight_settings() unless changed (benchmarks, tests).
-  void set_flight_settings(const flight::Settings& settings) { settings_ = settings; }
+  // Integrator used by predict(); default_flight_settings() unless changed (benchmarks, tests). The landing
+  // cache was flown with the settings at construction: changing them turns it off.
+  void set_flight_settings(const flight::Settings& settings) {
+    settings_ = settings;
+    landing_cache_enabled_ = false;
+  }
   const flight::Settings& flight_settings() const { return settings_; }
+  // Whether predict() may take landings from the landing cache (landing_cache.hpp) where it covers the
+  // request; off: every granule is flown (benchmarks and tests compare the two).
+  void set_landing_cache_enabled(bool enabled) { landing_cache_enabled_ = enabled; }
+  // Bytes the landing caches hold (0: the table's flight effects are not planar, or the cache is off).
+  std::size_t landing_cache_bytes() const;
 
   // Does not allocate. Refused requests are statuses, not exceptions (so a refusal does not allocate
   // either); on a refusal `out` is unchanged. An exception from here means a malformed table record that
@@ -224,9 +234,19 @@ class Predictor {
   QuantileCellCounts cell_counts(const MaterialRows& rows) const;
   // Flies the runs that need cells once (landing keys) and fills their cells and cell means.
   void assign_cells(const MaterialRows& rows);
+  // Launch samples of the rows lower..upper at weight t (lower == upper: that row), as predict() uses
+  // them: pairwise for analytic rows of equal count, otherwise by quantile cells. Returns the count.
+  std::size_t interpolate(std::size_t lower_run, std::size_t upper_run, double t,
+                          std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const;
+  // Flies each run's row and each pair of neighbouring rows once into a landing cache, where the runs'
+  // flight effects are planar (LandingCache::covers).
+  void build_landing_caches(std::pmr::memory_resource* memory);
+  // The cache that serves this request, or null (fly).
+  const LandingCache* landing_cache_for(std::size_t lower_run, std::size_t upper_run, double height_m,
+                                        flight::EffectSet effects, const flight::Air& air) const;
   std::size_t fly_launches(PredictorWorkspace& w, std::size_t sample_count, double omega_rad_s, double height_m,
                            const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
-                           double density_kg_m3) const;
+                           double density_kg_m3, const LandingCache* cache, double t) const;
 
   tables::TableContents contents_;  // without the samples (in samples_)
   PredictorLimits limits_;
@@ -244,6 +264,11 @@ class Predictor {
   std::pmr::vector<std::uint32_t> cell_of_sample_;
   std::pmr::vector<tables::LaunchSample> cell_mean_;
   double lowest_sample_z_m_ = 0.0;    // over all runs: the disc must sit at least -this above ground
+  // Landing caches: row_cache_[run] for a request on that row, pair_cache_[run] for one between run and
+  // run + 1 (empty where not made), with the still-air effects each was flown with.
+  std::vector<LandingCache> row_cache_, pair_cache_;
+  std::vector<flight::EffectSet> row_cache_effects_, pair_cache_effects_;
+  bool landing_cache_enabled_ = true;
   std::optional<PredictorWorkspace> own_workspace_;  // for predict(request, out)
 };
 
