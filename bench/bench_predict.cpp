@@ -14,7 +14,11 @@
 // launches marked as DEM rows, so the prediction interpolates by quantile cells as it does on a real DEM
 // table: every granule of both rows flies (n_a + n_b samples per disc).
 // BM_PredictCApiFile: a real table file given in SPREAD_BENCH_TABLE (e.g. made by
-// `lookup_builder scenes/default.toml --output X.sqlite`), skipped without it.
+// `lookup_builder scenes/default.toml --output X.sqlite`), skipped without it. On a drag-only table in
+// the machine's conditions (stored height, wind <= 5 m/s) the landings come from the landing cache
+// (flights = 0). BM_PredictLandingCache/<wind m/s>/<cache>: the same file through the Predictor with the
+// cache on (1) and off (0: every granule flown), at 560 rpm, with max_landing_error_m against every
+// granule flown at the tight reference tolerance.
 // Run: build-<dir>/bench/bench_predict [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
@@ -29,6 +33,7 @@
 #include "libspread/predict/flight_defaults.hpp"
 #include "libspread/predict/predictor.hpp"
 #include "libspread/scene/scene.hpp"
+#include "libspread/tables/table_reader.hpp"
 #include "libspread/tables/table_writer.hpp"
 #include "spread/spread.h"
 
@@ -200,6 +205,41 @@ void BM_PredictCApiFile(benchmark::State& state) {
   predict_file(state, path, def);
 }
 
+// The landing cache's cost and error on a real table file (SPREAD_BENCH_TABLE).
+void BM_PredictLandingCache(benchmark::State& state) {
+  const char* path = std::getenv("SPREAD_BENCH_TABLE");
+  if (path == nullptr || *path == '\0') {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  spread::predict::Predictor p(spread::tables::read_table_file(path));
+  spread::predict::Predictor reference(spread::tables::read_table_file(path));
+  reference.set_flight_settings(spread::predict::reference_flight_settings());
+  p.set_landing_cache_enabled(state.range(1) != 0);
+  spread::predict::PredictionRequest r;
+  r.material = p.material(p.find_material(kMaterial).value_or(0)).name;
+  r.rpm = kRpm;
+  r.wind_x_m_s = static_cast<double>(state.range(0));
+  spread::predict::Prediction out, truth;
+  if (p.predict(r, out) != spread::predict::PredictStatus::kOk || reference.predict(r, truth) != spread::predict::PredictStatus::kOk) {
+    state.SkipWithError("predict failed");
+    return;
+  }
+  double error_m = 0.0;
+  for (std::size_t k = 0; k < out.landing_x_m.size(); ++k) {
+    error_m = std::max(error_m, std::hypot(out.landing_x_m[k] - truth.landing_x_m[k], out.landing_y_m[k] - truth.landing_y_m[k]));
+  }
+  for (auto _ : state) {
+    p.predict(r, out);
+    double width_m = out.working_width_to_and_fro_m;
+    benchmark::DoNotOptimize(width_m);
+  }
+  state.counters["max_landing_error_m"] = error_m;
+  state.counters["flights"] = out.flights;
+  state.counters["working_width_m"] = out.working_width_to_and_fro_m;
+  state.counters["cache_bytes"] = static_cast<double>(p.landing_cache_bytes());
+}
+
 BENCHMARK(BM_PredictDormandPrince)->Arg(256)->Arg(512)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictCApi)->Arg(256)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictCApiDrag)
@@ -209,6 +249,10 @@ BENCHMARK(BM_PredictCApiDrag)
 BENCHMARK(BM_PredictCApiFile)
     ->ArgsProduct({{0, 3}, {560, 600}})
     ->ArgNames({"wind", "rpm"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PredictLandingCache)
+    ->ArgsProduct({{0, 3}, {0, 1}})
+    ->ArgNames({"wind", "cache"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictRk4Fixed1ms)->Arg(256)->Unit(benchmark::kMillisecond);
 

@@ -10,7 +10,9 @@
 //      launch_quantile_cells.hpp, launch_landing_keys.hpp) —, scale velocities by ωR and spins by ω,
 //      place them at the disc height (ground z = 0),
 //   3. fly each granule (all in one flight::fly_many call — SIMD lanes for drag/wind-only flights, the
-//      same landings as flight::fly_to_ground one by one —, default_flight_settings()),
+//      same landings as flight::fly_to_ground one by one —, default_flight_settings()), or, for a
+//      drag-only table at the stored height in a wind up to LandingCache::kWindRadius_m_s, evaluate its
+//      landing from the landing cache flown at construction (landing_cache.hpp),
 //   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
 //      (DESIGN.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
 //      so the right disc's launches are mirrored and flown themselves,
@@ -90,7 +92,7 @@ struct Prediction {
   double disc_height_m = 0.0;               // as used
   double lost_mass_fraction = 0.0;          // outside the trays or not landed
   metrics::TrayLayout trays;
-  int flights = 0;                          // trajectories integrated
+  int flights = 0;                          // trajectories integrated (0: landings from the cache)
   // Monte Carlo uncertainty (docs/metrics.md "Uncertainty"): the standard errors of the estimates above
   // over the table's launch samples, by the delta method (the influence of each sample, linear in the
   // samples: no resampling). NaN where the estimate has no derivative (no width meets the target, or
@@ -169,7 +171,8 @@ class Predictor {
  public:
   // Throws tables::TableError(kCorrupt) when a run names a material the file does not describe, and
   // std::invalid_argument for bad limits. Materials without runs are not offered. Rows interpolated by
-  // quantile cells are flown once here to find their cells (one flight per sample, default settings).
+  // quantile cells are flown once here to find their cells (one flight per sample, default settings), and
+  // a drag-only table's rows and pairs of rows once more into the landing cache (landing_cache.hpp).
   // The launch samples, the cells and the own workspace are allocated from `memory` (which must outlive
   // the Predictor); the samples are moved out of `contents` into one block.
   explicit Predictor(tables::TableContents contents, PredictorLimits limits = {},

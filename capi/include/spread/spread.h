@@ -200,7 +200,8 @@ typedef struct spread_prediction {
   double tray_width_m;                /* as requested */
   double tray_left_edge_m;            /* left edge of tray 0; tray k is centred at
                                          tray_left_edge_m + (k + 0.5) * tray_width_m */
-  int32_t flights;                    /* trajectories integrated for this prediction */
+  int32_t flights;                    /* trajectories integrated for this prediction (0: every landing
+                                         came from the landing cache, docs/c-api.md) */
   /* --- appended in 0.2: written only for a definition of at least this version's struct_size ---
    * Monte Carlo standard errors over the table's launch samples (delta method, docs/metrics.md
    * "Uncertainty"); a 95 % interval is about ±2 standard errors. NaN where undefined (no width meets
