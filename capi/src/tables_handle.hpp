@@ -35,11 +35,21 @@ inline constexpr std::uint64_t kTablesTag = 0x5350524541445442u;     // "SPREADT
 inline constexpr std::uint64_t kWorkspaceTag = 0x5350524541445753u;  // "SPREADWS"
 inline constexpr std::uint64_t kDeadTag = 0xDEADDEADDEADDEADu;
 
+// Flights one spread_predict may integrate: bounds the time of any legal request (docs/c-api.md
+// "Worst-case time"); requests the landing cache serves fly none.
+inline constexpr std::size_t kControllerMaxFlights = 1024;
+
+inline predict::PredictorLimits controller_limits() {
+  predict::PredictorLimits limits;
+  limits.max_flights = kControllerMaxFlights;
+  return limits;
+}
+
 }  // namespace spread::capi
 
 struct spread_tables {
   spread_tables(spread::tables::TableContents contents, const spread_allocator& allocator)
-      : memory(allocator), predictor(std::move(contents), {}, &memory) {}
+      : memory(allocator), predictor(std::move(contents), spread::capi::controller_limits(), &memory) {}
   std::uint64_t tag = spread::capi::kTablesTag;  // first member: read before anything else
   spread::capi::CallerMemory memory;  // before the predictor: it outlives the predictor's buffers
   spread::predict::Predictor predictor;

@@ -463,7 +463,7 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   // On a row (t = 0) that row alone.
   const std::size_t lower_run = rows.first_run + bracket->lower;
   const std::size_t upper_run = bracket->upper_weight == 0.0 ? lower_run : rows.first_run + bracket->upper;
-  const std::size_t n = interpolate(lower_run, upper_run, bracket->upper_weight, w.samples_, w.sample_weight_kg_);
+  std::size_t n = interpolate(lower_run, upper_run, bracket->upper_weight, w.samples_, w.sample_weight_kg_);
   const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
 
   // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
@@ -482,9 +482,24 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   }
   const bool two_discs = contents_.machine.disc_count == 2;
   const bool fly_right_disc = two_discs && windy && request.wind_x_m_s != 0.0;
+  const LandingCache* cache = landing_cache_for(lower_run, upper_run, height_m, effects, air);
+  if (cache == nullptr && limits_.max_flights > 0) {
+    // The flight bound: every k-th sample (a systematic subsample; each keeps its weight, and the weights
+    // are normalised below), the middle one of each stride so that the first and last samples do not
+    // always count.
+    const std::size_t per_sample = fly_right_disc ? 2 : 1;
+    if (per_sample * n > limits_.max_flights) {
+      const std::size_t stride = (per_sample * n + limits_.max_flights - 1) / limits_.max_flights;
+      std::size_t kept = 0;
+      for (std::size_t i = stride / 2; i < n; i += stride, ++kept) {
+        w.samples_[kept] = w.samples_[i];
+        w.sample_weight_kg_[kept] = w.sample_weight_kg_[i];
+      }
+      n = kept;
+    }
+  }
 
   // 3–4. Flights, machine frame.
-  const LandingCache* cache = landing_cache_for(lower_run, upper_run, height_m, effects, air);
   const int flights = static_cast<int>(fly_launches(w, n, omega_rad_s, height_m, air, effects, fly_right_disc,
                                                     contents_.materials[rows.material].density_kg_m3, cache,
                                                     bracket->upper_weight));

@@ -126,6 +126,11 @@ struct PredictorLimits {
   double max_wind_m_s = 100.0;        // each wind component, absolute value
   double max_cv_target = 10.0;        // fraction (1000 %)
   double max_kernel_half_width_m = 10.0;  // m
+  // Flights one prediction may integrate (both discs; 0: no bound). Above it the interpolated launch
+  // samples are thinned to every k-th (k the smallest that fits), so the time of any request is bounded
+  // while its reported uncertainty (sample_count, the standard errors) is that of the samples flown.
+  // Landings from the landing cache are not flights.
+  std::size_t max_flights = 0;
 };
 
 class Predictor;
