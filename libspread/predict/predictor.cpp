@@ -441,6 +441,18 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
   return cache != nullptr ? 0 : flights;
 }
 
+namespace {
+// values[k] and values[T − 1 − k] both become their sum (T even).
+void fold_mirror(std::span<double> values) {
+  const std::size_t count = values.size();
+  for (std::size_t k = 0; k < count / 2; ++k) {
+    const double sum = values[k] + values[count - 1 - k];
+    values[k] = sum;
+    values[count - 1 - k] = sum;
+  }
+}
+}  // namespace
+
 PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
   return predict(request, out, *own_workspace_);
 }
@@ -543,7 +555,19 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const auto tray_count = static_cast<std::size_t>(trays.tray_count);
   const std::span<double> tray_mass = std::span(w.tray_mass_).first(tray_count);
   std::fill(tray_mass.begin(), tray_mass.end(), 0.0);
-  const double lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass);
+  // The right disc mirrored (x_right = −x_left exactly: both are differences of the same two numbers) on a
+  // layout symmetric about the centre line: its kernel mass is the left disc's, tray k's going to tray
+  // T − 1 − k, so only the left disc's landings are spread and the trays are then folded. (Not with
+  // point masses: a landing on a tray edge belongs to the tray to its right on both sides, which is not
+  // mirror symmetric.)
+  const bool mirrored = two_discs && !fly_right_disc && kernel_m > 0.0;
+  double lost = 0.0;
+  if (mirrored) {
+    lost = 2.0 * metrics::accumulate_transverse_kernel(xs.first(n), weights.first(n), trays, kernel_m, tray_mass);
+    fold_mirror(tray_mass);
+  } else {
+    lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass);
+  }
 
   Prediction p;
   p.trays = trays;
@@ -577,6 +601,9 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
   std::span<const double> se_gradients[SampleInfluence::kMaxGradients];  // CV t&f, CV racetrack, W t&f, W rt
   const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
+  // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
+  // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
+  const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m};
   if (p.bout_width_m > 0.0) {
     const int bout_trays = metrics::bout_tray_count(trays, p.bout_width_m);
     p.cv_to_and_fro = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, metrics_scratch);
@@ -609,7 +636,14 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   width_gradient(to_and_fro, metrics::Overlap::kToAndFro, 2);
   width_gradient(racetrack, metrics::Overlap::kRacetrack, 3);
   double se[SampleInfluence::kMaxGradients];
-  influence.standard_errors(se_gradients, se);
+  if (mirrored) {
+    for (std::size_t slot = 0; slot < SampleInfluence::kMaxGradients; ++slot) {
+      if (!se_gradients[slot].empty()) fold_mirror(gradient(slot));
+    }
+    left_influence.standard_errors(se_gradients, se);
+  } else {
+    influence.standard_errors(se_gradients, se);
+  }
   p.cv_to_and_fro_se = p.bout_width_m > 0.0 ? se[0] : nan;
   p.cv_racetrack_se = p.bout_width_m > 0.0 ? se[1] : nan;
   p.working_width_to_and_fro_se_m = se[2];

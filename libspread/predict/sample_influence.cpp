@@ -32,9 +32,9 @@ double kernel_dot(double x, std::span<const double> gradient, const metrics::Tra
 
 // Share of a landing's kernel mass left of a tray edge at `edge_m` (point masses: tray k is the half-open
 // [edge_k, edge_k+1), so a landing on an edge belongs to the tray to its right).
-double share_left_of_edge(double x, double edge_m, double h) {
+double share_left_of_edge(double x, double edge_m, double h, double inv_h) {
   if (h == 0.0) return x < edge_m ? 1.0 : 0.0;
-  return metrics::epanechnikov_cdf((edge_m - x) / h);
+  return metrics::epanechnikov_cdf((edge_m - x) * inv_h);
 }
 
 // A quantile x_q as throw_extent reads it off the trays: inside tray `tray`, a `fraction` of the tray
@@ -63,14 +63,18 @@ struct QuantileShare {
   double left = 0.0, inside = 0.0;
 };
 
-QuantileShare quantile_share(double x, const TrayQuantile& q, const metrics::TrayLayout& trays, double h) {
+QuantileShare quantile_share(double x, const TrayQuantile& q, const metrics::TrayLayout& trays, double h,
+                             double inv_h) {
   if (!std::isfinite(x)) return {};
   const double w = trays.tray_width_m;
   const double layout_left_m = trays.left_edge_m();
   const double tray_left_m = layout_left_m + static_cast<double>(q.tray) * w;
-  const double below = share_left_of_edge(x, tray_left_m, h) - share_left_of_edge(x, layout_left_m, h);
-  const double in_tray = share_left_of_edge(x, tray_left_m + w, h) - share_left_of_edge(x, tray_left_m, h);
-  const double inside = share_left_of_edge(x, -layout_left_m, h) - share_left_of_edge(x, layout_left_m, h);
+  // Each share once (a cdf per edge): left of the layout, of x_q's tray, of its right edge, of the layout.
+  const double left_of_layout = share_left_of_edge(x, layout_left_m, h, inv_h);
+  const double left_of_tray = share_left_of_edge(x, tray_left_m, h, inv_h);
+  const double below = left_of_tray - left_of_layout;
+  const double in_tray = share_left_of_edge(x, tray_left_m + w, h, inv_h) - left_of_tray;
+  const double inside = share_left_of_edge(x, -layout_left_m, h, inv_h) - left_of_layout;
   return {below + q.fraction * in_tray, inside};
 }
 
@@ -184,9 +188,10 @@ double SampleInfluence::throw_width_standard_error(std::span<const double> tray_
   // (q·inside − left) / f(x_q) per unit of landing share (from C(x_q) = q·S; inside = 1 for a landing
   // whose kernel lies within the layout).
   const TrayQuantile at_left = tray_quantile(extent.left_m, trays), at_right = tray_quantile(extent.right_m, trays);
+  const double h = kernel_half_width_m, inv_h = h > 0.0 ? 1.0 / h : 0.0;
   return influence_standard_error(*this, [&](double x) {
-    const QuantileShare r = quantile_share(x, at_right, trays, kernel_half_width_m);
-    const QuantileShare l = quantile_share(x, at_left, trays, kernel_half_width_m);
+    const QuantileShare r = quantile_share(x, at_right, trays, h, inv_h);
+    const QuantileShare l = quantile_share(x, at_left, trays, h, inv_h);
     return (q_right * r.inside - r.left) / f_right - (q_left * l.inside - l.left) / f_left;
   });
 }
