@@ -133,8 +133,16 @@ class DemEngine {
   double kinetic_energy_j() const;
 
  private:
+  // One force evaluation (force_dispatch.cpp): the law × rotation × rolling instantiation from a table.
+  void compute_forces();
   template <class Law, bool kRotation, bool kRolling>
   void compute_forces_impl();
+  // Walls (wall_pass.cpp): sets each particle's force (and torque) sums to its wall contacts' share.
+  template <class Law, bool kRotation, bool kRolling>
+  void wall_forces();
+  // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started.
+  template <class Law, bool kRotation, bool kRolling>
+  void particle_forces();
   // Particle–particle pass over the CSR half list. kStorePairs: each pair's results go to the list's
   // per-pair arrays and are gathered afterwards (threads, energy monitor); otherwise they are added
   // straight into the sums. Both add in the same order, so the results are bit-identical.
@@ -142,15 +150,21 @@ class DemEngine {
   void pair_forces();
   template <bool kRotation>
   void gather_stored_pair_forces();
-  void wrap_periodic_z();
-  void compute_forces();
-  void maintain_lists();
+  // Law::coeffs per material pair (pair_coeffs_table.cpp).
   template <class Law>
   void update_pair_coeffs();
+  // Pair list and wall list rebuilt when needed (list_upkeep.cpp).
+  void maintain_lists();
+  // The integrator families (integrators.cpp).
+  void step_symplectic_euler();
+  void step_velocity_verlet();
+  void step_gear();
   void kick(double dt);
   void kick_spin(double dt);  // ω += Δt T/I (rotation only); kick() and kick_drift() end with it
   // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles.
   void kick_drift(double dt_kick, double dt_drift);
+  void wrap_periodic_z();
+  // Launched and lost particles leave (launch_collector.cpp).
   void collect();
   void fly_monolithic();
 
