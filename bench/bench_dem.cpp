@@ -15,6 +15,7 @@
 #include <string>
 
 #include "bench/case1_config.hpp"
+#include "libspread/accuracy/monolithic_reference.hpp"
 #include "libspread/dem/simulate.hpp"
 
 namespace {
@@ -33,8 +34,8 @@ void BM_DemCase1(benchmark::State& state) {
     const dem::SimulationResult part = c.duration_s > 0 ? dem::simulate(c) : dem::SimulationResult{};
     dem::SimulationConfig cm = c;
     cm.fly = false;
-    cm.monolithic_reference = true;
-    const dem::SimulationResult mono = dem::simulate(cm);
+    const accuracy::MonolithicResult monolithic = accuracy::simulate_monolithic(cm);
+    const dem::SimulationResult& mono = monolithic.run;
 
     const double disc_s = part.module_time_s.at("dem_forces") + part.module_time_s.at("dem_integrate") +
                           part.module_time_s.at("dem_pair_search") + part.module_time_s.at("dem_collector");
@@ -46,7 +47,7 @@ void BM_DemCase1(benchmark::State& state) {
     state.counters["flight_s"] = part.module_time_s.count("flight") ? part.module_time_s.at("flight") : 0.0;
     state.counters["wall_monolithic_s"] = mono.wall_time_s;
     const double steps_part = static_cast<double>(part.particle_steps + part.flight_steps);
-    const double steps_mono = static_cast<double>(mono.particle_steps + mono.engine_stats.flight_particle_steps);
+    const double steps_mono = static_cast<double>(mono.particle_steps + monolithic.flight_particle_steps);
     state.counters["saving_steps_measured"] = 1.0 - steps_part / steps_mono;
     state.counters["saving_wall_measured"] = 1.0 - part.wall_time_s / mono.wall_time_s;
     // Eq. 49 needs T_c, T_f and N_fc of launched particles: with none launched (a run shorter than the

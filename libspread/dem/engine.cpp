@@ -9,7 +9,6 @@
 
 #include "libspread/dem/engine_detail.hpp"
 #include "libspread/dem/time_step.hpp"
-#include "libspread/flight/flight.hpp"
 
 namespace spread::dem {
 
@@ -108,39 +107,6 @@ double DemEngine::kinetic_energy_j() const {
     if (p_.with_spin) e += 0.5 * p_.inertia_kg_m2[i] * p_.spin(i).squaredNorm();
   }
   return e;
-}
-
-void DemEngine::fly_monolithic() {
-  if (fl_x_.empty()) return;
-  const auto t0 = Clock::now();
-  const double dt = dt_s_;
-  const Vec3 g = params_.gravity_m_s2;
-  std::size_t k = 0;
-  while (k < fl_x_.size()) {
-    // Drag, Eq. 27 with C_D of Eq. 32, in still air; symplectic Euler at Δt_c as the DEM itself.
-    const double speed = std::sqrt(fl_vx_[k] * fl_vx_[k] + fl_vy_[k] * fl_vy_[k] + fl_vz_[k] * fl_vz_[k]);
-    double ax = g.x(), ay = g.y(), az = g.z();
-    if (speed > 0.0) {
-      const double re = monolithic_.air_density_kg_m3 * fl_d_[k] * speed / monolithic_.air_viscosity_pa_s;
-      const double cd = flight::drag_coefficient(re);
-      const double c = 0.5 * monolithic_.air_density_kg_m3 * cd * 0.25 * kPi * fl_d_[k] * fl_d_[k] * speed / fl_m_[k];
-      ax -= c * fl_vx_[k]; ay -= c * fl_vy_[k]; az -= c * fl_vz_[k];
-    }
-    fl_vx_[k] += dt * ax; fl_vy_[k] += dt * ay; fl_vz_[k] += dt * az;
-    fl_x_[k] += dt * fl_vx_[k]; fl_y_[k] += dt * fl_vy_[k]; fl_z_[k] += dt * fl_vz_[k];
-    ++stats_.flight_particle_steps;
-    if (fl_z_[k] <= monolithic_.ground_z_m) {
-      landings_.emplace_back(fl_x_[k], fl_y_[k], fl_z_[k]);
-      ++stats_.landed_monolithic;
-      for (auto* v : {&fl_x_, &fl_y_, &fl_z_, &fl_vx_, &fl_vy_, &fl_vz_, &fl_d_, &fl_m_}) {
-        (*v)[k] = v->back();
-        v->pop_back();
-      }
-      continue;
-    }
-    ++k;
-  }
-  stats_.monolithic_flight_s += seconds_since(t0);
 }
 
 void DemEngine::drop_on_disc_particles() {

@@ -25,7 +25,6 @@ void DemEngine::step() {
   time_s_ += dt_s_;
   if (monitor_ != nullptr) monitor_->end_step(*this);  // before the collector removes launched particles
   collect();
-  if (monolithic_.enabled) fly_monolithic();
 }
 
 void DemEngine::step_symplectic_euler() {

@@ -28,11 +28,6 @@ void DemEngine::collect() {
         rec.material = p_.material[i];
         rec.id = p_.id[i];
         launches_.push_back(rec);
-        if (monolithic_.enabled) {
-          fl_x_.push_back(p_.x[i]); fl_y_.push_back(p_.y[i]); fl_z_.push_back(p_.z[i]);
-          fl_vx_.push_back(p_.vx[i]); fl_vy_.push_back(p_.vy[i]); fl_vz_.push_back(p_.vz[i]);
-          fl_d_.push_back(2.0 * p_.radius_m[i]); fl_m_.push_back(p_.mass_kg[i]);
-        }
         remove = true;
       }
     }
