@@ -57,6 +57,21 @@ void MonolithicFlight::after_duration(dem::DemEngine& engine) {
   }
 }
 
+PartitionSaving predicted_saving(const dem::SimulationResult& part) {
+  const double n = static_cast<double>(part.launches.size());
+  PartitionSaving s;
+  for (std::size_t k = 0; k < part.launches.size(); ++k) {
+    s.t_c_s += part.launches[k].residence_s;
+    s.t_f_s += part.landings[k].flight_time_s;
+  }
+  s.t_c_s /= n;
+  s.t_f_s /= n;
+  const double flight_steps_per_granule = static_cast<double>(part.flight_steps) / n;
+  s.n_fc = (s.t_f_s / flight_steps_per_granule) / part.dt_contact_s;
+  s.c_r = (1.0 - 1.0 / s.n_fc) / (1.0 + s.t_c_s / s.t_f_s);
+  return s;
+}
+
 MonolithicResult simulate_monolithic(const dem::SimulationConfig& config) {
   MonolithicFlight flight(-config.disc_height_m, config.air, config.duration_s + 30.0);
   MonolithicResult out;

@@ -45,6 +45,18 @@ struct MonolithicResult {
   std::uint64_t flight_particle_steps = 0;
 };
 
+// Eq. 49 from a partitioned run (dem::simulate with fly on): T_c the mean time a launched granule spent
+// on the disc, T_f its mean flight time, N_fc = Δt_f/Δt_c with Δt_f = T_f over the mean flight steps per
+// granule, and the predicted saving of the partitioned scheme C_r = (1 − 1/N_fc) / (1 + T_c/T_f).
+// NaN when nothing launched.
+struct PartitionSaving {
+  double t_c_s = 0.0;
+  double t_f_s = 0.0;
+  double n_fc = 0.0;
+  double c_r = 0.0;
+};
+PartitionSaving predicted_saving(const dem::SimulationResult& partitioned);
+
 // dem::simulate(config) with the MonolithicFlight beside it; the ground is z = −config.disc_height_m, and
 // granules still in the air 30 s after config.duration_s are left there (none reach that on a spreader).
 MonolithicResult simulate_monolithic(const dem::SimulationConfig& config);

@@ -42,16 +42,8 @@ Study partition_study(const StudyOptions& options) {
   const MonolithicResult monolithic = simulate_monolithic(cm);
   const dem::SimulationResult& mono = monolithic.run;
 
-  const double n = static_cast<double>(part.launches.size());
-  double t_c = 0.0, t_f = 0.0;
-  for (std::size_t k = 0; k < part.launches.size(); ++k) {
-    t_c += part.launches[k].residence_s;
-    t_f += part.landings[k].flight_time_s;
-  }
-  t_c /= n;
-  t_f /= n;
-  const double n_fc = (t_f / (static_cast<double>(part.flight_steps) / n)) / part.dt_contact_s;
-  const double c_r = (1.0 - 1.0 / n_fc) / (1.0 + t_c / t_f);
+  const PartitionSaving eq49 = predicted_saving(part);
+  const double t_c = eq49.t_c_s, t_f = eq49.t_f_s, n_fc = eq49.n_fc, c_r = eq49.c_r;
   const double steps_part = static_cast<double>(part.particle_steps + part.flight_steps);
   const double steps_mono = static_cast<double>(mono.particle_steps + monolithic.flight_particle_steps);
   const double saving_steps = 1.0 - steps_part / steps_mono;

@@ -145,6 +145,7 @@ class DemEngine {
   void step_symplectic_euler();
   void step_velocity_verlet();
   void step_gear();
+  void forces_at_next_time();  // forces at the positions just predicted or drifted to t + Δt
   void kick(double dt);
   void kick_spin(double dt);  // ω += Δt T/I (rotation only); kick() and kick_drift() end with it
   // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles.

@@ -6,6 +6,13 @@
 #include <omp.h>
 #endif
 
+// Every (contact law, rotation, rolling) combination of the force pass, as X(Law, kRotation, kRolling):
+// the pass files instantiate their templates for each, and force_dispatch.cpp picks one per call.
+#define SPREAD_DEM_FORCE_VARIANTS(X)                                                                      \
+  X(HertzThornton, false, false) X(HertzThornton, false, true) X(HertzThornton, true, false)              \
+  X(HertzThornton, true, true) X(LinearSpringDashpot, false, false) X(LinearSpringDashpot, false, true)   \
+  X(LinearSpringDashpot, true, false) X(LinearSpringDashpot, true, true)
+
 namespace spread::dem::detail {
 
 using Clock = std::chrono::steady_clock;

@@ -20,14 +20,13 @@ void DemEngine::compute_forces() {
   const auto t0 = Clock::now();
   walls_.set_time(time_s_);
   using Fn = void (DemEngine::*)();
-  // Dispatch table over the effect combination (law × rotation × rolling).
-  static constexpr Fn table[2][2][2] = {
-      {{&DemEngine::compute_forces_impl<HertzThornton, false, false>, &DemEngine::compute_forces_impl<HertzThornton, false, true>},
-       {&DemEngine::compute_forces_impl<HertzThornton, true, false>, &DemEngine::compute_forces_impl<HertzThornton, true, true>}},
-      {{&DemEngine::compute_forces_impl<LinearSpringDashpot, false, false>, &DemEngine::compute_forces_impl<LinearSpringDashpot, false, true>},
-       {&DemEngine::compute_forces_impl<LinearSpringDashpot, true, false>, &DemEngine::compute_forces_impl<LinearSpringDashpot, true, true>}}};
+  // Dispatch table over the effect combination, in SPREAD_DEM_FORCE_VARIANTS' order: law, then
+  // rotation, then rolling.
+#define SPREAD_ENTRY(Law, kRotation, kRolling) &DemEngine::compute_forces_impl<Law, kRotation, kRolling>,
+  static constexpr Fn table[8] = {SPREAD_DEM_FORCE_VARIANTS(SPREAD_ENTRY)};
+#undef SPREAD_ENTRY
   const int law = params_.model == ContactModel::kHertzThornton ? 0 : 1;
-  (this->*table[law][params_.rotation ? 1 : 0][params_.rolling ? 1 : 0])();
+  (this->*table[law * 4 + (params_.rotation ? 2 : 0) + (params_.rolling ? 1 : 0)])();
   stats_.forces_s += seconds_since(t0);
 }
 

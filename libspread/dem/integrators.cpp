@@ -45,10 +45,7 @@ void DemEngine::step_gear() {
   auto t0 = Clock::now();
   gear_.predict(p_, dt_s_);
   stats_.integrate_s += seconds_since(t0);
-  time_s_ += dt_s_;
-  maintain_lists();
-  compute_forces();
-  time_s_ -= dt_s_;
+  forces_at_next_time();
   t0 = Clock::now();
   gear_.correct(p_, params_.gravity_m_s2, dt_s_);
   stats_.integrate_s += seconds_since(t0);
@@ -64,14 +61,19 @@ void DemEngine::step_velocity_verlet() {
   auto t0 = Clock::now();
   kick_drift(0.5 * dt_s_, dt_s_);
   stats_.integrate_s += seconds_since(t0);
-  time_s_ += dt_s_;
-  maintain_lists();
-  compute_forces();
-  time_s_ -= dt_s_;
+  forces_at_next_time();
   t0 = Clock::now();
   kick(0.5 * dt_s_);
   stats_.integrate_s += seconds_since(t0);
   forces_valid_ = true;
+}
+
+void DemEngine::forces_at_next_time() {
+  // The positions are those of t + Δt already, so the walls must stand where they are at t + Δt too.
+  time_s_ += dt_s_;
+  maintain_lists();
+  compute_forces();
+  time_s_ -= dt_s_;
 }
 
 void DemEngine::kick(double dt) {

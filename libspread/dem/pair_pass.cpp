@@ -287,13 +287,8 @@ void DemEngine::gather_stored_pair_forces() {
   }
 }
 
-template void DemEngine::particle_forces<HertzThornton, false, false>();
-template void DemEngine::particle_forces<HertzThornton, false, true>();
-template void DemEngine::particle_forces<HertzThornton, true, false>();
-template void DemEngine::particle_forces<HertzThornton, true, true>();
-template void DemEngine::particle_forces<LinearSpringDashpot, false, false>();
-template void DemEngine::particle_forces<LinearSpringDashpot, false, true>();
-template void DemEngine::particle_forces<LinearSpringDashpot, true, false>();
-template void DemEngine::particle_forces<LinearSpringDashpot, true, true>();
+#define SPREAD_INSTANTIATE(Law, kRotation, kRolling) template void DemEngine::particle_forces<Law, kRotation, kRolling>();
+SPREAD_DEM_FORCE_VARIANTS(SPREAD_INSTANTIATE)
+#undef SPREAD_INSTANTIATE
 
 }  // namespace spread::dem

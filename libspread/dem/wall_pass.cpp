@@ -103,13 +103,8 @@ void DemEngine::wall_forces() {
   stats_.wall_contacts_dropped += dropped;
 }
 
-template void DemEngine::wall_forces<HertzThornton, false, false>();
-template void DemEngine::wall_forces<HertzThornton, false, true>();
-template void DemEngine::wall_forces<HertzThornton, true, false>();
-template void DemEngine::wall_forces<HertzThornton, true, true>();
-template void DemEngine::wall_forces<LinearSpringDashpot, false, false>();
-template void DemEngine::wall_forces<LinearSpringDashpot, false, true>();
-template void DemEngine::wall_forces<LinearSpringDashpot, true, false>();
-template void DemEngine::wall_forces<LinearSpringDashpot, true, true>();
+#define SPREAD_INSTANTIATE(Law, kRotation, kRolling) template void DemEngine::wall_forces<Law, kRotation, kRolling>();
+SPREAD_DEM_FORCE_VARIANTS(SPREAD_INSTANTIATE)
+#undef SPREAD_INSTANTIATE
 
 }  // namespace spread::dem
