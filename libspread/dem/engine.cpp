@@ -2,18 +2,13 @@
 // and the queries. The passes of a step live in files of their own (docs/dem.md, "Code map").
 #include "libspread/dem/engine.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "libspread/dem/engine_detail.hpp"
 #include "libspread/dem/time_step.hpp"
 
 namespace spread::dem {
-
-using detail::Clock;
-using detail::seconds_since;
 
 DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> overrides, WallSet walls,
                      EngineParams params)
