@@ -15,6 +15,7 @@
 #include <string>
 
 #include "bench/case1_config.hpp"
+#include "libspread/accuracy/monolithic_reference.hpp"
 #include "libspread/dem/simulate.hpp"
 
 namespace {
@@ -33,8 +34,8 @@ void BM_DemCase1(benchmark::State& state) {
     const dem::SimulationResult part = c.duration_s > 0 ? dem::simulate(c) : dem::SimulationResult{};
     dem::SimulationConfig cm = c;
     cm.fly = false;
-    cm.monolithic_reference = true;
-    const dem::SimulationResult mono = dem::simulate(cm);
+    const accuracy::MonolithicResult monolithic = accuracy::simulate_monolithic(cm);
+    const dem::SimulationResult& mono = monolithic.run;
 
     const double disc_s = part.module_time_s.at("dem_forces") + part.module_time_s.at("dem_integrate") +
                           part.module_time_s.at("dem_pair_search") + part.module_time_s.at("dem_collector");
@@ -46,31 +47,21 @@ void BM_DemCase1(benchmark::State& state) {
     state.counters["flight_s"] = part.module_time_s.count("flight") ? part.module_time_s.at("flight") : 0.0;
     state.counters["wall_monolithic_s"] = mono.wall_time_s;
     const double steps_part = static_cast<double>(part.particle_steps + part.flight_steps);
-    const double steps_mono = static_cast<double>(mono.particle_steps + mono.engine_stats.flight_particle_steps);
+    const double steps_mono = static_cast<double>(mono.particle_steps + monolithic.flight_particle_steps);
     state.counters["saving_steps_measured"] = 1.0 - steps_part / steps_mono;
     state.counters["saving_wall_measured"] = 1.0 - part.wall_time_s / mono.wall_time_s;
     // Eq. 49 needs T_c, T_f and N_fc of launched particles: with none launched (a run shorter than the
     // residence time, ~0.11 s on Case 1) they do not exist — the counters are left out, not NaN.
-    const double n = static_cast<double>(part.launches.size());
     if (part.launches.empty()) {
       state.SetLabel("C_r n/a: nothing launched within " + std::to_string(c.duration_s) +
                      " s (T_c, T_f, N_fc need launched particles)");
       continue;
     }
-    // Steps per particle (what Eq. 49 counts): on-disc steps are common to both schemes.
-    double t_c = 0.0, t_f = 0.0;
-    for (std::size_t k = 0; k < part.launches.size(); ++k) {
-      t_c += part.launches[k].residence_s;
-      t_f += part.landings[k].flight_time_s;
-    }
-    t_c /= n;
-    t_f /= n;
-    const double flight_steps_per_particle = static_cast<double>(part.flight_steps) / n;
-    const double n_fc = (t_f / flight_steps_per_particle) / part.dt_contact_s;  // Δt_f / Δt_c (mean)
-    state.counters["T_c_s"] = t_c;
-    state.counters["T_f_s"] = t_f;
-    state.counters["N_fc"] = n_fc;
-    state.counters["C_r_eq49"] = (1.0 - 1.0 / n_fc) / (1.0 + t_c / t_f);
+    const accuracy::PartitionSaving eq49 = accuracy::predicted_saving(part);
+    state.counters["T_c_s"] = eq49.t_c_s;
+    state.counters["T_f_s"] = eq49.t_f_s;
+    state.counters["N_fc"] = eq49.n_fc;
+    state.counters["C_r_eq49"] = eq49.c_r;
   }
 }
 BENCHMARK(BM_DemCase1)->Arg(1)->Arg(0)->ArgName("mesh")->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();

@@ -6,9 +6,7 @@
 #include <stdexcept>
 
 #include "libspread/core/source_revision.hpp"
-#include "libspread/dem/disc_generator.hpp"
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/inlet.hpp"
+#include "libspread/dem/disc_run.hpp"
 #include "libspread/dem/scene_config.hpp"
 #include "libspread/dem/simulate.hpp"
 #include "libspread/launch/launch_statistics.hpp"
@@ -108,21 +106,11 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
   }
   const scene::Sweep& sweep = scene.sweep;
 
-  // The loop below is dem::simulate()'s, stopped at batch ends: at a stop time T the launches are the
+  // The same disc run as dem::simulate()'s, stopped at batch ends: at a stop time T the launches are the
   // ones `spread simulate --set numerics.duration_s=T` produces (same inlet, same steps).
-  const dem::LognormalDiameter dist(cfg.inlet.diameter_mean_m, cfg.inlet.diameter_sd_m);
-  dem::EngineParams ep = cfg.engine;
-  ep.min_particle_radius_m = 0.5 * dist.min_m();
-  ep.max_particle_radius_m = 0.5 * dist.max_m();
-  dem::WallSet walls;
-  walls.groups.push_back(dem::make_disc(cfg.disc, cfg.rpm, cfg.disc_material, ep.max_particle_radius_m));
-  dem::DemEngine engine(cfg.materials, cfg.overrides, std::move(walls), ep);
-  dem::Collector collector;
-  collector.enabled = true;
-  collector.radius_m = cfg.collector_radius_m > 0.0 ? cfg.collector_radius_m : cfg.disc.radius_m;
-  collector.lost_below_z_m = cfg.disc.z_apex_m - 0.5;
-  engine.set_collector(collector);
-  dem::Inlet inlet(cfg.inlet, cfg.materials[static_cast<std::size_t>(cfg.inlet.material)].density_kg_m3);
+  dem::DiscRun disc_run(cfg);
+  const dem::DemEngine& engine = disc_run.engine();
+  const dem::Inlet& inlet = disc_run.inlet();
 
   FlownLaunches flown;
   std::vector<ConvergencePoint> history;
@@ -131,9 +119,8 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
   const std::size_t min_launches = static_cast<std::size_t>(sweep.samples_per_run);
   for (int batch = 1;; ++batch) {
     const double batch_end_s = std::min(cfg.duration_s, batch * sweep.batch_s);
-    while (engine.time_s() + 0.5 * engine.dt_s() < batch_end_s) {
-      inlet.release_due(engine, engine.time_s());
-      engine.step();
+    while (disc_run.before(batch_end_s)) {
+      disc_run.step();
       if (budget > 0 && engine.launches().size() >= budget) break;
     }
     flown.fly_new(engine.launches(), cfg);
@@ -159,7 +146,7 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
       stop = DemStop::kParticleBudget;
       break;
     }
-    if (engine.time_s() + 0.5 * engine.dt_s() >= cfg.duration_s) {
+    if (!disc_run.before(cfg.duration_s)) {
       stop = DemStop::kTimeBudget;
       break;
     }

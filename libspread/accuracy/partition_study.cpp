@@ -8,6 +8,7 @@
 
 #include "libspread/accuracy/accuracy.hpp"
 #include "libspread/accuracy/launch_set.hpp"
+#include "libspread/accuracy/monolithic_reference.hpp"
 #include "libspread/dem/scene_config.hpp"
 #include "libspread/dem/simulate.hpp"
 
@@ -38,21 +39,13 @@ Study partition_study(const StudyOptions& options) {
   const dem::SimulationResult part = dem::simulate(c);
   dem::SimulationConfig cm = c;
   cm.fly = false;
-  cm.monolithic_reference = true;
-  const dem::SimulationResult mono = dem::simulate(cm);
+  const MonolithicResult monolithic = simulate_monolithic(cm);
+  const dem::SimulationResult& mono = monolithic.run;
 
-  const double n = static_cast<double>(part.launches.size());
-  double t_c = 0.0, t_f = 0.0;
-  for (std::size_t k = 0; k < part.launches.size(); ++k) {
-    t_c += part.launches[k].residence_s;
-    t_f += part.landings[k].flight_time_s;
-  }
-  t_c /= n;
-  t_f /= n;
-  const double n_fc = (t_f / (static_cast<double>(part.flight_steps) / n)) / part.dt_contact_s;
-  const double c_r = (1.0 - 1.0 / n_fc) / (1.0 + t_c / t_f);
+  const PartitionSaving eq49 = predicted_saving(part);
+  const double t_c = eq49.t_c_s, t_f = eq49.t_f_s, n_fc = eq49.n_fc, c_r = eq49.c_r;
   const double steps_part = static_cast<double>(part.particle_steps + part.flight_steps);
-  const double steps_mono = static_cast<double>(mono.particle_steps + mono.engine_stats.flight_particle_steps);
+  const double steps_mono = static_cast<double>(mono.particle_steps + monolithic.flight_particle_steps);
   const double saving_steps = 1.0 - steps_part / steps_mono;
   const double saving_wall = 1.0 - part.wall_time_s / mono.wall_time_s;
   st.rows.push_back({"partitioned", cell(c.duration_s), std::to_string(part.launches.size()),
@@ -60,7 +53,7 @@ Study partition_study(const StudyOptions& options) {
                      cell(part.dt_contact_s), cell(t_c), cell(t_f), cell(n_fc), cell(saving_steps),
                      cell(saving_wall), cell(c_r)});
   st.rows.push_back({"monolithic", cell(c.duration_s), std::to_string(mono.launches.size()),
-                     std::to_string(mono.particle_steps), std::to_string(mono.engine_stats.flight_particle_steps),
+                     std::to_string(mono.particle_steps), std::to_string(monolithic.flight_particle_steps),
                      cell(mono.wall_time_s), cell(mono.dt_contact_s), cell(std::nan("")), cell(std::nan("")),
                      cell(std::nan("")), cell(std::nan("")), cell(std::nan("")), cell(std::nan(""))});
   st.figures["saving_steps"] = saving_steps;

@@ -67,30 +67,18 @@ struct LaunchRecord {
   std::uint32_t id = 0;
 };
 
-// Monolithic reference (for measuring the partitioned scheme's saving): launched particles stay in
-// the DEM time loop at Δt_c under gravity and drag (Eq. 27) until they reach the ground.
-struct MonolithicFlight {
-  bool enabled = false;
-  double ground_z_m = -1.0;
-  double air_density_kg_m3 = 1.225;
-  double air_viscosity_pa_s = 1.81e-5;
-};
-
 class EnergyMonitor;  // energy_monitor.hpp
 
 struct EngineStats {
   std::uint64_t steps = 0;
   std::uint64_t particle_steps = 0;       // Σ over steps of particles on the disc
-  std::uint64_t flight_particle_steps = 0;  // monolithic reference only
   std::uint64_t pair_list_builds = 0;
   std::uint64_t wall_contacts_dropped = 0;  // beyond kWallSlots at once
   std::uint64_t lost = 0;
-  std::uint64_t landed_monolithic = 0;
   double pair_search_s = 0.0;
   double forces_s = 0.0;
   double integrate_s = 0.0;
   double collector_s = 0.0;
-  double monolithic_flight_s = 0.0;
 };
 
 class DemEngine {
@@ -110,7 +98,6 @@ class DemEngine {
   void drop_on_disc_particles();
 
   void set_collector(const Collector& c) { collector_ = c; }
-  void set_monolithic_flight(const MonolithicFlight& m) { monolithic_ = m; }
   // Energy/penetration diagnostics called every step (nullptr: off, the default); not owned.
   void set_energy_monitor(EnergyMonitor* monitor) { monitor_ = monitor; }
 
@@ -121,7 +108,6 @@ class DemEngine {
   const ParticleArrays& particles() const { return p_; }
   std::size_t active_count() const;
   const std::vector<LaunchRecord>& launches() const { return launches_; }
-  const std::vector<Vec3>& monolithic_landings() const { return landings_; }
   const EngineStats& stats() const { return stats_; }
   const EngineParams& params() const { return params_; }
   const std::vector<Material>& materials() const { return materials_; }
@@ -133,8 +119,16 @@ class DemEngine {
   double kinetic_energy_j() const;
 
  private:
+  // One force evaluation (force_dispatch.cpp): the law × rotation × rolling instantiation from a table.
+  void compute_forces();
   template <class Law, bool kRotation, bool kRolling>
   void compute_forces_impl();
+  // Walls (wall_pass.cpp): sets each particle's force (and torque) sums to its wall contacts' share.
+  template <class Law, bool kRotation, bool kRolling>
+  void wall_forces();
+  // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started.
+  template <class Law, bool kRotation, bool kRolling>
+  void particle_forces();
   // Particle–particle pass over the CSR half list. kStorePairs: each pair's results go to the list's
   // per-pair arrays and are gathered afterwards (threads, energy monitor); otherwise they are added
   // straight into the sums. Both add in the same order, so the results are bit-identical.
@@ -142,17 +136,23 @@ class DemEngine {
   void pair_forces();
   template <bool kRotation>
   void gather_stored_pair_forces();
-  void wrap_periodic_z();
-  void compute_forces();
-  void maintain_lists();
+  // Law::coeffs per material pair (pair_coeffs_table.cpp).
   template <class Law>
   void update_pair_coeffs();
+  // Pair list and wall list rebuilt when needed (list_upkeep.cpp).
+  void maintain_lists();
+  // The integrator families (integrators.cpp).
+  void step_symplectic_euler();
+  void step_velocity_verlet();
+  void step_gear();
+  void forces_at_next_time();  // forces at the positions just predicted or drifted to t + Δt
   void kick(double dt);
   void kick_spin(double dt);  // ω += Δt T/I (rotation only); kick() and kick_drift() end with it
   // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles.
   void kick_drift(double dt_kick, double dt_drift);
+  void wrap_periodic_z();
+  // Launched and lost particles leave (launch_collector.cpp).
   void collect();
-  void fly_monolithic();
 
   std::vector<Material> materials_;
   PairTable pair_table_;
@@ -161,13 +161,9 @@ class DemEngine {
   ParticleArrays p_;
   PairList pairs_;
   Collector collector_;
-  MonolithicFlight monolithic_;
   EnergyMonitor* monitor_ = nullptr;
   GearPredictorCorrector gear_;  // Gear integrators only
   std::vector<LaunchRecord> launches_;
-  // Monolithic reference: particles in flight (flat arrays).
-  std::vector<double> fl_x_, fl_y_, fl_z_, fl_vx_, fl_vy_, fl_vz_, fl_d_, fl_m_;
-  std::vector<Vec3> landings_;
   // Pair-force sums per particle (force N, torque N m); all zero between force passes. One 64-byte
   // record per particle: adding a partner's share touches one cache line instead of six arrays.
   struct alignas(64) PairSum { double f[3]; double t[3]; };

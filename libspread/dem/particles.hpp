@@ -13,6 +13,11 @@ namespace spread::dem {
 
 inline constexpr int kWallSlots = 6;  // wall contacts remembered per particle
 
+// m = ρ 4/3 π r³ (kg), as the engine gives every particle it adds.
+inline double sphere_mass(double density_kg_m3, double radius_m) {
+  return density_kg_m3 * 4.0 / 3.0 * kPi * radius_m * radius_m * radius_m;
+}
+
 struct ParticleArrays {
   std::vector<double> x, y, z;        // position (m)
   std::vector<double> vx, vy, vz;     // velocity (m/s)

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "libspread/dem/disc_run.hpp"
 #include "libspread/dem/vtk_writer.hpp"
 #include "libspread/metrics/metrics.hpp"
 
@@ -69,7 +70,7 @@ void write_launch_csv(const std::vector<LaunchRecord>& launches, const std::stri
   std::fclose(f);
 }
 
-SimulationResult simulate(const SimulationConfig& cfg) {
+SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) {
   const auto t_start = Clock::now();
   if (cfg.materials.empty()) throw std::invalid_argument("simulate: no materials");
   if (!(cfg.duration_s > 0.0)) throw std::invalid_argument("simulate: duration_s must be > 0");
@@ -77,69 +78,38 @@ SimulationResult simulate(const SimulationConfig& cfg) {
   if (cfg.energy_monitor_every_steps < 0)
     throw std::invalid_argument("simulate: energy_monitor_every_steps must be >= 0 (0 = off)");
   SimulationResult res;
-  const int particle_material = cfg.inlet.material;
-  const LognormalDiameter dist(cfg.inlet.diameter_mean_m, cfg.inlet.diameter_sd_m);
-  EngineParams ep = cfg.engine;
-  ep.min_particle_radius_m = 0.5 * dist.min_m();
-  ep.max_particle_radius_m = 0.5 * dist.max_m();
 
   auto t0 = Clock::now();
-  WallSet walls;
-  walls.groups.push_back(make_disc(cfg.disc, cfg.rpm, cfg.disc_material, ep.max_particle_radius_m));
-  res.module_time_s["disc_generator"] = since(t0);
+  DiscRun run(cfg);
+  DemEngine& engine = run.engine();
+  res.module_time_s["disc_generator"] = since(t0);  // the disc's walls and the engine set up
   const bool write_vtk = !cfg.vtk_prefix.empty() && cfg.vtk_every_steps > 0;
   const bool write_walls_vtk_files = write_vtk && !cfg.vtk_walls_prefix.empty();
-  const WallSet wall_geometry = write_walls_vtk_files ? walls : WallSet{};  // the engine owns the walls
-
-  DemEngine engine(cfg.materials, cfg.overrides, std::move(walls), ep);
-  Collector col;
-  col.enabled = true;
-  col.radius_m = cfg.collector_radius_m > 0.0 ? cfg.collector_radius_m : cfg.disc.radius_m;
-  col.lost_below_z_m = cfg.disc.z_apex_m - 0.5;  // fell through (should not happen)
-  engine.set_collector(col);
   std::unique_ptr<EnergyMonitor> monitor;
   if (cfg.energy_monitor_every_steps > 0) {
     monitor = std::make_unique<EnergyMonitor>(cfg.energy_monitor_every_steps);
     engine.set_energy_monitor(monitor.get());
   }
-  if (cfg.monolithic_reference) {
-    MonolithicFlight m;
-    m.enabled = true;
-    m.ground_z_m = -cfg.disc_height_m;
-    m.air_density_kg_m3 = cfg.air.density_kg_m3;
-    m.air_viscosity_pa_s = cfg.air.viscosity_pa_s;
-    engine.set_monolithic_flight(m);
-  }
-  Inlet inlet(cfg.inlet, cfg.materials[static_cast<std::size_t>(particle_material)].density_kg_m3);
   res.dt_contact_s = engine.dt_s();
   res.contact_time_s = engine.contact_time_s();
 
-  double inlet_s = 0.0, vtk_s = 0.0;
+  double vtk_s = 0.0;
   std::uint64_t step = 0;
-  while (engine.time_s() + 0.5 * engine.dt_s() < cfg.duration_s) {
-    t0 = Clock::now();
-    inlet.release_due(engine, engine.time_s());
-    inlet_s += since(t0);
-    engine.step();
+  while (run.before(cfg.duration_s)) {
+    run.step();
+    if (extension != nullptr) extension->after_step(engine);
     ++step;
     if (write_vtk && step % static_cast<std::uint64_t>(cfg.vtk_every_steps) == 0) {
       t0 = Clock::now();
       char name[64];
       std::snprintf(name, sizeof name, "_%09llu.vtk", static_cast<unsigned long long>(step));
       write_particles_vtk(engine.particles(), cfg.vtk_prefix + name);
-      if (write_walls_vtk_files) write_walls_vtk(wall_geometry, engine.time_s(), cfg.vtk_walls_prefix + name);
+      if (write_walls_vtk_files) write_walls_vtk(engine.walls(), engine.time_s(), cfg.vtk_walls_prefix + name);
       vtk_s += since(t0);
     }
   }
-  // Monolithic reference: let the launched particles land, still at Δt_c.
-  if (cfg.monolithic_reference) {
-    res.on_disc_at_end = engine.active_count();
-    engine.drop_on_disc_particles();  // only the launched particles fly on, as in the partitioned run
-    while (engine.stats().landed_monolithic < engine.launches().size() && engine.time_s() < cfg.duration_s + 30.0) {
-      engine.step();
-    }
-    res.monolithic_landings = engine.monolithic_landings();
-  }
+  res.on_disc_at_end = engine.active_count();
+  if (extension != nullptr) extension->after_duration(engine);
   const EngineStats& st = engine.stats();
   res.engine_stats = st;
   if (monitor) {
@@ -148,16 +118,14 @@ SimulationResult simulate(const SimulationConfig& cfg) {
     res.energy_samples = monitor->samples();
   }
   res.launches = engine.launches();
-  res.released = inlet.released();
-  if (!cfg.monolithic_reference) res.on_disc_at_end = engine.active_count();
+  res.released = run.inlet().released();
   res.lost = st.lost;
   res.particle_steps = st.particle_steps;
-  res.module_time_s["inlet"] = inlet_s;
-  if (ep.particle_contact) res.module_time_s["dem_pair_search"] = st.pair_search_s;
+  res.module_time_s["inlet"] = run.inlet_s();
+  if (cfg.engine.particle_contact) res.module_time_s["dem_pair_search"] = st.pair_search_s;
   res.module_time_s["dem_forces"] = st.forces_s;
   res.module_time_s["dem_integrate"] = st.integrate_s;
   res.module_time_s["dem_collector"] = st.collector_s;
-  if (cfg.monolithic_reference) res.module_time_s["monolithic_flight"] = st.monolithic_flight_s;
   if (vtk_s > 0.0) res.module_time_s["vtk"] = vtk_s;
 
   const Vec3 axis = Vec3::Zero();
@@ -165,9 +133,9 @@ SimulationResult simulate(const SimulationConfig& cfg) {
   res.sector_mass_fraction = sector_mass_fraction(res.launches, axis);
 
   res.effects.push_back("wall_contact");
-  if (ep.particle_contact) res.effects.push_back("particle_contact");
-  if (ep.rotation) res.effects.push_back("rotation");
-  if (ep.rolling) res.effects.push_back("rolling");
+  if (cfg.engine.particle_contact) res.effects.push_back("particle_contact");
+  if (cfg.engine.rotation) res.effects.push_back("rotation");
+  if (cfg.engine.rolling) res.effects.push_back("rolling");
 
   if (cfg.fly && !res.launches.empty()) {
     t0 = Clock::now();

@@ -33,7 +33,6 @@ struct SimulationConfig {
   flight::Air air;
   flight::Settings flight_settings;
   int flight_threads = 1;
-  bool monolithic_reference = false;   // keep launched particles in the DEM loop at Δt_c (cost reference)
   // Outputs (empty = none).
   std::string vtk_prefix;        // particles: <prefix>_<step>.vtk (vtk_writer.hpp)
   std::string vtk_walls_prefix;  // walls at the same steps: <prefix>_<step>.vtk; empty = none
@@ -66,15 +65,25 @@ struct SimulationResult {
   std::vector<std::string> effects;           // effects that ran
   std::map<std::string, double> module_time_s;
   EngineStats engine_stats;
-  std::vector<Vec3> monolithic_landings;
   // Filled when config.energy_monitor_every_steps > 0.
   bool energy_monitored = false;
   EnergyReport energy;
   std::vector<EnergySample> energy_samples;
 };
 
+// What runs alongside the disc run of simulate() without being part of it (the monolithic cost
+// reference of libspread/accuracy): called after every step of the run, and once when the simulated
+// duration is over, before the results are read (it may step the engine on; the inlet has stopped).
+class RunExtension {
+ public:
+  virtual ~RunExtension() = default;
+  virtual void after_step(const DemEngine& engine) = 0;
+  virtual void after_duration(DemEngine& engine) = 0;
+};
+
+// The full process: the disc run (disc_run.hpp) for config.duration_s, then the flight of every launch.
 // Throws std::invalid_argument naming the bad value.
-SimulationResult simulate(const SimulationConfig& config);
+SimulationResult simulate(const SimulationConfig& config, RunExtension* extension = nullptr);
 
 LaunchSummary summarise_launches(const std::vector<LaunchRecord>& launches, const Vec3& axis_point);
 std::array<double, 12> sector_mass_fraction(const std::vector<LaunchRecord>& launches, const Vec3& axis_point);

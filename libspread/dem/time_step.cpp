@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
 
 #include "libspread/core/vec3.hpp"
+#include "libspread/dem/engine.hpp"
+#include "libspread/dem/particles.hpp"
 
 namespace spread::dem {
 
@@ -31,6 +36,56 @@ double stable_step_bound_s(ContactModel model, const PairParams& pair, double m_
   const double tangential_factor = rotation ? 3.5 : 1.0;
   const double w2 = std::max(k_n, k_t * tangential_factor) / m_eff_kg;
   return 2.0 / std::sqrt(w2);
+}
+
+StepChoice choose_time_step(const std::vector<Material>& materials, const PairTable& pair_table,
+                            const EngineParams& params, double fastest_wall_speed_m_s) {
+  // Contact time and stability over every material pair at the smallest radius (t_c ∝ R): as particle
+  // against a wall (R* = r, M* = m) and against an equal particle (R* = r/2, M* = m/2).
+  const double v = params.impact_speed_m_s > 0.0 ? params.impact_speed_m_s
+                                                 : std::max(1.0, fastest_wall_speed_m_s + 5.0);
+  const double r = params.min_particle_radius_m;
+  double tc = std::numeric_limits<double>::infinity();
+  double bound = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < materials.size(); ++a) {
+    if (materials[a].rigid) continue;
+    const double m = sphere_mass(materials[a].density_kg_m3, r);
+    for (std::size_t b = 0; b < materials.size(); ++b) {
+      const PairParams& pp = pair_table(static_cast<int>(a), static_cast<int>(b));
+      for (int partner = 0; partner < 2; ++partner) {
+        const double r_eff = partner == 0 ? r : 0.5 * r;
+        const double m_eff = partner == 0 ? m : 0.5 * m;
+        const double t = params.model == ContactModel::kHertzThornton
+                             ? hertz_contact_time_s(m_eff, r_eff, pp.e_star_pa, v)
+                             : linear_contact_time_s(m_eff, pp.kn_linear_n_m);
+        tc = std::min(tc, t);
+        bound = std::min(bound, stable_step_bound_s(params.model, pp, m_eff, r_eff, v, params.rotation));
+      }
+    }
+  }
+  StepChoice choice;
+  choice.contact_time_s = tc;
+  choice.stable_bound_s = bound;
+  // 0 means "automatic"; a NaN (or a negative step) must not quietly become that.
+  if (!(params.dt_s >= 0.0)) {
+    std::ostringstream os;
+    os << "dt_s (scene: numerics.dt_contact_s) = " << params.dt_s
+       << " s: must be 0 (automatic, t_c/N_c) or a finite step > 0";
+    throw std::invalid_argument(os.str());
+  }
+  if (params.dt_s > 0.0) {
+    if (params.dt_s > bound) {
+      std::ostringstream os;
+      os << "dt_s (scene: numerics.dt_contact_s) = " << params.dt_s << " s exceeds the stable bound " << bound
+         << " s of the stiffest contact (impact speed " << v << " m/s); use at most that, or leave it 0 for t_c/N_c = "
+         << tc / params.contact_steps << " s";
+      throw std::invalid_argument(os.str());
+    }
+    choice.dt_s = params.dt_s;
+  } else {
+    choice.dt_s = std::min(tc / params.contact_steps, bound);
+  }
+  return choice;
 }
 
 }  // namespace spread::dem

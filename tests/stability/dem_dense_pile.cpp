@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/dem/disc_run.hpp"
 #include "libspread/dem/energy_monitor.hpp"
 #include "libspread/dem/engine.hpp"
 #include "libspread/dem/scene_config.hpp"
@@ -65,14 +66,9 @@ PileResult run_pile(const PileSetup& setup) {
   ep.min_particle_radius_m = setup.radius_min_m;
   ep.max_particle_radius_m = setup.radius_max_m;
   ep.impact_speed_m_s = setup.rpm == 0.0 ? 1.0 : 0.0;  // stopped disc: a fall of a few cm (< 1 m/s)
-  WallSet walls;
-  walls.groups.push_back(make_disc(c.disc, setup.rpm, c.disc_material, ep.max_particle_radius_m));
-  DemEngine engine(c.materials, c.overrides, std::move(walls), ep);
-  Collector collector;
-  collector.enabled = true;
-  collector.radius_m = c.disc.radius_m;
-  collector.lost_below_z_m = c.disc.z_apex_m - 0.5;
-  engine.set_collector(collector);
+  // The disc run's walls and collector; the granules are placed here instead of fed by the inlet.
+  DiscRun run(c, ep);
+  DemEngine& engine = run.engine();
 
   std::mt19937_64 rng(setup.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

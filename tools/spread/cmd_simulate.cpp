@@ -19,6 +19,7 @@ int run_drum_command(const std::string& scene_path, const std::vector<std::strin
 #endif
 
 #if defined(SPREAD_DEM_HAS_SCENE)
+#include "libspread/accuracy/monolithic_reference.hpp"
 #include "libspread/dem/scene_config.hpp"
 #include "libspread/dem/simulate.hpp"
 #include "libspread/metrics/metrics.hpp"
@@ -52,7 +53,6 @@ int run(const SimulateState& s) {
     std::cerr << "spread simulate: " << e.what() << "\n";
     return spread::cli::kExitUsage;
   }
-  cfg.monolithic_reference = s.monolithic;
   cfg.energy_monitor_every_steps = s.energy_every_steps;
   const std::filesystem::path dir = scene.outputs.directory;
   const bool any_output = scene.outputs.launch_csv || scene.outputs.pattern_png || scene.outputs.vtk_every_steps > 0;
@@ -63,8 +63,14 @@ int run(const SimulateState& s) {
     cfg.vtk_every_steps = scene.outputs.vtk_every_steps;
   }
   dem::SimulationResult r;
+  spread::accuracy::MonolithicResult monolithic;  // --monolithic only
   try {
-    r = dem::simulate(cfg);
+    if (s.monolithic) {
+      monolithic = spread::accuracy::simulate_monolithic(cfg);
+      r = std::move(monolithic.run);
+    } else {
+      r = dem::simulate(cfg);
+    }
   } catch (const std::invalid_argument& e) {
     std::cerr << "spread simulate: " << scene.source_name << ": " << e.what() << "\n";
     return spread::cli::kExitUsage;
@@ -119,8 +125,8 @@ int run(const SimulateState& s) {
               {"module_time_s", module_time},
               {"outputs", outputs}};
   if (s.monolithic) {
-    out["monolithic_flight_particle_steps"] = r.engine_stats.flight_particle_steps;
-    out["monolithic_landed"] = r.engine_stats.landed_monolithic;
+    out["monolithic_flight_particle_steps"] = monolithic.flight_particle_steps;
+    out["monolithic_landed"] = monolithic.landings.size();
   }
   if (r.energy_monitored) {
     const dem::EnergyReport& e = r.energy;
