@@ -12,6 +12,7 @@
 #include "libspread/launch/launch_statistics.hpp"
 #include "libspread/metrics/metrics.hpp"
 #include "libspread/tables/table_writer.hpp"
+#include "lookup_builder/row_uncertainty.hpp"
 
 namespace spread::lookup {
 namespace {
@@ -91,6 +92,7 @@ std::string convergence_to_json(const std::vector<ConvergencePoint>& history) {
                    {"radial_width_m", p.radial_width_m},
                    {"change_mean_radius", p.change_mean_radius},
                    {"change_radial_width", p.change_radial_width}});
+    if (std::isfinite(p.working_width_ci_m)) out.back()["working_width_ci_m"] = p.working_width_ci_m;
   }
   return out.dump();
 }
@@ -112,6 +114,19 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
   const dem::DemEngine& engine = disc_run.engine();
   const dem::Inlet& inlet = disc_run.inlet();
 
+  // The run's samples (normalised launches) with the flight effects a prediction uses.
+  const auto run_of = [&](const std::vector<dem::LaunchRecord>& launches) {
+    const double omega_rad_s = std::abs(rpm) * 2.0 * kPi / 60.0;
+    const double rim_speed_m_s = omega_rad_s * scene.machine.disc_radius_m;
+    tables::Run r;
+    r.material = material.name;
+    r.rpm = rpm;
+    r.source = "dem";
+    r.samples.reserve(launches.size());
+    for (const dem::LaunchRecord& l : launches) r.samples.push_back(normalised(l, omega_rad_s, rim_speed_m_s));
+    r.stats_json = nlohmann::json{{"flight_effects", flight::effects_to_string(cfg.flight_effects)}}.dump();
+    return r;
+  };
   FlownLaunches flown;
   std::vector<ConvergencePoint> history;
   DemStop stop = DemStop::kTimeBudget;
@@ -139,8 +154,19 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
     const std::size_t launched = engine.launches().size();
     if (launched > 0 && launched >= min_launches && point.change_mean_radius <= sweep.convergence_tolerance &&
         point.change_radial_width <= sweep.convergence_tolerance) {
-      stop = DemStop::kConverged;
-      break;
+      // The answer's uncertainty, when the scene asks for it: R̄ and ξ settle long before the working
+      // width does where CV(W) meets the target at a shallow angle.
+      bool precise = true;
+      if (sweep.working_width_ci_m > 0.0) {
+        tables::Run so_far = run_of(engine.launches());
+        const double ci_m = row_working_width_ci_m(scene::table_machine(scene.machine), material, so_far);
+        history.back().working_width_ci_m = ci_m;
+        precise = !(ci_m > sweep.working_width_ci_m);  // NaN (no working width): nothing to wait for
+      }
+      if (precise) {
+        stop = DemStop::kConverged;
+        break;
+      }
     }
     if (budget > 0 && launched >= budget) {
       stop = DemStop::kParticleBudget;
@@ -158,15 +184,8 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
                              " rpm: no granule launched within numerics.duration_s = " +
                              std::to_string(cfg.duration_s) + " s (raise it)");
   }
-  const double omega_rad_s = std::abs(rpm) * 2.0 * kPi / 60.0;
-  const double rim_speed_m_s = omega_rad_s * scene.machine.disc_radius_m;
-
-  tables::Run run;
-  run.material = material.name;
-  run.rpm = rpm;
-  run.source = "dem";
-  run.samples.reserve(launches.size());
-  for (const dem::LaunchRecord& l : launches) run.samples.push_back(normalised(l, omega_rad_s, rim_speed_m_s));
+  tables::Run run = run_of(launches);
+  const double rim_speed_m_s = std::abs(rpm) * 2.0 * kPi / 60.0 * scene.machine.disc_radius_m;
   run.scene_text = scene.provenance_text();
   run.scene_hash = scene.hash();
   run.inputs_hash = scene.run_inputs_hash(material, rpm);
@@ -196,6 +215,7 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
   stats["convergence_tolerance"] = sweep.convergence_tolerance;
   stats["particle_budget"] = sweep.particle_budget;
   stats["flight_effects"] = flight::effects_to_string(cfg.flight_effects);
+  if (sweep.working_width_ci_m > 0.0) stats["working_width_ci_target_m"] = sweep.working_width_ci_m;
   run.stats_json = stats.dump();
   run.convergence_json = convergence_to_json(history);
   return run;

@@ -3,6 +3,7 @@
 // (libspread/dem) in batches until the predicted pattern's R̄ and ξ (seed Eqs. 51–52) settle — the
 // convergence study of seed Fig. 8 made into a stopping rule — or a particle/time budget is reached.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct ConvergencePoint {
   double radial_width_m = 0.0;     // ξ, Eq. 52
   double change_mean_radius = 0.0; // |ΔR̄|/R̄ against the previous batch (1 when there is none)
   double change_radial_width = 0.0;
+  // 95 % half-width of the working width from the launches so far (row_uncertainty.hpp), checked once
+  // R̄ and ξ have converged when sweep.working_width_ci_m is set; NaN otherwise or without a width.
+  double working_width_ci_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct DemRunOptions {

@@ -21,19 +21,6 @@
 namespace spread::lookup {
 namespace {
 
-tables::Machine table_machine(const scene::Machine& m) {
-  tables::Machine out;
-  out.name = m.name;
-  out.disc_radius_m = m.disc_radius_m;
-  out.disc_height_m = m.disc_height_m;
-  out.disc_spacing_m = m.disc_spacing_m;
-  out.disc_count = m.disc_count;
-  out.vane_count = m.vane_count;
-  out.cone_angle_rad = m.cone_angle_rad;
-  out.rotation_sense = m.rotation_sense;
-  return out;
-}
-
 std::string format_rpm(double rpm) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", rpm);
@@ -118,7 +105,7 @@ void material_differences(const tables::Material& file, const tables::Material& 
 std::vector<std::string> table_conflicts(tables::TableWriter& writer, const scene::Scene& scene) {
   std::vector<std::string> out;
   const std::optional<tables::Machine> machine = writer.stored_machine();
-  if (machine) machine_differences(*machine, table_machine(scene.machine), out);
+  if (machine) machine_differences(*machine, scene::table_machine(scene.machine), out);
   const std::vector<tables::TableWriter::StoredRun> runs = writer.stored_runs();
   for (const tables::Material& stored : writer.stored_materials()) {
     const scene::Material* mine = scene.find_material(stored.name);
@@ -191,7 +178,7 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
     impl_->writer.emplace(impl_->staging_path);
   }
   tables::TableWriter& writer = *impl_->writer;
-  writer.write_machine(table_machine(scene.machine));
+  writer.write_machine(scene::table_machine(scene.machine));
   std::vector<tables::Material> rows;
   for (const scene::Material* m : scene.sweep_materials()) rows.push_back(*m);
   writer.write_materials(rows);

@@ -20,23 +20,10 @@
 namespace spread::accuracy {
 namespace {
 
-tables::Machine table_machine(const scene::Machine& m) {
-  tables::Machine t;
-  t.name = m.name;
-  t.disc_radius_m = m.disc_radius_m;
-  t.disc_height_m = m.disc_height_m;
-  t.disc_spacing_m = m.disc_spacing_m;
-  t.disc_count = m.disc_count;
-  t.vane_count = m.vane_count;
-  t.cone_angle_rad = m.cone_angle_rad;
-  t.rotation_sense = m.rotation_sense;
-  return t;
-}
-
 tables::TableContents make_table(const scene::Scene& scene, const scene::Material& material,
                                  const std::vector<double>& rpms, int samples) {
   tables::TableContents c;
-  c.machine = table_machine(scene.machine);
+  c.machine = scene::table_machine(scene.machine);
   c.materials = {material};
   launch::AnalyticLaunchOptions lo;
   lo.spin = scene.sweep.spin_model;

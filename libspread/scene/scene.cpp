@@ -133,6 +133,7 @@ std::string Scene::run_inputs_text(const Material& material, double rpm) const {
     t.add("sweep.batch_s", sweep.batch_s);
     t.add("sweep.convergence_tolerance", sweep.convergence_tolerance);
     t.add("sweep.particle_budget", sweep.particle_budget);
+    t.add("sweep.working_width_ci_m", sweep.working_width_ci_m);
   }
   return t.text;
 }
@@ -170,5 +171,18 @@ const char* to_string(ContactModel value) { return value == ContactModel::kHertz
 const char* to_string(FlightScheme value) { return value == FlightScheme::kRk4 ? "rk4" : "dopri5"; }
 const char* to_string(LaunchSource value) { return value == LaunchSource::kAnalytic ? "analytic" : "dem"; }
 const char* to_string(SpinModel value) { return value == SpinModel::kSliding ? "sliding" : "rolling"; }
+
+tables::Machine table_machine(const Machine& m) {
+  tables::Machine out;
+  out.name = m.name;
+  out.disc_radius_m = m.disc_radius_m;
+  out.disc_height_m = m.disc_height_m;
+  out.disc_spacing_m = m.disc_spacing_m;
+  out.disc_count = m.disc_count;
+  out.vane_count = m.vane_count;
+  out.cone_angle_rad = m.cone_angle_rad;
+  out.rotation_sense = m.rotation_sense;
+  return out;
+}
 
 }  // namespace spread::scene

@@ -56,6 +56,9 @@ struct Machine {
   double rpm = 500.0;                 // disc speed of a `simulate` run (rev/min)
 };
 
+// The machine row of a launch table for this machine (docs/table-format.md).
+tables::Machine table_machine(const Machine& machine);
+
 struct Inlet {
   double radius_m = 0.0145;           // radius of the inlet circle
   double offset_m = 0.1;              // distance of the inlet centre from the disc centre
@@ -116,6 +119,9 @@ struct Sweep {
   double batch_s = 0.05;                   // simulated time per batch (s)
   double convergence_tolerance = 0.02;     // relative change of R̄ and ξ between batches
   int particle_budget = 0;                 // launched granules; 0 = only the time budget
+  // Besides, the run goes on until the 95 % interval of the working width predicted from its launches
+  // alone (to-and-fro, CV 15 %, 0.5 m trays, the stored height) is within ± this; 0 = no such rule.
+  double working_width_ci_m = 0.5;         // m
 };
 
 struct Outputs {

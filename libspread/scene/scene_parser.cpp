@@ -422,18 +422,20 @@ void read_sweep(const toml::table& root, Scene& scene) {
   sw.batch_s = s.number("batch_s", sw.batch_s);
   sw.convergence_tolerance = s.number("convergence_tolerance", sw.convergence_tolerance);
   sw.particle_budget = s.small_integer("particle_budget", sw.particle_budget);
+  sw.working_width_ci_m = s.number("working_width_ci_m", sw.working_width_ci_m);
   // A key of the other launch source would be recorded as provenance yet never act: refuse it.
   if (sw.source == LaunchSource::kDem && s.present("spin_model")) {
     s.fail("spin_model", "applies to the analytic source only, but sweep.source is \"dem\" (DEM launches carry "
                          "their own spin): remove the key or set sweep.source = \"analytic\"");
   }
   if (sw.source == LaunchSource::kAnalytic) {
-    for (const char* key : {"batch_s", "convergence_tolerance", "particle_budget"}) {
+    for (const char* key : {"batch_s", "convergence_tolerance", "particle_budget", "working_width_ci_m"}) {
       if (s.present(key)) {
         s.fail(key, "applies to the DEM source only, but sweep.source is \"analytic\": remove the key or set "
                     "sweep.source = \"dem\"");
       }
     }
+
   }
   s.finish();
 }
@@ -581,6 +583,10 @@ void validate(Scene& scene) {
   c.positive("sweep.batch_s", sw.batch_s);
   c.positive("sweep.convergence_tolerance", sw.convergence_tolerance);
   if (sw.particle_budget < 0) c.fail("sweep.particle_budget", "must be >= 0, got " + std::to_string(sw.particle_budget));
+  if (!(sw.working_width_ci_m >= 0.0 && sw.working_width_ci_m <= 100.0)) {
+    c.fail("sweep.working_width_ci_m", "must be in [0, 100] m (0: no such rule), got " +
+                                           std::to_string(sw.working_width_ci_m));
+  }
   if (scene.outputs.vtk_every_steps < 0) {
     c.fail("outputs.vtk_every_steps", "must be >= 0, got " + std::to_string(scene.outputs.vtk_every_steps));
   }

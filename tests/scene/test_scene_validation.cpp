@@ -84,10 +84,12 @@ TEST(SceneValidation, ValuesForWhatIsOffAreRefused) {
   expect_error({"sweep.source=\"dem\"", "sweep.spin_model=\"sliding\""},
                "sweep.spin_model: applies to the analytic source only");
   EXPECT_EQ(error_of({"sweep.source=\"analytic\"", "sweep.spin_model=\"sliding\""}), "");
-  for (const char* key : {"sweep.batch_s=0.1", "sweep.convergence_tolerance=0.01", "sweep.particle_budget=100"}) {
+  for (const char* key : {"sweep.batch_s=0.1", "sweep.convergence_tolerance=0.01", "sweep.particle_budget=100",
+                          "sweep.working_width_ci_m=0.3"}) {
     expect_error({"sweep.source=\"analytic\"", key}, "applies to the DEM source only");
     EXPECT_EQ(error_of({"sweep.source=\"dem\"", key}), "") << key;
   }
+  expect_error({"sweep.source=\"dem\"", "sweep.working_width_ci_m=-1"}, "sweep.working_width_ci_m: must be in [0, 100] m");
 }
 
 // disc_model = "stl" (the file itself is checked where it is read: tests/dem DemSceneStl).

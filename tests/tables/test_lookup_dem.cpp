@@ -115,6 +115,37 @@ TEST(LookupDem, StopsAtTheParticleBudgetAndOnConvergence) {
   EXPECT_LT(stats["simulated_s"].get<double>(), 0.5);
 }
 
+// sweep.working_width_ci_m: once R̄ and ξ have converged the run still waits until the working width
+// predicted from its launches is known that well. Unreachable: the run goes to its time budget, and every
+// check is in the convergence history. Loose: it stops where it stops without the rule, bit for bit.
+TEST(LookupDem, WaitsForTheWorkingWidthPrecisionAsked) {
+  const std::vector<std::string> loose = {"sweep.convergence_tolerance=10", "numerics.duration_s=0.6"};
+  auto with = [&](const char* ci) {
+    std::vector<std::string> overrides = loose;
+    overrides.push_back(ci);
+    const scene::Scene scene = tiny_scene(overrides);
+    return dem_run(scene, *scene.find_material("Urea"), 650.0);
+  };
+  const tables::Run strict = with("sweep.working_width_ci_m=0.001");
+  const nlohmann::json strict_stats = nlohmann::json::parse(strict.stats_json);
+  EXPECT_EQ(strict_stats["stop"], "time_budget");
+  EXPECT_EQ(strict_stats["working_width_ci_target_m"], 0.001);
+  int checks = 0;
+  for (const auto& point : nlohmann::json::parse(strict.convergence_json)) {
+    if (!point.contains("working_width_ci_m")) continue;
+    ++checks;
+    EXPECT_GT(point["working_width_ci_m"].get<double>(), 0.001);
+  }
+  EXPECT_GE(checks, 2);
+
+  const tables::Run lax = with("sweep.working_width_ci_m=100");
+  const tables::Run off = with("sweep.working_width_ci_m=0");
+  EXPECT_EQ(nlohmann::json::parse(lax.stats_json)["stop"], "converged");
+  ASSERT_EQ(lax.samples.size(), off.samples.size());
+  EXPECT_LT(lax.samples.size(), strict.samples.size());
+  EXPECT_EQ(std::memcmp(lax.samples.data(), off.samples.data(), lax.samples.size() * sizeof(tables::LaunchSample)), 0);
+}
+
 TEST(LookupDem, JobsOnThreadsGiveTheSameFileAsOneProcess) {
   const scene::Scene scene = tiny_scene();
   TempPath one("dem_jobs1"), two("dem_jobs2");
