@@ -135,9 +135,9 @@ bool LandingCache::build(std::span<const std::span<const tables::LaunchSample>> 
   return true;
 }
 
-void LandingCache::landing(std::size_t index, const double (&node_weight)[kPairNodes], const flight::State& launch,
+void LandingCache::landing(std::size_t index, const double (&node_weight)[kPairNodes], const Launch& launch,
                            double wind_x_m_s, double wind_y_m_s, double& x_m, double& y_m) const {
-  const double vx = launch.velocity_m_s.x() - wind_x_m_s, vy = launch.velocity_m_s.y() - wind_y_m_s;
+  const double vx = launch.vx_m_s - wind_x_m_s, vy = launch.vy_m_s - wind_y_m_s;
   const double u = std::sqrt(vx * vx + vy * vy);
   constexpr double kInverseRadius = 1.0 / kWindRadius_m_s;
   const float* entry = &data_[index * node_count_ * kStride];
@@ -147,9 +147,9 @@ void LandingCache::landing(std::size_t index, const double (&node_weight)[kPairN
     range_m += node_weight[node] * horner(entry + 1, s);
     time_s += node_weight[node] * horner(entry + 5, s);
   }
-  const double ux = u > 0.0 ? vx / u : 0.0, uy = u > 0.0 ? vy / u : 0.0;
-  x_m = launch.position_m.x() + range_m * ux + wind_x_m_s * time_s;
-  y_m = launch.position_m.y() + range_m * uy + wind_y_m_s * time_s;
+  const double along = u > 0.0 ? range_m / u : 0.0;  // the range along the unit vector (vx, vy)/u
+  x_m = launch.x_m + along * vx + wind_x_m_s * time_s;
+  y_m = launch.y_m + along * vy + wind_y_m_s * time_s;
 }
 
 }  // namespace spread::predict

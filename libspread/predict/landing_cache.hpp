@@ -73,11 +73,14 @@ class LandingCache {
 
   // Weights of the nodes at interpolation weight t in [0, 1] (a row: t = 0), once per prediction.
   void node_weights(double t, double (&weight)[kPairNodes]) const;
-  // Landing (x, y) of sample `index` launched from `launch` (its actual position and velocity at t:
-  // mirrored for the right disc, scaled by ω) in the horizontal wind (wind_x, wind_y), |wind| <=
-  // kWindRadius_m_s; node_weight from node_weights(t).
-  void landing(std::size_t index, const double (&node_weight)[kPairNodes], const flight::State& launch,
-               double wind_x_m_s, double wind_y_m_s, double& x_m, double& y_m) const;
+  // Landing (x, y) of sample `index` launched from (launch_x, launch_y) with horizontal velocity
+  // (launch_vx, launch_vy) (its actual launch at t: mirrored for the right disc, scaled by ω) in the
+  // horizontal wind (wind_x, wind_y), |wind| <= kWindRadius_m_s; node_weight from node_weights(t).
+  struct Launch {
+    double x_m, y_m, vx_m_s, vy_m_s;
+  };
+  void landing(std::size_t index, const double (&node_weight)[kPairNodes], const Launch& launch, double wind_x_m_s,
+               double wind_y_m_s, double& x_m, double& y_m) const;
 
   // Floats per granule and node: its horizontal launch speed u at the node (m/s), then the cubics of the
   // range R (m) and the flight time T (s) in s = (u′ − u)/Δ, four monomial coefficients each.

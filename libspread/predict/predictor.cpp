@@ -382,26 +382,31 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
   const bool right_flown = two_discs && fly_right_disc;
   const std::size_t flights = right_flown ? 2 * n : n;
   std::size_t radial_count = 0;
+  double node_weight[LandingCache::kPairNodes];
+  if (cache != nullptr) cache->node_weights(t, node_weight);
+  const double wind_x_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.x() : 0.0;
+  const double wind_y_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.y() : 0.0;
   for (std::size_t first = 0; first < flights; first += kFlightChunk) {
     const std::size_t count = std::min(kFlightChunk, flights - first);
-    for (std::size_t c = 0; c < count; ++c) {
-      const std::size_t f = first + c;
-      launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
-    }
     if (cache != nullptr) {
-      const double wind_x_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.x() : 0.0;
-      const double wind_y_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.y() : 0.0;
-      double node_weight[LandingCache::kPairNodes];
-      cache->node_weights(t, node_weight);
+      // Only the horizontal launch is needed (no granule, no spin, no full state).
       for (std::size_t c = 0; c < count; ++c) {
         const std::size_t f = first + c;
+        const tables::LaunchSample& s = w.samples_[f < n ? f : f - n];
+        const double mirror = f < n ? 1.0 : -1.0;
+        const LandingCache::Launch launch{mirror * s.x_m, s.y_m, rim_speed_m_s * (mirror * s.vx_norm),
+                                          rim_speed_m_s * s.vy_norm};
         flight::Landing& landing = w.landings_[c];
         double x = 0.0, y = 0.0;
-        cache->landing(f < n ? f : f - n, node_weight, w.launches_[c], wind_x_m_s, wind_y_m_s, x, y);
+        cache->landing(f < n ? f : f - n, node_weight, launch, wind_x_m_s, wind_y_m_s, x, y);
         landing.state.position_m = Vec3(x, y, 0.0);
         landing.landed = true;
       }
     } else {
+      for (std::size_t c = 0; c < count; ++c) {
+        const std::size_t f = first + c;
+        launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
+      }
       flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
                        settings_, std::span(w.landings_).first(count));
     }

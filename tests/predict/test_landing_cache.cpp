@@ -65,7 +65,9 @@ TEST(LandingCache, ExactAtItsNodes) {
       const double scale = -node * LandingCache::kWindRadius_m_s / u;
       const double wind_x = scale * launch.velocity_m_s.x(), wind_y = scale * launch.velocity_m_s.y();
       double x = 0.0, y = 0.0;
-      cache.landing(i, weight, launch, wind_x, wind_y, x, y);
+      const LandingCache::Launch horizontal{launch.position_m.x(), launch.position_m.y(), launch.velocity_m_s.x(),
+                                            launch.velocity_m_s.y()};
+      cache.landing(i, weight, horizontal, wind_x, wind_y, x, y);
       flight::Air air;
       air.wind_m_s = Vec3(wind_x, wind_y, 0.0);
       const flight::Landing flown = flight::fly_to_ground(flight::Granule{s.diameter_m, flying.density_kg_m3}, launch,
