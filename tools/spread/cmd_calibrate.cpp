@@ -27,10 +27,12 @@
 #include "libspread/calibration/tray_analysis.hpp"
 #include "libspread/calibration/tray_csv.hpp"
 #include "libspread/plot/plot.hpp"
+#include "libspread/plot/report_pdf.hpp"
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/output_paths.hpp"
+#include "tools/spread/report_args.hpp"
 
 namespace {
 
@@ -66,6 +68,12 @@ void guarded(const char* command, int& exit_code, Body body) {
   try {
     body();
     exit_code = spread::cli::kExitOk;
+  } catch (const spread::cli::ReportUsageError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitUsage;
+  } catch (const spread::cli::ReportWriteError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitFailure;
   } catch (const BadInput& e) {
     std::cerr << prefix << e.what() << "\n";
     exit_code = spread::cli::kExitUsage;
@@ -145,6 +153,10 @@ struct TrayOptions {
   double cv_target_percent = 15.0;
   std::string plot_prefix;
   bool json = false;
+  // For the report's header only: the tray test file does not say what was spread, how.
+  std::string machine, material;
+  double rpm = NAN;
+  spread::cli::ReportArgs report;
 };
 
 std::string positions_text(const std::vector<double>& positions_m) {
@@ -260,25 +272,109 @@ std::string plot_or_error(Plot plot) {
   return {};
 }
 
+// The bout width of the report's chart and rate: --width (whole trays), else the largest whole-tray width
+// within the to-and-fro working width (rounding up would show a bout beyond the target). 0: none.
+double report_bout_width_m(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
+  if (a.bout_width_m > 0.0) return a.bout_width_m;
+  const int trays = static_cast<int>(std::floor(a.working_width_to_and_fro_m / t.layout.tray_width_m + 1e-9));
+  return trays >= 2 ? trays * t.layout.tray_width_m : 0.0;
+}
+
+// The CV at a whole-tray width, read off the analysis' curve (which leaves missing trays out).
+double curve_cv(const cal::TrayTestAnalysis& a, const std::vector<double>& curve, double width_m) {
+  for (std::size_t i = 0; i < a.widths_m.size(); ++i) {
+    if (std::abs(a.widths_m[i] - width_m) < 1e-6) return curve[i];
+  }
+  return NAN;
+}
+
+std::vector<spread::plot::CvTableRow> tray_cv_table(const cal::TrayTestAnalysis& a) {
+  return spread::plot::cv_table(spread::plot::cv_table_widths_m(a.throw_width_m, a.widths_m), a.widths_m,
+                                a.cv_to_and_fro_curve, a.cv_racetrack_curve);
+}
+
+// The report's pattern page of a tray test: its trays as the chart, the CVs of the analysis.
+spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
+                                             double bout_width_m, std::int64_t time_s) {
+  spread::plot::PatternReport r;
+  r.header.source = t.source;
+  r.header.time_s = time_s;
+  r.header.made_by = spread::cli::command_line();
+  char text[256];
+  std::snprintf(text, sizeof text, "%zu trays of %.2f m, %zu pass(es), %.1f g in the trays (mean of the passes), "
+                "throw width %.1f m", t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg,
+                a.throw_width_m);
+  r.summary.emplace_back(text);
+  r.tray_mass_kg = t.layout_mass_kg;
+  r.trays = t.layout;
+  r.chart.series_label = t.mass_columns.size() > 1 ? "measured, mean of the passes" : "measured";
+  r.chart.bout_width_m = bout_width_m;
+  if (bout_width_m > 0.0) {
+    r.chart.bout_cv = curve_cv(a, a.cv_to_and_fro_curve, bout_width_m);
+    std::snprintf(text, sizeof text, "at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack%s", bout_width_m,
+                  100.0 * r.chart.bout_cv, 100.0 * curve_cv(a, a.cv_racetrack_curve, bout_width_m),
+                  a.bout_width_m > 0.0 ? "" : " (no --width: the working width, in whole trays)");
+    r.summary.emplace_back(text);
+  }
+  r.chart_title = "tray test: one pass across the driving direction";
+  r.cv_target = a.cv_target;
+  r.working_width_to_and_fro_m = a.working_width_to_and_fro_m;
+  r.working_width_racetrack_m = a.working_width_racetrack_m;
+  r.cv_table = tray_cv_table(a);
+  return r;
+}
+
 void run_tray(const TrayOptions& o) {
   const double cv_target = cal::cv_target_from_percent(o.cv_target_percent, "--cv-target");
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   const cal::TrayTest t = cal::read_tray_csv(o.file);
   const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, cv_target, o.width_m);
   const std::vector<std::string> warnings = tray_warnings(t, a);
   const std::vector<std::string> notes = missing_notes(t);
   const cal::PassScatter scatter = cal::pass_scatter(t);
+  const double report_width_m = report_bout_width_m(t, a);
+  const std::optional<spread::plot::ReportRate> rate =
+      spread::cli::report_rate(o.report, a.total_mass_kg, report_width_m, t.layout.tray_width_m);
   json written = json::object();
   const std::string plot_error =
       o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, written); });
+  std::string report_error;
+  if (!o.report.path.empty() && report_problem.empty()) {
+    report_error = plot_or_error([&] {
+      spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
+      page.header.machine = o.machine;
+      page.header.material = o.material;
+      page.header.rpm = o.rpm;
+      page.header.speed_km_h = o.report.speed_km_h;
+      page.rate = rate;
+      page.notes = warnings;
+      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      if (rate && t.has_missing_trays()) {
+        page.notes.emplace_back("the caught rate counts the trays read only: missing trays lower it");
+      }
+      spread::plot::write_report_pdf(o.report.path, &page);
+      written["report"] = o.report.path;
+    });
+  }
+  auto fail_after_report = [&] {
+    if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
+    if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
+    if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
+  };
   if (o.json) {
     json out = tray_json(t, a);
     out["warnings"] = warnings;
     out["notes"] = notes;
     out["written"] = written;
+    out["rate"] = spread::cli::rate_json(rate);
     if (!plot_error.empty()) out["plot_error"] = plot_error;
+    if (!report_problem.empty() || !report_error.empty()) {
+      out["report_error"] = report_problem.empty() ? report_error : report_problem;
+    }
     std::cout << out.dump(2) << "\n";
-    if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
+    fail_after_report();
     return;
   }
   std::printf("%s: %zu trays of %.2f m, %zu pass(es), %.1f g in total, throw width %.1f m\n", t.source.c_str(),
@@ -297,8 +393,12 @@ void run_tray(const TrayOptions& o) {
                 scatter.rms_one_pass_g, scatter.passes, 100.0 * scatter.rms_one_pass_fraction,
                 100.0 * scatter.rms_mean_fraction);
   }
+  for (const std::string& line : spread::cli::rate_lines(rate)) std::printf("%s\n", line.c_str());
+  if (!std::isnan(o.report.tray_area_m2) && !rate) {
+    std::printf("note: no rate: --tray-area needs a bout width (--width, or a working width of two trays or more)\n");
+  }
   for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
-  if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
+  fail_after_report();
 }
 
 // ------------------------------------------------------------------------------------------- pattern
@@ -642,6 +742,10 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   t->add_option("--cv-target", tray.cv_target_percent, "CV target (%) of the effective working width")->capture_default_str();
   t->add_option("--plot", tray.plot_prefix, "write PREFIX_transverse.png and PREFIX_cv.png");
   t->add_flag("--json", tray.json, "machine-readable output on stdout");
+  t->add_option("--machine", tray.machine, "machine name, for the report's header");
+  t->add_option("--material", tray.material, "material spread, for the report's header");
+  t->add_option("--rpm", tray.rpm, "disc speed of the test (r/min), for the report's header");
+  spread::cli::add_report_args(*t, tray.report, true);
   t->callback([&exit_code] { guarded("tray", exit_code, [] { run_tray(tray); }); });
 
   static PatternOptions pattern;
