@@ -38,12 +38,13 @@ std::string cv_cell(double cv) {
 
 // Writes `text` from (x, y) on, broken at spaces into lines no wider than `width_pt`; returns the y
 // below the last line.
-double draw_wrapped(cairo_t* cr, const std::string& text, double x, double y, double width_pt) {
+double draw_wrapped(cairo_t* cr, const std::string& text, double x, double y, double width_pt,
+                    double line_pt = kLine_pt) {
   std::istringstream words(text);
   std::string word, line;
   auto flush = [&] {
     detail::draw_text(cr, line, x, y, 0.0, 0.0);
-    y += kLine_pt;
+    y += line_pt;
     line.clear();
   };
   while (words >> word) {
@@ -98,9 +99,10 @@ void draw_footer(cairo_t* cr, const ReportHeader& h) {
   if (h.made_by.empty()) return;
   cairo_save(cr);
   cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
-  detail::set_font(cr, 7.5);
+  detail::set_font(cr, 7.0);
+  // Up to three lines of 9 pt in the bottom margin.
   draw_wrapped(cr, "made by: " + h.made_by + " (" + utc_date_time(h.time_s) + ")", kMargin_pt,
-               kPageHeight_pt - kMargin_pt + 6.0, kTextWidth_pt);
+               kPageHeight_pt - kMargin_pt - 6.0, kTextWidth_pt, 9.0);
   cairo_restore(cr);
 }
 

@@ -4,6 +4,8 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -22,6 +25,7 @@ using nlohmann::json;
 namespace {
 
 const std::string kSpread = SPREAD_CLI;
+const std::string kLookupBuilder = SPREAD_LOOKUP_BUILDER;
 const std::string kExample = std::string(SPREAD_SOURCE_DIR) + "/scenes/field/tray_test_3passes.csv";
 // 2025-11-24 16:00 UTC: every report in these tests carries this date.
 const std::string kEpoch = "SOURCE_DATE_EPOCH=1764000000 ";
@@ -44,9 +48,11 @@ struct CommandRun {
 
 // Runs a shell command line, capturing stdout and stderr.
 CommandRun run(const std::string& command) {
+  // ctest runs each test in its own process, two at a time: the process id keeps their files apart.
   static int counter = 0;
-  const fs::path out = work_dir() / ("run" + std::to_string(++counter) + ".out");
-  const fs::path err = work_dir() / ("run" + std::to_string(counter) + ".err");
+  const std::string name = "run" + std::to_string(getpid()) + "_" + std::to_string(++counter);
+  const fs::path out = work_dir() / (name + ".out");
+  const fs::path err = work_dir() / (name + ".err");
   const int status = std::system((command + " > '" + out.string() + "' 2> '" + err.string() + "'").c_str());
   CommandRun r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -115,6 +121,44 @@ std::string one_decimal(double value) {
   return text;
 }
 
+// Rows "W m  a %  b %" of a report's CV table, each checked against the JSON's cv_curve; returns how many.
+int expect_cv_rows_as_json(const std::string& text, const json& j) {
+  const std::regex row(R"(^\s*(\d+\.\d) m\s+(\d+\.\d) %\s+(\d+\.\d) %\s*$)");
+  int rows = 0;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row)) continue;
+    const double width_m = std::stod(m[1]);
+    bool found = false;
+    for (const json& point : j["cv_curve"]) {
+      if (std::abs(point["bout_width_m"].get<double>() - width_m) > 1e-9) continue;
+      found = true;
+      EXPECT_EQ(m[2].str(), one_decimal(point["cv_to_and_fro_percent"].get<double>())) << line;
+      EXPECT_EQ(m[3].str(), one_decimal(point["cv_racetrack_percent"].get<double>())) << line;
+    }
+    EXPECT_TRUE(found) << "no cv_curve point at " << width_m << " m";
+    ++rows;
+  }
+  return rows;
+}
+
+// A small analytic table (Urea, the narrow Case 1 inlet, 256 samples per run, 450-750 rpm), made once per
+// `name` (one per test: tests run in parallel processes).
+fs::path small_table(const std::string& name) {
+  const fs::path table = work_dir() / (name + ".sqlite");
+  static std::set<std::string> made;
+  if (made.insert(name).second) {
+    fs::remove(table);
+    const CommandRun r = run("'" + kLookupBuilder + "' '" + SPREAD_SOURCE_DIR + "/scenes/default.toml' --output '" +
+                             table.string() + "' --set sweep.source=analytic --set 'sweep.materials=[\"Urea\"]' " +
+                             "--set sweep.samples_per_run=256 --set inlet.radius_m=0.0145 --set inlet.offset_m=0.1 " +
+                             "--set inlet.angle_rad=1.0");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+  }
+  return table;
+}
+
 class ReportCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -153,24 +197,7 @@ TEST_F(ReportCli, TrayReportTextMatchesTheJson) {
   EXPECT_NE(text.find("date 2025-11-24"), std::string::npos) << text;
 
   // Every row of the CV table equals the JSON's cv_curve at that width (to 0.1 %, as printed).
-  const std::regex row(R"(^\s*(\d+\.\d) m\s+(\d+\.\d) %\s+(\d+\.\d) %\s*$)");
-  int rows = 0;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    std::smatch m;
-    if (!std::regex_match(line, m, row)) continue;
-    const double width_m = std::stod(m[1]);
-    bool found = false;
-    for (const json& point : j["cv_curve"]) {
-      if (std::abs(point["bout_width_m"].get<double>() - width_m) > 1e-9) continue;
-      found = true;
-      EXPECT_EQ(m[2].str(), one_decimal(point["cv_to_and_fro_percent"].get<double>())) << line;
-      EXPECT_EQ(m[3].str(), one_decimal(point["cv_racetrack_percent"].get<double>())) << line;
-    }
-    EXPECT_TRUE(found) << "no cv_curve point at " << width_m << " m";
-    ++rows;
-  }
-  EXPECT_EQ(rows, 5) << text;
+  EXPECT_EQ(expect_cv_rows_as_json(text, j), 5) << text;
   // The example's 12.5 m throw: widths fitting it, 2 to 10 m.
   EXPECT_NE(text.find("10.0 m"), std::string::npos);
 
@@ -205,4 +232,80 @@ TEST_F(ReportCli, SourceDateEpochMakesTheSameFile) {
                       "' --report '" + a.string() + "'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("SOURCE_DATE_EPOCH 'yesterday'"), std::string::npos) << bad.err;
+}
+
+TEST_F(ReportCli, PredictReportMatchesTheJson) {
+  const fs::path pdf = work_dir() / "predict.pdf";
+  const std::string predict = kEpoch + "'" + kSpread + "' predict --tables '" + small_table("urea_predict").string() +
+                              "' --material Urea --rpm 600 --speed 12 ";
+  const CommandRun made = run(predict + "--report '" + pdf.string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const CommandRun as_json = run(predict + "--json");
+  ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
+  const json j = json::parse(as_json.out);
+  ASSERT_EQ(render(pdf, work_dir() / "predict"), 1);
+  EXPECT_GT(ink(work_dir() / "predict-1.png", 0.20, 0.55).blue, 0.01) << "the tray bars are not drawn";
+  const std::string text = pdf_text(pdf);
+  EXPECT_NE(text.find("Material: Urea"), std::string::npos) << text;
+  EXPECT_NE(text.find("Forward speed: 12.0 km/h"), std::string::npos) << text;
+  EXPECT_GE(expect_cv_rows_as_json(text, j), 3) << text;
+  // The CV at the bout width with its 95 % interval, as the text report prints it.
+  char cv[64];
+  std::snprintf(cv, sizeof cv, "CV %.1f %% ± %.2f to-and-fro", j["cv_to_and_fro_percent"].get<double>(),
+                1.96 * j["cv_to_and_fro_se_percent"].get<double>());
+  EXPECT_NE(text.find(cv), std::string::npos) << cv << "\n" << text;
+}
+
+TEST_F(ReportCli, PatternReportShowsMeasuredAndPredicted) {
+  const fs::path pdf = work_dir() / "pattern.pdf", output = work_dir() / "calibrated.sqlite";
+  fs::remove(output);
+  const CommandRun r = run(kEpoch + "'" + kSpread + "' calibrate pattern --tables '" + small_table("urea_pattern").string() +
+                           "' --material Urea --rpm 600 --trays '" + kExample + "' --output '" + output.string() +
+                           "' --fit friction,drag --samples 128 --tray-area 0.25 --rate-kg-ha 1200 --report '" +
+                           pdf.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  ASSERT_EQ(render(pdf, work_dir() / "pattern"), 1);
+  const std::string text = pdf_text(pdf);
+  EXPECT_NE(text.find("predicted, calibrated"), std::string::npos) << text;
+  EXPECT_NE(text.find("EN 13739-2 rate check: PASS"), std::string::npos) << text;
+}
+
+TEST_F(ReportCli, ChartFindsTheRpmOfEachWidthAndPrintsItsPage) {
+  const fs::path table = small_table("urea_chart"), pdf = work_dir() / "chart.pdf";
+  const std::string chart = kEpoch + "'" + kSpread + "' chart --tables '" + table.string() +
+                            "' --material Urea --widths 2,4,12 ";
+  const CommandRun as_json = run(chart + "--json");
+  ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
+  const json j = json::parse(as_json.out);
+  ASSERT_EQ(j["rows"].size(), 3u);
+  for (int k = 0; k < 2; ++k) {
+    const json& row = j["rows"][k];
+    ASSERT_TRUE(row["reachable"].get<bool>()) << row.dump();
+    const double rpm = row["rpm"].get<double>();
+    EXPECT_GE(rpm, 450.0);
+    EXPECT_LE(rpm, 750.0);
+    EXPECT_GT(row["cv_to_and_fro_se_percent"].get<double>(), 0.0);
+    // `spread predict` (the C API) at that rpm gives that working width, within half a tray.
+    char rpm_text[32];
+    std::snprintf(rpm_text, sizeof rpm_text, "%.6f", rpm);
+    const CommandRun predicted = run("'" + kSpread + "' predict --tables '" + table.string() +
+                                     "' --material Urea --json --rpm " + rpm_text);
+    ASSERT_EQ(predicted.exit_code, 0) << predicted.err;
+    EXPECT_NEAR(json::parse(predicted.out)["working_width_to_and_fro_m"].get<double>(), row["width_m"].get<double>(),
+                0.25)
+        << row.dump();
+  }
+  EXPECT_LT(j["rows"][0]["rpm"].get<double>(), j["rows"][1]["rpm"].get<double>());  // wider needs faster
+  EXPECT_FALSE(j["rows"][2]["reachable"].get<bool>());
+  EXPECT_EQ(j["rows"][2]["reach"], "too_wide");
+
+  const CommandRun made = run(chart + "--report '" + pdf.string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  ASSERT_EQ(render(pdf, work_dir() / "chart"), 1);
+  const std::string text = pdf_text(pdf);
+  EXPECT_NE(text.find("Spread chart"), std::string::npos) << text;
+  char rpm_cell[32];
+  std::snprintf(rpm_cell, sizeof rpm_cell, "%.0f rpm", j["rows"][0]["rpm"].get<double>());
+  EXPECT_NE(text.find(rpm_cell), std::string::npos) << rpm_cell << "\n" << text;
+  EXPECT_NE(text.find("not reachable"), std::string::npos) << text;
 }

@@ -411,6 +411,7 @@ struct PatternOptions {
   double cv_target_percent = 15.0;
   bool allow_analytic = false;
   bool json = false;
+  spread::cli::ReportArgs report;
 };
 
 void parse_fit_list(const std::string& text, cal::PatternFitOptions& options) {
@@ -530,6 +531,8 @@ void run_pattern(const PatternOptions& o) {
                    "another name");
   }
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   cal::PatternFitOptions options;
   parse_fit_list(o.fit, options);
   options.model.sample_count = o.samples;
@@ -585,6 +588,37 @@ void run_pattern(const PatternOptions& o) {
       plot_error = plot_or_error([&] { plot_pattern(o, test, fit, material_name, cv_target, written); });
     }
   }
+  // The report, as the plots, only for an accepted fit: the measured trays with the calibrated
+  // prediction beside them, the CVs and rate of the tray test.
+  const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, cv_target, 0.0);
+  const double report_width_m = report_bout_width_m(test, measured);
+  const std::optional<spread::plot::ReportRate> rate =
+      spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);
+  std::string report_error;
+  if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
+    report_error = plot_or_error([&] {
+      spread::plot::PatternReport page = tray_report_page(test, measured, report_width_m, report_time_s);
+      std::vector<double> predicted_kg(fit.fitted_fraction.size());
+      for (std::size_t i = 0; i < predicted_kg.size(); ++i) predicted_kg[i] = fit.fitted_fraction[i] * test.total_mass_kg();
+      page.header.title = "Spread pattern report: calibration";
+      page.header.machine = contents.machine.name;
+      page.header.material = material_name;
+      page.header.rpm = o.rpm;
+      page.header.speed_km_h = o.report.speed_km_h;
+      page.chart.second_tray_mass_kg = predicted_kg;
+      page.chart.second_label = "predicted, calibrated";
+      char text[256];
+      std::snprintf(text, sizeof text, "fitted: friction %.4f, drag diameter factor %.4f, launch-angle offset %.2f deg; "
+                    "residual rms %.2f g per tray", fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
+                    fit.fitted.launch_angle_offset_rad * kDegPerRad, 1e3 * fit.residual_rms_kg);
+      page.summary.emplace_back(text);
+      page.rate = rate;
+      page.notes = warnings;
+      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      spread::plot::write_report_pdf(o.report.path, &page);
+      written["report"] = o.report.path;
+    });
+  }
 
   if (o.json) {
     report["warnings"] = warnings;
@@ -598,7 +632,11 @@ void run_pattern(const PatternOptions& o) {
       report["output"] = nullptr;
     }
     report["written"] = written;
+    report["rate"] = spread::cli::rate_json(rate);
     if (!plot_error.empty()) report["plot_error"] = plot_error;
+    if (!report_problem.empty() || !report_error.empty()) {
+      report["report_error"] = report_problem.empty() ? report_error : report_problem;
+    }
     std::cout << report.dump(2) << "\n";
   } else {
     std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
@@ -629,12 +667,15 @@ void run_pattern(const PatternOptions& o) {
     } else {
       std::printf("nothing written: %s was not created\n", o.output.c_str());
     }
+    for (const std::string& rate_line : spread::cli::rate_lines(rate)) std::printf("%s\n", rate_line.c_str());
     for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
   }
+  if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
   if (!acceptance.accepted()) {
     throw FailedAfterReport("the fit is refused (" + std::to_string(acceptance.refusals.size()) +
                             " reason(s) in the report above); nothing written");
   }
+  if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
   if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
 }
 
@@ -764,6 +805,7 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
               "accept a material whose table rows came from the DEM: fit and new rows use the analytic model");
   p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
   p->add_flag("--json", pattern.json, "machine-readable output on stdout");
+  spread::cli::add_report_args(*p, pattern.report, true);
   p->callback([&exit_code] { guarded("pattern", exit_code, [] { run_pattern(pattern); }); });
 
   static SynthOptions synth;
