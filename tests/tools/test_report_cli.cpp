@@ -198,8 +198,12 @@ TEST_F(ReportCli, TrayReportTextMatchesTheJson) {
 
   // Every row of the CV table equals the JSON's cv_curve at that width (to 0.1 %, as printed).
   EXPECT_EQ(expect_cv_rows_as_json(text, j), 5) << text;
-  // The example's 12.5 m throw: widths fitting it, 2 to 10 m.
-  EXPECT_NE(text.find("10.0 m"), std::string::npos);
+  // The example's 12.5 m throw: widths fitting it, 2 to 10 m; the numbers docs/field-calibration.md quotes.
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(2\.0 m\s+8\.1 %\s+7\.5 %)"))) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(6\.0 m\s+23\.1 %\s+23\.0 %)"))) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(10\.0 m\s+138\.8 %\s+138\.8 %)"))) << text;
+  EXPECT_NE(text.find("871.4 kg/ha"), std::string::npos) << text;
+  EXPECT_NE(text.find("EN 13739-2 rate check: PASS — the trays caught 102.5 %"), std::string::npos) << text;
 
   // The rate and its check, as the JSON has them.
   const json& rate = j["rate"];
@@ -296,6 +300,9 @@ TEST_F(ReportCli, ChartFindsTheRpmOfEachWidthAndPrintsItsPage) {
         << row.dump();
   }
   EXPECT_LT(j["rows"][0]["rpm"].get<double>(), j["rows"][1]["rpm"].get<double>());  // wider needs faster
+  // The numbers docs/field-calibration.md quotes for this table.
+  EXPECT_NEAR(j["rows"][0]["rpm"].get<double>(), 531.0, 1.0);
+  EXPECT_NEAR(j["rows"][1]["rpm"].get<double>(), 671.0, 1.0);
   EXPECT_FALSE(j["rows"][2]["reachable"].get<bool>());
   EXPECT_EQ(j["rows"][2]["reach"], "too_wide");
 
@@ -308,4 +315,20 @@ TEST_F(ReportCli, ChartFindsTheRpmOfEachWidthAndPrintsItsPage) {
   std::snprintf(rpm_cell, sizeof rpm_cell, "%.0f rpm", j["rows"][0]["rpm"].get<double>());
   EXPECT_NE(text.find(rpm_cell), std::string::npos) << rpm_cell << "\n" << text;
   EXPECT_NE(text.find("not reachable"), std::string::npos) << text;
+  for (const char* line : {"450-750 rpm give to-and-fro working widths 1.41-4.08 m",
+                           "2.0 m    531 rpm    15.1 % ± 14.9     15.1 % ± 14.9     1.99 m ± 0.77",
+                           "4.0 m    671 rpm    12.1 % ± 15.5     12.1 % ± 15.5     4.05 m ± 0.27"}) {
+    EXPECT_NE(made.out.find(line), std::string::npos) << line << "\n" << made.out;
+  }
+  // The scan's working widths the docs quote: not monotone in rpm on this narrow pattern.
+  std::string scan;
+  for (const json& point : j["scan"]) {
+    char entry[64];
+    std::snprintf(entry, sizeof entry, "%.0f:%.2f ", point["rpm"].get<double>(),
+                  point["working_width_to_and_fro_m"].get<double>());
+    scan += entry;
+  }
+  for (const char* point : {"525:1.87 ", "550:3.04 ", "600:1.86 ", "675:4.08 "}) {
+    EXPECT_NE(scan.find(point), std::string::npos) << point << " in " << scan;
+  }
 }
