@@ -21,6 +21,7 @@
 #include "libspread/calibration/fit_acceptance.hpp"
 #include "libspread/calibration/pass_scatter.hpp"
 #include "libspread/calibration/pattern_fit.hpp"
+#include "libspread/calibration/quick_check.hpp"
 #include "libspread/calibration/rate_calibration.hpp"
 #include "libspread/calibration/rate_plausibility.hpp"
 #include "libspread/calibration/synthetic_tray_test.hpp"
@@ -157,6 +158,7 @@ struct TrayOptions {
   std::string machine, material;
   double rpm = NAN;
   spread::cli::ReportArgs report;
+  bool quick_check = false;
 };
 
 std::string positions_text(const std::vector<double>& positions_m) {
@@ -324,8 +326,70 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   return r;
 }
 
+// --quick-check: 4–8 trays across one bout of the field as driven; the CV of the trays themselves and how
+// uncertain it is from so few trays.
+void run_quick_check(const TrayOptions& o, double cv_target) {
+  const char* not_with = !o.plot_prefix.empty() ? "--plot"
+                         : !o.report.path.empty() ? "--report"
+                         : o.width_m > 0.0 ? "--width"
+                         : !std::isnan(o.report.tray_area_m2) ? "--tray-area"
+                                                               : nullptr;
+  if (not_with != nullptr) {
+    throw BadInput(std::string(not_with) + " does not go with --quick-check: the quick check's trays already hold the "
+                   "overlapped spread of the bout as driven; for a chart, a report or the CV at other widths lay a "
+                   "full tray test across the throw (without --quick-check)");
+  }
+  const cal::TrayTest t = cal::read_tray_csv(o.file, cal::quick_check_csv_options());
+  const cal::QuickCheck q = cal::quick_check(t, cv_target);
+  const std::vector<std::string> notes = missing_notes(t);
+  const std::string high = std::isfinite(q.interval.high) ? format("%.1f %%", 100.0 * q.interval.high) : "unbounded";
+  std::string verdict;
+  switch (q.verdict) {
+    case cal::QuickCheckVerdict::kMeetsTarget:
+      verdict = "meets the target: even the top of the interval is within " + format("%g %%", 100.0 * cv_target);
+      break;
+    case cal::QuickCheckVerdict::kFailsTarget:
+      verdict = "fails the target: even the bottom of the interval is above " + format("%g %%", 100.0 * cv_target);
+      break;
+    case cal::QuickCheckVerdict::kUndecided:
+      verdict = "undecided: the target " + format("%g %%", 100.0 * cv_target) + " lies inside the interval, " +
+                std::to_string(q.trays) + " trays cannot tell whether the spread meets it; lay a full tray test "
+                "across the throw (step 2) to know";
+      break;
+  }
+  if (o.json) {
+    json out{{"tray_test", t.source},
+             {"quick_check", true},
+             {"trays", q.trays},
+             {"tray_spacing_m", t.tray_width_m},
+             {"passes", t.mass_columns.size()},
+             {"missing_trays_m", t.missing_positions_m()},
+             {"mean_g", 1e3 * q.mean_kg},
+             {"sd_g", 1e3 * q.sd_kg},
+             {"cv_percent", 100.0 * q.cv},
+             {"cv_interval_percent", {100.0 * q.interval.low, finite_or_null(100.0 * q.interval.high)}},
+             {"confidence_percent", 100.0 * q.interval.confidence},
+             {"cv_target_percent", 100.0 * cv_target},
+             {"verdict", cal::to_string(q.verdict)},
+             {"notes", notes}};
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("%s: quick check, %d trays read (%.2f m apart), %zu pass(es), mean %.2f g per tray\n", t.source.c_str(),
+              q.trays, t.tray_width_m, t.mass_columns.size(), 1e3 * q.mean_kg);
+  std::printf("CV %.1f %% over the %d trays; from %d trays the bout's CV lies between %.1f %% and %s (%.0f %% "
+              "interval, McKay)\n",
+              100.0 * q.cv, q.trays, q.trays, 100.0 * q.interval.low, high.c_str(), 100.0 * q.interval.confidence);
+  std::printf("against the target: %s\n", verdict.c_str());
+  for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
+}
+
 void run_tray(const TrayOptions& o) {
   const double cv_target = cal::cv_target_from_percent(o.cv_target_percent, "--cv-target");
+  if (o.quick_check) {
+    run_quick_check(o, cv_target);
+    return;
+  }
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
@@ -787,6 +851,8 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   t->add_option("--material", tray.material, "material spread, for the report's header");
   t->add_option("--rpm", tray.rpm, "disc speed of the test (r/min), for the report's header");
   spread::cli::add_report_args(*t, tray.report, true);
+  t->add_flag("--quick-check", tray.quick_check,
+              "4-8 trays across one bout of the field as driven: their CV and how uncertain it is from so few trays");
   t->callback([&exit_code] { guarded("tray", exit_code, [] { run_tray(tray); }); });
 
   static PatternOptions pattern;
