@@ -71,7 +71,7 @@ double draw_header(cairo_t* cr, const ReportHeader& h) {
   auto number = [](double v, const char* pattern) { return std::isnan(v) ? std::string("not given") : format(pattern, v); };
   const std::pair<std::string, std::string> fields[] = {
       {"Machine", or_not_given(h.machine)},        {"Material", or_not_given(h.material)},
-      {"Disc speed", number(h.rpm, "%.0f rpm")},  {"Forward speed", number(h.speed_km_h, "%.1f km/h")},
+      {"Disc speed", h.rpm_text.empty() ? number(h.rpm, "%.0f rpm") : h.rpm_text},  {"Forward speed", number(h.speed_km_h, "%.1f km/h")},
   };
   double y = kMargin_pt + 32.0;
   for (std::size_t i = 0; i < std::size(fields); ++i) {

@@ -29,6 +29,7 @@ struct ReportHeader {
   std::string machine;                 // "" = not given
   std::string material;                // "" = not given
   double rpm = std::numeric_limits<double>::quiet_NaN();         // disc speed, r/min; NaN = not given
+  std::string rpm_text;                // printed instead of the rpm when set (e.g. "per width, below")
   double speed_km_h = std::numeric_limits<double>::quiet_NaN();  // forward speed; NaN = not given
   std::int64_t time_s = 0;             // seconds since 1970 (report_time_s()): the date printed
   std::string made_by;                 // the footer: the command that made the report

@@ -124,6 +124,7 @@ void run(const Options& o, int& exit_code) {
       page.header.source = o.tables;
       page.header.machine = predictor.machine().name;
       page.header.material = o.material;
+      page.header.rpm_text = "per working width, below";
       page.header.speed_km_h = o.report.speed_km_h;
       page.header.time_s = report_time_s;
       page.header.made_by = spread::cli::command_line();
