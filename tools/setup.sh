@@ -12,7 +12,8 @@ for t in "$@"; do targets+=(--target "$t"); done
 packages=(build-essential cmake pkg-config ninja-build
   libeigen3-dev libsqlite3-dev sqlite3 libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libcairo2-dev
   liblcm-dev liblcm-bin libgtest-dev libgmock-dev libbenchmark-dev libopenmpi-dev openmpi-bin
-  python3 python3-scipy iproute2 util-linux clang libclang-rt-14-dev abigail-tools)
+  python3 python3-scipy iproute2 util-linux clang libclang-rt-14-dev abigail-tools
+  poppler-utils)  # pdftoppm and pdftotext: the PDF report tests (tests/tools/test_report_cli.cpp)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -164,7 +164,7 @@ std::vector<double> TrayTest::partly_missing_positions_m() const {
   return positions;
 }
 
-TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
+TrayTest parse_tray_csv(std::string_view text, const std::string& source, const TrayCsvOptions& options) {
   TrayTest test;
   test.source = source;
 
@@ -296,10 +296,11 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
 
   if (!have_header) throw TrayCsvError(source, 0, "empty file: no header and no trays");
   const int trays = static_cast<int>(test.position_m.size());
-  if (trays < kMinimumTrays) {
+  const int minimum_trays = std::max(2, options.minimum_trays);
+  if (trays < minimum_trays) {
     throw TrayCsvError(source, line_number,
                        "too few trays: " + std::to_string(trays) + " (need at least " +
-                           std::to_string(kMinimumTrays) + ")");
+                           std::to_string(minimum_trays) + ")");
   }
 
   const double spacing = test.position_m[1] - test.position_m[0];
@@ -320,7 +321,7 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
   const double phase = test.position_m.front() / w - std::floor(test.position_m.front() / w);  // [0, 1)
   const bool on_multiples = std::min(phase, 1.0 - phase) * w <= kPositionTolerance_m;
   const bool on_halves = std::abs(phase - 0.5) * w <= kPositionTolerance_m;
-  if (!on_multiples && !on_halves) {
+  if (options.centre_line_grid && !on_multiples && !on_halves) {
     throw TrayCsvError(source, row_line.front(),
                        "tray centres are not on the centre-line grid: with " + format_m(w) +
                            " m trays the centres must be at multiples of " + format_m(w) + " m or midway between "
@@ -344,23 +345,23 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source) {
   }
   test.padded_trays = count - trays;
   test.padded_left = static_cast<int>(first_index);
-  if (test.missing_trays() > trays - kMinimumTrays) {
+  if (test.missing_trays() > trays - minimum_trays) {
     throw TrayCsvError(source, 0,
                        std::to_string(test.missing_trays()) + " of " + std::to_string(trays) +
                            " trays are missing (NA or empty in every pass): need at least " +
-                           std::to_string(kMinimumTrays) + " with a reading");
+                           std::to_string(minimum_trays) + " with a reading");
   }
 
   if (!(test.total_mass_kg() > 0.0)) throw TrayCsvError(source, 0, "no mass in any tray");
   return test;
 }
 
-TrayTest read_tray_csv(const std::string& path) {
+TrayTest read_tray_csv(const std::string& path, const TrayCsvOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw TrayCsvError(path, 0, "cannot open the file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_tray_csv(text.str(), path);
+  return parse_tray_csv(text.str(), path, options);
 }
 
 void write_tray_csv(const std::string& path, const std::vector<double>& position_m,

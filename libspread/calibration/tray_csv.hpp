@@ -70,9 +70,17 @@ struct TrayTest {
   std::vector<double> partly_missing_positions_m() const;
 };
 
-TrayTest parse_tray_csv(std::string_view text, const std::string& source);
+// What a layout must be. The defaults are the full tray test's (step 2). A quick check (quick_check.hpp)
+// lays 4–8 trays between two tramlines, measured from one of them: fewer trays, and positions that need
+// not sit on the tractor's centre-line grid.
+struct TrayCsvOptions {
+  int minimum_trays = kMinimumTrays;  // trays with a reading
+  bool centre_line_grid = true;       // require the centres on the centre line's grid
+};
+
+TrayTest parse_tray_csv(std::string_view text, const std::string& source, const TrayCsvOptions& options = {});
 // Reads the file; a file that cannot be opened is a TrayCsvError with line 0.
-TrayTest read_tray_csv(const std::string& path);
+TrayTest read_tray_csv(const std::string& path, const TrayCsvOptions& options = {});
 
 // Writes a tray-test CSV (position_m and one column per pass in grams), with '#' comment lines first.
 // For examples and synthetic tests; read_tray_csv() reads it back. Throws std::runtime_error naming the

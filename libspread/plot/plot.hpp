@@ -4,6 +4,7 @@
 // curves with the target line and the effective working widths. Every writer throws
 // std::runtime_error naming the path when the file cannot be written, and std::invalid_argument naming
 // the offending input when the data cannot be plotted (empty, mismatched sizes, non-finite).
+#include <limits>
 #include <span>
 #include <string>
 
@@ -35,6 +36,11 @@ struct TransverseOptions {
   double bout_width_m = 0.0;                       // > 0: also draw the overlapped profile over one bout
   metrics::Overlap overlap = metrics::Overlap::kToAndFro;  // how that profile is overlapped
   MassUnits units = MassUnits::kKilograms;         // of both series
+  // With bout_width_m > 0: the CV the legend states and the band below show. NaN: metrics::cv_at_width of
+  // the main series (a caller whose CV leaves missing trays out passes its own).
+  double bout_cv = std::numeric_limits<double>::quiet_NaN();
+  // With bout_width_m > 0: also the bout's mean mass per tray (a line) and the band mean × (1 ± CV).
+  bool mean_band = false;
 };
 // Bars per tray (mass per tray; the unit — kg, g or mg — is picked from the data and named on the axis),
 // x in metres.

@@ -11,6 +11,7 @@
 #include "libspread/plot/canvas.hpp"
 #include "libspread/plot/mass_unit.hpp"
 #include "libspread/plot/plot.hpp"
+#include "libspread/plot/transverse_drawing.hpp"
 
 namespace spread::plot {
 namespace {
@@ -18,6 +19,7 @@ namespace {
 constexpr detail::Rgb kMainColour{0.25, 0.45, 0.75};
 constexpr detail::Rgb kSecondColour{0.90, 0.50, 0.10};
 constexpr detail::Rgb kOverlapColour{0.10, 0.60, 0.25};
+constexpr detail::Rgb kMeanColour{0.15, 0.15, 0.15};
 
 void require_series(std::span<const double> mass_kg, const metrics::TrayLayout& trays, const char* name) {
   if (mass_kg.size() != static_cast<std::size_t>(trays.tray_count)) {
@@ -34,6 +36,15 @@ void require_series(std::span<const double> mass_kg, const metrics::TrayLayout& 
 
 void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::TrayLayout& trays,
                           const std::string& path, const std::string& title, const TransverseOptions& options) {
+  detail::Canvas canvas(kImageWidth_px, kImageHeight_px);
+  detail::draw_transverse(canvas.cr(), tray_mass_kg, trays, title, options);
+  canvas.write_png(path);
+}
+
+namespace detail {
+
+void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const metrics::TrayLayout& trays,
+                     const std::string& title, const TransverseOptions& options) {
   if (trays.tray_count <= 0 || !(trays.tray_width_m > 0.0) || !std::isfinite(trays.tray_width_m)) {
     throw std::invalid_argument("write_transverse_png: the tray layout is empty or its tray width is not > 0");
   }
@@ -54,11 +65,25 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
     metrics::overlapped_profile(tray_mass_kg, trays, options.bout_width_m, options.overlap, bout_kg);
     bout_half_m = 0.5 * bout.bout_trays * trays.tray_width_m;
   }
+  // The CV the legend and band show, and the bout's mean per tray: x̄ = Σ w_j P_j / n with the weights of
+  // metrics::cv_at_trays (1, or 1/2 for the two trays a bout edge cuts) — the x̄ of that CV.
+  const double bout_cv = !overlapped ? 0.0
+                         : std::isnan(options.bout_cv)
+                             ? metrics::cv_at_width(tray_mass_kg, trays, options.bout_width_m, options.overlap)
+                             : options.bout_cv;
+  double bout_mean_kg = 0.0;
+  for (std::size_t j = 0; j < bout_kg.size(); ++j) {
+    const bool cut = bout.cut_edges && (j == 0 || j + 1 == bout_kg.size());
+    bout_mean_kg += (cut ? 0.5 : 1.0) * bout_kg[j];
+  }
+  if (overlapped) bout_mean_kg /= bout.bout_trays;
+  const bool band = overlapped && options.mean_band && std::isfinite(bout_cv) && bout_mean_kg > 0.0;
 
   double max_kg = 0.0;
   for (double m : tray_mass_kg) max_kg = std::max(max_kg, m);
   for (double m : options.second_tray_mass_kg) max_kg = std::max(max_kg, m);
   for (double m : bout_kg) max_kg = std::max(max_kg, m);
+  if (band) max_kg = std::max(max_kg, bout_mean_kg * (1.0 + bout_cv));
   const bool fraction = options.units == MassUnits::kFraction;
   const detail::MassUnit unit = fraction ? detail::MassUnit{"% of the mass", 100.0} : detail::mass_unit_for(max_kg);
 
@@ -67,13 +92,12 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
   x_hi = std::max(x_hi, bout_half_m);
   detail::nice_range(x_lo, x_hi, 10);
   // Headroom so the legend (22 px a row in a 510 px plot) sits above the tallest bar.
-  const int legend_rows = 1 + (second ? 1 : 0) + (overlapped ? 1 : 0);
+  const int legend_rows = 1 + (second ? 1 : 0) + (overlapped ? 1 : 0) + (band ? 2 : 0);
   const double headroom = 1.0 / (1.0 - (30.0 + 22.0 * legend_rows) / 510.0);
   double y_lo = 0.0, y_hi = (max_kg > 0.0 ? max_kg : 1e-3) * unit.per_kg * headroom;
   detail::nice_range(y_lo, y_hi, 8);
 
-  detail::Canvas canvas(kImageWidth_px, kImageHeight_px);
-  cairo_t* cr = canvas.cr();
+  cairo_save(cr);
   const detail::Axes axes(110.0, 55.0, 850.0, 510.0, x_lo, x_hi, y_lo, y_hi);
   axes.draw_grid(cr);
   axes.clip(cr);
@@ -102,6 +126,24 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
   legend.push_back({options.series_label, kMainColour, detail::LegendEntry::Kind::kBox});
   if (second) legend.push_back({options.second_label, kSecondColour, detail::LegendEntry::Kind::kBox});
 
+  if (band) {
+    // Under the profile: the band mean × (1 ± CV) over the bout, then the mean itself (dashed).
+    const double lo = axes.py(bout_mean_kg * (1.0 - bout_cv) * unit.per_kg);
+    const double hi = axes.py(bout_mean_kg * (1.0 + bout_cv) * unit.per_kg);
+    cairo_set_source_rgba(cr, kOverlapColour.r, kOverlapColour.g, kOverlapColour.b, 0.18);
+    cairo_rectangle(cr, axes.px(-bout_half_m), hi, axes.px(bout_half_m) - axes.px(-bout_half_m), lo - hi);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, kMeanColour.r, kMeanColour.g, kMeanColour.b);
+    cairo_set_line_width(cr, 2.0);
+    const double dash[] = {10.0, 5.0};
+    cairo_set_dash(cr, dash, 2, 0.0);
+    const double y = axes.py(bout_mean_kg * unit.per_kg);
+    cairo_move_to(cr, axes.px(-bout_half_m), y);
+    cairo_line_to(cr, axes.px(bout_half_m), y);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0.0);
+  }
+
   if (overlapped) {
     // The overlapped profile as a step line over the bout (grid trays, the cut edge trays clipped at the
     // bout edges), the bout edges dashed.
@@ -128,12 +170,19 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
     }
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0.0);
-    const double cv = metrics::cv_at_width(tray_mass_kg, trays, options.bout_width_m, options.overlap);
     char label[160];
     std::snprintf(label, sizeof label, "overlapped, %s, W = %.1f m: CV = %.1f %%",
                   options.overlap == metrics::Overlap::kToAndFro ? "to-and-fro" : "racetrack", 2.0 * bout_half_m,
-                  100.0 * cv);
+                  100.0 * bout_cv);
     legend.push_back({label, kOverlapColour, detail::LegendEntry::Kind::kLine});
+  }
+  if (band) {
+    char label[160];
+    std::snprintf(label, sizeof label, "mean of the bout: %.3g %s per tray",
+                  bout_mean_kg * unit.per_kg, unit.name.c_str());
+    legend.push_back({label, kMeanColour, detail::LegendEntry::Kind::kDashedLine});
+    std::snprintf(label, sizeof label, "mean ± CV (%.1f %%)", 100.0 * bout_cv);
+    legend.push_back({label, Rgb{0.70, 0.85, 0.74}, detail::LegendEntry::Kind::kBox});
   }
   cairo_restore(cr);  // clip
 
@@ -141,7 +190,8 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
                   (fraction ? "share per " : "mass per ") + detail::tick_label(w_m, 0.1) + " m tray (" + unit.name + ")");
   detail::draw_legend(cr, legend, axes.left() + axes.width() - 8.0, axes.top() + 8.0);
   detail::draw_title(cr, title, 0.5 * kImageWidth_px, 14.0);
-  canvas.write_png(path);
+  cairo_restore(cr);
 }
 
+}  // namespace detail
 }  // namespace spread::plot

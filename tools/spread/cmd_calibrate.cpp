@@ -21,16 +21,19 @@
 #include "libspread/calibration/fit_acceptance.hpp"
 #include "libspread/calibration/pass_scatter.hpp"
 #include "libspread/calibration/pattern_fit.hpp"
+#include "libspread/calibration/quick_check.hpp"
 #include "libspread/calibration/rate_calibration.hpp"
 #include "libspread/calibration/rate_plausibility.hpp"
 #include "libspread/calibration/synthetic_tray_test.hpp"
 #include "libspread/calibration/tray_analysis.hpp"
 #include "libspread/calibration/tray_csv.hpp"
 #include "libspread/plot/plot.hpp"
+#include "libspread/plot/report_pdf.hpp"
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/output_paths.hpp"
+#include "tools/spread/report_args.hpp"
 
 namespace {
 
@@ -66,6 +69,12 @@ void guarded(const char* command, int& exit_code, Body body) {
   try {
     body();
     exit_code = spread::cli::kExitOk;
+  } catch (const spread::cli::ReportUsageError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitUsage;
+  } catch (const spread::cli::ReportWriteError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    exit_code = spread::cli::kExitFailure;
   } catch (const BadInput& e) {
     std::cerr << prefix << e.what() << "\n";
     exit_code = spread::cli::kExitUsage;
@@ -145,6 +154,11 @@ struct TrayOptions {
   double cv_target_percent = 15.0;
   std::string plot_prefix;
   bool json = false;
+  // For the report's header only: the tray test file does not say what was spread, how.
+  std::string machine, material;
+  double rpm = NAN;
+  spread::cli::ReportArgs report;
+  bool quick_check = false;
 };
 
 std::string positions_text(const std::vector<double>& positions_m) {
@@ -260,25 +274,171 @@ std::string plot_or_error(Plot plot) {
   return {};
 }
 
+// The bout width of the report's chart and rate: --width (whole trays), else the largest whole-tray width
+// within the to-and-fro working width (rounding up would show a bout beyond the target). 0: none.
+double report_bout_width_m(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
+  if (a.bout_width_m > 0.0) return a.bout_width_m;
+  const int trays = static_cast<int>(std::floor(a.working_width_to_and_fro_m / t.layout.tray_width_m + 1e-9));
+  return trays >= 2 ? trays * t.layout.tray_width_m : 0.0;
+}
+
+// The CV at a whole-tray width, read off the analysis' curve (which leaves missing trays out).
+double curve_cv(const cal::TrayTestAnalysis& a, const std::vector<double>& curve, double width_m) {
+  for (std::size_t i = 0; i < a.widths_m.size(); ++i) {
+    if (std::abs(a.widths_m[i] - width_m) < 1e-6) return curve[i];
+  }
+  return NAN;
+}
+
+std::vector<spread::plot::CvTableRow> tray_cv_table(const cal::TrayTestAnalysis& a) {
+  return spread::plot::cv_table(spread::plot::cv_table_widths_m(a.throw_width_m, a.widths_m), a.widths_m,
+                                a.cv_to_and_fro_curve, a.cv_racetrack_curve);
+}
+
+// The report's pattern page of a tray test: its trays as the chart, the CVs of the analysis.
+spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
+                                             double bout_width_m, std::int64_t time_s) {
+  spread::plot::PatternReport r;
+  r.header.source = t.source;
+  r.header.time_s = time_s;
+  r.header.made_by = spread::cli::command_line();
+  char text[256];
+  std::snprintf(text, sizeof text, "%zu trays of %.2f m, %zu pass(es), %.1f g in the trays (mean of the passes), "
+                "throw width %.1f m", t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg,
+                a.throw_width_m);
+  r.summary.emplace_back(text);
+  r.tray_mass_kg = t.layout_mass_kg;
+  r.trays = t.layout;
+  r.chart.series_label = t.mass_columns.size() > 1 ? "measured, mean of the passes" : "measured";
+  r.chart.bout_width_m = bout_width_m;
+  if (bout_width_m > 0.0) {
+    r.chart.bout_cv = curve_cv(a, a.cv_to_and_fro_curve, bout_width_m);
+    std::snprintf(text, sizeof text, "at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack%s", bout_width_m,
+                  100.0 * r.chart.bout_cv, 100.0 * curve_cv(a, a.cv_racetrack_curve, bout_width_m),
+                  a.bout_width_m > 0.0 ? "" : " (no --width: the working width, in whole trays)");
+    r.summary.emplace_back(text);
+  }
+  r.chart_title = "tray test: one pass across the driving direction";
+  r.cv_target = a.cv_target;
+  r.working_width_to_and_fro_m = a.working_width_to_and_fro_m;
+  r.working_width_racetrack_m = a.working_width_racetrack_m;
+  r.cv_table = tray_cv_table(a);
+  return r;
+}
+
+// --quick-check: 4–8 trays across one bout of the field as driven; the CV of the trays themselves and how
+// uncertain it is from so few trays.
+void run_quick_check(const TrayOptions& o, double cv_target) {
+  const char* not_with = !o.plot_prefix.empty() ? "--plot"
+                         : !o.report.path.empty() ? "--report"
+                         : o.width_m > 0.0 ? "--width"
+                         : !std::isnan(o.report.tray_area_m2) ? "--tray-area"
+                                                               : nullptr;
+  if (not_with != nullptr) {
+    throw BadInput(std::string(not_with) + " does not go with --quick-check: the quick check's trays already hold the "
+                   "overlapped spread of the bout as driven; for a chart, a report or the CV at other widths lay a "
+                   "full tray test across the throw (without --quick-check)");
+  }
+  const cal::TrayTest t = cal::read_tray_csv(o.file, cal::quick_check_csv_options());
+  const cal::QuickCheck q = cal::quick_check(t, cv_target);
+  const std::vector<std::string> notes = missing_notes(t);
+  const std::string high = std::isfinite(q.interval.high) ? format("%.1f %%", 100.0 * q.interval.high) : "unbounded";
+  std::string verdict;
+  switch (q.verdict) {
+    case cal::QuickCheckVerdict::kMeetsTarget:
+      verdict = "meets the target: even the top of the interval is within " + format("%g %%", 100.0 * cv_target);
+      break;
+    case cal::QuickCheckVerdict::kFailsTarget:
+      verdict = "fails the target: even the bottom of the interval is above " + format("%g %%", 100.0 * cv_target);
+      break;
+    case cal::QuickCheckVerdict::kUndecided:
+      verdict = "undecided: the target " + format("%g %%", 100.0 * cv_target) + " lies inside the interval, " +
+                std::to_string(q.trays) + " trays cannot tell whether the spread meets it; lay a full tray test "
+                "across the throw (step 2) to know";
+      break;
+  }
+  if (o.json) {
+    json out{{"tray_test", t.source},
+             {"quick_check", true},
+             {"trays", q.trays},
+             {"tray_spacing_m", t.tray_width_m},
+             {"passes", t.mass_columns.size()},
+             {"missing_trays_m", t.missing_positions_m()},
+             {"mean_g", 1e3 * q.mean_kg},
+             {"sd_g", 1e3 * q.sd_kg},
+             {"cv_percent", 100.0 * q.cv},
+             {"cv_interval_percent", {100.0 * q.interval.low, finite_or_null(100.0 * q.interval.high)}},
+             {"confidence_percent", 100.0 * q.interval.confidence},
+             {"cv_target_percent", 100.0 * cv_target},
+             {"verdict", cal::to_string(q.verdict)},
+             {"notes", notes}};
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("%s: quick check, %d trays read (%.2f m apart), %zu pass(es), mean %.2f g per tray\n", t.source.c_str(),
+              q.trays, t.tray_width_m, t.mass_columns.size(), 1e3 * q.mean_kg);
+  std::printf("CV %.1f %% over the %d trays; from %d trays the bout's CV lies between %.1f %% and %s (%.0f %% "
+              "interval, McKay)\n",
+              100.0 * q.cv, q.trays, q.trays, 100.0 * q.interval.low, high.c_str(), 100.0 * q.interval.confidence);
+  std::printf("against the target: %s\n", verdict.c_str());
+  for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
+}
+
 void run_tray(const TrayOptions& o) {
   const double cv_target = cal::cv_target_from_percent(o.cv_target_percent, "--cv-target");
+  if (o.quick_check) {
+    run_quick_check(o, cv_target);
+    return;
+  }
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   const cal::TrayTest t = cal::read_tray_csv(o.file);
   const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, cv_target, o.width_m);
   const std::vector<std::string> warnings = tray_warnings(t, a);
   const std::vector<std::string> notes = missing_notes(t);
   const cal::PassScatter scatter = cal::pass_scatter(t);
+  const double report_width_m = report_bout_width_m(t, a);
+  const std::optional<spread::plot::ReportRate> rate =
+      spread::cli::report_rate(o.report, a.total_mass_kg, report_width_m, t.layout.tray_width_m);
   json written = json::object();
   const std::string plot_error =
       o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, written); });
+  std::string report_error;
+  if (!o.report.path.empty() && report_problem.empty()) {
+    report_error = plot_or_error([&] {
+      spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
+      page.header.machine = o.machine;
+      page.header.material = o.material;
+      page.header.rpm = o.rpm;
+      page.header.speed_km_h = o.report.speed_km_h;
+      page.rate = rate;
+      page.notes = warnings;
+      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      if (rate && t.has_missing_trays()) {
+        page.notes.emplace_back("the caught rate counts the trays read only: missing trays lower it");
+      }
+      spread::plot::write_report_pdf(o.report.path, &page);
+      written["report"] = o.report.path;
+    });
+  }
+  auto fail_after_report = [&] {
+    if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
+    if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
+    if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
+  };
   if (o.json) {
     json out = tray_json(t, a);
     out["warnings"] = warnings;
     out["notes"] = notes;
     out["written"] = written;
+    out["rate"] = spread::cli::rate_json(rate);
     if (!plot_error.empty()) out["plot_error"] = plot_error;
+    if (!report_problem.empty() || !report_error.empty()) {
+      out["report_error"] = report_problem.empty() ? report_error : report_problem;
+    }
     std::cout << out.dump(2) << "\n";
-    if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
+    fail_after_report();
     return;
   }
   std::printf("%s: %zu trays of %.2f m, %zu pass(es), %.1f g in total, throw width %.1f m\n", t.source.c_str(),
@@ -297,8 +457,12 @@ void run_tray(const TrayOptions& o) {
                 scatter.rms_one_pass_g, scatter.passes, 100.0 * scatter.rms_one_pass_fraction,
                 100.0 * scatter.rms_mean_fraction);
   }
+  for (const std::string& line : spread::cli::rate_lines(rate)) std::printf("%s\n", line.c_str());
+  if (!std::isnan(o.report.tray_area_m2) && !rate) {
+    std::printf("note: no rate: --tray-area needs a bout width (--width, or a working width of two trays or more)\n");
+  }
   for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
-  if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
+  fail_after_report();
 }
 
 // ------------------------------------------------------------------------------------------- pattern
@@ -311,6 +475,7 @@ struct PatternOptions {
   double cv_target_percent = 15.0;
   bool allow_analytic = false;
   bool json = false;
+  spread::cli::ReportArgs report;
 };
 
 void parse_fit_list(const std::string& text, cal::PatternFitOptions& options) {
@@ -430,6 +595,8 @@ void run_pattern(const PatternOptions& o) {
                    "another name");
   }
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   cal::PatternFitOptions options;
   parse_fit_list(o.fit, options);
   options.model.sample_count = o.samples;
@@ -485,6 +652,37 @@ void run_pattern(const PatternOptions& o) {
       plot_error = plot_or_error([&] { plot_pattern(o, test, fit, material_name, cv_target, written); });
     }
   }
+  // The report, as the plots, only for an accepted fit: the measured trays with the calibrated
+  // prediction beside them, the CVs and rate of the tray test.
+  const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, cv_target, 0.0);
+  const double report_width_m = report_bout_width_m(test, measured);
+  const std::optional<spread::plot::ReportRate> rate =
+      spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);
+  std::string report_error;
+  if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
+    report_error = plot_or_error([&] {
+      spread::plot::PatternReport page = tray_report_page(test, measured, report_width_m, report_time_s);
+      std::vector<double> predicted_kg(fit.fitted_fraction.size());
+      for (std::size_t i = 0; i < predicted_kg.size(); ++i) predicted_kg[i] = fit.fitted_fraction[i] * test.total_mass_kg();
+      page.header.title = "Spread pattern report: calibration";
+      page.header.machine = contents.machine.name;
+      page.header.material = material_name;
+      page.header.rpm = o.rpm;
+      page.header.speed_km_h = o.report.speed_km_h;
+      page.chart.second_tray_mass_kg = predicted_kg;
+      page.chart.second_label = "predicted, calibrated";
+      char text[256];
+      std::snprintf(text, sizeof text, "fitted: friction %.4f, drag diameter factor %.4f, launch-angle offset %.2f deg; "
+                    "residual rms %.2f g per tray", fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
+                    fit.fitted.launch_angle_offset_rad * kDegPerRad, 1e3 * fit.residual_rms_kg);
+      page.summary.emplace_back(text);
+      page.rate = rate;
+      page.notes = warnings;
+      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      spread::plot::write_report_pdf(o.report.path, &page);
+      written["report"] = o.report.path;
+    });
+  }
 
   if (o.json) {
     report["warnings"] = warnings;
@@ -498,7 +696,11 @@ void run_pattern(const PatternOptions& o) {
       report["output"] = nullptr;
     }
     report["written"] = written;
+    report["rate"] = spread::cli::rate_json(rate);
     if (!plot_error.empty()) report["plot_error"] = plot_error;
+    if (!report_problem.empty() || !report_error.empty()) {
+      report["report_error"] = report_problem.empty() ? report_error : report_problem;
+    }
     std::cout << report.dump(2) << "\n";
   } else {
     std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
@@ -529,12 +731,15 @@ void run_pattern(const PatternOptions& o) {
     } else {
       std::printf("nothing written: %s was not created\n", o.output.c_str());
     }
+    for (const std::string& rate_line : spread::cli::rate_lines(rate)) std::printf("%s\n", rate_line.c_str());
     for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
   }
+  if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
   if (!acceptance.accepted()) {
     throw FailedAfterReport("the fit is refused (" + std::to_string(acceptance.refusals.size()) +
                             " reason(s) in the report above); nothing written");
   }
+  if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
   if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
 }
 
@@ -642,6 +847,12 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   t->add_option("--cv-target", tray.cv_target_percent, "CV target (%) of the effective working width")->capture_default_str();
   t->add_option("--plot", tray.plot_prefix, "write PREFIX_transverse.png and PREFIX_cv.png");
   t->add_flag("--json", tray.json, "machine-readable output on stdout");
+  t->add_option("--machine", tray.machine, "machine name, for the report's header");
+  t->add_option("--material", tray.material, "material spread, for the report's header");
+  t->add_option("--rpm", tray.rpm, "disc speed of the test (r/min), for the report's header");
+  spread::cli::add_report_args(*t, tray.report, true);
+  t->add_flag("--quick-check", tray.quick_check,
+              "4-8 trays across one bout of the field as driven: their CV and how uncertain it is from so few trays");
   t->callback([&exit_code] { guarded("tray", exit_code, [] { run_tray(tray); }); });
 
   static PatternOptions pattern;
@@ -660,6 +871,7 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
               "accept a material whose table rows came from the DEM: fit and new rows use the analytic model");
   p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
   p->add_flag("--json", pattern.json, "machine-readable output on stdout");
+  spread::cli::add_report_args(*p, pattern.report, true);
   p->callback([&exit_code] { guarded("pattern", exit_code, [] { run_pattern(pattern); }); });
 
   static SynthOptions synth;

@@ -20,6 +20,9 @@
 #include "spread/spread.h"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
+#include "tools/spread/report_args.hpp"
+#include "libspread/plot/report_pdf.hpp"
+#include "libspread/tables/table_reader.hpp"
 
 namespace {
 
@@ -32,6 +35,7 @@ struct Options : spread::cli::PredictionArgs {
   double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
   int repeat = 0;
   bool json = false;
+  spread::cli::ReportArgs report;
 };
 
 struct TablesCloser {
@@ -100,23 +104,35 @@ std::string plus_minus(double standard_error) {
   return out.str();
 }
 
-// CV(W) at every whole-tray width from two trays to the layout, both overlaps, on the trays the C API
-// returned (libspread's metrics: the same overlap code the prediction used).
-json cv_curve_json(const spread_prediction& r, const std::vector<double>& trays) {
+// CV(W) at every whole-tray width from two trays to the layout, both overlaps (fractions), on the trays
+// the C API returned (libspread's metrics: the same overlap code the prediction used). The JSON's
+// cv_curve and the report's table are both read off it.
+struct CvCurve {
+  std::vector<double> widths_m, to_and_fro, racetrack;
+};
+
+CvCurve cv_curve_of(const spread_prediction& r, const std::vector<double>& trays) {
   spread::metrics::TrayLayout layout;
   layout.tray_width_m = r.tray_width_m;
   layout.tray_count = r.tray_count;
   const std::span<const double> mass(trays.data(), static_cast<std::size_t>(r.tray_count));
-  // One point per whole-tray bout width, named as the scalars at --width are (and as `calibrate tray`
-  // writes its curve).
-  json curve = json::array();
+  CvCurve curve;
   for (int n = 2; n <= r.tray_count; ++n) {
-    curve.push_back(
-        {{"bout_width_m", n * r.tray_width_m},
-         {"cv_to_and_fro_percent",
-          number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kToAndFro))},
-         {"cv_racetrack_percent",
-          number_or_null(100.0 * spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kRacetrack))}});
+    curve.widths_m.push_back(n * r.tray_width_m);
+    curve.to_and_fro.push_back(spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kToAndFro));
+    curve.racetrack.push_back(spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kRacetrack));
+  }
+  return curve;
+}
+
+// One point per whole-tray bout width, named as the scalars at --width are (and as `calibrate tray`
+// writes its curve).
+json cv_curve_json(const CvCurve& c) {
+  json curve = json::array();
+  for (std::size_t i = 0; i < c.widths_m.size(); ++i) {
+    curve.push_back({{"bout_width_m", c.widths_m[i]},
+                     {"cv_to_and_fro_percent", number_or_null(100.0 * c.to_and_fro[i])},
+                     {"cv_racetrack_percent", number_or_null(100.0 * c.racetrack[i])}});
   }
   return curve;
 }
@@ -150,7 +166,60 @@ json bands_json(const std::vector<std::pair<double, double>>& bands) {
   return out;
 }
 
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+// The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
+// their 95 % intervals. Returns the error of writing it ("" when written).
+std::string write_report(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
+                         const CvCurve& curve, std::int64_t time_s) {
+  try {
+    spread::plot::PatternReport page;
+    page.header.title = "Spread pattern report: prediction";
+    page.header.source = o.tables;
+    page.header.machine = spread::tables::read_table_file(o.tables).machine.name;
+    page.header.material = o.material;
+    page.header.rpm = o.rpm;
+    page.header.speed_km_h = o.report.speed_km_h;
+    page.header.time_s = time_s;
+    page.header.made_by = spread::cli::command_line();
+    page.summary.push_back(std::to_string(r.sample_count) + " launch samples, disc " +
+                           format("%.2f m", r.disc_height_m) + " above ground, effects " +
+                           effects_label(r.effects) + format(", throw width %.1f m", r.throw_width_m) +
+                           plus_minus(r.throw_width_se_m));
+    if (r.bout_width_m > 0.0) {
+      page.summary.push_back("at W = " + format("%.2f m", r.bout_width_m) + ": CV " + format("%.1f %%", r.cv_percent) +
+                             plus_minus(r.cv_se_percent) + " to-and-fro, " + format("%.1f %%", r.cv_racetrack_percent) +
+                             plus_minus(r.cv_racetrack_se_percent) + " racetrack (± = 95 % interval over the launch samples)");
+    }
+    page.tray_mass_kg.assign(trays.begin(), trays.begin() + r.tray_count);
+    page.trays.tray_width_m = r.tray_width_m;
+    page.trays.tray_count = r.tray_count;
+    page.chart.units = spread::plot::MassUnits::kFraction;
+    page.chart.series_label = "predicted";
+    page.chart.bout_width_m = r.bout_width_m;
+    page.chart.bout_cv = r.cv_percent / 100.0;
+    page.chart_title = "prediction: the machine's trays across the driving direction";
+    page.cv_target = o.cv_target_percent / 100.0;
+    page.working_width_to_and_fro_m = r.working_width_to_and_fro_m;
+    page.working_width_racetrack_m = r.working_width_racetrack_m;
+    page.cv_table = spread::plot::cv_table(spread::plot::cv_table_widths_m(r.throw_width_m, curve.widths_m),
+                                           curve.widths_m, curve.to_and_fro, curve.racetrack);
+    page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
+                         "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
+    spread::plot::write_report_pdf(o.report.path, &page);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
 void run(const Options& o, int& exit_code) {
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   spread_prediction_def def = spread_prediction_def_default();
   def.material = o.material.c_str();
   def.rpm = o.rpm;
@@ -200,6 +269,10 @@ void run(const Options& o, int& exit_code) {
   }
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
+  const CvCurve curve = cv_curve_of(result, trays);
+  const std::string report_error = o.report.path.empty() || !report_problem.empty()
+                                       ? std::string()
+                                       : write_report(o, result, trays, curve, report_time_s);
   if (o.json) {
     json centres = json::array(), fractions = json::array();
     for (std::size_t k = 0; k < tray_count; ++k) {
@@ -235,7 +308,7 @@ void run(const Options& o, int& exit_code) {
                 {"transverse", {{"tray_width_m", result.tray_width_m},
                                 {"centres_m", centres},
                                 {"mass_fraction", fractions}}},
-                {"cv_curve", cv_curve_json(result, trays)},
+                {"cv_curve", cv_curve_json(curve)},
                 {"wider_bands_within_target_m",
                  {{"to_and_fro", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kToAndFro,
                                                           result.working_width_to_and_fro_m, o.cv_target_percent / 100.0))},
@@ -244,6 +317,12 @@ void run(const Options& o, int& exit_code) {
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
+    }
+    if (!o.report.path.empty()) {
+      out["report"] = report_problem.empty() && report_error.empty() ? json(o.report.path) : json(nullptr);
+      if (!report_problem.empty() || !report_error.empty()) {
+        out["report_error"] = report_problem.empty() ? report_error : report_problem;
+      }
     }
     std::cout << out.dump(2) << "\n";
   } else {
@@ -296,7 +375,12 @@ void run(const Options& o, int& exit_code) {
     std::cout << "  mean radius R " << result.mean_radius_m << " m, radial width xi " << result.radial_width_m
               << " m (one disc)\n";
     if (o.repeat > 0) std::cout << "  median time per prediction " << median_us << " us over " << o.repeat << "\n";
+    if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
+      std::cout << "wrote " << o.report.path << "\n";
+    }
   }
+  if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
+  if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
   exit_code = spread::cli::kExitOk;
 }
 
@@ -310,10 +394,20 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
                   "half-width (m) of the kernel each landing is spread over; default automatic, 0 = point masses");
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  spread::cli::add_report_args(*sub, options.report, false);
   sub->callback([&exit_code] {
     try {
       run(options, exit_code);
+    } catch (const spread::cli::ReportWriteError& e) {
+      std::cerr << "spread predict: error: " << e.what() << "\n";
+      exit_code = spread::cli::kExitFailure;
+    } catch (const spread::cli::ReportUsageError& e) {
+      std::cerr << "spread predict: error: " << e.what() << "\n";
+      exit_code = spread::cli::kExitUsage;
     } catch (const BadInput& e) {
+      std::cerr << "spread predict: error: " << e.what() << "\n";
+      exit_code = spread::cli::kExitUsage;
+    } catch (const std::invalid_argument& e) {
       std::cerr << "spread predict: error: " << e.what() << "\n";
       exit_code = spread::cli::kExitUsage;
     }

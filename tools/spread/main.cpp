@@ -4,8 +4,10 @@
 #include <iostream>
 
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/report_args.hpp"
 
 int main(int argc, char** argv) {
+  spread::cli::remember_command_line(argc, argv);
   CLI::App app{"spread: centrifugal fertiliser spreader prediction (libspread " SPREAD_VERSION_STRING ")"};
   app.require_subcommand(1);
   app.set_version_flag("--version", SPREAD_VERSION_STRING);

@@ -1,0 +1,245 @@
+// spread chart --tables FILE --material NAME [--cv-target PCT] [--widths 12,15,18,21,24] [--tray-width W]
+//              [--height M] [--json] [--report OUT.pdf] [--speed KM_H]
+// The setting chart of a material: for each working width, the disc speed within the table's rpm rows
+// whose predicted to-and-fro working width equals it, with the CVs at that width ± their 95 % intervals
+// (libspread/predict/setting_chart.hpp; docs/field-calibration.md, "Spread chart"). Uses the C++
+// predictor directly, as `spread plot` does. Bad input → a message naming it on stderr, exit code 2.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "libspread/calibration/tray_analysis.hpp"
+#include "libspread/plot/report_pdf.hpp"
+#include "libspread/predict/setting_chart.hpp"
+#include "tools/spread/command_registry.hpp"
+#include "tools/spread/prediction_args.hpp"
+#include "tools/spread/report_args.hpp"
+
+namespace {
+
+using nlohmann::json;
+using spread::cli::BadInput;
+namespace pr = spread::predict;
+
+struct Options {
+  std::string tables, material;
+  double cv_target_percent = 15.0;
+  std::string widths = "12,15,18,21,24";
+  double tray_width_m = 0.5;
+  double height_m = std::numeric_limits<double>::quiet_NaN();
+  bool json = false;
+  spread::cli::ReportArgs report;
+};
+
+std::vector<double> parse_widths(const std::string& text) {
+  std::vector<double> widths;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    double w = std::numeric_limits<double>::quiet_NaN();
+    try {
+      w = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !std::isfinite(w) || !(w > 0.0)) {
+      throw BadInput("--widths: '" + item + "' is not a width in metres > 0 (e.g. --widths 12,15,18)");
+    }
+    widths.push_back(w);
+  }
+  if (widths.empty()) throw BadInput("--widths: give at least one width in metres");
+  return widths;
+}
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// "14.9 % ± 2.1" with the 95 % half-interval (1.96 standard errors); without it when undefined.
+std::string cv_text(double cv, double se) {
+  if (!std::isfinite(cv)) return "-";
+  std::string text = format("%.1f %%", 100.0 * cv);
+  if (std::isfinite(se)) text += format(" ± %.1f", 196.0 * se);
+  return text;
+}
+
+std::string unreachable_text(const pr::SettingChartRow& row, const pr::SettingChart& chart) {
+  switch (row.reach) {
+    case pr::ChartReach::kTooNarrow:
+      return "not reachable: narrower than the working width at every rpm of " + format("%.0f", chart.min_rpm) +
+             "-" + format("%.0f rpm", chart.max_rpm);
+    case pr::ChartReach::kTooWide:
+      return "not reachable: wider than the working width at every rpm of " + format("%.0f", chart.min_rpm) + "-" +
+             format("%.0f rpm", chart.max_rpm);
+    case pr::ChartReach::kJumpedOver:
+      return "not reachable: the working width jumps over it near " + format("%.0f rpm", row.rpm) + " (to " +
+             format("%.2f m", row.working_width_to_and_fro_m) + ")";
+    case pr::ChartReach::kReached: break;
+  }
+  return {};
+}
+
+void run(const Options& o, int& exit_code) {
+  const double cv_target = spread::calibration::cv_target_from_percent(o.cv_target_percent, "--cv-target");
+  const std::vector<double> widths = parse_widths(o.widths);
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
+
+  pr::Predictor predictor(spread::tables::read_table_file(o.tables));
+  if (!predictor.find_material(o.material)) {
+    std::string known;
+    for (std::size_t i = 0; i < predictor.material_count(); ++i) known += " " + predictor.material(i).name;
+    throw BadInput("--material '" + o.material + "' is not in " + o.tables + "; materials:" + known);
+  }
+  pr::SettingChartOptions options;
+  options.cv_target = cv_target;
+  options.tray_width_m = o.tray_width_m;
+  options.disc_height_m = o.height_m;
+  const pr::SettingChart chart = pr::setting_chart(predictor, o.material, widths, options);
+
+  const double narrowest_m = *std::min_element(chart.scan_working_width_m.begin(), chart.scan_working_width_m.end());
+  const double widest_m = *std::max_element(chart.scan_working_width_m.begin(), chart.scan_working_width_m.end());
+  const std::string range_line = "'" + o.material + "' of " + o.tables + ": " + format("%.0f", chart.min_rpm) + "-" +
+                                 format("%.0f rpm", chart.max_rpm) + " give to-and-fro working widths " +
+                                 format("%.2f", narrowest_m) + "-" + format("%.2f m", widest_m) + " at CV <= " +
+                                 format("%g %%", o.cv_target_percent);
+
+  std::string report_error;
+  if (!o.report.path.empty() && report_problem.empty()) {
+    try {
+      spread::plot::TablePage page;
+      page.header.title = "Spread chart";
+      page.header.source = o.tables;
+      page.header.machine = predictor.machine().name;
+      page.header.material = o.material;
+      page.header.rpm_text = "per working width, below";
+      page.header.speed_km_h = o.report.speed_km_h;
+      page.header.time_s = report_time_s;
+      page.header.made_by = spread::cli::command_line();
+      page.summary.push_back(range_line);
+      page.caption = "Disc speed per working width (CV target " + format("%g %%", o.cv_target_percent) + ")";
+      page.columns = {"working width", "disc speed", "CV to-and-fro", "CV racetrack"};
+      for (const pr::SettingChartRow& row : chart.rows) {
+        if (row.reach == pr::ChartReach::kReached) {
+          page.rows.push_back({format("%.1f m", row.width_m), format("%.0f rpm", row.rpm),
+                               cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se),
+                               cv_text(row.cv_racetrack, row.cv_racetrack_se)});
+        } else {
+          page.rows.push_back({format("%.1f m", row.width_m), "not reachable", "-", "-"});
+          page.notes.push_back(format("%.1f m: ", row.width_m) + unreachable_text(row, chart));
+        }
+      }
+      page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the disc speed "
+                           "is where the predicted to-and-fro working width equals the width");
+      spread::plot::write_report_pdf(o.report.path, nullptr, &page);
+    } catch (const std::exception& e) {
+      report_error = e.what();
+    }
+  }
+
+  if (o.json) {
+    json rows = json::array();
+    for (const pr::SettingChartRow& row : chart.rows) {
+      rows.push_back({{"width_m", row.width_m},
+                      {"reachable", row.reach == pr::ChartReach::kReached},
+                      {"reach", pr::to_string(row.reach)},
+                      {"rpm", number_or_null(row.rpm)},
+                      {"working_width_to_and_fro_m", number_or_null(row.working_width_to_and_fro_m)},
+                      {"working_width_to_and_fro_se_m", number_or_null(row.working_width_to_and_fro_se_m)},
+                      {"bout_width_m", number_or_null(row.bout_width_m)},
+                      {"cv_to_and_fro_percent", number_or_null(100.0 * row.cv_to_and_fro)},
+                      {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.cv_to_and_fro_se)},
+                      {"cv_racetrack_percent", number_or_null(100.0 * row.cv_racetrack)},
+                      {"cv_racetrack_se_percent", number_or_null(100.0 * row.cv_racetrack_se)},
+                      {"sample_count", row.sample_count}});
+    }
+    json scan = json::array();
+    for (std::size_t k = 0; k < chart.scan_rpm.size(); ++k) {
+      scan.push_back({{"rpm", chart.scan_rpm[k]}, {"working_width_to_and_fro_m", chart.scan_working_width_m[k]}});
+    }
+    json out{{"tables", o.tables},
+             {"material", o.material},
+             {"cv_target_percent", o.cv_target_percent},
+             {"rpm_range", {chart.min_rpm, chart.max_rpm}},
+             {"rows", rows},
+             {"scan", scan},
+             {"predictions", chart.predictions}};
+    if (!o.report.path.empty()) {
+      out["report"] = report_problem.empty() && report_error.empty() ? json(o.report.path) : json(nullptr);
+      if (!report_problem.empty() || !report_error.empty()) {
+        out["report_error"] = report_problem.empty() ? report_error : report_problem;
+      }
+    }
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::printf("%s\n", range_line.c_str());
+    std::printf("  %-8s %-10s %-18s %-18s %s\n", "width", "disc", "CV to-and-fro", "CV racetrack", "working width");
+    for (const pr::SettingChartRow& row : chart.rows) {
+      if (row.reach != pr::ChartReach::kReached) {
+        std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), unreachable_text(row, chart).c_str());
+        continue;
+      }
+      std::string ww = format("%.2f m", row.working_width_to_and_fro_m);
+      if (std::isfinite(row.working_width_to_and_fro_se_m)) ww += format(" ± %.2f", 1.96 * row.working_width_to_and_fro_se_m);
+      std::printf("  %-8s %-10s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(),
+                  format("%.0f rpm", row.rpm).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
+                  cv_text(row.cv_racetrack, row.cv_racetrack_se).c_str(), ww.c_str());
+    }
+    std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples; %d predictions)\n",
+                chart.predictions);
+    if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
+      std::printf("wrote %s\n", o.report.path.c_str());
+    }
+  }
+  if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
+  if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
+  exit_code = spread::cli::kExitOk;
+}
+
+spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) {
+  static Options options;
+  auto* sub = app.add_subcommand("chart", "setting chart: the disc speed that spreads each working width, with its CV");
+  sub->add_option("--tables", options.tables, "launch-table file (SQLite) written by lookup_builder")->required();
+  sub->add_option("--material", options.material, "material name as in the table")->required();
+  sub->add_option("--cv-target", options.cv_target_percent, "CV target of the working width (%)")->capture_default_str();
+  sub->add_option("--widths", options.widths, "working widths (m), comma-separated")->capture_default_str();
+  sub->add_option("--tray-width", options.tray_width_m, "collecting tray width (m)")->capture_default_str();
+  sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
+  sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  spread::cli::add_report_args(*sub, options.report, false);
+  sub->callback([&exit_code] {
+    const char* prefix = "spread chart: error: ";
+    try {
+      run(options, exit_code);
+    } catch (const spread::cli::ReportWriteError& e) {
+      std::cerr << prefix << e.what() << "\n";
+      exit_code = spread::cli::kExitFailure;
+    } catch (const spread::cli::ReportUsageError& e) {
+      std::cerr << prefix << e.what() << "\n";
+      exit_code = spread::cli::kExitUsage;
+    } catch (const BadInput& e) {
+      std::cerr << prefix << e.what() << "\n";
+      exit_code = spread::cli::kExitUsage;
+    } catch (const spread::tables::TableError& e) {
+      std::cerr << prefix << "--tables: " << e.what() << "\n";
+      exit_code = e.kind() == spread::tables::TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
+    } catch (const std::invalid_argument& e) {
+      std::cerr << prefix << e.what() << "\n";
+      exit_code = spread::cli::kExitUsage;
+    }
+  });
+}};
+
+}  // namespace
