@@ -61,6 +61,53 @@ TEST_F(DefaultTable, WorkingWidthsDoNotMoveWithTheTrayWidth) {
   }
 }
 
+// The answer's uncertainty on every row: the 95 % interval of the to-and-fro working width within ±0.5 m
+// (lookup_builder runs each DEM row until it is: sweep.working_width_ci_m).
+TEST_F(DefaultTable, EveryRowKnowsItsWorkingWidthWithinHalfAMetre) {
+  int32_t materials = 0;
+  ASSERT_EQ(spread_material_count(tables_, &materials), SPREAD_OK);
+  for (int32_t m = 0; m < materials; ++m) {
+    const char* name = nullptr;
+    double lo = 0.0, hi = 0.0;
+    ASSERT_EQ(spread_material_name(tables_, m, &name), SPREAD_OK);
+    ASSERT_EQ(spread_material_rpm_range(tables_, m, &lo, &hi), SPREAD_OK);
+    for (double rpm : {lo, 0.5 * (lo + hi), hi}) {
+      spread_prediction_def def = spread_prediction_def_default();
+      def.material = name;
+      def.rpm = rpm;
+      spread_prediction r{};
+      ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK) << name << " " << rpm;
+      EXPECT_EQ(r.flights, 0) << "the machine's own conditions come from the landing cache";
+      EXPECT_LE(1.96 * r.working_width_to_and_fro_se_m, 0.5) << name << " " << rpm << " rpm";
+    }
+  }
+}
+
+// Requests outside the landing cache (another height, a strong wind, narrow trays) fly at most the
+// controller's bound (docs/c-api.md "Worst-case time") and say on how many samples they rest.
+TEST_F(DefaultTable, WorstRequestsFlyAtMostTheBound) {
+  const char* name = nullptr;
+  double lo = 0.0, hi = 0.0;
+  ASSERT_EQ(spread_material_name(tables_, 0, &name), SPREAD_OK);
+  ASSERT_EQ(spread_material_rpm_range(tables_, 0, &lo, &hi), SPREAD_OK);
+  for (double height_m : {1.0, 100.0}) {
+    for (double wind_m_s : {0.0, 20.0, 100.0}) {
+      spread_prediction_def def = spread_prediction_def_default();
+      def.material = name;
+      def.rpm = 0.5 * (lo + 0.5 * (lo + hi));  // between two rows: both rows' launches
+      def.disc_height_m = height_m;
+      def.wind_m_s[0] = wind_m_s;
+      def.tray_width_m = 0.05;
+      spread_prediction r{};
+      ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK) << height_m << " m, " << wind_m_s << " m/s";
+      EXPECT_GT(r.flights, 0);
+      EXPECT_LE(r.flights, 1024) << height_m << " m, " << wind_m_s << " m/s";
+      EXPECT_LT(r.sample_count, 4000) << "thinned, and said so";
+      EXPECT_EQ(r.flights, (wind_m_s != 0.0 ? 2 : 1) * r.sample_count);
+    }
+  }
+}
+
 TEST_F(DefaultTable, PredictionBetweenDemRowsStaysWithinTheStatedStack) {
   if (spread::testing::kSanitizedBuild) GTEST_SKIP() << "instrumented frames are larger";
   const char* name = nullptr;

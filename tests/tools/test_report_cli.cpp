@@ -277,7 +277,7 @@ TEST_F(ReportCli, PatternReportShowsMeasuredAndPredicted) {
 TEST_F(ReportCli, ChartFindsTheRpmOfEachWidthAndPrintsItsPage) {
   const fs::path table = small_table("urea_chart"), pdf = work_dir() / "chart.pdf";
   const std::string chart = kEpoch + "'" + kSpread + "' chart --tables '" + table.string() +
-                            "' --material Urea --widths 2,4,12 ";
+                            "' --material Urea --widths 3,4,12 ";
   const CommandRun as_json = run(chart + "--json");
   ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
   const json j = json::parse(as_json.out);
@@ -316,8 +316,8 @@ TEST_F(ReportCli, ChartFindsTheRpmOfEachWidthAndPrintsItsPage) {
   EXPECT_NE(text.find(rpm_cell), std::string::npos) << rpm_cell << "\n" << text;
   EXPECT_NE(text.find("not reachable"), std::string::npos) << text;
   for (const char* line : {"450-750 rpm give to-and-fro working widths 1.41-4.08 m",
-                           "2.0 m    531 rpm    15.1 % ± 14.9     15.1 % ± 14.9     1.99 m ± 0.77",
-                           "4.0 m    671 rpm    12.1 % ± 15.5     12.1 % ± 15.5     4.05 m ± 0.27"}) {
+                           "3.0 m    531 rpm    6.4 % ± 15.6      6.4 % ± 15.6      3.13 m ± 0.17",
+                           "4.0 m    671 rpm    12.2 % ± 15.5     12.2 % ± 15.5     4.05 m ± 0.27"}) {
     EXPECT_NE(made.out.find(line), std::string::npos) << line << "\n" << made.out;
   }
   // The scan's working widths the docs quote: not monotone in rpm on this narrow pattern.
