@@ -37,7 +37,7 @@ inline constexpr std::uint64_t kDeadTag = 0xDEADDEADDEADDEADu;
 
 // Flights one spread_predict may integrate: bounds the time of any legal request (docs/c-api.md
 // "Worst-case time"); requests the landing cache serves fly none.
-inline constexpr std::size_t kControllerMaxFlights = 1024;
+inline constexpr std::size_t kControllerMaxFlights = 768;
 
 inline predict::PredictorLimits controller_limits() {
   predict::PredictorLimits limits;
