@@ -386,56 +386,65 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
   if (cache != nullptr) cache->node_weights(t, node_weight);
   const double wind_x_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.x() : 0.0;
   const double wind_y_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.y() : 0.0;
-  for (std::size_t first = 0; first < flights; first += kFlightChunk) {
-    const std::size_t count = std::min(kFlightChunk, flights - first);
-    if (cache != nullptr) {
-      // Only the horizontal launch is needed (no granule, no spin, no full state).
-      for (std::size_t c = 0; c < count; ++c) {
-        const std::size_t f = first + c;
-        const tables::LaunchSample& s = w.samples_[f < n ? f : f - n];
-        const double mirror = f < n ? 1.0 : -1.0;
-        const LandingCache::Launch launch{mirror * s.x_m, s.y_m, rim_speed_m_s * (mirror * s.vx_norm),
-                                          rim_speed_m_s * s.vy_norm};
-        flight::Landing& landing = w.landings_[c];
-        double x = 0.0, y = 0.0;
-        cache->landing(f < n ? f : f - n, node_weight, launch, wind_x_m_s, wind_y_m_s, x, y);
-        landing.state.position_m = Vec3(x, y, 0.0);
-        landing.landed = true;
-      }
-    } else {
+  // Where the landing of left-disc sample i (or of the right disc's mirror of it, flown) goes: the machine
+  // frame, R̄ and ξ of the left disc, and the mirrored right disc when it is not flown.
+  const auto record_left = [&](std::size_t i, bool landed, double x, double y) {
+    const double weight = w.sample_weight_kg_[i];
+    if (!landed) x = y = nan;
+    w.landing_x_m_[i] = x - half_spacing_m;
+    w.landing_y_m_[i] = y;
+    w.landing_weight_[i] = weight;
+    if (landed) {
+      w.radial_x_m_[radial_count] = x;
+      w.radial_y_m_[radial_count] = y;
+      w.radial_weight_[radial_count] = weight;
+      ++radial_count;
+    }
+    if (!two_discs) return;
+    if (!right_flown) {  // the right disc is the left one's mirror image
+      w.landing_x_m_[n + i] = half_spacing_m - x;
+      w.landing_y_m_[n + i] = y;
+    }
+    w.landing_weight_[n + i] = weight;
+  };
+  const auto record_right = [&](std::size_t i, bool landed, double x, double y) {
+    w.landing_x_m_[n + i] = landed ? x + half_spacing_m : nan;
+    w.landing_y_m_[n + i] = landed ? y : nan;
+  };
+  if (cache != nullptr) {
+    // Sample by sample, both discs at once: a granule's cubics are read from memory once. Only the
+    // horizontal launch is needed (no granule, no spin, no full state).
+    for (std::size_t i = 0; i < n; ++i) {
+      const tables::LaunchSample& s = w.samples_[i];
+      const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
+      double x = 0.0, y = 0.0;
+      cache->landing(i, node_weight, LandingCache::Launch{s.x_m, s.y_m, vx_m_s, vy_m_s}, wind_x_m_s, wind_y_m_s, x, y);
+      record_left(i, true, x, y);
+      if (!right_flown) continue;
+      const double mirror_x_m = -1.0 * s.x_m, mirror_vx_m_s = rim_speed_m_s * (-1.0 * s.vx_norm);
+      cache->landing(i, node_weight, LandingCache::Launch{mirror_x_m, s.y_m, mirror_vx_m_s, vy_m_s}, wind_x_m_s,
+                     wind_y_m_s, x, y);
+      record_right(i, true, x, y);
+    }
+  } else {
+    for (std::size_t first = 0; first < flights; first += kFlightChunk) {
+      const std::size_t count = std::min(kFlightChunk, flights - first);
       for (std::size_t c = 0; c < count; ++c) {
         const std::size_t f = first + c;
         launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
       }
       flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
                        settings_, std::span(w.landings_).first(count));
-    }
-    for (std::size_t c = 0; c < count; ++c) {
-      const std::size_t f = first + c;
-      const flight::Landing& landing = w.landings_[c];
-      if (f >= n) {  // the right disc, flown
-        w.landing_x_m_[f] = landing.landed ? landing.state.position_m.x() + half_spacing_m : nan;
-        w.landing_y_m_[f] = landing.landed ? landing.state.position_m.y() : nan;
-        continue;
+      for (std::size_t c = 0; c < count; ++c) {
+        const std::size_t f = first + c;
+        const flight::Landing& landing = w.landings_[c];
+        const double x = landing.state.position_m.x(), y = landing.state.position_m.y();
+        if (f >= n) {
+          record_right(f - n, landing.landed, x, y);
+        } else {
+          record_left(f, landing.landed, x, y);
+        }
       }
-      const double weight = w.sample_weight_kg_[f];
-      const double x = landing.landed ? landing.state.position_m.x() : nan;
-      const double y = landing.landed ? landing.state.position_m.y() : nan;
-      w.landing_x_m_[f] = x - half_spacing_m;
-      w.landing_y_m_[f] = y;
-      w.landing_weight_[f] = weight;
-      if (landing.landed) {
-        w.radial_x_m_[radial_count] = x;
-        w.radial_y_m_[radial_count] = y;
-        w.radial_weight_[radial_count] = weight;
-        ++radial_count;
-      }
-      if (!two_discs) continue;
-      if (!right_flown) {  // the right disc is the left one's mirror image
-        w.landing_x_m_[n + f] = half_spacing_m - x;
-        w.landing_y_m_[n + f] = y;
-      }
-      w.landing_weight_[n + f] = weight;
     }
   }
   const auto stats = metrics::radial_statistics(std::span(w.radial_x_m_).first(radial_count),
