@@ -176,12 +176,7 @@ void run(const Options& o, int& exit_code) {
              {"rows", rows},
              {"scan", scan},
              {"predictions", chart.predictions}};
-    if (!o.report.path.empty()) {
-      out["report"] = report_problem.empty() && report_error.empty() ? json(o.report.path) : json(nullptr);
-      if (!report_problem.empty() || !report_error.empty()) {
-        out["report_error"] = report_problem.empty() ? report_error : report_problem;
-      }
-    }
+    spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("%s\n", range_line.c_str());

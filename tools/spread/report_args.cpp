@@ -125,4 +125,11 @@ std::vector<std::string> rate_lines(const std::optional<plot::ReportRate>& rate)
   return lines;
 }
 
+void add_report_outcome(nlohmann::json& out, const ReportArgs& args, const std::string& problem,
+                        const std::string& write_error) {
+  const bool failed = !problem.empty() || !write_error.empty();
+  if (!args.path.empty()) out["report"] = failed ? nlohmann::json(nullptr) : nlohmann::json(args.path);
+  if (failed) out["report_error"] = problem.empty() ? write_error : problem;
+}
+
 }  // namespace spread::cli

@@ -49,6 +49,10 @@ std::string command_line();
 std::optional<plot::ReportRate> report_rate(const ReportArgs& args, double mass_per_pass_kg, double bout_width_m,
                                             double tray_width_m);
 nlohmann::json rate_json(const std::optional<plot::ReportRate>& rate);
+// The --report outcome in a command's JSON: "report" (the path written, null when it was not) when a
+// report was asked, and "report_error" (the folder problem, else the write error) when there was one.
+void add_report_outcome(nlohmann::json& out, const ReportArgs& args, const std::string& problem,
+                        const std::string& write_error);
 // The text report's lines for it (none without a rate).
 std::vector<std::string> rate_lines(const std::optional<plot::ReportRate>& rate);
 
