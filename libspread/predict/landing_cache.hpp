@@ -18,7 +18,7 @@
 // A segment caches one row (one node, t = 0) or a pair of neighbouring rows (nodes t = 0, ⅓, ⅔, 1 of the
 // interpolation weight t, with the launch samples the interpolation gives at each node). Every launch
 // sample the interpolation yields is linear in t (launch_interpolation.hpp) and the disc speed ω is linear
-// in t, so R and T are smooth in t. At each node j each granule is flown at three horizontal speeds
+// in t, so R and T are smooth in t. At each node j each granule is flown at four horizontal speeds
 // u_j + Δ·(−1, −⅓, ⅓, 1) (its own speed u_j; Δ = kWindRadius_m_s), the rest of its launch state unchanged,
 // and R and T are kept as the cubics through these four points. A landing is then these cubics at the
 // speed offset u′ − u_j of each node, combined by the cubic Lagrange weights of t across the nodes
