@@ -423,8 +423,7 @@ void run_tray(const TrayOptions& o) {
     });
   }
   auto fail_after_report = [&] {
-    if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
-    if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
+    spread::cli::throw_report_outcome(report_problem, report_error);
     if (!plot_error.empty()) throw FailedAfterReport("--plot: " + plot_error);
   };
   if (o.json) {

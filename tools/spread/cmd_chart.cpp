@@ -198,8 +198,7 @@ void run(const Options& o, int& exit_code) {
       std::printf("wrote %s\n", o.report.path.c_str());
     }
   }
-  if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
-  if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
+  spread::cli::throw_report_outcome(report_problem, report_error);
   exit_code = spread::cli::kExitOk;
 }
 

@@ -376,8 +376,7 @@ void run(const Options& o, int& exit_code) {
       std::cout << "wrote " << o.report.path << "\n";
     }
   }
-  if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
-  if (!report_error.empty()) throw spread::cli::ReportWriteError("--report: " + report_error);
+  spread::cli::throw_report_outcome(report_problem, report_error);
   exit_code = spread::cli::kExitOk;
 }
 

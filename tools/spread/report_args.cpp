@@ -132,4 +132,9 @@ void add_report_outcome(nlohmann::json& out, const ReportArgs& args, const std::
   if (failed) out["report_error"] = problem.empty() ? write_error : problem;
 }
 
+void throw_report_outcome(const std::string& problem, const std::string& write_error) {
+  if (!problem.empty()) throw ReportUsageError(problem);
+  if (!write_error.empty()) throw ReportWriteError("--report: " + write_error);
+}
+
 }  // namespace spread::cli

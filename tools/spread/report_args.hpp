@@ -53,6 +53,9 @@ nlohmann::json rate_json(const std::optional<plot::ReportRate>& rate);
 // report was asked, and "report_error" (the folder problem, else the write error) when there was one.
 void add_report_outcome(nlohmann::json& out, const ReportArgs& args, const std::string& problem,
                         const std::string& write_error);
+// After the report is printed: throws ReportUsageError for the folder problem (exit 2), else
+// ReportWriteError for the write error (exit 1); nothing when both are empty.
+void throw_report_outcome(const std::string& problem, const std::string& write_error);
 // The text report's lines for it (none without a rate).
 std::vector<std::string> rate_lines(const std::optional<plot::ReportRate>& rate);
 
