@@ -39,8 +39,7 @@ void check_scene(const spread::scene::Scene& s) {
     if (m == nullptr) spread::fuzz::fail(kHarness, "sweep_materials() returned a null material");
   }
   (void)s.hash();
-  (void)spread::scene::effects_to_string(s.effects);
-  (void)spread::scene::flight_effects_to_string(s.effects);
+  (void)spread::effect::to_string(s.effects);
 }
 
 }  // namespace

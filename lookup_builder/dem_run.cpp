@@ -189,7 +189,7 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
   run.scene_text = scene.provenance_text();
   run.scene_hash = scene.hash();
   run.inputs_hash = scene.run_inputs_hash(material, rpm);
-  run.effects = scene::effects_to_string(scene.effects);
+  run.effects = effect::to_string(scene.effects);
   run.dt_contact_s = engine.dt_s();
   run.dt_flight_s = cfg.flight_settings.dt_s;
   run.particle_count = static_cast<std::int64_t>(inlet.released());

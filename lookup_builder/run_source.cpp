@@ -32,7 +32,7 @@ tables::Run analytic_run(const scene::Scene& scene, const scene::Material& mater
   const double rim_speed_m_s = rpm * 2.0 * kPi / 60.0 * scene.machine.disc_radius_m;
   // The flight effects the scene asks for travel with the run: predictions from the table use them.
   nlohmann::json stats = nlohmann::json::parse(launch::to_json(launch::launch_statistics(run.samples, rim_speed_m_s)));
-  stats["flight_effects"] = scene::flight_effects_to_string(scene.effects);
+  stats["flight_effects"] = effect::to_string(scene.effects & effect::kFlightEffects);
   run.stats_json = stats.dump();
   run.convergence_json = "[]";
   return run;

@@ -11,10 +11,13 @@
 #include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
 
-// The C bits are passed through unchanged: they must be the library's own.
-static_assert(SPREAD_EFFECT_DRAG == spread::flight::kDrag && SPREAD_EFFECT_MAGNUS == spread::flight::kMagnus &&
-              SPREAD_EFFECT_SPIN_DECAY == spread::flight::kSpinDecay && SPREAD_EFFECT_WIND == spread::flight::kWind &&
-              SPREAD_EFFECT_ALL == spread::flight::kAllEffects);
+// The C bits are passed through unchanged: each must be its effect registry row's, looked up by the
+// name the docs give it, and together they must be every flight row (a new flight effect needs its bit).
+static_assert(SPREAD_EFFECT_DRAG == spread::effect::find("drag")->bit &&
+              SPREAD_EFFECT_MAGNUS == spread::effect::find("magnus")->bit &&
+              SPREAD_EFFECT_SPIN_DECAY == spread::effect::find("spin_decay")->bit &&
+              SPREAD_EFFECT_WIND == spread::effect::find("wind")->bit);
+static_assert(SPREAD_EFFECT_ALL == spread::effect::kFlightEffects);
 static_assert(SPREAD_EFFECTS_AS_TABLE == spread::predict::kTableEffects);
 static_assert((SPREAD_EFFECTS_AS_TABLE & SPREAD_EFFECT_ALL) == 0);
 

@@ -96,7 +96,7 @@ PatternSetup pattern_setup_from_table(const tables::TableContents& contents, con
   setup.disc_height_m = contents.machine.disc_height_m;
   setup.air.density_kg_m3 = scene.air.density_kg_m3;
   setup.air.viscosity_pa_s = scene.air.viscosity_pa_s;
-  flight::EffectSet effects = flight::parse_effects(scene::flight_effects_to_string(scene.effects));
+  flight::EffectSet effects = scene.effects & flight::kAllEffects;
   setup.effects = effects & ~static_cast<flight::EffectSet>(flight::kWind);  // a tray test is judged in still air
   return setup;
 }

@@ -95,14 +95,11 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   c.inlet.centre_m = Vec3(in.offset_m * std::cos(in.angle_rad), in.offset_m * std::sin(in.angle_rad),
                           surface_z + in.drop_height_m);
 
-  const scene::Effects& e = s.effects;
   EngineParams& ep = c.engine;
-  ep.particle_contact = e.particle_contact;
-  ep.rotation = e.rotation;
-  ep.rolling = e.rolling;
-  if (e.rolling && !e.rotation)
-    throw std::invalid_argument(s.source_name + ": effects.enabled: 'rolling' needs 'rotation'");
-  if (!e.wall_contact)
+  ep.particle_contact = s.has(effect::kParticleContact);
+  ep.rotation = s.has(effect::kRotation);
+  ep.rolling = s.has(effect::kRolling);  // the scene reader has checked the registry's requirements
+  if (!s.has(effect::kWallContact))
     throw std::invalid_argument(s.source_name + ": effects.enabled: the disc DEM needs 'wall_contact' (nothing would hold the particles)");
   const scene::Numerics& n = s.numerics;
   ep.integrator = n.integrator == scene::Integrator::kVelocityVerlet ? Integrator::kVelocityVerlet : Integrator::kSymplecticEuler;
@@ -123,8 +120,7 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   c.duration_s = n.duration_s;
   c.collector_radius_m = n.collector_radius_m;
 
-  c.flight_effects = (e.drag ? flight::kDrag : 0u) | (e.magnus ? flight::kMagnus : 0u) |
-                     (e.spin_decay ? flight::kSpinDecay : 0u) | (e.wind ? flight::kWind : 0u);
+  c.flight_effects = s.effects & effect::kFlightEffects;
   c.air.density_kg_m3 = s.air.density_kg_m3;
   c.air.viscosity_pa_s = s.air.viscosity_pa_s;
   c.air.wind_m_s = Vec3(s.air.wind_m_s[0], s.air.wind_m_s[1], 0.0);

@@ -154,15 +154,7 @@ SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) 
                       res.landings, cfg.flight_threads);
     for (const auto& l : res.landings) res.flight_steps += static_cast<std::uint64_t>(l.steps);
     res.module_time_s["flight"] = since(t0);
-    const std::string fe = flight::effects_to_string(cfg.flight_effects);
-    std::size_t a = 0;
-    while (a < fe.size()) {
-      const std::size_t b = fe.find(',', a);
-      const std::string name = fe.substr(a, b == std::string::npos ? std::string::npos : b - a);
-      if (!name.empty()) res.effects.push_back(name);
-      if (b == std::string::npos) break;
-      a = b + 1;
-    }
+    for (std::string& name : effect::names_in(cfg.flight_effects & effect::kFlightEffects)) res.effects.push_back(std::move(name));
     t0 = Clock::now();
     std::vector<double> x, y, m;
     for (std::size_t k = 0; k < res.landings.size(); ++k) {

@@ -1,5 +1,4 @@
-// Effect names ↔ bits. Names are the ones scenes and the CLI use (DESIGN.md §7: unknown → error).
-#include <array>
+// Flight effect lists ↔ bits, through the effect registry (DESIGN.md §7: unknown → error).
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -8,13 +7,6 @@
 
 namespace spread::flight {
 namespace {
-
-struct EffectName {
-  Effect bit;
-  std::string_view name;
-};
-constexpr std::array<EffectName, 4> kEffectNames{{
-    {kDrag, "drag"}, {kMagnus, "magnus"}, {kSpinDecay, "spin_decay"}, {kWind, "wind"}}};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -26,6 +18,7 @@ std::string_view trim(std::string_view s) {
 
 EffectSet parse_effects(std::string_view comma_separated) {
   const std::string_view all = trim(comma_separated);
+  // "none": how tables written before the empty list was canonical record a drag-free flight.
   if (all.empty() || all == "none") return 0;
   EffectSet effects = 0;
   std::size_t start = 0;
@@ -36,31 +29,23 @@ EffectSet parse_effects(std::string_view comma_separated) {
     if (token.empty()) {
       throw std::invalid_argument("effects: empty effect name in \"" + std::string(all) + "\"");
     }
-    bool known = false;
-    for (const auto& entry : kEffectNames) {
-      if (token == entry.name) {
-        effects |= entry.bit;
-        known = true;
-      }
-    }
-    if (!known) {
+    const effect::Effect* row = effect::find(token);
+    if (row == nullptr) {
       throw std::invalid_argument("effects: unknown effect \"" + std::string(token) +
-                                  "\" (known: drag, magnus, spin_decay, wind)");
+                                  "\" (known: " + effect::names_of(kAllEffects) + ")");
     }
+    if (row->domain != effect::Domain::kFlight) {
+      throw std::invalid_argument("effects: \"" + std::string(token) +
+                                  "\" acts on the disc, not in flight (flight effects: " +
+                                  effect::names_of(kAllEffects) + ")");
+    }
+    effects |= row->bit;
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
   return effects;
 }
 
-std::string effects_to_string(EffectSet effects) {
-  std::string out;
-  for (const auto& entry : kEffectNames) {
-    if ((effects & entry.bit) == 0) continue;
-    if (!out.empty()) out += ',';
-    out += entry.name;
-  }
-  return out.empty() ? std::string("none") : out;
-}
+std::string effects_to_string(EffectSet effects) { return effect::to_string(effects & kAllEffects); }
 
 }  // namespace spread::flight

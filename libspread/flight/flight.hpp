@@ -11,24 +11,25 @@
 #include <string>
 #include <string_view>
 
+#include "libspread/core/effect_registry.hpp"
 #include "libspread/core/vec3.hpp"
 
 namespace spread::flight {
 
-// Bit set of in-flight effects. Gravity is not an effect: it always acts.
-enum Effect : std::uint32_t {
-  kDrag = 1u << 0,       // Eq. 27 with the Haider–Levenspiel C_D, Eq. 32
-  kMagnus = 1u << 1,     // Eq. 28; C_L from the selected LiftModel
-  kSpinDecay = 1u << 2,  // Eqs. 34–36; without it ω stays constant in flight
-  kWind = 1u << 3,       // Air::wind_m_s; without it the air is still
-};
-using EffectSet = std::uint32_t;
-inline constexpr EffectSet kAllEffects = kDrag | kMagnus | kSpinDecay | kWind;
+// In-flight effects: the flight rows of the effect registry (libspread/core/effect_registry.hpp).
+// Gravity is not an effect: it always acts.
+using effect::EffectSet;
+using effect::kDrag;       // Eq. 27 with the Haider–Levenspiel C_D, Eq. 32
+using effect::kMagnus;     // Eq. 28; C_L from the selected LiftModel
+using effect::kSpinDecay;  // Eqs. 34–36; without it ω stays constant in flight
+using effect::kWind;       // Air::wind_m_s; without it the air is still
+inline constexpr EffectSet kAllEffects = effect::kFlightEffects;
 
 // "drag,magnus,spin_decay,wind" (any order; "" or "none" → no effects). Throws std::invalid_argument
-// naming the unknown effect.
+// naming the unknown effect (or the DEM effect, which does not act in flight).
 EffectSet parse_effects(std::string_view comma_separated);
-std::string effects_to_string(EffectSet effects);  // canonical order, comma separated
+// Canonical order, comma separated; "" for no effects.
+std::string effects_to_string(EffectSet effects);
 
 enum class LiftModel : std::uint8_t {
   // C_L = 0.45 tanh(2Ω / 0.45): slope 2Ω at small spin ratio (Rubinow–Keller), saturating at the

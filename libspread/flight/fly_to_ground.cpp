@@ -35,6 +35,16 @@ constexpr auto kDormandPrinceTable = make_dormand_prince_table(std::make_index_s
 
 }  // namespace
 
+EffectSet effects_that_act(EffectSet effects, const State& launch) {
+  // A granule launched without spin keeps none: Eq. 34 (dω/dt ∝ −ω) leaves ω = 0, and the Magnus force
+  // (Eq. 28) is proportional to ω. Both would be evaluated as zeros; the instantiation without them is
+  // the same flight for less work.
+  if (launch.spin_rad_s.x() == 0.0 && launch.spin_rad_s.y() == 0.0 && launch.spin_rad_s.z() == 0.0) {
+    effects &= ~(kMagnus | kSpinDecay);
+  }
+  return effects & kAllEffects;
+}
+
 Landing fly_unchecked(const Granule& granule, const State& launch, double ground_z_m, const Air& air,
                       EffectSet effects, const Settings& settings, const StepObserver& observer) {
   // A launch on the ground that is not rising has already landed (the crossing test needs z > ground
@@ -49,7 +59,7 @@ Landing fly_unchecked(const Granule& granule, const State& launch, double ground
   if (observer.on_step != nullptr) observer.on_step(observer.context, 0.0, launch);
   const FlightParameters params = make_flight_parameters(granule, launch, air, settings);
   const auto& table = settings.scheme == Scheme::kRk4 ? kRk4Table : kDormandPrinceTable;
-  return table[effects & kAllEffects](params, launch, ground_z_m, settings, observer);
+  return table[effects_that_act(effects, launch)](params, launch, ground_z_m, settings, observer);
 }
 
 }  // namespace detail

@@ -6,32 +6,6 @@
 
 namespace spread::scene {
 
-std::string effects_to_string(const Effects& effects) {
-  const bool on[] = {effects.particle_contact, effects.wall_contact, effects.rotation, effects.rolling,
-                     effects.drag,             effects.magnus,       effects.spin_decay, effects.wind};
-  std::string list;
-  for (std::size_t i = 0; i < kEffectNames.size(); ++i) {
-    if (!on[i]) continue;
-    if (!list.empty()) list += ',';
-    list += kEffectNames[i];
-  }
-  return list;
-}
-
-std::string flight_effects_to_string(const Effects& effects) {
-  std::string list;
-  auto add = [&list](bool on, const char* name) {
-    if (!on) return;
-    if (!list.empty()) list += ',';
-    list += name;
-  };
-  add(effects.drag, "drag");
-  add(effects.magnus, "magnus");
-  add(effects.spin_decay, "spin_decay");
-  add(effects.wind, "wind");
-  return list;
-}
-
 const Material* Scene::find_material(const std::string& name) const {
   for (const Material& m : materials) {
     if (m.name == name) return &m;
@@ -114,7 +88,7 @@ std::string Scene::run_inputs_text(const Material& material, double rpm) const {
   t.add("air.viscosity_pa_s", air.viscosity_pa_s);
   t.add("air.wind_m_s[0]", air.wind_m_s[0]);
   t.add("air.wind_m_s[1]", air.wind_m_s[1]);
-  t.add("effects", effects_to_string(effects));
+  t.add("effects", effect::to_string(effects));
   t.add("numerics.seed", static_cast<std::int64_t>(numerics.seed));
   t.add("sweep.source", to_string(sweep.source));
   t.add("sweep.samples_per_run", sweep.samples_per_run);

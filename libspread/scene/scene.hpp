@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/core/effect_registry.hpp"
 #include "libspread/tables/table_format.hpp"
 
 namespace spread::scene {
@@ -73,23 +74,9 @@ struct Air {
   std::array<double, 2> wind_m_s{0.0, 0.0};  // horizontal wind (x, y)
 };
 
-// Exactly the effects that run (DESIGN.md §7). Names as in the TOML list.
-struct Effects {
-  bool particle_contact = true;
-  bool wall_contact = true;
-  bool rotation = true;
-  bool rolling = false;
-  bool drag = true;
-  bool magnus = true;
-  bool spin_decay = true;
-  bool wind = false;
-};
-inline constexpr std::array<const char*, 8> kEffectNames{
-    "particle_contact", "wall_contact", "rotation", "rolling", "drag", "magnus", "spin_decay", "wind"};
-// Comma list in the canonical order of kEffectNames, e.g. "wall_contact,drag"; "" when none.
-std::string effects_to_string(const Effects& effects);
-// Only the in-flight subset, in the syntax of flight::parse_effects ("drag,magnus,spin_decay,wind").
-std::string flight_effects_to_string(const Effects& effects);
+// Exactly the effects that run (DESIGN.md §7): bits of the effect registry
+// (libspread/core/effect_registry.hpp), named there as in the TOML list.
+using effect::EffectSet;
 
 struct Numerics {
   std::uint64_t seed = 1;
@@ -140,11 +127,12 @@ struct Scene {
   std::vector<Material> materials;    // in file order, names unique
   std::string simulate_material;      // [simulate] material; default = first material
   Air air;
-  Effects effects;
+  EffectSet effects = effect::kDefault;
   Numerics numerics;
   Sweep sweep;
   Outputs outputs;
 
+  bool has(EffectSet effect) const { return (effects & effect) == effect; }
   const Material* find_material(const std::string& name) const;  // nullptr when absent
   // The text plus the overrides (as trailing comment lines): what provenance records.
   std::string provenance_text() const;

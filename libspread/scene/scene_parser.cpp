@@ -364,21 +364,21 @@ void read_effects(const toml::table& root, Scene& scene) {
   }
   const std::vector<std::string> names = s.strings("enabled", {});
   s.finish();
-  Effects effects{false, false, false, false, false, false, false, false};
-  bool* flags[] = {&effects.particle_contact, &effects.wall_contact, &effects.rotation, &effects.rolling,
-                   &effects.drag,             &effects.magnus,       &effects.spin_decay, &effects.wind};
+  EffectSet effects = 0;
   for (std::size_t i = 0; i < names.size(); ++i) {
-    bool found = false;
-    for (std::size_t k = 0; k < kEffectNames.size(); ++k) {
-      if (names[i] != kEffectNames[k]) continue;
-      if (*flags[k]) s.fail("enabled[" + std::to_string(i) + "]", "effect \"" + names[i] + "\" listed twice");
-      *flags[k] = true;
-      found = true;
+    const std::string key = "enabled[" + std::to_string(i) + "]";
+    const effect::Effect* row = effect::find(names[i]);
+    if (row == nullptr) {
+      s.fail(key, "unknown effect \"" + names[i] + "\" (known: " + effect::names_of(effect::kAll) + ")");
     }
-    if (!found) {
-      std::string known;
-      for (const char* name : kEffectNames) known += (known.empty() ? "" : ", ") + std::string(name);
-      s.fail("enabled[" + std::to_string(i) + "]", "unknown effect \"" + names[i] + "\" (known: " + known + ")");
+    if ((effects & row->bit) != 0) s.fail(key, "effect \"" + names[i] + "\" listed twice");
+    effects |= row->bit;
+  }
+  for (const effect::Effect& row : effect::kRegistry) {
+    const EffectSet missing = (effects & row.bit) != 0 ? row.requires_effects & ~effects : 0u;
+    if (missing != 0) {
+      s.fail("enabled", "effect \"" + std::string(row.name) + "\" needs " + effect::names_of(missing) +
+                            ": add it to the list or remove \"" + std::string(row.name) + "\"");
     }
   }
   scene.effects = effects;
@@ -531,12 +531,12 @@ void validate(Scene& scene) {
     c.non_negative_at_most(p + "friction_wall", mat.friction_wall, L::kMaxFriction);
     c.non_negative_at_most(p + "rolling_friction", mat.rolling_friction, L::kMaxFriction);
     // A value for an effect that is off would be recorded as provenance yet never act: refuse it.
-    if (mat.rolling_friction > 0.0 && !scene.effects.rolling) {
+    if (mat.rolling_friction > 0.0 && !scene.has(effect::kRolling)) {
       c.fail(p + "rolling_friction", "is " + format_number(mat.rolling_friction) +
                                          " but the `rolling` effect is off: add \"rolling\" to effects.enabled or remove the key");
     }
   }
-  if ((scene.air.wind_m_s[0] != 0.0 || scene.air.wind_m_s[1] != 0.0) && !scene.effects.wind) {
+  if ((scene.air.wind_m_s[0] != 0.0 || scene.air.wind_m_s[1] != 0.0) && !scene.has(effect::kWind)) {
     c.fail("air.wind_m_s", "is not zero but the `wind` effect is off: add \"wind\" to effects.enabled or set it to [0.0, 0.0]");
   }
   if (scene.simulate_material.empty()) {

@@ -377,7 +377,7 @@ Reported predict_cli(const std::string& table, double kernel_half_width_m) {
   out.lost_mass_fraction = number(j.at("lost_mass_fraction"));
   out.kernel_half_width_m = number(j.at("kernel_half_width_m"));
   out.sample_count = j.at("sample_count").get<long>();
-  out.vacuum = j.at("effects").get<std::string>() == "none";
+  out.vacuum = j.at("effects").is_array() && j.at("effects").empty();
   return out;
 }
 #endif

@@ -109,7 +109,7 @@ TEST(Effects, ParseAndPrint) {
   EXPECT_EQ(parse_effects(""), 0u);
   EXPECT_EQ(parse_effects("none"), 0u);
   EXPECT_EQ(effects_to_string(kWind | kDrag), "drag,wind");
-  EXPECT_EQ(effects_to_string(0), "none");
+  EXPECT_EQ(effects_to_string(0), "");  // nothing listed, not a pseudo-effect "none"
   EXPECT_EQ(parse_effects(effects_to_string(kAllEffects)), kAllEffects);
   try {
     parse_effects("drag,lift");
@@ -118,6 +118,12 @@ TEST(Effects, ParseAndPrint) {
     EXPECT_NE(std::string(e.what()).find("\"lift\""), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_effects("drag,,magnus"), std::invalid_argument);
+  try {
+    parse_effects("drag,rotation");
+    FAIL() << "a disc effect accepted as a flight effect";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("acts on the disc"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

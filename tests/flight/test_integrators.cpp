@@ -130,3 +130,30 @@ TEST(Wind, DriftsDownwind) {
 
 }  // namespace
 }  // namespace spread::flight
+
+namespace spread::flight {
+namespace {
+
+// Without spin at launch, Magnus lift and spin decay act as zeros: the flight is the drag-only one,
+// flown by the drag-only instantiation (same landing, bit for bit, same steps).
+TEST(Effects, ZeroSpinLaunchFliesWithoutLiftAndSpinDecay) {
+  State launch = test::typical_launch();
+  launch.spin_rad_s = Vec3::Zero();
+  Air windy;
+  windy.wind_m_s = Vec3(2.0, -1.0, 0.0);
+  for (const Settings& settings : {Settings{}, test::rk4(1e-3)}) {
+    const Landing all = fly_to_ground(test::typical_granule(), launch, 0.0, windy, kAllEffects, settings);
+    const Landing drag = fly_to_ground(test::typical_granule(), launch, 0.0, windy, kDrag | kWind, settings);
+    ASSERT_TRUE(all.landed);
+    EXPECT_EQ(all.state.position_m, drag.state.position_m);
+    EXPECT_EQ(all.flight_time_s, drag.flight_time_s);
+    EXPECT_EQ(all.steps, drag.steps);
+  }
+  // A spinning launch still feels them.
+  const Landing spinning = fly_to_ground(test::typical_granule(), test::typical_launch(), 0.0, Air{}, kAllEffects, Settings{});
+  const Landing spinning_drag = fly_to_ground(test::typical_granule(), test::typical_launch(), 0.0, Air{}, kDrag, Settings{});
+  EXPECT_GT(horizontal_distance_m(spinning.state, spinning_drag.state), 1e-3);
+}
+
+}  // namespace
+}  // namespace spread::flight

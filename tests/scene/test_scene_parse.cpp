@@ -21,8 +21,8 @@ TEST(ScenesShipped, DefaultIsTheCase1MachineWithThreeMaterials) {
   EXPECT_LE(s.sweep.rpm.size(), 5u);
   EXPECT_GE(s.sweep.samples_per_run, 2000);
   EXPECT_EQ(s.sweep_materials().size(), 3u);
-  EXPECT_TRUE(s.effects.drag);
-  EXPECT_FALSE(s.effects.wind);
+  EXPECT_TRUE(s.has(effect::kDrag));
+  EXPECT_FALSE(s.has(effect::kWind));
   EXPECT_EQ(s.numerics.collector_radius_m, 0.29);  // 0 resolved to the disc radius
 }
 
@@ -82,9 +82,9 @@ TEST(SceneOverrides, ValuesAreParsedAsToml) {
   EXPECT_EQ(s.sweep.rpm, (std::vector<double>{500.0, 600.5}));
   EXPECT_EQ(s.air.wind_m_s[0], 1.5);
   EXPECT_EQ(s.air.wind_m_s[1], -2.0);
-  EXPECT_TRUE(s.effects.drag);
-  EXPECT_FALSE(s.effects.magnus);
-  EXPECT_EQ(effects_to_string(s.effects), "drag,wind");
+  EXPECT_TRUE(s.has(effect::kDrag));
+  EXPECT_FALSE(s.has(effect::kMagnus));
+  EXPECT_EQ(effect::to_string(s.effects), "drag,wind");
   EXPECT_EQ(s.numerics.integrator, Integrator::kVelocityVerlet);
   EXPECT_TRUE(s.outputs.launch_csv);
   EXPECT_EQ(s.machine.name, "bare-word");

@@ -284,7 +284,7 @@ void run(const Options& o, int& exit_code) {
                 {"rpm", o.rpm},
                 {"disc_height_m", result.disc_height_m},
                 {"wind_m_s", {def.wind_m_s[0], def.wind_m_s[1]}},
-                {"effects", spread::flight::effects_to_string(result.effects)},
+                {"effects", spread::effect::names_in(result.effects)},
                 {"cv_target_percent", o.cv_target_percent},
                 {"throw_width_m", result.throw_width_m},
                 {"throw_width_se_m", number_or_null(result.throw_width_se_m)},

@@ -112,11 +112,6 @@ int run(const TrajectoryOptions& o) {
   const flight::Landing landing = flight::fly_to_ground(granule, launch, o.ground_z_m, air, effects, settings);
 
   if (o.json) {
-    nlohmann::json effect_names = nlohmann::json::array();
-    if (effects != 0) {
-      std::stringstream names(flight::effects_to_string(effects));
-      for (std::string name; std::getline(names, name, ',');) effect_names.push_back(name);
-    }
     nlohmann::json out;
     out["landing_position"] = to_json(landing.state.position_m);
     out["landing_velocity"] = to_json(landing.state.velocity_m_s);
@@ -125,7 +120,7 @@ int run(const TrajectoryOptions& o) {
     out["steps"] = landing.steps;
     out["rejected_steps"] = landing.rejected_steps;
     out["landed"] = landing.landed;
-    out["effects"] = effect_names;
+    out["effects"] = spread::effect::names_in(effects);
     out["scheme"] = o.scheme;
     out["lift"] = o.lift;
     std::cout << out.dump(2) << "\n";
@@ -135,7 +130,7 @@ int run(const TrajectoryOptions& o) {
     std::cout << (landing.landed ? "landed" : "did NOT land (max time/steps reached)") << " at x " << p.x()
               << " m, y " << p.y() << " m, z " << p.z() << " m after " << landing.flight_time_s << " s ("
               << landing.steps << " steps, " << landing.rejected_steps << " rejected; " << o.scheme
-              << ", effects " << flight::effects_to_string(effects) << ")\n";
+              << ", effects " << (effects == 0 ? std::string("none") : flight::effects_to_string(effects)) << ")\n";
   }
   return landing.landed ? spread::cli::kExitOk : spread::cli::kExitFailure;
 }

@@ -1,0 +1,75 @@
+// The effect registry is the one list of effects: the scene reader, the docs and the flight use it.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "libspread/core/effect_registry.hpp"
+#include "libspread/scene/scene.hpp"
+
+namespace spread::effect {
+namespace {
+
+std::string read_doc(const std::string& relative) {
+  std::ifstream in(std::string(SPREAD_SOURCE_DIR) + "/" + relative);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The row of docs/scene-format.md's effects table that documents `e`, built from the registry.
+std::string doc_row(const Effect& e) {
+  std::string needs;
+  for (const Effect& other : kRegistry) {
+    if ((e.requires_effects & other.bit) == 0) continue;
+    needs += (needs.empty() ? "`" : ", `") + std::string(other.name) + "`";
+  }
+  return "| `" + std::string(e.name) + "` | " + (e.domain == Domain::kDem ? "on the disc" : "in flight") + " | " +
+         (e.on_by_default ? "yes" : "no") + " | " + (needs.empty() ? "–" : needs) + " | " + std::string(e.model) +
+         " |";
+}
+
+TEST(EffectRegistry, DocsListEveryRow) {
+  const std::string doc = read_doc("docs/scene-format.md");
+  ASSERT_FALSE(doc.empty());
+  for (const Effect& e : kRegistry) EXPECT_NE(doc.find(doc_row(e) + "\n"), std::string::npos) << doc_row(e);
+}
+
+TEST(EffectRegistry, SceneDefaultIsTheRegistryDefault) {
+  const scene::Scene s = scene::parse_scene("[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n", "t");
+  EXPECT_EQ(s.effects, kDefault);
+  EXPECT_EQ(to_string(kDefault), "particle_contact,wall_contact,rotation,drag,magnus,spin_decay");
+}
+
+TEST(EffectRegistry, RequirementsComeFromTheRows) {
+  EXPECT_EQ(unmet_requirements(kRolling), kRotation);
+  EXPECT_EQ(unmet_requirements(kRolling | kRotation), 0u);
+  try {
+    scene::parse_scene("[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n[effects]\nenabled = [\"wall_contact\", "
+                       "\"rolling\"]\n",
+                       "t");
+    FAIL() << "rolling without rotation accepted";
+  } catch (const scene::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("t: effects.enabled: effect \"rolling\" needs rotation"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(EffectRegistry, ListsRoundTripInCanonicalOrder) {
+  for (EffectSet set = 0; set <= 0xFFFu; ++set) {
+    if ((set & ~kAll) != 0) continue;
+    std::string enabled = "[";
+    const std::string names = to_string(set);
+    std::stringstream parts(names);
+    for (std::string name; std::getline(parts, name, ',');) enabled += "\"" + name + "\",";
+    enabled += "]";
+    if (unmet_requirements(set) != 0) continue;
+    const scene::Scene s = scene::parse_scene(
+        "[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n[effects]\nenabled = " + enabled + "\n", "t");
+    EXPECT_EQ(s.effects, set) << enabled;
+  }
+}
+
+}  // namespace
+}  // namespace spread::effect
