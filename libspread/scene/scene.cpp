@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/scene_hash.hpp"
 
 namespace spread::scene {
@@ -74,15 +75,9 @@ std::string Scene::run_inputs_text(const Material& material, double rpm) const {
   t.add("inlet.drop_height_m", inlet.drop_height_m);
   t.add("inlet.mass_flow_kg_s", inlet.mass_flow_kg_s);
   t.add("material.name", material.name);
-  t.add("material.density_kg_m3", material.density_kg_m3);
-  t.add("material.diameter_mean_m", material.diameter_mean_m);
-  t.add("material.diameter_sd_m", material.diameter_sd_m);
-  t.add("material.friction_wall", material.friction_wall);
-  t.add("material.friction_particle", material.friction_particle);
-  t.add("material.restitution", material.restitution);
-  t.add("material.youngs_modulus_pa", material.youngs_modulus_pa);
-  t.add("material.poisson_ratio", material.poisson_ratio);
-  t.add("material.rolling_friction", material.rolling_friction);
+  for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
+    t.add(("material." + std::string(q.name)).c_str(), material.*q.member);
+  }
   t.add("rpm", rpm);
   t.add("air.density_kg_m3", air.density_kg_m3);
   t.add("air.viscosity_pa_s", air.viscosity_pa_s);

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "libspread/scene/scene.hpp"
+#include "libspread/tables/material_schema.hpp"
 
 namespace spread::scene {
 namespace {
@@ -269,6 +270,15 @@ struct Checker {
     non_negative(key, value);
     if (!(value <= hi)) fail(key, "must be <= " + format_number(hi) + ", got " + format_number(value));
   }
+  // A schema's bounds: "must be in [lo, hi]" for a closed interval, else the bound that is broken.
+  void within(const std::string& key, double value, const tables::Bounds& b) const {
+    const bool low_ok = b.low_open ? value > b.low : value >= b.low;
+    const bool high_ok = b.high_open ? value < b.high : value <= b.high;
+    if (low_ok && high_ok) return;
+    if (!b.low_open && !b.high_open) in_range(key, value, b.low, b.high);
+    if (!low_ok) fail(key, std::string(b.low_open ? "must be > " : "must be >= ") + format_number(b.low) + ", got " + format_number(value));
+    fail(key, std::string(b.high_open ? "must be < " : "must be <= ") + format_number(b.high) + ", got " + format_number(value));
+  }
   void in_range(const std::string& key, double value, double lo, double hi) const {
     if (!(value >= lo && value <= hi)) {
       fail(key, "must be in [" + format_number(lo) + ", " + format_number(hi) + "], got " + format_number(value));
@@ -324,15 +334,11 @@ void read_materials(const toml::table& root, Scene& scene) {
     Section s(table, path, scene.source_name);
     Material m;
     m.name = s.string("name", "");
-    m.density_kg_m3 = s.number("density_kg_m3", 0.0);
-    m.diameter_mean_m = s.number("diameter_mean_m", 3.2e-3);
-    m.diameter_sd_m = s.number("diameter_sd_m", 0.6e-3);
-    m.youngs_modulus_pa = s.number("youngs_modulus_pa", 5e7);
-    m.poisson_ratio = s.number("poisson_ratio", 0.25);
-    m.restitution = s.number("restitution", 0.5);
-    m.friction_particle = s.number("friction_particle", 0.4);
-    m.friction_wall = s.number("friction_wall", 0.4);
-    m.rolling_friction = s.number("rolling_friction", 0.0);
+    for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
+      const std::string key(q.name);
+      // A required quantity left out reads as 0, which its bounds (> 0) then refuse naming the key.
+      m.*q.member = s.number(key, std::isnan(q.scene_default) ? 0.0 : q.scene_default);
+    }
     s.finish();
     scene.materials.push_back(std::move(m));
   }
@@ -521,19 +527,16 @@ void validate(Scene& scene) {
     const std::string p = "materials[" + std::to_string(i) + "].";
     if (mat.name.empty()) c.fail(p + "name", "must be given and not empty");
     if (!names.insert(mat.name).second) c.fail(p + "name", "duplicate material name \"" + mat.name + "\"");
-    c.positive_at_most(p + "density_kg_m3", mat.density_kg_m3, L::kMaxDensity_kg_m3);
-    c.positive_at_most(p + "diameter_mean_m", mat.diameter_mean_m, L::kMaxDiameter_m);
-    c.non_negative_at_most(p + "diameter_sd_m", mat.diameter_sd_m, L::kMaxDiameter_m);
-    c.positive_at_most(p + "youngs_modulus_pa", mat.youngs_modulus_pa, L::kMaxYoungsModulus_pa);
-    c.in_range(p + "poisson_ratio", mat.poisson_ratio, 0.0, 0.499);
-    c.in_range(p + "restitution", mat.restitution, 0.01, 1.0);
-    c.non_negative_at_most(p + "friction_particle", mat.friction_particle, L::kMaxFriction);
-    c.non_negative_at_most(p + "friction_wall", mat.friction_wall, L::kMaxFriction);
-    c.non_negative_at_most(p + "rolling_friction", mat.rolling_friction, L::kMaxFriction);
-    // A value for an effect that is off would be recorded as provenance yet never act: refuse it.
-    if (mat.rolling_friction > 0.0 && !scene.has(effect::kRolling)) {
-      c.fail(p + "rolling_friction", "is " + format_number(mat.rolling_friction) +
-                                         " but the `rolling` effect is off: add \"rolling\" to effects.enabled or remove the key");
+    for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
+      const std::string key = p + std::string(q.name);
+      const double value = mat.*q.member;
+      c.within(key, value, q.scene_bounds);
+      // A value for an effect that is off would be recorded as provenance yet never act: refuse it.
+      if (q.effect != 0 && !scene.has(q.effect) && value != q.scene_default) {
+        const std::string effect_name(effect::row(q.effect).name);
+        c.fail(key, "is " + format_number(value) + " but the `" + effect_name + "` effect is off: add \"" +
+                        effect_name + "\" to effects.enabled or remove the key");
+      }
     }
   }
   if ((scene.air.wind_m_s[0] != 0.0 || scene.air.wind_m_s[1] != 0.0) && !scene.has(effect::kWind)) {

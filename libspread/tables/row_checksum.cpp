@@ -1,5 +1,7 @@
 #include "libspread/tables/row_checksum.hpp"
 
+#include "libspread/tables/material_schema.hpp"
+
 #include <array>
 #include <bit>
 #include <cstring>
@@ -87,10 +89,7 @@ std::string machine_checksum(const Machine& m) {
 std::string material_checksum(const Material& m) {
   Crc64 crc;
   crc.text(m.name);
-  for (double v : {m.density_kg_m3, m.diameter_mean_m, m.diameter_sd_m, m.friction_wall, m.friction_particle,
-                   m.restitution, m.youngs_modulus_pa, m.poisson_ratio, m.rolling_friction}) {
-    crc.real(v);
-  }
+  for (const MaterialQuantity& q : kMaterialQuantities) crc.real(m.*q.member);
   return crc.hex();
 }
 

@@ -1,5 +1,7 @@
 #include "libspread/tables/table_format.hpp"
 
+#include "libspread/tables/material_schema.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -70,17 +72,10 @@ std::string machine_problem(const Machine& m) {
 }
 
 std::string material_problem(const Material& m) {
-  using L = PlausibleLimits;
   const std::string at = "materials." + m.name + ".";
-  for (const std::string& p : {range_problem(at + "density_kg_m3", m.density_kg_m3, 0.0, true, L::kMaxDensity_kg_m3, false),
-                        range_problem(at + "diameter_mean_m", m.diameter_mean_m, 0.0, true, L::kMaxDiameter_m, false),
-                        range_problem(at + "diameter_sd_m", m.diameter_sd_m, 0.0, false, L::kMaxDiameter_m, false),
-                        range_problem(at + "friction_wall", m.friction_wall, 0.0, false, L::kMaxFriction, false),
-                        range_problem(at + "friction_particle", m.friction_particle, 0.0, false, L::kMaxFriction, false),
-                        range_problem(at + "restitution", m.restitution, 0.0, false, 1.0, false),
-                        range_problem(at + "youngs_modulus_pa", m.youngs_modulus_pa, 0.0, false, L::kMaxYoungsModulus_pa, false),
-                        range_problem(at + "poisson_ratio", m.poisson_ratio, -1.0, true, 0.5, false),
-                        range_problem(at + "rolling_friction", m.rolling_friction, 0.0, false, L::kMaxFriction, false)}) {
+  for (const MaterialQuantity& q : kMaterialQuantities) {
+    const Bounds& b = q.table_bounds;
+    std::string p = range_problem(at + std::string(q.name), m.*q.member, b.low, b.low_open, b.high, b.high_open);
     if (!p.empty()) return p;
   }
   return {};

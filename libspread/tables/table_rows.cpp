@@ -1,5 +1,6 @@
 #include "libspread/tables/table_rows.hpp"
 
+#include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/row_checksum.hpp"
 
 namespace spread::tables::detail {
@@ -46,26 +47,21 @@ std::optional<Machine> read_machine_row(Connection& db) {
 }
 
 std::vector<Material> read_material_rows(Connection& db) {
-  Statement query(db,
-                  "SELECT name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, friction_particle, "
-                  "restitution, youngs_modulus_pa, poisson_ratio, rolling_friction, checksum FROM materials ORDER BY name");
+  std::string columns = "name";
+  for (const MaterialQuantity& q : kMaterialQuantities) columns += ", " + std::string(q.name);
+  Statement query(db, "SELECT " + columns + ", checksum FROM materials ORDER BY name");
   std::vector<Material> materials;
   while (query.step()) {
     Material m;
     m.name = query.column_text(0);
     const std::string at = "materials." + m.name + ".";
-    m.density_kg_m3 = required_double(query, 1, db, at + "density_kg_m3");
-    m.diameter_mean_m = required_double(query, 2, db, at + "diameter_mean_m");
-    m.diameter_sd_m = required_double(query, 3, db, at + "diameter_sd_m");
-    m.friction_wall = required_double(query, 4, db, at + "friction_wall");
-    m.friction_particle = required_double(query, 5, db, at + "friction_particle");
-    m.restitution = required_double(query, 6, db, at + "restitution");
-    m.youngs_modulus_pa = required_double(query, 7, db, at + "youngs_modulus_pa");
-    m.poisson_ratio = required_double(query, 8, db, at + "poisson_ratio");
-    m.rolling_friction = required_double(query, 9, db, at + "rolling_friction");
+    int column = 1;
+    for (const MaterialQuantity& q : kMaterialQuantities) {
+      m.*q.member = required_double(query, column++, db, at + std::string(q.name));
+    }
     const std::string problem = material_problem(m);
     if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "impossible material value: " + problem);
-    verify_checksum(db, "material \"" + m.name + "\"", query.column_text(10), material_checksum(m));
+    verify_checksum(db, "material \"" + m.name + "\"", query.column_text(column), material_checksum(m));
     materials.push_back(std::move(m));
   }
   return materials;

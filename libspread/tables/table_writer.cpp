@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/row_checksum.hpp"
 #include "libspread/tables/sample_codec.hpp"
 #include "libspread/tables/sqlite_connection.hpp"
@@ -213,28 +214,23 @@ void TableWriter::write_materials(const std::vector<Material>& materials) {
   }
   Connection& db = *impl_->connection;
   Transaction transaction(db);
-  Statement upsert(db,
-                   "INSERT INTO materials (name, density_kg_m3, diameter_mean_m, diameter_sd_m, friction_wall, "
-                   "friction_particle, restitution, youngs_modulus_pa, poisson_ratio, rolling_friction, checksum) "
-                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (name) DO UPDATE SET "
-                   "density_kg_m3 = excluded.density_kg_m3, diameter_mean_m = excluded.diameter_mean_m, "
-                   "diameter_sd_m = excluded.diameter_sd_m, friction_wall = excluded.friction_wall, "
-                   "friction_particle = excluded.friction_particle, restitution = excluded.restitution, "
-                   "youngs_modulus_pa = excluded.youngs_modulus_pa, poisson_ratio = excluded.poisson_ratio, "
-                   "rolling_friction = excluded.rolling_friction, checksum = excluded.checksum");
+  std::string columns = "name";
+  std::string values = "?";
+  std::string updates;
+  for (const MaterialQuantity& q : kMaterialQuantities) {
+    const std::string name(q.name);
+    columns += ", " + name;
+    values += ", ?";
+    updates += name + " = excluded." + name + ", ";
+  }
+  Statement upsert(db, "INSERT INTO materials (" + columns + ", checksum) VALUES (" + values +
+                           ", ?) ON CONFLICT (name) DO UPDATE SET " + updates + "checksum = excluded.checksum");
   for (const Material& m : materials) {
     upsert.reset();
     upsert.bind(1, m.name);
-    upsert.bind(2, m.density_kg_m3);
-    upsert.bind(3, m.diameter_mean_m);
-    upsert.bind(4, m.diameter_sd_m);
-    upsert.bind(5, m.friction_wall);
-    upsert.bind(6, m.friction_particle);
-    upsert.bind(7, m.restitution);
-    upsert.bind(8, m.youngs_modulus_pa);
-    upsert.bind(9, m.poisson_ratio);
-    upsert.bind(10, m.rolling_friction);
-    upsert.bind(11, material_checksum(m));
+    int column = 2;
+    for (const MaterialQuantity& q : kMaterialQuantities) upsert.bind(column++, m.*q.member);
+    upsert.bind(column, material_checksum(m));
     upsert.step();
   }
   transaction.commit();

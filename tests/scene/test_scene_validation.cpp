@@ -49,7 +49,7 @@ TEST(SceneValidation, ImpossibleNumbers) {
   expect_error({"machine.disc_radius_m=-1"}, "machine.disc_radius_m: must be > 0, got -1");
   expect_error({"machine.disc_radius_m=nan"}, "machine.disc_radius_m: must be a finite number");
   expect_error({"inlet.mass_flow_kg_s=inf"}, "inlet.mass_flow_kg_s: must be a finite number");
-  expect_error({"materials.0.friction_wall=-0.1"}, "materials[0].friction_wall: must be >= 0, got -0.1");
+  expect_error({"materials.0.friction_wall=-0.1"}, "materials[0].friction_wall: must be in [0, 10], got -0.1");
   expect_error({"materials.0.poisson_ratio=0.7"}, "materials[0].poisson_ratio: must be in [0, 0.499]");
   expect_error({"machine.disc_count=3"}, "machine.disc_count: must be 1 or 2");
   expect_error({"machine.rotation_sense=0"}, "machine.rotation_sense: must be +1 or -1");

@@ -6,6 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
 
@@ -66,18 +67,11 @@ json to_json(const spread::tables::TableContents& c, const std::string& path) {
       rpm.push_back(run.rpm);
       counts.push_back(run.samples.size());
     }
-    materials.push_back({{"name", mat.name},
-                         {"density_kg_m3", mat.density_kg_m3},
-                         {"diameter_mean_m", mat.diameter_mean_m},
-                         {"diameter_sd_m", mat.diameter_sd_m},
-                         {"friction_wall", mat.friction_wall},
-                         {"friction_particle", mat.friction_particle},
-                         {"restitution", mat.restitution},
-                         {"youngs_modulus_pa", mat.youngs_modulus_pa},
-                         {"poisson_ratio", mat.poisson_ratio},
-                         {"rolling_friction", mat.rolling_friction},
-                         {"rpm", rpm},
-                         {"sample_counts", counts}});
+    json entry = {{"name", mat.name}};
+    for (const auto& q : spread::tables::kMaterialQuantities) entry[std::string(q.name)] = mat.*q.member;
+    entry["rpm"] = rpm;
+    entry["sample_counts"] = counts;
+    materials.push_back(std::move(entry));
   }
   out["materials"] = materials;
   json runs = json::array();

@@ -1,0 +1,107 @@
+// The material schema is the one list of material quantities: the docs, the scene reader and the
+// table file's columns follow it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "libspread/scene/scene.hpp"
+#include "libspread/tables/material_schema.hpp"
+#include "libspread/tables/table_schema.hpp"
+
+namespace spread::tables {
+namespace {
+
+std::string read_doc(const std::string& relative) {
+  std::ifstream in(std::string(SPREAD_SOURCE_DIR) + "/" + relative);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The cells of the doc row whose first cell is `key` (empty when there is none).
+std::vector<std::string> doc_row(const std::string& doc, const std::string& key) {
+  const std::string start = "\n| `" + key + "` |";
+  const std::size_t at = doc.find(start);
+  if (at == std::string::npos) return {};
+  const std::string line = doc.substr(at + 2, doc.find('\n', at + 1) - at - 2);
+  std::vector<std::string> cells;
+  std::stringstream parts(line);
+  for (std::string cell; std::getline(parts, cell, '|');) {
+    const std::size_t b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
+    if (b != std::string::npos) cells.push_back(cell.substr(b, e - b + 1));
+  }
+  return cells;
+}
+
+TEST(ParameterSchema, DocsListEveryMaterialQuantity) {
+  const std::string doc = read_doc("docs/scene-format.md");
+  ASSERT_FALSE(doc.empty());
+  std::size_t previous = 0;
+  for (const MaterialQuantity& q : kMaterialQuantities) {
+    const std::string key(q.name);
+    const std::vector<std::string> cells = doc_row(doc, key);
+    ASSERT_EQ(cells.size(), 4u) << key << ": no row | `key` | unit | default | meaning | in docs/scene-format.md";
+    EXPECT_EQ(cells[1], q.unit) << key;
+    if (std::isnan(q.scene_default)) {
+      EXPECT_EQ(cells[2], "(required)") << key;
+    } else {
+      EXPECT_EQ(std::strtod(cells[2].c_str(), nullptr), q.scene_default) << key << ": the doc says " << cells[2];
+    }
+    EXPECT_EQ(cells[3].rfind(std::string(q.meaning), 0), 0u) << key << ": the doc's meaning should start with \"" << q.meaning << "\"";
+    const std::size_t at = doc.find("\n| `" + key + "` |");
+    EXPECT_GT(at, previous) << key << ": rows out of the schema's order";
+    previous = at;
+  }
+}
+
+// The scene reader's defaults are the schema's.
+TEST(ParameterSchema, SceneDefaultsAreTheSchemas) {
+  const scene::Scene s = scene::parse_scene("[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n", "t");
+  for (const MaterialQuantity& q : kMaterialQuantities) {
+    if (std::isnan(q.scene_default)) continue;
+    EXPECT_EQ(s.materials.front().*q.member, q.scene_default) << q.name;
+  }
+}
+
+// Each quantity's bounds reach the scene reader: a value just outside is refused naming the key.
+TEST(ParameterSchema, SceneRefusesValuesOutsideTheBounds) {
+  for (const MaterialQuantity& q : kMaterialQuantities) {
+    const double outside = q.scene_bounds.low_open ? q.scene_bounds.low : q.scene_bounds.low - 1e-3;
+    std::ostringstream text;
+    text.precision(17);
+    text << "[[materials]]\nname = \"u\"\n";
+    if (q.name != "density_kg_m3") text << "density_kg_m3 = 1000\n";
+    text << q.name << " = " << outside << "\n";
+    try {
+      scene::parse_scene(text.str(), "t");
+      ADD_FAILURE() << q.name << " = " << outside << " accepted";
+    } catch (const scene::SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("materials[0]." + std::string(q.name) + ": must be"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+// The table file's materials columns are the schema's, in its order (the checksum's order too).
+TEST(ParameterSchema, TableColumnsAreTheSchemas) {
+  const std::string sql = detail::kSchemaSql;
+  const std::size_t begin = sql.find("CREATE TABLE materials (");
+  ASSERT_NE(begin, std::string::npos);
+  const std::string body = sql.substr(begin, sql.find(");", begin) - begin);
+  std::size_t previous = body.find("name TEXT");
+  ASSERT_NE(previous, std::string::npos);
+  for (const MaterialQuantity& q : kMaterialQuantities) {
+    const std::size_t at = body.find("\n  " + std::string(q.name) + " REAL NOT NULL");
+    ASSERT_NE(at, std::string::npos) << q.name;
+    EXPECT_GT(at, previous) << q.name;
+    previous = at;
+  }
+  EXPECT_GT(body.find("checksum TEXT"), previous);
+}
+
+}  // namespace
+}  // namespace spread::tables
