@@ -51,6 +51,8 @@ spread_status status_of(spread::tables::TableErrorKind kind) {
     case K::kWrongVersion: return SPREAD_ERROR_FILE_WRONG_VERSION;
     case K::kEmpty: return SPREAD_ERROR_FILE_EMPTY;
     case K::kIo: return SPREAD_ERROR_IO;
+    case K::kScene:
+    case K::kArgument: break;  // not a file's kinds: the reader never throws them
   }
   return SPREAD_ERROR_INTERNAL;
 }

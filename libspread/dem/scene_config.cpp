@@ -20,12 +20,12 @@ std::shared_ptr<const TriangleMesh> load_disc_stl(const scene::Scene& s) {
   const std::string key = s.source_name + ": machine.stl_path: ";
   std::error_code ec;
   if (!std::filesystem::is_regular_file(m.stl_path, ec))
-    throw std::invalid_argument(key + "no such file '" + m.stl_path + "'");
+    throw scene::SceneError(key + "no such file '" + m.stl_path + "'");
   TriangleMesh mesh;
   try {
     mesh = read_stl(m.stl_path, m.stl_scale);  // throws when not STL or when no valid triangle remains
   } catch (const std::exception& e) {
-    throw std::invalid_argument(key + e.what());
+    throw scene::SceneError(key + e.what());
   }
   // The collector sits at disc_radius_m (unless numerics.collector_radius_m): a mesh reaching beyond it
   // is the wrong disc, or the wrong unit (a file in mm read as m).
@@ -35,7 +35,7 @@ std::shared_ptr<const TriangleMesh> load_disc_stl(const scene::Scene& s) {
     std::ostringstream msg;
     msg << key << "the mesh reaches " << reach_m << " m from the axis, beyond machine.disc_radius_m = "
         << m.disc_radius_m << " m (a file in mm needs machine.stl_scale = 0.001)";
-    throw std::invalid_argument(msg.str());
+    throw scene::SceneError(msg.str());
   }
   return std::make_shared<const TriangleMesh>(std::move(mesh));
 }
@@ -44,7 +44,7 @@ std::shared_ptr<const TriangleMesh> load_disc_stl(const scene::Scene& s) {
 SimulationConfig config_from_scene(const scene::Scene& s, const std::string& material_name) {
   const std::string name = material_name.empty() ? s.simulate_material : material_name;
   const scene::Material* sm = name.empty() ? (s.materials.empty() ? nullptr : &s.materials.front()) : s.find_material(name);
-  if (!sm) throw std::invalid_argument(s.source_name + ": simulate.material: unknown material '" + name + "'");
+  if (!sm) throw scene::SceneError(s.source_name + ": simulate.material: unknown material '" + name + "'");
   SimulationConfig c;
   Material particle;
   particle.name = sm->name;
@@ -100,7 +100,7 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   ep.rotation = s.has(effect::kRotation);
   ep.rolling = s.has(effect::kRolling);  // the scene reader has checked the registry's requirements
   if (!s.has(effect::kWallContact))
-    throw std::invalid_argument(s.source_name + ": effects.enabled: the disc DEM needs 'wall_contact' (nothing would hold the particles)");
+    throw scene::SceneError(s.source_name + ": effects.enabled: the disc DEM needs 'wall_contact' (nothing would hold the particles)");
   const scene::Numerics& n = s.numerics;
   ep.integrator = n.integrator == scene::Integrator::kVelocityVerlet ? Integrator::kVelocityVerlet : Integrator::kSymplecticEuler;
   ep.dt_s = n.dt_contact_s;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libspread/core/effect_registry.hpp"
+#include "libspread/core/error.hpp"
 #include "libspread/tables/table_format.hpp"
 
 namespace spread::scene {
@@ -151,9 +152,17 @@ struct Scene {
 };
 
 // Bad scene: the message reads "<source>: <dotted.key>: <problem>".
-class SceneError : public std::runtime_error {
+// The one error type's kScene (libspread/core/error.hpp); where() is "<source>: <dotted.key>".
+class SceneError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit SceneError(const std::string& what) : Error(ErrorKind::kScene, where_of(what), what) {}
+
+ private:
+  static std::string where_of(const std::string& what) {
+    const std::size_t first = what.find(": ");
+    const std::size_t second = first == std::string::npos ? first : what.find(": ", first + 2);
+    return what.substr(0, second);
+  }
 };
 
 // overrides: "dotted.key=value", the value parsed as a TOML value (a bare word that is not valid TOML

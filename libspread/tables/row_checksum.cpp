@@ -1,10 +1,10 @@
 #include "libspread/tables/row_checksum.hpp"
 
-#include "libspread/tables/material_schema.hpp"
-
 #include <array>
 #include <bit>
 #include <cstring>
+
+#include "libspread/tables/material_schema.hpp"
 
 namespace spread::tables {
 namespace {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "libspread/core/error.hpp"
+
 namespace spread::tables {
 
 inline constexpr std::int32_t kApplicationId = 0x53505244;  // 'SPRD' in PRAGMA application_id
@@ -80,15 +82,10 @@ struct Run {
 };
 
 // Why a table file could not be used. Each has its own C API status code.
-enum class TableErrorKind {
-  kMissing,        // no such file
-  kNotOurs,        // not SQLite, or application_id differs
-  kCorrupt,        // PRAGMA quick_check fails, or a record is malformed (bad BLOB size, bad layout)
-  kWrongVersion,   // user_version differs from kFormatVersion
-  kEmpty,          // no runs
-  kIo,             // any other SQLite failure (locked, read-only, disk full)
-};
-const char* to_string(TableErrorKind kind);
+// A table file's problems are kinds of the one error type (libspread/core/error.hpp): kMissing, kNotOurs,
+// kCorrupt, kWrongVersion, kEmpty, kIo.
+using TableErrorKind = ErrorKind;
+
 
 // Physical plausibility of the stored values, shared by the reader (a violation is TableError kCorrupt),
 // TableWriter (std::invalid_argument) and the scene reader (the same upper bounds): "" when every value
@@ -134,13 +131,13 @@ std::string run_values_problem(const Run& run);
 // JSON library.
 std::optional<std::string> recorded_flight_effects(const Run& run);
 
-class TableError : public std::runtime_error {
+// The file's path is where the problem is; the message begins with it.
+class TableError : public Error {
  public:
-  TableError(TableErrorKind kind, const std::string& what) : std::runtime_error(what), kind_(kind) {}
-  TableErrorKind kind() const { return kind_; }
+  TableError(TableErrorKind kind, const std::string& what) : Error(kind, path_of(what), what) {}
 
  private:
-  TableErrorKind kind_;
+  static std::string path_of(const std::string& what) { return what.substr(0, what.find(": ")); }
 };
 
 }  // namespace spread::tables

@@ -24,6 +24,8 @@ const char* advice(TableErrorKind kind) {
     case TableErrorKind::kWrongVersion: return "written by another libspread format version; rebuild it with this version";
     case TableErrorKind::kEmpty: return "no runs yet; run lookup_builder on the scene";
     case TableErrorKind::kIo: return "the file could not be read (locked, permissions)";
+    case TableErrorKind::kScene:
+    case TableErrorKind::kArgument: break;  // not a file's kinds
   }
   return "";
 }
@@ -36,6 +38,8 @@ const char* kind_code(TableErrorKind kind) {
     case TableErrorKind::kWrongVersion: return "wrong_version";
     case TableErrorKind::kEmpty: return "empty";
     case TableErrorKind::kIo: return "io";
+    case TableErrorKind::kScene: return "scene";
+    case TableErrorKind::kArgument: return "argument";
   }
   return "unknown";
 }
