@@ -23,8 +23,9 @@ struct NormalNone {
   SPREAD_CONTACT_INLINE static Geometry<T> geometry(T) { return {}; }
   template <class T>
   SPREAD_CONTACT_INLINE static T force(const Coeffs&, T, const Geometry<T>&) { return lanes::splat<T>(0.0); }
+  // Without a normal force nothing indents: the contact point is on the surface.
   template <class T>
-  SPREAD_CONTACT_INLINE static T lever(T radius_m, double, T overlap_m) { return radius_m - lanes::splat<T>(0.5) * overlap_m; }
+  SPREAD_CONTACT_INLINE static T lever(T radius_m, double, T) { return radius_m; }
 };
 
 // Hooke (seed 001): F_el = k_n δ, k_n the scene's normal spring (LinearSprings).
