@@ -4,13 +4,7 @@
 // inline kernel over the lane types (one contact, or two in lanes) and per-pair coefficients derived once
 // per material pair (Coeffs: each sub-model's own, R* and M*). The force passes are templates over the
 // law, instantiated for the combinations force_variants.hpp generates from these lists, so no contact
-// pays a virtual call or a branch on the model.
-//
-// Conventions for one contact between body a (always a particle) and body b (particle or wall):
-//   normal      unit vector from b towards a — the direction of the repulsive force on a (seed Eq. 1)
-//   overlap_m   δ_n = R_a + R_b − |r_ab| > 0 (Eq. 4); walls: R_a − distance
-//   slip_m_s    velocity of a's contact point minus b's contact point (Eq. 8); δ̇_n = −slip·normal
-// The force returned acts on a; b receives its opposite.
+// pays a virtual call or a branch on the model. Sign and frame conventions: contact_kernel.hpp.
 #include <cmath>
 #include <cstddef>
 #include <utility>
