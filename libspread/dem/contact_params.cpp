@@ -38,12 +38,12 @@ void validate_material(const Material& m) {
 }
 
 PairTable::PairTable(const std::vector<Material>& materials, const std::vector<PairOverride>& overrides,
-                     ContactModel model, const LinearSprings& springs)
+                     const ContactLaw& law, const LinearSprings& springs)
     : count_(materials.size()), pairs_(materials.size() * materials.size()) {
   for (const auto& m : materials) validate_material(m);
-  if (model == ContactModel::kLinearSpringDashpot &&
-      (!(springs.normal_stiffness_n_m > 0.0) || !(springs.tangential_ratio >= 0.0)))
-    throw std::invalid_argument("linear contact model: normal_stiffness_n_m must be > 0 and tangential_ratio >= 0");
+  const bool linear_springs = law.normal == NormalModel::kLinear || law.tangential == TangentialModel::kLinear;
+  if (linear_springs && (!(springs.normal_stiffness_n_m > 0.0) || !(springs.tangential_ratio >= 0.0)))
+    throw std::invalid_argument("linear normal or tangential model: normal_stiffness_n_m must be > 0 and tangential_ratio >= 0");
   for (const auto& o : overrides) {
     if (o.material_a < 0 || o.material_b < 0 || static_cast<std::size_t>(o.material_a) >= count_ ||
         static_cast<std::size_t>(o.material_b) >= count_)
@@ -78,10 +78,10 @@ PairTable::PairTable(const std::vector<Material>& materials, const std::vector<P
           p.rolling_friction = o.rolling_friction;
         }
       }
-      if (model == ContactModel::kHertzThornton) {
-        p.damping_ratio = hertz_damping_ratio(p.restitution);
-      } else {
-        p.damping_ratio = linear_damping_ratio(p.restitution);
+      // The damping ratio fitted to the damping model's own decay (restitution.hpp); none: elastic.
+      if (law.damping == DampingModel::kHertz) p.damping_ratio = hertz_damping_ratio(p.restitution);
+      else if (law.damping == DampingModel::kLinearViscous) p.damping_ratio = linear_damping_ratio(p.restitution);
+      if (linear_springs) {
         p.kn_linear_n_m = springs.normal_stiffness_n_m;
         p.kt_linear_n_m = springs.normal_stiffness_n_m * springs.tangential_ratio;
       }

@@ -23,8 +23,8 @@ void EnergyMonitor::attach(const DemEngine& engine) {
     throw std::invalid_argument("energy monitor: the disc work needs the spinning wall group to be the only group; "
                                 "this wall set has " + std::to_string(walls.groups.size()) + " groups, " +
                                 std::to_string(moving) + " moving");
-  model_ = engine.params().model;
-  pair_table_ = PairTable(engine.materials(), {}, model_, engine.params().linear);
+  law_ = engine.params().contact_law;
+  pair_table_ = PairTable(engine.materials(), {}, law_, engine.params().linear);
   attached_ = true;
 }
 
@@ -34,15 +34,14 @@ double EnergyMonitor::spring_energy_j(const PairParams& pair, double r_eff_m, co
   const double delta = history[3];
   if (!(delta > 0.0)) return 0.0;
   const double ft2 = history[0] * history[0] + history[1] * history[1] + history[2] * history[2];
-  if (model_ == ContactModel::kHertzThornton) {
-    // ∫ F dδ of Eq. 16: 4/3 E* √R* δ^{3/2} → 8/15 E* √R* δ^{5/2}; tangential spring k_t = 8 G* √(R* δ).
-    const double sqrt_r_delta = std::sqrt(r_eff_m * delta);
-    const double normal = (8.0 / 15.0) * pair.e_star_pa * sqrt_r_delta * delta * delta;
-    const double k_t = 8.0 * pair.g_star_pa * sqrt_r_delta;
-    return normal + (k_t > 0.0 ? 0.5 * ft2 / k_t : 0.0);
-  }
-  const double normal = 0.5 * pair.kn_linear_n_m * delta * delta;
-  return normal + (pair.kt_linear_n_m > 0.0 ? 0.5 * ft2 / pair.kt_linear_n_m : 0.0);
+  // ∫ F dδ of Eq. 16: 4/3 E* √R* δ^{3/2} → 8/15 E* √R* δ^{5/2}; Thornton's spring k_t = 8 G* √(R* δ).
+  const double sqrt_r_delta = std::sqrt(r_eff_m * delta);
+  double normal = 0.0, k_t = 0.0;
+  if (law_.normal == NormalModel::kHertz) normal = (8.0 / 15.0) * pair.e_star_pa * sqrt_r_delta * delta * delta;
+  else if (law_.normal == NormalModel::kLinear) normal = 0.5 * pair.kn_linear_n_m * delta * delta;
+  if (law_.tangential == TangentialModel::kThornton) k_t = 8.0 * pair.g_star_pa * sqrt_r_delta;
+  else if (law_.tangential == TangentialModel::kLinear) k_t = pair.kt_linear_n_m;
+  return normal + (k_t > 0.0 ? 0.5 * ft2 / k_t : 0.0);
 }
 
 EnergyMonitor::Totals EnergyMonitor::measure(const DemEngine& engine) const {

@@ -98,7 +98,7 @@ class EnergyMonitor {
   bool attached_ = false;
   bool have_end_ = false;
   PairTable pair_table_;  // E*, G*, linear springs: what the springs' energy needs (no overrides touch them)
-  ContactModel model_ = ContactModel::kHertzThornton;
+  ContactLaw law_ = kHertzThorntonLaw;
   Totals begin_{}, end_{};
   std::size_t launches_seen_ = 0;
   double dissipated_peak_j_ = 0.0;

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
+#include "libspread/dem/force_variants.hpp"
 #include "libspread/dem/time_step.hpp"
 
 namespace spread::dem {
@@ -13,7 +15,7 @@ namespace spread::dem {
 DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> overrides, WallSet walls,
                      EngineParams params)
     : materials_(std::move(materials)),
-      pair_table_(materials_, overrides, params.model, params.linear),
+      pair_table_(materials_, overrides, params.contact_law, params.linear),
       walls_(std::move(walls)),
       params_(params) {
   if (materials_.empty()) throw std::invalid_argument("dem: at least one material is needed");
@@ -24,8 +26,12 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
   if (params_.max_particle_radius_m < params_.min_particle_radius_m)
     throw std::invalid_argument("dem: max_particle_radius_m must be >= min_particle_radius_m");
   if (!(params_.contact_steps >= 1.0)) throw std::invalid_argument("dem: contact_steps (N_c) must be >= 1");
-  if (params_.rolling && !params_.rotation)
-    throw std::invalid_argument("dem: the rolling effect needs the rotation effect");
+  // The sub-models must fit together (rolling resistance only with rotation) and be compiled in.
+  try {
+    force_variant_ = find_force_variant(params_.contact_law, params_.rotation);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("dem: ") + e.what());
+  }
   if (params_.threads < 1) params_.threads = 1;
   for (const auto& g : walls_.groups)
     if (g.material < 0 || static_cast<std::size_t>(g.material) >= materials_.size())

@@ -4,9 +4,11 @@
 // integrators, and a cylindrical collector that records each launch-off state and removes the particle
 // (the partitioned scheme hands launched particles to the flight module).
 //
-// Effects are chosen once: the force pass is a template instantiated per (contact law, rotation,
-// rolling) and picked from a table; particle–particle search is skipped entirely when that effect is
+// Effects are chosen once: the force pass is a template instantiated per (composed contact law, rotation)
+// and picked from tables generated from the sub-model lists (force_variants.hpp); particle–particle search is skipped entirely when that effect is
 // off; spin arrays exist only with rotation.
+#include <any>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,12 +31,11 @@ enum class Integrator : std::uint8_t {
 };
 
 struct EngineParams {
-  ContactModel model = ContactModel::kHertzThornton;
-  LinearSprings linear;                // linear model only
+  ContactLaw contact_law = kHertzThorntonLaw;  // sub-models (contact_law.hpp); rolling resistance is its rolling model
+  LinearSprings linear;                // linear normal and tangential models only
   Integrator integrator = Integrator::kSymplecticEuler;
   bool particle_contact = true;        // effect: particle–particle contacts
   bool rotation = true;                // effect: particle spin (contact moments, Eq. 15)
-  bool rolling = false;                // effect: rolling resistance (needs rotation)
   double dt_s = 0.0;                   // 0: Δt = t_c / contact_steps (Sect. 3.1); else refused above the stable bound (NaN, < 0: refused)
   double contact_steps = 20.0;         // N_c
   double impact_speed_m_s = 0.0;       // v in t_c; 0: fastest wall surface speed + 5 m/s
@@ -68,6 +69,7 @@ struct LaunchRecord {
 };
 
 class EnergyMonitor;  // energy_monitor.hpp
+struct ForcePassTables;  // engine_detail.hpp: the passes' instantiation tables
 
 struct EngineStats {
   std::uint64_t steps = 0;
@@ -83,7 +85,8 @@ struct EngineStats {
 
 class DemEngine {
  public:
-  // Throws std::invalid_argument naming the bad parameter (materials, radii, a dt above the bound).
+  // Throws std::invalid_argument naming the bad parameter (materials, radii, a dt above the bound, a contact
+  // law whose sub-models do not fit together or that needs the rotation effect).
   DemEngine(std::vector<Material> materials, std::vector<PairOverride> overrides, WallSet walls, EngineParams params);
 
   // Adds a particle; returns its id. Radius must be within [min, max] particle radius.
@@ -119,20 +122,19 @@ class DemEngine {
   double kinetic_energy_j() const;
 
  private:
-  // One force evaluation (force_dispatch.cpp): the law × rotation × rolling instantiation from a table.
+  friend struct ForcePassTables;
+  // One force evaluation (force_dispatch.cpp): the passes of force variant force_variant_.
   void compute_forces();
-  template <class Law, bool kRotation, bool kRolling>
-  void compute_forces_impl();
   // Walls (wall_pass.cpp): sets each particle's force (and torque) sums to its wall contacts' share.
-  template <class Law, bool kRotation, bool kRolling>
+  template <class Law, bool kRotation>
   void wall_forces();
   // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started.
-  template <class Law, bool kRotation, bool kRolling>
+  template <class Law, bool kRotation>
   void particle_forces();
   // Particle–particle pass over the CSR half list. kStorePairs: each pair's results go to the list's
   // per-pair arrays and are gathered afterwards (threads, energy monitor); otherwise they are added
   // straight into the sums. Both add in the same order, so the results are bit-identical.
-  template <class Law, bool kRotation, bool kRolling, bool kStorePairs, bool kPeriodic>
+  template <class Law, bool kRotation, bool kStorePairs, bool kPeriodic>
   void pair_forces();
   template <bool kRotation>
   void gather_stored_pair_forces();
@@ -176,8 +178,10 @@ class DemEngine {
   bool walls_fixed_in_space_ = false;
   // Law::coeffs per material pair (a·M + b), for particle pairs (pair_coeffs_) and particle–wall contacts
   // (wall_coeffs_, R* = r, M* = m): valid (uniform) when every particle of the particle materials has the
-  // same radius and mass; refreshed after particles are added (coeffs_dirty_).
-  std::vector<PairCoeffs> pair_coeffs_, wall_coeffs_;
+  // same radius and mass; refreshed after particles are added (coeffs_dirty_). Each holds a
+  // std::vector<Law::Coeffs> of the engine's law (the type is the law's; the passes take it out once).
+  std::any pair_coeffs_, wall_coeffs_;
+  std::size_t force_variant_ = 0;  // position in kForceVariants (force_variants.hpp), chosen at construction
   bool coeffs_dirty_ = true;
   EngineStats stats_;
   double time_s_ = 0.0;

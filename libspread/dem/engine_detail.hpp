@@ -1,17 +1,51 @@
 #pragma once
 // What the engine's passes (engine.cpp and the pass files next to it) share; not part of the API.
+#include <any>
+#include <array>
 #include <chrono>
+#include <cstddef>
+#include <utility>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
-// Every (contact law, rotation, rolling) combination of the force pass, as X(Law, kRotation, kRolling):
-// the pass files instantiate their templates for each, and force_dispatch.cpp picks one per call.
-#define SPREAD_DEM_FORCE_VARIANTS(X)                                                                      \
-  X(HertzThornton, false, false) X(HertzThornton, false, true) X(HertzThornton, true, false)              \
-  X(HertzThornton, true, true) X(LinearSpringDashpot, false, false) X(LinearSpringDashpot, false, true)   \
-  X(LinearSpringDashpot, true, false) X(LinearSpringDashpot, true, true)
+#include "libspread/dem/engine.hpp"
+#include "libspread/dem/force_variants.hpp"
+
+namespace spread::dem {
+
+// The passes' tables over kForceVariants (force_variants.hpp), entry I for variant I. Each table is built
+// in the file that defines its pass (which makes that file compile every variant's instantiation) and
+// read by force_dispatch.cpp.
+using ForcePass = void (DemEngine::*)();
+using ForcePassTable = std::array<ForcePass, kForceVariantCount>;
+struct ForcePassTables {
+  template <std::size_t... I>
+  static constexpr ForcePassTable wall(std::index_sequence<I...>) {
+    return {&DemEngine::wall_forces<VariantLaw<I>, kVariantRotation<I>>...};
+  }
+  template <std::size_t... I>
+  static constexpr ForcePassTable particle(std::index_sequence<I...>) {
+    return {&DemEngine::particle_forces<VariantLaw<I>, kVariantRotation<I>>...};
+  }
+  template <std::size_t... I>
+  static constexpr ForcePassTable coeffs(std::index_sequence<I...>) {
+    return {&DemEngine::update_pair_coeffs<VariantLaw<I>>...};
+  }
+};
+extern const ForcePassTable kWallPasses;       // wall_pass.cpp
+extern const ForcePassTable kParticlePasses;   // pair_pass.cpp
+extern const ForcePassTable kCoeffUpdates;     // pair_coeffs_table.cpp
+
+// The law's Coeffs table held in the engine's std::any (pair_coeffs_table.cpp fills it).
+template <class Law>
+const typename Law::Coeffs* coeffs_table(const std::any& table) {
+  return std::any_cast<std::vector<typename Law::Coeffs>>(&table)->data();
+}
+
+}  // namespace spread::dem
 
 namespace spread::dem::detail {
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "libspread/dem/contact_law.hpp"
+
 namespace spread::dem {
 
 struct Material {
@@ -27,12 +29,7 @@ struct PairOverride {
   double rolling_friction = 0.0;
 };
 
-enum class ContactModel : std::uint8_t {
-  kHertzThornton,        // seed 000 Eqs. 16–25 (Hertz normal + Thornton tangential)
-  kLinearSpringDashpot,  // seed 001: linear springs, dashpots, Coulomb slider
-};
-
-// The linear model's springs (seed 001); damping comes from the pair restitution.
+// The linear sub-models' springs (seed 001); damping comes from the pair restitution.
 struct LinearSprings {
   double normal_stiffness_n_m = 1e4;   // k_n
   double tangential_ratio = 2.0 / 7.0; // k_t / k_n
@@ -42,14 +39,14 @@ struct LinearSprings {
 struct PairParams {
   double e_star_pa = 0.0;        // E* = (1/E_a* + 1/E_b*)^-1, E_i* = E_i/(1-ν_i²)  (Eq. 16)
   double g_star_pa = 0.0;        // G* = (1/G_a* + 1/G_b*)^-1, G_i* = G_i/(2-ν_i)... see contact_params.cpp
-  double damping_ratio = 0.0;    // γ of Eqs. 18/24 (Hertz) or ζ (linear), from the pair restitution
+  double damping_ratio = 0.0;    // from the pair restitution: γ of Eqs. 18/24 (damping 'hertz'), ζ ('linear_viscous'), 0 ('none')
   double restitution = 0.5;
   double friction = 0.35;
   double rolling_friction = 0.0;
   double share_a = 0.5;          // E*/E_a*: share of the indentation taken by body a (Eq. 10, corrected)
   double share_b = 0.5;          // E*/E_b*
-  double kn_linear_n_m = 0.0;    // linear model only
-  double kt_linear_n_m = 0.0;
+  double kn_linear_n_m = 0.0;    // linear normal spring k_n (LinearSprings); 0 unless the law uses it
+  double kt_linear_n_m = 0.0;    // linear tangential spring k_t = tangential_ratio · k_n
 };
 
 // Table of PairParams for every ordered material pair; lookups are inline.
@@ -58,7 +55,7 @@ class PairTable {
   PairTable() = default;
   // Throws std::invalid_argument naming the material and the bad value.
   PairTable(const std::vector<Material>& materials, const std::vector<PairOverride>& overrides,
-            ContactModel model, const LinearSprings& springs);
+            const ContactLaw& law, const LinearSprings& springs);
   const PairParams& operator()(int a, int b) const {
     return pairs_[static_cast<std::size_t>(a) * count_ + static_cast<std::size_t>(b)];
   }

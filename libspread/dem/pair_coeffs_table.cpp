@@ -1,11 +1,13 @@
-// The engine's table of Law::coeffs per material pair (contact_laws.hpp, PairCoeffs): R*, M* and the
-// spring and damping prefactors computed once when every particle of a material has one radius and
-// mass, so the per-step kernels skip them.
+// The engine's table of Law::coeffs per material pair (contact_laws.hpp, ComposedLaw::Coeffs): R*, M* and
+// the sub-models' spring and damping prefactors computed once when every particle of a material has one
+// radius and mass, so the per-step kernels skip them.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "libspread/dem/contact_laws.hpp"
 #include "libspread/dem/engine.hpp"
+#include "libspread/dem/engine_detail.hpp"
 
 namespace spread::dem {
 
@@ -21,24 +23,25 @@ void DemEngine::update_pair_coeffs() {
     if (!seen[a]) { seen[a] = 1; r[a] = p_.radius_m[i]; m[a] = p_.mass_kg[i]; }
     else if (p_.radius_m[i] != r[a] || p_.mass_kg[i] != m[a]) uniform[a] = 0;
   }
-  pair_coeffs_.assign(mc * mc, PairCoeffs{});
-  wall_coeffs_.assign(mc * mc, PairCoeffs{});
+  using Coeffs = typename Law::Coeffs;
+  std::vector<Coeffs> pair_coeffs(mc * mc, Coeffs{}), wall_coeffs(mc * mc, Coeffs{});
   for (std::size_t a = 0; a < mc; ++a) {
     if (!seen[a] || !uniform[a]) continue;
     for (std::size_t b = 0; b < mc; ++b) {
       const PairParams& pp = pair_table_(static_cast<int>(a), static_cast<int>(b));
       // The same expressions as the per-contact fallback in the pass, so the results are bit-identical.
-      wall_coeffs_[a * mc + b] = Law::coeffs(pp, r[a], m[a]);
-      wall_coeffs_[a * mc + b].uniform = true;
+      wall_coeffs[a * mc + b] = Law::coeffs(pp, r[a], m[a]);
+      wall_coeffs[a * mc + b].uniform = true;
       if (!seen[b] || !uniform[b]) continue;
-      pair_coeffs_[a * mc + b] = Law::coeffs(pp, r[a] * r[b] / (r[a] + r[b]), m[a] * m[b] / (m[a] + m[b]));
-      pair_coeffs_[a * mc + b].uniform = true;
+      pair_coeffs[a * mc + b] = Law::coeffs(pp, r[a] * r[b] / (r[a] + r[b]), m[a] * m[b] / (m[a] + m[b]));
+      pair_coeffs[a * mc + b].uniform = true;
     }
   }
+  pair_coeffs_ = std::move(pair_coeffs);
+  wall_coeffs_ = std::move(wall_coeffs);
   coeffs_dirty_ = false;
 }
 
-template void DemEngine::update_pair_coeffs<HertzThornton>();
-template void DemEngine::update_pair_coeffs<LinearSpringDashpot>();
+const ForcePassTable kCoeffUpdates = ForcePassTables::coeffs(std::make_index_sequence<kForceVariantCount>{});
 
 }  // namespace spread::dem

@@ -3,6 +3,7 @@
 // gather. Newton's third law (seed Eq. 1) is applied per pair, so each pair's law runs once.
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 
 #include "libspread/dem/contact_laws.hpp"
 #include "libspread/dem/engine.hpp"
@@ -27,7 +28,7 @@ struct PairOut {
 };
 template <class Law, bool kRotation, class T>
 SPREAD_CONTACT_INLINE PairOut<T> pair_contact(const V3<T>& d, T dist2, T ri, T rj, const V3<T>& v_rel, const V3<T>& wi,
-                                              const V3<T>& wj, const PairParams& pp, const PairCoeffs& pc, double dt,
+                                              const V3<T>& wj, const PairParams& pp, const typename Law::Coeffs& pc, double dt,
                                               LawHistory<T>& h) {
   // 1/|d|² does not wait for the sqrt (the two overlap); the normal is d |d| / |d|².
   const T inv_dist2 = lanes::splat<T>(1.0) / dist2;
@@ -50,7 +51,7 @@ SPREAD_CONTACT_INLINE PairOut<T> pair_contact(const V3<T>& d, T dist2, T ri, T r
 }
 }  // namespace
 
-template <class Law, bool kRotation, bool kRolling>
+template <class Law, bool kRotation>
 void DemEngine::particle_forces() {
   const std::size_t n = p_.size();
   if (pair_sum_.size() != n) pair_sum_.assign(n, PairSum{});
@@ -59,19 +60,20 @@ void DemEngine::particle_forces() {
   const bool threaded = params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems;
   const bool periodic = params_.periodic_z.enabled;
   if (threaded || monitor_ != nullptr) {
-    if (periodic) pair_forces<Law, kRotation, kRolling, true, true>();
-    else pair_forces<Law, kRotation, kRolling, true, false>();
+    if (periodic) pair_forces<Law, kRotation, true, true>();
+    else pair_forces<Law, kRotation, true, false>();
     gather_stored_pair_forces<kRotation>();
   } else {
-    if (periodic) pair_forces<Law, kRotation, kRolling, false, true>();
-    else pair_forces<Law, kRotation, kRolling, false, false>();
+    if (periodic) pair_forces<Law, kRotation, false, true>();
+    else pair_forces<Law, kRotation, false, false>();
   }
 }
 
 // flatten: the whole pair kernel (geometry, law, lane operations) inlined into the loop; at -O2 GCC
 // otherwise keeps the law as a call per touching pair, which costs about a third of the pass.
-template <class Law, bool kRotation, bool kRolling, bool kStorePairs, bool kPeriodic>
+template <class Law, bool kRotation, bool kStorePairs, bool kPeriodic>
 SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
+  using Coeffs = typename Law::Coeffs;
   // Flat arrays once, outside the loop (the vectors' bounds and sizes do not change within the pass).
   const double* const px = p_.x.data();
   const double* const py = p_.y.data();
@@ -97,7 +99,7 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
   PairSum* const sums = pair_sum_.data();
   const PairParams* const params_row0 = &pair_table_(0, 0);
   const std::size_t material_count = pair_table_.material_count();
-  const PairCoeffs* const coeffs_row0 = pair_coeffs_.data();
+  const Coeffs* const coeffs_row0 = coeffs_table<Law>(pair_coeffs_);
   const double period = params_.periodic_z.length_m();
   const double dt = dt_s_;
   const long long nn = static_cast<long long>(p_.size());
@@ -120,7 +122,7 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
     if constexpr (kRotation) wi = V3<double>{pwx[i], pwy[i], pwz[i]};
     const double ri = radius[i], mi = mass[i];
     const PairParams* const params_row = params_row0 + static_cast<std::size_t>(material[i]) * material_count;
-    const PairCoeffs* const coeffs_row = coeffs_row0 + static_cast<std::size_t>(material[i]) * material_count;
+    const Coeffs* const coeffs_row = coeffs_row0 + static_cast<std::size_t>(material[i]) * material_count;
     // This particle's share of its own pairs (it is `first` in all of them), summed from zero in pair order.
     double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
     // Pair vector from j to i (minimum image along a periodic axis).
@@ -154,18 +156,18 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
       const PairParams& pp = params_row[material[j]];
       // R* = r_i r_j / (r_i + r_j), M* = m_i m_j / (m_i + m_j) and what the law derives from them: from the
       // material-pair table when both materials have one size, else per contact.
-      const PairCoeffs& tab = coeffs_row[material[j]];
+      const Coeffs& tab = coeffs_row[material[j]];
       const double rj = radius[j];
-      const PairCoeffs pc = tab.uniform ? tab : Law::coeffs(pp, ri * rj / (ri + rj), mi * mass[j] / (mi + mass[j]));
+      const Coeffs pc = tab.uniform ? tab : Law::coeffs(pp, ri * rj / (ri + rj), mi * mass[j] / (mi + mass[j]));
       V3<double> wj{0.0, 0.0, 0.0};
       if constexpr (kRotation) wj = V3<double>{pwx[j], pwy[j], pwz[j]};
       LawHistory<double> h{{hist[0], hist[1], hist[2]}, hist[3]};
       PairOut<double> r = pair_contact<Law, kRotation>(separation(j), dist2, ri, rj, vi - V3<double>{pvx[j], pvy[j], pvz[j]},
                                                          wi, wj, pp, pc, dt, h);
       hist[0] = h.elastic.x; hist[1] = h.elastic.y; hist[2] = h.elastic.z; hist[3] = h.overlap_m;
-      if constexpr (kRolling) {
+      if constexpr (Law::kRolling) {
         const double ii_ = inertia[i], ij_ = inertia[j];
-        const Vec3 tr = rolling_torque(pp.rolling_friction, r.normal_force_n, pc.r_eff_m, Vec3(wi.x - wj.x, wi.y - wj.y, wi.z - wj.z),
+        const Vec3 tr = Law::RollingModel::torque(pp.rolling_friction, r.normal_force_n, pc.r_eff_m, Vec3(wi.x - wj.x, wi.y - wj.y, wi.z - wj.z),
                                        ii_ * ij_ / (ii_ + ij_), dt);
         r.t_i = r.t_i + V3<double>{tr.x(), tr.y(), tr.z()};
         r.t_j = r.t_j - V3<double>{tr.x(), tr.y(), tr.z()};
@@ -206,11 +208,11 @@ SPREAD_CONTACT_FLATTEN void DemEngine::pair_forces() {
         }
       }
       std::uint32_t q = 0;
-      if constexpr (!kRolling) {
+      if constexpr (!Law::kRolling) {
         for (; q + 2 <= touching; q += 2) {
           const std::uint32_t k0 = touching_pairs[q], k1 = touching_pairs[q + 1];
           const std::size_t j0 = partner[k0], j1 = partner[k1];
-          const PairCoeffs& tab = coeffs_row[material[j0]];
+          const Coeffs& tab = coeffs_row[material[j0]];
           if (material[j1] != material[j0] || !tab.uniform) {
             one_pair(k0, touching_dist2[q]);
             one_pair(k1, touching_dist2[q + 1]);
@@ -287,8 +289,6 @@ void DemEngine::gather_stored_pair_forces() {
   }
 }
 
-#define SPREAD_INSTANTIATE(Law, kRotation, kRolling) template void DemEngine::particle_forces<Law, kRotation, kRolling>();
-SPREAD_DEM_FORCE_VARIANTS(SPREAD_INSTANTIATE)
-#undef SPREAD_INSTANTIATE
+const ForcePassTable kParticlePasses = ForcePassTables::particle(std::make_index_sequence<kForceVariantCount>{});
 
 }  // namespace spread::dem

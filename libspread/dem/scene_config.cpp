@@ -97,11 +97,12 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
 
   EngineParams& ep = c.engine;
   ep.particle_contact = s.has(effect::kParticleContact);
-  ep.rotation = s.has(effect::kRotation);
-  ep.rolling = s.has(effect::kRolling);  // the scene reader has checked the registry's requirements
+  ep.rotation = s.has(effect::kRotation);  // rolling needs it: the scene reader checked the registry's requirements
   if (!s.has(effect::kWallContact))
     throw scene::SceneError(s.source_name + ": effects.enabled: the disc DEM needs 'wall_contact' (nothing would hold the particles)");
   const scene::Numerics& n = s.numerics;
+  ep.contact_law = n.contact_model == scene::ContactModel::kLinear ? kLinearSpringDashpotLaw : kHertzThorntonLaw;
+  if (s.has(effect::kRolling)) ep.contact_law.rolling = RollingModel::kConstantTorque;
   ep.integrator = n.integrator == scene::Integrator::kVelocityVerlet ? Integrator::kVelocityVerlet : Integrator::kSymplecticEuler;
   ep.dt_s = n.dt_contact_s;
   ep.contact_steps = n.steps_per_contact;
@@ -109,7 +110,6 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   if (n.contact_model == scene::ContactModel::kLinear) {
     // The scene gives no spring constant: pick k_n so the linear contact lasts as long as the Hertz one
     // of a mean particle on the disc at rim speed + 5 m/s.
-    ep.model = ContactModel::kLinearSpringDashpot;
     const double r = 0.5 * sm->diameter_mean_m;
     const double mass = sm->density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
     const double v = std::abs(m.rpm) * 2.0 * kPi / 60.0 * m.disc_radius_m + 5.0;

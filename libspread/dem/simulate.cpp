@@ -135,7 +135,7 @@ SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) 
   res.effects.push_back("wall_contact");
   if (cfg.engine.particle_contact) res.effects.push_back("particle_contact");
   if (cfg.engine.rotation) res.effects.push_back("rotation");
-  if (cfg.engine.rolling) res.effects.push_back("rolling");
+  if (cfg.engine.contact_law.rolling != RollingModel::kNone) res.effects.push_back("rolling");
 
   if (cfg.fly && !res.launches.empty()) {
     t0 = Clock::now();

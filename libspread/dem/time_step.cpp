@@ -20,18 +20,17 @@ double linear_contact_time_s(double m_eff_kg, double stiffness_n_m) {
   return kPi / std::sqrt(stiffness_n_m / m_eff_kg);
 }
 
-double stable_step_bound_s(ContactModel model, const PairParams& pair, double m_eff_kg, double r_eff_m,
+double stable_step_bound_s(const ContactLaw& law, const PairParams& pair, double m_eff_kg, double r_eff_m,
                            double impact_speed_m_s, bool rotation) {
+  // The stiffest the springs get: Hertz's at the largest overlap of an elastic impact at this speed.
   double k_n = 0.0, k_t = 0.0;
-  if (model == ContactModel::kHertzThornton) {
-    const double delta_max = std::pow(15.0 * m_eff_kg * impact_speed_m_s * impact_speed_m_s /
-                                          (16.0 * pair.e_star_pa * std::sqrt(r_eff_m)), 0.4);
-    k_n = 2.0 * pair.e_star_pa * std::sqrt(r_eff_m * delta_max);
-    k_t = 8.0 * pair.g_star_pa * std::sqrt(r_eff_m * delta_max);
-  } else {
-    k_n = pair.kn_linear_n_m;
-    k_t = pair.kt_linear_n_m;
-  }
+  double delta_max = 0.0;
+  if (law.normal == NormalModel::kHertz)
+    delta_max = std::pow(15.0 * m_eff_kg * impact_speed_m_s * impact_speed_m_s / (16.0 * pair.e_star_pa * std::sqrt(r_eff_m)), 0.4);
+  if (law.normal == NormalModel::kHertz) k_n = 2.0 * pair.e_star_pa * std::sqrt(r_eff_m * delta_max);
+  else if (law.normal == NormalModel::kLinear) k_n = pair.kn_linear_n_m;
+  if (law.tangential == TangentialModel::kThornton) k_t = 8.0 * pair.g_star_pa * std::sqrt(r_eff_m * delta_max);
+  else if (law.tangential == TangentialModel::kLinear) k_t = pair.kt_linear_n_m;
   // A solid sphere: I = 2/5 m R², so 1 + m R²/I = 3.5 (tangential motion drives rotation too).
   const double tangential_factor = rotation ? 3.5 : 1.0;
   const double w2 = std::max(k_n, k_t * tangential_factor) / m_eff_kg;
@@ -55,11 +54,11 @@ StepChoice choose_time_step(const std::vector<Material>& materials, const PairTa
       for (int partner = 0; partner < 2; ++partner) {
         const double r_eff = partner == 0 ? r : 0.5 * r;
         const double m_eff = partner == 0 ? m : 0.5 * m;
-        const double t = params.model == ContactModel::kHertzThornton
+        const double t = params.contact_law.normal == NormalModel::kHertz
                              ? hertz_contact_time_s(m_eff, r_eff, pp.e_star_pa, v)
                              : linear_contact_time_s(m_eff, pp.kn_linear_n_m);
         tc = std::min(tc, t);
-        bound = std::min(bound, stable_step_bound_s(params.model, pp, m_eff, r_eff, v, params.rotation));
+        bound = std::min(bound, stable_step_bound_s(params.contact_law, pp, m_eff, r_eff, v, params.rotation));
       }
     }
   }

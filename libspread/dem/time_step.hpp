@@ -18,7 +18,7 @@ double linear_contact_time_s(double m_eff_kg, double stiffness_n_m);
 // `impact_speed_m_s`: Δt < 2/ω_max with ω² = k/M* for the normal spring (Hertz: k = 2E* sqrt(R* δ_max),
 // δ_max = (15 M* v² / (16 E* sqrt(R*)))^{2/5}) and, with rotation, the tangential spring acting on the
 // reduced mass M*/(1 + M* R*²/I) (a solid sphere on a wall: M*/3.5).
-double stable_step_bound_s(ContactModel model, const PairParams& pair, double m_eff_kg, double r_eff_m,
+double stable_step_bound_s(const ContactLaw& law, const PairParams& pair, double m_eff_kg, double r_eff_m,
                            double impact_speed_m_s, bool rotation);
 
 

@@ -14,7 +14,7 @@ struct ImpactCase {
   double speed_m_s = 1.0;          // approach speed (relative)
   double friction = 0.0;
   double contact_steps = 500.0;    // N_c (dt = t_c / N_c); the δ^{1/4} damping converges slowly (docs/dem.md)
-  ContactModel model = ContactModel::kHertzThornton;
+  ContactLaw law = kHertzThorntonLaw;  // kHertzThorntonLaw or kLinearSpringDashpotLaw (the reference models those)
   Integrator integrator = Integrator::kSymplecticEuler;
   double oblique_angle_rad = 0.0;  // angle of the approach velocity from the normal (sphere–plane only)
   bool rotation = false;
@@ -43,7 +43,7 @@ struct ContactReference {
   double duration = 0.0;     // non-dimensional contact time
   double restitution = 0.0;  // non-dimensional separation speed
 };
-ContactReference contact_reference(ContactModel model, double damping_ratio, double tol = 1e-12);
+ContactReference contact_reference(const ContactLaw& law, double damping_ratio, double tol = 1e-12);
 
 // ---- Patterson & Reece: flat disc with one radial vane -------------------------------------------
 struct VaneCase {

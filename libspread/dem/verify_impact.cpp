@@ -31,7 +31,7 @@ ImpactResult run_impact(const ImpactCase& c) {
     walls.groups.push_back(g);
   }
   EngineParams params;
-  params.model = c.model;
+  params.contact_law = c.law;
   params.integrator = c.integrator;
   params.particle_contact = c.sphere_sphere;
   params.rotation = c.rotation;
@@ -52,16 +52,16 @@ ImpactResult run_impact(const ImpactCase& c) {
   const double e_star = c.sphere_sphere ? e_star_particles : e_star_wall;
   ImpactResult out;
   out.e_requested = c.restitution;
-  out.t_contact_hertz_s = c.model == ContactModel::kHertzThornton
+  out.t_contact_hertz_s = c.law.normal == NormalModel::kHertz
                               ? hertz_contact_time_s(m_eff, r_eff, e_star, c.speed_m_s)
                               : linear_contact_time_s(m_eff, params.linear.normal_stiffness_n_m);
   // Reference duration of the damped contact: the overlap ODE scaled back to seconds (t0 as in verify.hpp).
-  const bool hertz = c.model == ContactModel::kHertzThornton;
+  const bool hertz = c.law.normal == NormalModel::kHertz;
   const double damping = hertz ? hertz_damping_ratio(c.restitution) : linear_damping_ratio(c.restitution);
   const double k_hertz = 4.0 / 3.0 * std::sqrt(r_eff) * e_star;  // Eq. 16: F = k δ^{3/2}
   const double t0_s = hertz ? std::pow(m_eff / k_hertz, 0.4) * std::pow(c.speed_m_s, -0.2)
                             : std::sqrt(m_eff / params.linear.normal_stiffness_n_m);
-  out.t_contact_ref_s = contact_reference(c.model, damping).duration * t0_s;
+  out.t_contact_ref_s = contact_reference(c.law, damping).duration * t0_s;
   params.dt_s = out.t_contact_hertz_s / c.contact_steps;
   DemEngine run({particle, wall}, {}, walls, params);
 

@@ -41,9 +41,9 @@ struct Law {
 
 }  // namespace
 
-ContactReference contact_reference(ContactModel model, double damping_ratio, double tol) {
+ContactReference contact_reference(const ContactLaw& contact_law, double damping_ratio, double tol) {
   Law law;
-  law.hertz = model == ContactModel::kHertzThornton;
+  law.hertz = contact_law.normal == NormalModel::kHertz;
   law.c = law.hertz ? damping_ratio * std::sqrt(6.0) : 2.0 * damping_ratio;
   // Values are O(1): the error is taken relative to 1 + |y|.
   const dormand_prince::EventHit<2> end = dormand_prince::integrate_until(

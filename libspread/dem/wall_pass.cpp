@@ -2,6 +2,7 @@
 // particle's wall-history slots (kWallSlots, particles.hpp) carried from step to step. This pass also
 // starts the force and torque sums of the step (the particle–particle pass adds to them).
 #include <cstdint>
+#include <utility>
 
 #include "libspread/dem/contact_laws.hpp"
 #include "libspread/dem/engine.hpp"
@@ -12,9 +13,9 @@ namespace spread::dem {
 using detail::kMinParallelItems;
 using detail::thread_index;
 
-template <class Law, bool kRotation, bool kRolling>
+template <class Law, bool kRotation>
 void DemEngine::wall_forces() {
-  const PairCoeffs* const wall_coeffs = wall_coeffs_.data();
+  const typename Law::Coeffs* const wall_coeffs = coeffs_table<Law>(wall_coeffs_);
   const std::size_t material_count = materials_.size();
   const std::size_t n = p_.size();
   const double dt = dt_s_;
@@ -83,14 +84,14 @@ void DemEngine::wall_forces() {
       if constexpr (kRotation) v_contact += w.cross(arm);
       in.slip_m_s = v_contact - wc[c].wall_velocity_m_s;
       in.dt_s = dt;
-      const PairCoeffs& tab = wall_coeffs[static_cast<std::size_t>(p_.material[i]) * material_count +
+      const typename Law::Coeffs& tab = wall_coeffs[static_cast<std::size_t>(p_.material[i]) * material_count +
                                           static_cast<std::size_t>(wc[c].material)];
       const ContactForce cf = Law::eval(pp, tab.uniform ? tab : Law::coeffs(pp, r, m), in, hist);
       force += cf.force_n;
       if constexpr (kRotation) torque += arm.cross(cf.tangential_force_n);  // Eq. 15
-      if constexpr (kRolling) {
+      if constexpr (Law::kRolling) {
         const Vec3 wall_spin(0.0, 0.0, walls_.groups[static_cast<std::size_t>(wc[c].group)].angular_velocity_rad_s);
-        torque += rolling_torque(pp.rolling_friction, cf.normal_force_n, r, w - wall_spin, p_.inertia_kg_m2[i], dt);
+        torque += Law::RollingModel::torque(pp.rolling_friction, cf.normal_force_n, r, w - wall_spin, p_.inertia_kg_m2[i], dt);
       }
       p_.wall_key[base + c] = wc[c].key;
       for (int k = 0; k < kHistoryDoubles; ++k) p_.wall_history[(base + c) * kHistoryDoubles + k] = hist[k];
@@ -103,8 +104,6 @@ void DemEngine::wall_forces() {
   stats_.wall_contacts_dropped += dropped;
 }
 
-#define SPREAD_INSTANTIATE(Law, kRotation, kRolling) template void DemEngine::wall_forces<Law, kRotation, kRolling>();
-SPREAD_DEM_FORCE_VARIANTS(SPREAD_INSTANTIATE)
-#undef SPREAD_INSTANTIATE
+const ForcePassTable kWallPasses = ForcePassTables::wall(std::make_index_sequence<kForceVariantCount>{});
 
 }  // namespace spread::dem

@@ -131,9 +131,10 @@ DrumScene parse_drum_scene(const std::string& text, const std::string& source, c
 
   Table contact(root.get_as<toml::table>("contact"), "contact", source);
   const std::string model = contact.string("model", "linear");
-  if (model == "linear") s.model = dem::ContactModel::kLinearSpringDashpot;
-  else if (model == "hertz") s.model = dem::ContactModel::kHertzThornton;
-  else contact.fail("model", "expected \"linear\" (spring–dashpot, seed 001) or \"hertz\", got \"" + model + "\"");
+  // "hertz" is the older spelling of "hertz_thornton" (Hertz normal, Thornton tangential), kept as an alias.
+  if (model == "linear") s.law = dem::kLinearSpringDashpotLaw;
+  else if (model == "hertz_thornton" || model == "hertz") s.law = dem::kHertzThorntonLaw;
+  else contact.fail("model", "expected \"linear\" (spring–dashpot, seed 001) or \"hertz_thornton\" (alias \"hertz\"), got \"" + model + "\"");
   s.normal_stiffness_n_m = contact.number("normal_stiffness_n_m", s.normal_stiffness_n_m);
   s.tangential_ratio = contact.number("tangential_ratio", s.tangential_ratio);
   s.young_modulus_pa = contact.number("young_modulus_pa", s.young_modulus_pa);
@@ -219,7 +220,7 @@ void validate(const DrumScene& s) {
       if (!(s.species[i].diameter_m < free_radius_m(s)))
         bad("species[" + std::to_string(i) + "].diameter_m", "must be smaller than the radius inside the bead lining (drum.radius_m − bead diameter)");
   }
-  if (s.model == dem::ContactModel::kLinearSpringDashpot && !(s.normal_stiffness_n_m > 0.0))
+  if (s.law.normal == dem::NormalModel::kLinear && !(s.normal_stiffness_n_m > 0.0))
     bad("contact.normal_stiffness_n_m", "must be > 0");
   if (!(s.tangential_ratio >= 0.0)) bad("contact.tangential_ratio", "must be >= 0");
   if (!(s.young_modulus_pa > 0.0)) bad("contact.young_modulus_pa", "must be > 0");

@@ -41,7 +41,7 @@ struct DrumScene {
   double fill_fraction = 0.35;        // bed volume (incl. voids) / drum volume
   double bed_solid_fraction = 0.6;    // solids in the bed volume, to turn the fill into a particle count
   std::vector<Species> species;       // one or two
-  dem::ContactModel model = dem::ContactModel::kLinearSpringDashpot;
+  dem::ContactLaw law = dem::kLinearSpringDashpotLaw;
   double normal_stiffness_n_m = 2000.0;  // linear k_n
   double tangential_ratio = 2.0 / 7.0;   // linear k_t/k_n
   double young_modulus_pa = 5e7;         // Hertz

@@ -56,12 +56,12 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
   if (s.axial == AxialBoundary::kPeriodic) walls.groups = {drum};  // no end walls: periodic images instead
 
   dem::EngineParams ep;
-  ep.model = s.model;
+  ep.contact_law = s.law;
   ep.linear.normal_stiffness_n_m = s.normal_stiffness_n_m;
   ep.linear.tangential_ratio = s.tangential_ratio;
   ep.integrator = s.integrator;
   ep.rotation = true;
-  ep.rolling = s.rolling_friction > 0.0;
+  if (s.rolling_friction > 0.0) ep.contact_law.rolling = dem::RollingModel::kConstantTorque;
   ep.dt_s = s.dt_s;
   ep.contact_steps = s.contact_steps;
   // Fastest impacts: a particle thrown from the wall speed falling across the drum.

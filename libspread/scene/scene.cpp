@@ -136,7 +136,9 @@ const char* to_string(DiscModel value) {
 const char* to_string(Integrator value) {
   return value == Integrator::kSymplecticEuler ? "symplectic_euler" : "velocity_verlet";
 }
-const char* to_string(ContactModel value) { return value == ContactModel::kHertzMindlin ? "hertz_mindlin" : "linear"; }
+// The Hertz law keeps its first spelling here: this text enters Scene::run_inputs_text, and a new one would
+// change the inputs_hash of every table built with it (lookup_builder would refuse to extend them).
+const char* to_string(ContactModel value) { return value == ContactModel::kHertzThornton ? "hertz_mindlin" : "linear"; }
 const char* to_string(FlightScheme value) { return value == FlightScheme::kRk4 ? "rk4" : "dopri5"; }
 const char* to_string(LaunchSource value) { return value == LaunchSource::kAnalytic ? "analytic" : "dem"; }
 const char* to_string(SpinModel value) { return value == SpinModel::kSliding ? "sliding" : "rolling"; }

@@ -24,7 +24,7 @@ enum class DiscModel { kAnalytic, kMesh, kStl };     // "analytic" | "mesh" | "s
 // on the seed's Appendix-1 cone.
 inline constexpr double kDefaultMeshSizePerRadius = 0.01;
 enum class Integrator { kSymplecticEuler, kVelocityVerlet };  // "symplectic_euler" | "velocity_verlet"
-enum class ContactModel { kHertzMindlin, kLinear };   // "hertz_mindlin" | "linear"
+enum class ContactModel { kHertzThornton, kLinear };  // "hertz_thornton" (alias "hertz_mindlin") | "linear"
 enum class FlightScheme { kRk4, kDopri5 };            // "rk4" | "dopri5"
 enum class LaunchSource { kAnalytic, kDem };          // "analytic" | "dem"
 // Spin of analytic launch samples (see libspread/launch/analytic_launch.hpp):
@@ -85,7 +85,7 @@ struct Numerics {
   double dt_contact_s = 0.0;          // 0 = automatic, t_c / steps_per_contact (DESIGN.md §2)
   int steps_per_contact = 15;         // N_c
   Integrator integrator = Integrator::kSymplecticEuler;
-  ContactModel contact_model = ContactModel::kHertzMindlin;
+  ContactModel contact_model = ContactModel::kHertzThornton;
   FlightScheme flight_scheme = FlightScheme::kDopri5;
   double flight_dt_s = 1e-3;          // RK4 step, or first trial step of dopri5
   double flight_tolerance = 1e-3;     // dopri5 relative tolerance (docs/accuracy-cost.md, flight)

@@ -403,7 +403,8 @@ void read_numerics(const toml::table& root, Scene& scene) {
                                       {{"symplectic_euler", Integrator::kSymplecticEuler},
                                        {"velocity_verlet", Integrator::kVelocityVerlet}});
   n.contact_model = s.choice<ContactModel>("contact_model", n.contact_model,
-                                           {{"hertz_mindlin", ContactModel::kHertzMindlin},
+                                           {{"hertz_thornton", ContactModel::kHertzThornton},
+                                            {"hertz_mindlin", ContactModel::kHertzThornton},  // alias: the older name
                                             {"linear", ContactModel::kLinear}});
   n.flight_scheme = s.choice<FlightScheme>("flight_scheme", n.flight_scheme,
                                            {{"rk4", FlightScheme::kRk4}, {"dopri5", FlightScheme::kDopri5}});

@@ -101,7 +101,7 @@ TEST(DemTimeStep, HertzContactTimeAndBound) {
   EXPECT_GT(tc, 0.0);
   // Scaling t_c ∝ v^{-1/5}.
   EXPECT_NEAR(hertz_contact_time_s(1e-5, 1e-3, 5e7, 32.0), tc / 2.0, 1e-12);
-  const double bound = stable_step_bound_s(ContactModel::kHertzThornton, p, 1e-5, 1e-3, 1.0, false);
+  const double bound = stable_step_bound_s(kHertzThorntonLaw, p, 1e-5, 1e-3, 1.0, false);
   EXPECT_GT(bound, tc / 10.0);
   EXPECT_LT(bound, tc);
 }

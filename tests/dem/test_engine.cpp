@@ -9,7 +9,7 @@ using namespace spread::dem;
 
 namespace {
 // A box of particles falling onto a plane: exercises the pair list and its history.
-DemEngine make_pile(int threads, ContactModel model = ContactModel::kHertzThornton) {
+DemEngine make_pile(int threads, const ContactLaw& model = kHertzThorntonLaw) {
   Material p;
   p.name = "p";
   p.friction = 0.4;
@@ -23,7 +23,7 @@ DemEngine make_pile(int threads, ContactModel model = ContactModel::kHertzThornt
   WallSet ws;
   ws.groups.push_back(g);
   EngineParams ep;
-  ep.model = model;
+  ep.contact_law = model;
   ep.min_particle_radius_m = 1e-3;
   ep.max_particle_radius_m = 1.5e-3;
   ep.impact_speed_m_s = 2.0;
@@ -59,7 +59,7 @@ TEST(DemEngine, PileSettlesAndIsDeterministicAcrossThreadCounts) {
 }
 
 TEST(DemEngine, LinearModelPileIsStable) {
-  DemEngine a = make_pile(1, ContactModel::kLinearSpringDashpot);
+  DemEngine a = make_pile(1, kLinearSpringDashpotLaw);
   a.run_until(0.03);
   for (std::size_t i = 0; i < a.particles().size(); ++i) EXPECT_GT(a.particles().z[i], 0.0);
 }

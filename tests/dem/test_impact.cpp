@@ -56,18 +56,18 @@ TEST(DemImpact, ContactReferenceConvergedAndConsistent) {
   double previous = 0.0;
   for (double e : {0.1, 0.3, 0.5, 0.7, 0.9, 1.0}) {
     const double gamma = hertz_damping_ratio(e);
-    const ContactReference fine = contact_reference(ContactModel::kHertzThornton, gamma, 1e-12);
-    const ContactReference coarse = contact_reference(ContactModel::kHertzThornton, gamma, 1e-9);
+    const ContactReference fine = contact_reference(kHertzThorntonLaw, gamma, 1e-12);
+    const ContactReference coarse = contact_reference(kHertzThorntonLaw, gamma, 1e-9);
     EXPECT_NEAR(coarse.duration, fine.duration, 1e-7 * fine.duration) << "e " << e;
     EXPECT_NEAR(fine.restitution, e, 0.003 * e) << "e " << e;
     EXPECT_GT(fine.duration, previous) << "e " << e;
     previous = fine.duration;
-    const ContactReference lin = contact_reference(ContactModel::kLinearSpringDashpot, linear_damping_ratio(e));
+    const ContactReference lin = contact_reference(kLinearSpringDashpotLaw, linear_damping_ratio(e));
     // linear_damping_ratio bisects on an RK4 impact ending at a step end (h = 2e-4): e within ~1e-5.
     EXPECT_NEAR(lin.restitution, e, 2e-5) << "linear e " << e;
   }
   // Elastic Hertz: τ = 2 ∫0^{x_m} dx / sqrt(1 − 0.8 x^{5/2}) = 3.21807, i.e. 2.86827 × (M*²/(R* E*² v))^{1/5}
   // with t0 of verify.hpp (the "2.87" of hertz_contact_time_s rounded).
-  EXPECT_NEAR(contact_reference(ContactModel::kHertzThornton, 0.0).duration * std::pow(0.75, 0.4), 2.86827, 1e-4);
-  EXPECT_NEAR(contact_reference(ContactModel::kLinearSpringDashpot, 0.0).duration, spread::kPi, 1e-9);
+  EXPECT_NEAR(contact_reference(kHertzThorntonLaw, 0.0).duration * std::pow(0.75, 0.4), 2.86827, 1e-4);
+  EXPECT_NEAR(contact_reference(kLinearSpringDashpotLaw, 0.0).duration, spread::kPi, 1e-9);
 }

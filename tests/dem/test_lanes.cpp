@@ -58,7 +58,7 @@ Contact make_contact(std::mt19937_64& rng, int kind) {
 
 template <class Law>
 void expect_lanes_match_scalar(const PairParams& params) {
-  const PairCoeffs coeffs = Law::coeffs(params, 1e-3, 2e-5);
+  const auto coeffs = Law::coeffs(params, 1e-3, 2e-5);
   const double dt = 2e-6;
   std::mt19937_64 rng(42);
   constexpr int kKinds = 7;

@@ -27,7 +27,7 @@ DemEngine dense_block(int threads) {
   WallSet walls;
   walls.groups.push_back(floor);
   EngineParams ep;
-  ep.model = ContactModel::kLinearSpringDashpot;
+  ep.contact_law = kLinearSpringDashpotLaw;
   ep.linear.normal_stiffness_n_m = 1000.0;
   ep.integrator = Integrator::kVelocityVerlet;
   ep.min_particle_radius_m = 1.8e-3;
@@ -77,7 +77,7 @@ TEST(DemPairPass, NewtonsThirdLawHoldsWithoutWallsOrGravity) {
   Material p;
   p.name = "bead";
   EngineParams ep;
-  ep.model = ContactModel::kLinearSpringDashpot;
+  ep.contact_law = kLinearSpringDashpotLaw;
   ep.linear.normal_stiffness_n_m = 1000.0;
   ep.integrator = Integrator::kVelocityVerlet;
   ep.min_particle_radius_m = 2e-3;

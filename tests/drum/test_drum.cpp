@@ -48,6 +48,20 @@ TEST(DrumScene, ErrorsNameFileAndKey) {
   EXPECT_NEAR(drum::froude_number(s), 1.0, 1e-12);
 }
 
+TEST(DrumScene, HertzLawIsHertzThorntonWithHertzAsAlias) {
+  for (const char* name : {"hertz_thornton", "hertz"})
+    EXPECT_EQ(drum::parse_drum_scene(kScene, "x.toml", {std::string("contact.model=") + name}).law, spread::dem::kHertzThorntonLaw)
+        << name;
+  EXPECT_EQ(drum::parse_drum_scene(kScene, "x.toml", {"contact.model=linear"}).law, spread::dem::kLinearSpringDashpotLaw);
+  try {
+    drum::parse_drum_scene(kScene, "x.toml", {"contact.model=hertz_mindlin"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("contact.model"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"hertz_thornton\""), std::string::npos) << e.what();
+  }
+}
+
 TEST(DrumPacking, GridHasNoOverlapsAndMatchesFill) {
   auto s = scene_at(0.02, 1.0, 0.5);
   const auto placed = drum::grid_packing(s);

@@ -100,7 +100,7 @@ SpringRun spring_run(dem::Integrator integrator, double omega_dt) {
   g.material = 1;
   walls.groups.push_back(g);
   dem::EngineParams ep;
-  ep.model = dem::ContactModel::kLinearSpringDashpot;
+  ep.contact_law = dem::kLinearSpringDashpotLaw;
   ep.linear.normal_stiffness_n_m = 1000.0;
   ep.integrator = integrator;
   ep.rotation = false;

@@ -26,7 +26,7 @@ dem::DemEngine free_engine() {
   m.restitution = 0.5;
   m.friction = 0.5;
   dem::EngineParams ep;
-  ep.model = dem::ContactModel::kLinearSpringDashpot;
+  ep.contact_law = dem::kLinearSpringDashpotLaw;
   ep.linear.normal_stiffness_n_m = 1000.0;
   ep.integrator = dem::Integrator::kSymplecticEuler;  // forces of step 1 at the exact start positions
   ep.min_particle_radius_m = 0.002;

@@ -79,9 +79,9 @@ dem::Material grain() {
   return m;
 }
 
-dem::EngineParams params(dem::ContactModel model) {
+dem::EngineParams params(const dem::ContactLaw& model) {
   dem::EngineParams ep;
-  ep.model = model;
+  ep.contact_law = model;
   ep.linear.normal_stiffness_n_m = 1000.0;
   ep.integrator = dem::Integrator::kSymplecticEuler;
   ep.dt_s = 1e-7;
@@ -94,7 +94,7 @@ dem::EngineParams params(dem::ContactModel model) {
 // One contact, the bead turning with the drum at ω about z: as a second particle (infinitely heavy:
 // density ×1e15, moving and spinning rigidly with the drum) or as a bead of the wall. Returns the force
 // and torque on the free particle a at t = 0.
-Forces particle_contact(dem::ContactModel model, double ra, double rb, const Vec3& xa, const Vec3& va, const Vec3& wa,
+Forces particle_contact(const dem::ContactLaw& model, double ra, double rb, const Vec3& xa, const Vec3& va, const Vec3& wa,
                         const Vec3& xb, double omega) {
   dem::Material heavy = grain();
   heavy.name = "fixed particle";
@@ -107,7 +107,7 @@ Forces particle_contact(dem::ContactModel model, double ra, double rb, const Vec
   return {Vec3(p.fx[0], p.fy[0], p.fz[0]), Vec3(p.tx[0], p.ty[0], p.tz[0])};
 }
 
-Forces bead_contact(dem::ContactModel model, double ra, double rb, const Vec3& xa, const Vec3& va, const Vec3& wa,
+Forces bead_contact(const dem::ContactLaw& model, double ra, double rb, const Vec3& xa, const Vec3& va, const Vec3& wa,
                     const Vec3& xb, double omega) {
   dem::WallSet walls;
   dem::WallGroup g;
@@ -125,7 +125,7 @@ Forces bead_contact(dem::ContactModel model, double ra, double rb, const Vec3& x
   return {Vec3(p.fx[0], p.fy[0], p.fz[0]), Vec3(p.tx[0], p.ty[0], p.tz[0])};
 }
 
-void expect_same_contact(dem::ContactModel model, double force_rel_tol, double torque_rel_tol) {
+void expect_same_contact(const dem::ContactLaw& model, double force_rel_tol, double torque_rel_tol) {
   const double ra = 0.002, rb = 0.0017, omega = 3.0;
   const Vec3 xb(0.01, -0.035, 0.004);
   const Vec3 n = Vec3(-0.3, 0.9, 0.2).normalized();
@@ -149,7 +149,7 @@ void expect_same_contact(dem::ContactModel model, double force_rel_tol, double t
 }  // namespace
 
 TEST(SphereWall, LinearBeadContactEqualsParticleContact) {
-  expect_same_contact(dem::ContactModel::kLinearSpringDashpot, 1e-9, 1e-9);
+  expect_same_contact(dem::kLinearSpringDashpotLaw, 1e-9, 1e-9);
 }
 
 // Hertz: the normal force is exact through the bead-contact material. The engine's lever for a wall
@@ -157,7 +157,7 @@ TEST(SphereWall, LinearBeadContactEqualsParticleContact) {
 // contact point's spin velocity and so the tangential force differ by ~1e-4 (measured ≤ 6e-5 of |F|),
 // the torque by at most (1/2 − f) δ/r = 0.8 %.
 TEST(SphereWall, HertzBeadContactEqualsParticleContact) {
-  expect_same_contact(dem::ContactModel::kHertzThornton, 2e-4, 1e-2);
+  expect_same_contact(dem::kHertzThorntonLaw, 2e-4, 1e-2);
 }
 
 TEST(DrumScene, RoughWallKeys) {
