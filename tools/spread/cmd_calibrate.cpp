@@ -7,6 +7,8 @@
 // Every command prints a short report, or JSON with --json. Bad input → a message naming it on stderr,
 // exit code 2 (for a CSV: file and line). A run that cannot complete (a refused fit, a plot that cannot
 // be written) → exit code 1, after the report.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -28,6 +30,7 @@
 #include "libspread/calibration/tray_analysis.hpp"
 #include "libspread/calibration/tray_csv.hpp"
 #include "libspread/plot/plot.hpp"
+#include "libspread/plot/report_date.hpp"
 #include "libspread/plot/report_pdf.hpp"
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
@@ -467,7 +470,7 @@ void run_tray(const TrayOptions& o) {
 // ------------------------------------------------------------------------------------------- pattern
 
 struct PatternOptions {
-  std::string tables, material, trays, output, name, fit = "friction,drag,offset", plot_prefix;
+  std::string tables, material, trays, output, name, fit, plot_prefix;  // fit "": by the table's rows
   double rpm = 0.0;
   int samples = 1024;
   double kernel_m = 0.0;
@@ -477,42 +480,59 @@ struct PatternOptions {
   spread::cli::ReportArgs report;
 };
 
-void parse_fit_list(const std::string& text, cal::PatternFitOptions& options) {
-  options.fit_friction = options.fit_drag_diameter = options.fit_angle_offset = false;
-  std::stringstream in(text);
+// The parameters of a fit as --fit names them, in PatternParameterIndex order.
+constexpr std::array<const char*, cal::kPatternParameterCount> kFitNames{"friction", "drag", "offset", "speed",
+                                                                        "elevation"};
+
+// "" = the default of the table's rows: friction, drag and offset for analytic rows; the launch speed
+// factor and offset for DEM rows, whose launches have no friction to refit.
+void parse_fit_list(const std::string& text, bool table_samples, cal::PatternFitOptions& options) {
+  const std::string list = !text.empty() ? text : table_samples ? "speed,offset" : "friction,drag,offset";
+  std::array<bool, cal::kPatternParameterCount> mask{};
+  std::stringstream in(list);
   std::string item;
   while (std::getline(in, item, ',')) {
-    if (item == "friction") options.fit_friction = true;
-    else if (item == "drag") options.fit_drag_diameter = true;
-    else if (item == "offset") options.fit_angle_offset = true;
-    else throw BadInput("--fit: unknown parameter '" + item + "' (known: friction, drag, offset)");
+    const auto* found = std::find(kFitNames.begin(), kFitNames.end(), item);
+    if (found == kFitNames.end()) {
+      throw BadInput("--fit: unknown parameter '" + item + "' (known: friction, drag, offset, speed, elevation)");
+    }
+    mask[static_cast<std::size_t>(found - kFitNames.begin())] = true;
   }
-  if (!options.fit_friction && !options.fit_drag_diameter && !options.fit_angle_offset) {
-    throw BadInput("--fit: name at least one of friction, drag, offset");
+  if (std::none_of(mask.begin(), mask.end(), [](bool b) { return b; })) {
+    throw BadInput("--fit: name at least one of friction, drag, offset, speed, elevation");
   }
+  if (table_samples && mask[cal::kFriction]) {
+    throw BadInput("--fit friction: the table's rows of this material came from the DEM, whose launches do not "
+                   "depend on a friction the fit could change; fit their launch correction (--fit speed,offset, "
+                   "with drag or elevation if needed), or --allow-analytic to fit the analytic model instead");
+  }
+  options.fit_friction = mask[cal::kFriction];
+  options.fit_drag_diameter = mask[cal::kDragDiameter];
+  options.fit_angle_offset = mask[cal::kAngleOffset];
+  options.fit_launch_speed = mask[cal::kLaunchSpeed];
+  options.fit_elevation_offset = mask[cal::kElevationOffset];
 }
 
 json fit_json_parameters(const cal::PatternFitResult& f) {
-  static const char* names[3] = {"friction_wall", "drag_diameter_factor", "launch_angle_offset_deg"};
-  const double values[3] = {f.fitted.friction_wall, f.fitted.drag_diameter_factor,
-                            f.fitted.launch_angle_offset_rad * kDegPerRad};
-  const double errors[3] = {f.standard_error.friction_wall, f.standard_error.drag_diameter_factor,
-                            f.standard_error.launch_angle_offset_rad * kDegPerRad};
-  const double initial[3] = {f.initial.friction_wall, f.initial.drag_diameter_factor,
-                             f.initial.launch_angle_offset_rad * kDegPerRad};
-  const double robust[3] = {f.robust_standard_error.friction_wall, f.robust_standard_error.drag_diameter_factor,
-                            f.robust_standard_error.launch_angle_offset_rad * kDegPerRad};
+  static const char* names[cal::kPatternParameterCount] = {"friction_wall", "drag_diameter_factor",
+                                                           "launch_angle_offset_deg", "launch_speed_factor",
+                                                           "launch_elevation_offset_deg"};
+  // Angles in degrees.
+  const std::array<double, cal::kPatternParameterCount> unit{1.0, 1.0, kDegPerRad, 1.0, kDegPerRad};
+  const auto values = cal::as_array(f.fitted), errors = cal::as_array(f.standard_error),
+             initial = cal::as_array(f.initial), robust = cal::as_array(f.robust_standard_error);
   json parameters = json::object();
-  for (std::size_t i = 0; i < 3; ++i) {
-    parameters[names[i]] = {{"value", values[i]},
-                            {"standard_error", f.fitted_mask[i] ? finite_or_null(errors[i]) : json(nullptr)},
-                            {"robust_standard_error", f.fitted_mask[i] ? finite_or_null(robust[i]) : json(nullptr)},
-                            {"initial", initial[i]},
+  for (std::size_t i = 0; i < cal::kPatternParameterCount; ++i) {
+    parameters[names[i]] = {{"value", values[i] * unit[i]},
+                            {"standard_error", f.fitted_mask[i] ? finite_or_null(errors[i] * unit[i]) : json(nullptr)},
+                            {"robust_standard_error", f.fitted_mask[i] ? finite_or_null(robust[i] * unit[i]) : json(nullptr)},
+                            {"initial", initial[i] * unit[i]},
                             {"fitted", f.fitted_mask[i]}};
   }
   json correlation = json::array();
   for (const auto& row : f.correlation) correlation.push_back(row);
   return {{"parameters", parameters},
+          {"launch_model", f.table_samples ? "table_samples" : "analytic"},
           {"correlation", correlation},
           {"residual_rms_fraction", f.residual_rms_fraction},
           {"residual_rms_g", 1e3 * f.residual_rms_kg},
@@ -535,15 +555,16 @@ json fit_json(const cal::PatternFitResult& f) {
 }
 
 std::vector<std::string> fit_warnings(const cal::PatternFitResult& f) {
-  static const char* names[3] = {"friction", "drag", "offset"};
+  const auto& names = kFitNames;
   std::vector<std::string> warnings;
-  for (std::size_t i = 0; i < 3; ++i) {
-    for (std::size_t j = i + 1; j < 3; ++j) {
+  for (std::size_t i = 0; i < cal::kPatternParameterCount; ++i) {
+    for (std::size_t j = i + 1; j < cal::kPatternParameterCount; ++j) {
       if (f.fitted_mask[i] && f.fitted_mask[j] && std::abs(f.correlation[i][j]) > 0.95) {
         char text[256];
         std::snprintf(text, sizeof text,
                       "%s and %s are correlated (r = %.3f): this tray test cannot tell them apart; their standard "
-                      "errors are large — fix one (e.g. --fit friction,drag) for a usable value of the other",
+                      "errors are large — fix one (e.g. --fit friction,drag, or on a DEM table --fit speed,offset) for a "
+                      "usable value of the other",
                       names[i], names[j], f.correlation[i][j]);
         warnings.emplace_back(text);
       }
@@ -596,23 +617,20 @@ void run_pattern(const PatternOptions& o) {
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
-  cal::PatternFitOptions options;
-  parse_fit_list(o.fit, options);
-  options.model.sample_count = o.samples;
-  options.model.kernel_sigma_m = o.kernel_m;
-
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
-  // Before the fit: a table of DEM rows is refused unless --allow-analytic.
   const std::vector<double> dem_rpm = cal::non_analytic_rows(contents, o.material);
-  if (!dem_rpm.empty() && !o.allow_analytic) throw BadInput(cal::dem_rows_message(o.material, dem_rpm));
-  const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
+  const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm, o.allow_analytic);
+  cal::PatternFitOptions options;
+  parse_fit_list(o.fit, !setup.table_samples.empty(), options);
+  options.model.sample_count = o.samples;
+  options.model.kernel_sigma_m = o.kernel_m;
   const cal::PatternFitResult fit = cal::fit_pattern(setup, test, options);
   const cal::PassScatter scatter = cal::pass_scatter(test);
   const cal::FitAcceptance acceptance = cal::assess_fit(fit, scatter);
   std::vector<std::string> warnings = fit_warnings(fit);
   warnings.insert(warnings.end(), acceptance.warnings.begin(), acceptance.warnings.end());
-  if (!dem_rpm.empty()) {
+  if (!dem_rpm.empty() && o.allow_analytic) {
     warnings.push_back("the table's rows of '" + o.material + "' came from the DEM; the fit used the analytic "
                        "launch model and the calibrated material's rows are analytic (--allow-analytic)");
   }
@@ -623,6 +641,10 @@ void run_pattern(const PatternOptions& o) {
   report["rpm"] = o.rpm;
   report["material"] = o.material;
   report["sample_count"] = o.samples;
+  if (!setup.table_samples.empty()) {
+    report["table_row_rpm"] = setup.table_row_rpm;
+    report["table_row_samples"] = setup.table_samples.size();
+  }
   report["kernel_sigma_m"] = o.kernel_m > 0.0 ? o.kernel_m : 0.5 * test.tray_width_m;
   report["pass_scatter"] = pass_scatter_json(scatter);
   report["residual_to_scatter"] = scatter.available ? json(acceptance.residual_to_scatter) : json(nullptr);
@@ -632,7 +654,8 @@ void run_pattern(const PatternOptions& o) {
   report["refusals"] = acceptance.refusals;
 
   const std::string material_name =
-      o.name.empty() ? cal::calibrated_material_name(o.material, cal::utc_date_today()) : o.name;
+      o.name.empty() ? cal::calibrated_material_name(o.material, spread::plot::utc_date(spread::cli::report_time_s()))
+                     : o.name;
   std::optional<cal::CalibratedTableSummary> summary;
   json written = json::object();
   std::string plot_error;
@@ -671,9 +694,17 @@ void run_pattern(const PatternOptions& o) {
       page.chart.second_tray_mass_kg = predicted_kg;
       page.chart.second_label = "predicted, calibrated";
       char text[256];
-      std::snprintf(text, sizeof text, "fitted: friction %.4f, drag diameter factor %.4f, launch-angle offset %.2f deg; "
-                    "residual rms %.2f g per tray", fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
-                    fit.fitted.launch_angle_offset_rad * kDegPerRad, 1e3 * fit.residual_rms_kg);
+      if (fit.table_samples) {
+        std::snprintf(text, sizeof text, "fitted to the table's DEM launches: speed factor %.4f, launch-angle offset %.2f "
+                      "deg, elevation offset %.2f deg, drag diameter factor %.4f; residual rms %.2f g per tray",
+                      fit.fitted.launch_speed_factor, fit.fitted.launch_angle_offset_rad * kDegPerRad,
+                      fit.fitted.launch_elevation_offset_rad * kDegPerRad, fit.fitted.drag_diameter_factor,
+                      1e3 * fit.residual_rms_kg);
+      } else {
+        std::snprintf(text, sizeof text, "fitted: friction %.4f, drag diameter factor %.4f, launch-angle offset %.2f deg; "
+                      "residual rms %.2f g per tray", fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
+                      fit.fitted.launch_angle_offset_rad * kDegPerRad, 1e3 * fit.residual_rms_kg);
+      }
       page.summary.emplace_back(text);
       page.rate = rate;
       page.notes = warnings;
@@ -704,15 +735,27 @@ void run_pattern(const PatternOptions& o) {
   } else {
     std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
                 fit.iterations, fit.converged ? "converged" : "NOT converged");
+    if (fit.table_samples) {
+      std::printf("  launches: the table's DEM row at %g rpm (%zu samples, %d per evaluation), corrected\n",
+                  setup.table_row_rpm, setup.table_samples.size(), o.samples);
+    }
     auto line = [&](const char* label, double value, double error, bool fitted, const char* unit) {
       if (fitted) std::printf("  %-22s %8.4f ± %.4f%s\n", label, value, error, unit);
       else std::printf("  %-22s %8.4f (fixed)%s\n", label, value, unit);
     };
-    line("friction on vanes", fit.fitted.friction_wall, fit.standard_error.friction_wall, fit.fitted_mask[0], "");
+    if (!fit.table_samples) {
+      line("friction on vanes", fit.fitted.friction_wall, fit.standard_error.friction_wall, fit.fitted_mask[0], "");
+    }
     line("drag diameter factor", fit.fitted.drag_diameter_factor, fit.standard_error.drag_diameter_factor,
          fit.fitted_mask[1], "");
     line("launch angle offset", fit.fitted.launch_angle_offset_rad * kDegPerRad,
          fit.standard_error.launch_angle_offset_rad * kDegPerRad, fit.fitted_mask[2], " °");
+    if (fit.table_samples || fit.fitted_mask[cal::kLaunchSpeed] || fit.fitted_mask[cal::kElevationOffset]) {
+      line("launch speed factor", fit.fitted.launch_speed_factor, fit.standard_error.launch_speed_factor,
+           fit.fitted_mask[cal::kLaunchSpeed], "");
+      line("launch elevation offset", fit.fitted.launch_elevation_offset_rad * kDegPerRad,
+           fit.standard_error.launch_elevation_offset_rad * kDegPerRad, fit.fitted_mask[cal::kElevationOffset], " °");
+    }
     std::printf("  residual: rms %.2f g per tray (%.3f %% of the mass per tray; %.3f %% before the fit)\n",
                 1e3 * fit.residual_rms_kg, 100.0 * fit.residual_rms_fraction, 100.0 * fit.initial_residual_rms_fraction);
     if (scatter.available) {
@@ -747,7 +790,7 @@ void run_pattern(const PatternOptions& o) {
 struct SynthOptions {
   std::string tables, material, output;
   double rpm = 0.0;
-  double friction = NAN, drag = 1.0, offset_deg = 0.0;
+  double friction = NAN, drag = 1.0, offset_deg = 0.0, speed_factor = 1.0, elevation_deg = 0.0;
   double half_width_m = 18.0, tray_width_m = 0.5;
   int passes = 3;
   double mass_g = 400.0;
@@ -769,9 +812,17 @@ void run_synth(const SynthOptions& o) {
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
   const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
   cal::PatternParameters truth = cal::parameters_of(setup.material);
-  if (!std::isnan(o.friction)) truth.friction_wall = o.friction;
+  if (!std::isnan(o.friction)) {
+    if (!setup.table_samples.empty()) {
+      throw BadInput("--friction: the table's rows of '" + o.material + "' came from the DEM: their launches do not "
+                     "depend on a friction; give --speed-factor, --offset, --elevation, --drag");
+    }
+    truth.friction_wall = o.friction;
+  }
   truth.drag_diameter_factor = o.drag;
   truth.launch_angle_offset_rad = o.offset_deg / kDegPerRad;
+  truth.launch_speed_factor = o.speed_factor;
+  truth.launch_elevation_offset_rad = o.elevation_deg / kDegPerRad;
   cal::check_parameters(truth);
   cal::PatternModelOptions model_options;
   model_options.sample_count = o.samples;
@@ -796,6 +847,11 @@ void run_synth(const SynthOptions& o) {
                 o.material.c_str(), o.tables.c_str(), o.rpm, o.samples, truth.friction_wall,
                 truth.drag_diameter_factor, o.offset_deg, o.mass_g);
   comments.emplace_back(text);
+  std::snprintf(text, sizeof text, "Launches: %s, launch speed factor %.4g, launch elevation offset %.4g deg.",
+                setup.table_samples.empty() ? "the analytic model"
+                                            : ("the table's DEM row at " + std::to_string(static_cast<int>(setup.table_row_rpm)) + " rpm").c_str(),
+                o.speed_factor, o.elevation_deg);
+  comments.emplace_back(text);
   std::snprintf(text, sizeof text,
                 "Noise per tray and pass: Poisson count of %.4g g granules, plus normal with sd^2 = (%.4g %% of the "
                 "tray)^2 + (%.4g g)^2, readings below 0 written as 0, rounded to %.4g g; seed %llu.",
@@ -810,7 +866,9 @@ void run_synth(const SynthOptions& o) {
              {"passes", o.passes},
              {"truth", {{"friction_wall", truth.friction_wall},
                         {"drag_diameter_factor", truth.drag_diameter_factor},
-                        {"launch_angle_offset_deg", o.offset_deg}}},
+                        {"launch_angle_offset_deg", o.offset_deg},
+                        {"launch_speed_factor", o.speed_factor},
+                        {"launch_elevation_offset_deg", o.elevation_deg}}},
              {"seed", o.seed}};
     std::cout << out.dump(2) << "\n";
     return;
@@ -862,12 +920,15 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   p->add_option("--trays", pattern.trays, "tray-test CSV")->required();
   p->add_option("--output", pattern.output, "NEW table file: a copy of --tables plus the calibrated material")->required();
   p->add_option("--name", pattern.name, "name of the calibrated material (default: 'NAME (calibrated YYYY-MM-DD)')");
-  p->add_option("--fit", pattern.fit, "parameters to fit: friction,drag,offset (the others keep the table's values)")->capture_default_str();
+  p->add_option("--fit", pattern.fit,
+                "parameters to fit, of friction, drag, offset, speed, elevation (the others keep the table's values); "
+                "default friction,drag,offset on analytic rows, speed,offset on DEM rows");
   p->add_option("--samples", pattern.samples, "trajectories per model evaluation")->capture_default_str();
   p->add_option("--kernel", pattern.kernel_m, "landing kernel sd (m); default half the tray width");
   p->add_option("--cv-target", pattern.cv_target_percent, "CV target (%) of the plots")->capture_default_str();
   p->add_flag("--allow-analytic", pattern.allow_analytic,
-              "accept a material whose table rows came from the DEM: fit and new rows use the analytic model");
+              "on a material whose table rows came from the DEM: fit the analytic model and write analytic rows "
+              "(default: correct the DEM rows' own launches)");
   p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
   p->add_flag("--json", pattern.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*p, pattern.report, true);
@@ -882,6 +943,8 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   y->add_option("--friction", synth.friction, "friction on the vanes (default: the table's)");
   y->add_option("--drag", synth.drag, "drag diameter factor k")->capture_default_str();
   y->add_option("--offset", synth.offset_deg, "launch-angle offset (deg)")->capture_default_str();
+  y->add_option("--speed-factor", synth.speed_factor, "launch speed factor s")->capture_default_str();
+  y->add_option("--elevation", synth.elevation_deg, "launch elevation offset (deg)")->capture_default_str();
   y->add_option("--half-width", synth.half_width_m, "trays cover [-this, this] m")->capture_default_str();
   y->add_option("--tray-width", synth.tray_width_m, "tray width (m)")->capture_default_str();
   y->add_option("--passes", synth.passes, "passes (one mass column each)")->capture_default_str();
