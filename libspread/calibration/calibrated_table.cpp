@@ -3,7 +3,10 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 #include "libspread/calibration/scene_of_run.hpp"
 #include "libspread/launch/launch_statistics.hpp"
@@ -117,7 +120,13 @@ CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& requ
     run.software_version = SPREAD_VERSION_STRING;
     run.created_utc = tables::utc_now_iso8601();
     const double rim_speed_m_s = original->rpm * 2.0 * kPi / 60.0 * contents.machine.disc_radius_m;
-    run.stats_json = launch::to_json(launch::launch_statistics(run.samples, rim_speed_m_s));
+    // The flight effects the original row's launches are flown with travel with the new row: predict
+    // flies a row with its recorded effects (all of them when none is recorded).
+    nlohmann::json stats = nlohmann::json::parse(launch::to_json(launch::launch_statistics(run.samples, rim_speed_m_s)));
+    if (const std::optional<std::string> effects = tables::recorded_flight_effects(*original)) {
+      stats["flight_effects"] = *effects;
+    }
+    run.stats_json = stats.dump();
     run.convergence_json = "[]";
     runs.push_back(std::move(run));
   }

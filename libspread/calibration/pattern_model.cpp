@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "libspread/calibration/scene_of_run.hpp"
@@ -112,7 +113,11 @@ PatternSetup pattern_setup_from_table(const tables::TableContents& contents, con
   setup.disc_height_m = contents.machine.disc_height_m;
   setup.air.density_kg_m3 = scene.air.density_kg_m3;
   setup.air.viscosity_pa_s = scene.air.viscosity_pa_s;
-  flight::EffectSet effects = flight::parse_effects(scene::flight_effects_to_string(scene.effects));
+  // The effects the run's launches are flown with by predict: those it recorded (a DEM run records the
+  // ones its own flights used), else the scene's.
+  const std::optional<std::string> recorded = tables::recorded_flight_effects(*nearest);
+  flight::EffectSet effects =
+      flight::parse_effects(recorded ? *recorded : scene::flight_effects_to_string(scene.effects));
   setup.effects = effects & ~static_cast<flight::EffectSet>(flight::kWind);  // a tray test is judged in still air
   if (!analytic_model && nearest->source != "analytic") {
     setup.table_samples = nearest->samples;

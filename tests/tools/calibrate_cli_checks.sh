@@ -1,11 +1,11 @@
 #!/bin/sh
 # `spread calibrate` end to end: refusals, warnings and missing readings as a technician meets them.
-# Usage: calibrate_cli_checks.sh CASE SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR
+# Usage: calibrate_cli_checks.sh CASE SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR [DEM_TABLE]
 # Prints "PASS: CASE" (exit 0) or "FAIL: CASE: why" (exit 1). Case `fixture` builds what the others use:
 # a small analytic Urea table (narrow inlet, 256 samples per run, 450–750 rpm) and a synthetic 750 rpm
 # tray test.
 set -u
-case_name=$1 spread=$2 builder=$3 src=$4 work=$5
+case_name=$1 spread=$2 builder=$3 src=$4 work=$5 dem=${6:-}
 example=$src/scenes/field/tray_test_3passes.csv
 out=$work/$case_name
 fail() { echo "FAIL: $case_name: $*"; echo "--- stdout"; cat "$out.stdout" 2>/dev/null; echo "--- stderr"; cat "$out.stderr" 2>/dev/null; exit 1; }
@@ -16,7 +16,55 @@ has() { grep -qF -- "$2" "$1" || fail "expected '$2' in $(basename "$1")"; }
 hasnt() { ! grep -qF -- "$2" "$1" || fail "did not expect '$2' in $(basename "$1")"; }
 mkdir -p "$work"
 
+# value_and_se FILE KEY: "value standard_error" of a fitted parameter in `calibrate pattern --json`.
+value_and_se() {
+  awk -v key="\"$2\": {" 'index($0, key) { inside = 1 } inside && /"standard_error"/ { gsub(/[",]/, ""); se = $2 }
+       inside && /"value"/ { gsub(/[",]/, ""); print $2, se; exit }' "$1"
+}
+# within_two_se "VALUE SE" TRUTH: the truth within 2 standard errors.
+within_two_se() { echo "$1 $2" | awk '{ d = $1 - $3; if (d < 0) d = -d; exit !(d < 2 * $2 && $2 > 0) }'; }
+
 case $case_name in
+dem_recover)
+  # The main job's DEM table: a 600 rpm tray test made from its own Urea row with a known launch correction
+  # (speed factor 0.95, launch-angle offset 4°) is fitted back from no correction.
+  rm -f "$work/dem600.csv" "$work/dem_calibrated.sqlite"
+  run calibrate synth --tables "$dem" --material Urea --rpm 600 --speed-factor 0.95 --offset 4 --mass 150 \
+      --granule-mass 0.02 --seed 7 --samples 512 --output "$work/dem600.csv"
+  [ $rc -eq 0 ] || fail "synth exit $rc"
+  run calibrate pattern --tables "$dem" --material Urea --rpm 600 --trays "$work/dem600.csv" \
+      --output "$work/dem_calibrated.sqlite" --samples 512 --name "Urea (field)" --json
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" '"launch_model": "table_samples"'
+  has "$out.stdout" '"accepted": true'
+  speed=$(value_and_se "$out.stdout" launch_speed_factor)
+  offset=$(value_and_se "$out.stdout" launch_angle_offset_deg)
+  within_two_se "$speed" 0.95 || fail "speed factor (value, SE) $speed: 0.95 not within 2 SE"
+  within_two_se "$offset" 4 || fail "offset (value, SE) $offset: 4 not within 2 SE"
+  # The calibrated rows are DEM rows that predict reads as any other.
+  run predict --tables "$work/dem_calibrated.sqlite" --material "Urea (field)" --rpm 600
+  [ $rc -eq 0 ] || fail "predict exit $rc"
+  has "$out.stdout" "landings from the landing cache"
+  pass ;;
+dem_refused)
+  # A 450 rpm tray test (launches slowed to 0.6) fitted at 750 rpm: the speed factor runs into its lower
+  # bound; nothing is written.
+  rm -f "$work/slow.csv" "$work/dem_refused.sqlite"
+  run calibrate synth --tables "$dem" --material Urea --rpm 450 --speed-factor 0.6 --mass 150 \
+      --granule-mass 0.02 --seed 7 --samples 256 --output "$work/slow.csv"
+  [ $rc -eq 0 ] || fail "synth exit $rc"
+  run calibrate pattern --tables "$dem" --material Urea --rpm 750 --trays "$work/slow.csv" \
+      --output "$work/dem_refused.sqlite" --samples 256
+  [ $rc -eq 1 ] || fail "exit $rc, expected 1"
+  [ ! -e "$work/dem_refused.sqlite" ] || fail "the table was written"
+  has "$out.stdout" "refused: launch speed factor ended on its lower bound"
+  has "$out.stdout" "nothing written"
+  # Friction is no parameter of a DEM row: refused before the fit.
+  run calibrate pattern --tables "$dem" --material Urea --rpm 750 --trays "$work/slow.csv" \
+      --output "$work/dem_refused.sqlite" --fit friction,drag
+  [ $rc -eq 2 ] || fail "--fit friction: exit $rc, expected 2"
+  has "$out.stderr" "--fit friction: the table's rows of this material came from the DEM"
+  pass ;;
 fixture)
   rm -f "$work/urea.sqlite" "$work/t750.csv"
   "$builder" "$src/scenes/default.toml" --output "$work/urea.sqlite" --set sweep.source=analytic \

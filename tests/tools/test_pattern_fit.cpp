@@ -324,6 +324,32 @@ TEST_F(PatternFit, LaunchCorrectionOfTableSamplesIsRecovered) {
   EXPECT_EQ(fit.fitted.drag_diameter_factor, 1.0);
 }
 
+TEST(LaunchCorrection, OneSampleByHand) {
+  // A granule leaving along +x at 0.6 of the rim speed, rising at 0.1 of it, from (0.3, 0, 0).
+  spread::tables::LaunchSample sample{};
+  sample.x_m = 0.3f;
+  sample.vx_norm = 0.6f;
+  sample.vz_norm = 0.1f;
+  sample.wz_norm = 1.0f;
+  sample.diameter_m = 3e-3f;
+  sample.mass_kg = 1e-5f;
+  // ε turns the launch from its own elevation atan(0.1/0.6) to 20° above the horizontal; s = 1.5; δ = 90°
+  // with rotation sense +1 turns x into y; k = 1.2 scales the diameter only.
+  const double elevation0 = std::atan2(0.1, 0.6), speed0 = std::hypot(0.6, 0.1);
+  const cal::PatternParameters p{0.4, 1.2, 0.5 * kPi, 1.5, 20.0 * kPi / 180.0 - elevation0};
+  const spread::tables::LaunchSample c = cal::corrected_launch_samples({sample}, p, +1).front();
+  EXPECT_NEAR(c.x_m, 0.0, 1e-7);
+  EXPECT_NEAR(c.y_m, 0.3, 1e-7);
+  EXPECT_NEAR(c.vx_norm, 0.0, 1e-6);
+  EXPECT_NEAR(c.vy_norm, 1.5 * speed0 * std::cos(20.0 * kPi / 180.0), 1e-6);
+  EXPECT_NEAR(c.vz_norm, 1.5 * speed0 * std::sin(20.0 * kPi / 180.0), 1e-6);
+  EXPECT_EQ(c.wz_norm, 1.0f);
+  EXPECT_NEAR(c.diameter_m, 3.6e-3, 1e-9);
+  EXPECT_EQ(c.mass_kg, sample.mass_kg);
+  // The other sense of rotation turns the other way.
+  EXPECT_NEAR(cal::corrected_launch_samples({sample}, p, -1).front().y_m, -0.3, 1e-7);
+}
+
 TEST_F(PatternFit, ModelIsSmoothInTheParameters) {
   // The fit differentiates the model numerically: halving the step must halve a forward difference's
   // change (first order) — a step-function model (no kernel, adaptive steps) fails this.
