@@ -873,9 +873,16 @@ void run_synth(const SynthOptions& o) {
     std::cout << out.dump(2) << "\n";
     return;
   }
-  std::printf("wrote %s: %d trays of %.2f m, %d pass(es), friction %.4g, drag %.4g, offset %.4g deg\n",
-              o.output.c_str(), layout.tray_count, layout.tray_width_m, o.passes, truth.friction_wall,
-              truth.drag_diameter_factor, o.offset_deg);
+  if (setup.table_samples.empty()) {
+    std::printf("wrote %s: %d trays of %.2f m, %d pass(es), friction %.4g, drag %.4g, offset %.4g deg\n",
+                o.output.c_str(), layout.tray_count, layout.tray_width_m, o.passes, truth.friction_wall,
+                truth.drag_diameter_factor, o.offset_deg);
+  } else {
+    std::printf("wrote %s: %d trays of %.2f m, %d pass(es), the DEM row at %g rpm with launch speed factor %.4g, "
+                "offset %.4g deg, elevation %.4g deg, drag %.4g\n",
+                o.output.c_str(), layout.tray_count, layout.tray_width_m, o.passes, setup.table_row_rpm,
+                o.speed_factor, o.offset_deg, o.elevation_deg, truth.drag_diameter_factor);
+  }
 }
 
 spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_code) {
