@@ -11,7 +11,7 @@
 // variance model v(q) (VarianceModel) and the fit is redone with weights 1 / v(q_i). Standard errors are
 // s² (J̃ᵀJ̃)⁻¹ of the weighted fit with s² = χ² / (informative trays − fitted parameters), plus a
 // sandwich estimate; the correlation matrix says which parameters the test cannot tell apart. Measured
-// coverage of ±2 SE on synthetic tray tests: about 90 % (tests/tools/test_pattern_fit.cpp).
+// coverage of ±2 SE on synthetic tray tests: about 90 % (tests/calibration/test_pattern_fit.cpp).
 #include <array>
 #include <string>
 #include <vector>

@@ -25,6 +25,66 @@ value_and_se() {
 within_two_se() { echo "$1 $2" | awk '{ d = $1 - $3; if (d < 0) d = -d; exit !(d < 2 * $2 && $2 > 0) }'; }
 
 case $case_name in
+quick_check_report)
+  # The quick check with a tray area: the rate the trays caught (each holds the overlapped spread, so
+  # mean / A = 10.20 g / 0.25 m² = 408 kg/ha), its check, and a one-page PDF.
+  rm -f "$work/qc.pdf"
+  SOURCE_DATE_EPOCH=978307200 run calibrate tray "$src/scenes/field/quick_check_5trays.csv" --quick-check \
+      --tray-area 0.25 --rate-kg-ha 400 --report "$work/qc.pdf"
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "rate caught at W = 12.00 m: 408.0 kg/ha (tray area 0.25 m²)"
+  has "$out.stdout" "EN 13739-2 rate check: PASS, the trays caught 102.0 % of the set 400.0 kg/ha"
+  pdftotext "$work/qc.pdf" "$work/qc.txt" || fail "pdftotext"
+  has "$work/qc.txt" "Quick check of a spread in the field"
+  has "$work/qc.txt" "2001-01-01"
+  has "$work/qc.txt" "CV 10.2 %; the bout's CV lies between 6.1 % and 30.4 %"
+  has "$work/qc.txt" "408.0 kg/ha"
+  run calibrate tray "$src/scenes/field/quick_check_5trays.csv" --quick-check --plot "$work/qc"
+  [ $rc -eq 2 ] || fail "--plot with --quick-check: exit $rc, expected 2"
+  pass ;;
+chart_other_crossings)
+  # The narrow inlet's working width is not monotone in rpm: 3 m is reached at 531 rpm and again higher up.
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 3,12
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "note: 3.0 m is also the working width between 575-600 rpm"
+  hasnt "$out.stdout" "note: 12.0 m"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 3 --json
+  has "$out.stdout" '"other_crossings_rpm": ['
+  pass ;;
+name_date)
+  # The calibrated material's default name carries SOURCE_DATE_EPOCH's date (reproducible), not the clock's.
+  rm -f "$work/named.sqlite"
+  SOURCE_DATE_EPOCH=978307200 run calibrate pattern --tables "$work/urea.sqlite" --material Urea --rpm 600 \
+      --trays "$example" --output "$work/named.sqlite" --fit friction,drag --samples 128
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "wrote 'Urea (calibrated 2001-01-01)'"
+  pass ;;
+dem_guidance)
+  # predict at a bout width whose CV is above the target: the settings to change, each with the CV the
+  # table predicts there — the disc-speed one equal to predict's own answer at that rpm.
+  run predict --tables "$dem" --material Urea --rpm 600 --width 9 --json
+  [ $rc -eq 0 ] || fail "exit $rc"
+  cp "$out.stdout" "$work/guidance.json"
+  python3 - "$work/guidance.json" "$spread" "$dem" <<'PY' > "$out.check" 2>&1 || fail "$(cat "$out.check")"
+import json, subprocess, sys
+d = json.load(open(sys.argv[1]))
+assert d["cv_to_and_fro_percent"] > 15, d["cv_to_and_fro_percent"]
+settings = [a["setting"] for a in d["adjustments"]]
+assert settings == ["disc_speed", "bout_width", "disc_height"], settings
+speed = d["adjustments"][0]
+again = json.loads(subprocess.run([sys.argv[2], "predict", "--tables", sys.argv[3], "--material", "Urea", "--rpm",
+                                   str(speed["rpm"]), "--width", "9", "--json"], capture_output=True, text=True).stdout)
+assert abs(again["cv_to_and_fro_percent"] - speed["cv_to_and_fro_percent"]) < 1e-9, (again["cv_to_and_fro_percent"], speed)
+assert speed["cv_to_and_fro_percent"] < d["cv_to_and_fro_percent"]
+width = d["adjustments"][1]
+assert width["bout_width_m"] < 9 and width["meets_target"], width
+PY
+  run predict --tables "$dem" --material Urea --rpm 600 --width 9
+  has "$out.stdout" "the CV at 9.00 m is above the target 15 %; predicted from the table, one setting at a time:"
+  has "$out.stdout" "disc speed 750 rpm: CV"
+  run predict --tables "$dem" --material Urea --rpm 600 --width 7 --json
+  has "$out.stdout" '"adjustments": null'
+  pass ;;
 dem_recover)
   # The main job's DEM table: a 600 rpm tray test made from its own Urea row with a known launch correction
   # (speed factor 0.95, launch-angle offset 4°) is fitted back from no correction.

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -332,18 +333,20 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
 // --quick-check: 4–8 trays across one bout of the field as driven; the CV of the trays themselves and how
 // uncertain it is from so few trays.
 void run_quick_check(const TrayOptions& o, double cv_target) {
-  const char* not_with = !o.plot_prefix.empty() ? "--plot"
-                         : !o.report.path.empty() ? "--report"
-                         : o.width_m > 0.0 ? "--width"
-                         : !std::isnan(o.report.tray_area_m2) ? "--tray-area"
-                                                               : nullptr;
+  const char* not_with = !o.plot_prefix.empty() ? "--plot" : o.width_m > 0.0 ? "--width" : nullptr;
   if (not_with != nullptr) {
     throw BadInput(std::string(not_with) + " does not go with --quick-check: the quick check's trays already hold the "
-                   "overlapped spread of the bout as driven; for a chart, a report or the CV at other widths lay a "
+                   "overlapped spread of the bout as driven; for a chart or the CV at other widths lay a "
                    "full tray test across the throw (without --quick-check)");
   }
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   const cal::TrayTest t = cal::read_tray_csv(o.file, cal::quick_check_csv_options());
   const cal::QuickCheck q = cal::quick_check(t, cv_target);
+  // The trays caught the overlapped spread itself: each stands for mean / A. As a bout of n trays of the
+  // spacing w holding n · mean (tray_rate_check.hpp: M · w / (W · A) with W = n · w) this is the same rate.
+  const std::optional<spread::plot::ReportRate> rate =
+      spread::cli::report_rate(o.report, q.mean_kg * q.trays, q.trays * t.tray_width_m, t.tray_width_m);
   const std::vector<std::string> notes = missing_notes(t);
   const std::string high = std::isfinite(q.interval.high) ? format("%.1f %%", 100.0 * q.interval.high) : "unbounded";
   std::string verdict;
@@ -360,6 +363,38 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
                 "across the throw (step 2) to know";
       break;
   }
+  std::string report_error;
+  if (!o.report.path.empty() && report_problem.empty()) {
+    report_error = plot_or_error([&] {
+      spread::plot::TablePage page;
+      page.header.title = "Quick check of a spread in the field";
+      page.header.source = t.source;
+      page.header.machine = o.machine;
+      page.header.material = o.material;
+      page.header.rpm = o.rpm > 0.0 ? o.rpm : std::numeric_limits<double>::quiet_NaN();
+      page.header.speed_km_h = o.report.speed_km_h;
+      page.header.time_s = report_time_s;
+      page.header.made_by = spread::cli::command_line();
+      char text[160];
+      std::snprintf(text, sizeof text, "%d trays read, %.2f m apart, %zu pass(es), mean %.2f g per tray", q.trays,
+                    t.tray_width_m, t.mass_columns.size(), 1e3 * q.mean_kg);
+      page.summary.emplace_back(text);
+      page.summary.push_back(format("CV %.1f %%", 100.0 * q.cv) + "; the bout's CV lies between " +
+                             format("%.1f %%", 100.0 * q.interval.low) + " and " + high + " (95 % interval, McKay)");
+      page.summary.push_back("against the target: " + verdict);
+      for (const std::string& line : spread::cli::rate_lines(rate)) page.summary.push_back(line);
+      page.caption = "Trays (mean of the passes)";
+      page.columns = {"tray", "position", "mass"};
+      for (std::size_t i = 0; i < t.position_m.size(); ++i) {
+        page.rows.push_back({std::to_string(i + 1), format("%.2f m", t.position_m[i]),
+                             t.missing[i] ? std::string("missing") : format("%.2f g", 1e3 * t.mass_kg[i])});
+      }
+      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      page.notes.push_back("a CV from a few trays is itself uncertain: the interval says how much "
+                           "(docs/field-calibration.md, Quick check)");
+      spread::plot::write_report_pdf(o.report.path, nullptr, &page);
+    });
+  }
   if (o.json) {
     json out{{"tray_test", t.source},
              {"quick_check", true},
@@ -374,8 +409,11 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
              {"confidence_percent", 100.0 * q.interval.confidence},
              {"cv_target_percent", 100.0 * cv_target},
              {"verdict", cal::to_string(q.verdict)},
+             {"rate", spread::cli::rate_json(rate)},
              {"notes", notes}};
+    spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
+    spread::cli::throw_report_outcome(report_problem, report_error);
     return;
   }
   std::printf("%s: quick check, %d trays read (%.2f m apart), %zu pass(es), mean %.2f g per tray\n", t.source.c_str(),
@@ -385,6 +423,11 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
               100.0 * q.cv, q.trays, q.trays, 100.0 * q.interval.low, high.c_str(), 100.0 * q.interval.confidence);
   std::printf("against the target: %s\n", verdict.c_str());
   for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
+  for (const std::string& line : spread::cli::rate_lines(rate)) std::printf("%s\n", line.c_str());
+  if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
+    std::printf("wrote %s\n", o.report.path.c_str());
+  }
+  spread::cli::throw_report_outcome(report_problem, report_error);
 }
 
 void run_tray(const TrayOptions& o) {

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "libspread/plot/report_pdf.hpp"
+#include "libspread/predict/setting_adjustment.hpp"
 #include "libspread/tables/table_reader.hpp"
 
 namespace {
@@ -172,10 +174,57 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
+// When the CV at the bout width is above the target: each setting the table predicts, moved on its own,
+// with its predicted CV (setting_adjustment.hpp). Computed with the Predictor (the C API's own engine) on
+// the same table and conditions. Empty when the CV meets the target or no bout width was given.
+struct Guidance {
+  std::optional<spread::predict::SettingAdjustments> adjustments;
+  std::vector<std::string> lines;  // the text report's, also the PDF's
+};
+
+Guidance guidance_for(const Options& o, const spread_prediction& r) {
+  Guidance g;
+  if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return g;
+  spread::predict::Predictor predictor(spread::tables::read_table_file(o.tables));
+  spread::predict::PredictionRequest request;
+  request.material = o.material;
+  request.rpm = o.rpm;
+  request.disc_height_m = o.height_m;
+  const auto wind = spread::cli::parse_wind(o.wind);
+  request.wind_x_m_s = wind.x_m_s;
+  request.wind_y_m_s = wind.y_m_s;
+  request.cv_target = o.cv_target_percent / 100.0;
+  request.effects = o.effects == "table" ? spread::predict::kTableEffects
+                    : o.effects == "all" ? spread::flight::kAllEffects
+                                         : spread::flight::parse_effects(o.effects);
+  request.bout_width_m = o.bout_width_m;
+  request.tray_width_m = o.tray_width_m;
+  request.kernel_half_width_m = o.kernel_half_width_m;
+  g.adjustments = spread::predict::setting_adjustments(predictor, request);
+  g.lines.push_back("the CV at " + format("%.2f m", r.bout_width_m) + " is above the target " +
+                    format("%g %%", o.cv_target_percent) + "; predicted from the table, one setting at a time:");
+  for (const spread::predict::SettingAdjustment& a : g.adjustments->adjustments) {
+    std::string what;
+    switch (a.setting) {
+      case spread::predict::AdjustedSetting::kDiscSpeed: what = "disc speed " + format("%.0f rpm", a.rpm); break;
+      case spread::predict::AdjustedSetting::kBoutWidth: what = "bout width " + format("%.2f m", a.bout_width_m); break;
+      case spread::predict::AdjustedSetting::kDiscHeight:
+        what = "disc height " + format("%.2f m", a.disc_height_m);
+        break;
+    }
+    g.lines.push_back("  " + what + ": CV " + format("%.1f %%", 100.0 * a.cv_to_and_fro) +
+                      plus_minus(100.0 * a.cv_to_and_fro_se) + " to-and-fro" +
+                      (a.meets_target ? " (meets the target)" : " (still above the target)"));
+  }
+  g.lines.push_back("  (drop point and vane settings are not in a launch table: a table built for another setting "
+                    "predicts them)");
+  return g;
+}
+
 // The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
 // their 95 % intervals. Returns the error of writing it ("" when written).
 std::string write_report(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
-                         const CvCurve& curve, std::int64_t time_s) {
+                         const CvCurve& curve, std::int64_t time_s, const Guidance& guidance) {
   try {
     spread::plot::PatternReport page;
     page.header.title = "Spread pattern report: prediction";
@@ -210,6 +259,7 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
                                            curve.widths_m, curve.to_and_fro, curve.racetrack);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
                          "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
+    for (const std::string& line : guidance.lines) page.notes.push_back(line);
     spread::plot::write_report_pdf(o.report.path, &page);
   } catch (const std::exception& e) {
     return e.what();
@@ -270,9 +320,10 @@ void run(const Options& o, int& exit_code) {
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
+  const Guidance guidance = guidance_for(o, result);
   const std::string report_error = o.report.path.empty() || !report_problem.empty()
                                        ? std::string()
-                                       : write_report(o, result, trays, curve, report_time_s);
+                                       : write_report(o, result, trays, curve, report_time_s, guidance);
   if (o.json) {
     json centres = json::array(), fractions = json::array();
     for (std::size_t k = 0; k < tray_count; ++k) {
@@ -314,6 +365,21 @@ void run(const Options& o, int& exit_code) {
                                                           result.working_width_to_and_fro_m, o.cv_target_percent / 100.0))},
                   {"racetrack", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kRacetrack,
                                                          result.working_width_racetrack_m, o.cv_target_percent / 100.0))}}}};
+    if (guidance.adjustments) {
+      json list = json::array();
+      for (const spread::predict::SettingAdjustment& a : guidance.adjustments->adjustments) {
+        list.push_back({{"setting", spread::predict::to_string(a.setting)},
+                        {"rpm", a.rpm},
+                        {"bout_width_m", a.bout_width_m},
+                        {"disc_height_m", a.disc_height_m},
+                        {"cv_to_and_fro_percent", number_or_null(100.0 * a.cv_to_and_fro)},
+                        {"cv_to_and_fro_se_percent", number_or_null(100.0 * a.cv_to_and_fro_se)},
+                        {"meets_target", a.meets_target}});
+      }
+      out["adjustments"] = list;
+    } else {
+      out["adjustments"] = nullptr;
+    }
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
@@ -371,6 +437,7 @@ void run(const Options& o, int& exit_code) {
               << result.kernel_half_width_m << " m)\n";
     std::cout << "  mean radius R " << result.mean_radius_m << " m, radial width xi " << result.radial_width_m
               << " m (one disc)\n";
+    for (const std::string& line : guidance.lines) std::cout << "  " << line << "\n";
     if (o.repeat > 0) std::cout << "  median time per prediction " << median_us << " us over " << o.repeat << "\n";
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::cout << "wrote " << o.report.path << "\n";

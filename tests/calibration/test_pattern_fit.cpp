@@ -19,7 +19,7 @@
 #include "libspread/calibration/pattern_fit.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "libspread/tables/table_writer.hpp"
-#include "tools_test_support.hpp"
+#include "calibration_test_support.hpp"
 
 namespace cal = spread::calibration;
 using spread::kPi;
