@@ -229,9 +229,11 @@ json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
   return out;
 }
 
-void plot_tray(const cal::TrayTest& t, const cal::TrayTestAnalysis& a, const std::string& prefix, json& written) {
+void plot_tray(const cal::TrayTest& t, const cal::TrayTestAnalysis& a, const std::string& prefix, double tray_area_m2,
+               json& written) {
   spread::plot::TransverseOptions options;
   options.series_label = "measured";
+  if (tray_area_m2 > 0.0) options.tray_area_m2 = tray_area_m2;
   options.bout_width_m = a.bout_width_m > 0.0 ? a.bout_width_m : a.working_width_to_and_fro_m;
   const std::string transverse = prefix + "_transverse.png";
   spread::plot::write_transverse_png(t.layout_mass_kg, t.layout, transverse, "tray test " + t.source, options);
@@ -449,11 +451,12 @@ void run_tray(const TrayOptions& o) {
       spread::cli::report_rate(o.report, a.total_mass_kg, report_width_m, t.layout.tray_width_m);
   json written = json::object();
   const std::string plot_error =
-      o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, written); });
+      o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, o.report.tray_area_m2, written); });
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
       spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
+      if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
       page.header.machine = o.machine;
       page.header.material = o.material;
       page.header.rpm = o.rpm;
@@ -637,8 +640,12 @@ void plot_pattern(const PatternOptions& o, const cal::TrayTest& test, const cal:
   spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kToAndFro, tf);
   spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kRacetrack, rt);
   const std::string cv = o.plot_prefix + "_cv.png";
+  spread::plot::CvCurveOptions cv_options;
+  cv_options.series_label = "calibrated";
+  cv_options.second_to_and_fro = measured.cv_to_and_fro_curve;
+  cv_options.second_label = "tray test";
   spread::plot::write_cv_curve_png(measured.widths_m, tf, rt, measured.cv_target, cv,
-                                   material_name + ": CV(W) predicted");
+                                   material_name + ": CV(W) calibrated and measured", cv_options);
   written["cv"] = cv;
   const std::string cv_measured = o.plot_prefix + "_cv_measured.png";
   spread::plot::write_cv_curve_png(measured.widths_m, measured.cv_to_and_fro_curve, measured.cv_racetrack_curve,
@@ -727,6 +734,7 @@ void run_pattern(const PatternOptions& o) {
   if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
       spread::plot::PatternReport page = tray_report_page(test, measured, report_width_m, report_time_s);
+      if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
       std::vector<double> predicted_kg(fit.fitted_fraction.size());
       for (std::size_t i = 0; i < predicted_kg.size(); ++i) predicted_kg[i] = fit.fitted_fraction[i] * test.total_mass_kg();
       page.header.title = "Spread pattern report: calibration";
