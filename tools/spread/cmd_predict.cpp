@@ -186,19 +186,11 @@ Guidance guidance_for(const Options& o, const spread_prediction& r) {
   Guidance g;
   if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return g;
   spread::predict::Predictor predictor(spread::tables::read_table_file(o.tables));
-  spread::predict::PredictionRequest request;
-  request.material = o.material;
-  request.rpm = o.rpm;
-  request.disc_height_m = o.height_m;
-  const auto wind = spread::cli::parse_wind(o.wind);
-  request.wind_x_m_s = wind.x_m_s;
-  request.wind_y_m_s = wind.y_m_s;
-  request.cv_target = o.cv_target_percent / 100.0;
+  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
   request.effects = o.effects == "table" ? spread::predict::kTableEffects
                     : o.effects == "all" ? spread::flight::kAllEffects
                                          : spread::flight::parse_effects(o.effects);
   request.bout_width_m = o.bout_width_m;
-  request.tray_width_m = o.tray_width_m;
   request.kernel_half_width_m = o.kernel_half_width_m;
   g.adjustments = spread::predict::setting_adjustments(predictor, request);
   g.lines.push_back("the CV at " + format("%.2f m", r.bout_width_m) + " is above the target " +
