@@ -286,8 +286,8 @@ TEST_F(PatternFit, DemRowsAreCorrectedUnlessAnalyticIsAllowed) {
 TEST_F(PatternFit, LaunchCorrectionOfTableSamplesIsRecovered) {
   // The fit on a table's own launch samples (a DEM row's path): both rows of a copy marked as DEM rows,
   // a synthetic tray test made from the 600 rpm row with a known launch correction, fitted back from no
-  // correction. The correction must come back within 2 of its standard errors (the suite's ±2 SE covers
-  // the truth in about 90 % of seeds; this seed is fixed).
+  // correction. The correction must come back within one standard error (this seed, fixed: 0.5 SE for
+  // both; over many seeds ±1 SE would hold the truth in about 2 of 3 fits).
   spread::testing::TempPath dem("dem_both.sqlite");
   std::filesystem::copy_file(table_->path(), dem.path());
   for (spread::tables::Run run : contents_->runs) {
@@ -316,9 +316,9 @@ TEST_F(PatternFit, LaunchCorrectionOfTableSamplesIsRecovered) {
   EXPECT_TRUE(fit.converged) << fit.stop_reason;
   EXPECT_TRUE(cal::assess_fit(fit, cal::pass_scatter(test)).accepted());
   EXPECT_LT(std::abs(fit.fitted.launch_speed_factor - truth.launch_speed_factor),
-            2.0 * fit.standard_error.launch_speed_factor);
+            fit.standard_error.launch_speed_factor);
   EXPECT_LT(std::abs(fit.fitted.launch_angle_offset_rad - truth.launch_angle_offset_rad),
-            2.0 * fit.standard_error.launch_angle_offset_rad);
+            fit.standard_error.launch_angle_offset_rad);
   EXPECT_LT(fit.standard_error.launch_speed_factor, 0.02);
   EXPECT_EQ(fit.fitted.friction_wall, 0.4);  // fixed parameters stay where they started
   EXPECT_EQ(fit.fitted.drag_diameter_factor, 1.0);
