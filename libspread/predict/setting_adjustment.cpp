@@ -43,6 +43,7 @@ SettingAdjustments setting_adjustments(Predictor& predictor, const PredictionReq
 
   const Prediction& now = predict(present);
   out.present_cv_to_and_fro = now.cv_to_and_fro;
+  out.present_bout_width_m = now.bout_width_m;
   out.present_disc_height_m = now.disc_height_m;
   const double working_width_m = now.working_width_to_and_fro_m;
 

@@ -37,6 +37,7 @@ struct SettingAdjustment {
 
 struct SettingAdjustments {
   double present_cv_to_and_fro = 0.0;  // at the present settings
+  double present_bout_width_m = 0.0;   // the bout width as evaluated (whole trays)
   double present_disc_height_m = 0.0;
   std::vector<SettingAdjustment> adjustments;  // disc speed, bout width, disc height (those that exist)
   int predictions = 0;

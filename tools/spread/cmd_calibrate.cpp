@@ -38,6 +38,7 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/output_paths.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/setting_guidance.hpp"
 
 namespace {
 
@@ -521,6 +522,7 @@ struct PatternOptions {
   int samples = 1024;
   double kernel_m = 0.0;
   double cv_target_percent = 15.0;
+  double width_m = 0.0;  // bout width of the report and the guidance; 0: none
   bool allow_analytic = false;
   bool json = false;
   spread::cli::ReportArgs report;
@@ -657,6 +659,7 @@ void run_pattern(const PatternOptions& o) {
   if (o.output.empty()) throw BadInput("--output: give the path of the new table file");
   if (o.samples < 16 || o.samples > 100000) throw BadInput("--samples must be in [16, 100000]");
   if (!(o.kernel_m >= 0.0)) throw BadInput("--kernel must be >= 0 m");
+  if (!(o.width_m >= 0.0) || !std::isfinite(o.width_m)) throw BadInput("--width must be a bout width >= 0 m");
   const double cv_target = cal::cv_target_from_percent(o.cv_target_percent, "--cv-target");
   // Before the fit (which takes seconds): the folders the results go to.
   spread::cli::require_output_folder("--output", o.output);
@@ -726,8 +729,20 @@ void run_pattern(const PatternOptions& o) {
   }
   // The report, as the plots, only for an accepted fit: the measured trays with the calibrated
   // prediction beside them, the CVs and rate of the tray test.
-  const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, cv_target, 0.0);
+  const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, cv_target, o.width_m);
   const double report_width_m = report_bout_width_m(test, measured);
+  // What to change when the calibrated material's CV at --width is above the target: predicted from the
+  // new table (setting_guidance.hpp).
+  spread::cli::SettingGuidance guidance;
+  if (summary && o.width_m > 0.0) {
+    spread::predict::PredictionRequest request;
+    request.material = material_name;
+    request.rpm = o.rpm;
+    request.cv_target = cv_target;
+    request.bout_width_m = o.width_m;
+    request.tray_width_m = test.tray_width_m;
+    guidance = spread::cli::setting_guidance(summary->output_path, request);
+  }
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);
   std::string report_error;
@@ -760,6 +775,7 @@ void run_pattern(const PatternOptions& o) {
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      for (const std::string& line : guidance.lines) page.notes.push_back(line);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
     });
@@ -778,6 +794,7 @@ void run_pattern(const PatternOptions& o) {
     }
     report["written"] = written;
     report["rate"] = spread::cli::rate_json(rate);
+    report["adjustments"] = spread::cli::setting_guidance_json(guidance);
     if (!plot_error.empty()) report["plot_error"] = plot_error;
     if (!report_problem.empty() || !report_error.empty()) {
       report["report_error"] = report_problem.empty() ? report_error : report_problem;
@@ -825,6 +842,7 @@ void run_pattern(const PatternOptions& o) {
       std::printf("nothing written: %s was not created\n", o.output.c_str());
     }
     for (const std::string& rate_line : spread::cli::rate_lines(rate)) std::printf("%s\n", rate_line.c_str());
+    for (const std::string& advice : guidance.lines) std::printf("%s\n", advice.c_str());
     for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
   }
   if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
@@ -984,6 +1002,9 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   p->add_option("--samples", pattern.samples, "trajectories per model evaluation")->capture_default_str();
   p->add_option("--kernel", pattern.kernel_m, "landing kernel sd (m); default half the tray width");
   p->add_option("--cv-target", pattern.cv_target_percent, "CV target (%) of the plots")->capture_default_str();
+  p->add_option("--width", pattern.width_m,
+                "bout width (m): the report's, and the calibrated material's CV there with what to change "
+                "when it is above the target");
   p->add_flag("--allow-analytic", pattern.allow_analytic,
               "on a material whose table rows came from the DEM: fit the analytic model and write analytic rows "
               "(default: correct the DEM rows' own launches)");

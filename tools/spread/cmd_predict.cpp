@@ -22,8 +22,8 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/setting_guidance.hpp"
 #include "libspread/plot/report_pdf.hpp"
-#include "libspread/predict/setting_adjustment.hpp"
 #include "libspread/tables/table_reader.hpp"
 
 namespace {
@@ -174,49 +174,23 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
-// When the CV at the bout width is above the target: each setting the table predicts, moved on its own,
-// with its predicted CV (setting_adjustment.hpp). Computed with the Predictor (the C API's own engine) on
-// the same table and conditions. Empty when the CV meets the target or no bout width was given.
-struct Guidance {
-  std::optional<spread::predict::SettingAdjustments> adjustments;
-  std::vector<std::string> lines;  // the text report's, also the PDF's
-};
-
-Guidance guidance_for(const Options& o, const spread_prediction& r) {
-  Guidance g;
-  if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return g;
-  spread::predict::Predictor predictor(spread::tables::read_table_file(o.tables));
+// The guidance when the CV at --width is above the target (setting_guidance.hpp): the same table and
+// conditions through the Predictor, the C API's own engine.
+spread::cli::SettingGuidance guidance_for(const Options& o, const spread_prediction& r) {
+  if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return {};
   spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
   request.effects = o.effects == "table" ? spread::predict::kTableEffects
                     : o.effects == "all" ? spread::flight::kAllEffects
                                          : spread::flight::parse_effects(o.effects);
   request.bout_width_m = o.bout_width_m;
   request.kernel_half_width_m = o.kernel_half_width_m;
-  g.adjustments = spread::predict::setting_adjustments(predictor, request);
-  g.lines.push_back("the CV at " + format("%.2f m", r.bout_width_m) + " is above the target " +
-                    format("%g %%", o.cv_target_percent) + "; predicted from the table, one setting at a time:");
-  for (const spread::predict::SettingAdjustment& a : g.adjustments->adjustments) {
-    std::string what;
-    switch (a.setting) {
-      case spread::predict::AdjustedSetting::kDiscSpeed: what = "disc speed " + format("%.0f rpm", a.rpm); break;
-      case spread::predict::AdjustedSetting::kBoutWidth: what = "bout width " + format("%.2f m", a.bout_width_m); break;
-      case spread::predict::AdjustedSetting::kDiscHeight:
-        what = "disc height " + format("%.2f m", a.disc_height_m);
-        break;
-    }
-    g.lines.push_back("  " + what + ": CV " + format("%.1f %%", 100.0 * a.cv_to_and_fro) +
-                      plus_minus(100.0 * a.cv_to_and_fro_se) + " to-and-fro" +
-                      (a.meets_target ? " (meets the target)" : " (still above the target)"));
-  }
-  g.lines.push_back("  (drop point and vane settings are not in a launch table: a table built for another setting "
-                    "predicts them)");
-  return g;
+  return spread::cli::setting_guidance(o.tables, request);
 }
 
 // The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
 // their 95 % intervals. Returns the error of writing it ("" when written).
 std::string write_report(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
-                         const CvCurve& curve, std::int64_t time_s, const Guidance& guidance) {
+                         const CvCurve& curve, std::int64_t time_s, const spread::cli::SettingGuidance& guidance) {
   try {
     spread::plot::PatternReport page;
     page.header.title = "Spread pattern report: prediction";
@@ -312,7 +286,7 @@ void run(const Options& o, int& exit_code) {
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
-  const Guidance guidance = guidance_for(o, result);
+  const spread::cli::SettingGuidance guidance = guidance_for(o, result);
   const std::string report_error = o.report.path.empty() || !report_problem.empty()
                                        ? std::string()
                                        : write_report(o, result, trays, curve, report_time_s, guidance);
@@ -357,21 +331,7 @@ void run(const Options& o, int& exit_code) {
                                                           result.working_width_to_and_fro_m, o.cv_target_percent / 100.0))},
                   {"racetrack", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kRacetrack,
                                                          result.working_width_racetrack_m, o.cv_target_percent / 100.0))}}}};
-    if (guidance.adjustments) {
-      json list = json::array();
-      for (const spread::predict::SettingAdjustment& a : guidance.adjustments->adjustments) {
-        list.push_back({{"setting", spread::predict::to_string(a.setting)},
-                        {"rpm", a.rpm},
-                        {"bout_width_m", a.bout_width_m},
-                        {"disc_height_m", a.disc_height_m},
-                        {"cv_to_and_fro_percent", number_or_null(100.0 * a.cv_to_and_fro)},
-                        {"cv_to_and_fro_se_percent", number_or_null(100.0 * a.cv_to_and_fro_se)},
-                        {"meets_target", a.meets_target}});
-      }
-      out["adjustments"] = list;
-    } else {
-      out["adjustments"] = nullptr;
-    }
+    out["adjustments"] = spread::cli::setting_guidance_json(guidance);
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
