@@ -79,9 +79,14 @@ assert speed["cv_to_and_fro_percent"] < d["cv_to_and_fro_percent"]
 width = d["adjustments"][1]
 assert width["bout_width_m"] < 9 and width["meets_target"], width
 PY
-  run predict --tables "$dem" --material Urea --rpm 600 --width 9
+  rm -f "$work/guidance.pdf"
+  run predict --tables "$dem" --material Urea --rpm 600 --width 9 --report "$work/guidance.pdf"
   has "$out.stdout" "the CV at 9.00 m is above the target 15 %; predicted from the table, one setting at a time:"
   has "$out.stdout" "disc speed 750 rpm: CV"
+  # The same lines on the report's page.
+  pdftotext "$work/guidance.pdf" "$work/guidance.txt" || fail "pdftotext"
+  has "$work/guidance.txt" "the CV at 9.00 m is above the target 15 %"
+  has "$work/guidance.txt" "disc speed 750 rpm: CV"
   run predict --tables "$dem" --material Urea --rpm 600 --width 7 --json
   has "$out.stdout" '"adjustments": null'
   pass ;;
