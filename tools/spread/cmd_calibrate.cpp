@@ -670,6 +670,10 @@ void run_pattern(const PatternOptions& o) {
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
+  // Before the fit: the name's date is SOURCE_DATE_EPOCH's when set (a malformed one is refused here).
+  const std::string material_name =
+      o.name.empty() ? cal::calibrated_material_name(o.material, spread::plot::utc_date(spread::cli::report_time_s()))
+                     : o.name;
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
   const std::vector<double> dem_rpm = cal::non_analytic_rows(contents, o.material);
@@ -706,9 +710,6 @@ void run_pattern(const PatternOptions& o) {
   report["accepted"] = acceptance.accepted();
   report["refusals"] = acceptance.refusals;
 
-  const std::string material_name =
-      o.name.empty() ? cal::calibrated_material_name(o.material, spread::plot::utc_date(spread::cli::report_time_s()))
-                     : o.name;
   std::optional<cal::CalibratedTableSummary> summary;
   json written = json::object();
   std::string plot_error;
