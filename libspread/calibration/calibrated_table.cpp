@@ -1,7 +1,6 @@
 #include "libspread/calibration/calibrated_table.hpp"
 
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -56,15 +55,6 @@ std::string dem_rows_message(const std::string& material, const std::vector<doub
 
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd) {
   return material + " (calibrated " + date_yyyy_mm_dd + ")";
-}
-
-std::string utc_date_today() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[16];
-  std::strftime(text, sizeof text, "%Y-%m-%d", &utc);
-  return text;
 }
 
 CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& request) {

@@ -44,10 +44,9 @@ std::vector<double> non_analytic_rows(const tables::TableContents& contents, con
 // The refusal message for a material with DEM rows (names the rows and the way round it).
 std::string dem_rows_message(const std::string& material, const std::vector<double>& rpm);
 
-// "<name> (calibrated <date>)".
+// "<name> (calibrated <date>)"; the date is the caller's (spread calibrate pattern: SOURCE_DATE_EPOCH's when set,
+// else today's, UTC), so the same inputs give the same name.
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd);
-// Today's UTC date, YYYY-MM-DD.
-std::string utc_date_today();
 
 // Throws std::invalid_argument for an output that exists or is the original, an unknown material, a
 // new name already in the table; tables::TableError for an unreadable original or an output that cannot
