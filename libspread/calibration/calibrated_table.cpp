@@ -40,19 +40,6 @@ std::vector<double> non_analytic_rows(const tables::TableContents& contents, con
   return rpm;
 }
 
-std::string dem_rows_message(const std::string& material, const std::vector<double>& rpm) {
-  std::string list;
-  for (double r : rpm) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%s%g", list.empty() ? "" : ", ", r);
-    list += text;
-  }
-  return "material '" + material + "' has " + std::to_string(rpm.size()) + " DEM row(s) (rpm " + list +
-         "): the pattern fit and the calibrated rows use the analytic launch model, so the calibrated material "
-         "would replace DEM launches with analytic ones. Calibrate an analytic table of the same scene, or pass "
-         "--allow-analytic to accept analytic rows";
-}
-
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd) {
   return material + " (calibrated " + date_yyyy_mm_dd + ")";
 }

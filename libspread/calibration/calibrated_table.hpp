@@ -41,9 +41,6 @@ struct CalibratedTableSummary {
 // other than "analytic", i.e. DEM rows), in table order.
 std::vector<double> non_analytic_rows(const tables::TableContents& contents, const std::string& material);
 
-// The refusal message for a material with DEM rows (names the rows and the way round it).
-std::string dem_rows_message(const std::string& material, const std::vector<double>& rpm);
-
 // "<name> (calibrated <date>)"; the date is the caller's (spread calibrate pattern: SOURCE_DATE_EPOCH's when set,
 // else today's, UTC), so the same inputs give the same name.
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd);
