@@ -1,9 +1,11 @@
 #include "libspread/calibration/calibrated_table.hpp"
 
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 #include "libspread/calibration/scene_of_run.hpp"
 #include "libspread/launch/launch_statistics.hpp"
@@ -19,7 +21,13 @@ std::string format_parameters(const PatternParameters& p) {
   char text[160];
   std::snprintf(text, sizeof text, "calibrated_friction_wall=%.4f,drag_diameter_factor=%.4f,launch_angle_offset_deg=%.3f",
                 p.friction_wall, p.drag_diameter_factor, p.launch_angle_offset_rad * 180.0 / kPi);
-  return text;
+  std::string out = text;
+  if (p.launch_speed_factor != 1.0 || p.launch_elevation_offset_rad != 0.0) {
+    std::snprintf(text, sizeof text, ",launch_speed_factor=%.4f,launch_elevation_offset_deg=%.3f", p.launch_speed_factor,
+                  p.launch_elevation_offset_rad * 180.0 / kPi);
+    out += text;
+  }
+  return out;
 }
 
 }  // namespace
@@ -32,30 +40,8 @@ std::vector<double> non_analytic_rows(const tables::TableContents& contents, con
   return rpm;
 }
 
-std::string dem_rows_message(const std::string& material, const std::vector<double>& rpm) {
-  std::string list;
-  for (double r : rpm) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%s%g", list.empty() ? "" : ", ", r);
-    list += text;
-  }
-  return "material '" + material + "' has " + std::to_string(rpm.size()) + " DEM row(s) (rpm " + list +
-         "): the pattern fit and the calibrated rows use the analytic launch model, so the calibrated material "
-         "would replace DEM launches with analytic ones. Calibrate an analytic table of the same scene, or pass "
-         "--allow-analytic to accept analytic rows";
-}
-
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd) {
   return material + " (calibrated " + date_yyyy_mm_dd + ")";
-}
-
-std::string utc_date_today() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[16];
-  std::strftime(text, sizeof text, "%Y-%m-%d", &utc);
-  return text;
 }
 
 CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& request) {
@@ -82,30 +68,42 @@ CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& requ
   }
   if (rows.empty()) throw std::invalid_argument("material '" + request.material + "' has no runs to rebuild");
   const std::vector<double> dem_rpm = non_analytic_rows(contents, request.material);
-  if (!dem_rpm.empty() && !request.allow_analytic_for_dem) {
-    throw std::invalid_argument(dem_rows_message(request.material, dem_rpm));
-  }
 
   const tables::Material calibrated = calibrated_material(*base, request.parameters, request.new_material_name);
   // Build every run before touching the disk: a model failure leaves no partial file behind.
   std::vector<tables::Run> runs;
   for (const tables::Run* original : rows) {
-    PatternSetup setup = pattern_setup_from_table(contents, request.material, original->rpm);
+    const bool analytic = original->source == "analytic" || request.allow_analytic_for_dem;
+    PatternSetup setup = pattern_setup_from_table(contents, request.material, original->rpm, analytic);
     tables::Run run;
     run.material = request.new_material_name;
     run.rpm = original->rpm;
-    run.source = "analytic";
-    run.samples = calibrated_launch_samples(setup, request.parameters, original->rpm,
-                                            static_cast<int>(original->samples.size()));
+    if (analytic) {
+      run.source = "analytic";
+      run.samples = calibrated_launch_samples(setup, request.parameters, original->rpm,
+                                              static_cast<int>(original->samples.size()));
+      run.effects = std::string("analytic_vane_sliding,spin_") + scene::to_string(setup.spin_model) + "," +
+                    format_parameters(request.parameters) + (original->source == "analytic" ? "" : ",replaces_dem_run");
+    } else {
+      // The DEM row's own granules, every one of them, with the fitted launch correction: the row stays a
+      // DEM row (interpolated by quantile cells, its scatter kept).
+      run.source = original->source;
+      run.samples = corrected_launch_samples(original->samples, request.parameters, contents.machine.rotation_sense);
+      run.effects = original->effects + (original->effects.empty() ? "" : ",") + format_parameters(request.parameters);
+    }
     run.scene_text = original->scene_text;
     run.scene_hash = original->scene_hash;
-    run.effects = std::string("analytic_vane_sliding,spin_") + scene::to_string(setup.spin_model) + "," +
-                  format_parameters(request.parameters) + (original->source == "analytic" ? "" : ",replaces_dem_run");
     run.particle_count = static_cast<std::int64_t>(run.samples.size());
     run.software_version = SPREAD_VERSION_STRING;
     run.created_utc = tables::utc_now_iso8601();
     const double rim_speed_m_s = original->rpm * 2.0 * kPi / 60.0 * contents.machine.disc_radius_m;
-    run.stats_json = launch::to_json(launch::launch_statistics(run.samples, rim_speed_m_s));
+    // The flight effects the original row's launches are flown with travel with the new row: predict
+    // flies a row with its recorded effects (all of them when none is recorded).
+    nlohmann::json stats = nlohmann::json::parse(launch::to_json(launch::launch_statistics(run.samples, rim_speed_m_s)));
+    if (const std::optional<std::string> effects = tables::recorded_flight_effects(*original)) {
+      stats["flight_effects"] = *effects;
+    }
+    run.stats_json = stats.dump();
     run.convergence_json = "[]";
     runs.push_back(std::move(run));
   }
@@ -118,7 +116,7 @@ CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& requ
   CalibratedTableSummary summary;
   summary.output_path = request.output_path;
   summary.material = request.new_material_name;
-  summary.replaced_dem_rpm = dem_rpm;
+  if (request.allow_analytic_for_dem) summary.replaced_dem_rpm = dem_rpm;
   try {
     tables::TableWriter writer(request.output_path);
     writer.write_materials({calibrated});

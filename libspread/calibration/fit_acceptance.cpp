@@ -16,10 +16,12 @@ struct Range {
   const char* unit;
 };
 constexpr double kDegPerRad = 180.0 / kPi;
-constexpr std::array<Range, 3> kRanges{{
+constexpr std::array<Range, kPatternParameterCount> kRanges{{
     {"friction", "friction on the vanes", 0.0, 2.0, 2e-3, 1.0, ""},
     {"drag", "drag diameter factor", 0.2, 5.0, 2e-3, 1.0, ""},
     {"offset", "launch-angle offset", -0.5 * kPi, 0.5 * kPi, 1e-3, kDegPerRad, " deg"},
+    {"speed", "launch speed factor", 0.5, 2.0, 2e-3, 1.0, ""},
+    {"elevation", "launch elevation offset", -kPi / 6.0, kPi / 6.0, 1e-3, kDegPerRad, " deg"},
 }};
 
 }  // namespace
@@ -30,12 +32,11 @@ FitAcceptance assess_fit(const PatternFitResult& fit, const PassScatter& scatter
     a.refusals.push_back("the fit did not converge (" + std::to_string(fit.iterations) + " iterations, " +
                          fit.stop_reason +
                          "): check that --rpm is the tray test's disc speed and that the table's scene (inlet, "
-                         "vanes) is the machine's; fit fewer parameters (e.g. --fit friction,drag); or start from "
-                         "a material nearer the truth");
+                         "vanes) is the machine's; fit fewer parameters (e.g. --fit friction,drag; on a DEM "
+                         "table --fit speed,offset); or start from a material nearer the truth");
   }
-  const std::array<double, 3> value{fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
-                                    fit.fitted.launch_angle_offset_rad};
-  for (std::size_t i = 0; i < 3; ++i) {
+  const std::array<double, kPatternParameterCount> value = as_array(fit.fitted);
+  for (std::size_t i = 0; i < kPatternParameterCount; ++i) {
     if (!fit.fitted_mask[i]) continue;
     const Range& r = kRanges[i];
     const bool at_low = value[i] - r.low < r.margin;

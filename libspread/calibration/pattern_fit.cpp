@@ -12,11 +12,6 @@
 namespace spread::calibration {
 namespace {
 
-std::array<double, 3> as_array(const PatternParameters& p) {
-  return {p.friction_wall, p.drag_diameter_factor, p.launch_angle_offset_rad};
-}
-PatternParameters from_array(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
-
 std::vector<double> normalised(std::vector<double> values) {
   double sum = 0.0;
   for (double v : values) sum += v;
@@ -106,18 +101,25 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   std::vector<bool> present(result.measured_fraction.size(), true);
   for (std::size_t i = 0; i < present.size() && i < test.layout_missing.size(); ++i) present[i] = !test.layout_missing[i];
   const auto present_count = static_cast<Eigen::Index>(std::count(present.begin(), present.end(), true));
-  result.fitted_mask = {options.fit_friction, options.fit_drag_diameter, options.fit_angle_offset};
-  // Index of each fitted parameter in the full (μ, k, δ) triple.
+  result.fitted_mask = {options.fit_friction, options.fit_drag_diameter, options.fit_angle_offset,
+                        options.fit_launch_speed, options.fit_elevation_offset};
+  result.table_samples = !setup.table_samples.empty();
+  if (result.table_samples && options.fit_friction) {
+    throw std::invalid_argument("pattern fit: friction cannot be fitted on the table's DEM launch samples (the DEM's "
+                                "launches do not depend on a friction the fit could change); fit the launch "
+                                "speed factor and offsets instead");
+  }
+  // Index of each fitted parameter in the full parameter set.
   std::vector<std::size_t> free;
-  for (std::size_t i = 0; i < 3; ++i) {
+  for (std::size_t i = 0; i < kPatternParameterCount; ++i) {
     if (result.fitted_mask[i]) free.push_back(i);
   }
   const auto p_count = static_cast<Eigen::Index>(free.size());
   if (p_count == 0) throw std::invalid_argument("pattern fit: no parameter to fit");
   if (present_count <= p_count) throw std::invalid_argument("pattern fit: needs more trays than fitted parameters");
-  const std::array<double, 3> fixed = as_array(result.initial);
+  const std::array<double, kPatternParameterCount> fixed = as_array(result.initial);
   auto full = [&](const Eigen::VectorXd& v) {
-    std::array<double, 3> a = fixed;
+    std::array<double, kPatternParameterCount> a = fixed;
     for (Eigen::Index i = 0; i < p_count; ++i) a[free[static_cast<std::size_t>(i)]] = v[i];
     return from_array(a);
   };
@@ -140,8 +142,8 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   LeastSquaresProblem problem;
   problem.residual_count = static_cast<int>(n);
   // Steps well above the float32 rounding of the launch samples (~1e-7 relative) and well below the
-  // parameters' natural scales (μ ~ 0.1, k ~ 0.1, δ ~ 0.05 rad).
-  const std::array<double, 3> step{2e-3, 2e-3, 1e-3};
+  // parameters' natural scales (μ ~ 0.1, k ~ 0.1, δ ~ 0.05 rad, s ~ 0.05, ε ~ 0.05 rad).
+  const std::array<double, kPatternParameterCount> step{2e-3, 2e-3, 1e-3, 2e-3, 1e-3};
   problem.difference_step.resize(p_count);
   Eigen::VectorXd start(p_count);
   for (Eigen::Index i = 0; i < p_count; ++i) {
@@ -212,7 +214,7 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
   const double dof = static_cast<double>(std::max<Eigen::Index>(result.informative_trays - p_count, 1));
   result.reduced_chi_square = fit.sum_of_squares / dof;
 
-  std::array<double, 3> error{}, robust{};
+  std::array<double, kPatternParameterCount> error{}, robust{};
   error.fill(std::numeric_limits<double>::quiet_NaN());
   robust = error;
   if (fit.jacobian.rows() == n) {
@@ -241,7 +243,7 @@ PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, co
       }
     }
   }
-  for (std::size_t a = 0; a < 3; ++a) {
+  for (std::size_t a = 0; a < kPatternParameterCount; ++a) {
     if (!result.fitted_mask[a]) error[a] = robust[a] = 0.0;
   }
   result.standard_error = from_array(error);

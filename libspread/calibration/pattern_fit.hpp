@@ -11,7 +11,7 @@
 // variance model v(q) (VarianceModel) and the fit is redone with weights 1 / v(q_i). Standard errors are
 // s² (J̃ᵀJ̃)⁻¹ of the weighted fit with s² = χ² / (informative trays − fitted parameters), plus a
 // sandwich estimate; the correlation matrix says which parameters the test cannot tell apart. Measured
-// coverage of ±2 SE on synthetic tray tests: about 90 % (tests/tools/test_pattern_fit.cpp).
+// coverage of ±2 SE on synthetic tray tests: about 90 % (tests/calibration/test_pattern_fit.cpp).
 #include <array>
 #include <string>
 #include <vector>
@@ -32,6 +32,8 @@ struct PatternFitOptions {
   bool fit_friction = true;
   bool fit_drag_diameter = true;
   bool fit_angle_offset = true;
+  bool fit_launch_speed = false;       // s and ε: the corrections of a DEM row (pattern_model.hpp)
+  bool fit_elevation_offset = false;
   int max_iterations = 30;
   // Weighted least squares (see VarianceModel): after an unweighted fit, `reweight_rounds` fits with
   // weights 1 / v(q_i) from the variance model of the previous fit's residuals. false: unweighted only.
@@ -66,14 +68,15 @@ VarianceModel fit_variance_model(const std::vector<double>& predicted, const std
 struct PatternFitResult {
   PatternParameters initial;
   PatternParameters fitted;
-  PatternParameters standard_error;          // same units as the parameters (δ in rad); 0 when fixed
+  PatternParameters standard_error;          // same units as the parameters (δ, ε in rad); 0 when fixed
   PatternParameters robust_standard_error;   // sandwich estimate (no variance model assumed)
   bool weighted = false;
   VarianceModel variance_model;              // of the last reweighting round
   double reduced_chi_square = 0.0;           // Σ w r² / (informative trays − fitted parameters)
   int informative_trays = 0;                 // see informative()
-  std::array<bool, 3> fitted_mask{};         // order μ, k, δ
-  std::array<std::array<double, 3>, 3> correlation{};  // order μ, k, δ; 0 for fixed parameters
+  bool table_samples = false;                // corrected the table's (DEM) launch samples, not the analytic model
+  std::array<bool, kPatternParameterCount> fitted_mask{};  // order μ, k, δ, s, ε (PatternParameterIndex)
+  std::array<std::array<double, kPatternParameterCount>, kPatternParameterCount> correlation{};  // 0 when fixed
   double residual_rms_fraction = 0.0;        // sqrt(Σ r² / n) of the mass fractions
   double residual_rms_kg = 0.0;              // the same in mass per tray (× the measured total)
   double initial_residual_rms_fraction = 0.0;
@@ -89,7 +92,7 @@ struct PatternFitResult {
 };
 
 // Throws std::invalid_argument when the start is outside the parameter ranges or the model cannot run
-// it, when no parameter is to be fitted, or when the tray test has no more trays than fitted parameters.
+// it, when no parameter is to be fitted, when friction is to be fitted on table (DEM) samples, or when the tray test has no more trays than fitted parameters.
 PatternFitResult fit_pattern(const PatternSetup& setup, const TrayTest& test, const PatternFitOptions& options = {});
 
 }  // namespace spread::calibration

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "libspread/calibration/scene_of_run.hpp"
@@ -32,6 +33,15 @@ flight::Settings pattern_flight_settings(double dt_s) {
   return s;
 }
 
+std::array<double, kPatternParameterCount> as_array(const PatternParameters& p) {
+  return {p.friction_wall, p.drag_diameter_factor, p.launch_angle_offset_rad, p.launch_speed_factor,
+          p.launch_elevation_offset_rad};
+}
+
+PatternParameters from_array(const std::array<double, kPatternParameterCount>& a) {
+  return {a[kFriction], a[kDragDiameter], a[kAngleOffset], a[kLaunchSpeed], a[kElevationOffset]};
+}
+
 void check_parameters(const PatternParameters& p) {
   if (!std::isfinite(p.friction_wall) || p.friction_wall < 0.0 || p.friction_wall > 2.0) {
     throw std::invalid_argument("friction_wall must be in [0, 2], got " + std::to_string(p.friction_wall));
@@ -44,10 +54,17 @@ void check_parameters(const PatternParameters& p) {
     throw std::invalid_argument("launch_angle_offset must be within ±90°, got " +
                                 std::to_string(p.launch_angle_offset_rad * 180.0 / kPi) + "°");
   }
+  if (!std::isfinite(p.launch_speed_factor) || p.launch_speed_factor < 0.5 || p.launch_speed_factor > 2.0) {
+    throw std::invalid_argument("launch_speed_factor must be in [0.5, 2], got " + std::to_string(p.launch_speed_factor));
+  }
+  if (!std::isfinite(p.launch_elevation_offset_rad) || std::abs(p.launch_elevation_offset_rad) > kPi / 6.0) {
+    throw std::invalid_argument("launch_elevation_offset must be within ±30°, got " +
+                                std::to_string(p.launch_elevation_offset_rad * 180.0 / kPi) + "°");
+  }
 }
 
 PatternSetup pattern_setup_from_table(const tables::TableContents& contents, const std::string& material,
-                                      double rpm) {
+                                      double rpm, bool analytic_model) {
   if (!std::isfinite(rpm) || !(rpm > 0.0)) throw std::invalid_argument("rpm must be > 0");
   const tables::Material* row = nullptr;
   std::string known;
@@ -96,8 +113,15 @@ PatternSetup pattern_setup_from_table(const tables::TableContents& contents, con
   setup.disc_height_m = contents.machine.disc_height_m;
   setup.air.density_kg_m3 = scene.air.density_kg_m3;
   setup.air.viscosity_pa_s = scene.air.viscosity_pa_s;
-  flight::EffectSet effects = scene.effects & flight::kAllEffects;
+  // The effects the run's launches are flown with by predict: those it recorded (a DEM run records the
+  // ones its own flights used), else the scene's.
+  const std::optional<std::string> recorded = tables::recorded_flight_effects(*nearest);
+  flight::EffectSet effects = recorded ? flight::parse_effects(*recorded) : scene.effects & flight::kAllEffects;
   setup.effects = effects & ~static_cast<flight::EffectSet>(flight::kWind);  // a tray test is judged in still air
+  if (!analytic_model && nearest->source != "analytic") {
+    setup.table_samples = nearest->samples;
+    setup.table_row_rpm = nearest->rpm;
+  }
   return setup;
 }
 
@@ -118,26 +142,65 @@ tables::Material calibrated_material(const tables::Material& base, const Pattern
   return m;
 }
 
-std::vector<tables::LaunchSample> calibrated_launch_samples(const PatternSetup& setup, const PatternParameters& p,
-                                                            double rpm, int sample_count) {
-  const tables::Material material = calibrated_material(setup.material, p, setup.material.name);
-  launch::AnalyticLaunchOptions options;
-  options.spin = setup.spin_model;
-  std::vector<tables::LaunchSample> samples =
-      launch::analytic_launch_samples(setup.machine, material, rpm, setup.inlet, sample_count, setup.seed, options);
+std::vector<tables::LaunchSample> corrected_launch_samples(std::vector<tables::LaunchSample> samples,
+                                                           const PatternParameters& p, int rotation_sense) {
+  check_parameters(p);
   // Later release = further round in the disc's sense of rotation; positions, velocities and spins are
   // all turned, so the launch state is the same one seen from a turned frame.
-  const double sense = setup.machine.rotation_sense >= 0 ? 1.0 : -1.0;
-  const double angle = sense * p.launch_angle_offset_rad;
-  if (angle != 0.0) {
-    const double c = std::cos(angle), s = std::sin(angle);
-    for (tables::LaunchSample& sample : samples) {
+  const double angle = (rotation_sense >= 0 ? 1.0 : -1.0) * p.launch_angle_offset_rad;
+  const double c = std::cos(angle), s = std::sin(angle);
+  const double cos_e = std::cos(p.launch_elevation_offset_rad), sin_e = std::sin(p.launch_elevation_offset_rad);
+  for (tables::LaunchSample& sample : samples) {
+    if (angle != 0.0) {
       turn(sample.x_m, sample.y_m, c, s);
       turn(sample.vx_norm, sample.vy_norm, c, s);
       turn(sample.wx_norm, sample.wy_norm, c, s);
     }
+    if (p.launch_elevation_offset_rad != 0.0) {
+      // Turn (v_h, v_z) by ε in the velocity's own vertical plane: v_h' = v_h cos ε − v_z sin ε,
+      // v_z' = v_h sin ε + v_z cos ε, the horizontal direction unchanged.
+      const double vx = sample.vx_norm, vy = sample.vy_norm, vz = sample.vz_norm;
+      const double vh = std::sqrt(vx * vx + vy * vy);
+      if (vh > 0.0) {
+        const double vh_new = vh * cos_e - vz * sin_e;
+        sample.vx_norm = static_cast<float>(vx * vh_new / vh);
+        sample.vy_norm = static_cast<float>(vy * vh_new / vh);
+        sample.vz_norm = static_cast<float>(vh * sin_e + vz * cos_e);
+      }
+    }
+    if (p.launch_speed_factor != 1.0) {
+      sample.vx_norm = static_cast<float>(sample.vx_norm * p.launch_speed_factor);
+      sample.vy_norm = static_cast<float>(sample.vy_norm * p.launch_speed_factor);
+      sample.vz_norm = static_cast<float>(sample.vz_norm * p.launch_speed_factor);
+    }
+    sample.diameter_m = static_cast<float>(sample.diameter_m * p.drag_diameter_factor);
   }
   return samples;
+}
+
+std::vector<tables::LaunchSample> calibrated_launch_samples(const PatternSetup& setup, const PatternParameters& p,
+                                                            double rpm, int sample_count) {
+  if (!setup.table_samples.empty()) {
+    // A whole stride keeps an even share of the row's granules (they are in the DEM's release order,
+    // not sorted by any launch quantity).
+    const std::size_t n = setup.table_samples.size();
+    const std::size_t stride = sample_count > 0 ? (n + static_cast<std::size_t>(sample_count) - 1) /
+                                                      static_cast<std::size_t>(sample_count)
+                                                : 1;
+    std::vector<tables::LaunchSample> thinned;
+    thinned.reserve(n / stride + 1);
+    for (std::size_t i = 0; i < n; i += stride) thinned.push_back(setup.table_samples[i]);
+    return corrected_launch_samples(std::move(thinned), p, setup.machine.rotation_sense);
+  }
+  // The analytic model takes k through the material's diameters; the correction applies the rest.
+  const tables::Material material = calibrated_material(setup.material, p, setup.material.name);
+  launch::AnalyticLaunchOptions options;
+  options.spin = setup.spin_model;
+  PatternParameters rest = p;
+  rest.drag_diameter_factor = 1.0;
+  return corrected_launch_samples(
+      launch::analytic_launch_samples(setup.machine, material, rpm, setup.inlet, sample_count, setup.seed, options), rest,
+      setup.machine.rotation_sense);
 }
 
 PatternModel::PatternModel(PatternSetup setup, metrics::TrayLayout trays, PatternModelOptions options)

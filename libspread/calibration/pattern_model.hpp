@@ -16,6 +16,19 @@
 // In the table these become an "aerodynamic-equivalent" material: diameters ×k, density ÷k³ (granule
 // mass unchanged), friction μ; the offset is applied to the stored launch samples.
 //
+// Rows built by the DEM (source "dem") have no friction to refit: the DEM's launches come from its contact
+// laws, not from a closed-form μ. For them the model starts from the table's own launch samples (the row
+// nearest the tray test's rpm, its normalised samples scaled to that rpm) and fits a correction of the
+// launch state that a worn vane, a different material batch or a drop-point setting would cause:
+//   launch_speed_factor s          every launch velocity × s (direction kept): the throw's length.
+//   launch_angle_offset δ          as above: the throw's direction about the disc axis.
+//   launch_elevation_offset ε      each launch velocity turned upwards by ε in its own vertical plane
+//                                  (horizontal direction and speed kept): the throw's length through its
+//                                  flight time, separately from the speed.
+// plus the drag diameter factor k (diameters of the samples ×k, density ÷k³). The calibrated rows are the
+// transformed DEM samples of every row (calibrated_table.hpp): predict, the C API and the landing cache
+// read them as any DEM row.
+//
 // Smoothness — the fit differentiates this model numerically, so it must be a smooth, deterministic
 // function of the parameters: the launch samples are a fixed low-discrepancy set (same seed, same
 // count: sample k keeps its feed point and diameter whatever the parameters); flights use fixed-step
@@ -24,6 +37,8 @@
 // kernel (sd kernel_sigma_m) instead of dropping it into one tray, so a landing crossing a tray edge
 // moves mass continuously. The kernel is also a fair picture of the real scatter of a granule stream
 // (bounce, shape) that the model's few hundred trajectories do not have.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,7 +54,15 @@ struct PatternParameters {
   double friction_wall = 0.4;            // μ, dimensionless, [0, 2]
   double drag_diameter_factor = 1.0;     // k, dimensionless, [0.2, 5]
   double launch_angle_offset_rad = 0.0;  // δ, rad, |δ| <= π/2
+  double launch_speed_factor = 1.0;      // s, dimensionless, [0.5, 2]
+  double launch_elevation_offset_rad = 0.0;  // ε, rad, |ε| <= π/6
 };
+
+// The parameters in a fixed order (fit masks, correlation matrices, acceptance ranges).
+inline constexpr std::size_t kPatternParameterCount = 5;
+enum PatternParameterIndex : std::size_t { kFriction = 0, kDragDiameter, kAngleOffset, kLaunchSpeed, kElevationOffset };
+std::array<double, kPatternParameterCount> as_array(const PatternParameters& parameters);
+PatternParameters from_array(const std::array<double, kPatternParameterCount>& values);
 
 // Everything fixed during a fit: the machine and inlet of the table's scene, the material as stored,
 // the disc speed, the air.
@@ -48,6 +71,10 @@ struct PatternSetup {
   scene::Inlet inlet;
   scene::SpinModel spin_model = scene::SpinModel::kRolling;
   std::uint64_t seed = 1;             // of the launch samples (the table scene's numerics.seed)
+  // Non-empty: the launch samples of the material's table row nearest `rpm` (a DEM row), corrected by the
+  // parameters instead of the analytic model; `table_row_rpm` is that row's rpm.
+  std::vector<tables::LaunchSample> table_samples;
+  double table_row_rpm = 0.0;
   tables::Material material;          // as stored in the table
   double rpm = 0.0;                   // r/min
   double disc_height_m = 0.0;         // disc above the ground (the table's machine row)
@@ -56,11 +83,17 @@ struct PatternSetup {
 };
 
 // From a table's contents: the scene of the material's run nearest in rpm (scene_of_run.hpp), the
-// table's material row and disc height. Throws std::invalid_argument naming an unknown material (and
+// table's material row and disc height. When that run is not analytic (a DEM row) and `analytic_model` is
+// false, its launch samples go into `table_samples`. Throws std::invalid_argument naming an unknown material (and
 // listing the known ones), a material without runs or an rpm outside the range of the material's runs;
 // scene::SceneError for an unreadable stored scene.
 PatternSetup pattern_setup_from_table(const tables::TableContents& contents, const std::string& material,
-                                      double rpm);
+                                      double rpm, bool analytic_model = false);
+
+// The launch samples `base` (table record convention) corrected by s, δ, ε and k (see above); friction is
+// not used. `rotation_sense` of the machine (δ > 0 is later release in the sense of rotation).
+std::vector<tables::LaunchSample> corrected_launch_samples(std::vector<tables::LaunchSample> base,
+                                                           const PatternParameters& parameters, int rotation_sense);
 
 // The parameters a stored material stands for: μ = friction_wall, k = 1, δ = 0.
 PatternParameters parameters_of(const tables::Material& material);
@@ -69,8 +102,9 @@ PatternParameters parameters_of(const tables::Material& material);
 tables::Material calibrated_material(const tables::Material& base, const PatternParameters& parameters,
                                      const std::string& name);
 
-// Analytic launch samples of the calibrated material at `rpm`, turned by the launch-angle offset
-// (positions, velocities and spins about the disc axis). Table record convention (normalised by ωR, ω).
+// Launch samples of the calibrated material at `rpm`: the analytic model's (or, with table_samples, those
+// thinned by a whole stride to at most `sample_count`), corrected by corrected_launch_samples(). Table
+// record convention (normalised by ωR, ω).
 // Throws std::invalid_argument when the parameters are outside their ranges or the launch model cannot
 // run them.
 std::vector<tables::LaunchSample> calibrated_launch_samples(const PatternSetup& setup,

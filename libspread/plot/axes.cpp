@@ -171,6 +171,10 @@ void draw_legend(cairo_t* cr, const std::vector<LegendEntry>& entries, double ri
         cairo_line_to(cr, x0 + swatch_px, y);
         cairo_stroke(cr);
         cairo_set_dash(cr, nullptr, 0, 0.0);
+        if (e.with_marker) {
+          cairo_arc(cr, x0 + 0.5 * swatch_px, y, 5.0, 0.0, 6.283185307179586);
+          cairo_fill(cr);
+        }
         break;
       }
       case LegendEntry::Kind::kMarker:

@@ -54,6 +54,7 @@ struct LegendEntry {
   std::string label;
   Rgb colour;
   enum class Kind { kBox, kLine, kDashedLine, kMarker } kind;
+  bool with_marker = false;  // a line with the dot the plot marks on it (e.g. a working width)
 };
 // Legend box with its top-right corner at (right_px, top_px).
 void draw_legend(cairo_t* cr, const std::vector<LegendEntry>& entries, double right_px, double top_px);

@@ -41,6 +41,9 @@ struct TransverseOptions {
   double bout_cv = std::numeric_limits<double>::quiet_NaN();
   // With bout_width_m > 0: also the bout's mean mass per tray (a line) and the band mean × (1 ± CV).
   bool mean_band = false;
+  // > 0 (with kKilograms): the catching area of one tray (m²); the bars are then shown as kg/ha
+  // (mass ÷ area · 10 000), what a technician sets the spreader to.
+  double tray_area_m2 = 0.0;
 };
 // Bars per tray (mass per tray; the unit — kg, g or mg — is picked from the data and named on the axis),
 // x in metres.
@@ -48,13 +51,22 @@ void write_transverse_png(std::span<const double> tray_mass_kg, const metrics::T
                           const std::string& path, const std::string& title,
                           const TransverseOptions& options = TransverseOptions{});
 
+// Optional extras for the CV(W) plot.
+struct CvCurveOptions {
+  std::string series_label;                   // "" or a prefix of the two curves' legend ("calibrated")
+  std::span<const double> second_to_and_fro{};  // e.g. the tray test's to-and-fro CV(W); same widths; empty = none
+  std::string second_label = "measured";
+};
+
 // CV(W) in percent against bout width W (m) for to-and-fro and racetrack, the target line, and each
 // curve's effective working width (metrics::working_width_on_curve: the first crossing, as predictions
-// report it) marked. `widths_m` increase; `cv_*` are fractions (0.1 = 10 %), the same size as
-// `widths_m`; infinite CV values (empty bouts) are clipped to the top.
-// Either curve may be empty (not drawn).
+// report it) marked by a dot on the curve, which the legend shows with the curve. `widths_m` increase;
+// `cv_*` are fractions (0.1 = 10 %), the same size as `widths_m`; infinite CV values (empty bouts) are
+// clipped to the top. The W axis ends one width after the last point of any curve on the CV axis (where
+// the pattern lives; beyond, the bouts outgrow the throw and the CV only climbs). Either curve may be
+// empty (not drawn).
 void write_cv_curve_png(std::span<const double> widths_m, std::span<const double> cv_to_and_fro,
                         std::span<const double> cv_racetrack, double cv_target, const std::string& path,
-                        const std::string& title);
+                        const std::string& title, const CvCurveOptions& options = CvCurveOptions{});
 
 }  // namespace spread::plot

@@ -85,7 +85,14 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
   for (double m : bout_kg) max_kg = std::max(max_kg, m);
   if (band) max_kg = std::max(max_kg, bout_mean_kg * (1.0 + bout_cv));
   const bool fraction = options.units == MassUnits::kFraction;
-  const detail::MassUnit unit = fraction ? detail::MassUnit{"% of the mass", 100.0} : detail::mass_unit_for(max_kg);
+  if (!(options.tray_area_m2 >= 0.0) || !std::isfinite(options.tray_area_m2)) {
+    throw std::invalid_argument("write_transverse_png: tray_area_m2 must be finite and >= 0");
+  }
+  const bool rate = !fraction && options.tray_area_m2 > 0.0;
+  // kg per tray ÷ A (m²) · 10 000 m²/ha.
+  const detail::MassUnit unit = fraction ? detail::MassUnit{"% of the mass", 100.0}
+                                : rate   ? detail::MassUnit{"kg/ha", 1e4 / options.tray_area_m2}
+                                         : detail::mass_unit_for(max_kg);
 
   double x_lo = trays.left_edge_m(), x_hi = -trays.left_edge_m();
   x_lo = std::min(x_lo, -bout_half_m);
@@ -178,8 +185,8 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
   }
   if (band) {
     char label[160];
-    std::snprintf(label, sizeof label, "mean of the bout: %.3g %s per tray",
-                  bout_mean_kg * unit.per_kg, unit.name.c_str());
+    std::snprintf(label, sizeof label, "mean of the bout: %.3g %s%s", bout_mean_kg * unit.per_kg, unit.name.c_str(),
+                  rate ? "" : " per tray");
     legend.push_back({label, kMeanColour, detail::LegendEntry::Kind::kDashedLine});
     std::snprintf(label, sizeof label, "mean ± CV (%.1f %%)", 100.0 * bout_cv);
     legend.push_back({label, Rgb{0.70, 0.85, 0.74}, detail::LegendEntry::Kind::kBox});
@@ -187,7 +194,8 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
   cairo_restore(cr);  // clip
 
   axes.draw_frame(cr, "x, across the driving direction (m)",
-                  (fraction ? "share per " : "mass per ") + detail::tick_label(w_m, 0.1) + " m tray (" + unit.name + ")");
+                  rate ? "rate: tray mass / tray area (kg/ha)"
+                       : (fraction ? "share per " : "mass per ") + detail::tick_label(w_m, 0.1) + " m tray (" + unit.name + ")");
   detail::draw_legend(cr, legend, axes.left() + axes.width() - 8.0, axes.top() + 8.0);
   detail::draw_title(cr, title, 0.5 * kImageWidth_px, 14.0);
   cairo_restore(cr);

@@ -92,6 +92,13 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
       chart.rows.push_back(row);
       continue;
     }
+    // Later crossings (a grid point on the width counts once: the interval after it must change sign).
+    for (std::size_t k = bracket + 1; k + 1 < chart.scan_rpm.size(); ++k) {
+      const double a = chart.scan_working_width_m[k] - width_m, b = chart.scan_working_width_m[k + 1] - width_m;
+      const double before = chart.scan_working_width_m[k - 1] - width_m;
+      const bool crosses = (a < 0.0 && b >= 0.0) || (a > 0.0 && b <= 0.0) || (a == 0.0 && (before < 0.0) != (b < 0.0));
+      if (crosses) row.other_crossings_rpm.emplace_back(chart.scan_rpm[k], chart.scan_rpm[k + 1]);
+    }
     double lo = chart.scan_rpm[bracket], hi = chart.scan_rpm[bracket + 1];
     const bool rising = chart.scan_working_width_m[bracket + 1] >= chart.scan_working_width_m[bracket];
     while (hi - lo > options.rpm_tolerance) {

@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "libspread/predict/predictor.hpp"
@@ -52,6 +53,9 @@ struct SettingChartRow {
   double cv_racetrack = std::numeric_limits<double>::quiet_NaN();
   double cv_racetrack_se = std::numeric_limits<double>::quiet_NaN();
   std::size_t sample_count = 0;
+  // Grid intervals [low, high] rpm above the one bisected where W(rpm) crosses the width again: the working
+  // width is not monotone in rpm, and the row gives the lowest rpm only.
+  std::vector<std::pair<double, double>> other_crossings_rpm;
 };
 
 struct SettingChart {

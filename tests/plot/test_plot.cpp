@@ -207,3 +207,64 @@ TEST(Plot, WorkingWidthLabelAtTheRightEdgeIsNotCut) {
   const int label_pixels = count_pixels_near(path, 64, 115, 191, 40, 890, 530, 958, 560);
   EXPECT_GT(label_pixels, 15);
 }
+
+namespace {
+
+// CV(W) that is small up to 8 m, crosses 15 % near 8.5 m and is far off the CV axis (500 %) from 10.5 m
+// on: a pattern that lives within about 10 m on a layout 40 m wide.
+void narrow_pattern_curve(std::vector<double>& widths, std::vector<double>& cv) {
+  for (int n = 1; n <= 80; ++n) {
+    const double w = 0.5 * n;
+    widths.push_back(w);
+    cv.push_back(w <= 8.0 ? 0.05 : w <= 10.0 ? 0.05 + 0.25 * (w - 8.0) / 2.0 : 5.0);
+  }
+}
+
+}  // namespace
+
+TEST(Plot, CvCurveAxisEndsWhereThePatternLives) {
+  // The W axis ends one width after the last point on the CV axis (10.5 m), so the curve's rise from 8 m
+  // spans the right half of the plot (x 530-958 px): to-and-fro blue (64/115/191) there. Over the whole
+  // layout (40 m) everything right of 10.5 m would be off the top, and the right half blank.
+  std::vector<double> widths, cv;
+  narrow_pattern_curve(widths, cv);
+  const std::string path = output_path("cv_curve_narrow.png");
+  sp::write_cv_curve_png(widths, cv, {}, 0.15, path, "narrow pattern");
+  expect_png(path);
+  EXPECT_GT(count_pixels_near(path, 64, 115, 191, 40, 530, 60, 958, 560), 200);
+}
+
+TEST(Plot, CvCurveLegendShowsTheWorkingWidthDot) {
+  // The working width is marked by a dot on the curve; the legend's entry is the line with the same dot:
+  // blue pixels above the legend swatch's line (the line is 2.5 px at y 80, the dot 5 px in radius). The
+  // legend sits top left (its swatch from x 116 px).
+  std::vector<double> widths, cv;
+  narrow_pattern_curve(widths, cv);
+  const std::string path = output_path("cv_curve_legend_dot.png");
+  sp::write_cv_curve_png(widths, cv, {}, 0.15, path, "legend with the marker");
+  EXPECT_GT(count_pixels_near(path, 64, 115, 191, 60, 124, 74, 137, 78), 4);
+  // No width meets a 1 % target: no dot on the curve, none in the legend.
+  const std::string none = output_path("cv_curve_legend_no_dot.png");
+  sp::write_cv_curve_png(widths, cv, {}, 0.01, none, "no working width");
+  EXPECT_EQ(count_pixels_near(none, 64, 115, 191, 60, 124, 74, 137, 78), 0);
+}
+
+TEST(Plot, CvCurveWithASecondCurveInOneFigure) {
+  // Calibrated and measured in one figure: the second (grey, 77/77/77) curve is drawn and in the legend.
+  std::vector<double> widths, cv;
+  narrow_pattern_curve(widths, cv);
+  std::vector<double> measured(cv);
+  for (double& v : measured) v = std::min(v * 1.3, 5.0);
+  sp::CvCurveOptions options;
+  options.series_label = "calibrated";
+  options.second_to_and_fro = measured;
+  const std::string path = output_path("cv_curve_two.png");
+  sp::write_cv_curve_png(widths, cv, {}, 0.15, path, "calibrated and measured", options);
+  const int grey = count_pixels_near(path, 77, 77, 77, 20, 100, 60, 960, 565);
+  const std::string alone = output_path("cv_curve_alone.png");
+  sp::write_cv_curve_png(widths, cv, {}, 0.15, alone, "calibrated and measured");
+  EXPECT_GT(grey, count_pixels_near(alone, 77, 77, 77, 20, 100, 60, 960, 565) + 300);
+  std::vector<double> short_cv(3);
+  options.second_to_and_fro = short_cv;
+  EXPECT_THROW(sp::write_cv_curve_png(widths, cv, {}, 0.15, path, "x", options), std::invalid_argument);
+}

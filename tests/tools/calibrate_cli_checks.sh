@@ -1,11 +1,11 @@
 #!/bin/sh
 # `spread calibrate` end to end: refusals, warnings and missing readings as a technician meets them.
-# Usage: calibrate_cli_checks.sh CASE SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR
+# Usage: calibrate_cli_checks.sh CASE SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR [DEM_TABLE]
 # Prints "PASS: CASE" (exit 0) or "FAIL: CASE: why" (exit 1). Case `fixture` builds what the others use:
 # a small analytic Urea table (narrow inlet, 256 samples per run, 450–750 rpm) and a synthetic 750 rpm
 # tray test.
 set -u
-case_name=$1 spread=$2 builder=$3 src=$4 work=$5
+case_name=$1 spread=$2 builder=$3 src=$4 work=$5 dem=${6:-}
 example=$src/scenes/field/tray_test_3passes.csv
 out=$work/$case_name
 fail() { echo "FAIL: $case_name: $*"; echo "--- stdout"; cat "$out.stdout" 2>/dev/null; echo "--- stderr"; cat "$out.stderr" 2>/dev/null; exit 1; }
@@ -16,7 +16,124 @@ has() { grep -qF -- "$2" "$1" || fail "expected '$2' in $(basename "$1")"; }
 hasnt() { ! grep -qF -- "$2" "$1" || fail "did not expect '$2' in $(basename "$1")"; }
 mkdir -p "$work"
 
+# value_and_se FILE KEY: "value standard_error" of a fitted parameter in `calibrate pattern --json`.
+value_and_se() {
+  awk -v key="\"$2\": {" 'index($0, key) { inside = 1 } inside && /"standard_error"/ { gsub(/[",]/, ""); se = $2 }
+       inside && /"value"/ { gsub(/[",]/, ""); print $2, se; exit }' "$1"
+}
+# within_se "VALUE SE" TRUTH: the truth within one standard error.
+within_se() { echo "$1 $2" | awk '{ d = $1 - $3; if (d < 0) d = -d; exit !(d < $2 && $2 > 0) }'; }
+
 case $case_name in
+quick_check_report)
+  # The quick check with a tray area: the rate the trays caught (each holds the overlapped spread, so
+  # mean / A = 10.20 g / 0.25 m² = 408 kg/ha), its check, and a one-page PDF.
+  rm -f "$work/qc.pdf"
+  SOURCE_DATE_EPOCH=978307200 run calibrate tray "$src/scenes/field/quick_check_5trays.csv" --quick-check \
+      --tray-area 0.25 --rate-kg-ha 400 --report "$work/qc.pdf"
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "rate caught at W = 12.00 m: 408.0 kg/ha (tray area 0.25 m²)"
+  has "$out.stdout" "EN 13739-2 rate check: PASS, the trays caught 102.0 % of the set 400.0 kg/ha"
+  pdftotext "$work/qc.pdf" "$work/qc.txt" || fail "pdftotext"
+  has "$work/qc.txt" "Quick check of a spread in the field"
+  has "$work/qc.txt" "2001-01-01"
+  has "$work/qc.txt" "CV 10.2 %; the bout's CV lies between 6.1 % and 30.4 %"
+  has "$work/qc.txt" "408.0 kg/ha"
+  run calibrate tray "$src/scenes/field/quick_check_5trays.csv" --quick-check --plot "$work/qc"
+  [ $rc -eq 2 ] || fail "--plot with --quick-check: exit $rc, expected 2"
+  pass ;;
+chart_other_crossings)
+  # The narrow inlet's working width is not monotone in rpm: 3 m is reached at 531 rpm and again higher up.
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 3,12
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "note: 3.0 m is also the working width between 575-600 rpm"
+  hasnt "$out.stdout" "note: 12.0 m"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 3 --json
+  has "$out.stdout" '"other_crossings_rpm": ['
+  pass ;;
+name_date)
+  # The calibrated material's default name carries SOURCE_DATE_EPOCH's date (reproducible), not the clock's.
+  rm -f "$work/named.sqlite"
+  SOURCE_DATE_EPOCH=978307200 run calibrate pattern --tables "$work/urea.sqlite" --material Urea --rpm 600 \
+      --trays "$example" --output "$work/named.sqlite" --fit friction,drag --samples 128
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "wrote 'Urea (calibrated 2001-01-01)'"
+  pass ;;
+dem_guidance)
+  # predict at a bout width whose CV is above the target: the settings to change, each with the CV the
+  # table predicts there — the disc-speed one equal to predict's own answer at that rpm.
+  run predict --tables "$dem" --material Urea --rpm 600 --width 9 --json
+  [ $rc -eq 0 ] || fail "exit $rc"
+  cp "$out.stdout" "$work/guidance.json"
+  python3 - "$work/guidance.json" "$spread" "$dem" <<'PY' > "$out.check" 2>&1 || fail "$(cat "$out.check")"
+import json, subprocess, sys
+d = json.load(open(sys.argv[1]))
+assert d["cv_to_and_fro_percent"] > 15, d["cv_to_and_fro_percent"]
+settings = [a["setting"] for a in d["adjustments"]]
+assert settings == ["disc_speed", "bout_width", "disc_height"], settings
+speed = d["adjustments"][0]
+again = json.loads(subprocess.run([sys.argv[2], "predict", "--tables", sys.argv[3], "--material", "Urea", "--rpm",
+                                   str(speed["rpm"]), "--width", "9", "--json"], capture_output=True, text=True).stdout)
+assert abs(again["cv_to_and_fro_percent"] - speed["cv_to_and_fro_percent"]) < 1e-9, (again["cv_to_and_fro_percent"], speed)
+assert speed["cv_to_and_fro_percent"] < d["cv_to_and_fro_percent"]
+width = d["adjustments"][1]
+assert width["bout_width_m"] < 9 and width["meets_target"], width
+PY
+  rm -f "$work/guidance.pdf"
+  run predict --tables "$dem" --material Urea --rpm 600 --width 9 --report "$work/guidance.pdf"
+  has "$out.stdout" "the CV at 9.00 m is above the target 15 %; predicted from the table, one setting at a time:"
+  has "$out.stdout" "disc speed 750 rpm: CV"
+  # The same lines on the report's page.
+  pdftotext "$work/guidance.pdf" "$work/guidance.txt" || fail "pdftotext"
+  has "$work/guidance.txt" "the CV at 9.00 m is above the target 15 %"
+  has "$work/guidance.txt" "disc speed 750 rpm: CV"
+  run predict --tables "$dem" --material Urea --rpm 600 --width 7 --json
+  has "$out.stdout" '"adjustments": null'
+  pass ;;
+dem_recover)
+  # The main job's DEM table: a 600 rpm tray test made from its own Urea row with a known launch correction
+  # (speed factor 0.95, launch-angle offset 4°) is fitted back from no correction.
+  rm -f "$work/dem600.csv" "$work/dem_calibrated.sqlite"
+  run calibrate synth --tables "$dem" --material Urea --rpm 600 --speed-factor 0.95 --offset 4 --mass 150 \
+      --granule-mass 0.02 --seed 7 --samples 512 --output "$work/dem600.csv"
+  [ $rc -eq 0 ] || fail "synth exit $rc"
+  run calibrate pattern --tables "$dem" --material Urea --rpm 600 --trays "$work/dem600.csv" \
+      --output "$work/dem_calibrated.sqlite" --samples 512 --name "Urea (field)" --width 8 --json
+  [ $rc -eq 0 ] || fail "exit $rc"
+  # At 8 m the calibrated material's CV is above 15 %: what to change, predicted from the new table.
+  has "$out.stdout" '"setting": "disc_speed"'
+  has "$out.stdout" '"setting": "bout_width"'
+  has "$out.stdout" '"launch_model": "table_samples"'
+  has "$out.stdout" '"accepted": true'
+  speed=$(value_and_se "$out.stdout" launch_speed_factor)
+  offset=$(value_and_se "$out.stdout" launch_angle_offset_deg)
+  # Measured: 0.9497 ± 0.0035 and 3.947 ± 0.291° (0.1 and 0.2 SE).
+  within_se "$speed" 0.95 || fail "speed factor (value, SE) $speed: 0.95 not within 1 SE"
+  within_se "$offset" 4 || fail "offset (value, SE) $offset: 4 not within 1 SE"
+  # The calibrated rows are DEM rows that predict reads as any other.
+  run predict --tables "$work/dem_calibrated.sqlite" --material "Urea (field)" --rpm 600
+  [ $rc -eq 0 ] || fail "predict exit $rc"
+  has "$out.stdout" "landings from the landing cache"
+  pass ;;
+dem_refused)
+  # A 450 rpm tray test (launches slowed to 0.6) fitted at 750 rpm: the speed factor runs into its lower
+  # bound; nothing is written.
+  rm -f "$work/slow.csv" "$work/dem_refused.sqlite"
+  run calibrate synth --tables "$dem" --material Urea --rpm 450 --speed-factor 0.6 --mass 150 \
+      --granule-mass 0.02 --seed 7 --samples 256 --output "$work/slow.csv"
+  [ $rc -eq 0 ] || fail "synth exit $rc"
+  run calibrate pattern --tables "$dem" --material Urea --rpm 750 --trays "$work/slow.csv" \
+      --output "$work/dem_refused.sqlite" --samples 256
+  [ $rc -eq 1 ] || fail "exit $rc, expected 1"
+  [ ! -e "$work/dem_refused.sqlite" ] || fail "the table was written"
+  has "$out.stdout" "refused: launch speed factor ended on its lower bound"
+  has "$out.stdout" "nothing written"
+  # Friction is no parameter of a DEM row: refused before the fit.
+  run calibrate pattern --tables "$dem" --material Urea --rpm 750 --trays "$work/slow.csv" \
+      --output "$work/dem_refused.sqlite" --fit friction,drag
+  [ $rc -eq 2 ] || fail "--fit friction: exit $rc, expected 2"
+  has "$out.stderr" "--fit friction: the table's rows of this material came from the DEM"
+  pass ;;
 fixture)
   rm -f "$work/urea.sqlite" "$work/t750.csv"
   "$builder" "$src/scenes/default.toml" --output "$work/urea.sqlite" --set sweep.source=analytic \

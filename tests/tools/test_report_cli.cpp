@@ -195,6 +195,8 @@ TEST_F(ReportCli, TrayReportTextMatchesTheJson) {
   EXPECT_NE(text.find("Disc speed: 600 rpm"), std::string::npos) << text;
   EXPECT_NE(text.find("Forward speed: 12.0 km/h"), std::string::npos) << text;
   EXPECT_NE(text.find("date 2025-11-24"), std::string::npos) << text;
+  // With --tray-area the chart's bars are a rate, as the technician sets it.
+  EXPECT_NE(text.find("tray mass / tray area (kg/ha)"), std::string::npos) << text;
 
   // Every row of the CV table equals the JSON's cv_curve at that width (to 0.1 %, as printed).
   EXPECT_EQ(expect_cv_rows_as_json(text, j), 5) << text;

@@ -7,9 +7,12 @@
 // Every command prints a short report, or JSON with --json. Bad input → a message naming it on stderr,
 // exit code 2 (for a CSV: file and line). A run that cannot complete (a refused fit, a plot that cannot
 // be written) → exit code 1, after the report.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -28,12 +31,14 @@
 #include "libspread/calibration/tray_analysis.hpp"
 #include "libspread/calibration/tray_csv.hpp"
 #include "libspread/plot/plot.hpp"
+#include "libspread/plot/report_date.hpp"
 #include "libspread/plot/report_pdf.hpp"
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/output_paths.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/setting_guidance.hpp"
 
 namespace {
 
@@ -225,9 +230,11 @@ json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
   return out;
 }
 
-void plot_tray(const cal::TrayTest& t, const cal::TrayTestAnalysis& a, const std::string& prefix, json& written) {
+void plot_tray(const cal::TrayTest& t, const cal::TrayTestAnalysis& a, const std::string& prefix, double tray_area_m2,
+               json& written) {
   spread::plot::TransverseOptions options;
   options.series_label = "measured";
+  if (tray_area_m2 > 0.0) options.tray_area_m2 = tray_area_m2;
   options.bout_width_m = a.bout_width_m > 0.0 ? a.bout_width_m : a.working_width_to_and_fro_m;
   const std::string transverse = prefix + "_transverse.png";
   spread::plot::write_transverse_png(t.layout_mass_kg, t.layout, transverse, "tray test " + t.source, options);
@@ -329,18 +336,20 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
 // --quick-check: 4–8 trays across one bout of the field as driven; the CV of the trays themselves and how
 // uncertain it is from so few trays.
 void run_quick_check(const TrayOptions& o, double cv_target) {
-  const char* not_with = !o.plot_prefix.empty() ? "--plot"
-                         : !o.report.path.empty() ? "--report"
-                         : o.width_m > 0.0 ? "--width"
-                         : !std::isnan(o.report.tray_area_m2) ? "--tray-area"
-                                                               : nullptr;
+  const char* not_with = !o.plot_prefix.empty() ? "--plot" : o.width_m > 0.0 ? "--width" : nullptr;
   if (not_with != nullptr) {
     throw BadInput(std::string(not_with) + " does not go with --quick-check: the quick check's trays already hold the "
-                   "overlapped spread of the bout as driven; for a chart, a report or the CV at other widths lay a "
+                   "overlapped spread of the bout as driven; for a chart or the CV at other widths lay a "
                    "full tray test across the throw (without --quick-check)");
   }
+  const std::string report_problem = spread::cli::check_report_args(o.report);
+  const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   const cal::TrayTest t = cal::read_tray_csv(o.file, cal::quick_check_csv_options());
   const cal::QuickCheck q = cal::quick_check(t, cv_target);
+  // The trays caught the overlapped spread itself: each stands for mean / A. As a bout of n trays of the
+  // spacing w holding n · mean (tray_rate_check.hpp: M · w / (W · A) with W = n · w) this is the same rate.
+  const std::optional<spread::plot::ReportRate> rate =
+      spread::cli::report_rate(o.report, q.mean_kg * q.trays, q.trays * t.tray_width_m, t.tray_width_m);
   const std::vector<std::string> notes = missing_notes(t);
   const std::string high = std::isfinite(q.interval.high) ? format("%.1f %%", 100.0 * q.interval.high) : "unbounded";
   std::string verdict;
@@ -357,6 +366,38 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
                 "across the throw (step 2) to know";
       break;
   }
+  std::string report_error;
+  if (!o.report.path.empty() && report_problem.empty()) {
+    report_error = plot_or_error([&] {
+      spread::plot::TablePage page;
+      page.header.title = "Quick check of a spread in the field";
+      page.header.source = t.source;
+      page.header.machine = o.machine;
+      page.header.material = o.material;
+      page.header.rpm = o.rpm > 0.0 ? o.rpm : std::numeric_limits<double>::quiet_NaN();
+      page.header.speed_km_h = o.report.speed_km_h;
+      page.header.time_s = report_time_s;
+      page.header.made_by = spread::cli::command_line();
+      char text[160];
+      std::snprintf(text, sizeof text, "%d trays read, %.2f m apart, %zu pass(es), mean %.2f g per tray", q.trays,
+                    t.tray_width_m, t.mass_columns.size(), 1e3 * q.mean_kg);
+      page.summary.emplace_back(text);
+      page.summary.push_back(format("CV %.1f %%", 100.0 * q.cv) + "; the bout's CV lies between " +
+                             format("%.1f %%", 100.0 * q.interval.low) + " and " + high + " (95 % interval, McKay)");
+      page.summary.push_back("against the target: " + verdict);
+      for (const std::string& line : spread::cli::rate_lines(rate)) page.summary.push_back(line);
+      page.caption = "Trays (mean of the passes)";
+      page.columns = {"tray", "position", "mass"};
+      for (std::size_t i = 0; i < t.position_m.size(); ++i) {
+        page.rows.push_back({std::to_string(i + 1), format("%.2f m", t.position_m[i]),
+                             t.missing[i] ? std::string("missing") : format("%.2f g", 1e3 * t.mass_kg[i])});
+      }
+      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      page.notes.push_back("a CV from a few trays is itself uncertain: the interval says how much "
+                           "(docs/field-calibration.md, Quick check)");
+      spread::plot::write_report_pdf(o.report.path, nullptr, &page);
+    });
+  }
   if (o.json) {
     json out{{"tray_test", t.source},
              {"quick_check", true},
@@ -371,8 +412,11 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
              {"confidence_percent", 100.0 * q.interval.confidence},
              {"cv_target_percent", 100.0 * cv_target},
              {"verdict", cal::to_string(q.verdict)},
+             {"rate", spread::cli::rate_json(rate)},
              {"notes", notes}};
+    spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
+    spread::cli::throw_report_outcome(report_problem, report_error);
     return;
   }
   std::printf("%s: quick check, %d trays read (%.2f m apart), %zu pass(es), mean %.2f g per tray\n", t.source.c_str(),
@@ -382,6 +426,11 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
               100.0 * q.cv, q.trays, q.trays, 100.0 * q.interval.low, high.c_str(), 100.0 * q.interval.confidence);
   std::printf("against the target: %s\n", verdict.c_str());
   for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
+  for (const std::string& line : spread::cli::rate_lines(rate)) std::printf("%s\n", line.c_str());
+  if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
+    std::printf("wrote %s\n", o.report.path.c_str());
+  }
+  spread::cli::throw_report_outcome(report_problem, report_error);
 }
 
 void run_tray(const TrayOptions& o) {
@@ -403,11 +452,12 @@ void run_tray(const TrayOptions& o) {
       spread::cli::report_rate(o.report, a.total_mass_kg, report_width_m, t.layout.tray_width_m);
   json written = json::object();
   const std::string plot_error =
-      o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, written); });
+      o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, o.report.tray_area_m2, written); });
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
       spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
+      if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
       page.header.machine = o.machine;
       page.header.material = o.material;
       page.header.rpm = o.rpm;
@@ -467,52 +517,70 @@ void run_tray(const TrayOptions& o) {
 // ------------------------------------------------------------------------------------------- pattern
 
 struct PatternOptions {
-  std::string tables, material, trays, output, name, fit = "friction,drag,offset", plot_prefix;
+  std::string tables, material, trays, output, name, fit, plot_prefix;  // fit "": by the table's rows
   double rpm = 0.0;
   int samples = 1024;
   double kernel_m = 0.0;
   double cv_target_percent = 15.0;
+  double width_m = 0.0;  // bout width of the report and the guidance; 0: none
   bool allow_analytic = false;
   bool json = false;
   spread::cli::ReportArgs report;
 };
 
-void parse_fit_list(const std::string& text, cal::PatternFitOptions& options) {
-  options.fit_friction = options.fit_drag_diameter = options.fit_angle_offset = false;
-  std::stringstream in(text);
+// The parameters of a fit as --fit names them, in PatternParameterIndex order.
+constexpr std::array<const char*, cal::kPatternParameterCount> kFitNames{"friction", "drag", "offset", "speed",
+                                                                        "elevation"};
+
+// "" = the default of the table's rows: friction, drag and offset for analytic rows; the launch speed
+// factor and offset for DEM rows, whose launches have no friction to refit.
+void parse_fit_list(const std::string& text, bool table_samples, cal::PatternFitOptions& options) {
+  const std::string list = !text.empty() ? text : table_samples ? "speed,offset" : "friction,drag,offset";
+  std::array<bool, cal::kPatternParameterCount> mask{};
+  std::stringstream in(list);
   std::string item;
   while (std::getline(in, item, ',')) {
-    if (item == "friction") options.fit_friction = true;
-    else if (item == "drag") options.fit_drag_diameter = true;
-    else if (item == "offset") options.fit_angle_offset = true;
-    else throw BadInput("--fit: unknown parameter '" + item + "' (known: friction, drag, offset)");
+    const auto* found = std::find(kFitNames.begin(), kFitNames.end(), item);
+    if (found == kFitNames.end()) {
+      throw BadInput("--fit: unknown parameter '" + item + "' (known: friction, drag, offset, speed, elevation)");
+    }
+    mask[static_cast<std::size_t>(found - kFitNames.begin())] = true;
   }
-  if (!options.fit_friction && !options.fit_drag_diameter && !options.fit_angle_offset) {
-    throw BadInput("--fit: name at least one of friction, drag, offset");
+  if (std::none_of(mask.begin(), mask.end(), [](bool b) { return b; })) {
+    throw BadInput("--fit: name at least one of friction, drag, offset, speed, elevation");
   }
+  if (table_samples && mask[cal::kFriction]) {
+    throw BadInput("--fit friction: the table's rows of this material came from the DEM, whose launches do not "
+                   "depend on a friction the fit could change; fit their launch correction (--fit speed,offset, "
+                   "with drag or elevation if needed), or --allow-analytic to fit the analytic model instead");
+  }
+  options.fit_friction = mask[cal::kFriction];
+  options.fit_drag_diameter = mask[cal::kDragDiameter];
+  options.fit_angle_offset = mask[cal::kAngleOffset];
+  options.fit_launch_speed = mask[cal::kLaunchSpeed];
+  options.fit_elevation_offset = mask[cal::kElevationOffset];
 }
 
 json fit_json_parameters(const cal::PatternFitResult& f) {
-  static const char* names[3] = {"friction_wall", "drag_diameter_factor", "launch_angle_offset_deg"};
-  const double values[3] = {f.fitted.friction_wall, f.fitted.drag_diameter_factor,
-                            f.fitted.launch_angle_offset_rad * kDegPerRad};
-  const double errors[3] = {f.standard_error.friction_wall, f.standard_error.drag_diameter_factor,
-                            f.standard_error.launch_angle_offset_rad * kDegPerRad};
-  const double initial[3] = {f.initial.friction_wall, f.initial.drag_diameter_factor,
-                             f.initial.launch_angle_offset_rad * kDegPerRad};
-  const double robust[3] = {f.robust_standard_error.friction_wall, f.robust_standard_error.drag_diameter_factor,
-                            f.robust_standard_error.launch_angle_offset_rad * kDegPerRad};
+  static const char* names[cal::kPatternParameterCount] = {"friction_wall", "drag_diameter_factor",
+                                                           "launch_angle_offset_deg", "launch_speed_factor",
+                                                           "launch_elevation_offset_deg"};
+  // Angles in degrees.
+  const std::array<double, cal::kPatternParameterCount> unit{1.0, 1.0, kDegPerRad, 1.0, kDegPerRad};
+  const auto values = cal::as_array(f.fitted), errors = cal::as_array(f.standard_error),
+             initial = cal::as_array(f.initial), robust = cal::as_array(f.robust_standard_error);
   json parameters = json::object();
-  for (std::size_t i = 0; i < 3; ++i) {
-    parameters[names[i]] = {{"value", values[i]},
-                            {"standard_error", f.fitted_mask[i] ? finite_or_null(errors[i]) : json(nullptr)},
-                            {"robust_standard_error", f.fitted_mask[i] ? finite_or_null(robust[i]) : json(nullptr)},
-                            {"initial", initial[i]},
+  for (std::size_t i = 0; i < cal::kPatternParameterCount; ++i) {
+    parameters[names[i]] = {{"value", values[i] * unit[i]},
+                            {"standard_error", f.fitted_mask[i] ? finite_or_null(errors[i] * unit[i]) : json(nullptr)},
+                            {"robust_standard_error", f.fitted_mask[i] ? finite_or_null(robust[i] * unit[i]) : json(nullptr)},
+                            {"initial", initial[i] * unit[i]},
                             {"fitted", f.fitted_mask[i]}};
   }
   json correlation = json::array();
   for (const auto& row : f.correlation) correlation.push_back(row);
   return {{"parameters", parameters},
+          {"launch_model", f.table_samples ? "table_samples" : "analytic"},
           {"correlation", correlation},
           {"residual_rms_fraction", f.residual_rms_fraction},
           {"residual_rms_g", 1e3 * f.residual_rms_kg},
@@ -535,15 +603,16 @@ json fit_json(const cal::PatternFitResult& f) {
 }
 
 std::vector<std::string> fit_warnings(const cal::PatternFitResult& f) {
-  static const char* names[3] = {"friction", "drag", "offset"};
+  const auto& names = kFitNames;
   std::vector<std::string> warnings;
-  for (std::size_t i = 0; i < 3; ++i) {
-    for (std::size_t j = i + 1; j < 3; ++j) {
+  for (std::size_t i = 0; i < cal::kPatternParameterCount; ++i) {
+    for (std::size_t j = i + 1; j < cal::kPatternParameterCount; ++j) {
       if (f.fitted_mask[i] && f.fitted_mask[j] && std::abs(f.correlation[i][j]) > 0.95) {
         char text[256];
         std::snprintf(text, sizeof text,
                       "%s and %s are correlated (r = %.3f): this tray test cannot tell them apart; their standard "
-                      "errors are large — fix one (e.g. --fit friction,drag) for a usable value of the other",
+                      "errors are large — fix one (e.g. --fit friction,drag, or on a DEM table --fit speed,offset) for a "
+                      "usable value of the other",
                       names[i], names[j], f.correlation[i][j]);
         warnings.emplace_back(text);
       }
@@ -573,8 +642,12 @@ void plot_pattern(const PatternOptions& o, const cal::TrayTest& test, const cal:
   spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kToAndFro, tf);
   spread::metrics::cv_curve(predicted_kg, test.layout, measured.widths_m, spread::metrics::Overlap::kRacetrack, rt);
   const std::string cv = o.plot_prefix + "_cv.png";
+  spread::plot::CvCurveOptions cv_options;
+  cv_options.series_label = "calibrated";
+  cv_options.second_to_and_fro = measured.cv_to_and_fro_curve;
+  cv_options.second_label = "tray test";
   spread::plot::write_cv_curve_png(measured.widths_m, tf, rt, measured.cv_target, cv,
-                                   material_name + ": CV(W) predicted");
+                                   material_name + ": CV(W) calibrated and measured", cv_options);
   written["cv"] = cv;
   const std::string cv_measured = o.plot_prefix + "_cv_measured.png";
   spread::plot::write_cv_curve_png(measured.widths_m, measured.cv_to_and_fro_curve, measured.cv_racetrack_curve,
@@ -586,6 +659,7 @@ void run_pattern(const PatternOptions& o) {
   if (o.output.empty()) throw BadInput("--output: give the path of the new table file");
   if (o.samples < 16 || o.samples > 100000) throw BadInput("--samples must be in [16, 100000]");
   if (!(o.kernel_m >= 0.0)) throw BadInput("--kernel must be >= 0 m");
+  if (!(o.width_m >= 0.0) || !std::isfinite(o.width_m)) throw BadInput("--width must be a bout width >= 0 m");
   const double cv_target = cal::cv_target_from_percent(o.cv_target_percent, "--cv-target");
   // Before the fit (which takes seconds): the folders the results go to.
   spread::cli::require_output_folder("--output", o.output);
@@ -596,23 +670,24 @@ void run_pattern(const PatternOptions& o) {
   if (!o.plot_prefix.empty()) spread::cli::require_output_folder("--plot", o.plot_prefix);
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
-  cal::PatternFitOptions options;
-  parse_fit_list(o.fit, options);
-  options.model.sample_count = o.samples;
-  options.model.kernel_sigma_m = o.kernel_m;
-
+  // Before the fit: the name's date is SOURCE_DATE_EPOCH's when set (a malformed one is refused here).
+  const std::string material_name =
+      o.name.empty() ? cal::calibrated_material_name(o.material, spread::plot::utc_date(spread::cli::report_time_s()))
+                     : o.name;
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
-  // Before the fit: a table of DEM rows is refused unless --allow-analytic.
   const std::vector<double> dem_rpm = cal::non_analytic_rows(contents, o.material);
-  if (!dem_rpm.empty() && !o.allow_analytic) throw BadInput(cal::dem_rows_message(o.material, dem_rpm));
-  const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
+  const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm, o.allow_analytic);
+  cal::PatternFitOptions options;
+  parse_fit_list(o.fit, !setup.table_samples.empty(), options);
+  options.model.sample_count = o.samples;
+  options.model.kernel_sigma_m = o.kernel_m;
   const cal::PatternFitResult fit = cal::fit_pattern(setup, test, options);
   const cal::PassScatter scatter = cal::pass_scatter(test);
   const cal::FitAcceptance acceptance = cal::assess_fit(fit, scatter);
   std::vector<std::string> warnings = fit_warnings(fit);
   warnings.insert(warnings.end(), acceptance.warnings.begin(), acceptance.warnings.end());
-  if (!dem_rpm.empty()) {
+  if (!dem_rpm.empty() && o.allow_analytic) {
     warnings.push_back("the table's rows of '" + o.material + "' came from the DEM; the fit used the analytic "
                        "launch model and the calibrated material's rows are analytic (--allow-analytic)");
   }
@@ -623,6 +698,10 @@ void run_pattern(const PatternOptions& o) {
   report["rpm"] = o.rpm;
   report["material"] = o.material;
   report["sample_count"] = o.samples;
+  if (!setup.table_samples.empty()) {
+    report["table_row_rpm"] = setup.table_row_rpm;
+    report["table_row_samples"] = setup.table_samples.size();
+  }
   report["kernel_sigma_m"] = o.kernel_m > 0.0 ? o.kernel_m : 0.5 * test.tray_width_m;
   report["pass_scatter"] = pass_scatter_json(scatter);
   report["residual_to_scatter"] = scatter.available ? json(acceptance.residual_to_scatter) : json(nullptr);
@@ -631,8 +710,6 @@ void run_pattern(const PatternOptions& o) {
   report["accepted"] = acceptance.accepted();
   report["refusals"] = acceptance.refusals;
 
-  const std::string material_name =
-      o.name.empty() ? cal::calibrated_material_name(o.material, cal::utc_date_today()) : o.name;
   std::optional<cal::CalibratedTableSummary> summary;
   json written = json::object();
   std::string plot_error;
@@ -653,14 +730,27 @@ void run_pattern(const PatternOptions& o) {
   }
   // The report, as the plots, only for an accepted fit: the measured trays with the calibrated
   // prediction beside them, the CVs and rate of the tray test.
-  const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, cv_target, 0.0);
+  const cal::TrayTestAnalysis measured = cal::analyse_tray_test(test, cv_target, o.width_m);
   const double report_width_m = report_bout_width_m(test, measured);
+  // What to change when the calibrated material's CV at --width is above the target: predicted from the
+  // new table (setting_guidance.hpp).
+  spread::cli::SettingGuidance guidance;
+  if (summary && o.width_m > 0.0) {
+    spread::predict::PredictionRequest request;
+    request.material = material_name;
+    request.rpm = o.rpm;
+    request.cv_target = cv_target;
+    request.bout_width_m = o.width_m;
+    request.tray_width_m = test.tray_width_m;
+    guidance = spread::cli::setting_guidance(summary->output_path, request);
+  }
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);
   std::string report_error;
   if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
       spread::plot::PatternReport page = tray_report_page(test, measured, report_width_m, report_time_s);
+      if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
       std::vector<double> predicted_kg(fit.fitted_fraction.size());
       for (std::size_t i = 0; i < predicted_kg.size(); ++i) predicted_kg[i] = fit.fitted_fraction[i] * test.total_mass_kg();
       page.header.title = "Spread pattern report: calibration";
@@ -671,13 +761,22 @@ void run_pattern(const PatternOptions& o) {
       page.chart.second_tray_mass_kg = predicted_kg;
       page.chart.second_label = "predicted, calibrated";
       char text[256];
-      std::snprintf(text, sizeof text, "fitted: friction %.4f, drag diameter factor %.4f, launch-angle offset %.2f deg; "
-                    "residual rms %.2f g per tray", fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
-                    fit.fitted.launch_angle_offset_rad * kDegPerRad, 1e3 * fit.residual_rms_kg);
+      if (fit.table_samples) {
+        std::snprintf(text, sizeof text, "fitted to the table's DEM launches: speed factor %.4f, launch-angle offset %.2f "
+                      "deg, elevation offset %.2f deg, drag diameter factor %.4f; residual rms %.2f g per tray",
+                      fit.fitted.launch_speed_factor, fit.fitted.launch_angle_offset_rad * kDegPerRad,
+                      fit.fitted.launch_elevation_offset_rad * kDegPerRad, fit.fitted.drag_diameter_factor,
+                      1e3 * fit.residual_rms_kg);
+      } else {
+        std::snprintf(text, sizeof text, "fitted: friction %.4f, drag diameter factor %.4f, launch-angle offset %.2f deg; "
+                      "residual rms %.2f g per tray", fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
+                      fit.fitted.launch_angle_offset_rad * kDegPerRad, 1e3 * fit.residual_rms_kg);
+      }
       page.summary.emplace_back(text);
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      for (const std::string& line : guidance.lines) page.notes.push_back(line);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
     });
@@ -696,6 +795,7 @@ void run_pattern(const PatternOptions& o) {
     }
     report["written"] = written;
     report["rate"] = spread::cli::rate_json(rate);
+    report["adjustments"] = spread::cli::setting_guidance_json(guidance);
     if (!plot_error.empty()) report["plot_error"] = plot_error;
     if (!report_problem.empty() || !report_error.empty()) {
       report["report_error"] = report_problem.empty() ? report_error : report_problem;
@@ -704,15 +804,27 @@ void run_pattern(const PatternOptions& o) {
   } else {
     std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
                 fit.iterations, fit.converged ? "converged" : "NOT converged");
+    if (fit.table_samples) {
+      std::printf("  launches: the table's DEM row at %g rpm (%zu samples, %d per evaluation), corrected\n",
+                  setup.table_row_rpm, setup.table_samples.size(), o.samples);
+    }
     auto line = [&](const char* label, double value, double error, bool fitted, const char* unit) {
       if (fitted) std::printf("  %-22s %8.4f ± %.4f%s\n", label, value, error, unit);
       else std::printf("  %-22s %8.4f (fixed)%s\n", label, value, unit);
     };
-    line("friction on vanes", fit.fitted.friction_wall, fit.standard_error.friction_wall, fit.fitted_mask[0], "");
+    if (!fit.table_samples) {
+      line("friction on vanes", fit.fitted.friction_wall, fit.standard_error.friction_wall, fit.fitted_mask[0], "");
+    }
     line("drag diameter factor", fit.fitted.drag_diameter_factor, fit.standard_error.drag_diameter_factor,
          fit.fitted_mask[1], "");
     line("launch angle offset", fit.fitted.launch_angle_offset_rad * kDegPerRad,
          fit.standard_error.launch_angle_offset_rad * kDegPerRad, fit.fitted_mask[2], " °");
+    if (fit.table_samples || fit.fitted_mask[cal::kLaunchSpeed] || fit.fitted_mask[cal::kElevationOffset]) {
+      line("launch speed factor", fit.fitted.launch_speed_factor, fit.standard_error.launch_speed_factor,
+           fit.fitted_mask[cal::kLaunchSpeed], "");
+      line("launch elevation offset", fit.fitted.launch_elevation_offset_rad * kDegPerRad,
+           fit.standard_error.launch_elevation_offset_rad * kDegPerRad, fit.fitted_mask[cal::kElevationOffset], " °");
+    }
     std::printf("  residual: rms %.2f g per tray (%.3f %% of the mass per tray; %.3f %% before the fit)\n",
                 1e3 * fit.residual_rms_kg, 100.0 * fit.residual_rms_fraction, 100.0 * fit.initial_residual_rms_fraction);
     if (scatter.available) {
@@ -731,6 +843,7 @@ void run_pattern(const PatternOptions& o) {
       std::printf("nothing written: %s was not created\n", o.output.c_str());
     }
     for (const std::string& rate_line : spread::cli::rate_lines(rate)) std::printf("%s\n", rate_line.c_str());
+    for (const std::string& advice : guidance.lines) std::printf("%s\n", advice.c_str());
     for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
   }
   if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
@@ -747,7 +860,7 @@ void run_pattern(const PatternOptions& o) {
 struct SynthOptions {
   std::string tables, material, output;
   double rpm = 0.0;
-  double friction = NAN, drag = 1.0, offset_deg = 0.0;
+  double friction = NAN, drag = 1.0, offset_deg = 0.0, speed_factor = 1.0, elevation_deg = 0.0;
   double half_width_m = 18.0, tray_width_m = 0.5;
   int passes = 3;
   double mass_g = 400.0;
@@ -769,9 +882,17 @@ void run_synth(const SynthOptions& o) {
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
   const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
   cal::PatternParameters truth = cal::parameters_of(setup.material);
-  if (!std::isnan(o.friction)) truth.friction_wall = o.friction;
+  if (!std::isnan(o.friction)) {
+    if (!setup.table_samples.empty()) {
+      throw BadInput("--friction: the table's rows of '" + o.material + "' came from the DEM: their launches do not "
+                     "depend on a friction; give --speed-factor, --offset, --elevation, --drag");
+    }
+    truth.friction_wall = o.friction;
+  }
   truth.drag_diameter_factor = o.drag;
   truth.launch_angle_offset_rad = o.offset_deg / kDegPerRad;
+  truth.launch_speed_factor = o.speed_factor;
+  truth.launch_elevation_offset_rad = o.elevation_deg / kDegPerRad;
   cal::check_parameters(truth);
   cal::PatternModelOptions model_options;
   model_options.sample_count = o.samples;
@@ -796,6 +917,11 @@ void run_synth(const SynthOptions& o) {
                 o.material.c_str(), o.tables.c_str(), o.rpm, o.samples, truth.friction_wall,
                 truth.drag_diameter_factor, o.offset_deg, o.mass_g);
   comments.emplace_back(text);
+  std::snprintf(text, sizeof text, "Launches: %s, launch speed factor %.4g, launch elevation offset %.4g deg.",
+                setup.table_samples.empty() ? "the analytic model"
+                                            : ("the table's DEM row at " + std::to_string(static_cast<int>(setup.table_row_rpm)) + " rpm").c_str(),
+                o.speed_factor, o.elevation_deg);
+  comments.emplace_back(text);
   std::snprintf(text, sizeof text,
                 "Noise per tray and pass: Poisson count of %.4g g granules, plus normal with sd^2 = (%.4g %% of the "
                 "tray)^2 + (%.4g g)^2, readings below 0 written as 0, rounded to %.4g g; seed %llu.",
@@ -810,14 +936,23 @@ void run_synth(const SynthOptions& o) {
              {"passes", o.passes},
              {"truth", {{"friction_wall", truth.friction_wall},
                         {"drag_diameter_factor", truth.drag_diameter_factor},
-                        {"launch_angle_offset_deg", o.offset_deg}}},
+                        {"launch_angle_offset_deg", o.offset_deg},
+                        {"launch_speed_factor", o.speed_factor},
+                        {"launch_elevation_offset_deg", o.elevation_deg}}},
              {"seed", o.seed}};
     std::cout << out.dump(2) << "\n";
     return;
   }
-  std::printf("wrote %s: %d trays of %.2f m, %d pass(es), friction %.4g, drag %.4g, offset %.4g deg\n",
-              o.output.c_str(), layout.tray_count, layout.tray_width_m, o.passes, truth.friction_wall,
-              truth.drag_diameter_factor, o.offset_deg);
+  if (setup.table_samples.empty()) {
+    std::printf("wrote %s: %d trays of %.2f m, %d pass(es), friction %.4g, drag %.4g, offset %.4g deg\n",
+                o.output.c_str(), layout.tray_count, layout.tray_width_m, o.passes, truth.friction_wall,
+                truth.drag_diameter_factor, o.offset_deg);
+  } else {
+    std::printf("wrote %s: %d trays of %.2f m, %d pass(es), the DEM row at %g rpm with launch speed factor %.4g, "
+                "offset %.4g deg, elevation %.4g deg, drag %.4g\n",
+                o.output.c_str(), layout.tray_count, layout.tray_width_m, o.passes, setup.table_row_rpm,
+                o.speed_factor, o.offset_deg, o.elevation_deg, truth.drag_diameter_factor);
+  }
 }
 
 spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_code) {
@@ -862,12 +997,18 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   p->add_option("--trays", pattern.trays, "tray-test CSV")->required();
   p->add_option("--output", pattern.output, "NEW table file: a copy of --tables plus the calibrated material")->required();
   p->add_option("--name", pattern.name, "name of the calibrated material (default: 'NAME (calibrated YYYY-MM-DD)')");
-  p->add_option("--fit", pattern.fit, "parameters to fit: friction,drag,offset (the others keep the table's values)")->capture_default_str();
+  p->add_option("--fit", pattern.fit,
+                "parameters to fit, of friction, drag, offset, speed, elevation (the others keep the table's values); "
+                "default friction,drag,offset on analytic rows, speed,offset on DEM rows");
   p->add_option("--samples", pattern.samples, "trajectories per model evaluation")->capture_default_str();
   p->add_option("--kernel", pattern.kernel_m, "landing kernel sd (m); default half the tray width");
   p->add_option("--cv-target", pattern.cv_target_percent, "CV target (%) of the plots")->capture_default_str();
+  p->add_option("--width", pattern.width_m,
+                "bout width (m): the report's, and the calibrated material's CV there with what to change "
+                "when it is above the target");
   p->add_flag("--allow-analytic", pattern.allow_analytic,
-              "accept a material whose table rows came from the DEM: fit and new rows use the analytic model");
+              "on a material whose table rows came from the DEM: fit the analytic model and write analytic rows "
+              "(default: correct the DEM rows' own launches)");
   p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
   p->add_flag("--json", pattern.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*p, pattern.report, true);
@@ -882,6 +1023,8 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   y->add_option("--friction", synth.friction, "friction on the vanes (default: the table's)");
   y->add_option("--drag", synth.drag, "drag diameter factor k")->capture_default_str();
   y->add_option("--offset", synth.offset_deg, "launch-angle offset (deg)")->capture_default_str();
+  y->add_option("--speed-factor", synth.speed_factor, "launch speed factor s")->capture_default_str();
+  y->add_option("--elevation", synth.elevation_deg, "launch elevation offset (deg)")->capture_default_str();
   y->add_option("--half-width", synth.half_width_m, "trays cover [-this, this] m")->capture_default_str();
   y->add_option("--tray-width", synth.tray_width_m, "tray width (m)")->capture_default_str();
   y->add_option("--passes", synth.passes, "passes (one mass column each)")->capture_default_str();

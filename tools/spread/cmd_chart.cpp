@@ -91,6 +91,17 @@ std::string unreachable_text(const pr::SettingChartRow& row, const pr::SettingCh
   return {};
 }
 
+// The lowest rpm is the row's; the working width is not monotone in rpm when it crosses the width again.
+std::string other_crossings_text(const pr::SettingChartRow& row) {
+  if (row.other_crossings_rpm.empty()) return "";
+  std::string list;
+  for (const auto& [low, high] : row.other_crossings_rpm) {
+    list += (list.empty() ? "" : ", ") + format("%.0f", low) + "-" + format("%.0f rpm", high);
+  }
+  return format("%.1f m", row.width_m) + " is also the working width between " + list +
+         " (the working width is not monotone in rpm): the chart gives the lowest disc speed";
+}
+
 void run(const Options& o, int& exit_code) {
   const double cv_target = spread::calibration::cv_target_from_percent(o.cv_target_percent, "--cv-target");
   const std::vector<double> widths = parse_widths(o.widths);
@@ -140,6 +151,7 @@ void run(const Options& o, int& exit_code) {
           page.rows.push_back({format("%.1f m", row.width_m), "not reachable", "-", "-"});
           page.notes.push_back(format("%.1f m: ", row.width_m) + unreachable_text(row, chart));
         }
+        if (!row.other_crossings_rpm.empty()) page.notes.push_back(other_crossings_text(row));
       }
       page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the disc speed "
                            "is where the predicted to-and-fro working width equals the width");
@@ -163,7 +175,8 @@ void run(const Options& o, int& exit_code) {
                       {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.cv_to_and_fro_se)},
                       {"cv_racetrack_percent", number_or_null(100.0 * row.cv_racetrack)},
                       {"cv_racetrack_se_percent", number_or_null(100.0 * row.cv_racetrack_se)},
-                      {"sample_count", row.sample_count}});
+                      {"sample_count", row.sample_count},
+                      {"other_crossings_rpm", row.other_crossings_rpm}});
     }
     json scan = json::array();
     for (std::size_t k = 0; k < chart.scan_rpm.size(); ++k) {
@@ -194,6 +207,9 @@ void run(const Options& o, int& exit_code) {
     }
     std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples; %d predictions)\n",
                 chart.predictions);
+    for (const pr::SettingChartRow& row : chart.rows) {
+      if (!row.other_crossings_rpm.empty()) std::printf("  note: %s\n", other_crossings_text(row).c_str());
+    }
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::printf("wrote %s\n", o.report.path.c_str());
     }

@@ -68,15 +68,7 @@ void run(const Options& o, int& exit_code) {
   if (o.out_prefix.empty()) throw BadInput("--out: give a path prefix for the PNG files");
   if (!(o.cell_m > 0.0) || !std::isfinite(o.cell_m)) throw BadInput("--cell must be a positive number of metres");
 
-  spread::predict::PredictionRequest request;
-  request.material = o.material;
-  request.rpm = o.rpm;
-  request.disc_height_m = o.height_m;
-  const auto wind = spread::cli::parse_wind(o.wind);
-  request.wind_x_m_s = wind.x_m_s;
-  request.wind_y_m_s = wind.y_m_s;
-  request.cv_target = o.cv_target_percent / 100.0;
-  request.tray_width_m = o.tray_width_m;
+  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
 
   spread::predict::Predictor predictor(spread::tables::read_table_file(o.tables));
   spread::predict::Prediction p;

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/setting_guidance.hpp"
 #include "libspread/plot/report_pdf.hpp"
 #include "libspread/tables/table_reader.hpp"
 
@@ -172,10 +174,23 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
+// The guidance when the CV at --width is above the target (setting_guidance.hpp): the same table and
+// conditions through the Predictor, the C API's own engine.
+spread::cli::SettingGuidance guidance_for(const Options& o, const spread_prediction& r) {
+  if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return {};
+  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+  request.effects = o.effects == "table" ? spread::predict::kTableEffects
+                    : o.effects == "all" ? spread::flight::kAllEffects
+                                         : spread::flight::parse_effects(o.effects);
+  request.bout_width_m = o.bout_width_m;
+  request.kernel_half_width_m = o.kernel_half_width_m;
+  return spread::cli::setting_guidance(o.tables, request);
+}
+
 // The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
 // their 95 % intervals. Returns the error of writing it ("" when written).
 std::string write_report(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
-                         const CvCurve& curve, std::int64_t time_s) {
+                         const CvCurve& curve, std::int64_t time_s, const spread::cli::SettingGuidance& guidance) {
   try {
     spread::plot::PatternReport page;
     page.header.title = "Spread pattern report: prediction";
@@ -210,6 +225,7 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
                                            curve.widths_m, curve.to_and_fro, curve.racetrack);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
                          "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
+    for (const std::string& line : guidance.lines) page.notes.push_back(line);
     spread::plot::write_report_pdf(o.report.path, &page);
   } catch (const std::exception& e) {
     return e.what();
@@ -270,9 +286,10 @@ void run(const Options& o, int& exit_code) {
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
+  const spread::cli::SettingGuidance guidance = guidance_for(o, result);
   const std::string report_error = o.report.path.empty() || !report_problem.empty()
                                        ? std::string()
-                                       : write_report(o, result, trays, curve, report_time_s);
+                                       : write_report(o, result, trays, curve, report_time_s, guidance);
   if (o.json) {
     json centres = json::array(), fractions = json::array();
     for (std::size_t k = 0; k < tray_count; ++k) {
@@ -314,6 +331,7 @@ void run(const Options& o, int& exit_code) {
                                                           result.working_width_to_and_fro_m, o.cv_target_percent / 100.0))},
                   {"racetrack", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kRacetrack,
                                                          result.working_width_racetrack_m, o.cv_target_percent / 100.0))}}}};
+    out["adjustments"] = spread::cli::setting_guidance_json(guidance);
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
@@ -371,6 +389,7 @@ void run(const Options& o, int& exit_code) {
               << result.kernel_half_width_m << " m)\n";
     std::cout << "  mean radius R " << result.mean_radius_m << " m, radial width xi " << result.radial_width_m
               << " m (one disc)\n";
+    for (const std::string& line : guidance.lines) std::cout << "  " << line << "\n";
     if (o.repeat > 0) std::cout << "  median time per prediction " << median_us << " us over " << o.repeat << "\n";
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::cout << "wrote " << o.report.path << "\n";

@@ -24,4 +24,17 @@ WindXY parse_wind(const std::string& text) {
   return wind;
 }
 
+predict::PredictionRequest prediction_request(const PredictionArgs& args) {
+  predict::PredictionRequest request;
+  request.material = args.material;
+  request.rpm = args.rpm;
+  request.disc_height_m = args.height_m;
+  const WindXY wind = parse_wind(args.wind);
+  request.wind_x_m_s = wind.x_m_s;
+  request.wind_y_m_s = wind.y_m_s;
+  request.cv_target = args.cv_target_percent / 100.0;
+  request.tray_width_m = args.tray_width_m;
+  return request;
+}
+
 }  // namespace spread::cli

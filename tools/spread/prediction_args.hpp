@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "libspread/predict/predictor.hpp"
+
 namespace spread::cli {
 
 // A bad command-line value; the message names the option. Subcommands print it and exit kExitUsage.
@@ -35,5 +37,9 @@ struct WindXY {
 
 // "VX,VY" in m/s; BadInput naming --wind otherwise.
 WindXY parse_wind(const std::string& text);
+
+// The Predictor's request of these arguments (material, rpm, height, wind, CV target, tray width; the
+// rest at its defaults). `args` must outlive it (the material is a view).
+predict::PredictionRequest prediction_request(const PredictionArgs& args);
 
 }  // namespace spread::cli

@@ -13,11 +13,13 @@
 #include <vector>
 
 #include "libspread/calibration/calibrated_table.hpp"
+#include "libspread/calibration/fit_acceptance.hpp"
+#include "libspread/calibration/pass_scatter.hpp"
 #include "libspread/calibration/synthetic_tray_test.hpp"
 #include "libspread/calibration/pattern_fit.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "libspread/tables/table_writer.hpp"
-#include "tools_test_support.hpp"
+#include "calibration_test_support.hpp"
 
 namespace cal = spread::calibration;
 using spread::kPi;
@@ -229,47 +231,123 @@ TEST_F(PatternFit, CalibratedMaterialGoesIntoNewFileAndOriginalIsUntouched) {
   EXPECT_EQ(spread::testing::file_bytes(table_->path()), before);
 }
 
-TEST_F(PatternFit, MaterialWithDemRowsIsRefusedUnlessAllowed) {
-  // The fit and the rebuilt rows are analytic: calibrating a material whose rows came from the DEM
-  // would swap DEM launches for analytic ones. Mark the 600 rpm row of a copy as a DEM row.
+TEST_F(PatternFit, DemRowsAreCorrectedUnlessAnalyticIsAllowed) {
+  // A DEM row keeps its own launches, corrected by the fitted parameters (source "dem", every sample);
+  // with allow_analytic_for_dem it is rebuilt by the analytic model instead. Mark the 600 rpm row of a
+  // copy as a DEM row.
   spread::testing::TempPath dem("dem.sqlite");
   std::filesystem::copy_file(table_->path(), dem.path());
-  {
-    spread::tables::Run run = contents_->runs[1];
-    ASSERT_EQ(run.rpm, 600.0);
-    run.source = "dem";
-    spread::tables::TableWriter(dem.path()).write_run(run, /*replace=*/true);
-  }
+  spread::tables::Run dem_run = contents_->runs[1];
+  ASSERT_EQ(dem_run.rpm, 600.0);
+  dem_run.source = "dem";
+  spread::tables::TableWriter(dem.path()).write_run(dem_run, /*replace=*/true);
   const spread::tables::TableContents contents = spread::tables::read_table_file(dem.path());
   EXPECT_EQ(cal::non_analytic_rows(contents, "Urea"), (std::vector<double>{600.0}));
   EXPECT_TRUE(cal::non_analytic_rows(*contents_, "Urea").empty());
 
+  const cal::PatternParameters correction{0.4, 1.1, 3.0 * kPi / 180.0, 1.05, 2.0 * kPi / 180.0};
   spread::testing::TempPath output("calibrated_dem.sqlite");
   cal::CalibratedTableRequest request;
   request.original_path = dem.path();
   request.output_path = output.path();
   request.material = "Urea";
   request.new_material_name = "Urea (calibrated)";
-  request.parameters = kTruth;
-  try {
-    cal::write_calibrated_table(request);
-    ADD_FAILURE() << "a material with DEM rows was calibrated without allow_analytic_for_dem";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("1 DEM row(s) (rpm 600)"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("--allow-analytic"), std::string::npos) << e.what();
+  request.parameters = correction;
+  const cal::CalibratedTableSummary corrected = cal::write_calibrated_table(request);
+  EXPECT_TRUE(corrected.replaced_dem_rpm.empty());
+  const std::vector<spread::tables::LaunchSample> expected =
+      cal::corrected_launch_samples(dem_run.samples, correction, contents.machine.rotation_sense);
+  for (const spread::tables::Run& run : spread::tables::read_table_file(output.path()).runs) {
+    if (run.material != "Urea (calibrated)") continue;
+    if (run.rpm == 600.0) {
+      EXPECT_EQ(run.source, "dem");
+      EXPECT_NE(run.effects.find("launch_speed_factor=1.0500"), std::string::npos) << run.effects;
+      ASSERT_EQ(run.samples.size(), expected.size());
+      EXPECT_EQ(0, std::memcmp(run.samples.data(), expected.data(), expected.size() * sizeof expected[0]));
+    } else {
+      EXPECT_EQ(run.source, "analytic");
+    }
   }
-  EXPECT_FALSE(std::filesystem::exists(output.path()));
 
+  spread::testing::TempPath analytic_output("calibrated_analytic.sqlite");
+  request.output_path = analytic_output.path();
   request.allow_analytic_for_dem = true;
   const cal::CalibratedTableSummary summary = cal::write_calibrated_table(request);
   EXPECT_EQ(summary.replaced_dem_rpm, (std::vector<double>{600.0}));
-  const spread::tables::TableContents copy = spread::tables::read_table_file(output.path());
+  const spread::tables::TableContents copy = spread::tables::read_table_file(analytic_output.path());
   ASSERT_EQ(copy.runs.size(), 4u);
   for (const spread::tables::Run& run : copy.runs) {
     if (run.material != "Urea (calibrated)") continue;
     EXPECT_EQ(run.source, "analytic");
     EXPECT_EQ(run.effects.find("replaces_dem_run") != std::string::npos, run.rpm == 600.0) << run.effects;
   }
+}
+
+TEST_F(PatternFit, LaunchCorrectionOfTableSamplesIsRecovered) {
+  // The fit on a table's own launch samples (a DEM row's path): both rows of a copy marked as DEM rows,
+  // a synthetic tray test made from the 600 rpm row with a known launch correction, fitted back from no
+  // correction. The correction must come back within one standard error (this seed, fixed: 0.5 SE for
+  // both; over many seeds ±1 SE would hold the truth in about 2 of 3 fits).
+  spread::testing::TempPath dem("dem_both.sqlite");
+  std::filesystem::copy_file(table_->path(), dem.path());
+  for (spread::tables::Run run : contents_->runs) {
+    run.source = "dem";
+    spread::tables::TableWriter(dem.path()).write_run(run, /*replace=*/true);
+  }
+  const cal::PatternSetup setup =
+      cal::pattern_setup_from_table(spread::tables::read_table_file(dem.path()), "Urea", 600.0);
+  ASSERT_EQ(setup.table_samples.size(), static_cast<std::size_t>(kSamples));
+  EXPECT_EQ(setup.table_row_rpm, 600.0);
+  const cal::PatternParameters truth{0.4, 1.0, 3.0 * kPi / 180.0, 1.06, 0.0};
+  spread::testing::TempPath csv("dem_synthetic.csv");
+  const cal::TrayTest test = cal::read_tray_csv(write_synthetic_csv(setup, truth, csv.path()));
+
+  cal::PatternFitOptions options = fast_options();
+  options.fit_drag_diameter = false;
+  options.fit_launch_speed = true;
+  EXPECT_THROW(cal::fit_pattern(setup, test, options), std::invalid_argument);  // friction: not in a DEM row
+  options.fit_friction = false;
+  const cal::PatternFitResult fit = cal::fit_pattern(setup, test, options);
+  std::printf("s %.4f +- %.4f (true %.4f), offset %.3f +- %.3f deg (true 3), %d iterations\n",
+              fit.fitted.launch_speed_factor, fit.standard_error.launch_speed_factor, truth.launch_speed_factor,
+              fit.fitted.launch_angle_offset_rad * 180 / kPi, fit.standard_error.launch_angle_offset_rad * 180 / kPi,
+              fit.iterations);
+  EXPECT_TRUE(fit.table_samples);
+  EXPECT_TRUE(fit.converged) << fit.stop_reason;
+  EXPECT_TRUE(cal::assess_fit(fit, cal::pass_scatter(test)).accepted());
+  EXPECT_LT(std::abs(fit.fitted.launch_speed_factor - truth.launch_speed_factor),
+            fit.standard_error.launch_speed_factor);
+  EXPECT_LT(std::abs(fit.fitted.launch_angle_offset_rad - truth.launch_angle_offset_rad),
+            fit.standard_error.launch_angle_offset_rad);
+  EXPECT_LT(fit.standard_error.launch_speed_factor, 0.02);
+  EXPECT_EQ(fit.fitted.friction_wall, 0.4);  // fixed parameters stay where they started
+  EXPECT_EQ(fit.fitted.drag_diameter_factor, 1.0);
+}
+
+TEST(LaunchCorrection, OneSampleByHand) {
+  // A granule leaving along +x at 0.6 of the rim speed, rising at 0.1 of it, from (0.3, 0, 0).
+  spread::tables::LaunchSample sample{};
+  sample.x_m = 0.3f;
+  sample.vx_norm = 0.6f;
+  sample.vz_norm = 0.1f;
+  sample.wz_norm = 1.0f;
+  sample.diameter_m = 3e-3f;
+  sample.mass_kg = 1e-5f;
+  // ε turns the launch from its own elevation atan(0.1/0.6) to 20° above the horizontal; s = 1.5; δ = 90°
+  // with rotation sense +1 turns x into y; k = 1.2 scales the diameter only.
+  const double elevation0 = std::atan2(0.1, 0.6), speed0 = std::hypot(0.6, 0.1);
+  const cal::PatternParameters p{0.4, 1.2, 0.5 * kPi, 1.5, 20.0 * kPi / 180.0 - elevation0};
+  const spread::tables::LaunchSample c = cal::corrected_launch_samples({sample}, p, +1).front();
+  EXPECT_NEAR(c.x_m, 0.0, 1e-7);
+  EXPECT_NEAR(c.y_m, 0.3, 1e-7);
+  EXPECT_NEAR(c.vx_norm, 0.0, 1e-6);
+  EXPECT_NEAR(c.vy_norm, 1.5 * speed0 * std::cos(20.0 * kPi / 180.0), 1e-6);
+  EXPECT_NEAR(c.vz_norm, 1.5 * speed0 * std::sin(20.0 * kPi / 180.0), 1e-6);
+  EXPECT_EQ(c.wz_norm, 1.0f);
+  EXPECT_NEAR(c.diameter_m, 3.6e-3, 1e-9);
+  EXPECT_EQ(c.mass_kg, sample.mass_kg);
+  // The other sense of rotation turns the other way.
+  EXPECT_NEAR(cal::corrected_launch_samples({sample}, p, -1).front().y_m, -0.3, 1e-7);
 }
 
 TEST_F(PatternFit, ModelIsSmoothInTheParameters) {

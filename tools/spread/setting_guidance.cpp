@@ -1,0 +1,64 @@
+#include "tools/spread/setting_guidance.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "libspread/tables/table_reader.hpp"
+
+namespace spread::cli {
+namespace {
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+// " ± x" with the 95 % half-interval (1.96 standard errors), or nothing when it is undefined.
+std::string plus_minus_percent(double standard_error) {
+  return std::isfinite(standard_error) ? format(" ± %.2f", 1.96 * 100.0 * standard_error) : "";
+}
+
+}  // namespace
+
+SettingGuidance setting_guidance(const std::string& tables, const predict::PredictionRequest& request) {
+  SettingGuidance g;
+  predict::Predictor predictor(tables::read_table_file(tables));
+  const predict::SettingAdjustments adjustments = predict::setting_adjustments(predictor, request);
+  if (!(adjustments.present_cv_to_and_fro > request.cv_target)) return g;
+  g.adjustments = adjustments;
+  g.lines.push_back("the CV at " + format("%.2f m", adjustments.present_bout_width_m) + " is above the target " +
+                    format("%g %%", 100.0 * request.cv_target) + "; predicted from the table, one setting at a time:");
+  for (const predict::SettingAdjustment& a : adjustments.adjustments) {
+    std::string what;
+    switch (a.setting) {
+      case predict::AdjustedSetting::kDiscSpeed: what = "disc speed " + format("%.0f rpm", a.rpm); break;
+      case predict::AdjustedSetting::kBoutWidth: what = "bout width " + format("%.2f m", a.bout_width_m); break;
+      case predict::AdjustedSetting::kDiscHeight: what = "disc height " + format("%.2f m", a.disc_height_m); break;
+    }
+    g.lines.push_back("  " + what + ": CV " + format("%.1f %%", 100.0 * a.cv_to_and_fro) +
+                      plus_minus_percent(a.cv_to_and_fro_se) + " to-and-fro" +
+                      (a.meets_target ? " (meets the target)" : " (still above the target)"));
+  }
+  g.lines.push_back("  (drop point and vane settings are not in a launch table: a table built for another setting "
+                    "predicts them)");
+  return g;
+}
+
+nlohmann::json setting_guidance_json(const SettingGuidance& guidance) {
+  if (!guidance.adjustments) return nullptr;
+  nlohmann::json list = nlohmann::json::array();
+  auto number_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  for (const predict::SettingAdjustment& a : guidance.adjustments->adjustments) {
+    list.push_back({{"setting", predict::to_string(a.setting)},
+                    {"rpm", a.rpm},
+                    {"bout_width_m", a.bout_width_m},
+                    {"disc_height_m", a.disc_height_m},
+                    {"cv_to_and_fro_percent", number_or_null(100.0 * a.cv_to_and_fro)},
+                    {"cv_to_and_fro_se_percent", number_or_null(100.0 * a.cv_to_and_fro_se)},
+                    {"meets_target", a.meets_target}});
+  }
+  return list;
+}
+
+}  // namespace spread::cli

@@ -1,0 +1,28 @@
+#pragma once
+// The guidance `spread predict` and `spread calibrate pattern` print when the predicted CV at the bout
+// width is above the target: each setting the table predicts, moved on its own, with its predicted CV
+// (libspread/predict/setting_adjustment.hpp), as text lines (also the PDF report's notes) and JSON.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "libspread/predict/setting_adjustment.hpp"
+
+namespace spread::cli {
+
+struct SettingGuidance {
+  std::optional<predict::SettingAdjustments> adjustments;  // none: the CV meets the target
+  std::vector<std::string> lines;
+};
+
+// With the table file `tables` and the present settings `request` (bout width > 0): nothing when the
+// predicted to-and-fro CV there meets the request's target, else the adjustments. Throws as
+// predict::setting_adjustments and tables::read_table_file.
+SettingGuidance setting_guidance(const std::string& tables, const predict::PredictionRequest& request);
+
+// `adjustments` of a command's JSON: a list, or null when there is none.
+nlohmann::json setting_guidance_json(const SettingGuidance& guidance);
+
+}  // namespace spread::cli
