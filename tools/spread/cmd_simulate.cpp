@@ -23,9 +23,7 @@ int run_drum_command(const std::string& scene_path, const std::vector<std::strin
 #include "libspread/dem/scene_config.hpp"
 #include "libspread/dem/simulate.hpp"
 #include "libspread/metrics/metrics.hpp"
-#if defined(SPREAD_DEM_HAS_PLOT)
 #include "libspread/plot/plot.hpp"
-#endif
 #endif
 
 namespace {
@@ -81,7 +79,6 @@ int run(const SimulateState& s) {
     dem::write_launch_csv(r.launches, path);
     outputs["launch_csv"] = path;
   }
-#if defined(SPREAD_DEM_HAS_PLOT)
   if (scene.outputs.pattern_png && !r.landings.empty()) {
     std::vector<double> x, y, m;
     for (std::size_t k = 0; k < r.landings.size(); ++k)
@@ -98,7 +95,6 @@ int run(const SimulateState& s) {
       outputs["pattern_png"] = path;
     }
   }
-#endif
   json module_time = json::object();
   for (const auto& [k, v] : r.module_time_s) module_time[k] = v;
   json out = {{"scene", scene.source_name},
