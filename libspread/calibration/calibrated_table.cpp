@@ -1,7 +1,6 @@
 #include "libspread/calibration/calibrated_table.hpp"
 
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <stdexcept>
 
@@ -50,12 +49,7 @@ std::string calibrated_material_name(const std::string& material, const std::str
 }
 
 std::string utc_date_today() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[16];
-  std::strftime(text, sizeof text, "%Y-%m-%d", &utc);
-  return text;
+  return tables::utc_now_iso8601().substr(0, 10);  // the date part of ISO 8601's "YYYY-MM-DDThh:mm:ssZ"
 }
 
 CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& request) {
