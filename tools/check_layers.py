@@ -138,7 +138,18 @@ def main():
 
     problems = []
     used_exceptions = set()
-    uses = 0
+    counts = {"include": 0, "link": 0}
+
+    def check(kind, source, target, where):
+        if source is None or target is None or source == target:
+            return
+        counts[kind] += 1
+        if (source, target) in table.allowed:
+            used_exceptions.add((source, target))
+        why = table.verdict(source, target)
+        if why:
+            problems.append(f"{where}: {why}")
+
     for rel in source_files(args.root):
         source = table.unit_of(rel)
         if source is None:
@@ -146,40 +157,23 @@ def main():
         with open(os.path.join(args.root, rel), encoding="utf-8", errors="replace") as f:
             for number, line in enumerate(f, 1):
                 match = INCLUDE.match(line)
-                if not match:
-                    continue
-                target = table.unit_of(match.group(1))
-                if target is None or target == source:
-                    continue
-                uses += 1
-                if (source, target) in table.allowed:
-                    used_exceptions.add((source, target))
-                why = table.verdict(source, target)
-                if why:
-                    problems.append(f"{rel}:{number}: #include \"{match.group(1)}\": {why}")
-    links = 0
+                if match:
+                    check("include", source, table.unit_of(match.group(1)),
+                          f"{rel}:{number}: #include \"{match.group(1)}\"")
     if args.links:
         with open(args.links, encoding="utf-8") as f:
             for line in f:
                 words = line.split()
-                if len(words) != 4:
-                    continue
-                source, target = table.unit_of(words[0] + "/x"), table.unit_of(words[1] + "/x")
-                if source is None or target is None or source == target:
-                    continue
-                links += 1
-                if (source, target) in table.allowed:
-                    used_exceptions.add((source, target))
-                why = table.verdict(source, target)
-                if why:
-                    problems.append(f"target {words[2]} ({words[0]}) links {words[3]} ({words[1]}): {why}")
+                if len(words) == 4:
+                    check("link", table.unit_of(words[0] + "/x"), table.unit_of(words[1] + "/x"),
+                          f"target {words[2]} ({words[0]}) links {words[3]} ({words[1]})")
     for pair, number in sorted(table.allowed.items()):
         if pair not in used_exceptions:
             problems.append(f"{table.path}:{number}: allow {pair[0]} -> {pair[1]}: no longer used; remove the line")
     for problem in problems:
         print(problem)
-    print(f"layers: {uses} includes and {links} links across units checked, {len(problems)} against the table "
-          f"({len(used_exceptions)} allowed exceptions in use)")
+    print(f"layers: {counts['include']} includes and {counts['link']} links across units checked, "
+          f"{len(problems)} against the table ({len(used_exceptions)} allowed exceptions in use)")
     return 1 if problems else 0
 
 
