@@ -12,7 +12,6 @@
 
 #include "tools/spread/command_registry.hpp"
 
-#if defined(SPREAD_HAS_DRUM)
 #include "libspread/drum/drum_simulation.hpp"
 #include "libspread/drum/regime_map_plot.hpp"
 
@@ -156,4 +155,3 @@ spread::cli::CommandRegistration reg{"drum", [](CLI::App& app, int& exit_code) {
 }};
 
 }  // namespace
-#endif  // SPREAD_HAS_DRUM
