@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/predict_loop.hpp"
 #include "spread/spread.h"
 
 namespace {
@@ -52,19 +53,10 @@ void BM_PredictWorstCase(benchmark::State& state) {
   def.tray_width_m = 0.01 * static_cast<double>(state.range(0));
   if (state.range(1) > 0) def.disc_height_m = static_cast<double>(state.range(1));
   def.wind_m_s[0] = static_cast<double>(state.range(2));
-  size_t capacity = 0;
-  spread_transverse_bound(tables, def.tray_width_m, &capacity);
-  std::vector<double> trays(capacity);
   spread_prediction result{};
-  if (spread_predict(tables, &def, &result, trays.data(), trays.size()) != SPREAD_OK) {
-    state.SkipWithError("spread_predict failed");
+  if (!spread::bench::time_spread_predict(state, tables, def, result)) {
     spread_close(tables);
     return;
-  }
-  for (auto _ : state) {
-    spread_predict(tables, &def, &result, trays.data(), trays.size());
-    double cv = result.cv_percent;
-    benchmark::DoNotOptimize(cv);
   }
   state.counters["trays"] = result.tray_count;
   state.counters["flights"] = result.flights;

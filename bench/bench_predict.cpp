@@ -35,6 +35,7 @@
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "libspread/tables/table_writer.hpp"
+#include "bench/predict_loop.hpp"
 #include "spread/spread.h"
 
 namespace {
@@ -132,19 +133,10 @@ void predict_file(benchmark::State& state, const std::string& path, spread_predi
     state.SkipWithError("spread_open failed");
     return;
   }
-  size_t capacity = 0;
-  spread_transverse_bound(tables, def.tray_width_m, &capacity);
-  std::vector<double> trays(capacity);
   spread_prediction result{};
-  if (spread_predict(tables, &def, &result, trays.data(), trays.size()) != SPREAD_OK) {
-    state.SkipWithError("spread_predict failed");
+  if (!spread::bench::time_spread_predict(state, tables, def, result)) {
     spread_close(tables);
     return;
-  }
-  for (auto _ : state) {
-    spread_predict(tables, &def, &result, trays.data(), trays.size());
-    double cv = result.cv_percent;
-    benchmark::DoNotOptimize(cv);
   }
   state.counters["flights"] = result.flights;
   state.counters["samples"] = static_cast<double>(result.sample_count);

@@ -9,6 +9,7 @@
 
 #include "libspread/calibration/scene_of_run.hpp"
 #include "libspread/launch/analytic_launch.hpp"
+#include "libspread/predict/flight_defaults.hpp"
 
 namespace spread::calibration {
 namespace {
@@ -24,14 +25,7 @@ void turn(float& x, float& y, double cos_a, double sin_a) {
 
 }  // namespace
 
-flight::Settings pattern_flight_settings(double dt_s) {
-  flight::Settings s;
-  s.scheme = flight::Scheme::kRk4;
-  s.dt_s = dt_s;
-  s.max_time_s = 60.0;
-  s.max_steps = 1'000'000;
-  return s;
-}
+flight::Settings pattern_flight_settings(double dt_s) { return predict::fixed_step_rk4_settings(dt_s); }
 
 std::array<double, kPatternParameterCount> as_array(const PatternParameters& p) {
   return {p.friction_wall, p.drag_diameter_factor, p.launch_angle_offset_rad, p.launch_speed_factor,

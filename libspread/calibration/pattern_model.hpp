@@ -111,8 +111,8 @@ std::vector<tables::LaunchSample> calibrated_launch_samples(const PatternSetup& 
                                                             const PatternParameters& parameters, double rpm,
                                                             int sample_count);
 
-// Fixed-step RK4 at 2 ms with the exact ground crossing: smooth in the launch state (see above), and
-// within a few mm of the adaptive reference over a 1 s flight.
+// Fixed-step RK4 at 2 ms with the exact ground crossing (predict::fixed_step_rk4_settings): smooth in the
+// launch state (see above), and within a few mm of the adaptive reference over a 1 s flight.
 flight::Settings pattern_flight_settings(double dt_s = 2e-3);
 
 struct PatternModelOptions {

@@ -12,6 +12,9 @@
 
 namespace spread::plot {
 
+// What every writer throws (std::runtime_error, after the path) in a build configured without cairo.
+inline constexpr char kWithoutPlots[] = "built without plots (SPREAD_WITH_PLOTS=OFF)";
+
 // Every PNG is this size (pixels), so callers and tests know what to expect.
 inline constexpr int kImageWidth_px = 1000;
 inline constexpr int kImageHeight_px = 650;

@@ -1,4 +1,5 @@
-// TOML → Scene. The only file that includes toml++ (it is heavy to compile).
+// TOML → Scene. toml++ is heavy to compile: in the library only this file and the drum's scene reader
+// (libspread/drum/drum_scene.cpp) include it.
 // Order: parse the text, merge the --set overrides into the tree, read every section while recording
 // the keys it knows (anything left over is an "unknown key" error), then validate the values.
 #include <toml++/toml.h>

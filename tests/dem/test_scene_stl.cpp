@@ -1,7 +1,6 @@
 // A machine's own disc from STL (scene keys machine.disc_model = "stl", machine.stl_path,
 // machine.stl_scale): the generated Case-1 disc written to STL and simulated from the STL scene gives
 // the generated-mesh result, and every bad file is an error naming machine.stl_path.
-#if defined(SPREAD_DEM_HAS_SCENE)
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -139,4 +138,3 @@ TEST(DemSceneStl, BadFilesNameTheKey) {
 
 }  // namespace
 }  // namespace spread::dem
-#endif

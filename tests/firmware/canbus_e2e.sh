@@ -10,19 +10,8 @@ set -eu
 canbus=$1
 firmware_sim=$2
 tractor=$3
-dir=$(mktemp -d /tmp/canbus-e2e-XXXXXX)
-bus=$dir/bus
-pids=()
-cleanup() {
-  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$dir"
-}
-trap cleanup EXIT
-"$canbus" "$bus" --duration 25 &
-pids+=($!)
-for _ in $(seq 100); do [ -S "$bus" ] && break; sleep 0.05; done
-[ -S "$bus" ] || { echo "FAIL: spread-canbus did not create $bus"; exit 1; }
+. "$(dirname "$0")/canbus_fixture.sh"
+start_canbus "$canbus" canbus-e2e 25
 "$firmware_sim" --no-lcm --can "unix:$bus" --duration 20 >"$dir/ecu.log" 2>&1 &
 ecu=$!
 pids+=($ecu)

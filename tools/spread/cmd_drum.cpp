@@ -12,11 +12,8 @@
 
 #include "tools/spread/command_registry.hpp"
 
-#if defined(SPREAD_HAS_DRUM)
 #include "libspread/drum/drum_simulation.hpp"
-#if defined(SPREAD_DRUM_HAS_PLOT)
 #include "libspread/drum/regime_map_plot.hpp"
-#endif
 
 namespace spread::drum {
 int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
@@ -119,14 +116,9 @@ int run_drum_command(const std::string& scene_path, const std::vector<std::strin
     }
     json out{{"sweep", rows}};
     if (!map_path.empty()) {
-#if defined(SPREAD_DRUM_HAS_PLOT)
       write_regime_map_png(runs, map_path, "drum regime map: " + scene.source_name);
       out["map_png"] = map_path;
       if (!json_out) std::printf("wrote %s\n", map_path.c_str());
-#else
-      std::cerr << "spread drum: --map: built without the plot module\n";
-      return spread::cli::kExitUsage;
-#endif
     }
     if (json_out) std::cout << out.dump(2) << "\n";
   } catch (const std::exception& e) {
@@ -163,4 +155,3 @@ spread::cli::CommandRegistration reg{"drum", [](CLI::App& app, int& exit_code) {
 }};
 
 }  // namespace
-#endif  // SPREAD_HAS_DRUM

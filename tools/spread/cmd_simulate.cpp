@@ -10,23 +10,17 @@
 
 #include "tools/spread/command_registry.hpp"
 
-#if defined(SPREAD_HAS_DRUM)
 #include "libspread/drum/drum_scene.hpp"
 namespace spread::drum {  // defined in cmd_drum.cpp
 int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
                      const std::string& sweep, const std::string& map_path);
 }
-#endif
 
-#if defined(SPREAD_DEM_HAS_SCENE)
 #include "libspread/accuracy/monolithic_reference.hpp"
 #include "libspread/dem/scene_config.hpp"
 #include "libspread/dem/simulate.hpp"
 #include "libspread/metrics/metrics.hpp"
-#if defined(SPREAD_DEM_HAS_PLOT)
 #include "libspread/plot/plot.hpp"
-#endif
-#endif
 
 namespace {
 
@@ -41,7 +35,6 @@ struct SimulateState {
   int energy_every_steps = 0;
 };
 
-#if defined(SPREAD_DEM_HAS_SCENE)
 int run(const SimulateState& s) {
   namespace dem = spread::dem;
   spread::scene::Scene scene;
@@ -81,7 +74,6 @@ int run(const SimulateState& s) {
     dem::write_launch_csv(r.launches, path);
     outputs["launch_csv"] = path;
   }
-#if defined(SPREAD_DEM_HAS_PLOT)
   if (scene.outputs.pattern_png && !r.landings.empty()) {
     std::vector<double> x, y, m;
     for (std::size_t k = 0; k < r.landings.size(); ++k)
@@ -98,7 +90,6 @@ int run(const SimulateState& s) {
       outputs["pattern_png"] = path;
     }
   }
-#endif
   json module_time = json::object();
   for (const auto& [k, v] : r.module_time_s) module_time[k] = v;
   json out = {{"scene", scene.source_name},
@@ -152,7 +143,6 @@ int run(const SimulateState& s) {
   }
   return spread::cli::kExitOk;
 }
-#endif
 
 spread::cli::CommandRegistration reg{"simulate", [](CLI::App& app, int& exit_code) {
   static auto state = std::make_unique<SimulateState>();
@@ -167,19 +157,12 @@ spread::cli::CommandRegistration reg{"simulate", [](CLI::App& app, int& exit_cod
                   "energy budget and max penetration every step, sampled every N steps (0 = off); adds \"energy\" to the summary")
       ->check(CLI::NonNegativeNumber);
   sub->callback([&exit_code] {
-#if defined(SPREAD_HAS_DRUM)
     // A scene with a [drum] table is the rotating drum, not a disc.
     if (spread::drum::is_drum_scene_file(state->scene_path)) {
       exit_code = spread::drum::run_drum_command(state->scene_path, state->overrides, state->json_out, "", "");
       return;
     }
-#endif
-#if defined(SPREAD_DEM_HAS_SCENE)
     exit_code = run(*state);
-#else
-    std::cerr << "spread simulate: this build has no scene module\n";
-    exit_code = spread::cli::kExitFailure;
-#endif
   });
 }};
 
