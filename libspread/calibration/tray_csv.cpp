@@ -128,8 +128,8 @@ std::string format_m(double value) {
 
 }  // namespace
 
-TrayCsvError::TrayCsvError(const std::string& source, int line, const std::string& problem)
-    : std::runtime_error(source + ":" + (line > 0 ? std::to_string(line) + ": " : std::string(" ")) + problem),
+TrayCsvError::TrayCsvError(const std::string& source, int line, const std::string& problem, ErrorKind kind)
+    : Error(kind, source, source + ":" + (line > 0 ? std::to_string(line) + ": " : std::string(" ")) + problem),
       line_(line) {}
 
 double TrayTest::total_mass_kg() const {
@@ -358,7 +358,7 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
 
 TrayTest read_tray_csv(const std::string& path, const TrayCsvOptions& options) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw TrayCsvError(path, 0, "cannot open the file");
+  if (!in) throw TrayCsvError(path, 0, "cannot open the file", ErrorKind::kMissing);
   std::ostringstream text;
   text << in.rdbuf();
   return parse_tray_csv(text.str(), path, options);

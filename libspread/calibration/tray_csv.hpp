@@ -28,15 +28,19 @@
 #include <string_view>
 #include <vector>
 
+#include "libspread/core/error.hpp"
 #include "libspread/metrics/metrics.hpp"
 
 namespace spread::calibration {
 
 inline constexpr int kMinimumTrays = 5;  // fewer cannot describe a pattern, nor give a CV over a bout
 
-class TrayCsvError : public std::runtime_error {
+// A tray file the tool cannot read: kind kCorrupt for its content, kMissing when it cannot be opened;
+// where() is the file, what() names file, line and column.
+class TrayCsvError : public Error {
  public:
-  TrayCsvError(const std::string& source, int line, const std::string& problem);
+  TrayCsvError(const std::string& source, int line, const std::string& problem,
+               ErrorKind kind = ErrorKind::kCorrupt);
   int line() const { return line_; }  // 1-based; 0 when the problem is with the file as a whole
 
  private:

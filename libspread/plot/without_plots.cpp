@@ -14,22 +14,23 @@ namespace {
 }
 
 }  // namespace
-
-void write_ground_pattern_png(const metrics::GroundPattern&, const std::string& path, const std::string&,
-                              const metrics::MachineLayout&, MassUnits) {
-  refuse(path);
-}
-
-void write_transverse_png(std::span<const double>, const metrics::TrayLayout&, const std::string& path,
-                          const std::string&, const TransverseOptions&) {
-  refuse(path);
-}
-
-void write_cv_curve_png(std::span<const double>, std::span<const double>, std::span<const double>, double,
-                        const std::string& path, const std::string&) {
-  refuse(path);
-}
-
-void write_report_pdf(const std::string& path, const PatternReport*, const TablePage*) { refuse(path); }
-
 }  // namespace spread::plot
+
+// Qualified definitions: one whose signature drifts from plot.hpp or report_pdf.hpp is a compile error here
+// (C++ [dcl.meaning]: a qualified name must name an earlier declaration), not a link error in a later target.
+void spread::plot::write_ground_pattern_png(const metrics::GroundPattern&, const std::string& path, const std::string&,
+                                            const metrics::MachineLayout&, MassUnits) {
+  refuse(path);
+}
+
+void spread::plot::write_transverse_png(std::span<const double>, const metrics::TrayLayout&, const std::string& path,
+                                        const std::string&, const TransverseOptions&) {
+  refuse(path);
+}
+
+void spread::plot::write_cv_curve_png(std::span<const double>, std::span<const double>, std::span<const double>,
+                                      double, const std::string& path, const std::string&, const CvCurveOptions&) {
+  refuse(path);
+}
+
+void spread::plot::write_report_pdf(const std::string& path, const PatternReport*, const TablePage*) { refuse(path); }

@@ -124,17 +124,7 @@ spread::cli::CommandRegistration registration{"accuracy", [](CLI::App& app, int&
                   "Launch table for the sampling study (e.g. the main job's out/default.sqlite); without it that study is left out");
   sub->add_flag("--json", options->json, "Machine-readable summary on stdout: recommendations, figures, files");
   sub->add_flag("-v,--verbose", options->verbose, "One progress line per measured point on stderr");
-  sub->callback([options, &exit_code] {
-    try {
-      exit_code = run(*options);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "spread accuracy: error: " << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    } catch (const std::exception& e) {
-      std::cerr << "spread accuracy: failed: " << e.what() << "\n";
-      exit_code = spread::cli::kExitFailure;
-    }
-  });
+  sub->callback([options, &exit_code] { exit_code = run(*options); });
 }};
 
 }  // namespace

@@ -36,6 +36,7 @@
 #include "libspread/scene/scene.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/error_exit.hpp"
 #include "tools/spread/output_paths.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
@@ -45,10 +46,7 @@ namespace {
 using nlohmann::json;
 namespace cal = spread::calibration;
 
-class BadInput : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using spread::cli::BadInput;
 
 constexpr double kDegPerRad = 180.0 / spread::kPi;
 
@@ -65,40 +63,6 @@ std::string format(const char* pattern, double value) {
   char text[64];
   std::snprintf(text, sizeof text, pattern, value);
   return text;
-}
-
-// Runs `body`, mapping the failure classes to exit codes and one stderr line naming the problem.
-template <typename Body>
-void guarded(const char* command, int& exit_code, Body body) {
-  const std::string prefix = std::string("spread calibrate ") + command + ": error: ";
-  try {
-    body();
-    exit_code = spread::cli::kExitOk;
-  } catch (const spread::cli::ReportUsageError& e) {
-    std::cerr << prefix << e.what() << "\n";
-    exit_code = spread::cli::kExitUsage;
-  } catch (const spread::cli::ReportWriteError& e) {
-    std::cerr << prefix << e.what() << "\n";
-    exit_code = spread::cli::kExitFailure;
-  } catch (const BadInput& e) {
-    std::cerr << prefix << e.what() << "\n";
-    exit_code = spread::cli::kExitUsage;
-  } catch (const cal::TrayCsvError& e) {
-    std::cerr << prefix << e.what() << "\n";
-    exit_code = spread::cli::kExitUsage;
-  } catch (const spread::tables::TableError& e) {
-    std::cerr << prefix << "--tables: " << e.what() << "\n";
-    exit_code = e.kind() == spread::tables::TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
-  } catch (const spread::scene::SceneError& e) {
-    std::cerr << prefix << e.what() << "\n";
-    exit_code = spread::cli::kExitUsage;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << prefix << e.what() << "\n";
-    exit_code = spread::cli::kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << prefix << e.what() << "\n";
-    exit_code = spread::cli::kExitFailure;
-  }
 }
 
 // ---------------------------------------------------------------------------------------------- rate
@@ -955,7 +919,7 @@ void run_synth(const SynthOptions& o) {
   }
 }
 
-spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_code) {
+spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& /*exit_code: failures are thrown, see error_exit.hpp*/) {
   auto* sub = app.add_subcommand("calibrate", "field calibration: catch test (rate), tray test, pattern fit");
   sub->require_subcommand(1);
 
@@ -972,7 +936,7 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   r->add_option("--speed", rate.speed_km_h, "forward speed (km/h)")->required();
   r->add_option("--current-gate", rate.current_gate, "gate opening to check (default: the catch's)");
   r->add_flag("--json", rate.json, "machine-readable output on stdout");
-  r->callback([&exit_code] { guarded("rate", exit_code, [] { run_rate(rate); }); });
+  r->callback([] { run_rate(rate); });
 
   static TrayOptions tray;
   auto* t = sub->add_subcommand("tray", "tray test: CV at a bout width, CV(W), effective working widths");
@@ -987,7 +951,7 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   spread::cli::add_report_args(*t, tray.report, true);
   t->add_flag("--quick-check", tray.quick_check,
               "4-8 trays across one bout of the field as driven: their CV and how uncertain it is from so few trays");
-  t->callback([&exit_code] { guarded("tray", exit_code, [] { run_tray(tray); }); });
+  t->callback([] { run_tray(tray); });
 
   static PatternOptions pattern;
   auto* p = sub->add_subcommand("pattern", "fit a material to a tray test; write it into a new table file");
@@ -1012,7 +976,7 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   p->add_option("--plot", pattern.plot_prefix, "write PREFIX_transverse.png, PREFIX_cv.png, PREFIX_cv_measured.png");
   p->add_flag("--json", pattern.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*p, pattern.report, true);
-  p->callback([&exit_code] { guarded("pattern", exit_code, [] { run_pattern(pattern); }); });
+  p->callback([] { run_pattern(pattern); });
 
   static SynthOptions synth;
   auto* y = sub->add_subcommand("synth", "write a synthetic tray test made by the pattern model (known answers)");
@@ -1037,7 +1001,7 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& exit_co
   y->add_option("--seed", synth.seed, "noise seed")->capture_default_str();
   y->add_flag("--force", synth.force, "replace --output when it exists");
   y->add_flag("--json", synth.json, "machine-readable output on stdout");
-  y->callback([&exit_code] { guarded("synth", exit_code, [] { run_synth(synth); }); });
+  y->callback([] { run_synth(synth); });
 }};
 
 }  // namespace

@@ -229,27 +229,7 @@ spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) 
   sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);
-  sub->callback([&exit_code] {
-    const char* prefix = "spread chart: error: ";
-    try {
-      run(options, exit_code);
-    } catch (const spread::cli::ReportWriteError& e) {
-      std::cerr << prefix << e.what() << "\n";
-      exit_code = spread::cli::kExitFailure;
-    } catch (const spread::cli::ReportUsageError& e) {
-      std::cerr << prefix << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    } catch (const BadInput& e) {
-      std::cerr << prefix << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    } catch (const spread::tables::TableError& e) {
-      std::cerr << prefix << "--tables: " << e.what() << "\n";
-      exit_code = e.kind() == spread::tables::TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
-    } catch (const std::invalid_argument& e) {
-      std::cerr << prefix << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    }
-  });
+  sub->callback([&exit_code] { run(options, exit_code); });
 }};
 
 }  // namespace

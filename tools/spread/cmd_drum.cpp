@@ -12,6 +12,8 @@
 
 #include "tools/spread/command_registry.hpp"
 
+#include "libspread/core/error.hpp"
+
 #include "libspread/drum/drum_simulation.hpp"
 #include "libspread/drum/regime_map_plot.hpp"
 
@@ -61,70 +63,61 @@ namespace spread::drum {
 
 int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
                      const std::string& sweep, const std::string& map_path) {
-  DrumScene scene;
-  try {
-    scene = load_drum_scene(scene_path, overrides);
-  } catch (const std::exception& e) {
-    std::cerr << "spread drum: " << e.what() << "\n";
-    return spread::cli::kExitUsage;
-  }
+  const DrumScene scene = load_drum_scene(scene_path, overrides);
   std::vector<double> froudes;
   if (!sweep.empty()) {
     std::stringstream ss(sweep);
     for (std::string item; std::getline(ss, item, ',');) {
+      std::size_t used = 0;
       try {
-        froudes.push_back(std::stod(item));
+        froudes.push_back(std::stod(item, &used));
       } catch (const std::exception&) {
-        std::cerr << "spread drum: --sweep-froude: '" << item << "' is not a number\n";
-        return spread::cli::kExitUsage;
+        used = 0;
+      }
+      if (used == 0 || used != item.size()) {
+        throw spread::Error(spread::ErrorKind::kArgument, "--sweep-froude", "--sweep-froude: '" + item + "' is not a number");
       }
       if (!(froudes.back() > 0.0)) {
-        std::cerr << "spread drum: --sweep-froude: values must be > 0\n";
-        return spread::cli::kExitUsage;
+        throw spread::Error(spread::ErrorKind::kArgument, "--sweep-froude", "--sweep-froude: values must be > 0");
       }
     }
   }
-  try {
-    if (froudes.empty()) {
-      const DrumResult r = run_drum(scene);
-      if (json_out) {
-        std::cout << result_json(r).dump(2) << "\n";
-      } else {
-        std::printf("%zu particles, dt %.3g s, settled %s after %.3f s, Fr %.3f\n", r.particles, r.dt_s, r.settled ? "yes" : "no",
-                    r.settle_time_s, r.froude);
-        std::printf("regime: %s (%s)\n", regime_name(r.evidence.regime).c_str(), r.evidence.reason.c_str());
-        std::printf("angle of repose %.1f ± %.1f deg, airborne %.3f, co-rotating %.3f, wall coverage %.2f, Lacey %.3f\n",
-                    r.evidence.angle_of_repose_deg, r.evidence.angle_of_repose_sd_deg, r.evidence.airborne_fraction,
-                    r.evidence.co_rotating_fraction, r.evidence.wall_coverage, r.evidence.lacey_index);
-        for (const auto& f : r.files) std::printf("wrote %s\n", f.c_str());
-      }
-      return 0;
+  if (froudes.empty()) {
+    const DrumResult r = run_drum(scene);
+    if (json_out) {
+      std::cout << result_json(r).dump(2) << "\n";
+    } else {
+      std::printf("%zu particles, dt %.3g s, settled %s after %.3f s, Fr %.3f\n", r.particles, r.dt_s, r.settled ? "yes" : "no",
+                  r.settle_time_s, r.froude);
+      std::printf("regime: %s (%s)\n", regime_name(r.evidence.regime).c_str(), r.evidence.reason.c_str());
+      std::printf("angle of repose %.1f ± %.1f deg, airborne %.3f, co-rotating %.3f, wall coverage %.2f, Lacey %.3f\n",
+                  r.evidence.angle_of_repose_deg, r.evidence.angle_of_repose_sd_deg, r.evidence.airborne_fraction,
+                  r.evidence.co_rotating_fraction, r.evidence.wall_coverage, r.evidence.lacey_index);
+      for (const auto& f : r.files) std::printf("wrote %s\n", f.c_str());
     }
-    std::vector<RegimeEvidence> runs;
-    json rows = json::array();
-    for (double fr : froudes) {
-      DrumScene s = scene;
-      s.angular_velocity_rad_s = omega_from_froude(fr, s.radius_m);
-      s.output_directory.clear();
-      const DrumResult r = run_drum(s);
-      runs.push_back(r.evidence);
-      rows.push_back(result_json(r));
-      if (!json_out)
-        std::printf("Fr %-7.3g %-13s angle %5.1f deg  airborne %.3f  co-rotating %.3f  coverage %.2f  (%s)\n", fr,
-                    regime_name(r.evidence.regime).c_str(), r.evidence.angle_of_repose_deg, r.evidence.airborne_fraction,
-                    r.evidence.co_rotating_fraction, r.evidence.wall_coverage, r.evidence.reason.c_str());
-    }
-    json out{{"sweep", rows}};
-    if (!map_path.empty()) {
-      write_regime_map_png(runs, map_path, "drum regime map: " + scene.source_name);
-      out["map_png"] = map_path;
-      if (!json_out) std::printf("wrote %s\n", map_path.c_str());
-    }
-    if (json_out) std::cout << out.dump(2) << "\n";
-  } catch (const std::exception& e) {
-    std::cerr << "spread drum: " << e.what() << "\n";
-    return spread::cli::kExitUsage;
+    return 0;
   }
+  std::vector<RegimeEvidence> runs;
+  json rows = json::array();
+  for (double fr : froudes) {
+    DrumScene s = scene;
+    s.angular_velocity_rad_s = omega_from_froude(fr, s.radius_m);
+    s.output_directory.clear();
+    const DrumResult r = run_drum(s);
+    runs.push_back(r.evidence);
+    rows.push_back(result_json(r));
+    if (!json_out)
+      std::printf("Fr %-7.3g %-13s angle %5.1f deg  airborne %.3f  co-rotating %.3f  coverage %.2f  (%s)\n", fr,
+                  regime_name(r.evidence.regime).c_str(), r.evidence.angle_of_repose_deg, r.evidence.airborne_fraction,
+                  r.evidence.co_rotating_fraction, r.evidence.wall_coverage, r.evidence.reason.c_str());
+  }
+  json out{{"sweep", rows}};
+  if (!map_path.empty()) {
+    write_regime_map_png(runs, map_path, "drum regime map: " + scene.source_name);
+    out["map_png"] = map_path;
+    if (!json_out) std::printf("wrote %s\n", map_path.c_str());
+  }
+  if (json_out) std::cout << out.dump(2) << "\n";
   return 0;
 }
 

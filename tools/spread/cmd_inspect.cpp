@@ -9,6 +9,7 @@
 #include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/error_exit.hpp"
 
 namespace {
 
@@ -140,7 +141,7 @@ spread::cli::CommandRegistration reg{"inspect", [](CLI::App& app, int& exit_code
         std::cout << json{{"error", {{"kind", kind_code(e.kind())}, {"message", e.what()}, {"file", options.file}}}}.dump(2)
                   << "\n";
       }
-      exit_code = e.kind() == TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
+      exit_code = spread::cli::exit_code_for(e);
     }
   });
 }};

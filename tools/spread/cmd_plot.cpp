@@ -130,17 +130,7 @@ spread::cli::CommandRegistration reg{"plot", [](CLI::App& app, int& exit_code) {
   sub->add_option("--what", options.what, "plots to write: pattern,transverse,cv");
   sub->add_option("--cell", options.cell_m, "ground-pattern cell size (m)");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
-  sub->callback([&exit_code] {
-    try {
-      run(options, exit_code);
-    } catch (const BadInput& e) {
-      std::cerr << "spread plot: error: " << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    } catch (const spread::tables::TableError& e) {
-      std::cerr << "spread plot: error: --tables: " << e.what() << "\n";
-      exit_code = e.kind() == spread::tables::TableErrorKind::kIo ? spread::cli::kExitFailure : spread::cli::kExitUsage;
-    }
-  });
+  sub->callback([&exit_code] { run(options, exit_code); });
 }};
 
 }  // namespace

@@ -410,23 +410,7 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);
-  sub->callback([&exit_code] {
-    try {
-      run(options, exit_code);
-    } catch (const spread::cli::ReportWriteError& e) {
-      std::cerr << "spread predict: error: " << e.what() << "\n";
-      exit_code = spread::cli::kExitFailure;
-    } catch (const spread::cli::ReportUsageError& e) {
-      std::cerr << "spread predict: error: " << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    } catch (const BadInput& e) {
-      std::cerr << "spread predict: error: " << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "spread predict: error: " << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    }
-  });
+  sub->callback([&exit_code] { run(options, exit_code); });
 }};
 
 }  // namespace

@@ -37,15 +37,8 @@ struct SimulateState {
 
 int run(const SimulateState& s) {
   namespace dem = spread::dem;
-  spread::scene::Scene scene;
-  dem::SimulationConfig cfg;
-  try {
-    scene = spread::scene::load_scene_file(s.scene_path, s.overrides);
-    cfg = dem::config_from_scene(scene, s.material);
-  } catch (const std::exception& e) {
-    std::cerr << "spread simulate: " << e.what() << "\n";
-    return spread::cli::kExitUsage;
-  }
+  const spread::scene::Scene scene = spread::scene::load_scene_file(s.scene_path, s.overrides);
+  dem::SimulationConfig cfg = dem::config_from_scene(scene, s.material);
   cfg.energy_monitor_every_steps = s.energy_every_steps;
   const std::filesystem::path dir = scene.outputs.directory;
   const bool any_output = scene.outputs.launch_csv || scene.outputs.pattern_png || scene.outputs.vtk_every_steps > 0;
@@ -65,8 +58,8 @@ int run(const SimulateState& s) {
       r = dem::simulate(cfg);
     }
   } catch (const std::invalid_argument& e) {
-    std::cerr << "spread simulate: " << scene.source_name << ": " << e.what() << "\n";
-    return spread::cli::kExitUsage;
+    // The engine's start-up checks judge the scene's values: name the scene.
+    throw spread::scene::SceneError(scene.source_name + ": " + e.what());
   }
   json outputs = json::object();
   if (scene.outputs.launch_csv) {

@@ -158,14 +158,7 @@ spread::cli::CommandRegistration registration{"trajectory", [](CLI::App& app, in
       ->capture_default_str();
   sub->add_option("--lift", options->lift, "Lift model: smooth, obd or obd-printed")->capture_default_str();
   sub->add_flag("--json", options->json, "Machine-readable output on stdout");
-  sub->callback([options, &exit_code] {
-    try {
-      exit_code = run(*options);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "spread trajectory: error: " << e.what() << "\n";
-      exit_code = spread::cli::kExitUsage;
-    }
-  });
+  sub->callback([options, &exit_code] { exit_code = run(*options); });
 }};
 
 }  // namespace

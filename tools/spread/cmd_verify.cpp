@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/core/error.hpp"
 #include "libspread/dem/verify.hpp"
 #include "tools/spread/command_registry.hpp"
 
@@ -109,26 +110,21 @@ spread::cli::CommandRegistration reg{"verify", [](CLI::App& app, int& exit_code)
   sub->callback([&exit_code] {
     const VerifyState& s = *state;
     json rows;
-    try {
-      if (s.which == "impact") rows = verify_impact();
-      else if (s.which == "vane") rows = verify_vane();
-      else if (s.which == "cone") {
-        for (double xi : s.mesh_sizes)
-          if (!(xi >= 0.0 && xi < 1.0)) {
-            std::cerr << "spread verify: --mesh-sizes: " << xi << " is not in [0, 1)\n";
-            exit_code = spread::cli::kExitUsage;
-            return;
-          }
-        rows = verify_cone(s.mesh_sizes);
-      } else {
-        std::cerr << "spread verify: unknown case '" << s.which << "' (expected impact, vane or cone)\n";
-        exit_code = spread::cli::kExitUsage;
-        return;
+    if (s.which == "impact") {
+      rows = verify_impact();
+    } else if (s.which == "vane") {
+      rows = verify_vane();
+    } else if (s.which == "cone") {
+      for (double xi : s.mesh_sizes) {
+        if (!(xi >= 0.0 && xi < 1.0)) {
+          throw spread::Error(spread::ErrorKind::kArgument, "--mesh-sizes",
+                              "--mesh-sizes: " + std::to_string(xi) + " is not in [0, 1)");
+        }
       }
-    } catch (const std::exception& e) {
-      std::cerr << "spread verify " << s.which << ": " << e.what() << "\n";
-      exit_code = spread::cli::kExitFailure;
-      return;
+      rows = verify_cone(s.mesh_sizes);
+    } else {
+      throw spread::Error(spread::ErrorKind::kArgument, "case",
+                          "unknown case '" + s.which + "' (expected impact, vane or cone)");
     }
     const json out = {{"case", s.which}, {"results", rows}};
     if (s.json_out) {

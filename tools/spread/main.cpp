@@ -1,9 +1,9 @@
 // spread: command-line front end of libspread. Subcommands live in cmd_*.cpp.
 #include <algorithm>
 #include <exception>
-#include <iostream>
 
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/error_exit.hpp"
 #include "tools/spread/report_args.hpp"
 
 int main(int argc, char** argv) {
@@ -21,8 +21,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? spread::cli::kExitOk : spread::cli::kExitUsage;
   } catch (const std::exception& e) {
-    std::cerr << "spread: error: " << e.what() << "\n";
-    return spread::cli::kExitFailure;
+    // Commands throw; this is the one place a failure becomes a stderr line and an exit code.
+    return spread::cli::report_failure(spread::cli::command_path(app), e);
   }
   return exit_code;
 }

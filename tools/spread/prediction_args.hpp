@@ -8,14 +8,9 @@
 #include <string>
 
 #include "libspread/predict/predictor.hpp"
+#include "tools/spread/error_exit.hpp"
 
 namespace spread::cli {
-
-// A bad command-line value; the message names the option. Subcommands print it and exit kExitUsage.
-class BadInput : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct PredictionArgs {
   std::string tables;                                           // launch-table file (SQLite)

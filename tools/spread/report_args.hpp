@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "libspread/core/error.hpp"
 #include "libspread/plot/report_pdf.hpp"
 
 namespace spread::cli {
@@ -61,13 +62,13 @@ std::vector<std::string> rate_lines(const std::optional<plot::ReportRate>& rate)
 
 // After the text or JSON report: the folder problem found before the work (exit 2), or the error of
 // writing the PDF (exit 1). Thrown as ReportUsageError / ReportWriteError; the commands map them.
-class ReportUsageError : public std::runtime_error {
+class ReportUsageError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit ReportUsageError(const std::string& message) : Error(ErrorKind::kArgument, "--report", message) {}
 };
-class ReportWriteError : public std::runtime_error {
+class ReportWriteError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit ReportWriteError(const std::string& message) : Error(ErrorKind::kIo, "--report", message) {}
 };
 
 }  // namespace spread::cli

@@ -1,0 +1,38 @@
+#include "tools/spread/error_exit.hpp"
+
+#include <iostream>
+#include <stdexcept>
+
+#include "libspread/core/error.hpp"
+#include "tools/spread/command_registry.hpp"
+
+namespace spread::cli {
+
+int exit_code_for(const std::exception& failure) {
+  if (const auto* error = dynamic_cast<const spread::Error*>(&failure)) {
+    return error->kind() == ErrorKind::kIo ? kExitFailure : kExitUsage;
+  }
+  // Library preconditions on values the user chose (a disc speed outside the table, an impossible
+  // width) still arrive as std::invalid_argument: still the user's input.
+  if (dynamic_cast<const std::invalid_argument*>(&failure) != nullptr) return kExitUsage;
+  return kExitFailure;
+}
+
+std::string command_path(const CLI::App& app) {
+  std::string path = "spread";
+  const CLI::App* level = &app;
+  while (level != nullptr) {
+    const auto parsed = level->get_subcommands();
+    if (parsed.empty()) break;
+    level = parsed.front();
+    path += " " + level->get_name();
+  }
+  return path;
+}
+
+int report_failure(const std::string& command, const std::exception& failure) {
+  std::cerr << command << ": error: " << failure.what() << "\n";
+  return exit_code_for(failure);
+}
+
+}  // namespace spread::cli
