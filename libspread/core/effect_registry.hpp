@@ -98,11 +98,11 @@ constexpr EffectSet unmet_requirements(EffectSet set) {
 }
 
 // Comma-separated names of `set` in canonical order; "" for the empty set.
-inline std::string to_string(EffectSet set) {
+inline std::string to_string(EffectSet set, std::string_view separator = ",") {
   std::string list;
   for (const Effect& e : kRegistry) {
     if ((set & e.bit) == 0) continue;
-    if (!list.empty()) list += ',';
+    if (!list.empty()) list += separator;
     list += e.name;
   }
   return list;
@@ -118,15 +118,7 @@ inline std::vector<std::string> names_in(EffectSet set) {
 }
 
 // "a, b, c": the names of a domain, for messages listing what is known.
-inline std::string names_of(EffectSet set) {
-  std::string list;
-  for (const Effect& e : kRegistry) {
-    if ((set & e.bit) == 0) continue;
-    if (!list.empty()) list += ", ";
-    list += e.name;
-  }
-  return list;
-}
+inline std::string names_of(EffectSet set) { return to_string(set, ", "); }
 
 namespace detail {
 constexpr bool rows_consistent() {
