@@ -1,7 +1,7 @@
 #pragma once
-// The force pass's instantiations, generated from the sub-model lists (contact_laws.hpp): every
-// combination normal × damping × tangential × rolling × subset of the pass-shaping effects (kPassEffects) that contact_law_conflict accepts and a
-// scene can reach. The engine picks one by its position once (find_force_variant); each pass file builds
+// The force pass's instantiations, generated from the sub-model lists (contact_laws.hpp) and the registry
+// bits: every combination normal × damping × tangential × rolling × subset of the pass-shaping effects
+// (kPassEffects) that contact_law_conflict accepts and a scene can reach. The engine picks one by its position once (find_force_variant); each pass file builds
 // its table of instantiations from the same list (engine_detail.hpp), so adding a sub-model or widening
 // reachable_from_scenes never means writing a table by hand.
 //
