@@ -119,7 +119,7 @@ std::vector<std::string> table_conflicts(tables::TableWriter& writer, const scen
     const std::string label = "run " + run.material + " @ " + format_rpm(run.rpm) + " rpm";
     if (run.source != source) {
       out.push_back(label + ": source " + run.source + " in the file, " + source + " in the scene");
-    } else if (run.inputs_hash != scene.run_inputs_hash(*mine, run.rpm)) {
+    } else if (!scene.same_run_inputs(run.inputs_hash, *mine, run.rpm)) {
       out.push_back(label + ": built from other inputs (numerics, sweep or effects differ; inputs hash " +
                     (run.inputs_hash.empty() ? std::string("not recorded") : run.inputs_hash) + " in the file, " +
                     scene.run_inputs_hash(*mine, run.rpm) + " from the scene)");

@@ -13,9 +13,9 @@ VaneExit run_vane_at(const dem::VaneCase& c, double contact_steps) {
   dem::Material particle;
   particle.name = "vane_particle";
   particle.density_kg_m3 = 1500.0;
-  particle.young_modulus_pa = 1e8;
+  particle.youngs_modulus_pa = 1e8;
   particle.restitution = 0.2;
-  particle.friction = c.friction;
+  particle.friction_wall = c.friction;  // disc and vane only
   dem::Material wall = particle;
   wall.name = "vane_disc";
   wall.rigid = true;
@@ -31,8 +31,7 @@ VaneExit run_vane_at(const dem::VaneCase& c, double contact_steps) {
   walls.groups.push_back(disc);
 
   dem::EngineParams params;
-  params.particle_contact = false;
-  params.rotation = false;
+  params.effects = effect::kWallContact;
   params.min_particle_radius_m = rp;
   params.impact_speed_m_s = 5.0;
   params.contact_steps = contact_steps;

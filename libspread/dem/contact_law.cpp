@@ -23,7 +23,8 @@ const char* name_in(Id id) {
   return name_in<List>(id, std::make_index_sequence<List::size>{});
 }
 std::string describe(const ForceVariant& v) {
-  return "(" + to_string(v.law) + (v.rotation ? ", with rotation)" : ", without rotation)");
+  const std::string effects = effect::to_string(v.effects);
+  return "(" + to_string(v.law) + (effects.empty() ? ", no pass-shaping effect)" : ", with " + effects + ")");
 }
 }  // namespace
 
@@ -37,9 +38,9 @@ void validate_contact_law(const ContactLaw& law, bool rotation) {
     throw std::invalid_argument("contact law (" + to_string(law) + "): " + conflict);
 }
 
-std::size_t find_force_variant(const ContactLaw& law, bool rotation) {
-  validate_contact_law(law, rotation);
-  const ForceVariant wanted{law, rotation};
+std::size_t find_force_variant(const ContactLaw& law, effect::EffectSet effects) {
+  validate_contact_law(law, (effects & effect::kRotation) != 0);
+  const ForceVariant wanted{law, effects & kPassEffects};
   for (std::size_t i = 0; i < kForceVariants.size(); ++i)
     if (kForceVariants[i] == wanted) return i;
   std::string known;

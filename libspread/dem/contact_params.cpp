@@ -15,24 +15,26 @@ namespace {
 }
 // E_i* = E_i / (1 − ν_i²)   (Eq. 16). Rigid bodies: 1/E* = 0.
 double inv_e_star(const Material& m) {
-  return m.rigid ? 0.0 : (1.0 - m.poisson_ratio * m.poisson_ratio) / m.young_modulus_pa;
+  return m.rigid ? 0.0 : (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus_pa;
 }
 // Shear: G_i = E_i / (2 + 2ν_i); Thornton's tangential stiffness k_t = 8 G* sqrt(R δ) with
 // 1/G* = (2 − ν_a)/G_a + (2 − ν_b)/G_b (equal materials: G* = G/(4 − 2ν), as the seed states).
 double inv_g_star(const Material& m) {
   if (m.rigid) return 0.0;
-  const double g = m.young_modulus_pa / (2.0 + 2.0 * m.poisson_ratio);
+  const double g = m.youngs_modulus_pa / (2.0 + 2.0 * m.poisson_ratio);
   return (2.0 - m.poisson_ratio) / g;
 }
 }  // namespace
 
 void validate_material(const Material& m) {
   if (!(m.density_kg_m3 > 0.0) || !std::isfinite(m.density_kg_m3)) bad(m, "density_kg_m3", m.density_kg_m3, "must be > 0");
-  if (!m.rigid && (!(m.young_modulus_pa > 0.0) || !std::isfinite(m.young_modulus_pa)))
-    bad(m, "young_modulus_pa", m.young_modulus_pa, "must be > 0");
+  if (!m.rigid && (!(m.youngs_modulus_pa > 0.0) || !std::isfinite(m.youngs_modulus_pa)))
+    bad(m, "youngs_modulus_pa", m.youngs_modulus_pa, "must be > 0");
   if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) bad(m, "poisson_ratio", m.poisson_ratio, "must be in (-1, 0.5)");
   if (!(m.restitution > 0.0 && m.restitution <= 1.0)) bad(m, "restitution", m.restitution, "must be in (0, 1]");
-  if (!(m.friction >= 0.0) || !std::isfinite(m.friction)) bad(m, "friction", m.friction, "must be >= 0");
+  if (!(m.friction_particle >= 0.0) || !std::isfinite(m.friction_particle))
+    bad(m, "friction_particle", m.friction_particle, "must be >= 0");
+  if (!(m.friction_wall >= 0.0) || !std::isfinite(m.friction_wall)) bad(m, "friction_wall", m.friction_wall, "must be >= 0");
   if (!(m.rolling_friction >= 0.0) || !std::isfinite(m.rolling_friction))
     bad(m, "rolling_friction", m.rolling_friction, "must be >= 0");
 }
@@ -66,9 +68,12 @@ PairTable::PairTable(const std::vector<Material>& materials, const std::vector<P
       // Eq. 10 as corrected: body i takes the share E*/E_i* of the indentation; rigid walls take none.
       p.share_a = p.e_star_pa * inv_e_star(ma);
       p.share_b = p.e_star_pa * inv_e_star(mb);
-      // Mixing rule: arithmetic mean of the two materials unless an override names the pair.
+      // Mixing rule: arithmetic mean of the two materials unless an override names the pair. Friction is
+      // the partner's kind: a pair with a rigid material (a wall) takes the materials' friction_wall, two
+      // particles their friction_particle.
       p.restitution = 0.5 * (ma.restitution + mb.restitution);
-      p.friction = 0.5 * (ma.friction + mb.friction);
+      p.friction = ma.rigid || mb.rigid ? 0.5 * (ma.friction_wall + mb.friction_wall)
+                                        : 0.5 * (ma.friction_particle + mb.friction_particle);
       p.rolling_friction = 0.5 * (ma.rolling_friction + mb.rolling_friction);
       for (const auto& o : overrides) {
         if ((static_cast<std::size_t>(o.material_a) == a && static_cast<std::size_t>(o.material_b) == b) ||

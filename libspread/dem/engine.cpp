@@ -26,17 +26,33 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
   if (params_.max_particle_radius_m < params_.min_particle_radius_m)
     throw std::invalid_argument("dem: max_particle_radius_m must be >= min_particle_radius_m");
   if (!(params_.contact_steps >= 1.0)) throw std::invalid_argument("dem: contact_steps (N_c) must be >= 1");
-  // The sub-models must fit together (rolling resistance only with rotation) and be compiled in.
+  // The effects: DEM bits only, the rolling effect exactly when the law has a rolling model (the effect
+  // says whether, the law says how), and each effect with what the registry says it requires.
+  if ((params_.effects & ~effect::kDemEffects) != 0)
+    throw std::invalid_argument("dem: effects: '" + effect::to_string(params_.effects & ~effect::kDemEffects) +
+                                "' not a DEM effect (DEM effects: " + effect::names_of(effect::kDemEffects) + ")");
+  if (params_.has(effect::kRolling) != (params_.contact_law.rolling != RollingModel::kNone))
+    throw std::invalid_argument(params_.has(effect::kRolling)
+                                    ? "dem: the 'rolling' effect is on but contact_law.rolling is 'none': name the rolling model"
+                                    : "dem: contact_law has a rolling model but the 'rolling' effect is off (EngineParams::effects)");
+  // The sub-models must fit together and be compiled in.
   try {
-    force_variant_ = find_force_variant(params_.contact_law, params_.rotation);
+    force_variant_ = find_force_variant(params_.contact_law, params_.effects);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("dem: ") + e.what());
+  }
+  // What the law does not already say (a future effect's requirement): the registry's rows.
+  for (const effect::Effect& e : effect::kRegistry) {
+    const effect::EffectSet missing = params_.has(e.bit) ? e.requires_effects & ~params_.effects : 0;
+    if (missing != 0)
+      throw std::invalid_argument("dem: effect '" + std::string(e.name) + "' needs the '" + effect::to_string(missing) +
+                                  "' effect");
   }
   if (params_.threads < 1) params_.threads = 1;
   for (const auto& g : walls_.groups)
     if (g.material < 0 || static_cast<std::size_t>(g.material) >= materials_.size())
       throw std::invalid_argument("dem: wall group '" + g.name + "' refers to an unknown material");
-  p_.with_spin = params_.rotation;
+  p_.with_spin = params_.has(effect::kRotation);
   if (params_.integrator == Integrator::kGear4 || params_.integrator == Integrator::kGear5 ||
       params_.integrator == Integrator::kGear6)
     gear_ = GearPredictorCorrector(4 + static_cast<int>(params_.integrator) - static_cast<int>(Integrator::kGear4));
@@ -55,7 +71,8 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
   // A group's surface stays where it is when it does not turn, or when it turns about its own z axis and
   // consists only of surfaces of revolution about that axis and planes normal to it. Analytic pieces only:
   // mesh and bead queries are built for contact radii, not for radius + skin.
-  walls_fixed_in_space_ = true;
+  // Without wall_contact no wall is ever looked at, so there is no wall list to keep.
+  walls_fixed_in_space_ = params_.has(effect::kWallContact);
   for (const auto& g : walls_.groups) {
     if (!g.meshes.empty() || !g.bead_walls.empty()) { walls_fixed_in_space_ = false; continue; }
     if (g.angular_velocity_rad_s == 0.0) continue;

@@ -4,15 +4,18 @@
 // integrators, and a cylindrical collector that records each launch-off state and removes the particle
 // (the partitioned scheme hands launched particles to the flight module).
 //
-// Effects are chosen once: the force pass is a template instantiated per (composed contact law, rotation)
-// and picked from tables generated from the sub-model lists (force_variants.hpp); particle–particle search is skipped entirely when that effect is
-// off; spin arrays exist only with rotation.
+// Effects are chosen once, as the registry's DEM bits (libspread/core/effect_registry.hpp): the force pass
+// is a template instantiated per (composed contact law, the effects that shape a pass) and picked from
+// tables generated from the sub-model lists and the registry bits (force_variants.hpp); an effect that is
+// off costs nothing: without particle_contact neither the pair list nor the pair pass runs, without
+// wall_contact the wall pass does not run, and spin arrays exist only with rotation.
 #include <any>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "libspread/core/effect_registry.hpp"
 #include "libspread/core/vec3.hpp"
 #include "libspread/dem/gear_predictor_corrector.hpp"
 #include "libspread/dem/material.hpp"
@@ -34,8 +37,10 @@ struct EngineParams {
   ContactLaw contact_law = kHertzThorntonLaw;  // sub-models (contact_law.hpp); rolling resistance is its rolling model
   LinearSprings linear;                // linear normal and tangential models only
   Integrator integrator = Integrator::kSymplecticEuler;
-  bool particle_contact = true;        // effect: particle–particle contacts
-  bool rotation = true;                // effect: particle spin (contact moments, Eq. 15)
+  // The DEM effects that run (registry bits of effect::kDemEffects; flight bits are refused). rolling
+  // needs rotation (the registry's requirement) and a rolling model in contact_law, which names how it
+  // is evaluated; contact_law.rolling without the rolling effect is refused too.
+  effect::EffectSet effects = effect::kDefault & effect::kDemEffects;
   double dt_s = 0.0;                   // 0: Δt = t_c / contact_steps (Sect. 3.1); else refused above the stable bound (NaN, < 0: refused)
   double contact_steps = 20.0;         // N_c
   double impact_speed_m_s = 0.0;       // v in t_c; 0: fastest wall surface speed + 5 m/s
@@ -45,6 +50,8 @@ struct EngineParams {
   Vec3 gravity_m_s2 = Vec3(0.0, 0.0, -kStandardGravity_m_s2);
   int threads = 1;                     // OpenMP threads; results are identical for any count
   PeriodicZ periodic_z;                // periodic boundary along z (period >= 2 (2 r_max + skin)); off by default
+
+  constexpr bool has(effect::EffectSet bit) const { return (effects & bit) != 0; }
 };
 
 // Cylinder about the vertical axis through axis_point_m: a particle whose horizontal distance from
@@ -128,6 +135,8 @@ class DemEngine {
   // Walls (wall_pass.cpp): sets each particle's force (and torque) sums to its wall contacts' share.
   template <class Law, bool kRotation>
   void wall_forces();
+  // Without wall_contact: the sums start at zero instead (force_dispatch.cpp).
+  void clear_forces();
   // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started.
   template <class Law, bool kRotation>
   void particle_forces();

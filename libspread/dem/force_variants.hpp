@@ -1,7 +1,7 @@
 #pragma once
-// The force pass's instantiations, generated from the sub-model lists (contact_laws.hpp): every
-// combination normal × damping × tangential × rolling × rotation that contact_law_conflict accepts and a
-// scene can reach. The engine picks one by its position once (find_force_variant); each pass file builds
+// The force pass's instantiations, generated from the sub-model lists (contact_laws.hpp) and the registry
+// bits: every combination normal × damping × tangential × rolling × subset of the pass-shaping effects
+// (kPassEffects) that contact_law_conflict accepts and a scene can reach. The engine picks one by its position once (find_force_variant); each pass file builds
 // its table of instantiations from the same list (engine_detail.hpp), so adding a sub-model or widening
 // reachable_from_scenes never means writing a table by hand.
 //
@@ -10,16 +10,24 @@
 // two scene laws (kHertzThorntonLaw, kLinearSpringDashpotLaw), each without rotation, with rotation, and
 // with rotation and rolling resistance. Only those are compiled.
 #include <array>
+#include <bit>
 #include <cstddef>
 
+#include "libspread/core/effect_registry.hpp"
 #include "libspread/dem/contact_law.hpp"
 #include "libspread/dem/contact_laws.hpp"
 
 namespace spread::dem {
 
+// The DEM effects that change a pass's instantiation (a template parameter): rotation (spin state and
+// contact moments). The others do not shape a pass: particle_contact and wall_contact decide whether a
+// pass runs at all (force_dispatch.cpp), and rolling is the law's rolling sub-model.
+inline constexpr effect::EffectSet kPassEffects = effect::kRotation;
+
 struct ForceVariant {
   ContactLaw law;
-  bool rotation = false;
+  effect::EffectSet effects = 0;  // a subset of kPassEffects
+  constexpr bool rotation() const { return (effects & effect::kRotation) != 0; }
   friend constexpr bool operator==(const ForceVariant&, const ForceVariant&) = default;
 };
 
@@ -27,13 +35,23 @@ namespace detail {
 
 inline constexpr std::size_t kNormals = NormalModels::size, kDampings = DampingModels::size,
                              kTangentials = TangentialModels::size, kRollings = RollingModels::size;
-inline constexpr std::size_t kProductSize = kNormals * kDampings * kTangentials * kRollings * 2;
+inline constexpr std::size_t kPassEffectSubsets = std::size_t{1} << std::popcount(kPassEffects);
+inline constexpr std::size_t kProductSize = kNormals * kDampings * kTangentials * kRollings * kPassEffectSubsets;
 
-// Position in the product → combination (rotation fastest, then rolling, tangential, damping, normal).
+// Subset number k of `mask`: bit j of k becomes the j-th lowest bit of the mask.
+constexpr effect::EffectSet subset_of(effect::EffectSet mask, std::size_t k) {
+  effect::EffectSet set = 0;
+  for (effect::EffectSet rest = mask; rest != 0; rest &= rest - 1, k >>= 1)
+    if ((k & 1) != 0) set |= rest & ~(rest - 1);
+  return set;
+}
+
+// Position in the product → combination (pass-shaping effects fastest, then rolling, tangential, damping,
+// normal).
 constexpr ForceVariant product_variant(std::size_t i) {
   ForceVariant v;
-  v.rotation = i % 2 != 0;
-  i /= 2;
+  v.effects = subset_of(kPassEffects, i % kPassEffectSubsets);
+  i /= kPassEffectSubsets;
   v.law.rolling = static_cast<RollingModel>(i % kRollings);
   i /= kRollings;
   v.law.tangential = static_cast<TangentialModel>(i % kTangentials);
@@ -50,7 +68,7 @@ constexpr bool reachable_from_scenes(const ContactLaw& law) {
 }
 
 constexpr bool instantiated(const ForceVariant& v) {
-  return contact_law_conflict(v.law, v.rotation) == nullptr && reachable_from_scenes(v.law);
+  return contact_law_conflict(v.law, v.rotation()) == nullptr && reachable_from_scenes(v.law);
 }
 
 constexpr std::size_t count_instantiated() {
@@ -79,10 +97,10 @@ using VariantLaw = ComposedLaw<typename SubModelAt<static_cast<std::size_t>(kFor
                                typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.tangential), TangentialModels>::type,
                                typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.rolling), RollingModels>::type>;
 template <std::size_t I>
-inline constexpr bool kVariantRotation = kForceVariants[I].rotation;
+inline constexpr bool kVariantRotation = kForceVariants[I].rotation();
 
-// Position of (law, rotation) in kForceVariants; throws std::invalid_argument naming the law when it is
-// invalid (validate_contact_law) or valid but not instantiated (and which are).
-std::size_t find_force_variant(const ContactLaw& law, bool rotation);
+// Position of (law, effects & kPassEffects) in kForceVariants; throws std::invalid_argument naming the law
+// when it is invalid (validate_contact_law) or valid but not instantiated (and which are).
+std::size_t find_force_variant(const ContactLaw& law, effect::EffectSet effects);
 
 }  // namespace spread::dem

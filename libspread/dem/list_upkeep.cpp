@@ -12,7 +12,7 @@ using detail::seconds_since;
 
 void DemEngine::maintain_lists() {
   const auto t0 = Clock::now();
-  if (!params_.particle_contact) {
+  if (!params_.has(effect::kParticleContact)) {
     if (inactive_ > 0) { p_.compact(); inactive_ = 0; }
     lists_dirty_ = false;
     return;

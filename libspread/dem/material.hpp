@@ -12,10 +12,12 @@ namespace spread::dem {
 struct Material {
   std::string name;
   double density_kg_m3 = 1500.0;
-  double young_modulus_pa = 5e7;   // E
+  double youngs_modulus_pa = 5e7;   // E
   double poisson_ratio = 0.25;     // ν
   double restitution = 0.5;        // normal coefficient of restitution e (–), in (0, 1]
-  double friction = 0.35;          // Coulomb μ (–), seed Eq. 6
+  // Coulomb μ (–), seed Eq. 6, one per kind of partner (the scene's material keys of the same names):
+  double friction_particle = 0.35;  // against another particle (pairs of two non-rigid materials)
+  double friction_wall = 0.35;      // against a wall (pairs with a rigid material)
   double rolling_friction = 0.0;   // μ_r (–), used only when the rolling effect is on
   bool rigid = false;              // walls: infinitely stiff, E* is the particle's alone
 };
@@ -25,7 +27,7 @@ struct PairOverride {
   int material_a = 0;
   int material_b = 0;
   double restitution = 0.5;
-  double friction = 0.35;
+  double friction = 0.35;          // the pair's μ (PairParams::friction)
   double rolling_friction = 0.0;
 };
 
@@ -41,7 +43,7 @@ struct PairParams {
   double g_star_pa = 0.0;        // G* = (1/G_a* + 1/G_b*)^-1, G_i* = G_i/(2-ν_i)... see contact_params.cpp
   double damping_ratio = 0.0;    // from the pair restitution: γ of Eqs. 18/24 (damping 'hertz'), ζ ('linear_viscous'), 0 ('none')
   double restitution = 0.5;
-  double friction = 0.35;
+  double friction = 0.35;        // the pair's μ: mean friction_particle of two particles, mean friction_wall with a wall
   double rolling_friction = 0.0;
   double share_a = 0.5;          // E*/E_a*: share of the indentation taken by body a (Eq. 10, corrected)
   double share_b = 0.5;          // E*/E_b*
@@ -66,7 +68,7 @@ class PairTable {
   std::vector<PairParams> pairs_;
 };
 
-// Checks one material; throws std::invalid_argument("material 'name': young_modulus_pa must be > 0 ...").
+// Checks one material; throws std::invalid_argument("material 'name': youngs_modulus_pa must be > 0 ...").
 void validate_material(const Material& material);
 
 }  // namespace spread::dem

@@ -49,20 +49,21 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   Material particle;
   particle.name = sm->name;
   particle.density_kg_m3 = sm->density_kg_m3;
-  particle.young_modulus_pa = sm->youngs_modulus_pa;
+  particle.youngs_modulus_pa = sm->youngs_modulus_pa;
   particle.poisson_ratio = sm->poisson_ratio;
   particle.restitution = sm->restitution;
-  particle.friction = sm->friction_particle;
+  particle.friction_particle = sm->friction_particle;
+  particle.friction_wall = sm->friction_wall;
   particle.rolling_friction = sm->rolling_friction;
   Material steel;
   steel.name = "disc";
   steel.rigid = true;
   steel.restitution = sm->restitution;
-  steel.friction = sm->friction_wall;
+  steel.friction_wall = sm->friction_wall;
   steel.rolling_friction = sm->rolling_friction;
+  // The rigid disc has no values of its own: it repeats the granule's restitution, wall friction and
+  // rolling friction, so the particle–disc pair's means are exactly the granule's values (½(x + x) = x).
   c.materials = {particle, steel};
-  // Particle–disc pair: the material's wall friction and restitution (the rigid disc has no own values).
-  c.overrides.push_back({0, 1, sm->restitution, sm->friction_wall, sm->rolling_friction});
 
   const scene::Machine& m = s.machine;
   c.disc.radius_m = m.disc_radius_m;
@@ -96,8 +97,8 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
                           surface_z + in.drop_height_m);
 
   EngineParams& ep = c.engine;
-  ep.particle_contact = s.has(effect::kParticleContact);
-  ep.rotation = s.has(effect::kRotation);  // rolling needs it: the scene reader checked the registry's requirements
+  // The engine honours every DEM effect (wall_contact too); the disc scene refuses to run without walls.
+  ep.effects = s.effects & effect::kDemEffects;
   if (!s.has(effect::kWallContact))
     throw scene::SceneError(s.source_name + ": effects.enabled: the disc DEM needs 'wall_contact' (nothing would hold the particles)");
   const scene::Numerics& n = s.numerics;

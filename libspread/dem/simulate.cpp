@@ -122,7 +122,7 @@ SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) 
   res.lost = st.lost;
   res.particle_steps = st.particle_steps;
   res.module_time_s["inlet"] = run.inlet_s();
-  if (cfg.engine.particle_contact) res.module_time_s["dem_pair_search"] = st.pair_search_s;
+  if (cfg.engine.has(effect::kParticleContact)) res.module_time_s["dem_pair_search"] = st.pair_search_s;
   res.module_time_s["dem_forces"] = st.forces_s;
   res.module_time_s["dem_integrate"] = st.integrate_s;
   res.module_time_s["dem_collector"] = st.collector_s;
@@ -132,10 +132,7 @@ SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) 
   res.launch = summarise_launches(res.launches, axis);
   res.sector_mass_fraction = sector_mass_fraction(res.launches, axis);
 
-  res.effects.push_back("wall_contact");
-  if (cfg.engine.particle_contact) res.effects.push_back("particle_contact");
-  if (cfg.engine.rotation) res.effects.push_back("rotation");
-  if (cfg.engine.contact_law.rolling != RollingModel::kNone) res.effects.push_back("rolling");
+  res.effects = effect::names_in(cfg.engine.effects);
 
   if (cfg.fly && !res.launches.empty()) {
     t0 = Clock::now();

@@ -167,7 +167,7 @@ Material bead_contact_material(const Material& particle, double particle_radius_
   Material bead = particle;
   bead.name = particle.name + " bead contact";
   bead.rigid = false;
-  bead.young_modulus_pa = particle.young_modulus_pa * f / (1.0 - f);
+  bead.youngs_modulus_pa = particle.youngs_modulus_pa * f / (1.0 - f);
   return bead;
 }
 

@@ -58,7 +58,7 @@ StepChoice choose_time_step(const std::vector<Material>& materials, const PairTa
                              ? hertz_contact_time_s(m_eff, r_eff, pp.e_star_pa, v)
                              : linear_contact_time_s(m_eff, pp.kn_linear_n_m);
         tc = std::min(tc, t);
-        bound = std::min(bound, stable_step_bound_s(params.contact_law, pp, m_eff, r_eff, v, params.rotation));
+        bound = std::min(bound, stable_step_bound_s(params.contact_law, pp, m_eff, r_eff, v, params.has(effect::kRotation)));
       }
     }
   }

@@ -15,9 +15,9 @@ ConeResult run_cone(const ConeCase& c) {
   Material particle;
   particle.name = "cone_particle";
   particle.density_kg_m3 = 1500.0;
-  particle.young_modulus_pa = 1e8;
+  particle.youngs_modulus_pa = 1e8;
   particle.restitution = 0.2;  // seed Sect. 3.3
-  particle.friction = c.mu;
+  particle.friction_wall = c.mu;  // cone only: no particle–particle contact
   Material wall = particle;
   wall.name = "cone_wall";
   wall.rigid = true;
@@ -36,8 +36,7 @@ ConeResult run_cone(const ConeCase& c) {
   walls.groups.push_back(std::move(cone));
 
   EngineParams params;
-  params.particle_contact = false;
-  params.rotation = false;
+  params.effects = effect::kWallContact;
   params.min_particle_radius_m = rp;
   params.impact_speed_m_s = 2.0;  // the particle slides: normal approach speeds stay small
   DemEngine engine({particle, wall}, {}, walls, params);

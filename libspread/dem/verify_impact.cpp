@@ -13,10 +13,10 @@ ImpactResult run_impact(const ImpactCase& c) {
   Material particle;
   particle.name = "impact_particle";
   particle.density_kg_m3 = 1500.0;
-  particle.young_modulus_pa = 5e7;
+  particle.youngs_modulus_pa = 5e7;
   particle.poisson_ratio = 0.25;
   particle.restitution = c.restitution;
-  particle.friction = c.friction;
+  particle.friction_particle = particle.friction_wall = c.friction;
   Material wall = particle;
   wall.name = "impact_wall";
   wall.rigid = true;
@@ -33,8 +33,8 @@ ImpactResult run_impact(const ImpactCase& c) {
   EngineParams params;
   params.contact_law = c.law;
   params.integrator = c.integrator;
-  params.particle_contact = c.sphere_sphere;
-  params.rotation = c.rotation;
+  params.effects = effect::kWallContact | (c.sphere_sphere ? effect::kParticleContact : 0u) |
+                   (c.rotation ? effect::kRotation : 0u);
   params.contact_steps = c.contact_steps;
   params.impact_speed_m_s = c.speed_m_s;
   params.min_particle_radius_m = c.sphere_sphere ? r2 : r1;

@@ -37,9 +37,9 @@ VaneResult run_vane(const VaneCase& c) {
   Material particle;
   particle.name = "vane_particle";
   particle.density_kg_m3 = 1500.0;
-  particle.young_modulus_pa = 1e8;
+  particle.youngs_modulus_pa = 1e8;
   particle.restitution = 0.2;  // settles quickly onto the disc
-  particle.friction = c.friction;
+  particle.friction_wall = c.friction;  // disc and vane only
   Material wall = particle;
   wall.name = "vane_disc";
   wall.rigid = true;
@@ -55,8 +55,7 @@ VaneResult run_vane(const VaneCase& c) {
   walls.groups.push_back(disc);
 
   EngineParams params;
-  params.particle_contact = false;
-  params.rotation = false;
+  params.effects = effect::kWallContact;
   params.min_particle_radius_m = rp;
   params.impact_speed_m_s = 5.0;  // sliding contacts: normal approach speeds stay small
   DemEngine engine({particle, wall}, {}, walls, params);

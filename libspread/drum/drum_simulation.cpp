@@ -17,10 +17,11 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
     dem::Material m;
     m.name = "species " + std::to_string(i);
     m.density_kg_m3 = s.species[i].density_kg_m3;
-    m.young_modulus_pa = s.young_modulus_pa;
+    m.youngs_modulus_pa = s.young_modulus_pa;
     m.poisson_ratio = s.poisson_ratio;
     m.restitution = s.restitution;
-    m.friction = s.friction;
+    m.friction_particle = s.friction;
+    m.friction_wall = s.wall_friction;
     m.rolling_friction = s.rolling_friction;
     mats.push_back(m);
   }
@@ -60,8 +61,11 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
   ep.linear.normal_stiffness_n_m = s.normal_stiffness_n_m;
   ep.linear.tangential_ratio = s.tangential_ratio;
   ep.integrator = s.integrator;
-  ep.rotation = true;
-  if (s.rolling_friction > 0.0) ep.contact_law.rolling = dem::RollingModel::kConstantTorque;
+  ep.effects = effect::kParticleContact | effect::kWallContact | effect::kRotation;
+  if (s.rolling_friction > 0.0) {
+    ep.effects |= effect::kRolling;
+    ep.contact_law.rolling = dem::RollingModel::kConstantTorque;
+  }
   ep.dt_s = s.dt_s;
   ep.contact_steps = s.contact_steps;
   // Fastest impacts: a particle thrown from the wall speed falling across the drum.

@@ -111,6 +111,17 @@ std::string Scene::run_inputs_hash(const Material& material, double rpm) const {
   return tables::fnv1a64_hex(run_inputs_text(material, rpm));
 }
 
+bool Scene::same_run_inputs(const std::string& stored_inputs_hash, const Material& material, double rpm) const {
+  std::string text = run_inputs_text(material, rpm);
+  if (stored_inputs_hash == tables::fnv1a64_hex(text)) return true;
+  static const std::string kLine = std::string("numerics.contact_model = \"") + to_string(ContactModel::kHertzThornton) + "\"\n";
+  static const std::string kOldLine = "numerics.contact_model = \"hertz_mindlin\"\n";
+  const std::size_t at = text.find(kLine);
+  if (at == std::string::npos) return false;
+  text.replace(at, kLine.size(), kOldLine);
+  return stored_inputs_hash == tables::fnv1a64_hex(text);
+}
+
 std::vector<const Material*> Scene::sweep_materials() const {
   std::vector<const Material*> list;
   if (sweep.materials.empty()) {
@@ -136,9 +147,9 @@ const char* to_string(DiscModel value) {
 const char* to_string(Integrator value) {
   return value == Integrator::kSymplecticEuler ? "symplectic_euler" : "velocity_verlet";
 }
-// The Hertz law keeps its first spelling here: this text enters Scene::run_inputs_text, and a new one would
-// change the inputs_hash of every table built with it (lookup_builder would refuse to extend them).
-const char* to_string(ContactModel value) { return value == ContactModel::kHertzThornton ? "hertz_mindlin" : "linear"; }
+// The Hertz law by what it is (Thornton's tangential law). Tables built before the rename spell it
+// "hertz_mindlin" in their inputs text: Scene::same_run_inputs takes both as the same law.
+const char* to_string(ContactModel value) { return value == ContactModel::kHertzThornton ? "hertz_thornton" : "linear"; }
 const char* to_string(FlightScheme value) { return value == FlightScheme::kRk4 ? "rk4" : "dopri5"; }
 const char* to_string(LaunchSource value) { return value == LaunchSource::kAnalytic ? "analytic" : "dem"; }
 const char* to_string(SpinModel value) { return value == SpinModel::kSliding ? "sliding" : "rolling"; }

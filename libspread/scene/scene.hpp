@@ -145,6 +145,10 @@ struct Scene {
   // so a builder can tell whether an existing run came from the same inputs.
   std::string run_inputs_text(const Material& material, double rpm) const;
   std::string run_inputs_hash(const Material& material, double rpm) const;
+  // True when a stored run's inputs_hash says it came from these inputs: run_inputs_hash, or, with the
+  // Hertz law, the hash of the same text spelling the law "hertz_mindlin" as tables built before the
+  // rename did (the same law, so the same run: docs/table-format.md "Inputs hash").
+  bool same_run_inputs(const std::string& stored_inputs_hash, const Material& material, double rpm) const;
   // The sweep's materials resolved (all scene materials when the list is empty).
   std::vector<const Material*> sweep_materials() const;
   // The sweep's rpm list resolved ([machine.rpm] when the list is empty).

@@ -32,9 +32,9 @@ void golden_mix(GoldenSums& g, double v) {
 // falls on C, which slides and spins on the floor. 300 steps; every force and torque is hashed bitwise
 // and summed per particle.
 GoldenSums golden_run(bool hertz, bool rotation, bool rolling) {
-  Material a; a.name = "a"; a.friction = 0.4; a.restitution = 0.6; a.young_modulus_pa = 5e7; a.poisson_ratio = 0.25; a.rolling_friction = 0.05;
-  Material c = a; c.name = "c"; c.friction = 0.5; c.restitution = 0.4; c.young_modulus_pa = 8e7; c.poisson_ratio = 0.3; c.rolling_friction = 0.1;
-  Material w = a; w.name = "floor"; w.rigid = true; w.friction = 0.3;
+  Material a; a.name = "a"; a.friction_particle = a.friction_wall = 0.4; a.restitution = 0.6; a.youngs_modulus_pa = 5e7; a.poisson_ratio = 0.25; a.rolling_friction = 0.05;
+  Material c = a; c.name = "c"; c.friction_particle = c.friction_wall = 0.5; c.restitution = 0.4; c.youngs_modulus_pa = 8e7; c.poisson_ratio = 0.3; c.rolling_friction = 0.1;
+  Material w = a; w.name = "floor"; w.rigid = true; w.friction_wall = 0.3;
   WallGroup floor;
   floor.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
   floor.material = 2;
@@ -43,8 +43,11 @@ GoldenSums golden_run(bool hertz, bool rotation, bool rolling) {
   walls.groups.push_back(floor);
   EngineParams ep;
   ep.contact_law = hertz ? kHertzThorntonLaw : kLinearSpringDashpotLaw;
-  if (rolling) ep.contact_law.rolling = RollingModel::kConstantTorque;
-  ep.rotation = rotation;
+  if (rolling) {
+    ep.contact_law.rolling = RollingModel::kConstantTorque;
+    ep.effects |= spread::effect::kRolling;
+  }
+  if (!rotation) ep.effects &= ~spread::effect::kRotation;
   ep.linear.normal_stiffness_n_m = 2e3;
   ep.linear.tangential_ratio = 2.0 / 7.0;
   ep.integrator = Integrator::kVelocityVerlet;
@@ -141,7 +144,8 @@ DemEngine engine_with(const ContactLaw& law, bool rotation) {
   m.name = "m";
   EngineParams ep;
   ep.contact_law = law;
-  ep.rotation = rotation;
+  if (!rotation) ep.effects &= ~spread::effect::kRotation;
+  if (law.rolling != RollingModel::kNone) ep.effects |= spread::effect::kRolling;
   ep.min_particle_radius_m = 1e-3;
   return DemEngine({m}, {}, WallSet{}, ep);
 }
@@ -203,7 +207,7 @@ TEST(DemContactLaws, OnlyTheScenesVariantsAreCompiledOfTheValidProduct) {
   std::size_t valid = 0;
   for (std::size_t i = 0; i < detail::kProductSize; ++i) {
     const ForceVariant v = detail::product_variant(i);
-    valid += contact_law_conflict(v.law, v.rotation) == nullptr ? 1 : 0;
+    valid += contact_law_conflict(v.law, v.rotation()) == nullptr ? 1 : 0;
   }
   EXPECT_EQ(valid, 24u);
   EXPECT_EQ(kForceVariantCount, 6u);

@@ -12,9 +12,9 @@ namespace {
 DemEngine make_pile(int threads, const ContactLaw& model = kHertzThorntonLaw) {
   Material p;
   p.name = "p";
-  p.friction = 0.4;
+  p.friction_particle = p.friction_wall = 0.4;
   p.restitution = 0.5;
-  p.young_modulus_pa = 5e7;
+  p.youngs_modulus_pa = 5e7;
   Material w = p;
   w.rigid = true;
   WallGroup g;
@@ -81,7 +81,7 @@ TEST(DemEngine, StepAboveStableBoundIsRefused) {
 TEST(DemEngine, BadMaterialNamesTheField) {
   Material p;
   p.name = "urea";
-  p.young_modulus_pa = -1.0;
+  p.youngs_modulus_pa = -1.0;
   EngineParams ep;
   ep.min_particle_radius_m = 1e-3;
   try {
@@ -89,7 +89,35 @@ TEST(DemEngine, BadMaterialNamesTheField) {
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("urea"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("young_modulus_pa"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("youngs_modulus_pa"), std::string::npos);
+  }
+}
+
+TEST(DemMaterial, PairsTakeTheParticleOrTheWallFriction) {
+  // Two particles: the mean friction_particle; a particle and a rigid wall: the mean friction_wall.
+  Material a;
+  a.name = "a";
+  a.friction_particle = 0.2;
+  a.friction_wall = 0.6;
+  Material b = a;
+  b.name = "b";
+  b.friction_particle = 0.4;
+  b.friction_wall = 0.8;
+  Material wall = a;
+  wall.name = "steel";
+  wall.rigid = true;
+  wall.friction_particle = 10.0;  // never used: a wall meets particles only
+  const PairTable t({a, b, wall}, {}, kHertzThorntonLaw, LinearSprings{});
+  EXPECT_DOUBLE_EQ(t(0, 0).friction, 0.2);
+  EXPECT_DOUBLE_EQ(t(0, 1).friction, 0.3);
+  EXPECT_DOUBLE_EQ(t(0, 2).friction, 0.6);
+  EXPECT_DOUBLE_EQ(t(2, 1).friction, 0.7);
+  b.friction_wall = -0.1;
+  try {
+    const PairTable bad({a, b, wall}, {}, kHertzThorntonLaw, LinearSprings{});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("material 'b': friction_wall"), std::string::npos) << e.what();
   }
 }
 
@@ -97,7 +125,7 @@ TEST(DemEngine, CollectorRecordsAndRemoves) {
   Material p;
   p.name = "p";
   EngineParams ep;
-  ep.particle_contact = false;
+  ep.effects &= ~spread::effect::kParticleContact;
   ep.min_particle_radius_m = 1e-3;
   ep.gravity_m_s2 = Vec3::Zero();
   DemEngine e({p}, {}, WallSet{}, ep);
@@ -123,7 +151,7 @@ TEST(DemInlet, LognormalRateAndNoOverlap) {
   // Moment check: E[d] = exp(m + s²/2) = the requested mean.
   EXPECT_NEAR(std::exp(dist.m + 0.5 * dist.s * dist.s), 3.2e-3, 1e-15);
   EngineParams ep;
-  ep.particle_contact = false;
+  ep.effects &= ~spread::effect::kParticleContact;
   ep.min_particle_radius_m = 0.5 * dist.min_m();
   ep.max_particle_radius_m = 0.5 * dist.max_m();
   ep.gravity_m_s2 = Vec3::Zero();

@@ -16,9 +16,9 @@ namespace {
 DemEngine dense_block(int threads) {
   Material p;
   p.name = "bead";
-  p.friction = 0.5;
+  p.friction_particle = p.friction_wall = 0.5;
   p.restitution = 0.5;
-  p.young_modulus_pa = 5e7;
+  p.youngs_modulus_pa = 5e7;
   Material w = p;
   w.rigid = true;
   WallGroup floor;

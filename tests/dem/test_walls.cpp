@@ -98,7 +98,7 @@ TEST(DemWalls, MeshedPlaneGivesTheAnalyticForce) {
   auto settle = [](bool mesh) {
     Material p;
     p.name = "p";
-    p.young_modulus_pa = 5e7;
+    p.youngs_modulus_pa = 5e7;
     p.restitution = 0.2;
     Material w = p;
     w.rigid = true;
@@ -109,7 +109,7 @@ TEST(DemWalls, MeshedPlaneGivesTheAnalyticForce) {
     WallSet ws;
     ws.groups.push_back(g);
     EngineParams ep;
-    ep.particle_contact = false;
+    ep.effects &= ~spread::effect::kParticleContact;
     ep.min_particle_radius_m = 2e-3;
     ep.impact_speed_m_s = 1.0;
     DemEngine e({p, w}, {}, ws, ep);
@@ -125,7 +125,7 @@ TEST(DemWalls, RotatingDiscCarriesAParticle) {
   // (+y at +x for counter-clockwise spin) accelerates it at μ g.
   Material p;
   p.name = "p";
-  p.friction = 0.5;
+  p.friction_particle = p.friction_wall = 0.5;
   p.restitution = 0.3;
   Material w = p;
   w.rigid = true;
@@ -134,8 +134,8 @@ TEST(DemWalls, RotatingDiscCarriesAParticle) {
   WallSet ws;
   ws.groups.push_back(make_disc(g, 300.0, 1, 1e-3));
   EngineParams ep;
-  ep.particle_contact = false;
-  ep.rotation = false;
+  ep.effects &= ~spread::effect::kParticleContact;
+  ep.effects &= ~spread::effect::kRotation;
   ep.min_particle_radius_m = 1e-3;
   DemEngine e({p, w}, {}, ws, ep);
   e.add_particle(Vec3(0.05, 0, 1e-3), Vec3::Zero(), 1e-3, 0);

@@ -90,7 +90,7 @@ SpringRun spring_run(dem::Integrator integrator, double omega_dt) {
   granule.name = "granule";
   granule.density_kg_m3 = 1000.0;
   granule.restitution = 1.0;
-  granule.friction = 0.0;
+  granule.friction_particle = granule.friction_wall = 0.0;
   dem::Material wall = granule;
   wall.name = "wall";
   wall.rigid = true;
@@ -103,8 +103,8 @@ SpringRun spring_run(dem::Integrator integrator, double omega_dt) {
   ep.contact_law = dem::kLinearSpringDashpotLaw;
   ep.linear.normal_stiffness_n_m = 1000.0;
   ep.integrator = integrator;
-  ep.rotation = false;
-  ep.particle_contact = false;
+  ep.effects &= ~spread::effect::kRotation;
+  ep.effects &= ~spread::effect::kParticleContact;
   const double r = 0.005;
   ep.min_particle_radius_m = r;
   const double m = 1000.0 * 4.0 / 3.0 * spread::kPi * r * r * r;

@@ -24,7 +24,7 @@ dem::DemEngine free_engine() {
   m.name = "bead";
   m.density_kg_m3 = 2500.0;
   m.restitution = 0.5;
-  m.friction = 0.5;
+  m.friction_particle = m.friction_wall = 0.5;
   dem::EngineParams ep;
   ep.contact_law = dem::kLinearSpringDashpotLaw;
   ep.linear.normal_stiffness_n_m = 1000.0;

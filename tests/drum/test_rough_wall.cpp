@@ -72,10 +72,10 @@ dem::Material grain() {
   dem::Material m;
   m.name = "grain";
   m.density_kg_m3 = 2500.0;
-  m.young_modulus_pa = 5e7;
+  m.youngs_modulus_pa = 5e7;
   m.poisson_ratio = 0.25;
   m.restitution = 0.5;
-  m.friction = 0.4;
+  m.friction_particle = m.friction_wall = 0.4;
   return m;
 }
 

@@ -192,7 +192,7 @@ void expect_thrown_pile(const PileSetup& setup, const PileResult& r) {
   const double tip_speed_m_s = std::abs(setup.rpm) * 2.0 * kPi / 60.0 * config.disc.radius_m;  // ωR
   const double r_min = setup.radius_min_m;
   const double m_min = granule.density_kg_m3 * 4.0 / 3.0 * kPi * r_min * r_min * r_min;
-  const double e_star = granule.young_modulus_pa / (1.0 - granule.poisson_ratio * granule.poisson_ratio);
+  const double e_star = granule.youngs_modulus_pa / (1.0 - granule.poisson_ratio * granule.poisson_ratio);
   const double v = tip_speed_m_s + 5.0;  // m/s
   EXPECT_LE(r.energy.max_penetration_ratio, std::pow(15.0 * m_min * v * v / (16.0 * e_star * std::sqrt(r_min)), 0.4) / r_min);
   // The disc does the work; the contacts dissipate part of it; nothing is created beyond the tolerance

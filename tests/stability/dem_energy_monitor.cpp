@@ -42,7 +42,7 @@ TEST(DemEnergyMonitor, ShortMeshDiscSimulateKeepsPenetrationAndBalance) {
   const Material& granule = config.materials[0];
   const double r_min = 0.5 * LognormalDiameter(config.inlet.diameter_mean_m, config.inlet.diameter_sd_m).min_m();
   const double m_min = granule.density_kg_m3 * 4.0 / 3.0 * kPi * r_min * r_min * r_min;
-  const double e_star = granule.young_modulus_pa / (1.0 - granule.poisson_ratio * granule.poisson_ratio);
+  const double e_star = granule.youngs_modulus_pa / (1.0 - granule.poisson_ratio * granule.poisson_ratio);
   const double v = std::abs(config.rpm) * 2.0 * kPi / 60.0 * config.disc.radius_m + 5.0;
   const double hertz_max_ratio = std::pow(15.0 * m_min * v * v / (16.0 * e_star * std::sqrt(r_min)), 0.4) / r_min;
   std::printf("simulate case1 %.0f rpm %.3f s: %zu launched, %llu steps, max penetration/R %.4f (Hertz bound %.4f), "

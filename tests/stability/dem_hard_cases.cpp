@@ -26,10 +26,10 @@ constexpr double kG = kStandardGravity_m_s2;
 Material granule(double young_pa, double density = 1500.0) {
   Material m;
   m.name = "granule";
-  m.young_modulus_pa = young_pa;
+  m.youngs_modulus_pa = young_pa;
   m.density_kg_m3 = density;
   m.restitution = 0.5;
-  m.friction = 0.4;
+  m.friction_particle = m.friction_wall = 0.4;
   return m;
 }
 
@@ -65,14 +65,14 @@ EngineParams params_for(double radius_m, double impact_speed_m_s) {
   p.min_particle_radius_m = radius_m;
   p.max_particle_radius_m = radius_m;
   p.impact_speed_m_s = impact_speed_m_s;
-  p.particle_contact = false;
+  p.effects &= ~spread::effect::kParticleContact;
   return p;
 }
 
 // Hertz maximum indentation of a sphere hitting a rigid plane at v: δ = (15 m v² / (16 E* √R))^(2/5).
 double hertz_max_indentation_m(const Material& m, double radius_m, double speed_m_s) {
   const double mass = m.density_kg_m3 * 4.0 / 3.0 * kPi * std::pow(radius_m, 3);
-  const double e_star = m.young_modulus_pa / (1.0 - m.poisson_ratio * m.poisson_ratio);
+  const double e_star = m.youngs_modulus_pa / (1.0 - m.poisson_ratio * m.poisson_ratio);
   return std::pow(15.0 * mass * speed_m_s * speed_m_s / (16.0 * e_star * std::sqrt(radius_m)), 0.4);
 }
 
@@ -219,7 +219,7 @@ TEST(DemHardCases, ThorntonUnloadingAsIndentationGoesToZero) {
 TEST(DemHardCases, SlipStickSwitchingStaysDissipative) {
   const double radius = 1e-3;
   Material m = granule(5e7);
-  m.friction = 0.01;  // small μ: the spring reaches the limit within a step or two, every oscillation
+  m.friction_particle = m.friction_wall = 0.01;  // small μ: the spring reaches the limit within a step or two, every oscillation
   EngineParams p = params_for(radius, 1.0);
   DemEngine engine({m, rigid_wall()}, {}, plane_floor(), p);
   engine.add_particle(Vec3(0, 0, radius * 0.9999), Vec3(0.05, 0.02, 0), radius, 0, Vec3(0, 30.0, -10.0));

@@ -15,7 +15,9 @@
 #include <thread>
 
 #include "libspread/scene/scene.hpp"
+#include "libspread/tables/scene_hash.hpp"
 #include "libspread/tables/table_reader.hpp"
+#include "libspread/tables/table_writer.hpp"
 #include "lookup_builder/dem_run.hpp"
 #include "lookup_builder/run_message.hpp"
 #include "lookup_builder/table_build.hpp"
@@ -250,6 +252,39 @@ TEST(LookupDem, DamagedTruncatedAndForeignFilesAreRefusedAndLeftAlone) {
       EXPECT_NE(std::string(e.what()).find(file.path()), std::string::npos) << e.what();
     }
     EXPECT_EQ(file_bytes(file.path()), c.bytes) << "the refused file was modified";
+  }
+}
+
+TEST(LookupDem, ExtendsATableWhoseInputsSpellTheHertzLawHertzMindlin) {
+  // Tables built before the law's rename hashed "numerics.contact_model = \"hertz_mindlin\"": the same law,
+  // so --extend keeps their runs; any other difference in the inputs is still refused.
+  const scene::Scene scene = tiny_scene({"sweep.materials=[\"Kmag\"]", "sweep.rpm=[650]", "numerics.duration_s=0.1"});
+  const scene::Material& kmag = *scene.find_material("Kmag");
+  std::string old_text = scene.run_inputs_text(kmag, 650.0);
+  const std::string line = "numerics.contact_model = \"hertz_thornton\"\n";
+  ASSERT_NE(old_text.find(line), std::string::npos) << old_text;
+  old_text.replace(old_text.find(line), line.size(), "numerics.contact_model = \"hertz_mindlin\"\n");
+  TempPath file("dem_old_spelling");
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(scene, options);
+  auto rewrite_inputs_hash = [&](const std::string& hash) {
+    tables::Run run = tables::read_table_file(file.path()).runs.at(0);
+    run.inputs_hash = hash;
+    tables::TableWriter(file.path()).write_run(run, true);
+  };
+  rewrite_inputs_hash(tables::fnv1a64_hex(old_text));
+  const BuildSummary extended = build_tables(scene, options);
+  EXPECT_EQ(extended.runs_skipped, 1);
+  EXPECT_EQ(extended.runs_written, 0);
+  EXPECT_EQ(tables::read_table_file(file.path()).runs.at(0).inputs_hash, tables::fnv1a64_hex(old_text));
+
+  rewrite_inputs_hash(tables::fnv1a64_hex(old_text + "numerics.seed = 2\n"));
+  try {
+    build_tables(scene, options);
+    ADD_FAILURE() << "a run from other inputs was kept";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("built from other inputs"), std::string::npos) << e.what();
   }
 }
 

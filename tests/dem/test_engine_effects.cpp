@@ -1,0 +1,115 @@
+// The engine's DEM effects (EngineParams::effects, registry bits): each contact effect is a real switch,
+// an effect that is off is not run, and what cannot run is refused with the reason.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "libspread/dem/engine.hpp"
+#include "libspread/dem/scene_config.hpp"
+#include "libspread/scene/scene.hpp"
+
+using namespace spread;
+using namespace spread::dem;
+
+namespace {
+constexpr double kRadius_m = 1e-3;
+
+Material granule() {
+  Material m;
+  m.name = "granule";
+  m.density_kg_m3 = 1500.0;
+  return m;
+}
+
+// A granule released just above a fixed floor (z = 0), run for 0.1 s under gravity; returns its height.
+double height_after_drop_m(effect::EffectSet effects) {
+  Material floor = granule();
+  floor.name = "floor";
+  floor.rigid = true;
+  WallGroup g;
+  g.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
+  g.material = 1;
+  WallSet walls;
+  walls.groups.push_back(g);
+  EngineParams ep;
+  ep.effects = effects;
+  ep.min_particle_radius_m = kRadius_m;
+  ep.impact_speed_m_s = 1.0;
+  DemEngine e({granule(), floor}, {}, walls, ep);
+  e.add_particle(Vec3(0.0, 0.0, 1.2 * kRadius_m), Vec3::Zero(), kRadius_m, 0);
+  e.run_until(0.1);
+  return e.particles().z[0];
+}
+
+std::string refusal(const EngineParams& ep) {
+  try {
+    DemEngine e({granule()}, {}, WallSet{}, ep);
+  } catch (const std::invalid_argument& ex) {
+    return ex.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(DemEngineEffects, WallContactOffLetsAGranuleFallThroughTheFloor) {
+  // On: it settles on the floor (centre one radius up, less the static overlap). Off: free fall,
+  // z = 1.2 r − g t²/2 ≈ −4.9 cm after 0.1 s.
+  const double on_m = height_after_drop_m(effect::kWallContact | effect::kRotation);
+  EXPECT_NEAR(on_m, kRadius_m, 0.05 * kRadius_m);
+  const double off_m = height_after_drop_m(effect::kRotation);
+  EXPECT_NEAR(off_m, 1.2 * kRadius_m - 0.5 * kStandardGravity_m_s2 * 0.1 * 0.1, 1e-3);
+}
+
+TEST(DemEngineEffects, ParticleContactOffRunsNoPairSearchAndNoPairForce) {
+  // Two overlapping granules, no gravity, no walls: with particle_contact they push apart; without it no
+  // pair list is built, the pair pass is not entered, and they stay at rest.
+  auto run = [](effect::EffectSet effects, std::uint64_t& pair_list_builds) {
+    EngineParams ep;
+    ep.effects = effects;
+    ep.min_particle_radius_m = kRadius_m;
+    ep.impact_speed_m_s = 1.0;
+    ep.gravity_m_s2 = Vec3::Zero();
+    DemEngine e({granule()}, {}, WallSet{}, ep);
+    e.add_particle(Vec3::Zero(), Vec3::Zero(), kRadius_m, 0);
+    e.add_particle(Vec3(1.9 * kRadius_m, 0.0, 0.0), Vec3::Zero(), kRadius_m, 0);
+    for (int i = 0; i < 50; ++i) e.step();
+    pair_list_builds = e.stats().pair_list_builds;
+    return e.particles().vx[1];
+  };
+  std::uint64_t builds = 0;
+  EXPECT_GT(run(effect::kParticleContact | effect::kWallContact | effect::kRotation, builds), 0.0);
+  EXPECT_GT(builds, 0u);
+  EXPECT_EQ(run(effect::kWallContact | effect::kRotation, builds), 0.0);
+  EXPECT_EQ(builds, 0u);
+}
+
+TEST(DemEngineEffects, RefusesWhatCannotRunAndSaysWhy) {
+  EngineParams ep;
+  ep.min_particle_radius_m = kRadius_m;
+  ep.effects |= effect::kDrag;
+  EXPECT_NE(refusal(ep).find("'drag' not a DEM effect"), std::string::npos) << refusal(ep);
+  ep.effects = effect::kDemEffects & effect::kDefault;
+  ep.effects |= effect::kRolling;  // the law has no rolling model
+  EXPECT_NE(refusal(ep).find("contact_law.rolling is 'none'"), std::string::npos) << refusal(ep);
+  ep.effects &= ~effect::kRolling;
+  ep.contact_law = with_rolling(kHertzThorntonLaw, RollingModel::kConstantTorque);
+  EXPECT_NE(refusal(ep).find("the 'rolling' effect is off"), std::string::npos) << refusal(ep);
+  ep.effects |= effect::kRolling;
+  EXPECT_EQ(refusal(ep), "");
+}
+
+TEST(DemEngineEffects, SceneEffectsBecomeTheEngineEffects) {
+  const std::string disc = std::string(SPREAD_SOURCE_DIR) + "/scenes/case1.toml";
+  const SimulationConfig plain = config_from_scene(scene::load_scene_file(disc));
+  EXPECT_EQ(plain.engine.effects, effect::kParticleContact | effect::kWallContact | effect::kRotation);
+  const SimulationConfig rolling = config_from_scene(scene::load_scene_file(
+      disc, {"effects.enabled=[\"wall_contact\",\"rotation\",\"rolling\",\"drag\"]"}));
+  EXPECT_EQ(rolling.engine.effects, effect::kWallContact | effect::kRotation | effect::kRolling);
+  // The engine honours a scene without walls; the disc scene does not run one (nothing holds the granules).
+  try {
+    config_from_scene(scene::load_scene_file(disc, {"effects.enabled=[\"particle_contact\",\"rotation\",\"drag\"]"}));
+    ADD_FAILURE() << "a disc scene without wall_contact was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing would hold the particles"), std::string::npos) << e.what();
+  }
+}
