@@ -60,12 +60,11 @@ TEST(DrumScene, MaterialQuantitiesTakeTheSpreadersNamesWithTheOldOnesAsAliases) 
   const std::string old_names = "[drum]\nradius_m = 0.04\nlength_m = 0.009\nfroude = 0.02\n[contact]\nfriction = 0.3\n"
                                 "wall_friction = 0.2\nyoung_modulus_pa = 7e6\n[[species]]\ndiameter_m = 0.004\n";
   const auto aliased = drum::parse_drum_scene(old_names, "old.toml");
-  EXPECT_EQ(renamed.friction_particle, 0.3);
-  EXPECT_EQ(renamed.friction_wall, 0.2);
-  EXPECT_EQ(renamed.youngs_modulus_pa, 7e6);
-  EXPECT_EQ(aliased.friction_particle, 0.3);
-  EXPECT_EQ(aliased.friction_wall, 0.2);
-  EXPECT_EQ(aliased.youngs_modulus_pa, 7e6);
+  for (const drum::DrumScene* s : {&renamed, &aliased}) {
+    EXPECT_EQ(s->friction_particle, 0.3) << s->source_name;
+    EXPECT_EQ(s->friction_wall, 0.2) << s->source_name;
+    EXPECT_EQ(s->youngs_modulus_pa, 7e6) << s->source_name;
+  }
   try {
     drum::parse_drum_scene(old_names, "old.toml", {"contact.friction_wall=0.5"});
     FAIL();
