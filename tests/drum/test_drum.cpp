@@ -4,9 +4,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
 
 #include "libspread/drum/drum_packing.hpp"
 #include "libspread/drum/drum_scene.hpp"
+#include "libspread/drum/drum_scene_keys.hpp"
 #include "libspread/drum/drum_simulation.hpp"
 #include "libspread/scene/scene.hpp"
 #include "tests/drum/small_test_drum.hpp"
@@ -73,6 +78,45 @@ TEST(DrumScene, MaterialQuantitiesTakeTheSpreadersNamesWithTheOldOnesAsAliases) 
   }
   // The material schema's range: friction ≤ 10, as in a spreader scene.
   EXPECT_THROW(drum::parse_drum_scene(kScene, "x.toml", {"contact.friction_particle=11"}), spread::scene::SceneError);
+}
+
+// docs/drum.md's scene block ("[section]  key, key = …, …" with continuation lines) names every key row of
+// its section, under the row's name.
+std::map<std::string, std::string> documented_sections() {
+  std::ifstream in(std::string(SPREAD_SOURCE_DIR) + "/docs/drum.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  const std::size_t heading = doc.find("\n## Scene");
+  const std::size_t begin = doc.find("```toml\n", heading);
+  const std::size_t end = doc.find("```", begin + 8);
+  std::map<std::string, std::string> sections;
+  std::string current;
+  std::stringstream block(doc.substr(begin + 8, end - begin - 8));
+  for (std::string line; std::getline(block, line);) {
+    if (!line.empty() && line[0] == '[') current = line.substr(0, line.find(']') + (line.rfind("[[", 0) == 0 ? 2 : 1));
+    sections[current] += line + "\n";
+  }
+  return sections;
+}
+
+template <typename Owner, std::size_t N>
+void expect_named(const std::map<std::string, std::string>& sections, const std::string& section,
+                  const std::array<spread::scene::Key<Owner>, N>& keys) {
+  ASSERT_EQ(sections.count(section), 1u) << "docs/drum.md's scene block has no " << section;
+  for (const auto& key : keys) {
+    const std::regex word("(^|[^a-z_])" + std::string(key.name) + "([^a-z_]|$)");
+    EXPECT_TRUE(std::regex_search(sections.at(section), word)) << section << " " << key.name << " not in docs/drum.md";
+  }
+}
+
+TEST(DrumScene, DocsNameEveryKey) {
+  const auto sections = documented_sections();
+  expect_named(sections, "[drum]", drum::kDrumKeys);
+  expect_named(sections, "[contact]", drum::kContactKeys);
+  expect_named(sections, "[[species]]", drum::kSpeciesKeys);
+  expect_named(sections, "[numerics]", drum::kNumericsKeys);
+  expect_named(sections, "[output]", drum::kOutputKeys);
 }
 
 TEST(DrumScene, HertzLawIsHertzThorntonWithHertzAsAlias) {
