@@ -28,8 +28,11 @@ void check_within(const std::string& source, const std::string& key, double valu
 void fail_effect_off(const std::string& source, const std::string& key, const std::string& value,
                      effect::EffectSet effect) {
   // DESIGN.md §7: a value set for an effect that is off would be recorded as provenance yet never act.
-  const std::string name(effect::row(effect).name);
-  throw SceneError(source + ": " + key + ": is " + value + " but the `" + name + "` effect is off: add \"" + name +
+  const bool one = (effect & (effect - 1)) == 0;
+  const std::string names = effect::names_of(effect);
+  const std::string off = one ? "the `" + names + "` effect is off" : "none of the effects `" + names + "` is on";
+  const std::string first = names.substr(0, names.find(','));
+  throw SceneError(source + ": " + key + ": is " + value + " but " + off + ": add \"" + first +
                    "\" to effects.enabled or remove the key");
 }
 

@@ -74,8 +74,8 @@ struct Key {
   Field<Owner> field;
   std::string_view unit;  // "–" when dimensionless or not a number
   Bounds bounds;          // numbers and integers (each element of a list); kAnyValue otherwise
-  effect::EffectSet effect;  // the key acts only with this effect on (0: always); a scene that sets it
-                             // away from its default with the effect off is refused
+  effect::EffectSet effect;  // the key acts only with one of these effects on (0: always); a scene that
+                             // sets it away from its default with all of them off is refused
   std::string_view meaning;
   std::string_view alias = {};  // an older name still accepted (never both in one table)
 };

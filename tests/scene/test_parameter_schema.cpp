@@ -149,6 +149,17 @@ TEST(ParameterSchema, SceneRefusesSectionValuesOutsideTheBounds) {
   expect_bounds_enforced("outputs", scene::kOutputsKeys);
 }
 
+// A key that acts with any of several effects names them all when every one is off.
+TEST(ParameterSchema, KeyOfSeveralEffectsNamesThemWhenAllAreOff) {
+  try {
+    scene::fail_effect_off("t", "air.x", "2", effect::kDrag | effect::kMagnus);
+    ADD_FAILURE() << "no error";
+  } catch (const scene::SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "t: air.x: is 2 but none of the effects `drag, magnus` is on: add \"drag\" to "
+                                     "effects.enabled or remove the key");
+  }
+}
+
 // The scene reader's defaults are the schema's.
 TEST(ParameterSchema, SceneDefaultsAreTheSchemas) {
   const scene::Scene s = scene::parse_scene("[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n", "t");
