@@ -16,7 +16,7 @@ void add_drum_mantle(const DrumScene& s, int wall_material, dem::WallGroup& drum
     const int bead_material = static_cast<int>(materials.size());
     materials.push_back(dem::bead_contact_material(materials[i], r, bead_radius));
     const int species = static_cast<int>(i);
-    overrides.push_back({species, bead_material, s.restitution, s.wall_friction,
+    overrides.push_back({species, bead_material, s.restitution, s.friction_wall,
                          dem::bead_rolling_friction(s.rolling_friction, r, bead_radius)});
     beads.materials_by_radius.push_back({r, bead_material});
   }

@@ -19,7 +19,7 @@ enum class AxialBoundary {
 
 // The drum mantle the bed touches.
 enum class DrumWall {
-  kAnalyticCylinder,  // smooth cylinder of radius R, particle–wall friction contact.wall_friction
+  kAnalyticCylinder,  // smooth cylinder of radius R, particle–wall friction contact.friction_wall
   kRoughParticles,    // seed 001's rough wall: a layer of fixed beads lining the mantle, turning with it,
                       // contacts as particle–particle with the wall friction (dem/sphere_wall.hpp)
 };
@@ -44,11 +44,11 @@ struct DrumScene {
   dem::ContactLaw law = dem::kLinearSpringDashpotLaw;
   double normal_stiffness_n_m = 2000.0;  // linear k_n
   double tangential_ratio = 2.0 / 7.0;   // linear k_t/k_n
-  double young_modulus_pa = 5e7;         // Hertz
+  double youngs_modulus_pa = 5e7;        // Hertz
   double poisson_ratio = 0.25;
   double restitution = 0.5;
-  double friction = 0.5;                 // particle–particle μ
-  double wall_friction = 0.8;            // particle–drum μ
+  double friction_particle = 0.5;        // particle–particle μ
+  double friction_wall = 0.8;            // particle–drum μ
   double rolling_friction = 0.0;         // μ_r (0: the rolling-resistance effect is off)
   dem::Integrator integrator = dem::Integrator::kGear5;
   double contact_steps = 15.0;           // N_c (seed: at least 10)
@@ -77,14 +77,15 @@ inline double omega_from_froude(double froude, double radius_m) {
   return std::sqrt(froude * kStandardGravity_m_s2 / radius_m);
 }
 
-// Parses a drum scene; errors are std::invalid_argument "file: key: problem". `overrides` are
-// "section.key=value" assignments applied before validation (as `--set` in the CLI).
+// Parses a drum scene; errors are scene::SceneError "file: key: problem" (libspread/scene/scene.hpp).
+// `overrides` are "section.key=value" assignments applied before validation (as `--set` in the CLI).
 DrumScene load_drum_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 DrumScene parse_drum_scene(const std::string& toml_text, const std::string& source_name,
                            const std::vector<std::string>& overrides = {});
 // True when the file has a [drum] table (used by `spread simulate` to route drum scenes here).
 bool is_drum_scene_file(const std::string& path);
-// Checks the values; throws "source: key: problem".
+// Checks the values (each key's range, then the relations between keys); throws scene::SceneError
+// "source: key: problem".
 void validate(const DrumScene& s);
 
 }  // namespace spread::drum

@@ -17,11 +17,11 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
     dem::Material m;
     m.name = "species " + std::to_string(i);
     m.density_kg_m3 = s.species[i].density_kg_m3;
-    m.youngs_modulus_pa = s.young_modulus_pa;
+    m.youngs_modulus_pa = s.youngs_modulus_pa;
     m.poisson_ratio = s.poisson_ratio;
     m.restitution = s.restitution;
-    m.friction_particle = s.friction;
-    m.friction_wall = s.wall_friction;
+    m.friction_particle = s.friction_particle;
+    m.friction_wall = s.friction_wall;
     m.rolling_friction = s.rolling_friction;
     mats.push_back(m);
   }
@@ -37,10 +37,10 @@ dem::DemEngine make_drum_engine(const DrumScene& s, double omega) {
   // frictionless end walls when they stand in for a periodic axis.
   std::vector<dem::PairOverride> ov;
   for (int a = 0; a < wall_mat; ++a) {
-    for (int b = a; b < wall_mat; ++b) ov.push_back({a, b, s.restitution, s.friction, s.rolling_friction});
-    ov.push_back({a, wall_mat, s.restitution, s.wall_friction, s.rolling_friction});
+    for (int b = a; b < wall_mat; ++b) ov.push_back({a, b, s.restitution, s.friction_particle, s.rolling_friction});
+    ov.push_back({a, wall_mat, s.restitution, s.friction_wall, s.rolling_friction});
     const bool smooth = s.axial == AxialBoundary::kFrictionlessWalls;
-    ov.push_back({a, end_mat, s.restitution, smooth ? 0.0 : s.wall_friction, smooth ? 0.0 : s.rolling_friction});
+    ov.push_back({a, end_mat, s.restitution, smooth ? 0.0 : s.friction_wall, smooth ? 0.0 : s.rolling_friction});
   }
   dem::WallSet walls;
   dem::WallGroup drum;

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "libspread/scene/scene_keys.hpp"
 #include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/scene_hash.hpp"
 
@@ -136,23 +137,15 @@ std::vector<double> Scene::sweep_rpms() const {
   return sweep.rpm.empty() ? std::vector<double>{machine.rpm} : sweep.rpm;
 }
 
-const char* to_string(DiscModel value) {
-  switch (value) {
-    case DiscModel::kAnalytic: return "analytic";
-    case DiscModel::kMesh: return "mesh";
-    case DiscModel::kStl: return "stl";
-  }
-  return "?";
-}
-const char* to_string(Integrator value) {
-  return value == Integrator::kSymplecticEuler ? "symplectic_euler" : "velocity_verlet";
-}
+// The first spelling of each value in the reader's rows (scene_keys.hpp).
+const char* to_string(DiscModel value) { return choice_name(kDiscModelNames, static_cast<int>(value)).data(); }
+const char* to_string(Integrator value) { return choice_name(kIntegratorNames, static_cast<int>(value)).data(); }
 // The Hertz law by what it is (Thornton's tangential law). Tables built before the rename spell it
 // "hertz_mindlin" in their inputs text: Scene::same_run_inputs takes both as the same law.
 const char* to_string(ContactModel value) { return value == ContactModel::kHertzThornton ? "hertz_thornton" : "linear"; }
-const char* to_string(FlightScheme value) { return value == FlightScheme::kRk4 ? "rk4" : "dopri5"; }
-const char* to_string(LaunchSource value) { return value == LaunchSource::kAnalytic ? "analytic" : "dem"; }
-const char* to_string(SpinModel value) { return value == SpinModel::kSliding ? "sliding" : "rolling"; }
+const char* to_string(FlightScheme value) { return choice_name(kFlightSchemeNames, static_cast<int>(value)).data(); }
+const char* to_string(LaunchSource value) { return choice_name(kLaunchSourceNames, static_cast<int>(value)).data(); }
+const char* to_string(SpinModel value) { return choice_name(kSpinModelNames, static_cast<int>(value)).data(); }
 
 tables::Machine table_machine(const Machine& m) {
   tables::Machine out;

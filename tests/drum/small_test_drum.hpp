@@ -20,8 +20,8 @@ fill_fraction = 0.35
 model = "linear"
 normal_stiffness_n_m = 1000.0
 restitution = 0.5
-friction = 0.5
-wall_friction = 0.8
+friction_particle = 0.5
+friction_wall = 0.8
 [[species]]
 diameter_m = 0.004
 density_kg_m3 = 2500.0

@@ -4,10 +4,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
 
 #include "libspread/drum/drum_packing.hpp"
 #include "libspread/drum/drum_scene.hpp"
+#include "libspread/drum/drum_scene_keys.hpp"
 #include "libspread/drum/drum_simulation.hpp"
+#include "libspread/scene/scene.hpp"
 #include "tests/drum/small_test_drum.hpp"
 
 namespace drum = spread::drum;
@@ -33,19 +39,84 @@ void print(const drum::DrumResult& r) {
 }  // namespace
 
 TEST(DrumScene, ErrorsNameFileAndKey) {
+  using spread::scene::SceneError;
   try {
     drum::parse_drum_scene("[drum]\nradius_m = -1\nfroude = 0.1\n", "bad.toml");
     FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.toml: drum.radius_m"), std::string::npos) << e.what();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.toml: drum.radius_m: must be > 0, got -1"), std::string::npos) << e.what();
+    EXPECT_EQ(e.where(), "bad.toml: drum.radius_m");
   }
-  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\n", "x.toml"), std::invalid_argument);  // no speed
-  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nfroude = 0.1\n", "x.toml"), std::invalid_argument);
-  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nradius = 2\n", "x.toml"), std::invalid_argument);
-  EXPECT_THROW(drum::parse_drum_scene(kScene + "\n[extra]\n", "x.toml"), std::invalid_argument);
-  EXPECT_THROW(drum::parse_drum_scene(kScene, "x.toml", {"numerics.integrator=gear7"}), std::invalid_argument);
+  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\n", "x.toml"), SceneError);  // no speed
+  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nfroude = 0.1\n", "x.toml"), SceneError);
+  EXPECT_THROW(drum::parse_drum_scene("[drum]\nradius_m = 0.1\nrpm = 5\nradius = 2\n", "x.toml"), SceneError);
+  EXPECT_THROW(drum::parse_drum_scene(kScene + "\n[extra]\n", "x.toml"), SceneError);
+  EXPECT_THROW(drum::parse_drum_scene(kScene, "x.toml", {"numerics.integrator=gear7"}), SceneError);
+  EXPECT_THROW(drum::parse_drum_scene("[drum\n", "x.toml"), SceneError);  // TOML syntax
   const auto s = drum::parse_drum_scene(kScene, "x.toml", {"drum.froude=1"});
   EXPECT_NEAR(drum::froude_number(s), 1.0, 1e-12);
+}
+
+// The contact section's material quantities carry the spreader's names; the drum's first spellings are
+// aliases that fill the same members, and one table may not give both.
+TEST(DrumScene, MaterialQuantitiesTakeTheSpreadersNamesWithTheOldOnesAsAliases) {
+  const auto renamed = drum::parse_drum_scene(
+      kScene, "x.toml", {"contact.friction_particle=0.3", "contact.friction_wall=0.2", "contact.youngs_modulus_pa=7e6"});
+  const std::string old_names = "[drum]\nradius_m = 0.04\nlength_m = 0.009\nfroude = 0.02\n[contact]\nfriction = 0.3\n"
+                                "wall_friction = 0.2\nyoung_modulus_pa = 7e6\n[[species]]\ndiameter_m = 0.004\n";
+  const auto aliased = drum::parse_drum_scene(old_names, "old.toml");
+  for (const drum::DrumScene* s : {&renamed, &aliased}) {
+    EXPECT_EQ(s->friction_particle, 0.3) << s->source_name;
+    EXPECT_EQ(s->friction_wall, 0.2) << s->source_name;
+    EXPECT_EQ(s->youngs_modulus_pa, 7e6) << s->source_name;
+  }
+  try {
+    drum::parse_drum_scene(old_names, "old.toml", {"contact.friction_wall=0.5"});
+    FAIL();
+  } catch (const spread::scene::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("old.toml: contact.friction_wall: given twice"), std::string::npos) << e.what();
+  }
+  // The material schema's range: friction ≤ 10, as in a spreader scene.
+  EXPECT_THROW(drum::parse_drum_scene(kScene, "x.toml", {"contact.friction_particle=11"}), spread::scene::SceneError);
+}
+
+// docs/drum.md's scene block ("[section]  key, key = …, …" with continuation lines) names every key row of
+// its section, under the row's name.
+std::map<std::string, std::string> documented_sections() {
+  std::ifstream in(std::string(SPREAD_SOURCE_DIR) + "/docs/drum.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  const std::size_t heading = doc.find("\n## Scene");
+  const std::size_t begin = doc.find("```toml\n", heading);
+  const std::size_t end = doc.find("```", begin + 8);
+  std::map<std::string, std::string> sections;
+  std::string current;
+  std::stringstream block(doc.substr(begin + 8, end - begin - 8));
+  for (std::string line; std::getline(block, line);) {
+    if (!line.empty() && line[0] == '[') current = line.substr(0, line.find(']') + (line.rfind("[[", 0) == 0 ? 2 : 1));
+    sections[current] += line + "\n";
+  }
+  return sections;
+}
+
+template <typename Owner, std::size_t N>
+void expect_named(const std::map<std::string, std::string>& sections, const std::string& section,
+                  const std::array<spread::scene::Key<Owner>, N>& keys) {
+  ASSERT_EQ(sections.count(section), 1u) << "docs/drum.md's scene block has no " << section;
+  for (const auto& key : keys) {
+    const std::regex word("(^|[^a-z_])" + std::string(key.name) + "([^a-z_]|$)");
+    EXPECT_TRUE(std::regex_search(sections.at(section), word)) << section << " " << key.name << " not in docs/drum.md";
+  }
+}
+
+TEST(DrumScene, DocsNameEveryKey) {
+  const auto sections = documented_sections();
+  expect_named(sections, "[drum]", drum::kDrumKeys);
+  expect_named(sections, "[contact]", drum::kContactKeys);
+  expect_named(sections, "[[species]]", drum::kSpeciesKeys);
+  expect_named(sections, "[numerics]", drum::kNumericsKeys);
+  expect_named(sections, "[output]", drum::kOutputKeys);
 }
 
 TEST(DrumScene, HertzLawIsHertzThorntonWithHertzAsAlias) {
@@ -56,7 +127,7 @@ TEST(DrumScene, HertzLawIsHertzThorntonWithHertzAsAlias) {
   try {
     drum::parse_drum_scene(kScene, "x.toml", {"contact.model=hertz_mindlin"});
     FAIL();
-  } catch (const std::invalid_argument& e) {
+  } catch (const spread::scene::SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("contact.model"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("\"hertz_thornton\""), std::string::npos) << e.what();
   }

@@ -55,7 +55,7 @@ bool all_finite(const spread::dem::ParticleArrays& p) {
 }
 
 // A low-friction wall (μ_w 0.1) at Fr 0.05, 0.6 s of rotation.
-const std::vector<std::string> kLowFrictionWall = {"contact.wall_friction=0.1", "numerics.rotate_s=0.6",
+const std::vector<std::string> kLowFrictionWall = {"contact.friction_wall=0.1", "numerics.rotate_s=0.6",
                                                    "numerics.measure_from_s=0.3"};
 
 std::vector<std::string> with(std::vector<std::string> set, const std::vector<std::string>& more) {
@@ -81,7 +81,7 @@ TEST(DrumRoughWall, LiftsTheBedWhereTheSmoothWallSlips) {
 // Hertz–Thornton contacts (E 5 MPa, ν 0.25): the bed settles, rolls at a plausible angle, stays finite
 // and the overlaps stay small.
 TEST(DrumHertz, SettlesAndRolls) {
-  const auto r = run({"contact.model=hertz", "contact.young_modulus_pa=5e6", "numerics.rotate_s=0.6", "numerics.measure_from_s=0.3"});
+  const auto r = run({"contact.model=hertz", "contact.youngs_modulus_pa=5e6", "numerics.rotate_s=0.6", "numerics.measure_from_s=0.3"});
   EXPECT_TRUE(r.settled);
   EXPECT_TRUE(all_finite(r.final_particles));
   EXPECT_EQ(r.evidence.regime, drum::Regime::kRolling) << r.evidence.reason;
@@ -120,9 +120,9 @@ TEST(DrumLong, AllSixRegimes) {
     std::vector<std::string> set;
   };
   const std::vector<Case> cases = {
-      {drum::Regime::kSlipping, {"contact.wall_friction=0.1", "numerics.rotate_s=1.0"}},
+      {drum::Regime::kSlipping, {"contact.friction_wall=0.1", "numerics.rotate_s=1.0"}},
       {drum::Regime::kSlumping,
-       {"drum.froude=0.002", "contact.friction=1.0", "contact.wall_friction=1.0", "contact.rolling_friction=0.1",
+       {"drum.froude=0.002", "contact.friction_particle=1.0", "contact.friction_wall=1.0", "contact.rolling_friction=0.1",
         "numerics.rotate_s=2.5"}},
       {drum::Regime::kRolling, {"drum.froude=0.05"}},
       {drum::Regime::kCascading, {"drum.froude=0.5"}},

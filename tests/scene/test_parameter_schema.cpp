@@ -9,6 +9,7 @@
 #include <string>
 
 #include "libspread/scene/scene.hpp"
+#include "libspread/scene/scene_keys.hpp"
 #include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/table_schema.hpp"
 
@@ -55,6 +56,107 @@ TEST(ParameterSchema, DocsListEveryMaterialQuantity) {
     const std::size_t at = doc.find("\n| `" + key + "` |");
     EXPECT_GT(at, previous) << key << ": rows out of the schema's order";
     previous = at;
+  }
+}
+
+// The text of the section headed `heading` (up to the next "## " heading); empty when there is none.
+std::string doc_section(const std::string& doc, const std::string& heading) {
+  const std::size_t at = doc.find("\n## " + heading);
+  if (at == std::string::npos) return {};
+  const std::size_t end = doc.find("\n## ", at + 1);
+  return doc.substr(at, end == std::string::npos ? std::string::npos : end - at) + "\n";
+}
+
+std::string without_backticks(std::string text) {
+  std::erase(text, '`');
+  return text;
+}
+
+// Each key row of `keys` appears in the section, in the rows' order, with its unit, its default (the
+// owner's default-constructed value) and a meaning that starts with the row's.
+template <typename Owner, std::size_t N>
+void expect_doc_rows(const std::string& doc, const std::string& heading, const std::array<scene::Key<Owner>, N>& keys) {
+  const std::string section = doc_section(doc, heading);
+  ASSERT_FALSE(section.empty()) << "no section " << heading << " in docs/scene-format.md";
+  std::size_t previous = 0;
+  for (const scene::Key<Owner>& k : keys) {
+    const std::string key(k.name);
+    const std::vector<std::string> cells = doc_row(section, key);
+    ASSERT_EQ(cells.size(), 4u) << heading << " " << key << ": no row | `key` | unit | default | meaning |";
+    EXPECT_EQ(cells[1], k.unit) << heading << " " << key;
+    const std::string documented = without_backticks(cells[2]);
+    const std::string actual = scene::default_text(k);
+    const bool numeric = std::holds_alternative<double Owner::*>(k.field) ||
+                         std::holds_alternative<int Owner::*>(k.field) ||
+                         std::holds_alternative<std::uint64_t Owner::*>(k.field);
+    if (numeric) {
+      EXPECT_EQ(std::strtod(documented.c_str(), nullptr), std::strtod(actual.c_str(), nullptr))
+          << heading << " " << key << ": the doc says " << cells[2] << ", the reader " << actual;
+    } else {
+      EXPECT_EQ(documented.rfind(actual, 0), 0u) << heading << " " << key << ": the doc says " << cells[2]
+                                                  << ", the reader " << actual;
+    }
+    EXPECT_EQ(cells[3].rfind(std::string(k.meaning), 0), 0u)
+        << heading << " " << key << ": the doc's meaning should start with \"" << k.meaning << "\"";
+    const std::size_t at = section.find("\n| `" + key + "` |");
+    EXPECT_GT(at, previous) << heading << " " << key << ": rows out of the reader's order";
+    previous = at;
+  }
+}
+
+TEST(ParameterSchema, DocsListEverySectionKey) {
+  const std::string doc = read_doc("docs/scene-format.md");
+  ASSERT_FALSE(doc.empty());
+  expect_doc_rows(doc, "`[machine]`", scene::kMachineKeys);
+  expect_doc_rows(doc, "`[inlet]`", scene::kInletKeys);
+  expect_doc_rows(doc, "`[simulate]`", scene::kSimulateKeys);
+  expect_doc_rows(doc, "`[air]`", scene::kAirKeys);
+  expect_doc_rows(doc, "`[numerics]`", scene::kNumericsKeys);
+  expect_doc_rows(doc, "`[sweep]`", scene::kSweepKeys);
+  expect_doc_rows(doc, "`[outputs]`", scene::kOutputsKeys);
+}
+
+// Each section key's range reaches the reader: a value just outside its bounds is refused naming the key.
+template <typename Owner, std::size_t N>
+void expect_bounds_enforced(const std::string& section, const std::array<scene::Key<Owner>, N>& keys) {
+  for (const scene::Key<Owner>& k : keys) {
+    const bool is_double = std::holds_alternative<double Owner::*>(k.field);
+    const bool is_int = std::holds_alternative<int Owner::*>(k.field);
+    if (!is_double && !is_int) continue;
+    const scene::Bounds& b = k.bounds;
+    const double step = is_int ? 1.0 : 1e-3;
+    for (const double outside : {b.low_open ? b.low : b.low - step, b.high_open ? b.high : b.high + step}) {
+      if (!std::isfinite(outside)) continue;
+      std::ostringstream set;
+      set.precision(17);
+      set << section << "." << k.name << "=" << outside;
+      try {
+        scene::parse_scene("[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n", "t", {set.str()});
+        ADD_FAILURE() << set.str() << " accepted";
+      } catch (const scene::SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find(section + "." + std::string(k.name) + ": must be"), std::string::npos)
+            << set.str() << ": " << e.what();
+      }
+    }
+  }
+}
+
+TEST(ParameterSchema, SceneRefusesSectionValuesOutsideTheBounds) {
+  expect_bounds_enforced("machine", scene::kMachineKeys);
+  expect_bounds_enforced("inlet", scene::kInletKeys);
+  expect_bounds_enforced("air", scene::kAirKeys);
+  expect_bounds_enforced("numerics", scene::kNumericsKeys);
+  expect_bounds_enforced("outputs", scene::kOutputsKeys);
+}
+
+// A key that acts with any of several effects names them all when every one is off.
+TEST(ParameterSchema, KeyOfSeveralEffectsNamesThemWhenAllAreOff) {
+  try {
+    scene::fail_effect_off("t", "air.x", "2", effect::kDrag | effect::kMagnus);
+    ADD_FAILURE() << "no error";
+  } catch (const scene::SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "t: air.x: is 2 but none of the effects `drag, magnus` is on: add \"drag\" to "
+                                     "effects.enabled or remove the key");
   }
 }
 

@@ -51,7 +51,7 @@ TEST(SceneValidation, ImpossibleNumbers) {
   expect_error({"inlet.mass_flow_kg_s=inf"}, "inlet.mass_flow_kg_s: must be a finite number");
   expect_error({"materials.0.friction_wall=-0.1"}, "materials[0].friction_wall: must be in [0, 10], got -0.1");
   expect_error({"materials.0.poisson_ratio=0.7"}, "materials[0].poisson_ratio: must be in [0, 0.499]");
-  expect_error({"machine.disc_count=3"}, "machine.disc_count: must be 1 or 2");
+  expect_error({"machine.disc_count=3"}, "machine.disc_count: must be in [1, 2], got 3");
   expect_error({"machine.rotation_sense=0"}, "machine.rotation_sense: must be +1 or -1");
   expect_error({"machine.disc_spacing_m=0.5"}, "machine.disc_spacing_m: must be >= 2 x disc_radius_m");
   expect_error({"sweep.rpm=[500, -3]"}, "sweep.rpm[1]: must be > 0, got -3");
@@ -79,7 +79,7 @@ TEST(SceneValidation, ValuesForWhatIsOffAreRefused) {
   EXPECT_EQ(error_of({"materials.0.rolling_friction=0.05",
                       "effects.enabled=[\"particle_contact\", \"wall_contact\", \"rotation\", \"rolling\"]"}),
             "");
-  expect_error({"air.wind_m_s=[2.0, 0.0]", "effects.enabled=[\"drag\"]"}, "air.wind_m_s: is not zero but the `wind` effect is off");
+  expect_error({"air.wind_m_s=[2.0, 0.0]", "effects.enabled=[\"drag\"]"}, "air.wind_m_s: is [2, 0] but the `wind` effect is off");
   EXPECT_EQ(error_of({"air.wind_m_s=[2.0, 0.0]", "effects.enabled=[\"drag\", \"wind\"]"}), "");
   expect_error({"sweep.source=\"dem\"", "sweep.spin_model=\"sliding\""},
                "sweep.spin_model: applies to the analytic source only");
@@ -89,7 +89,7 @@ TEST(SceneValidation, ValuesForWhatIsOffAreRefused) {
     expect_error({"sweep.source=\"analytic\"", key}, "applies to the DEM source only");
     EXPECT_EQ(error_of({"sweep.source=\"dem\"", key}), "") << key;
   }
-  expect_error({"sweep.source=\"dem\"", "sweep.working_width_ci_m=-1"}, "sweep.working_width_ci_m: must be in [0, 100] m");
+  expect_error({"sweep.source=\"dem\"", "sweep.working_width_ci_m=-1"}, "sweep.working_width_ci_m: must be in [0, 100], got -1");
 }
 
 // disc_model = "stl" (the file itself is checked where it is read: tests/dem DemSceneStl).
