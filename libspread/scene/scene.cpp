@@ -113,14 +113,14 @@ std::string Scene::run_inputs_hash(const Material& material, double rpm) const {
 }
 
 bool Scene::same_run_inputs(const std::string& stored_inputs_hash, const Material& material, double rpm) const {
-  std::string text = run_inputs_text(material, rpm);
-  if (stored_inputs_hash == tables::fnv1a64_hex(text)) return true;
+  std::string inputs = run_inputs_text(material, rpm);
+  if (stored_inputs_hash == tables::fnv1a64_hex(inputs)) return true;
   static const std::string kLine = std::string("numerics.contact_model = \"") + to_string(ContactModel::kHertzThornton) + "\"\n";
   static const std::string kOldLine = "numerics.contact_model = \"hertz_mindlin\"\n";
-  const std::size_t at = text.find(kLine);
+  const std::size_t at = inputs.find(kLine);
   if (at == std::string::npos) return false;
-  text.replace(at, kLine.size(), kOldLine);
-  return stored_inputs_hash == tables::fnv1a64_hex(text);
+  inputs.replace(at, kLine.size(), kOldLine);
+  return stored_inputs_hash == tables::fnv1a64_hex(inputs);
 }
 
 std::vector<const Material*> Scene::sweep_materials() const {

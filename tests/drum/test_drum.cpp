@@ -14,6 +14,7 @@
 #include "libspread/drum/drum_scene_keys.hpp"
 #include "libspread/drum/drum_simulation.hpp"
 #include "libspread/scene/scene.hpp"
+#include "tests/support/source_file.hpp"
 #include "tests/drum/small_test_drum.hpp"
 
 namespace drum = spread::drum;
@@ -83,10 +84,7 @@ TEST(DrumScene, MaterialQuantitiesTakeTheSpreadersNamesWithTheOldOnesAsAliases) 
 // docs/drum.md's scene block ("[section]  key, key = …, …" with continuation lines) names every key row of
 // its section, under the row's name.
 std::map<std::string, std::string> documented_sections() {
-  std::ifstream in(std::string(SPREAD_SOURCE_DIR) + "/docs/drum.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string doc = text.str();
+  const std::string doc = spread::testing::read_source_file("docs/drum.md");
   const std::size_t heading = doc.find("\n## Scene");
   const std::size_t begin = doc.find("```toml\n", heading);
   const std::size_t end = doc.find("```", begin + 8);

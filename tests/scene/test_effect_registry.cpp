@@ -1,22 +1,15 @@
 // The effect registry is the one list of effects: the scene reader, the docs and the flight use it.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <sstream>
 #include <string>
 
 #include "libspread/core/effect_registry.hpp"
 #include "libspread/scene/scene.hpp"
+#include "tests/support/source_file.hpp"
 
 namespace spread::effect {
 namespace {
-
-std::string read_doc(const std::string& relative) {
-  std::ifstream in(std::string(SPREAD_SOURCE_DIR) + "/" + relative);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // The row of docs/scene-format.md's effects table that documents `e`, built from the registry.
 std::string doc_row(const Effect& e) {
@@ -31,7 +24,7 @@ std::string doc_row(const Effect& e) {
 }
 
 TEST(EffectRegistry, DocsListEveryRow) {
-  const std::string doc = read_doc("docs/scene-format.md");
+  const std::string doc = spread::testing::read_source_file("docs/scene-format.md");
   ASSERT_FALSE(doc.empty());
   for (const Effect& e : kRegistry) EXPECT_NE(doc.find(doc_row(e) + "\n"), std::string::npos) << doc_row(e);
 }

@@ -12,16 +12,10 @@
 #include "libspread/scene/scene_keys.hpp"
 #include "libspread/tables/material_schema.hpp"
 #include "libspread/tables/table_schema.hpp"
+#include "tests/support/source_file.hpp"
 
 namespace spread::tables {
 namespace {
-
-std::string read_doc(const std::string& relative) {
-  std::ifstream in(std::string(SPREAD_SOURCE_DIR) + "/" + relative);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // The cells of the doc row whose first cell is `key` (empty when there is none).
 std::vector<std::string> doc_row(const std::string& doc, const std::string& key) {
@@ -39,7 +33,7 @@ std::vector<std::string> doc_row(const std::string& doc, const std::string& key)
 }
 
 TEST(ParameterSchema, DocsListEveryMaterialQuantity) {
-  const std::string doc = read_doc("docs/scene-format.md");
+  const std::string doc = spread::testing::read_source_file("docs/scene-format.md");
   ASSERT_FALSE(doc.empty());
   std::size_t previous = 0;
   for (const MaterialQuantity& q : kMaterialQuantities) {
@@ -105,7 +99,7 @@ void expect_doc_rows(const std::string& doc, const std::string& heading, const s
 }
 
 TEST(ParameterSchema, DocsListEverySectionKey) {
-  const std::string doc = read_doc("docs/scene-format.md");
+  const std::string doc = spread::testing::read_source_file("docs/scene-format.md");
   ASSERT_FALSE(doc.empty());
   expect_doc_rows(doc, "`[machine]`", scene::kMachineKeys);
   expect_doc_rows(doc, "`[inlet]`", scene::kInletKeys);
