@@ -15,8 +15,8 @@
 #include <string>
 
 #include "bench/case1_config.hpp"
-#include "libspread/accuracy/monolithic_reference.hpp"
-#include "libspread/dem/simulate.hpp"
+#include "libspread/analysis/accuracy/monolithic_reference.hpp"
+#include "libspread/physics/dem/simulate.hpp"
 
 namespace {
 using namespace spread;

@@ -6,8 +6,8 @@
 
 #include <cstdlib>
 
-#include "libspread/drum/drum_packing.hpp"
-#include "libspread/drum/drum_simulation.hpp"
+#include "libspread/physics/drum/drum_packing.hpp"
+#include "libspread/physics/drum/drum_simulation.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Cost and accuracy of one granule flight (libspread/flight). Each benchmark iteration flies one
+// Cost and accuracy of one granule flight (libspread/physics/flight). Each benchmark iteration flies one
 // trajectory from a fixed set of typical launches (3.2 mm, 1500 kg/m³, 25–35 m/s from 0.8 m,
 // drag + magnus + spin_decay); the counter error_mm is the largest landing distance over that set from a
 // tight Dormand–Prince reference (rtol = atol = 1e-12), computed outside the timed loop.
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "libspread/core/unit_uniform.hpp"
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 
 namespace {
 

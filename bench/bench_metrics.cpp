@@ -11,7 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include "libspread/core/unit_uniform.hpp"
-#include "libspread/metrics/metrics.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
 
 namespace sm = spread::metrics;
 

@@ -29,12 +29,12 @@
 #include <string>
 #include <vector>
 
-#include "libspread/launch/analytic_launch.hpp"
-#include "libspread/predict/flight_defaults.hpp"
-#include "libspread/predict/predictor.hpp"
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/physics/launch/analytic_launch.hpp"
+#include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "bench/predict_loop.hpp"
 #include "spread/spread.h"
 

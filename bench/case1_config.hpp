@@ -4,9 +4,9 @@
 // LIGGGHTS comparison, docs/dem.md), one thread, and flight with drag only (the monolithic reference
 // integrates drag + gravity only).
 // bench/bench_dem.cpp and bench/peers/liggghts_case1/ours_case1_cpu.cpp share this one definition.
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/dem/simulate.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/physics/dem/simulate.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace spread::bench {
 

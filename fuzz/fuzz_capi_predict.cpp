@@ -16,7 +16,7 @@
 
 #include "fuzz/capi_invariants.hpp"
 #include "fuzz/fuzz_input.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "spread/spread.h"
 

@@ -1,4 +1,4 @@
-// Fuzz harness: the TOML scene parser with --set overrides (libspread/scene).
+// Fuzz harness: the TOML scene parser with --set overrides (libspread/io/scene).
 // Input: TOML text, optionally followed by a line "#--set" and one override "key=value" per line.
 // Contract checked: parse_scene either returns a scene or throws SceneError — never another exception,
 // never a crash — and an accepted scene has finite numbers and answers its queries.
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fuzz/fuzz_input.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Fuzz harness: the STL reader (libspread/dem read_stl, ASCII and binary) and the mesh wall build
+// Fuzz harness: the STL reader (libspread/physics/dem read_stl, ASCII and binary) and the mesh wall build
 // (MeshCollider) on arbitrary file bytes. Seeds are tiny real STL files of both kinds, so mutations reach
 // the facet records, the binary triangle count and the ASCII number parsing.
 // Contract checked: read_stl returns a mesh or throws std::runtime_error naming the file — never another
@@ -14,7 +14,7 @@
 
 #include "fuzz/fuzz_input.hpp"
 #include "fuzz/temp_input_file.hpp"
-#include "libspread/dem/triangle_mesh.hpp"
+#include "libspread/physics/dem/triangle_mesh.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Fuzz harness: the launch-table loader (libspread/tables read_table_file) on arbitrary file bytes.
+// Fuzz harness: the launch-table loader (libspread/io/tables read_table_file) on arbitrary file bytes.
 // Seeds are real table files, so mutations reach past the SQLite header into records and BLOBs.
 // Contract checked: read_table_file returns contents or throws TableError — never another exception,
 // never a crash — and accepted contents keep the reader's promises (runs sorted, non-empty samples,
@@ -10,7 +10,7 @@
 
 #include "fuzz/fuzz_input.hpp"
 #include "fuzz/temp_input_file.hpp"
-#include "libspread/tables/table_reader.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include "firmware_sim/isobus/spreader_ddop.hpp"
 #include "firmware_sim/isobus/tc_messages.hpp"
 #include "firmware_sim/isobus/transport_protocol.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "spread/command_t.hpp"
 #include "spread/heartbeat_t.hpp"

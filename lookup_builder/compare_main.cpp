@@ -10,12 +10,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/dem/simulate.hpp"
-#include "libspread/metrics/metrics.hpp"
-#include "libspread/predict/predictor.hpp"
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/table_reader.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/physics/dem/simulate.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 
 namespace {
 

@@ -6,12 +6,12 @@
 #include <stdexcept>
 
 #include "libspread/core/source_revision.hpp"
-#include "libspread/dem/disc_run.hpp"
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/dem/simulate.hpp"
-#include "libspread/launch/launch_statistics.hpp"
-#include "libspread/metrics/metrics.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/physics/dem/disc_run.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/physics/dem/simulate.hpp"
+#include "libspread/physics/launch/launch_statistics.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "lookup_builder/row_uncertainty.hpp"
 
 namespace spread::lookup {

@@ -1,14 +1,14 @@
 #pragma once
 // The DEM launch source of lookup_builder: one (material, rpm) run simulated on the machine's disc
-// (libspread/dem) in batches until the predicted pattern's R̄ and ξ (seed Eqs. 51–52) settle — the
+// (libspread/physics/dem) in batches until the predicted pattern's R̄ and ξ (seed Eqs. 51–52) settle — the
 // convergence study of seed Fig. 8 made into a stopping rule — or a particle/time budget is reached.
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
 
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/table_format.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/table_format.hpp"
 
 namespace spread::lookup {
 

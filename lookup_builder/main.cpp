@@ -11,8 +11,8 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "libspread/tables/table_format.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/table_format.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "lookup_builder/run_source.hpp"
 #include "lookup_builder/table_build.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "libspread/predict/predictor.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
 
 namespace spread::lookup {
 

@@ -3,7 +3,7 @@
 // predicted from that row's launches alone, as the C API would predict it at the row's rpm (to-and-fro,
 // CV target 15 %, 0.5 m trays, the machine's stored height, still air, the row's own flight effects).
 // A DEM run goes on until this is within the scene's sweep.working_width_ci_m (docs/building-tables.md).
-#include "libspread/tables/table_format.hpp"
+#include "libspread/io/tables/table_format.hpp"
 
 namespace spread::lookup {
 

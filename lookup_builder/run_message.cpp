@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "libspread/tables/sample_codec.hpp"
+#include "libspread/io/tables/sample_codec.hpp"
 
 namespace spread::lookup {
 namespace {

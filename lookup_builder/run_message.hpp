@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "libspread/tables/table_format.hpp"
+#include "libspread/io/tables/table_format.hpp"
 
 namespace spread::lookup {
 

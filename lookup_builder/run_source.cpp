@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 
 #include "libspread/core/source_revision.hpp"
-#include "libspread/launch/analytic_launch.hpp"
-#include "libspread/launch/launch_statistics.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/physics/launch/analytic_launch.hpp"
+#include "libspread/physics/launch/launch_statistics.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "lookup_builder/dem_run.hpp"
 
 namespace spread::lookup {

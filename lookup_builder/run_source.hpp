@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/table_format.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/table_format.hpp"
 
 namespace spread::lookup {
 

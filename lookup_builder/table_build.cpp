@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "lookup_builder/progress.hpp"
 #include "lookup_builder/run_source.hpp"
 

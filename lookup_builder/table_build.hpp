@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/table_format.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/table_format.hpp"
 
 namespace spread::lookup {
 

@@ -3,11 +3,13 @@
 
 Usage: check_layers.py --root SOURCE_DIR [--layers FILE] [--links BUILD_DIR/layer_links.txt]
 
-Every #include "…" in libspread/, capi/, firmware_sim/, tools/ and lookup_builder/ that names a folder of the
-table (libspread/NAME/…, capi/…, lookup_builder/…, a `header` line) is a use of that unit; so is every link
-between our targets the build recorded (cmake/SpreadLayers.cmake). A module may use the modules of lower layers
-and those before it in its own layer; a program what its line lists. Exits 1 naming each use against the
-table (file and line, or the two targets), and each `allow` line whose use is gone.
+A module lives in its layer's folder, libspread/LAYER/MODULE (a module named like its layer is the layer's
+folder itself: libspread/core). Every #include "…" in libspread/, capi/, firmware_sim/, tools/ and
+lookup_builder/ that names a folder of the table (libspread/LAYER/MODULE/…, capi/…, lookup_builder/…, a
+`header` line) is a use of that unit; so is every link between our targets the build recorded
+(cmake/SpreadLayers.cmake). A module may use the modules of lower layers and those before it in its own layer;
+a program what its line lists. Exits 1 naming each use against the table (file and line, or the two targets),
+each source file under libspread/ outside the module folders, and each `allow` line whose use is gone.
 """
 import argparse
 import os
@@ -25,6 +27,7 @@ class Table:
         self.layers = []      # (layer name, [modules]) lowest first
         self.rank = {}        # module -> (layer index, position in layer)
         self.layer_of = {}    # module -> layer name
+        self.folder = {}      # module -> its folder, libspread/LAYER/MODULE
         self.programs = {}    # folder -> set of units it may use
         self.headers = {}     # include path -> unit
         self.allowed = {}     # (from, to) -> line number
@@ -41,6 +44,7 @@ class Table:
                             self.fail(number, f"module {module} listed twice")
                         self.rank[module] = (len(self.layers), position)
                         self.layer_of[module] = words[1]
+                        self.folder[module] = module_folder(words[1], module)
                     self.layers.append((words[1], words[2:]))
                 elif kind == "program" and len(words) >= 2:
                     raw_programs[words[1]] = words[2:]
@@ -75,13 +79,29 @@ class Table:
             return self.headers[path]
         parts = path.split("/")
         if len(parts) >= 3 and parts[0] == "libspread":
-            return parts[1] if parts[1] in self.rank else "libspread/" + parts[1]
+            for module, folder in self.folder.items():
+                if path.startswith(folder + "/"):
+                    return module
+            # Not a module folder: the folder named as deep as a module's would be.
+            depth = 3 if parts[1] in {name for name, _ in self.layers} and len(parts) >= 4 else 2
+            return "/".join(parts[:depth])
         best = None
         for folder in list(self.programs) + ["tests", "bench", "fuzz"]:
             if path == folder or path.startswith(folder + "/"):
                 if best is None or len(folder) > len(best):
                     best = folder
         return best
+
+    def misplaced(self, rel):
+        """Why a source file under libspread/ is outside every module folder, or None when it is inside one."""
+        if self.unit_of(rel) in self.rank:
+            return None
+        parts = rel.split("/")
+        for module, folder in self.folder.items():
+            if module in parts[1:-1]:
+                return f"{rel}: outside the module folders of the layer table: {module} lives in {folder}/"
+        return (f"{rel}: outside the module folders of the layer table: a module lives in libspread/LAYER/MODULE "
+                f"and is listed on its layer's `layer` line")
 
     def describe(self, unit):
         if unit in self.layer_of:
@@ -119,6 +139,11 @@ class Table:
         return best
 
 
+def module_folder(layer, module):
+    """Where a module's sources live: libspread/LAYER/MODULE; the layer's own folder for a module named like it."""
+    return f"libspread/{module}" if module == layer else f"libspread/{layer}/{module}"
+
+
 def source_files(root):
     for top in SCANNED:
         for folder, dirs, files in os.walk(os.path.join(root, top)):
@@ -151,6 +176,10 @@ def main():
             problems.append(f"{where}: {why}")
 
     for rel in source_files(args.root):
+        if rel.startswith("libspread/"):
+            why = table.misplaced(rel)
+            if why:
+                problems.append(why)
         source = table.unit_of(rel)
         if source is None:
             continue

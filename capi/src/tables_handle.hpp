@@ -7,7 +7,7 @@
 #include <memory_resource>
 
 #include "capi/src/abi_layout.hpp"
-#include "libspread/predict/predictor.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
 #include "spread/spread.h"
 
 namespace spread::capi {

@@ -6,7 +6,7 @@
 #include "capi/src/error_detail.hpp"
 #include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
-#include "libspread/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/flight_defaults.hpp"
 
 namespace {
 

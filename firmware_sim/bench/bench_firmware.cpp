@@ -31,7 +31,7 @@
 #include <filesystem>
 
 #include "firmware_sim/ecu/capi_spread_predictor.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 #endif
 

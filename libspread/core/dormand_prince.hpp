@@ -1,6 +1,6 @@
 #pragma once
 // Dormand–Prince 5(4) (Dormand & Prince 1980; Hairer, Nørsett & Wanner, Solving ODEs I, Table II.5.2):
-// the Butcher tableau, shared by the flight integrator (libspread/flight/dormand_prince.hpp) and the
+// the Butcher tableau, shared by the flight integrator (libspread/physics/flight/dormand_prince.hpp) and the
 // tight-tolerance references of the DEM verification cases, and one generic step for the small
 // autonomous systems those references solve (c_i are not needed: every system here is autonomous), with
 // the adaptive driver that runs them to an event.

@@ -17,8 +17,8 @@ namespace spread::effect {
 using EffectSet = std::uint32_t;
 
 enum class Domain : std::uint8_t {
-  kDem,     // acts while the granule is on the disc (libspread/dem)
-  kFlight,  // acts after launch-off (libspread/flight)
+  kDem,     // acts while the granule is on the disc (libspread/physics/dem)
+  kFlight,  // acts after launch-off (libspread/physics/flight)
 };
 
 // Bits of one set for the whole scene. The flight effects are the low bits, contiguous from bit 0: they

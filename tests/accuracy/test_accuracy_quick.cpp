@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "libspread/accuracy/accuracy.hpp"
-#include "libspread/predict/flight_defaults.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/analysis/accuracy/accuracy.hpp"
+#include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace acc = spread::accuracy;
 

@@ -3,7 +3,7 @@
 // with lookup_builder's sweep (temporary files: tests/support/temp_path.hpp).
 #include <string>
 
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "tests/support/temp_path.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "libspread/calibration/fit_acceptance.hpp"
+#include "libspread/analysis/calibration/fit_acceptance.hpp"
 
 namespace cal = spread::calibration;
 

@@ -7,8 +7,8 @@
 
 #include <Eigen/Dense>
 
-#include "libspread/calibration/least_squares.hpp"
-#include "libspread/calibration/normal_noise.hpp"
+#include "libspread/analysis/calibration/least_squares.hpp"
+#include "libspread/analysis/calibration/normal_noise.hpp"
 
 namespace cal = spread::calibration;
 

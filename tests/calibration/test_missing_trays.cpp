@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "libspread/calibration/cv_without_missing.hpp"
-#include "libspread/calibration/tray_analysis.hpp"
+#include "libspread/analysis/calibration/cv_without_missing.hpp"
+#include "libspread/analysis/calibration/tray_analysis.hpp"
 
 namespace cal = spread::calibration;
 using spread::metrics::Overlap;

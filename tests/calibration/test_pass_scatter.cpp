@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "libspread/calibration/pass_scatter.hpp"
+#include "libspread/analysis/calibration/pass_scatter.hpp"
 
 namespace cal = spread::calibration;
 

@@ -12,13 +12,13 @@
 #include <filesystem>
 #include <vector>
 
-#include "libspread/calibration/calibrated_table.hpp"
-#include "libspread/calibration/fit_acceptance.hpp"
-#include "libspread/calibration/pass_scatter.hpp"
-#include "libspread/calibration/synthetic_tray_test.hpp"
-#include "libspread/calibration/pattern_fit.hpp"
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/analysis/calibration/calibrated_table.hpp"
+#include "libspread/analysis/calibration/fit_acceptance.hpp"
+#include "libspread/analysis/calibration/pass_scatter.hpp"
+#include "libspread/analysis/calibration/synthetic_tray_test.hpp"
+#include "libspread/analysis/calibration/pattern_fit.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "calibration_test_support.hpp"
 
 namespace cal = spread::calibration;

@@ -5,9 +5,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "libspread/calibration/cv_interval.hpp"
-#include "libspread/calibration/quick_check.hpp"
-#include "libspread/calibration/tray_csv.hpp"
+#include "libspread/analysis/calibration/cv_interval.hpp"
+#include "libspread/analysis/calibration/quick_check.hpp"
+#include "libspread/analysis/calibration/tray_csv.hpp"
 
 namespace cal = spread::calibration;
 

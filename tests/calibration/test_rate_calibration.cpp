@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "libspread/calibration/rate_calibration.hpp"
+#include "libspread/analysis/calibration/rate_calibration.hpp"
 
 namespace cal = spread::calibration;
 

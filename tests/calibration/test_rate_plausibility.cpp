@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "libspread/calibration/rate_plausibility.hpp"
+#include "libspread/analysis/calibration/rate_plausibility.hpp"
 
 namespace cal = spread::calibration;
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "libspread/calibration/tray_analysis.hpp"
+#include "libspread/analysis/calibration/tray_analysis.hpp"
 
 namespace cal = spread::calibration;
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "libspread/calibration/tray_csv.hpp"
+#include "libspread/analysis/calibration/tray_csv.hpp"
 
 namespace cal = spread::calibration;
 

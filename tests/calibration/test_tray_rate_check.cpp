@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "libspread/calibration/tray_rate_check.hpp"
+#include "libspread/analysis/calibration/tray_rate_check.hpp"
 
 namespace cal = spread::calibration;
 

@@ -47,8 +47,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "libspread/metrics/metrics.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "spread/spread.h"
 #include "tests/capi/capi_test_files.hpp"
 

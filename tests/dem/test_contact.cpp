@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "libspread/dem/contact_laws.hpp"
-#include "libspread/dem/restitution.hpp"
-#include "libspread/dem/time_step.hpp"
+#include "libspread/physics/dem/contact_laws.hpp"
+#include "libspread/physics/dem/restitution.hpp"
+#include "libspread/physics/dem/time_step.hpp"
 
 using namespace spread;
 using namespace spread::dem;

@@ -11,11 +11,11 @@
 #include <cstring>
 #include <string>
 
-#include "libspread/dem/contact_laws.hpp"
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/force_variants.hpp"
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/dem/contact_laws.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/force_variants.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 using namespace spread;
 using namespace spread::dem;

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "libspread/dem/disc_run.hpp"
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/dem/disc_run.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace spread::dem {
 namespace {

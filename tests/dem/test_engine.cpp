@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/inlet.hpp"
-#include "libspread/dem/verify.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/inlet.hpp"
+#include "libspread/physics/dem/verify.hpp"
 
 using namespace spread;
 using namespace spread::dem;

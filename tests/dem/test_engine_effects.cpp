@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 using namespace spread;
 using namespace spread::dem;

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "libspread/dem/restitution.hpp"
-#include "libspread/dem/verify.hpp"
+#include "libspread/physics/dem/restitution.hpp"
+#include "libspread/physics/dem/verify.hpp"
 
 using namespace spread::dem;
 

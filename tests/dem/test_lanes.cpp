@@ -8,7 +8,7 @@
 #include <cstring>
 #include <random>
 
-#include "libspread/dem/contact_laws.hpp"
+#include "libspread/physics/dem/contact_laws.hpp"
 
 using namespace spread::dem;
 using lanes::Lanes2;

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "libspread/dem/engine.hpp"
+#include "libspread/physics/dem/engine.hpp"
 
 using namespace spread;
 using namespace spread::dem;

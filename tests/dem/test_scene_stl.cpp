@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/dem/simulate.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/physics/dem/simulate.hpp"
 #include <unistd.h>
 
 namespace spread::dem {

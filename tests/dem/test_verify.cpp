@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "libspread/dem/verify.hpp"
+#include "libspread/physics/dem/verify.hpp"
 
 using namespace spread::dem;
 

@@ -9,7 +9,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "libspread/dem/vtk_writer.hpp"
+#include "libspread/physics/dem/vtk_writer.hpp"
 
 namespace spread::dem {
 namespace {

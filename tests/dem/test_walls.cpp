@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "libspread/dem/disc_generator.hpp"
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/triangle_mesh.hpp"
+#include "libspread/physics/dem/disc_generator.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/triangle_mesh.hpp"
 
 using namespace spread;
 using namespace spread::dem;

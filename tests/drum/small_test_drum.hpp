@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "libspread/drum/drum_scene.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
 
 namespace spread::testing {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "libspread/drum/drum_scene.hpp"
-#include "libspread/drum/drum_simulation.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
+#include "libspread/physics/drum/drum_simulation.hpp"
 
 namespace drum = spread::drum;
 

@@ -9,11 +9,11 @@
 #include <regex>
 #include <sstream>
 
-#include "libspread/drum/drum_packing.hpp"
-#include "libspread/drum/drum_scene.hpp"
-#include "libspread/drum/drum_scene_keys.hpp"
-#include "libspread/drum/drum_simulation.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/drum/drum_packing.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
+#include "libspread/physics/drum/drum_scene_keys.hpp"
+#include "libspread/physics/drum/drum_simulation.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "tests/support/source_file.hpp"
 #include "tests/drum/small_test_drum.hpp"
 

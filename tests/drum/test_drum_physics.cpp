@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "libspread/drum/drum_scene.hpp"
-#include "libspread/drum/drum_simulation.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
+#include "libspread/physics/drum/drum_simulation.hpp"
 #include "tests/drum/small_test_drum.hpp"
 
 namespace drum = spread::drum;

@@ -1,4 +1,4 @@
-// Gear predictor–corrector (libspread/dem/gear_predictor_corrector.*): observed order on a harmonic
+// Gear predictor–corrector (libspread/physics/dem/gear_predictor_corrector.*): observed order on a harmonic
 // oscillator, and through the engine against velocity Verlet on a particle oscillating on a linear
 // contact spring (undamped, e = 1, never leaving contact: an exact harmonic oscillator about δ = mg/k).
 #include <gtest/gtest.h>
@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/gear_predictor_corrector.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/gear_predictor_corrector.hpp"
 
 namespace dem = spread::dem;
 

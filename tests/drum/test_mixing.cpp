@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "libspread/drum/measurements.hpp"
+#include "libspread/physics/drum/measurements.hpp"
 
 namespace drum = spread::drum;
 using spread::Vec3;

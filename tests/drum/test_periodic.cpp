@@ -5,9 +5,9 @@
 #include <cmath>
 #include <string>
 
-#include "libspread/dem/engine.hpp"
-#include "libspread/drum/drum_scene.hpp"
-#include "libspread/drum/drum_simulation.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
+#include "libspread/physics/drum/drum_simulation.hpp"
 #include "tests/drum/small_test_drum.hpp"
 
 namespace dem = spread::dem;

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <random>
 
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/sphere_wall.hpp"
-#include "libspread/drum/drum_packing.hpp"
-#include "libspread/drum/drum_scene.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/sphere_wall.hpp"
+#include "libspread/physics/drum/drum_packing.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace dem = spread::dem;
 namespace drum = spread::drum;

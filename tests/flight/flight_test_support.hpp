@@ -1,6 +1,6 @@
 #pragma once
 // Shared launch set-ups of the flight tests.
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 
 namespace spread::flight::test {
 

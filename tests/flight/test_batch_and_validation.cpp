@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "libspread/core/unit_uniform.hpp"
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 #include "tests/flight/flight_test_support.hpp"
 
 namespace spread::flight {

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "libspread/flight/drag_coefficient.hpp"
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/drag_coefficient.hpp"
+#include "libspread/physics/flight/flight.hpp"
 
 namespace spread::flight {
 namespace {
@@ -23,7 +23,7 @@ TEST(DragCoefficient, MatchesEquation32) {
   }
 }
 
-#pragma GCC diagnostic ignored "-Wpsabi"  // FlightLanes by value (libspread/flight/flight_lanes.hpp)
+#pragma GCC diagnostic ignored "-Wpsabi"  // FlightLanes by value (libspread/physics/flight/flight_lanes.hpp)
 
 // The drag's Re^0.6459 in plain arithmetic (flight_lanes.hpp) against std::pow: a few ulp over the whole
 // range a flight reaches and far beyond, as close as exp(0.6459 ln Re) (the form it replaced) is; Re = 0

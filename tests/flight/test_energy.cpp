@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 #include "tests/flight/flight_test_support.hpp"
 
 namespace spread::flight {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "libspread/flight/right_hand_side.hpp"
+#include "libspread/physics/flight/right_hand_side.hpp"
 #include "tests/flight/flight_test_support.hpp"
 
 namespace spread::flight {

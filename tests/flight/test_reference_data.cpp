@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 #include "tests/flight/flight_test_support.hpp"
 
 namespace spread::flight {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 #include "tests/flight/flight_test_support.hpp"
 
 namespace spread::flight {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "libspread/launch/analytic_launch.hpp"
-#include "libspread/launch/launch_statistics.hpp"
-#include "libspread/launch/patterson_reece.hpp"
+#include "libspread/physics/launch/analytic_launch.hpp"
+#include "libspread/physics/launch/launch_statistics.hpp"
+#include "libspread/physics/launch/patterson_reece.hpp"
 
 namespace spread::launch {
 namespace {

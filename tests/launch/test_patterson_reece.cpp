@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "libspread/core/vec3.hpp"
-#include "libspread/launch/patterson_reece.hpp"
+#include "libspread/physics/launch/patterson_reece.hpp"
 
 namespace spread::launch {
 namespace {

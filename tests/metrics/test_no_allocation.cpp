@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "libspread/metrics/metrics.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "libspread/metrics/metrics.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
 
 namespace sm = spread::metrics;
 

@@ -17,8 +17,8 @@
 #include <gtest/gtest.h>
 
 #include "libspread/core/unit_uniform.hpp"
-#include "libspread/metrics/metrics.hpp"
-#include "libspread/plot/plot.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/plot/plot.hpp"
 
 namespace sm = spread::metrics;
 namespace sp = spread::plot;

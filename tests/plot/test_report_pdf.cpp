@@ -11,9 +11,9 @@
 
 #include <gtest/gtest.h>
 
-#include "libspread/plot/cv_table.hpp"
-#include "libspread/plot/report_date.hpp"
-#include "libspread/plot/report_pdf.hpp"
+#include "libspread/analysis/plot/cv_table.hpp"
+#include "libspread/analysis/plot/report_date.hpp"
+#include "libspread/analysis/plot/report_pdf.hpp"
 
 namespace sp = spread::plot;
 

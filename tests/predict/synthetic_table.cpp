@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "libspread/core/vec3.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 
 namespace spread::testing {
 

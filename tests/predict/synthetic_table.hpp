@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "libspread/tables/table_format.hpp"
-#include "libspread/tables/table_reader.hpp"
+#include "libspread/io/tables/table_format.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 
 namespace spread::testing {
 

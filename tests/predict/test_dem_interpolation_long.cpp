@@ -17,9 +17,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "libspread/predict/predictor.hpp"
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/table_reader.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 #include "lookup_builder/table_build.hpp"
 
 namespace spread::predict {

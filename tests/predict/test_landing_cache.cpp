@@ -1,4 +1,4 @@
-// Landing cache (libspread/predict/landing_cache.hpp): exact at its nodes, close to flying every granule
+// Landing cache (libspread/analysis/predict/landing_cache.hpp): exact at its nodes, close to flying every granule
 // elsewhere (rows, between rows by both interpolations, in a wind), and not used where it does not hold.
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "libspread/predict/flight_defaults.hpp"
-#include "libspread/predict/landing_cache.hpp"
-#include "libspread/predict/predictor.hpp"
+#include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/landing_cache.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::predict {

@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "libspread/predict/launch_interpolation.hpp"
+#include "libspread/analysis/predict/launch_interpolation.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::predict {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "libspread/predict/launch_interpolation.hpp"
-#include "libspread/predict/launch_quantile_cells.hpp"
+#include "libspread/analysis/predict/launch_interpolation.hpp"
+#include "libspread/analysis/predict/launch_quantile_cells.hpp"
 
 namespace spread::predict {
 namespace {

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "libspread/predict/flight_defaults.hpp"
-#include "libspread/predict/predictor.hpp"
-#include "libspread/predict/sample_influence.hpp"
+#include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
+#include "libspread/analysis/predict/sample_influence.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::predict {

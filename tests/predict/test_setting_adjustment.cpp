@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "libspread/predict/setting_adjustment.hpp"
+#include "libspread/analysis/predict/setting_adjustment.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::predict {

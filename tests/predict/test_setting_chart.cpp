@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "libspread/predict/setting_chart.hpp"
+#include "libspread/analysis/predict/setting_chart.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::predict {

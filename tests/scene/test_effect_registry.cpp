@@ -5,7 +5,7 @@
 #include <string>
 
 #include "libspread/core/effect_registry.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "tests/support/source_file.hpp"
 
 namespace spread::effect {

@@ -8,10 +8,10 @@
 #include <sstream>
 #include <string>
 
-#include "libspread/scene/scene.hpp"
-#include "libspread/scene/scene_keys.hpp"
-#include "libspread/tables/material_schema.hpp"
-#include "libspread/tables/table_schema.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/scene/scene_keys.hpp"
+#include "libspread/io/tables/material_schema.hpp"
+#include "libspread/io/tables/table_schema.hpp"
 #include "tests/support/source_file.hpp"
 
 namespace spread::tables {

@@ -1,7 +1,7 @@
 // Shipped scenes parse; overrides; provenance.
 #include <gtest/gtest.h>
 
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace spread::scene {
 namespace {

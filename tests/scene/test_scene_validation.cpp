@@ -1,7 +1,7 @@
 // Every class of bad scene is an error naming the key.
 #include <gtest/gtest.h>
 
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace spread::scene {
 namespace {

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "libspread/dem/disc_run.hpp"
-#include "libspread/dem/energy_monitor.hpp"
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/dem/disc_run.hpp"
+#include "libspread/physics/dem/energy_monitor.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace spread::dem {
 namespace {

@@ -1,5 +1,5 @@
 // Energy and penetration monitoring over a mesh-disc `simulate` run: scenes/case1.toml with
-// the inlet feeding the spinning mesh disc; the monitor (libspread/dem/energy_monitor.hpp) books every
+// the inlet feeding the spinning mesh disc; the monitor (libspread/physics/dem/energy_monitor.hpp) books every
 // step. Asserted: max penetration under a bound, the energy balance closes within the tolerance measured
 // for this step (docs/stability.md), the budget is consistent with the launch records, the monitor does
 // not change the result, and bad use is refused with a message naming the problem.
@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "libspread/dem/energy_monitor.hpp"
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/dem/simulate.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/dem/energy_monitor.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/physics/dem/simulate.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace spread::dem {
 namespace {

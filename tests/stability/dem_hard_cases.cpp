@@ -1,4 +1,4 @@
-// DEM hard cases, against the engine's public API (libspread/dem): stiff and small granules
+// DEM hard cases, against the engine's public API (libspread/physics/dem): stiff and small granules
 // (the automatic step must follow), soft and large, a step above the stable bound, Thornton unloading as
 // δ → 0, grazing impacts on a vane edge, a particle exactly on a shared edge or vertex, coplanar
 // triangles split differently, a disc at 1500 rpm, degenerate STL input, and repeatability.
@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "libspread/dem/analytic_wall.hpp"
-#include "libspread/dem/engine.hpp"
-#include "libspread/dem/triangle_mesh.hpp"
+#include "libspread/physics/dem/analytic_wall.hpp"
+#include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/triangle_mesh.hpp"
 
 namespace spread::dem {
 namespace {

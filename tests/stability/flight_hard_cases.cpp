@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 
 namespace spread::flight {
 namespace {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "libspread/drum/drum_scene.hpp"
-#include "libspread/scene/scene.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 
 namespace spread::scene {
 namespace {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "libspread/scene/scene.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 
 namespace spread::stability {

@@ -13,9 +13,9 @@
 #include <tuple>
 #include <vector>
 
-#include "libspread/tables/sample_codec.hpp"
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/sample_codec.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "spread/spread.h"
 #include "tests/stability/stability_table.hpp"
 

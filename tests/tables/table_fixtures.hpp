@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 
 namespace spread::testing {
 

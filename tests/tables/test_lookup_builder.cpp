@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <sstream>
 
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "lookup_builder/run_source.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "tests/support/temp_path.hpp"

@@ -14,10 +14,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "libspread/scene/scene.hpp"
-#include "libspread/tables/scene_hash.hpp"
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/tables/scene_hash.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "lookup_builder/dem_run.hpp"
 #include "lookup_builder/run_message.hpp"
 #include "lookup_builder/table_build.hpp"

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "table_fixtures.hpp"
 #include "tests/support/temp_path.hpp"
 

@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <string>
 
-#include "libspread/tables/row_checksum.hpp"
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/row_checksum.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "tests/support/temp_path.hpp"
 #include "tests/tables/table_fixtures.hpp"
 

@@ -4,9 +4,9 @@
 #include <bit>
 #include <cstring>
 
-#include "libspread/tables/sample_codec.hpp"
-#include "libspread/tables/table_reader.hpp"
-#include "libspread/tables/table_writer.hpp"
+#include "libspread/io/tables/sample_codec.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+#include "libspread/io/tables/table_writer.hpp"
 #include "table_fixtures.hpp"
 #include "tests/support/temp_path.hpp"
 

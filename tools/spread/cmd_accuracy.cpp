@@ -1,4 +1,4 @@
-// `spread accuracy`: the accuracy–cost study (libspread/accuracy). Writes one CSV and PNG
+// `spread accuracy`: the accuracy–cost study (libspread/analysis/accuracy). Writes one CSV and PNG
 // plots per study into --out and the markdown report (default <out>/accuracy-cost.md). The committed
 // docs/accuracy-cost.md is produced by, from the source root:
 //   spread accuracy --out docs/accuracy --report docs/accuracy-cost.md
@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "libspread/accuracy/accuracy.hpp"
+#include "libspread/analysis/accuracy/accuracy.hpp"
 #include "tools/spread/command_registry.hpp"
 
 namespace {

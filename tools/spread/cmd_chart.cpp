@@ -2,7 +2,7 @@
 //              [--height M] [--json] [--report OUT.pdf] [--speed KM_H]
 // The setting chart of a material: for each working width, the disc speed within the table's rpm rows
 // whose predicted to-and-fro working width equals it, with the CVs at that width ± their 95 % intervals
-// (libspread/predict/setting_chart.hpp; docs/field-calibration.md, "Spread chart"). Uses the C++
+// (libspread/analysis/predict/setting_chart.hpp; docs/field-calibration.md, "Spread chart"). Uses the C++
 // predictor directly, as `spread plot` does. Bad input → a message naming it on stderr, exit code 2.
 #include <algorithm>
 #include <cmath>
@@ -15,9 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "libspread/calibration/tray_analysis.hpp"
-#include "libspread/plot/report_pdf.hpp"
-#include "libspread/predict/setting_chart.hpp"
+#include "libspread/analysis/calibration/tray_analysis.hpp"
+#include "libspread/analysis/plot/report_pdf.hpp"
+#include "libspread/analysis/predict/setting_chart.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"

@@ -14,8 +14,8 @@
 
 #include "libspread/core/error.hpp"
 
-#include "libspread/drum/drum_simulation.hpp"
-#include "libspread/drum/regime_map_plot.hpp"
+#include "libspread/physics/drum/drum_simulation.hpp"
+#include "libspread/physics/drum/regime_map_plot.hpp"
 
 namespace spread::drum {
 int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,

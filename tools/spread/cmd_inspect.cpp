@@ -6,8 +6,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "libspread/tables/material_schema.hpp"
-#include "libspread/tables/table_reader.hpp"
+#include "libspread/io/tables/material_schema.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/error_exit.hpp"
 

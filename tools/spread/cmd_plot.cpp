@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "libspread/plot/plot.hpp"
-#include "libspread/predict/predictor.hpp"
+#include "libspread/analysis/plot/plot.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 

@@ -16,15 +16,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "libspread/flight/flight.hpp"
-#include "libspread/metrics/metrics.hpp"
+#include "libspread/physics/flight/flight.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
 #include "spread/spread.h"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
-#include "libspread/plot/report_pdf.hpp"
-#include "libspread/tables/table_reader.hpp"
+#include "libspread/analysis/plot/report_pdf.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 
 namespace {
 

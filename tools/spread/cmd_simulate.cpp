@@ -10,17 +10,17 @@
 
 #include "tools/spread/command_registry.hpp"
 
-#include "libspread/drum/drum_scene.hpp"
+#include "libspread/physics/drum/drum_scene.hpp"
 namespace spread::drum {  // defined in cmd_drum.cpp
 int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
                      const std::string& sweep, const std::string& map_path);
 }
 
-#include "libspread/accuracy/monolithic_reference.hpp"
-#include "libspread/dem/scene_config.hpp"
-#include "libspread/dem/simulate.hpp"
-#include "libspread/metrics/metrics.hpp"
-#include "libspread/plot/plot.hpp"
+#include "libspread/analysis/accuracy/monolithic_reference.hpp"
+#include "libspread/physics/dem/scene_config.hpp"
+#include "libspread/physics/dem/simulate.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/plot/plot.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// `spread trajectory`: fly one granule from a launch state to the ground (libspread/flight) and print
+// `spread trajectory`: fly one granule from a launch state to the ground (libspread/physics/flight) and print
 // where and when it lands. Exit 2 with a message naming the bad input for bad arguments.
 #include <cmath>
 #include <iostream>
@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "libspread/flight/flight.hpp"
+#include "libspread/physics/flight/flight.hpp"
 #include "tools/spread/command_registry.hpp"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "libspread/core/error.hpp"
-#include "libspread/dem/verify.hpp"
+#include "libspread/physics/dem/verify.hpp"
 #include "tools/spread/command_registry.hpp"
 
 namespace {

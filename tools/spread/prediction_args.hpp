@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "libspread/predict/predictor.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
 #include "tools/spread/error_exit.hpp"
 
 namespace spread::cli {

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "libspread/calibration/tray_rate_check.hpp"
-#include "libspread/plot/report_date.hpp"
+#include "libspread/analysis/calibration/tray_rate_check.hpp"
+#include "libspread/analysis/plot/report_date.hpp"
 #include "tools/spread/output_paths.hpp"
 
 namespace spread::cli {

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libspread/core/error.hpp"
-#include "libspread/plot/report_pdf.hpp"
+#include "libspread/analysis/plot/report_pdf.hpp"
 
 namespace spread::cli {
 

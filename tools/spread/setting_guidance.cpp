@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "libspread/tables/table_reader.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 
 namespace spread::cli {
 namespace {

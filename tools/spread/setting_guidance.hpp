@@ -1,14 +1,14 @@
 #pragma once
 // The guidance `spread predict` and `spread calibrate pattern` print when the predicted CV at the bout
 // width is above the target: each setting the table predicts, moved on its own, with its predicted CV
-// (libspread/predict/setting_adjustment.hpp), as text lines (also the PDF report's notes) and JSON.
+// (libspread/analysis/predict/setting_adjustment.hpp), as text lines (also the PDF report's notes) and JSON.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "libspread/predict/setting_adjustment.hpp"
+#include "libspread/analysis/predict/setting_adjustment.hpp"
 
 namespace spread::cli {
 

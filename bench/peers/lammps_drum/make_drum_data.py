@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes drum.data: the particles of bench/bench_drum.cpp, placed exactly as
-libspread/drum/drum_packing.cpp grid_packing(scene, 0.999) places them (same count, same order).
+libspread/physics/drum/drum_packing.cpp grid_packing(scene, 0.999) places them (same count, same order).
 Scene: R 0.1 m, L 0.09 m, fill 0.4, bed solid fraction 0.6, one species d 4 mm, rho 2500."""
 import math
 R, L, fill, solid = 0.1, 0.09, 0.4, 0.6

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "libspread/dem/disc_generator.hpp"
+#include "libspread/physics/dem/disc_generator.hpp"
 
 int main() {
   spread::dem::DiscGeometry g;

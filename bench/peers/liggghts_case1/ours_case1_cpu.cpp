@@ -8,7 +8,7 @@
 #include <cstdlib>
 
 #include "bench/case1_config.hpp"
-#include "libspread/dem/simulate.hpp"
+#include "libspread/physics/dem/simulate.hpp"
 
 using namespace spread;
 

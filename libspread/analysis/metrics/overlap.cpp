@@ -1,0 +1,529 @@
+// Overlap at a bout width W (DESIGN.md §3): the distribution across the field is the sum of the machine's
+// pattern placed at every multiple of W, Σ_k pass_k(x − kW). Racetrack: every pass is the same pattern.
+// To-and-fro: the machine turns at the headland, so odd passes are mirrored (x → −x).
+//
+// True trays. W is a whole number n of trays, so every pass is the pattern shifted by k·n trays: the
+// overlapped distribution lives on the pattern's own tray grid and no tray is ever split or averaged
+// (splitting a tray between two bout trays is a two-tray moving average, which lowers the CV). The bout
+// [−W/2, W/2] holds n whole grid trays when n − T is even (T = pattern trays; the grid is symmetric about
+// x = 0). When n − T is odd each bout edge runs through the middle of a grid tray: the bout then holds
+// n − 1 whole trays and the two cut trays count half each. This is exact, not an approximation: the
+// overlapped distribution is periodic (racetrack: period W, so the two cut trays are the same tray) or
+// symmetric about every bout edge (to-and-fro: pass k and pass k+1 are mirror images about their
+// midpoint), so one bout with half-weight edge trays holds the same tray values, with the same weights,
+// as a whole period of whole trays.
+//
+// CV = s / x̄ over the bout's trays with weights w_j (1, or 1/2 for a cut tray; Σ w_j = n):
+//   x̄ = Σ w_j P_j / n,   s² = Σ w_j (P_j − x̄)² / (n − 1)   (the sample standard deviation when all w_j = 1).
+//
+// Cost: each pattern tray of each pass lands at most once in the bout, so one bout costs O(T + n). The
+// bout is scattered pass by pass into the caller's scratch span when one is given and large enough, else
+// into a small stack buffer (bouts up to kStackBoutTrays); wider bouts are gathered tray by tray instead
+// (integer divisions per tray), so nothing here touches the heap.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "libspread/analysis/metrics/input_checks.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
+
+namespace spread::metrics {
+namespace {
+
+// floor(a / b) for b > 0 (C++ division truncates towards zero).
+long floor_div(long a, long b) {
+  const long q = a / b;
+  return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+// Pattern tray i of pass k sits at grid index i + k·n (mirrored passes read tray T − 1 − i there).
+// Grid index g of the pattern layout covers [left_edge + g·w, left_edge + (g+1)·w); g may be outside
+// [0, T). The bout's first touched tray is BoutTrays::first_tray.
+
+// Calls visit(i) for the pattern tray i that every pass reaching grid index g puts there.
+template <typename Visit>
+void for_each_source(long t, long n, bool mirror_odd_passes, long g, Visit visit) {
+  // Valid pattern index 0 <= g − k·n < T  ⇔  (g − T)/n < k <= g/n.
+  const long k_first = floor_div(g - t, n) + 1;
+  const long k_last = floor_div(g, n);
+  for (long k = k_first; k <= k_last; ++k) {
+    const long i = g - k * n;
+    const bool mirrored = mirror_odd_passes && (k % 2 != 0);
+    visit(static_cast<std::size_t>(mirrored ? t - 1 - i : i));
+  }
+}
+
+// Mass at grid index g summed over every pass that reaches it.
+double grid_tray_mass(std::span<const double> pattern_kg, long n, bool mirror_odd_passes, long g) {
+  double sum_kg = 0.0;
+  for_each_source(static_cast<long>(pattern_kg.size()), n, mirror_odd_passes, g,
+                  [&](std::size_t i) { sum_kg += pattern_kg[i]; });
+  return sum_kg;
+}
+
+// Adds (pattern tray i, or T−1−i when mirrored) to out[i + base] for every i landing in out, or — with
+// `gather` — the reverse: adds out[i + base] to pattern-sized grad[source(i)]. Two branch-free loops each
+// so the compiler can vectorise them.
+void add_pass(std::span<const double> pattern_kg, bool mirrored, long base, std::span<double> out) {
+  const long t = static_cast<long>(pattern_kg.size());
+  const long m = static_cast<long>(out.size());
+  const long i_begin = std::max(0L, -base), i_end = std::min(t, m - base);
+  if (i_begin >= i_end) return;
+  double* o = out.data() + base;
+  const double* in = pattern_kg.data();
+  if (mirrored) {
+    for (long i = i_begin; i < i_end; ++i) o[i] += in[t - 1 - i];
+  } else {
+    for (long i = i_begin; i < i_end; ++i) o[i] += in[i];
+  }
+}
+
+void gather_pass(std::span<const double> bout_values, bool mirrored, long base, std::span<double> pattern_out) {
+  const long t = static_cast<long>(pattern_out.size());
+  const long m = static_cast<long>(bout_values.size());
+  const long i_begin = std::max(0L, -base), i_end = std::min(t, m - base);
+  if (i_begin >= i_end) return;
+  const double* b = bout_values.data() + base;
+  double* o = pattern_out.data();
+  if (mirrored) {
+    for (long i = i_begin; i < i_end; ++i) o[t - 1 - i] += b[i];
+  } else {
+    for (long i = i_begin; i < i_end; ++i) o[i] += b[i];
+  }
+}
+
+// Passes k whose trays [k·n − first, k·n − first + T) can touch [0, m).
+template <typename PerPass>
+void for_each_pass(long t, const BoutTrays& bout, Overlap overlap, PerPass per_pass) {
+  const long n = bout.bout_trays, m = bout.grid_trays, first = bout.first_tray;
+  const long k_first = floor_div(first - t, n);
+  const long k_last = floor_div(first + m, n) + 1;
+  for (long k = k_first; k <= k_last; ++k) {
+    per_pass(overlap == Overlap::kToAndFro && (k % 2 != 0), k * n - first);
+  }
+}
+
+// Σ_k pass_k into bout_kg (size bout.grid_trays, zeroed here).
+void scatter_bout(std::span<const double> pattern_kg, const BoutTrays& bout, Overlap overlap,
+                  std::span<double> bout_kg) {
+  std::fill(bout_kg.begin(), bout_kg.end(), 0.0);
+  for_each_pass(static_cast<long>(pattern_kg.size()), bout, overlap,
+                [&](bool mirrored, long base) { add_pass(pattern_kg, mirrored, base, bout_kg); });
+}
+
+// Weighted mean and CV of the bout's trays (weights 1, or 1/2 for cut edge trays).
+struct BoutMoments {
+  double mean_kg = 0.0;
+  double sd_kg = 0.0;
+  double cv = 0.0;
+};
+
+template <typename ValueAt>
+BoutMoments bout_moments(const BoutTrays& bout, ValueAt value) {
+  const int m = bout.grid_trays;
+  const int n = bout.bout_trays;
+  auto weight = [&](int j) { return bout.cut_edges && (j == 0 || j == m - 1) ? 0.5 : 1.0; };
+  double total_kg = 0.0;
+  for (int j = 0; j < m; ++j) total_kg += weight(j) * value(j);
+  BoutMoments r;
+  r.mean_kg = total_kg / n;
+  if (!(r.mean_kg > 0.0)) {  // empty bout: fails any target
+    r.cv = std::numeric_limits<double>::infinity();
+    return r;
+  }
+  if (n == 1) return r;  // one tray: no spread
+  double squares_kg2 = 0.0;
+  for (int j = 0; j < m; ++j) {
+    const double deviation_kg = value(j) - r.mean_kg;
+    squares_kg2 += weight(j) * deviation_kg * deviation_kg;
+  }
+  r.sd_kg = std::sqrt(squares_kg2 / (n - 1));
+  r.cv = r.sd_kg / r.mean_kg;
+  return r;
+}
+
+double cv_of_bout(std::span<const double> pattern_kg, const BoutTrays& bout, Overlap overlap,
+                  std::span<double> scratch = {}) {
+  const auto grid = static_cast<std::size_t>(bout.grid_trays);
+  if (grid <= scratch.size()) {
+    const std::span<double> values = scratch.first(grid);
+    scatter_bout(pattern_kg, bout, overlap, values);
+    return bout_moments(bout, [&values](int j) { return values[static_cast<std::size_t>(j)]; }).cv;
+  }
+  if (bout.grid_trays <= kStackBoutTrays) {
+    double bout_kg[kStackBoutTrays];
+    const std::span<double> values(bout_kg, grid);
+    scatter_bout(pattern_kg, bout, overlap, values);
+    return bout_moments(bout, [&values](int j) { return values[static_cast<std::size_t>(j)]; }).cv;
+  }
+  const bool mirror = overlap == Overlap::kToAndFro;
+  return bout_moments(bout, [&](int j) {
+           return grid_tray_mass(pattern_kg, bout.bout_trays, mirror, bout.first_tray + j);
+         }).cv;
+}
+
+}  // namespace
+
+int bout_tray_count(const TrayLayout& trays, double bout_width_m) {
+  detail::require_valid_trays(trays, "bout_tray_count");
+  if (!(std::isfinite(bout_width_m) && bout_width_m >= 0.0)) {
+    throw std::invalid_argument("bout width must be finite and >= 0 m, got " + std::to_string(bout_width_m));
+  }
+  const double trays_in_bout = std::round(bout_width_m / trays.tray_width_m);
+  if (trays_in_bout > 1e7) {
+    throw std::invalid_argument("bout width " + std::to_string(bout_width_m) + " m is more than 1e7 trays");
+  }
+  return trays_in_bout < 1.0 ? 1 : static_cast<int>(trays_in_bout);
+}
+
+BoutTrays bout_trays(const TrayLayout& trays, int bout_tray_count) {
+  detail::require_valid_trays(trays, "bout_trays");
+  if (bout_tray_count < 1) {
+    throw std::invalid_argument("bout_trays: a bout holds at least one tray, got " + std::to_string(bout_tray_count));
+  }
+  BoutTrays b;
+  b.bout_trays = bout_tray_count;
+  const long excess = static_cast<long>(trays.tray_count) - bout_tray_count;  // T − n
+  b.cut_edges = (excess % 2) != 0;
+  // The bout's left edge −n·w/2 is at grid coordinate (T − n)/2.
+  b.first_tray = static_cast<int>(b.cut_edges ? floor_div(excess - 1, 2) : excess / 2);
+  b.grid_trays = b.cut_edges ? bout_tray_count + 1 : bout_tray_count;
+  return b;
+}
+
+void overlapped_profile(std::span<const double> tray_mass_kg, const TrayLayout& trays, double bout_width_m,
+                        Overlap overlap, std::span<double> bout_mass_kg) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "overlapped_profile", "tray_mass_kg");
+  const BoutTrays bout = bout_trays(trays, bout_tray_count(trays, bout_width_m));
+  if (bout_mass_kg.size() != static_cast<std::size_t>(bout.grid_trays)) {
+    throw std::invalid_argument("overlapped_profile: bout_mass_kg has " + std::to_string(bout_mass_kg.size()) +
+                                " entries but the bout of " + std::to_string(bout_width_m) + " m touches " +
+                                std::to_string(bout.grid_trays) + " trays");
+  }
+  scatter_bout(tray_mass_kg, bout, overlap, bout_mass_kg);
+}
+
+double cv_at_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, double bout_width_m,
+                   Overlap overlap) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "cv_at_width", "tray_mass_kg");
+  return cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count(trays, bout_width_m)), overlap);
+}
+
+double cv_at_trays(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                   Overlap overlap) {
+  return cv_at_trays(tray_mass_kg, trays, bout_tray_count, overlap, {});
+}
+
+double cv_at_trays(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                   Overlap overlap, std::span<double> scratch) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "cv_at_trays", "tray_mass_kg");
+  return cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count), overlap, scratch);
+}
+
+void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                 Overlap overlap, std::span<double> gradient_per_kg) {
+  double buffer[kStackBoutTrays];
+  cv_gradient(tray_mass_kg, trays, bout_tray_count, overlap, gradient_per_kg, std::span<double>(buffer));
+}
+
+void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
+                 Overlap overlap, std::span<double> gradient_per_kg, std::span<double> scratch) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "cv_gradient", "tray_mass_kg");
+  detail::require_same_size(tray_mass_kg.size(), gradient_per_kg.size(), "cv_gradient", "tray_mass_kg",
+                            "gradient_per_kg");
+  std::fill(gradient_per_kg.begin(), gradient_per_kg.end(), 0.0);
+  const BoutTrays bout = bout_trays(trays, bout_tray_count);
+  const int n = bout.bout_trays;
+  const bool mirror = overlap == Overlap::kToAndFro;
+  const bool stacked = static_cast<std::size_t>(bout.grid_trays) <= scratch.size();
+  const std::span<double> values = scratch.first(stacked ? static_cast<std::size_t>(bout.grid_trays) : 0);
+  if (stacked) scatter_bout(tray_mass_kg, bout, overlap, values);
+  auto value = [&](int j) {
+    return stacked ? values[static_cast<std::size_t>(j)] : grid_tray_mass(tray_mass_kg, n, mirror, bout.first_tray + j);
+  };
+  const BoutMoments mo = bout_moments(bout, value);
+  if (!std::isfinite(mo.cv) || n == 1) return;
+  // ∂CV/∂P_j = w_j [ (P_j − x̄) / ((n − 1) s x̄) − CV / (n x̄) ]   (Σ_k w_k (P_k − x̄) = 0 drops a term);
+  // with s = 0 (a flat bout) the first term is left out (|·| has no derivative there).
+  const double spread_term = mo.sd_kg > 0.0 ? 1.0 / ((n - 1) * mo.sd_kg * mo.mean_kg) : 0.0;
+  auto derivative = [&](int j, double p_kg) {
+    const double w = bout.cut_edges && (j == 0 || j == bout.grid_trays - 1) ? 0.5 : 1.0;
+    return w * ((p_kg - mo.mean_kg) * spread_term - mo.cv / (n * mo.mean_kg));
+  };
+  // Each pattern tray's derivative is the sum over the bout trays it reaches (one per pass).
+  if (stacked) {
+    for (int j = 0; j < bout.grid_trays; ++j) {
+      values[static_cast<std::size_t>(j)] = derivative(j, values[static_cast<std::size_t>(j)]);
+    }
+    for_each_pass(static_cast<long>(tray_mass_kg.size()), bout, overlap,
+                  [&](bool mirrored, long base) { gather_pass(values, mirrored, base, gradient_per_kg); });
+    return;
+  }
+  for (int j = 0; j < bout.grid_trays; ++j) {
+    const double d = derivative(j, value(j));
+    for_each_source(static_cast<long>(tray_mass_kg.size()), n, mirror, bout.first_tray + j,
+                    [&](std::size_t i) { gradient_per_kg[i] += d; });
+  }
+}
+
+void cv_curve(std::span<const double> tray_mass_kg, const TrayLayout& trays,
+              std::span<const double> widths_m, Overlap overlap, std::span<double> cv_out) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "cv_curve", "tray_mass_kg");
+  detail::require_same_size(widths_m.size(), cv_out.size(), "cv_curve", "widths_m", "cv_out");
+  for (std::size_t i = 0; i < widths_m.size(); ++i) {
+    cv_out[i] = cv_of_bout(tray_mass_kg, bout_trays(trays, bout_tray_count(trays, widths_m[i])), overlap);
+  }
+}
+
+namespace {
+
+// The working-width rule (docs/metrics.md "Effective working width") on a CV(W) curve sampled at
+// count increasing widths, width_at(i) and cv_at(i): the first rise above the target, interpolated
+// linearly in CV between the two samples around it; later crossings are only counted. `index_below` is
+// the sample just below the crossing (count − 1 when the curve never leaves the target).
+struct CurveCrossing {
+  WorkingWidth width;
+  std::size_t index_below = 0;
+};
+
+template <typename WidthAt, typename CvAt>
+CurveCrossing first_crossing(std::size_t count, WidthAt width_at, CvAt cv_at, double cv_target) {
+  CurveCrossing r;
+  if (count == 0) return r;
+  double previous_cv = cv_at(0);
+  bool below = previous_cv <= cv_target;
+  if (!below) return r;  // not even the narrowest bout meets the target
+  r.width.width_m = width_at(count - 1);
+  r.width.limited_by_layout = true;
+  r.index_below = count - 1;
+  for (std::size_t i = 1; i < count; ++i) {
+    const double cv = cv_at(i);
+    const bool now_below = cv <= cv_target;
+    if (now_below != below) {
+      ++r.width.crossings;
+      if (r.width.crossings == 1) {
+        r.index_below = i - 1;
+        r.width.cv_below = previous_cv;
+        r.width.cv_above = cv;
+        r.width.limited_by_layout = false;
+        // Linear in CV between the two widths; an infinite CV (empty bout) puts the crossing at the lower.
+        const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
+        const double lower = width_at(i - 1);
+        r.width.width_m = lower + std::clamp(fraction, 0.0, 1.0) * (width_at(i) - lower);
+      }
+      below = now_below;
+    }
+    previous_cv = cv;
+  }
+  return r;
+}
+
+}  // namespace
+
+WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
+                           double cv_target) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "working_width", "tray_mass_kg");
+  if (std::isnan(cv_target)) throw std::invalid_argument("working_width: cv_target is NaN");
+  const int widest = trays.tray_count;
+  if (widest < 2) return {};
+  // CV(W) at every whole-tray width from the narrowest bout of two trays up.
+  const auto count = static_cast<std::size_t>(widest - 1);
+  const auto trays_at = [](std::size_t i) { return static_cast<int>(i) + 2; };
+  CurveCrossing c = first_crossing(
+      count, [&](std::size_t i) { return trays_at(i) * trays.tray_width_m; },
+      [&](std::size_t i) { return cv_of_bout(tray_mass_kg, bout_trays(trays, trays_at(i)), overlap); }, cv_target);
+  if (c.width.width_m > 0.0) c.width.trays_below = trays_at(c.index_below);
+  return c.width;
+}
+
+WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<const double> cv,
+                                    double cv_target) {
+  if (widths_m.size() != cv.size()) {
+    throw std::invalid_argument("working_width_on_curve: " + std::to_string(widths_m.size()) + " widths but " +
+                                std::to_string(cv.size()) + " CV values");
+  }
+  if (std::isnan(cv_target)) throw std::invalid_argument("working_width_on_curve: cv_target is NaN");
+  for (std::size_t i = 1; i < widths_m.size(); ++i) {
+    if (!(widths_m[i] > widths_m[i - 1])) throw std::invalid_argument("working_width_on_curve: widths_m must increase");
+  }
+  return first_crossing(
+             widths_m.size(), [&](std::size_t i) { return widths_m[i]; }, [&](std::size_t i) { return cv[i]; },
+             cv_target)
+      .width;
+}
+
+namespace {
+
+// FFT length for the linear (not circular) correlations of a T-tray pattern: lags up to 2T − 2.
+std::size_t correlation_fft_size(int tray_count) {
+  std::size_t size = 2;
+  while (size < 2 * static_cast<std::size_t>(tray_count)) size *= 2;
+  return size;
+}
+
+// In-place radix-2 FFT of `size` complex values stored (re, im) interleaved: X_k = Σ_j x_j e^{∓2πijk/size}
+// (− forward, + inverse, unscaled). twiddle holds e^{−2πij/size} for j < size/2, interleaved.
+void fft(std::span<double> data, std::size_t size, std::span<const double> twiddle, bool inverse) {
+  for (std::size_t i = 1, j = 0; i < size; ++i) {  // bit-reversal permutation
+    std::size_t bit = size >> 1;
+    for (; (j & bit) != 0; bit >>= 1) j ^= bit;
+    j |= bit;
+    if (i < j) {
+      std::swap(data[2 * i], data[2 * j]);
+      std::swap(data[2 * i + 1], data[2 * j + 1]);
+    }
+  }
+  const double sign = inverse ? -1.0 : 1.0;  // the inverse uses the conjugate twiddles
+  for (std::size_t length = 2; length <= size; length *= 2) {
+    const std::size_t half = length / 2, stride = size / length;
+    for (std::size_t start = 0; start < size; start += length) {
+      for (std::size_t k = 0; k < half; ++k) {
+        const double wr = twiddle[2 * k * stride], wi = sign * twiddle[2 * k * stride + 1];
+        double* a = &data[2 * (start + k)];
+        double* b = &data[2 * (start + k + half)];
+        const double vr = b[0] * wr - b[1] * wi, vi = b[0] * wi + b[1] * wr;
+        b[0] = a[0] - vr;
+        b[1] = a[1] - vi;
+        a[0] += vr;
+        a[1] += vi;
+      }
+    }
+  }
+}
+
+// CV(n)² of one overlap from the correlations (metrics.hpp, working_widths) of the pattern scaled to total
+// 1, interleaved as the inverse FFT leaves them: R(lag) = correlations[2·lag] for lag < T and
+// C(s) = correlations[2·s + 1] for s <= 2T − 2.
+double fast_cv_squared(std::span<const double> correlations, long t, long n, Overlap overlap) {
+  const auto r = [&](long lag) { return correlations[2 * static_cast<std::size_t>(lag)]; };
+  const auto c = [&](long s) { return correlations[2 * static_cast<std::size_t>(s) + 1]; };
+  double squares = r(0);
+  if (overlap == Overlap::kRacetrack) {
+    for (long lag = n; lag < t; lag += n) squares += 2.0 * r(lag);
+  } else {
+    for (long lag = 2 * n; lag < t; lag += 2 * n) squares += 2.0 * r(lag);
+    for (long shift = n; shift < t; shift += 2 * n) squares += c(t - 1 + shift) + c(t - 1 - shift);  // odd d
+  }
+  const double bout = static_cast<double>(n);
+  return bout * (bout * squares - 1.0) / (bout - 1.0);
+}
+
+}  // namespace
+
+std::size_t working_widths_scratch_size(int tray_count) {
+  if (tray_count < 2) return 0;
+  const std::size_t size = correlation_fft_size(tray_count);
+  // Complex data, the twiddles, and one bout (n + 1 <= T + 1 trays) for the exact evaluations.
+  return 2 * size + size + static_cast<std::size_t>(tray_count) + 1;
+}
+
+WorkingWidths working_widths(std::span<const double> tray_mass_kg, const TrayLayout& trays, double cv_target,
+                             std::span<double> scratch) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "working_widths", "tray_mass_kg");
+  if (std::isnan(cv_target)) throw std::invalid_argument("working_widths: cv_target is NaN");
+  const int widest = trays.tray_count;
+  if (widest < 2) return {};
+  if (scratch.size() < working_widths_scratch_size(widest)) {
+    throw std::invalid_argument("working_widths: scratch has " + std::to_string(scratch.size()) + " values, needs " +
+                                std::to_string(working_widths_scratch_size(widest)));
+  }
+  double total_kg = 0.0;
+  bool plain = true;  // every tray finite and >= 0: the total is the bout's and no bout is empty
+  for (double m : tray_mass_kg) {
+    plain = plain && std::isfinite(m) && m >= 0.0;
+    total_kg += m;
+  }
+  if (!plain || !std::isfinite(total_kg)) {
+    return {working_width(tray_mass_kg, trays, Overlap::kToAndFro, cv_target),
+            working_width(tray_mass_kg, trays, Overlap::kRacetrack, cv_target)};
+  }
+  if (!(total_kg > 0.0)) return {};  // every bout empty: CV infinite at every width, as working_width
+
+  const long t = widest;
+  const std::size_t size = correlation_fft_size(widest);
+  const std::span<double> data = scratch.first(2 * size);
+  const std::span<double> twiddle = scratch.subspan(2 * size, size);
+  const std::span<double> bout_scratch = scratch.subspan(3 * size, static_cast<std::size_t>(widest) + 1);
+  // e^{−2πij/size}: the second quarter from the first (multiplying by e^{−iπ/2} = −i maps (c, s) to
+  // (s, −c)), so only size/4 cos/sin pairs are evaluated.
+  const std::size_t quarter = size / 4;
+  for (std::size_t j = 0; j < std::max<std::size_t>(quarter, 1); ++j) {
+    const double angle = -2.0 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(size);
+    twiddle[2 * j] = std::cos(angle);
+    twiddle[2 * j + 1] = std::sin(angle);
+  }
+  for (std::size_t j = quarter; j < size / 2; ++j) {
+    twiddle[2 * j] = twiddle[2 * (j - quarter) + 1];
+    twiddle[2 * j + 1] = -twiddle[2 * (j - quarter)];
+  }
+  std::fill(data.begin(), data.end(), 0.0);
+  for (long i = 0; i < t; ++i) data[2 * static_cast<std::size_t>(i)] = tray_mass_kg[static_cast<std::size_t>(i)] / total_kg;
+  fft(data, size, twiddle, false);
+  // With X = FFT(p) for a real p, |X|² is the spectrum of R and X² that of C; both are Hermitian, so one
+  // inverse FFT of |X|² + i·X² returns R in the real part and C in the imaginary part.
+  for (std::size_t k = 0; k < size; ++k) {
+    const double a = data[2 * k], b = data[2 * k + 1];
+    data[2 * k] = a * a + b * b - 2.0 * a * b;
+    data[2 * k + 1] = a * a - b * b;
+  }
+  fft(data, size, twiddle, true);
+  const double scale = 1.0 / static_cast<double>(size);
+  for (double& v : data) v *= scale;
+
+  // Rounding of the correlations: each is within about ε·log₂(size) of Σ p² <= 1, and CV² sums up to
+  // 2T/n of them times n: |ΔCV²| ≲ 2·ε·T·log₂(size). The guard band is 128 times that.
+  const double guard = 256.0 * std::numeric_limits<double>::epsilon() * static_cast<double>(t) *
+                       std::log2(static_cast<double>(size));
+  const double target_squared = cv_target * cv_target;
+  auto search = [&](Overlap overlap) {
+    int exact_left = kExactWidthEvaluations;
+    auto exact_cv = [&](long n) {
+      return cv_of_bout(tray_mass_kg, bout_trays(trays, static_cast<int>(n)), overlap, bout_scratch);
+    };
+    auto within = [&](long n) {
+      const double cv_squared = fast_cv_squared(data, t, n, overlap);
+      if (std::abs(cv_squared - target_squared) <= guard && exact_left > 0) {
+        --exact_left;
+        return exact_cv(n) <= cv_target;
+      }
+      return cv_target >= 0.0 && cv_squared <= target_squared;
+    };
+    // working_width's rule (first_crossing) with these classifications.
+    WorkingWidth r;
+    bool below = within(2);
+    if (!below) return r;
+    r.width_m = widest * trays.tray_width_m;
+    r.limited_by_layout = true;
+    r.trays_below = widest;
+    for (long n = 3; n <= t; ++n) {
+      const bool now_below = within(n);
+      if (now_below == below) continue;
+      ++r.crossings;
+      if (r.crossings == 1) {
+        const double previous_cv = exact_cv(n - 1), cv = exact_cv(n);
+        r.trays_below = static_cast<int>(n - 1);
+        r.cv_below = previous_cv;
+        r.cv_above = cv;
+        r.limited_by_layout = false;
+        const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
+        const double lower = static_cast<int>(n - 1) * trays.tray_width_m;
+        r.width_m = lower + std::clamp(fraction, 0.0, 1.0) * (static_cast<int>(n) * trays.tray_width_m - lower);
+      }
+      below = now_below;
+    }
+    return r;
+  };
+  return {search(Overlap::kToAndFro), search(Overlap::kRacetrack)};
+}
+
+double effective_working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays,
+                               Overlap overlap, double cv_target) {
+  detail::require_tray_span(tray_mass_kg.size(), trays, "effective_working_width", "tray_mass_kg");
+  if (std::isnan(cv_target)) throw std::invalid_argument("effective_working_width: cv_target is NaN");
+  return working_width(tray_mass_kg, trays, overlap, cv_target).width_m;
+}
+
+}  // namespace spread::metrics

@@ -1,0 +1,282 @@
+// The PDF report's pages (report_pdf.hpp). Layout in points on A4: a 40 pt margin, text in the plots'
+// sans-serif, the transverse chart drawn by the same code as the PNG (transverse_drawing.hpp), scaled
+// to the text width.
+#include "libspread/analysis/plot/report_pdf.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include <cairo-pdf.h>
+#include <cairo.h>
+
+#include "libspread/analysis/plot/canvas.hpp"
+#include "libspread/analysis/plot/report_date.hpp"
+#include "libspread/analysis/plot/transverse_drawing.hpp"
+
+namespace spread::plot {
+namespace {
+
+constexpr double kMargin_pt = 40.0;
+constexpr double kTextWidth_pt = kPageWidth_pt - 2.0 * kMargin_pt;
+constexpr double kBody_pt = 10.0;
+constexpr double kLine_pt = 14.0;
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+std::string cv_cell(double cv) {
+  if (std::isnan(cv)) return "no CV";
+  if (std::isinf(cv)) return "empty";
+  return format("%.1f %%", 100.0 * cv);
+}
+
+// Writes `text` from (x, y) on, broken at spaces into lines no wider than `width_pt`; returns the y
+// below the last line.
+double draw_wrapped(cairo_t* cr, const std::string& text, double x, double y, double width_pt,
+                    double line_pt = kLine_pt) {
+  std::istringstream words(text);
+  std::string word, line;
+  auto flush = [&] {
+    detail::draw_text(cr, line, x, y, 0.0, 0.0);
+    y += line_pt;
+    line.clear();
+  };
+  while (words >> word) {
+    const std::string candidate = line.empty() ? word : line + " " + word;
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, candidate.c_str(), &extents);
+    if (!line.empty() && extents.x_advance > width_pt) flush();
+    line = line.empty() ? word : line + " " + word;
+  }
+  if (!line.empty()) flush();
+  return y;
+}
+
+void set_black(cairo_t* cr) { cairo_set_source_rgb(cr, 0.0, 0.0, 0.0); }
+
+// Title, date, and the header fields in two columns; returns the y below them.
+double draw_header(cairo_t* cr, const ReportHeader& h) {
+  set_black(cr);
+  detail::set_font(cr, 18.0, true);
+  detail::draw_text(cr, h.title, kMargin_pt, kMargin_pt, 0.0, 0.0);
+  detail::set_font(cr, kBody_pt);
+  detail::draw_text(cr, "date " + utc_date(h.time_s), kPageWidth_pt - kMargin_pt, kMargin_pt + 4.0, 1.0, 0.0);
+  auto or_not_given = [](const std::string& s) { return s.empty() ? std::string("not given") : s; };
+  auto number = [](double v, const char* pattern) { return std::isnan(v) ? std::string("not given") : format(pattern, v); };
+  const std::pair<std::string, std::string> fields[] = {
+      {"Machine", or_not_given(h.machine)},        {"Material", or_not_given(h.material)},
+      {"Disc speed", h.rpm_text.empty() ? number(h.rpm, "%.0f rpm") : h.rpm_text},  {"Forward speed", number(h.speed_km_h, "%.1f km/h")},
+  };
+  double y = kMargin_pt + 32.0;
+  for (std::size_t i = 0; i < std::size(fields); ++i) {
+    const double x = kMargin_pt + (i % 2 == 0 ? 0.0 : 0.5 * kTextWidth_pt);
+    detail::set_font(cr, kBody_pt, true);
+    const double label_pt = detail::draw_text(cr, fields[i].first + ": ", x, y, 0.0, 0.0);
+    detail::set_font(cr, kBody_pt);
+    detail::draw_text(cr, fields[i].second, x + label_pt, y, 0.0, 0.0);
+    if (i % 2 == 1) y += kLine_pt;
+  }
+  if (!h.source.empty()) {
+    detail::set_font(cr, kBody_pt, true);
+    const double label_pt = detail::draw_text(cr, "Data: ", kMargin_pt, y, 0.0, 0.0);
+    detail::set_font(cr, kBody_pt);
+    y = draw_wrapped(cr, h.source, kMargin_pt + label_pt, y, kTextWidth_pt - label_pt);
+  }
+  cairo_set_line_width(cr, 0.8);
+  cairo_move_to(cr, kMargin_pt, y + 4.0);
+  cairo_line_to(cr, kPageWidth_pt - kMargin_pt, y + 4.0);
+  cairo_stroke(cr);
+  return y + 14.0;
+}
+
+void draw_footer(cairo_t* cr, const ReportHeader& h) {
+  if (h.made_by.empty()) return;
+  cairo_save(cr);
+  cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
+  detail::set_font(cr, 7.0);
+  // Up to three lines of 9 pt in the bottom margin.
+  draw_wrapped(cr, "made by: " + h.made_by + " (" + utc_date_time(h.time_s) + ")", kMargin_pt,
+               kPageHeight_pt - kMargin_pt - 6.0, kTextWidth_pt, 9.0);
+  cairo_restore(cr);
+}
+
+double draw_lines(cairo_t* cr, const std::vector<std::string>& lines, double y, const std::string& prefix = "") {
+  detail::set_font(cr, kBody_pt);
+  for (const std::string& l : lines) y = draw_wrapped(cr, prefix + l, kMargin_pt, y, kTextWidth_pt);
+  return y;
+}
+
+// A table with a bold header row; column x positions spread over the text width. Returns the y below.
+double draw_table(cairo_t* cr, const std::string& caption, const std::vector<std::string>& columns,
+                  const std::vector<std::vector<std::string>>& rows, double y) {
+  set_black(cr);
+  detail::set_font(cr, 11.0, true);
+  detail::draw_text(cr, caption, kMargin_pt, y, 0.0, 0.0);
+  y += kLine_pt + 4.0;
+  const double column_pt = kTextWidth_pt / static_cast<double>(columns.size());
+  // Cells right-aligned in their column (numbers line up), the first column left-aligned.
+  auto cell_x = [&](std::size_t c, double& align) {
+    align = c == 0 ? 0.0 : 1.0;
+    return kMargin_pt + (c == 0 ? 0.0 : (static_cast<double>(c) + 1.0) * column_pt - 10.0);
+  };
+  detail::set_font(cr, kBody_pt, true);
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    double align = 0.0;
+    const double x = cell_x(c, align);
+    detail::draw_text(cr, columns[c], x, y, align, 0.0);
+  }
+  y += kLine_pt;
+  cairo_set_line_width(cr, 0.5);
+  cairo_move_to(cr, kMargin_pt, y - 2.0);
+  cairo_line_to(cr, kPageWidth_pt - kMargin_pt, y - 2.0);
+  cairo_stroke(cr);
+  detail::set_font(cr, kBody_pt);
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      double align = 0.0;
+      const double x = cell_x(c, align);
+      detail::draw_text(cr, row[c], x, y, align, 0.0);
+    }
+    y += kLine_pt;
+  }
+  return y + 6.0;
+}
+
+void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
+  double y = draw_header(cr, r.header);
+  y = draw_lines(cr, r.summary, y) + 4.0;
+
+  // The chart, drawn in the PNG's pixel space scaled to the text width.
+  const double scale = kTextWidth_pt / kImageWidth_px;
+  cairo_save(cr);
+  cairo_translate(cr, kMargin_pt, y);
+  cairo_scale(cr, scale, scale);
+  TransverseOptions chart = r.chart;
+  chart.mean_band = true;
+  detail::draw_transverse(cr, r.tray_mass_kg, r.trays, r.chart_title, chart);
+  cairo_restore(cr);
+  y += kImageHeight_px * scale + 10.0;
+
+  std::vector<std::vector<std::string>> rows;
+  for (const CvTableRow& row : r.cv_table) {
+    rows.push_back({format("%.1f m", row.bout_width_m), cv_cell(row.cv_to_and_fro), cv_cell(row.cv_racetrack)});
+  }
+  y = draw_table(cr, "CV per working width (target " + format("%g %%", 100.0 * r.cv_target) + ")",
+                 {"working width", "CV to-and-fro", "CV racetrack"}, rows, y);
+  detail::set_font(cr, kBody_pt);
+  y = draw_wrapped(cr,
+                   "Effective working width (CV <= " + format("%g %%", 100.0 * r.cv_target) + "): " +
+                       format("%.2f m", r.working_width_to_and_fro_m) + " to-and-fro, " +
+                       format("%.2f m", r.working_width_racetrack_m) + " racetrack",
+                   kMargin_pt, y, kTextWidth_pt);
+  y += 6.0;
+
+  if (r.rate) {
+    const ReportRate& rate = *r.rate;
+    detail::set_font(cr, 11.0, true);
+    detail::draw_text(cr, "Application rate", kMargin_pt, y, 0.0, 0.0);
+    y += kLine_pt + 2.0;
+    detail::set_font(cr, kBody_pt);
+    y = draw_wrapped(cr,
+                     "Caught in the trays at W = " + format("%.2f m", rate.bout_width_m) + ": " +
+                         format("%.1f kg/ha", rate.rate_kg_ha) + " (tray area " + format("%.4g m²", rate.tray_area_m2) +
+                         ")",
+                     kMargin_pt, y, kTextWidth_pt);
+    if (!std::isnan(rate.set_rate_kg_ha)) {
+      detail::set_font(cr, kBody_pt, true);
+      cairo_set_source_rgb(cr, rate.pass ? 0.0 : 0.75, rate.pass ? 0.45 : 0.0, 0.0);
+      y = draw_wrapped(cr,
+                       std::string("EN 13739-2 rate check: ") + (rate.pass ? "PASS" : "FAIL") + " — the trays caught " +
+                           format("%.1f %%", rate.caught_percent) + " of the set rate " +
+                           format("%.1f kg/ha", rate.set_rate_kg_ha) + " (" + format("%g", rate.lowest_percent) + "–" +
+                           format("%g %%", rate.highest_percent) + " required)",
+                       kMargin_pt, y, kTextWidth_pt);
+      set_black(cr);
+    }
+    y += 6.0;
+  }
+  if (!r.notes.empty()) {
+    detail::set_font(cr, 11.0, true);
+    detail::draw_text(cr, "Notes", kMargin_pt, y, 0.0, 0.0);
+    y += kLine_pt + 2.0;
+    draw_lines(cr, r.notes, y, "• ");
+  }
+  draw_footer(cr, r.header);
+}
+
+void draw_table_page(cairo_t* cr, const TablePage& t) {
+  double y = draw_header(cr, t.header);
+  y = draw_lines(cr, t.summary, y) + 8.0;
+  y = draw_table(cr, t.caption, t.columns, t.rows, y);
+  if (!t.notes.empty()) {
+    detail::set_font(cr, 11.0, true);
+    detail::draw_text(cr, "Notes", kMargin_pt, y, 0.0, 0.0);
+    y += kLine_pt + 2.0;
+    draw_lines(cr, t.notes, y, "• ");
+  }
+  draw_footer(cr, t.header);
+}
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+};
+struct ContextDeleter {
+  void operator()(cairo_t* c) const { cairo_destroy(c); }
+};
+
+// PDF dates as cairo takes them (ISO 8601, UTC).
+std::string pdf_date(std::int64_t time_s) {
+  std::string d = utc_date_time(time_s);  // "YYYY-MM-DD HH:MM UTC"
+  return d.substr(0, 10) + "T" + d.substr(11, 5) + ":00Z";
+}
+
+}  // namespace
+
+void write_report_pdf(const std::string& path, const PatternReport* pattern, const TablePage* table) {
+  if (pattern == nullptr && table == nullptr) throw std::invalid_argument("write_report_pdf: no page to write");
+  if (table != nullptr) {
+    for (const auto& row : table->rows) {
+      if (row.size() != table->columns.size()) {
+        throw std::invalid_argument("write_report_pdf: a table row has " + std::to_string(row.size()) +
+                                    " cells for " + std::to_string(table->columns.size()) + " columns");
+      }
+    }
+  }
+  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
+      cairo_pdf_surface_create(path.c_str(), kPageWidth_pt, kPageHeight_pt));
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
+    throw std::runtime_error("cannot write PDF '" + path + "': " + cairo_status_to_string(cairo_surface_status(surface.get())));
+  }
+  const ReportHeader& first = pattern != nullptr ? pattern->header : table->header;
+  // Fixed metadata: the same report from the same data (and SOURCE_DATE_EPOCH) is the same file.
+  const std::string date = pdf_date(first.time_s);
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, date.c_str());
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_MOD_DATE, date.c_str());
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, first.title.c_str());
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "libspread");
+  std::unique_ptr<cairo_t, ContextDeleter> context(cairo_create(surface.get()));
+  cairo_t* cr = context.get();
+  if (pattern != nullptr) {
+    draw_pattern_page(cr, *pattern);
+    cairo_show_page(cr);
+  }
+  if (table != nullptr) {
+    draw_table_page(cr, *table);
+    cairo_show_page(cr);
+  }
+  const cairo_status_t drawn = cairo_status(cr);
+  context.reset();
+  cairo_surface_finish(surface.get());
+  const cairo_status_t status = drawn != CAIRO_STATUS_SUCCESS ? drawn : cairo_surface_status(surface.get());
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw std::runtime_error("cannot write PDF '" + path + "': " + cairo_status_to_string(status));
+  }
+}
+
+}  // namespace spread::plot

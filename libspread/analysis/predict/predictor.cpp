@@ -1,0 +1,676 @@
+#include "libspread/analysis/predict/predictor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/launch_interpolation.hpp"
+#include "libspread/analysis/predict/launch_landing_keys.hpp"
+#include "libspread/analysis/predict/launch_quantile_cells.hpp"
+#include "libspread/analysis/predict/sample_influence.hpp"
+
+namespace spread::predict {
+
+const char* to_string(PredictStatus status) {
+  switch (status) {
+    case PredictStatus::kOk: return "ok";
+    case PredictStatus::kNotFinite: return "argument not finite";
+    case PredictStatus::kOutOfRange: return "argument out of range";
+    case PredictStatus::kUnknownEffect: return "unknown effect bits";
+    case PredictStatus::kUnknownMaterial: return "unknown material";
+    case PredictStatus::kRpmOutsideTable: return "rpm outside the table";
+  }
+  return "unknown status";
+}
+
+double kernel_half_width_for(double sd_x_m, std::size_t sample_count) {
+  if (sample_count == 0 || !(sd_x_m > 0.0)) return 0.0;
+  return kKernelScale * sd_x_m * std::pow(static_cast<double>(sample_count), -0.2);
+}
+
+Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std::pmr::memory_resource* memory)
+    : contents_(std::move(contents)),
+      limits_(limits),
+      settings_(default_flight_settings()),
+      samples_(memory),
+      cell_of_sample_(memory),
+      cell_mean_(memory) {
+  if (!(limits_.min_tray_width_m > 0.0) || !(limits_.max_half_extent_m >= limits_.min_tray_width_m) ||
+      !std::isfinite(limits_.max_half_extent_m)) {
+    throw std::invalid_argument("Predictor: limits need 0 < min_tray_width_m <= max_half_extent_m < inf");
+  }
+  for (double bound : {limits_.max_bout_width_m, limits_.max_disc_height_m, limits_.max_wind_m_s, limits_.max_cv_target}) {
+    if (!(bound > 0.0 && std::isfinite(bound))) throw std::invalid_argument("Predictor: request bounds must be finite and > 0");
+  }
+  // The same plausibility rules as the table reader, for contents that did not come from a file: a NaN,
+  // Inf or non-positive mass/diameter must never reach the flight code.
+  std::string problem = tables::machine_problem(contents_.machine);
+  for (const auto& m : contents_.materials) {
+    if (problem.empty()) problem = tables::material_problem(m);
+  }
+  for (const auto& run : contents_.runs) {
+    if (problem.empty()) {
+      problem = tables::run_values_problem(run);
+      if (!problem.empty()) problem = "run " + run.material + ": " + problem;
+    }
+  }
+  if (!problem.empty()) throw tables::TableError(tables::TableErrorKind::kCorrupt, "Predictor: " + problem);
+  auto& runs = contents_.runs;
+  run_rpm_.reserve(runs.size());
+  std::size_t largest_pair = 0;  // samples of the widest interpolation (by quantile cells: n_a + n_b)
+  std::size_t i = 0;
+  while (i < runs.size()) {
+    std::size_t j = i;
+    while (j < runs.size() && runs[j].material == runs[i].material) ++j;
+    const auto found = std::find_if(contents_.materials.begin(), contents_.materials.end(),
+                                    [&](const tables::Material& m) { return m.name == runs[i].material; });
+    if (found == contents_.materials.end()) {
+      throw tables::TableError(tables::TableErrorKind::kCorrupt,
+                               "run of material '" + runs[i].material + "' has no material row");
+    }
+    materials_.push_back(MaterialRows{static_cast<std::size_t>(found - contents_.materials.begin()), i, j - i});
+    for (std::size_t k = i; k < j; ++k) {
+      if (k > i && !(runs[k].rpm > runs[k - 1].rpm)) {
+        throw tables::TableError(tables::TableErrorKind::kCorrupt,
+                                 "runs of material '" + runs[i].material + "' not in ascending rpm order");
+      }
+      const std::size_t next = k + 1 < j ? runs[k + 1].samples.size() : 0;
+      largest_pair = std::max(largest_pair, runs[k].samples.size() + next);
+      for (const auto& s : runs[k].samples) lowest_sample_z_m_ = std::min(lowest_sample_z_m_, double{s.z_m});
+    }
+    i = j;
+  }
+  std::sort(materials_.begin(), materials_.end(), [&](const MaterialRows& a, const MaterialRows& b) {
+    return contents_.materials[a.material].name < contents_.materials[b.material].name;
+  });
+  for (const auto& run : runs) {
+    run_rpm_.push_back(run.rpm);
+    // Tables made before runs recorded their flight effects flew everything: keep that meaning.
+    const std::optional<std::string> recorded = tables::recorded_flight_effects(run);
+    try {
+      run_effects_.push_back(recorded ? flight::parse_effects(*recorded) : flight::kAllEffects);
+    } catch (const std::invalid_argument& e) {
+      throw tables::TableError(tables::TableErrorKind::kCorrupt,
+                               "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: " + e.what());
+    }
+  }
+  largest_pair_ = largest_pair;
+  run_offset_.assign(runs.size() + 1, 0);
+  for (std::size_t k = 0; k < runs.size(); ++k) run_offset_[k + 1] = run_offset_[k] + runs[k].samples.size();
+  // The samples move into one block from `memory`; the runs keep their other records.
+  samples_.reserve(run_offset_.back());
+  for (auto& run : contents_.runs) {
+    samples_.insert(samples_.end(), run.samples.begin(), run.samples.end());
+    std::vector<tables::LaunchSample>().swap(run.samples);
+  }
+  cell_of_sample_.assign(run_offset_.back(), 0);
+  cell_offset_.assign(runs.size() + 1, 0);
+  for (const auto& rows : materials_) {
+    const auto cells = static_cast<std::size_t>(cell_counts(rows).cells());
+    for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+      cell_offset_[k + 1] = needs_cells(rows, k) ? cells : 0;
+    }
+  }
+  for (std::size_t k = 0; k < runs.size(); ++k) cell_offset_[k + 1] += cell_offset_[k];
+  cell_mean_.assign(cell_offset_.back(), tables::LaunchSample{});
+  for (const auto& rows : materials_) assign_cells(rows);
+  build_landing_caches(memory);
+
+  own_workspace_.emplace(*this, memory);
+}
+
+std::size_t Predictor::interpolate(std::size_t lower_run, std::size_t upper_run, double t,
+                                   std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const {
+  if (lower_run == upper_run || pairwise(lower_run, upper_run)) {
+    return interpolate_launch_samples(run_samples(lower_run), run_samples(upper_run), lower_run == upper_run ? 0.0 : t,
+                                      samples, weight_kg);
+  }
+  const auto celled = [&](std::size_t run) {
+    return CelledRow{run_samples(run), std::span(cell_of_sample_).subspan(run_offset_[run], run_samples(run).size()),
+                     std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
+  };
+  return interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), t, samples, weight_kg);
+}
+
+namespace {
+// Relative and absolute tolerance (m, m/s) of the landing cache's flights.
+constexpr double kCacheTolerance = 1e-4;
+}  // namespace
+
+void Predictor::build_landing_caches(std::pmr::memory_resource* memory) {
+  const auto& runs = contents_.runs;
+  row_cache_.clear();
+  pair_cache_.clear();
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    row_cache_.emplace_back(memory);
+    pair_cache_.emplace_back(memory);
+  }
+  row_cache_effects_.assign(runs.size(), 0);
+  pair_cache_effects_.assign(runs.size(), 0);
+  const auto& machine = contents_.machine;
+  std::vector<tables::LaunchSample> node_samples[LandingCache::kPairNodes];  // construction only: may allocate
+  std::vector<double> weight_kg(largest_pair_);
+  for (auto& samples : node_samples) samples.resize(largest_pair_);
+  for (const auto& rows : materials_) {
+    const double density_kg_m3 = contents_.materials[rows.material].density_kg_m3;
+    const auto flying_at = [&](double rpm, flight::EffectSet effects) {
+      LandingCache::Flying f;
+      f.rim_speed_m_s = rpm * 2.0 * kPi / 60.0 * machine.disc_radius_m;
+      f.disc_height_m = machine.disc_height_m;
+      f.density_kg_m3 = density_kg_m3;
+      f.effects = effects;
+      f.settings = settings_;
+      // Flown once: a tighter tolerance than a flight in predict() costs little and leaves the
+      // interpolation as the cache's only error (docs/c-api.md "Landing cache").
+      f.settings.rel_tol = std::min(settings_.rel_tol, kCacheTolerance);
+      f.settings.abs_tol = std::min(settings_.abs_tol, kCacheTolerance);
+      return f;
+    };
+    for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+      const flight::EffectSet row_effects = run_effects_[k] & ~flight::EffectSet{flight::kWind};
+      if (LandingCache::covers(row_effects)) {
+        const std::span<const tables::LaunchSample> nodes[1] = {run_samples(k)};
+        const LandingCache::Flying flying[1] = {flying_at(runs[k].rpm, row_effects)};
+        if (row_cache_[k].build(nodes, flying)) row_cache_effects_[k] = row_effects;
+      }
+      if (k + 1 >= rows.first_run + rows.run_count) continue;
+      const flight::EffectSet pair_effects = (run_effects_[k] | run_effects_[k + 1]) & ~flight::EffectSet{flight::kWind};
+      if (!LandingCache::covers(pair_effects)) continue;
+      std::span<const tables::LaunchSample> nodes[LandingCache::kPairNodes];
+      LandingCache::Flying flying[LandingCache::kPairNodes];
+      for (std::size_t node = 0; node < LandingCache::kPairNodes; ++node) {
+        const double t = static_cast<double>(node) / static_cast<double>(LandingCache::kPairNodes - 1);
+        const std::size_t n = interpolate(k, k + 1, t, node_samples[node], weight_kg);
+        nodes[node] = std::span(node_samples[node]).first(n);
+        flying[node] = flying_at(runs[k].rpm + t * (runs[k + 1].rpm - runs[k].rpm), pair_effects);
+      }
+      if (pair_cache_[k].build(nodes, flying)) pair_cache_effects_[k] = pair_effects;
+    }
+  }
+}
+
+std::size_t Predictor::landing_cache_bytes() const {
+  if (!landing_cache_enabled_) return 0;
+  std::size_t bytes = 0;
+  for (const auto& cache : row_cache_) bytes += cache.bytes();
+  for (const auto& cache : pair_cache_) bytes += cache.bytes();
+  return bytes;
+}
+
+const LandingCache* Predictor::landing_cache_for(std::size_t lower_run, std::size_t upper_run, double height_m,
+                                                 flight::EffectSet effects, const flight::Air& air) const {
+  if (!landing_cache_enabled_ || height_m != contents_.machine.disc_height_m) return nullptr;
+  if ((effects & flight::kWind) != 0 &&
+      !(std::hypot(air.wind_m_s.x(), air.wind_m_s.y()) <= LandingCache::kWindRadius_m_s && air.wind_m_s.z() == 0.0)) {
+    return nullptr;
+  }
+  const flight::EffectSet still_air = effects & ~flight::EffectSet{flight::kWind};
+  const bool row = lower_run == upper_run;
+  const LandingCache& cache = row ? row_cache_[lower_run] : pair_cache_[lower_run];
+  const flight::EffectSet cached = row ? row_cache_effects_[lower_run] : pair_cache_effects_[lower_run];
+  if (cache.empty() || still_air != cached) return nullptr;
+  return &cache;
+}
+
+PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::memory_resource* memory)
+    : samples_(memory),
+      sample_weight_kg_(memory),
+      granules_(memory),
+      launches_(memory),
+      landings_(memory),
+      landing_x_m_(memory),
+      landing_y_m_(memory),
+      landing_weight_(memory),
+      radial_x_m_(memory),
+      radial_y_m_(memory),
+      radial_weight_(memory),
+      tray_mass_(memory),
+      gradients_(memory),
+      gradient_scratch_(memory),
+      metrics_scratch_(memory) {
+  const std::size_t pair = predictor.largest_pair();
+  const PredictorLimits& limits = predictor.limits();
+  sample_capacity_ = pair;
+  samples_.resize(pair);
+  sample_weight_kg_.resize(pair);
+  // Two discs, each flown (lateral wind) or mirrored: at most two landings per sample.
+  landing_x_m_.resize(2 * pair);
+  landing_y_m_.resize(2 * pair);
+  landing_weight_.resize(2 * pair);
+  granules_.resize(kFlightChunk);
+  launches_.resize(kFlightChunk);
+  landings_.resize(kFlightChunk);
+  radial_x_m_.resize(pair);
+  radial_y_m_.resize(pair);
+  radial_weight_.resize(pair);
+  const int widest = predictor.tray_capacity(limits.min_tray_width_m);
+  tray_capacity_ = static_cast<std::size_t>(widest);
+  tray_mass_.resize(tray_capacity_);
+  gradients_.resize(SampleInfluence::kMaxGradients * tray_capacity_);
+  gradient_scratch_.resize(tray_capacity_);
+  // The widest bout a request may ask for, in the narrowest trays, plus its cut edge tray.
+  const auto widest_bout = static_cast<std::size_t>(std::ceil(limits.max_bout_width_m / limits.min_tray_width_m)) + 2;
+  metrics_scratch_.resize(std::max({metrics::working_widths_scratch_size(widest), widest_bout, tray_capacity_ + 2}));
+}
+
+std::size_t PredictorWorkspace::bytes() const {
+  return samples_.size() * sizeof(tables::LaunchSample) + granules_.size() * sizeof(flight::Granule) +
+         launches_.size() * sizeof(flight::State) + landings_.size() * sizeof(flight::Landing) +
+         sizeof(double) * (sample_weight_kg_.size() + landing_x_m_.size() + landing_y_m_.size() +
+                           landing_weight_.size() + radial_x_m_.size() + radial_y_m_.size() +
+                           radial_weight_.size() + tray_mass_.size() + gradients_.size() +
+                           gradient_scratch_.size() + metrics_scratch_.size());
+}
+
+bool Predictor::pairwise(std::size_t run_a, std::size_t run_b) const {
+  const auto& a = contents_.runs[run_a];
+  const auto& b = contents_.runs[run_b];
+  return a.source == "analytic" && b.source == "analytic" && run_samples(run_a).size() == run_samples(run_b).size();
+}
+
+bool Predictor::needs_cells(const MaterialRows& rows, std::size_t run) const {
+  const std::size_t first = rows.first_run, end = rows.first_run + rows.run_count;
+  return (run > first && !pairwise(run - 1, run)) || (run + 1 < end && !pairwise(run, run + 1));
+}
+
+QuantileCellCounts Predictor::cell_counts(const MaterialRows& rows) const {
+  // One cell count for all rows of the material, so that neighbours are cut into the same cells.
+  std::size_t smallest = std::numeric_limits<std::size_t>::max();
+  for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+    smallest = std::min(smallest, run_samples(k).size());
+  }
+  return quantile_cells_for(smallest);
+}
+
+void Predictor::assign_cells(const MaterialRows& rows) {
+  const QuantileCellCounts counts = cell_counts(rows);
+  const double density_kg_m3 = contents_.materials[rows.material].density_kg_m3;
+  std::vector<double> transverse_x_m, radius_m, mass_kg;  // construction only: may allocate
+  std::vector<std::uint32_t> order;
+  for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+    if (!needs_cells(rows, k)) continue;
+    const auto& run = contents_.runs[k];
+    const std::span<const tables::LaunchSample> samples = run_samples(k);
+    const std::size_t n = samples.size();
+    transverse_x_m.resize(n);
+    radius_m.resize(n);
+    mass_kg.resize(n);
+    order.resize(n);
+    landing_rank_keys(samples, run.rpm, contents_.machine.disc_radius_m, contents_.machine.disc_height_m,
+                      density_kg_m3, default_flight_settings(), radius_m, transverse_x_m);
+    for (std::size_t i = 0; i < n; ++i) mass_kg[i] = static_cast<double>(samples[i].mass_kg);
+    const std::span<std::uint32_t> cell_of_sample = std::span(cell_of_sample_).subspan(run_offset_[k], n);
+    assign_quantile_cells(radius_m, transverse_x_m, mass_kg, counts, order, cell_of_sample);
+    quantile_cell_means(samples, cell_of_sample,
+                        std::span(cell_mean_).subspan(cell_offset_[k], cell_offset_[k + 1] - cell_offset_[k]));
+  }
+}
+
+const tables::Material& Predictor::material(std::size_t index) const {
+  return contents_.materials.at(materials_.at(index).material);
+}
+double Predictor::min_rpm(std::size_t index) const { return contents_.runs[materials_.at(index).first_run].rpm; }
+double Predictor::max_rpm(std::size_t index) const {
+  const auto& rows = materials_.at(index);
+  return contents_.runs[rows.first_run + rows.run_count - 1].rpm;
+}
+
+std::optional<std::size_t> Predictor::find_material(std::string_view name) const {
+  for (std::size_t k = 0; k < materials_.size(); ++k) {
+    if (contents_.materials[materials_[k].material].name == name) return k;
+  }
+  return std::nullopt;
+}
+
+int Predictor::tray_capacity(double tray_width_m) const {
+  if (!(tray_width_m >= limits_.min_tray_width_m) || !(tray_width_m <= limits_.max_half_extent_m)) return 0;
+  return metrics::tray_layout_covering(limits_.max_half_extent_m, tray_width_m).tray_count;
+}
+
+PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) const {
+  height_m = std::isnan(r.disc_height_m) ? contents_.machine.disc_height_m : r.disc_height_m;
+  for (double v : {r.rpm, height_m, r.wind_x_m_s, r.wind_y_m_s, r.cv_target, r.bout_width_m, r.tray_width_m}) {
+    if (!std::isfinite(v)) return PredictStatus::kNotFinite;
+  }
+  // Every field's domain, before any is used (docs/c-api.md, PredictorLimits).
+  if (height_m < 0.0 || height_m > limits_.max_disc_height_m || height_m + lowest_sample_z_m_ < 0.0) {
+    return PredictStatus::kOutOfRange;
+  }
+  if (std::abs(r.wind_x_m_s) > limits_.max_wind_m_s || std::abs(r.wind_y_m_s) > limits_.max_wind_m_s) {
+    return PredictStatus::kOutOfRange;
+  }
+  if (!(r.cv_target > 0.0) || r.cv_target > limits_.max_cv_target) return PredictStatus::kOutOfRange;
+  if (r.bout_width_m < 0.0 || r.bout_width_m > limits_.max_bout_width_m) return PredictStatus::kOutOfRange;
+  if (tray_capacity(r.tray_width_m) == 0) return PredictStatus::kOutOfRange;
+  if (!std::isnan(r.kernel_half_width_m)) {
+    if (!std::isfinite(r.kernel_half_width_m)) return PredictStatus::kNotFinite;
+    if (r.kernel_half_width_m < 0.0 || r.kernel_half_width_m > limits_.max_kernel_half_width_m) {
+      return PredictStatus::kOutOfRange;
+    }
+  }
+  if ((r.effects & ~(flight::kAllEffects | kTableEffects)) != 0) return PredictStatus::kUnknownEffect;
+  return PredictStatus::kOk;
+}
+
+std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double omega_rad_s, double height_m,
+                                    const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
+                                    double density_kg_m3, const LandingCache* cache, double t) const {
+  const auto& machine = contents_.machine;
+  const bool two_discs = machine.disc_count == 2;
+  const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
+  const double rim_speed_m_s = omega_rad_s * machine.disc_radius_m;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+
+  // mirror = +1: the left disc as stored; −1: its mirror image x → −x, the right disc. Spin is an axial
+  // vector: under the reflection its x component keeps its sign and y, z change sign.
+  auto launch_of = [&](const tables::LaunchSample& s, double mirror, std::size_t slot) {
+    flight::Granule& granule = w.granules_[slot];
+    granule.diameter_m = s.diameter_m;
+    granule.density_kg_m3 = density_kg_m3;
+    flight::State& launch = w.launches_[slot];
+    launch.position_m = Vec3(mirror * s.x_m, s.y_m, s.z_m + height_m);
+    launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
+    launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
+  };
+  // Flight f < n is left-disc sample f; n <= f < 2n (lateral wind) is the right disc's mirror of sample
+  // f − n. They are flown kFlightChunk at a time: flight::fly_many flies several at once in SIMD lanes
+  // where the effects allow and gives fly_to_ground's landings bit for bit, so the chunking changes no
+  // result, and the launch and landing buffers stay small (a workspace per thread: docs/c-api.md).
+  const bool right_flown = two_discs && fly_right_disc;
+  const std::size_t flights = right_flown ? 2 * n : n;
+  std::size_t radial_count = 0;
+  double node_weight[LandingCache::kPairNodes];
+  if (cache != nullptr) cache->node_weights(t, node_weight);
+  const double wind_x_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.x() : 0.0;
+  const double wind_y_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.y() : 0.0;
+  // Where the landing of left-disc sample i (or of the right disc's mirror of it, flown) goes: the machine
+  // frame, R̄ and ξ of the left disc, and the mirrored right disc when it is not flown.
+  const auto record_left = [&](std::size_t i, bool landed, double x, double y) {
+    const double weight = w.sample_weight_kg_[i];
+    if (!landed) x = y = nan;
+    w.landing_x_m_[i] = x - half_spacing_m;
+    w.landing_y_m_[i] = y;
+    w.landing_weight_[i] = weight;
+    if (landed) {
+      w.radial_x_m_[radial_count] = x;
+      w.radial_y_m_[radial_count] = y;
+      w.radial_weight_[radial_count] = weight;
+      ++radial_count;
+    }
+    if (!two_discs) return;
+    if (!right_flown) {  // the right disc is the left one's mirror image
+      w.landing_x_m_[n + i] = half_spacing_m - x;
+      w.landing_y_m_[n + i] = y;
+    }
+    w.landing_weight_[n + i] = weight;
+  };
+  const auto record_right = [&](std::size_t i, bool landed, double x, double y) {
+    w.landing_x_m_[n + i] = landed ? x + half_spacing_m : nan;
+    w.landing_y_m_[n + i] = landed ? y : nan;
+  };
+  if (cache != nullptr) {
+    // Sample by sample, both discs at once: a granule's cubics are read from memory once. Only the
+    // horizontal launch is needed (no granule, no spin, no full state).
+    for (std::size_t i = 0; i < n; ++i) {
+      const tables::LaunchSample& s = w.samples_[i];
+      const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
+      double x = 0.0, y = 0.0;
+      cache->landing(i, node_weight, LandingCache::Launch{s.x_m, s.y_m, vx_m_s, vy_m_s}, wind_x_m_s, wind_y_m_s, x, y);
+      record_left(i, true, x, y);
+      if (!right_flown) continue;
+      const double mirror_x_m = -1.0 * s.x_m, mirror_vx_m_s = rim_speed_m_s * (-1.0 * s.vx_norm);
+      cache->landing(i, node_weight, LandingCache::Launch{mirror_x_m, s.y_m, mirror_vx_m_s, vy_m_s}, wind_x_m_s,
+                     wind_y_m_s, x, y);
+      record_right(i, true, x, y);
+    }
+  } else {
+    for (std::size_t first = 0; first < flights; first += kFlightChunk) {
+      const std::size_t count = std::min(kFlightChunk, flights - first);
+      for (std::size_t c = 0; c < count; ++c) {
+        const std::size_t f = first + c;
+        launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
+      }
+      flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
+                       settings_, std::span(w.landings_).first(count));
+      for (std::size_t c = 0; c < count; ++c) {
+        const std::size_t f = first + c;
+        const flight::Landing& landing = w.landings_[c];
+        const double x = landing.state.position_m.x(), y = landing.state.position_m.y();
+        if (f >= n) {
+          record_right(f - n, landing.landed, x, y);
+        } else {
+          record_left(f, landing.landed, x, y);
+        }
+      }
+    }
+  }
+  const auto stats = metrics::radial_statistics(std::span(w.radial_x_m_).first(radial_count),
+                                                std::span(w.radial_y_m_).first(radial_count),
+                                                std::span(w.radial_weight_).first(radial_count));
+  w.radial_mean_m_ = stats.mean_radius_m;
+  w.radial_width_m_ = stats.radial_width_m;
+  return cache != nullptr ? 0 : flights;
+}
+
+namespace {
+// values[k] and values[T − 1 − k] both become their sum (T even).
+void fold_mirror(std::span<double> values) {
+  const std::size_t count = values.size();
+  for (std::size_t k = 0; k < count / 2; ++k) {
+    const double sum = values[k] + values[count - 1 - k];
+    values[k] = sum;
+    values[count - 1 - k] = sum;
+  }
+}
+}  // namespace
+
+PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
+  return predict(request, out, *own_workspace_);
+}
+
+PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out, PredictorWorkspace& w) const {
+  if (w.sample_capacity_ < largest_pair_ ||
+      w.tray_capacity_ < static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m))) {
+    throw std::invalid_argument("Predictor::predict: the workspace was made for a smaller table");
+  }
+  double height_m = 0.0;
+  if (const PredictStatus s = validate(request, height_m); s != PredictStatus::kOk) return s;
+  const auto material_index = find_material(request.material);
+  if (!material_index) return PredictStatus::kUnknownMaterial;
+  const MaterialRows& rows = materials_[*material_index];
+  const auto bracket =
+      bracket_rpm(std::span(run_rpm_).subspan(rows.first_run, rows.run_count), request.rpm);
+  if (!bracket) return PredictStatus::kRpmOutsideTable;
+
+  // 1–2. Launch samples at this rpm (normalised), then scaled during the flight loop.
+  // On a row (t = 0) that row alone.
+  const std::size_t lower_run = rows.first_run + bracket->lower;
+  const std::size_t upper_run = bracket->upper_weight == 0.0 ? lower_run : rows.first_run + bracket->upper;
+  std::size_t n = interpolate(lower_run, upper_run, bracket->upper_weight, w.samples_, w.sample_weight_kg_);
+  const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
+
+  // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
+  // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
+  flight::EffectSet effects = request.effects & flight::kAllEffects;
+  if ((request.effects & kTableEffects) != 0) {
+    effects |= run_effects_[lower_run] | run_effects_[upper_run];
+    if (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0) effects |= flight::kWind;
+  }
+  flight::Air air;
+  const bool windy = (effects & flight::kWind) != 0 && (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0);
+  if (windy) {
+    air.wind_m_s = Vec3(request.wind_x_m_s, request.wind_y_m_s, 0.0);
+  } else {
+    effects &= ~flight::EffectSet{flight::kWind};
+  }
+  const bool two_discs = contents_.machine.disc_count == 2;
+  const bool fly_right_disc = two_discs && windy && request.wind_x_m_s != 0.0;
+  const LandingCache* cache = landing_cache_for(lower_run, upper_run, height_m, effects, air);
+  if (cache == nullptr && limits_.max_flights > 0) {
+    // The flight bound: every k-th sample (a systematic subsample; each keeps its weight, and the weights
+    // are normalised below), the middle one of each stride so that the first and last samples do not
+    // always count.
+    const std::size_t per_sample = fly_right_disc ? 2 : 1;
+    if (per_sample * n > limits_.max_flights) {
+      const std::size_t stride = (per_sample * n + limits_.max_flights - 1) / limits_.max_flights;
+      std::size_t kept = 0;
+      for (std::size_t i = stride / 2; i < n; i += stride, ++kept) {
+        w.samples_[kept] = w.samples_[i];
+        w.sample_weight_kg_[kept] = w.sample_weight_kg_[i];
+      }
+      n = kept;
+    }
+  }
+
+  // 3–4. Flights, machine frame.
+  const int flights = static_cast<int>(fly_launches(w, n, omega_rad_s, height_m, air, effects, fly_right_disc,
+                                                    contents_.materials[rows.material].density_kg_m3, cache,
+                                                    bracket->upper_weight));
+  const std::size_t landings = two_discs ? 2 * n : n;
+  const std::span<const double> xs = std::span(w.landing_x_m_).first(landings);
+  const std::span<const double> ys = std::span(w.landing_y_m_).first(landings);
+  const std::span<double> weights = std::span(w.landing_weight_).first(landings);
+
+  // 5. Kernel, trays fitted to the landings plus the kernel (symmetric about the centre line), capped at
+  // the widest layout.
+  double total_kg = 0.0;
+  for (double weight : weights) total_kg += weight;
+  // Weights as fractions of the machine's discharged mass: the tray contents then read directly as the
+  // share of the application rate per tray.
+  const double scale = total_kg > 0.0 ? 1.0 / total_kg : 0.0;
+  for (double& weight : weights) weight *= scale;
+  double kernel_m = request.kernel_half_width_m;
+  if (std::isnan(kernel_m)) {
+    // One disc's lateral spread; with two discs the root mean square of both, so that the choice is the
+    // same for the wind from the left and its mirror image from the right.
+    double sd_m = lateral_sd_m(xs.first(n), weights.first(n));
+    if (two_discs) {
+      const double right_sd_m = lateral_sd_m(xs.subspan(n), weights.subspan(n));
+      sd_m = std::sqrt(0.5 * (sd_m * sd_m + right_sd_m * right_sd_m));
+    }
+    kernel_m = kernel_half_width_for(sd_m, n);
+  }
+  double half_extent_m = request.tray_width_m;
+  for (double x : xs) {
+    if (std::isfinite(x)) half_extent_m = std::max(half_extent_m, std::abs(x) + kernel_m);
+  }
+  half_extent_m = std::min(half_extent_m, limits_.max_half_extent_m);
+  metrics::TrayLayout trays = metrics::tray_layout_covering(half_extent_m, request.tray_width_m);
+  // Always an even number of trays: the tray edges then sit at whole multiples of the tray width from the
+  // centre line wherever the outermost landing falls, so the grid never shifts by half a tray between two
+  // predictions whose landings reach a little further or less far (a shift moves every tray, every CV and
+  // the throw width by a fraction of a tray at once).
+  const int capacity = tray_capacity(request.tray_width_m);
+  if (trays.tray_count % 2 != 0) ++trays.tray_count;
+  if (trays.tray_count > capacity) trays.tray_count = capacity - capacity % 2;
+  const auto tray_count = static_cast<std::size_t>(trays.tray_count);
+  const std::span<double> tray_mass = std::span(w.tray_mass_).first(tray_count);
+  std::fill(tray_mass.begin(), tray_mass.end(), 0.0);
+  // The right disc mirrored (x_right = −x_left exactly: both are differences of the same two numbers) on a
+  // layout symmetric about the centre line: its kernel mass is the left disc's, tray k's going to tray
+  // T − 1 − k, so only the left disc's landings are spread and the trays are then folded. (Not with
+  // point masses: a landing on a tray edge belongs to the tray to its right on both sides, which is not
+  // mirror symmetric.)
+  const bool mirrored = two_discs && !fly_right_disc && kernel_m > 0.0;
+  double lost = 0.0;
+  if (mirrored) {
+    lost = 2.0 * metrics::accumulate_transverse_kernel(xs.first(n), weights.first(n), trays, kernel_m, tray_mass);
+    fold_mirror(tray_mass);
+  } else {
+    lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass);
+  }
+
+  Prediction p;
+  p.trays = trays;
+  p.flights = flights;
+  p.disc_height_m = height_m;
+  p.lost_mass_fraction = std::clamp(lost, 0.0, 1.0);
+  p.sample_count = n;
+  p.effects = effects;
+  p.kernel_half_width_m = kernel_m;
+  const metrics::ThrowExtent extent = metrics::throw_extent(tray_mass, trays, 0.99);
+  p.throw_width_m = extent.right_m - extent.left_m;
+  // Both working widths in O(T log T) (metrics::working_widths): the whole-tray scan is O(T²), 0.13 s at
+  // 4,000 trays of 5 cm.
+  const std::span<double> metrics_scratch(w.metrics_scratch_);
+  const metrics::WorkingWidths widths = metrics::working_widths(tray_mass, trays, request.cv_target, metrics_scratch);
+  const metrics::WorkingWidth& to_and_fro = widths.to_and_fro;
+  const metrics::WorkingWidth& racetrack = widths.racetrack;
+  p.working_width_to_and_fro_m = to_and_fro.width_m;
+  p.working_width_racetrack_m = racetrack.width_m;
+  p.cv_crossings_to_and_fro = to_and_fro.crossings;
+  p.cv_crossings_racetrack = racetrack.crossings;
+  // Without a requested bout width the CVs are at the widest whole-tray bout that meets the target (the
+  // working width itself lies between two whole-tray widths, where no CV is defined).
+  p.bout_width_m = request.bout_width_m > 0.0
+                       ? metrics::bout_tray_count(trays, request.bout_width_m) * trays.tray_width_m
+                       : (to_and_fro.width_m > 0.0 ? to_and_fro.trays_below * trays.tray_width_m : 0.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // The four CV and width standard errors share one pass over the landings
+  // (SampleInfluence::standard_errors): their gradients first, then the pass. An empty gradient = NaN.
+  const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
+  const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
+  std::span<const double> se_gradients[SampleInfluence::kMaxGradients];  // CV t&f, CV racetrack, W t&f, W rt
+  const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
+  // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
+  // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
+  const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m};
+  if (p.bout_width_m > 0.0) {
+    const int bout_trays = metrics::bout_tray_count(trays, p.bout_width_m);
+    p.cv_to_and_fro = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, metrics_scratch);
+    p.cv_racetrack = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, metrics_scratch);
+    if (std::isfinite(p.cv_to_and_fro)) {
+      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, gradient(0), metrics_scratch);
+      se_gradients[0] = gradient(0);
+    }
+    if (std::isfinite(p.cv_racetrack)) {
+      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, gradient(1), metrics_scratch);
+      se_gradients[1] = gradient(1);
+    }
+  } else {
+    p.cv_to_and_fro = p.cv_racetrack = nan;
+  }
+  // Working width W* = (n + (t − c_n)/(c_{n+1} − c_n))·w: its gradient is a combination of the gradients
+  // of the two CVs around the crossing.
+  auto width_gradient = [&](const metrics::WorkingWidth& ww, metrics::Overlap overlap, std::size_t slot) {
+    if (!(ww.width_m > 0.0) || ww.limited_by_layout || !std::isfinite(ww.cv_above)) return;
+    const double span = ww.cv_above - ww.cv_below;
+    if (!(span > 0.0)) return;
+    const double d_below = -trays.tray_width_m * (ww.cv_above - request.cv_target) / (span * span);
+    const double d_above = -trays.tray_width_m * (request.cv_target - ww.cv_below) / (span * span);
+    const std::span<double> g = gradient(slot);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below, overlap, g, metrics_scratch);
+    metrics::cv_gradient(tray_mass, trays, ww.trays_below + 1, overlap, scratch, metrics_scratch);
+    for (std::size_t k = 0; k < tray_count; ++k) g[k] = d_below * g[k] + d_above * scratch[k];
+    se_gradients[slot] = g;
+  };
+  width_gradient(to_and_fro, metrics::Overlap::kToAndFro, 2);
+  width_gradient(racetrack, metrics::Overlap::kRacetrack, 3);
+  double se[SampleInfluence::kMaxGradients];
+  if (mirrored) {
+    for (std::size_t slot = 0; slot < SampleInfluence::kMaxGradients; ++slot) {
+      if (!se_gradients[slot].empty()) fold_mirror(gradient(slot));
+    }
+    left_influence.standard_errors(se_gradients, se);
+  } else {
+    influence.standard_errors(se_gradients, se);
+  }
+  p.cv_to_and_fro_se = p.bout_width_m > 0.0 ? se[0] : nan;
+  p.cv_racetrack_se = p.bout_width_m > 0.0 ? se[1] : nan;
+  p.working_width_to_and_fro_se_m = se[2];
+  p.working_width_racetrack_se_m = se[3];
+  p.throw_width_se_m = p.throw_width_m > 0.0 ? influence.throw_width_standard_error(tray_mass, extent, 0.99) : nan;
+  p.mean_radius_m = w.radial_mean_m_;
+  p.radial_width_m = w.radial_width_m_;
+  p.tray_mass_fraction = tray_mass;
+  p.landing_x_m = xs;
+  p.landing_y_m = ys;
+  p.landing_mass_fraction = weights;
+  out = p;
+  return PredictStatus::kOk;
+}
+
+}  // namespace spread::predict

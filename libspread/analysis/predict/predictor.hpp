@@ -1,0 +1,283 @@
+#pragma once
+// Predictor: from a launch-table file's contents to the spread pattern of the machine, for any
+// (material, rpm between table rows, disc height, wind, effects). The core of the C API (capi/).
+//
+// Steps of predict() — none allocates; all workspace (PredictorWorkspace) is sized from the largest pair
+// of neighbouring rows and the widest tray layout:
+//   1. find the material and the rows around the rpm (launch_interpolation.hpp),
+//   2. interpolate the normalised launch samples — pairwise for analytic rows of equal count, otherwise
+//      by quantile cells computed here at construction (launch_interpolation.hpp,
+//      launch_quantile_cells.hpp, launch_landing_keys.hpp) —, scale velocities by ωR and spins by ω,
+//      place them at the disc height (ground z = 0),
+//   3. fly each granule (all in one flight::fly_many call — SIMD lanes for drag/wind-only flights, the
+//      same landings as flight::fly_to_ground one by one —, default_flight_settings()), or, for a
+//      drag-only table at the stored height in a wind up to LandingCache::kWindRadius_m_s, evaluate its
+//      landing from the landing cache flown at construction (landing_cache.hpp),
+//   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
+//      (DESIGN.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
+//      so the right disc's launches are mirrored and flown themselves,
+//   5. trays fitted to the landings, throw width, effective working widths (to-and-fro, racetrack),
+//      CV at the bout width, R̄ and ξ of one disc (seed Eqs. 51–52).
+//
+// Sharing (as zstd's CDict and CCtx): the Predictor holds the read-only part (tables, quantile cells) and
+// one workspace of its own for predict(request, out). Threads that predict at once each make a
+// PredictorWorkspace from it and call predict(request, out, workspace), which only reads the Predictor.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory_resource>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "libspread/physics/flight/flight.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/predict/landing_cache.hpp"
+#include "libspread/analysis/predict/launch_quantile_cells.hpp"
+#include "libspread/io/tables/table_reader.hpp"
+
+namespace spread::predict {
+
+// Why a request was refused. kOk = success. (Not exceptions: the C API maps these without unwinding,
+// and a refused request must not allocate either.)
+enum class PredictStatus : std::uint8_t {
+  kOk,
+  kNotFinite,          // a NaN/Inf in rpm, height, wind, CV target, bout or tray width
+  kOutOfRange,         // height < 0 (or disc below the ground) or > max_disc_height_m, |wind| component >
+                       // max_wind_m_s, CV target <= 0 or > max_cv_target, bout width < 0 or >
+                       // max_bout_width_m, tray width outside [min_tray_width_m, max_half_extent_m]
+  kUnknownEffect,      // bits outside flight::kAllEffects | kTableEffects
+  kUnknownMaterial,
+  kRpmOutsideTable,
+};
+const char* to_string(PredictStatus status);
+
+inline constexpr flight::EffectSet kTableEffects = 1u << 31;
+
+struct PredictionRequest {
+  std::string_view material;
+  double rpm = 0.0;                                              // r/min
+  double disc_height_m = std::numeric_limits<double>::quiet_NaN();  // NaN: the machine's stored height
+  double wind_x_m_s = 0.0;                                       // lateral wind (used with kWind)
+  double wind_y_m_s = 0.0;                                       // wind along the driving direction
+  double cv_target = 0.15;                                       // fraction (0.15 = 15 %)
+  // flight::Effect bits, or kTableEffects: the flight effects the table was built with (each run records
+  // them), plus any bits given beside it. With kTableEffects a non-zero wind adds flight::kWind: the wind
+  // is a condition of the day, not of the machine.
+  flight::EffectSet effects = kTableEffects;
+  double bout_width_m = 0.0;                                     // 0: at the to-and-fro working width
+  double tray_width_m = 0.5;
+  // Half-width h (m) of the Epanechnikov kernel each landing's mass is spread over
+  // (metrics::accumulate_transverse_kernel). NaN: the automatic rule (kernel_half_width_for); 0: each
+  // landing falls into one tray as a point mass.
+  double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
+};
+
+// The automatic kernel half-width (m) for N launch samples whose landings (one disc) have lateral
+// standard deviation sd_x_m: h = kKernelScale · sd_x · N^(−1/5) (the rate of Silverman's rule; the
+// constant is the accuracy–cost study's, docs/metrics.md "Predicted patterns").
+inline constexpr double kKernelScale = 0.5;
+double kernel_half_width_for(double sd_x_m, std::size_t sample_count);
+
+struct Prediction {
+  double throw_width_m = 0.0;               // 99 % of the mass
+  double working_width_to_and_fro_m = 0.0;  // largest W with CV <= target; 0 = none
+  double working_width_racetrack_m = 0.0;
+  double bout_width_m = 0.0;                // where the CVs below were evaluated
+  double cv_to_and_fro = 0.0;               // fraction; NaN when bout_width_m == 0
+  double cv_racetrack = 0.0;                // fraction; NaN when bout_width_m == 0
+  double mean_radius_m = 0.0;               // R̄ of the left disc about its centre, Eq. 51
+  double radial_width_m = 0.0;              // ξ, Eq. 52
+  double disc_height_m = 0.0;               // as used
+  double lost_mass_fraction = 0.0;          // outside the trays or not landed
+  metrics::TrayLayout trays;
+  int flights = 0;                          // trajectories integrated (0: landings from the cache)
+  // Monte Carlo uncertainty (docs/metrics.md "Uncertainty"): the standard errors of the estimates above
+  // over the table's launch samples, by the delta method (the influence of each sample, linear in the
+  // samples: no resampling). NaN where the estimate has no derivative (no width meets the target, or
+  // the CV is infinite).
+  double throw_width_se_m = 0.0;
+  double working_width_to_and_fro_se_m = 0.0;
+  double working_width_racetrack_se_m = 0.0;
+  double cv_to_and_fro_se = 0.0;            // fraction
+  double cv_racetrack_se = 0.0;             // fraction
+  // Times CV(W) crosses the target between two trays and the layout width: more than 1 means the curve
+  // dips back under the target at a wider bout (never taken as the working width; say so to the user).
+  int cv_crossings_to_and_fro = 0;
+  int cv_crossings_racetrack = 0;
+  std::size_t sample_count = 0;             // independent launch samples behind the estimate
+  flight::EffectSet effects = 0;            // the flight effects that ran
+  double kernel_half_width_m = 0.0;         // as used
+  // Views into the predictor's workspace, valid until the next predict():
+  std::span<const double> tray_mass_fraction;  // per tray, of the machine's total discharged mass
+  // Landings of the whole machine in the machine frame (both discs; the left disc's first), with the
+  // fraction of the total mass each stands for. Not-landed granules have x = y = NaN.
+  std::span<const double> landing_x_m, landing_y_m, landing_mass_fraction;
+};
+
+struct PredictorLimits {
+  double max_half_extent_m = 100.0;  // trays cover at most [-100 m, 100 m]; landings beyond are "lost"
+  double min_tray_width_m = 0.05;
+  // Upper bounds of the request fields (kOutOfRange above them). Far beyond any spreader, but they keep
+  // a finite yet absurd value (a bout width of 3.6e59 m) out of the metrics and flight code.
+  double max_bout_width_m = 1000.0;   // m
+  double max_disc_height_m = 100.0;   // m above the ground
+  double max_wind_m_s = 100.0;        // each wind component, absolute value
+  double max_cv_target = 10.0;        // fraction (1000 %)
+  double max_kernel_half_width_m = 10.0;  // m
+  // Flights one prediction may integrate (both discs; 0: no bound). Above it the interpolated launch
+  // samples are thinned to every k-th (k the smallest that fits), so the time of any request is bounded
+  // while its reported uncertainty (sample_count, the standard errors) is that of the samples flown.
+  // Landings from the landing cache are not flights.
+  std::size_t max_flights = 0;
+};
+
+class Predictor;
+
+// Flights per flight::fly_many call in predict(): the workspace holds launches and landings for this
+// many, not for every flight (2 × 8,102 on the default table would be 3 MB per workspace).
+inline constexpr std::size_t kFlightChunk = 256;
+
+// Everything one predict() call writes: launch samples at the requested rpm, flights, landings, trays,
+// gradients and the metrics' scratch. Sized for one Predictor; one per thread that predicts.
+class PredictorWorkspace {
+ public:
+  // Allocates from `memory` (which must outlive the workspace); the Predictor is only read.
+  explicit PredictorWorkspace(const Predictor& predictor,
+                              std::pmr::memory_resource* memory = std::pmr::get_default_resource());
+  // Bytes of the buffers it holds.
+  std::size_t bytes() const;
+
+ private:
+  friend class Predictor;
+  std::size_t sample_capacity_ = 0;  // launch samples of the largest pair of rows it was sized for
+  std::size_t tray_capacity_ = 0;
+  std::pmr::vector<tables::LaunchSample> samples_;
+  std::pmr::vector<double> sample_weight_kg_;
+  // One chunk of flights (kFlightChunk): left disc samples, then the right disc's when flown.
+  std::pmr::vector<flight::Granule> granules_;
+  std::pmr::vector<flight::State> launches_;
+  std::pmr::vector<flight::Landing> landings_;
+  std::pmr::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
+  std::pmr::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
+  std::pmr::vector<double> tray_mass_;
+  // Per tray, for the standard errors: four gradients side by side (SampleInfluence::kMaxGradients),
+  // and one more for the width gradients' second CV.
+  std::pmr::vector<double> gradients_, gradient_scratch_;
+  // metrics::working_widths' scratch, also the bout buffer of cv_at_trays / cv_gradient (up to the widest
+  // requested bout at the narrowest trays), so that no bout is built on the stack.
+  std::pmr::vector<double> metrics_scratch_;
+  double radial_mean_m_ = 0.0;  // R̄, ξ of the last fly_launches()
+  double radial_width_m_ = 0.0;
+};
+
+class Predictor {
+ public:
+  // Throws tables::TableError(kCorrupt) when a run names a material the file does not describe, and
+  // std::invalid_argument for bad limits. Materials without runs are not offered. Rows interpolated by
+  // quantile cells are flown once here to find their cells (one flight per sample, default settings), and
+  // a drag-only table's rows and pairs of rows once more into the landing cache (landing_cache.hpp).
+  // The launch samples, the cells and the own workspace are allocated from `memory` (which must outlive
+  // the Predictor); the samples are moved out of `contents` into one block.
+  explicit Predictor(tables::TableContents contents, PredictorLimits limits = {},
+                     std::pmr::memory_resource* memory = std::pmr::get_default_resource());
+  Predictor(const Predictor&) = delete;
+  Predictor& operator=(const Predictor&) = delete;
+
+  const tables::Machine& machine() const { return contents_.machine; }
+  std::size_t material_count() const { return materials_.size(); }
+  const tables::Material& material(std::size_t index) const;  // sorted by name
+  double min_rpm(std::size_t index) const;
+  double max_rpm(std::size_t index) const;
+  std::optional<std::size_t> find_material(std::string_view name) const;
+  const PredictorLimits& limits() const { return limits_; }
+
+  // Tray count of the widest layout for this tray width: an upper bound of Prediction::trays.tray_count.
+  // 0 when the tray width is outside the limits.
+  int tray_capacity(double tray_width_m) const;
+
+  // Integrator used by predict(); default_flight_settings() unless changed (benchmarks, tests). The landing
+  // cache was flown with the settings at construction: changing them turns it off.
+  void set_flight_settings(const flight::Settings& settings) {
+    settings_ = settings;
+    landing_cache_enabled_ = false;
+  }
+  const flight::Settings& flight_settings() const { return settings_; }
+  // Whether predict() may take landings from the landing cache (landing_cache.hpp) where it covers the
+  // request; off: every granule is flown (benchmarks and tests compare the two).
+  void set_landing_cache_enabled(bool enabled) { landing_cache_enabled_ = enabled; }
+  // Bytes the landing caches hold (0: the table's flight effects are not planar, or the cache is off).
+  std::size_t landing_cache_bytes() const;
+
+  // Does not allocate. Refused requests are statuses, not exceptions (so a refusal does not allocate
+  // either); on a refusal `out` is unchanged. An exception from here means a malformed table record that
+  // the reader let through (e.g. a zero diameter) or a bug. Uses the Predictor's own workspace: one
+  // thread at a time.
+  PredictStatus predict(const PredictionRequest& request, Prediction& out);
+  // The same with a caller's workspace (made from this Predictor): only reads the Predictor, so threads
+  // with a workspace each may call it at once. The views in `out` point into `workspace`.
+  PredictStatus predict(const PredictionRequest& request, Prediction& out, PredictorWorkspace& workspace) const;
+
+  // Launch samples of the largest pair of neighbouring rows (what a workspace is sized for).
+  std::size_t largest_pair() const { return largest_pair_; }
+  // Launch samples of run k (runs sorted by material and rpm, as TableContents::runs).
+  std::span<const tables::LaunchSample> run_samples(std::size_t run) const {
+    return std::span(samples_).subspan(run_offset_[run], run_offset_[run + 1] - run_offset_[run]);
+  }
+
+ private:
+  struct MaterialRows {
+    std::size_t material = 0;   // index into contents_.materials
+    std::size_t first_run = 0;  // runs are sorted by (material, rpm)
+    std::size_t run_count = 0;
+  };
+
+  PredictStatus validate(const PredictionRequest& request, double& height_m) const;
+  // True when runs a and b (neighbours) interpolate sample by sample: both from the analytic builder
+  // (sample k is the same granule in every row) and of equal count.
+  bool pairwise(std::size_t run_a, std::size_t run_b) const;
+  // Whether run `run` of these rows is interpolated by quantile cells with a neighbour.
+  bool needs_cells(const MaterialRows& rows, std::size_t run) const;
+  QuantileCellCounts cell_counts(const MaterialRows& rows) const;
+  // Flies the runs that need cells once (landing keys) and fills their cells and cell means.
+  void assign_cells(const MaterialRows& rows);
+  // Launch samples of the rows lower..upper at weight t (lower == upper: that row), as predict() uses
+  // them: pairwise for analytic rows of equal count, otherwise by quantile cells. Returns the count.
+  std::size_t interpolate(std::size_t lower_run, std::size_t upper_run, double t,
+                          std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const;
+  // Flies each run's row and each pair of neighbouring rows once into a landing cache, where the runs'
+  // flight effects are planar (LandingCache::covers).
+  void build_landing_caches(std::pmr::memory_resource* memory);
+  // The cache that serves this request, or null (fly).
+  const LandingCache* landing_cache_for(std::size_t lower_run, std::size_t upper_run, double height_m,
+                                        flight::EffectSet effects, const flight::Air& air) const;
+  std::size_t fly_launches(PredictorWorkspace& w, std::size_t sample_count, double omega_rad_s, double height_m,
+                           const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
+                           double density_kg_m3, const LandingCache* cache, double t) const;
+
+  tables::TableContents contents_;  // without the samples (in samples_)
+  PredictorLimits limits_;
+  flight::Settings settings_;
+  std::vector<MaterialRows> materials_;
+  std::vector<double> run_rpm_;       // contents_.runs[i].rpm, flat for bracket_rpm
+  std::vector<flight::EffectSet> run_effects_;  // the flight effects each run was built with
+  std::size_t largest_pair_ = 0;
+  // Launch samples of all runs, flat: run i's occupy [run_offset_[i], run_offset_[i + 1]). Quantile cells
+  // (launch_quantile_cells.hpp) of the runs interpolated by cells: cell_of_sample_ at the same offsets,
+  // run i's cell means [cell_offset_[i], cell_offset_[i + 1]) of cell_mean_ (empty for runs only
+  // interpolated pairwise).
+  std::vector<std::size_t> run_offset_, cell_offset_;
+  std::pmr::vector<tables::LaunchSample> samples_;
+  std::pmr::vector<std::uint32_t> cell_of_sample_;
+  std::pmr::vector<tables::LaunchSample> cell_mean_;
+  double lowest_sample_z_m_ = 0.0;    // over all runs: the disc must sit at least -this above ground
+  // Landing caches: row_cache_[run] for a request on that row, pair_cache_[run] for one between run and
+  // run + 1 (empty where not made), with the still-air effects each was flown with.
+  std::vector<LandingCache> row_cache_, pair_cache_;
+  std::vector<flight::EffectSet> row_cache_effects_, pair_cache_effects_;
+  bool landing_cache_enabled_ = true;
+  std::optional<PredictorWorkspace> own_workspace_;  // for predict(request, out)
+};
+
+}  // namespace spread::predict

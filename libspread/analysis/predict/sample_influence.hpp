@@ -1,0 +1,44 @@
+#pragma once
+// Monte Carlo standard errors of a predicted pattern's figures (docs/metrics.md "Uncertainty").
+//
+// A prediction is a statistic T of N independent launch samples: T = T(P), P the tray masses, each tray a
+// sum over samples of their landings' kernel mass. The delta method (the infinitesimal jackknife) gives
+//   Var T ≈ 1/(N(N−1)) Σ_s (z_s − z̄)²,   z_s = N Σ_{l ∈ s} φ_l Σ_k (∂T/∂P_k) K_k(x_l),
+// with φ_l the landing's share of the total mass and K_k(x) the share of a kernel at x that tray k
+// receives. T is invariant to the scale of P (CV, widths), so the normalisation of P needs no term of
+// its own. Linear in the landings, no resampling, no allocation. A sample is one launch: with two discs
+// its landing s and its mirror (or right-disc flight) n + s move together.
+#include <cstddef>
+#include <span>
+
+#include "libspread/analysis/metrics/metrics.hpp"
+
+namespace spread::predict {
+
+struct SampleInfluence {
+  std::span<const double> x_m;       // landings, machine frame; sample s owns s (and n + s with two discs)
+  std::span<const double> weight;    // each landing's share of the total mass (sum 1)
+  std::size_t sample_count = 0;      // n
+  unsigned landings_per_sample = 1;  // 1 or 2
+  metrics::TrayLayout trays;
+  double kernel_half_width_m = 0.0;  // 0: point masses
+
+  // Standard error of a statistic whose derivative with respect to tray k's mass is gradient[k].
+  double standard_error(std::span<const double> gradient) const;
+  // The same for up to kMaxGradients statistics at once: out[g] = standard_error(gradients[g]), bit for
+  // bit, in one pass over the landings — each landing's kernel shares K_k(x_l) are computed once and
+  // dotted with every gradient (the shares are most of the cost). An empty gradient gives NaN.
+  static constexpr std::size_t kMaxGradients = 4;
+  void standard_errors(std::span<const std::span<const double>> gradients, std::span<double> out) const;
+  // Standard error of the throw width (the extent between the (1∓f)/2 mass quantiles `extent`): the
+  // influence of a sample on a quantile x_q is (q − F_s(x_q)) / f(x_q), f the tray density there and
+  // F_s(x_q) the sample's share of the trays left of x_q as throw_extent reads them (whole trays, plus
+  // x_q's own tray pro rata: its mass is taken as uniform across the tray).
+  double throw_width_standard_error(std::span<const double> tray_mass, const metrics::ThrowExtent& extent,
+                                    double mass_fraction) const;
+};
+
+// Weighted standard deviation (m) of the finite lateral landing positions.
+double lateral_sd_m(std::span<const double> x_m, std::span<const double> weight);
+
+}  // namespace spread::predict

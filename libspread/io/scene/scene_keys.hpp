@@ -1,0 +1,118 @@
+#pragma once
+// The keys of the spreader scene's sections, one row each (scene_key.hpp): [machine], [inlet],
+// [simulate], [air], [numerics], [sweep], [outputs]. The materials' rows are the material schema
+// (libspread/io/tables/material_schema.hpp), [effects] is the effect registry. docs/scene-format.md lists
+// the same rows in the same order (ParameterSchema.DocsListEverySectionKey).
+#include <array>
+
+#include "libspread/io/scene/scene.hpp"
+#include "libspread/io/scene/scene_key.hpp"
+#include "libspread/io/tables/table_format.hpp"
+
+namespace spread::scene {
+
+// The spellings of the enumerated keys; to_string() gives the first of each value.
+inline constexpr std::array<ChoiceName, 3> kDiscModelNames{{{"analytic", static_cast<int>(DiscModel::kAnalytic)},
+                                                            {"mesh", static_cast<int>(DiscModel::kMesh)},
+                                                            {"stl", static_cast<int>(DiscModel::kStl)}}};
+inline constexpr std::array<ChoiceName, 2> kIntegratorNames{
+    {{"symplectic_euler", static_cast<int>(Integrator::kSymplecticEuler)},
+     {"velocity_verlet", static_cast<int>(Integrator::kVelocityVerlet)}}};
+inline constexpr std::array<ChoiceName, 3> kContactModelNames{
+    {{"hertz_thornton", static_cast<int>(ContactModel::kHertzThornton)},
+     {"hertz_mindlin", static_cast<int>(ContactModel::kHertzThornton)},  // the older name, kept as an alias
+     {"linear", static_cast<int>(ContactModel::kLinear)}}};
+inline constexpr std::array<ChoiceName, 2> kFlightSchemeNames{
+    {{"dopri5", static_cast<int>(FlightScheme::kDopri5)}, {"rk4", static_cast<int>(FlightScheme::kRk4)}}};
+inline constexpr std::array<ChoiceName, 2> kLaunchSourceNames{
+    {{"analytic", static_cast<int>(LaunchSource::kAnalytic)}, {"dem", static_cast<int>(LaunchSource::kDem)}}};
+inline constexpr std::array<ChoiceName, 2> kSpinModelNames{
+    {{"rolling", static_cast<int>(SpinModel::kRolling)}, {"sliding", static_cast<int>(SpinModel::kSliding)}}};
+
+namespace scene_keys_detail {
+// Upper bounds: the table file's plausibility limits, so that a scene the builder accepts always gives a
+// table the reader and the predictor accept.
+using L = tables::PlausibleLimits;
+}  // namespace scene_keys_detail
+
+inline constexpr std::array<Key<Machine>, 17> kMachineKeys{{
+    {"name", &Machine::name, "–", kAnyValue, 0, "the machine's name in tables and reports"},
+    {"disc_radius_m", &Machine::disc_radius_m, "m", positive_at_most(scene_keys_detail::L::kMaxDiscRadius_m), 0,
+     "R, horizontal rim radius"},
+    {"disc_height_m", &Machine::disc_height_m, "m", positive_at_most(scene_keys_detail::L::kMaxDiscHeight_m), 0,
+     "rim above ground"},
+    {"disc_count", &Machine::disc_count, "–", closed(1, 2), 0, "number of discs"},
+    {"disc_spacing_m", &Machine::disc_spacing_m, "m", closed(0.0, scene_keys_detail::L::kMaxDiscSpacing_m), 0,
+     "centre to centre, lateral"},
+    {"rotation_sense", &Machine::rotation_sense, "–", closed(-1, 1), 0,
+     "+1: left disc counter-clockwise seen from above (right disc mirrored); −1 clockwise"},
+    {"cone_angle_rad", &Machine::cone_angle_rad, "rad", closed(0.0, 1.2), 0, "surface rises outward at this angle"},
+    {"vane_count", &Machine::vane_count, "–", closed(0, 64), 0, "vanes per disc"},
+    {"vane_start_radius_m", &Machine::vane_start_radius_m, "m", kNonNegative, 0, "inner vane end"},
+    {"vane_end_radius_m", &Machine::vane_end_radius_m, "m", kNonNegative, 0, "outer vane end"},
+    {"vane_height_m", &Machine::vane_height_m, "m", kNonNegative, 0, "vane height"},
+    {"vane_pitch_rad", &Machine::vane_pitch_rad, "rad", closed(-1.2, 1.2), 0, "0 = radial"},
+    {"disc_model", choice<&Machine::disc_model>(kDiscModelNames), "–", kAnyValue, 0, "the disc's walls"},
+    {"mesh_size_m", &Machine::mesh_size_m, "m", kNonNegative, 0, "ξ, mesh size for `\"mesh\"`"},
+    {"stl_path", &Machine::stl_path, "–", kAnyValue, 0, "`\"stl\"` only (required there, an error otherwise)"},
+    {"stl_scale", &Machine::stl_scale, "–", kPositive, 0, "STL coordinates × `stl_scale` = metres"},
+    {"rpm", &Machine::rpm, "rev/min", positive_at_most(scene_keys_detail::L::kMaxRpm), 0,
+     "disc speed of a `simulate` run"},
+}};
+
+inline constexpr std::array<Key<Inlet>, 5> kInletKeys{{
+    {"radius_m", &Inlet::radius_m, "m", kPositive, 0, "inlet circle radius"},
+    {"offset_m", &Inlet::offset_m, "m", kNonNegative, 0, "inlet centre from the disc centre"},
+    {"angle_rad", &Inlet::angle_rad, "rad", kAnyValue, 0, "angle of the inlet centre from +x (counter-clockwise)"},
+    {"drop_height_m", &Inlet::drop_height_m, "m", kNonNegative, 0, "release height above the disc surface"},
+    {"mass_flow_kg_s", &Inlet::mass_flow_kg_s, "kg/s", kPositive, 0, "feed rate per disc"},
+}};
+
+inline constexpr std::array<Key<Scene>, 1> kSimulateKeys{{
+    {"material", &Scene::simulate_material, "–", kAnyValue, 0, "material of a `simulate` run"},
+}};
+
+inline constexpr std::array<Key<Air>, 3> kAirKeys{{
+    {"density_kg_m3", &Air::density_kg_m3, "kg/m³", kNonNegative, 0, "air density"},
+    {"viscosity_pa_s", &Air::viscosity_pa_s, "Pa·s", kPositive, 0, "dynamic viscosity"},
+    {"wind_m_s", &Air::wind_m_s, "m/s", kAnyValue, effect::kWind, "horizontal wind [vx, vy]"},
+}};
+
+inline constexpr std::array<Key<Numerics>, 11> kNumericsKeys{{
+    {"seed", &Numerics::seed, "–", kNonNegative, 0, "RNG seed"},
+    {"duration_s", &Numerics::duration_s, "s", kPositive, 0, "simulated time of a DEM run"},
+    {"dt_contact_s", &Numerics::dt_contact_s, "s", kNonNegative, 0, "DEM step"},
+    {"steps_per_contact", &Numerics::steps_per_contact, "–", {1.0, false, kInfinity, true}, 0, "N_c"},
+    {"integrator", choice<&Numerics::integrator>(kIntegratorNames), "–", kAnyValue, 0, "DEM integrator"},
+    {"contact_model", choice<&Numerics::contact_model>(kContactModelNames), "–", kAnyValue, 0, "DEM contact law"},
+    {"flight_scheme", choice<&Numerics::flight_scheme>(kFlightSchemeNames), "–", kAnyValue, 0, "flight integrator"},
+    {"flight_dt_s", &Numerics::flight_dt_s, "s", kPositive, 0, "RK4 step, or first trial step of dopri5"},
+    {"flight_tolerance", &Numerics::flight_tolerance, "–", {0.0, true, 1.0, true}, 0, "dopri5 relative tolerance"},
+    {"collector_radius_m", &Numerics::collector_radius_m, "m", kNonNegative, 0, "launch-off cylinder radius"},
+    {"threads", &Numerics::threads, "–", kNonNegative, 0, "worker threads"},
+}};
+
+inline constexpr std::array<Key<Sweep>, 10> kSweepKeys{{
+    {"rpm", &Sweep::rpm, "rev/min", positive_at_most(scene_keys_detail::L::kMaxRpm), 0, "table rows"},
+    {"materials", &Sweep::materials, "–", kAnyValue, 0, "material names to build"},
+    {"source", choice<&Sweep::source>(kLaunchSourceNames), "–", kAnyValue, 0, "launch source"},
+    {"samples_per_run", &Sweep::samples_per_run, "–", closed(1, 10'000'000), 0, "launch records per run"},
+    {"output", &Sweep::output, "–", kAnyValue, 0, "table file"},
+    {"spin_model", choice<&Sweep::spin_model>(kSpinModelNames), "–", kAnyValue, 0, "analytic source: launch spin"},
+    {"batch_s", &Sweep::batch_s, "s", kPositive, 0, "DEM source: simulated time between convergence checks"},
+    {"convergence_tolerance", &Sweep::convergence_tolerance, "–", kPositive, 0,
+     "DEM source: stop when R̄ and ξ of the flown launches change by at most this (relative) between batches"},
+    {"particle_budget", &Sweep::particle_budget, "–", kNonNegative, 0, "DEM source: stop after this many launches"},
+    {"working_width_ci_m", &Sweep::working_width_ci_m, "m", closed(0.0, 100.0), 0,
+     "DEM source: besides converging, a run goes on until the 95 % interval of the working width predicted from "
+     "its launches is within ± this"},
+}};
+
+inline constexpr std::array<Key<Outputs>, 4> kOutputsKeys{{
+    {"directory", &Outputs::directory, "–", kAnyValue, 0, "where output files go"},
+    {"vtk_every_steps", &Outputs::vtk_every_steps, "–", kNonNegative, 0, "VTK particle/wall files every N DEM steps"},
+    {"launch_csv", &Outputs::launch_csv, "–", kAnyValue, 0, "write the launch states as CSV"},
+    {"pattern_png", &Outputs::pattern_png, "–", kAnyValue, 0, "write the ground pattern PNG"},
+}};
+
+}  // namespace spread::scene

@@ -1,0 +1,21 @@
+#pragma once
+// Launch samples <-> the little-endian float32 BLOB of the `runs.samples` column (DESIGN.md §4).
+// Byte order is written out explicitly (bit_cast + shifts), so files move between hosts unchanged.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "libspread/io/tables/table_format.hpp"
+
+namespace spread::tables {
+
+inline constexpr std::size_t kSampleBytes = static_cast<std::size_t>(kSampleFloats) * 4;
+
+// kSampleBytes per sample, fields in the order of kSampleLayout.
+std::vector<std::uint8_t> encode_samples(std::span<const LaunchSample> samples);
+
+// bytes.size() must be a multiple of kSampleBytes (the reader checks the size before calling).
+std::vector<LaunchSample> decode_samples(std::span<const std::uint8_t> bytes);
+
+}  // namespace spread::tables

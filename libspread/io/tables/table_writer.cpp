@@ -1,0 +1,325 @@
+#include "libspread/io/tables/table_writer.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "libspread/io/tables/material_schema.hpp"
+#include "libspread/io/tables/row_checksum.hpp"
+#include "libspread/io/tables/sample_codec.hpp"
+#include "libspread/io/tables/sqlite_connection.hpp"
+#include "libspread/io/tables/table_file.hpp"
+#include "libspread/io/tables/table_rows.hpp"
+#include "libspread/io/tables/table_schema.hpp"
+
+namespace spread::tables {
+
+using detail::Connection;
+using detail::Statement;
+
+namespace {
+
+// The pid holding a flock(2) on the inode, from /proc/locks ("1: FLOCK  ADVISORY  WRITE 4242 08:01:1234 0 EOF");
+// 0 when it cannot be told.
+long flock_holder_pid(ino_t inode) {
+  std::ifstream locks("/proc/locks");
+  std::string line;
+  while (std::getline(locks, line)) {
+    std::istringstream fields(line);
+    std::string number, type, advisory, access, device;
+    long pid = 0;
+    if (!(fields >> number >> type)) continue;
+    if (type == "->") fields >> type;  // a waiter's line
+    if (type != "FLOCK" || !(fields >> advisory >> access >> pid >> device)) continue;
+    const std::size_t colon = device.rfind(':');
+    if (colon != std::string::npos && device.substr(colon + 1) == std::to_string(inode)) return pid;
+  }
+  return 0;
+}
+
+// The writer lock: an exclusive flock(2) on the table file itself, held while the writer lives. flock
+// locks are independent of the POSIX record locks SQLite takes, and the kernel drops them when the
+// process dies, so a killed builder never leaves a stale lock. The descriptor is closed only after
+// SQLite's connection (closing it earlier would not matter for flock, but no fd SQLite uses is ours).
+class WriterLock {
+ public:
+  explicit WriterLock(const std::string& path) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0644);
+    if (fd_ < 0) throw TableError(TableErrorKind::kIo, path + ": cannot open for writing: " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      struct stat st {};
+      const long pid = ::fstat(fd_, &st) == 0 ? flock_holder_pid(st.st_ino) : 0;
+      ::close(fd_);
+      fd_ = -1;
+      if (error == EWOULDBLOCK) {
+        throw TableBusyError(TableErrorKind::kIo, path + ": another writer (" +
+                                                      (pid > 0 ? "pid " + std::to_string(pid) : std::string("pid unknown")) +
+                                                      ") is writing this table file; wait for it to finish");
+      }
+      throw TableError(TableErrorKind::kIo, path + ": cannot lock for writing: " + std::strerror(error));
+    }
+  }
+  ~WriterLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  WriterLock(const WriterLock&) = delete;
+  WriterLock& operator=(const WriterLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// Checks an existing non-empty file before anything opens it for writing: it must be SQLite, ours and
+// of this format version. Read-only, so a refused file stays byte-identical.
+void check_existing_file_is_ours(const std::string& path, const detail::TableFileInfo& file) {
+  if (!file.sqlite) {
+    throw TableError(TableErrorKind::kNotOurs, path + ": exists and is not an SQLite file; refusing to write into it");
+  }
+  if (file.application_id != kApplicationId) {
+    throw TableError(TableErrorKind::kNotOurs, path + ": exists and is not a libspread table (application_id " +
+                                                   std::to_string(file.application_id) + "); refusing to write into it");
+  }
+  if (file.user_version != kFormatVersion) {
+    throw TableError(TableErrorKind::kWrongVersion, path + ": table format version " + std::to_string(file.user_version) +
+                                                        ", this build writes version " +
+                                                        std::to_string(kFormatVersion) + "; refusing to write");
+  }
+  // A truncated or damaged file still has a valid header; writing into it could make it worse. Check
+  // the whole file (read-only) before a resumed build appends to it.
+  std::string verdict;
+  try {
+    Connection probe(path, Connection::Mode::kReadOnly);
+    Statement check(probe, "PRAGMA quick_check(1)");
+    verdict = check.step() ? check.column_text(0) : std::string("no result");
+  } catch (const TableError& e) {
+    throw TableError(TableErrorKind::kCorrupt, path + ": damaged table file (" + e.what() + "); refusing to write into it");
+  }
+  if (verdict != "ok") {
+    throw TableError(TableErrorKind::kCorrupt,
+                     path + ": damaged table file (PRAGMA quick_check: " + verdict + "); refusing to write into it");
+  }
+}
+
+// Commits on success, rolls back when an exception leaves the scope.
+class Transaction {
+ public:
+  explicit Transaction(Connection& connection) : connection_(connection) { connection_.exec("BEGIN IMMEDIATE"); }
+  ~Transaction() {
+    if (!committed_) {
+      try {
+        connection_.exec("ROLLBACK");
+      } catch (...) {  // NOLINT: a destructor must not throw; the original error is what matters
+      }
+    }
+  }
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  void commit() {
+    connection_.exec("COMMIT");
+    committed_ = true;
+  }
+
+ private:
+  Connection& connection_;
+  bool committed_ = false;
+};
+
+}  // namespace
+
+struct TableWriter::Impl {
+  std::unique_ptr<WriterLock> lock;        // declared first: released last
+  std::unique_ptr<Connection> connection;
+  bool recovered = false;
+};
+
+TableWriter::TableWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  detail::TableFileInfo file = detail::inspect_table_file(path, /*allow_missing=*/true);
+  impl_->lock = std::make_unique<WriterLock>(path);
+  if (file.exists && !file.empty) {
+    if (file.hot_journal && file.sqlite && file.application_id == kApplicationId) {
+      // A writer stopped inside a transaction: a read-write open rolls its journal back (SQLite's hot
+      // journal recovery, sqlite.org/atomiccommit.html §4.1); the file is then as after its last commit.
+      Connection recover(path, Connection::Mode::kReadWrite);
+      recover.pragma_int("user_version");
+      impl_->recovered = true;
+      file = detail::inspect_table_file(path, /*allow_missing=*/false);  // the header as after the rollback
+    }
+    check_existing_file_is_ours(path, file);
+    impl_->connection = std::make_unique<Connection>(path, Connection::Mode::kReadWrite);
+    if (file.wal) impl_->connection->exec("PRAGMA journal_mode = DELETE");
+    return;
+  }
+  impl_->connection = std::make_unique<Connection>(path, Connection::Mode::kReadWriteCreate);
+  Connection& db = *impl_->connection;
+  db.exec("PRAGMA journal_mode = DELETE");
+  Transaction transaction(db);
+  db.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+  db.exec("PRAGMA user_version = " + std::to_string(kFormatVersion));
+  db.exec(detail::kSchemaSql);
+  transaction.commit();
+}
+
+TableWriter::~TableWriter() = default;
+TableWriter::TableWriter(TableWriter&&) noexcept = default;
+TableWriter& TableWriter::operator=(TableWriter&&) noexcept = default;
+
+const std::string& TableWriter::path() const { return impl_->connection->path(); }
+bool TableWriter::recovered_interrupted_write() const { return impl_->recovered; }
+
+// Read with the reader's checks: a builder must not extend a file whose rows were damaged.
+std::optional<Machine> TableWriter::stored_machine() { return detail::read_machine_row(*impl_->connection); }
+
+std::vector<Material> TableWriter::stored_materials() { return detail::read_material_rows(*impl_->connection); }
+
+std::vector<TableWriter::StoredRun> TableWriter::stored_runs() {
+  Statement query(*impl_->connection, "SELECT material, rpm, source, inputs_hash FROM runs ORDER BY material, rpm");
+  std::vector<StoredRun> out;
+  while (query.step()) out.push_back({query.column_text(0), query.column_double(1), query.column_text(2), query.column_text(3)});
+  return out;
+}
+
+void TableWriter::write_machine(const Machine& machine) {
+  const std::string problem = machine_problem(machine);
+  if (!problem.empty()) throw std::invalid_argument(path() + ": refusing to write " + problem);
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  Statement insert(db,
+                   "INSERT OR REPLACE INTO machine (id, name, disc_radius_m, disc_height_m, disc_spacing_m, "
+                   "disc_count, vane_count, cone_angle_rad, rotation_sense, checksum) VALUES (1, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  insert.bind(1, machine.name);
+  insert.bind(2, machine.disc_radius_m);
+  insert.bind(3, machine.disc_height_m);
+  insert.bind(4, machine.disc_spacing_m);
+  insert.bind(5, static_cast<std::int64_t>(machine.disc_count));
+  insert.bind(6, static_cast<std::int64_t>(machine.vane_count));
+  insert.bind(7, machine.cone_angle_rad);
+  insert.bind(8, static_cast<std::int64_t>(machine.rotation_sense));
+  insert.bind(9, machine_checksum(machine));
+  insert.step();
+  transaction.commit();
+}
+
+void TableWriter::write_materials(const std::vector<Material>& materials) {
+  for (const Material& m : materials) {
+    const std::string problem = material_problem(m);
+    if (!problem.empty()) throw std::invalid_argument(path() + ": refusing to write " + problem);
+  }
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  std::string columns = "name";
+  std::string values = "?";
+  std::string updates;
+  for (const MaterialQuantity& q : kMaterialQuantities) {
+    const std::string name(q.name);
+    columns += ", " + name;
+    values += ", ?";
+    updates += name + " = excluded." + name + ", ";
+  }
+  Statement upsert(db, "INSERT INTO materials (" + columns + ", checksum) VALUES (" + values +
+                           ", ?) ON CONFLICT (name) DO UPDATE SET " + updates + "checksum = excluded.checksum");
+  for (const Material& m : materials) {
+    upsert.reset();
+    upsert.bind(1, m.name);
+    int column = 2;
+    for (const MaterialQuantity& q : kMaterialQuantities) upsert.bind(column++, m.*q.member);
+    upsert.bind(column, material_checksum(m));
+    upsert.step();
+  }
+  transaction.commit();
+}
+
+void TableWriter::write_meta(const std::string& key, const std::string& value) {
+  Connection& db = *impl_->connection;
+  Statement upsert(db, "INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
+  upsert.bind(1, key);
+  upsert.bind(2, value);
+  upsert.step();
+}
+
+bool TableWriter::has_run(const std::string& material, double rpm) {
+  Statement query(*impl_->connection, "SELECT 1 FROM runs WHERE material = ? AND rpm = ?");
+  query.bind(1, material);
+  query.bind(2, rpm);
+  return query.step();
+}
+
+void TableWriter::write_run(const Run& run, bool replace) {
+  if (run.samples.empty()) {
+    throw std::invalid_argument(path() + ": run " + run.material + " @ " + std::to_string(run.rpm) +
+                                " rpm has no samples");
+  }
+  const std::string problem = run_values_problem(run);
+  if (!problem.empty()) {
+    throw std::invalid_argument(path() + ": refusing to write run " + run.material + " @ " + std::to_string(run.rpm) +
+                                " rpm: " + problem);
+  }
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  {
+    Statement material(db, "SELECT 1 FROM materials WHERE name = ?");
+    material.bind(1, run.material);
+    if (!material.step()) {
+      throw std::invalid_argument(path() + ": run for material \"" + run.material +
+                                  "\", which is not in the materials table (write_materials first)");
+    }
+  }
+  Statement existing(db, "SELECT 1 FROM runs WHERE material = ? AND rpm = ?");
+  existing.bind(1, run.material);
+  existing.bind(2, run.rpm);
+  if (existing.step()) {
+    if (!replace) {
+      throw RunExistsError(path() + ": run " + run.material + " @ " + std::to_string(run.rpm) +
+                           " rpm already exists (pass replace to rebuild it)");
+    }
+    Statement remove(db, "DELETE FROM runs WHERE material = ? AND rpm = ?");
+    remove.bind(1, run.material);
+    remove.bind(2, run.rpm);
+    remove.step();
+  }
+  const std::vector<std::uint8_t> blob = encode_samples(run.samples);
+  Statement insert(db,
+                   "INSERT INTO runs (material, rpm, source, sample_count, record_layout, record_bytes, samples, "
+                   "scene_hash, inputs_hash, scene_text, effects, dt_contact_s, dt_flight_s, particle_count, "
+                   "software_version, created_utc, stats_json, convergence_json, checksum) "
+                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  insert.bind(1, run.material);
+  insert.bind(2, run.rpm);
+  insert.bind(3, run.source);
+  insert.bind(4, static_cast<std::int64_t>(run.samples.size()));
+  insert.bind(5, std::string(kSampleLayout));
+  insert.bind(6, static_cast<std::int64_t>(kSampleBytes));
+  insert.bind_blob(7, blob);
+  insert.bind(8, run.scene_hash);
+  insert.bind(9, run.inputs_hash);
+  insert.bind(10, run.scene_text);
+  insert.bind(11, run.effects);
+  insert.bind(12, run.dt_contact_s);
+  insert.bind(13, run.dt_flight_s);
+  insert.bind(14, run.particle_count);
+  insert.bind(15, run.software_version);
+  insert.bind(16, run.created_utc);
+  insert.bind(17, stored_stats_json(run));
+  insert.bind(18, stored_convergence_json(run));
+  insert.bind(19, run_checksum(run, blob, kSampleLayout, static_cast<std::int64_t>(kSampleBytes)));
+  insert.step();
+  transaction.commit();
+}
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+}  // namespace spread::tables

@@ -1,0 +1,78 @@
+#pragma once
+// Writes a launch-table file (DESIGN.md §4, docs/table-format.md). One run per transaction, so an
+// interrupted build loses at most the run in progress. Never touches a file that is not ours: an
+// existing file that is not SQLite, or whose application_id differs, is refused (TableError kNotOurs)
+// and left byte-identical; a file of another format version is refused (kWrongVersion), a damaged or
+// truncated one (PRAGMA quick_check fails) too (kCorrupt), both also left byte-identical.
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "libspread/io/tables/table_format.hpp"
+
+namespace spread::tables {
+
+// Another process holds the file's writer lock (an exclusive flock(2) on the table file, taken for the
+// writer's lifetime): two writers never interleave their runs. The message names the holder's pid.
+class TableBusyError : public TableError {
+ public:
+  using TableError::TableError;
+};
+
+// write_run() of a (material, rpm) that is already stored, without the replace flag.
+class RunExistsError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class TableWriter {
+ public:
+  // Creates the file with the current schema, or opens an existing table file of ours for writing.
+  // Takes the file's writer lock first (TableBusyError when another process holds it). A rollback
+  // journal left by a writer that stopped mid-transaction is rolled back (recovered_interrupted_write());
+  // a WAL-mode file is switched back to a rollback journal, so readers never need -wal/-shm files.
+  explicit TableWriter(const std::string& path);
+  ~TableWriter();
+  TableWriter(TableWriter&&) noexcept;
+  TableWriter& operator=(TableWriter&&) noexcept;
+
+  const std::string& path() const;
+  bool recovered_interrupted_write() const;
+
+  // What the file holds already (for a builder that must not mix rows of different scenes).
+  std::optional<Machine> stored_machine();
+  std::vector<Material> stored_materials();
+  struct StoredRun {
+    std::string material;
+    double rpm = 0.0;
+    std::string source;
+    std::string inputs_hash;
+  };
+  std::vector<StoredRun> stored_runs();
+
+  // The single machine row (replaced when written again). std::invalid_argument naming the field when
+  // machine_problem() finds a value the reader would refuse (NaN/Inf, radius <= 0, ...).
+  void write_machine(const Machine& machine);
+  // Inserts or updates each material by name; std::invalid_argument (nothing written) when
+  // material_problem() objects to any of them.
+  void write_materials(const std::vector<Material>& materials);
+  void write_meta(const std::string& key, const std::string& value);
+
+  bool has_run(const std::string& material, double rpm);
+  // Throws RunExistsError if the run exists and replace is false; std::invalid_argument for a run
+  // without samples, with a value run_values_problem() objects to (a NaN/Inf sample field, diameter or
+  // mass <= 0, rpm <= 0, ...; the message names the sample and field), or whose material has not been
+  // written.
+  void write_run(const Run& run, bool replace = false);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Current UTC time as ISO 8601, e.g. "2024-05-01T12:34:56Z" (for Run::created_utc).
+std::string utc_now_iso8601();
+
+}  // namespace spread::tables

@@ -1,0 +1,58 @@
+#pragma once
+// Inlet (seed Sect. 3.2): lognormal diameters with a given arithmetic mean and standard deviation, a
+// particle rate set from the mass feed rate through the lognormal moments, and release at random
+// points of the inlet circle without overlapping particles already there.
+#include <cstdint>
+#include <random>
+
+#include "libspread/physics/dem/engine.hpp"
+
+namespace spread::dem {
+
+struct InletParams {
+  Vec3 centre_m = Vec3::Zero();     // centre of the release circle (inertial); particles appear in a
+                                    // slab from here up to 4 largest diameters higher
+  double radius_m = 0.0145;
+  double mass_rate_kg_s = 0.11;
+  double diameter_mean_m = 3e-3;    // arithmetic mean of the lognormal
+  double diameter_sd_m = 0.0;       // arithmetic sd; 0 = one size
+  double release_speed_m_s = 1.0;   // downwards
+  int material = 0;
+  std::uint64_t seed = 1;
+  double batch_interval_s = 1e-3;   // particles are released in batches (each batch rebuilds the pair list)
+};
+
+// Lognormal in terms of the arithmetic mean μ and sd σ: s² = ln(1 + σ²/μ²), m = ln μ − s²/2.
+// Samples are truncated to exp(m ± 3s) so one outlier cannot set the time step or cell size.
+struct LognormalDiameter {
+  double m = 0.0, s = 0.0;
+  LognormalDiameter(double mean_m, double sd_m);
+  double min_m() const;
+  double max_m() const;
+  double mean_cube_m3() const;  // E[d³] = exp(3m + 9s²/2) (untruncated moment)
+};
+
+class Inlet {
+ public:
+  Inlet(const InletParams& params, double density_kg_m3);
+  // Particles per second so that the mean mass rate is the feed rate: Q / (ρ π/6 E[d³]).
+  double particle_rate_per_s() const { return rate_per_s_; }
+  const LognormalDiameter& diameters() const { return dist_; }
+  // Releases the particles due by time t (whole batches). Returns how many were added.
+  std::size_t release_due(DemEngine& engine, double t_s);
+  std::uint64_t released() const { return released_; }
+  std::uint64_t deferred() const { return deferred_; }  // placements retried in a later batch
+
+ private:
+  double uniform();
+  double normal();
+  InletParams params_;
+  LognormalDiameter dist_;
+  double rate_per_s_ = 0.0;
+  std::mt19937_64 rng_;
+  double next_batch_s_ = 0.0;
+  std::uint64_t released_ = 0;
+  std::uint64_t deferred_ = 0;
+};
+
+}  // namespace spread::dem
