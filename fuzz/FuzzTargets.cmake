@@ -40,3 +40,23 @@ function(spread_fuzz_configure target harness)
   target_link_libraries(${target} PRIVATE ${SPREAD_FUZZ_LIBS_${harness}} spread_warnings)
   target_compile_definitions(${target} PRIVATE SPREAD_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endfunction()
+
+# spread_fuzz_object(<harness>): the harness source compiled once, as the object library fuzz_obj_<harness>,
+# for both drivers: the libFuzzer binary (fuzz/CMakeLists.txt) and the replay binary of the test suite
+# (tests/stability). In the one sanitizer build (tools/ci/sanitizer_config.sh) every object already carries
+# libFuzzer's coverage instrumentation, so the two drivers can share it. Defined on first use.
+function(spread_fuzz_object harness)
+  if(NOT TARGET fuzz_obj_${harness})
+    add_library(fuzz_obj_${harness} OBJECT ${SPREAD_FUZZ_DIR}/fuzz_${harness}.cpp)
+    spread_fuzz_configure(fuzz_obj_${harness} ${harness})
+  endif()
+endfunction()
+
+# The replay driver (fuzz/replay_main.cpp: each input file once, instead of libFuzzer), compiled once for
+# every replay binary.
+function(spread_fuzz_replay_main)
+  if(NOT TARGET spread_fuzz_replay_main)
+    add_library(spread_fuzz_replay_main OBJECT ${SPREAD_FUZZ_DIR}/replay_main.cpp)
+    target_link_libraries(spread_fuzz_replay_main PRIVATE spread_warnings)
+  endif()
+endfunction()

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses (fuzz/, clang, AddressSanitizer + UBSan) in build-fuzz and runs each
-# for a bounded time on its seed corpus (fuzz/corpus/<harness>/). Fails when any harness finds a crash,
+# Builds the libFuzzer harnesses (fuzz/, clang, AddressSanitizer + UBSan) in the one sanitizer build
+# (build-asan, tools/ci/sanitizer_config.sh: the test suite's sanitizer run uses the same objects, so after
+# tools/run-sanitizers.sh nothing is compiled again) and runs each for a bounded time on its seed corpus
+# (fuzz/corpus/<harness>/). Fails when any harness finds a crash,
 # a broken invariant, a leak, a timeout or runs out of memory; the input is saved under
-# build-fuzz/fuzz/artifacts/<harness>/ — add it to fuzz/regressions/<harness>/ once fixed, and the test
+# build-asan/fuzz/artifacts/<harness>/ — add it to fuzz/regressions/<harness>/ once fixed, and the test
 # suite replays it for ever after (tests/stability, ctest -L stability).
 #
 # Usage: tools/run-fuzz.sh [harness ...]        (default: every harness that was built)
@@ -12,29 +14,21 @@
 #                        many inputs from a fresh work corpus (CI mode: the same inputs on every machine)
 #   SPREAD_FUZZ_SEED     libFuzzer -seed (default 1; use others for exploratory runs)
 #   SPREAD_FUZZ_TIMEOUT  seconds one input may take before it counts as a hang (default 20)
-#   SPREAD_FUZZ_BUILD    build directory (default: build-fuzz)
+#   SPREAD_FUZZ_BUILD    build directory (default: build-asan, shared with tools/run-sanitizers.sh)
 #   SPREAD_JOBS          build jobs (default: number of cores)
 #   CC / CXX             clang / clang++ (default); libFuzzer needs clang
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${SPREAD_FUZZ_BUILD:-$root/build-fuzz}
+build=${SPREAD_FUZZ_BUILD:-$root/build-asan}
 seconds=${SPREAD_FUZZ_SECONDS:-30}
 timeout_s=${SPREAD_FUZZ_TIMEOUT:-20}
 budget_file=${SPREAD_FUZZ_BUDGET:-}
 fuzz_seed=${SPREAD_FUZZ_SEED:-1}
 [ -z "$budget_file" ] || [ -f "$budget_file" ] || { echo "run-fuzz: no budget file $budget_file" >&2; exit 1; }
 jobs=${SPREAD_JOBS:-$(nproc)}
-export CC=${CC:-clang} CXX=${CXX:-clang++}
+. "$root/tools/ci/sanitizer_config.sh"
 
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-[ -f "$build/CMakeCache.txt" ] && generator=()
-# Libraries: ASan + UBSan (SPREAD_SANITIZE) and coverage counters for libFuzzer (fuzzer-no-link); the
-# harness executables add -fsanitize=fuzzer (fuzz/CMakeLists.txt), added by SPREAD_BUILD_FUZZ.
-cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPREAD_SANITIZE=ON \
-  -DSPREAD_BUILD_TESTS=OFF -DSPREAD_BUILD_BENCH=OFF -DSPREAD_WITH_MPI=OFF \
-  -DCMAKE_C_FLAGS=-fsanitize=fuzzer-no-link -DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link \
-  -DSPREAD_BUILD_FUZZ=ON >/dev/null
+sanitizer_configure "$build"
 cmake --build "$build" -j "$jobs" --target spread_fuzzers
 
 harnesses=("$@")

@@ -1,33 +1,30 @@
 #!/usr/bin/env bash
 # AddressSanitizer + UndefinedBehaviorSanitizer build and test run. Any sanitizer report fails
 # the run: ASan and UBSan halt on the first error (the build also passes -fno-sanitize-recover=undefined),
-# LeakSanitizer is on. Tests labelled `long` are skipped.
+# LeakSanitizer is on. Tests labelled `long` (minutes of physics) or `nosan` (physics regressions that
+# run no code path the rest of the suite does not, e.g. the main job's full DEM table) are skipped: the
+# plain suite runs them. The build is the one sanitizer build (tools/ci/sanitizer_config.sh), which also
+# holds the libFuzzer harnesses that tools/run-fuzz.sh runs.
 #
 # Usage: tools/run-sanitizers.sh [extra ctest arguments, e.g. -L stability]
+#        tools/run-sanitizers.sh --build-only          configure and build, no tests
+#        tools/run-sanitizers.sh --test-only [ctest arguments]   the tests of an existing build
 # Environment:
 #   SPREAD_ASAN_BUILD  build directory (default: build-asan)
 #   SPREAD_JOBS        parallel build/test jobs (default: number of cores)
-#   CC / CXX           compiler (default: the system's cc/c++, i.e. gcc on Debian 12; clang works too)
+#   CC / CXX           compiler (default: clang / clang++; libFuzzer needs clang)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SPREAD_ASAN_BUILD:-$root/build-asan}
 jobs=${SPREAD_JOBS:-$(nproc)}
+. "$root/tools/ci/sanitizer_config.sh"
 
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-# The generator of an existing build directory cannot change; keep whatever it was configured with.
-[ -f "$build/CMakeCache.txt" ] && generator=()
-
-cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPREAD_SANITIZE=ON \
-  -DSPREAD_BUILD_TESTS=ON -DSPREAD_BUILD_BENCH=OFF >/dev/null
-cmake --build "$build" -j "$jobs"
-
-# halt_on_error: the first report ends the process with a non-zero status, so ctest records a failure.
-# detect_leaks: LeakSanitizer works here (also as root). abort_on_error=0 keeps the exit code path (no
-# core dumps). detect_stack_use_after_return catches returned pointers to locals.
-export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:abort_on_error=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:detect_odr_violation=2}
-export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1:report_error_type=1}
-# Leaks inside third-party libraries we cannot fix (Open MPI's MPI_Init keeps global state alive).
-export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/stability/lsan.supp:print_suppressions=0}
-
-ctest --test-dir "$build" --output-on-failure -j "$jobs" -LE long "$@"
+if [ "${1:-}" != --test-only ]; then
+  sanitizer_configure "$build"
+  cmake --build "$build" -j "$jobs"
+  [ "${1:-}" != --build-only ] || exit 0
+else
+  shift
+fi
+sanitizer_environment
+ctest --test-dir "$build" --output-on-failure -j "$jobs" -LE "long|nosan" "$@"

@@ -4,23 +4,29 @@
 # export, then builds the documented example (tests/capi/c_api_example.c) outside the tree against the
 # installed package — with pkg-config (shared), with the documented static link line, with
 # find_package(spreadc) (both targets) — and runs each on a launch-table file.
-# Usage: package_test.sh SOURCE_DIR WORK_DIR TABLE.sqlite EXAMPLE.c
+# Usage: package_test.sh SOURCE_DIR WORK_DIR TABLE.sqlite EXAMPLE.c [BUILD_DIR]
+# With BUILD_DIR, an existing SPREAD_CAPI_ONLY build is checked, built and installed instead of configuring
+# one in WORK_DIR (tools/check-build-options.sh's capi-only configuration: the C API compiled once).
 set -euo pipefail
-src=$1 work=$2 table=$3 example=$4
+src=$1 work=$2 table=$3 example=$4 build=${5:-}
 fail() { echo "package: FAIL: $*"; exit 1; }
 rm -rf "$work"
 mkdir -p "$work"
 
-cmake -S "$src" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPREAD_CAPI_ONLY=ON >"$work/configure.log" ||
-  { cat "$work/configure.log"; fail "configure with SPREAD_CAPI_ONLY=ON"; }
+if [ -z "$build" ]; then
+  build=$work/build
+  cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPREAD_CAPI_ONLY=ON >"$work/configure.log" ||
+    { cat "$work/configure.log"; fail "configure with SPREAD_CAPI_ONLY=ON"; }
+fi
+grep -q "^SPREAD_CAPI_ONLY:BOOL=ON" "$build/CMakeCache.txt" || fail "$build is not configured with SPREAD_CAPI_ONLY=ON"
 # Only the C API's dependencies were looked for.
 for dep in tomlplusplus CLI11 nlohmann_json GTest benchmark CAIRO MPI LCM; do
-  if grep -q "^${dep}_\(DIR\|FOUND\|LIBRARY\|INCLUDE\)" "$work/build/CMakeCache.txt"; then
+  if grep -q "^${dep}_\(DIR\|FOUND\|LIBRARY\|INCLUDE\)" "$build/CMakeCache.txt"; then
     fail "SPREAD_CAPI_ONLY configure looked for $dep"
   fi
 done
-cmake --build "$work/build" -j2 >"$work/build.log" || { tail -50 "$work/build.log"; fail "build"; }
-cmake --install "$work/build" --prefix "$work/prefix" >"$work/install.log" || { cat "$work/install.log"; fail "install"; }
+cmake --build "$build" -j2 >"$work/build.log" || { tail -50 "$work/build.log"; fail "build"; }
+cmake --install "$build" --prefix "$work/prefix" >"$work/install.log" || { cat "$work/install.log"; fail "install"; }
 
 prefix=$work/prefix
 so=$(find "$prefix" -name libspreadc.so.0)

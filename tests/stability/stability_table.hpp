@@ -44,7 +44,8 @@ inline std::string stability_table_path() {
     const std::string out = (temp_directory().path() / "stability.sqlite").string();
     const scene::Scene scene =
         scene::load_scene_file(SPREAD_SOURCE_DIR "/scenes/default.toml",
-                               {"sweep.samples_per_run=16", "sweep.rpm=[450.0, 600.0]", "sweep.materials=[\"Urea\"]"});
+                               {"sweep.source=\"analytic\"", "sweep.samples_per_run=16", "sweep.rpm=[450.0, 600.0]",
+                                "sweep.materials=[\"Urea\"]"});
     lookup::BuildOptions options;
     options.output_path = out;
     lookup::build_tables(scene, options);
