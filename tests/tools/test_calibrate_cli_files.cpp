@@ -162,3 +162,20 @@ TEST(CalibrateCliFiles, RateWithAMissingTraySaysItIsLow) {
   // Without a missing tray, no such note.
   EXPECT_EQ(spread("calibrate tray '" + kExample + rate).out.find("missing trays lower it"), std::string::npos);
 }
+
+TEST(CalibrateCliFiles, NoCvWhereTooFewTraysOfTheBoutRemain) {
+  // 47 trays (a triangle), the one at -4.5 m missing: at W = 1 m the to-and-fro bout keeps 1.5 trays' weight.
+  std::string text = "position_m,mass_g\n";
+  for (int k = -23; k <= 23; ++k) {
+    text += std::to_string(0.5 * k) + "," + (k == -9 ? std::string("NA") : std::to_string(24 - std::abs(k))) + "\n";
+  }
+  const std::string file = write_file("t47.csv", text).string();
+  const CommandRun r = spread("calibrate tray '" + file + "' --width 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("at W = 1.00 m: CV none (missing trays leave under two trays of the bout measured) to-and-fro"),
+            std::string::npos)
+      << r.out;
+  const CommandRun json = spread("calibrate tray '" + file + "' --width 1 --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_TRUE(nlohmann::json::parse(json.out)["cv_to_and_fro_percent"].is_null()) << json.out;
+}

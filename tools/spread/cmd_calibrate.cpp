@@ -236,6 +236,12 @@ std::vector<std::string> tray_warnings(const cal::TrayTest& t, const cal::TrayTe
   return warnings;
 }
 
+// A CV as printed: NaN is a bout left with less than two trays' weight measured (cv_without_missing.hpp).
+std::string cv_text(double cv) {
+  return std::isnan(cv) ? std::string("none (missing trays leave under two trays of the bout measured)")
+                        : format("%.1f %%", 100.0 * cv);
+}
+
 // --width beyond the trays: the CV would describe the ground no tray covered (tray_plausibility.hpp).
 void require_width_within_trays(const cal::TrayTest& t, double width_m) {
   if (width_m <= 0.0) return;
@@ -299,8 +305,8 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   r.chart.bout_width_m = bout_width_m;
   if (bout_width_m > 0.0) {
     r.chart.bout_cv = curve_cv(a, a.cv_to_and_fro_curve, bout_width_m);
-    std::snprintf(text, sizeof text, "at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack%s", bout_width_m,
-                  100.0 * r.chart.bout_cv, 100.0 * curve_cv(a, a.cv_racetrack_curve, bout_width_m),
+    std::snprintf(text, sizeof text, "at W = %.2f m: CV %s to-and-fro, %s racetrack%s", bout_width_m,
+                  cv_text(r.chart.bout_cv).c_str(), cv_text(curve_cv(a, a.cv_racetrack_curve, bout_width_m)).c_str(),
                   a.bout_width_m > 0.0 ? "" : " (no --width: the working width, in whole trays)");
     r.summary.emplace_back(text);
   }
@@ -473,8 +479,8 @@ void run_tray(const TrayOptions& o) {
   std::printf("%s: %zu trays of %.2f m, %zu pass(es), %.1f g in total, throw width %.1f m\n", t.source.c_str(),
               t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg, a.throw_width_m);
   if (a.bout_width_m > 0.0) {
-    std::printf("at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack\n", a.bout_width_m, 100.0 * a.cv_to_and_fro,
-                100.0 * a.cv_racetrack);
+    std::printf("at W = %.2f m: CV %s to-and-fro, %s racetrack\n", a.bout_width_m, cv_text(a.cv_to_and_fro).c_str(),
+                cv_text(a.cv_racetrack).c_str());
   }
   for (const std::string& w : warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
