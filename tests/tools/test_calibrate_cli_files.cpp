@@ -179,3 +179,33 @@ TEST(CalibrateCliFiles, NoCvWhereTooFewTraysOfTheBoutRemain) {
   ASSERT_EQ(json.exit_code, 0) << json.err;
   EXPECT_TRUE(nlohmann::json::parse(json.out)["cv_to_and_fro_percent"].is_null()) << json.out;
 }
+
+TEST(CalibrateCliFiles, FitAtTheWrongDiscSpeedIsWarned) {
+#ifndef SPREAD_LOOKUP_BUILDER
+  GTEST_SKIP() << "needs lookup_builder";
+#else
+  // A small analytic table (256 samples per row, the narrow Case 1 inlet, 450-750 rpm), a synthetic tray
+  // test at 600 rpm, fitted at 750 rpm: launch speed factor about 0.8.
+  const fs::path table = work_dir() / "urea.sqlite", trays = work_dir() / "urea600.csv",
+                 output = work_dir() / "urea750.sqlite";
+  fs::remove(table);
+  fs::remove(output);
+  ASSERT_EQ(std::system(("'" + std::string(SPREAD_LOOKUP_BUILDER) + "' '" + SPREAD_SOURCE_DIR +
+                         "/scenes/default.toml' --output '" + table.string() +
+                         "' --set sweep.source=analytic --set 'sweep.materials=[\"Urea\"]' --set sweep.samples_per_run=256 "
+                         "--set inlet.radius_m=0.0145 --set inlet.offset_m=0.1 --set inlet.angle_rad=1.0 > /dev/null")
+                            .c_str()),
+            0);
+  ASSERT_EQ(spread("calibrate synth --tables '" + table.string() + "' --material Urea --rpm 600 --output '" +
+                   trays.string() + "' --force --mass 150 --granule-mass 0.02 --seed 3 --samples 256")
+                .exit_code,
+            0);
+  const CommandRun r = spread("calibrate pattern --tables '" + table.string() + "' --material Urea --rpm 750 --trays '" +
+                              trays.string() + "' --output '" + output.string() + "' --fit speed,offset --samples 256");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("launch speed factor      0.7957"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("warning: the launch speed factor 0.796 is 20 % from 1 (warning beyond 15 %"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("this test looks like one at about 597 rpm fitted at --rpm 750"), std::string::npos) << r.out;
+#endif
+}
