@@ -121,3 +121,11 @@ TEST(TrayFileSafety, CarriageReturnLineEndingsAreRead) {
   EXPECT_EQ(cal::parse_tray_csv("position_m,pass1_g\r\n-1.0,1\n-0.5,2\r\n0.0,3\n0.5,2\r\n1.0,1", "t.csv").mass_kg.size(),
             5u);
 }
+
+TEST(TrayFileSafety, Utf16FileIsNamedAsSuchNotAsBinary) {
+  const spread::testing::TempPath file("utf16.csv");
+  std::string bytes("\xFF\xFE", 2);
+  for (const char c : std::string("position_m,mass_g\n")) bytes += std::string{c, '\0'};
+  write(file.path(), bytes);
+  EXPECT_NE(read_error(file.path()).find("UTF-16"), std::string::npos) << read_error(file.path());
+}

@@ -207,9 +207,17 @@ class Lines {
   std::size_t at_ = 0;
 };
 
-std::string binary_problem() {
-  return "not a text file: binary content (a NUL or control bytes near the start) — give the tray test "
-         "saved as CSV";
+// A UTF-16 file ("Unicode text") is text, but not what the reader takes: said so before its NUL bytes
+// make it look binary. Anything else with NULs or many control bytes is not a tray test at all.
+void require_text(std::string_view text, const std::string& source) {
+  if (text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'))) {
+    throw TrayCsvError(source, 1, "the file is UTF-16 text (\"Unicode text\"): save it as CSV (UTF-8 or plain)");
+  }
+  if (looks_binary(text)) {
+    throw TrayCsvError(source, 0,
+                       "not a text file: binary content (a NUL or control bytes near the start) — give the tray "
+                       "test saved as CSV");
+  }
 }
 
 }  // namespace
@@ -270,10 +278,7 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
   // Spreadsheets save "CSV UTF-8" with a byte-order mark: invisible in the header the error would quote.
   constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
   if (text.substr(0, kUtf8Bom.size()) == kUtf8Bom) text.remove_prefix(kUtf8Bom.size());
-  if (text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'))) {
-    throw TrayCsvError(source, 1, "the file is UTF-16 text (\"Unicode text\"): save it as CSV (UTF-8 or plain)");
-  }
-  if (looks_binary(text)) throw TrayCsvError(source, 0, binary_problem());
+  require_text(text, source);
   Lines lines(text);
   std::string_view raw;
   int line_number = 0;
@@ -505,7 +510,7 @@ TrayTest read_tray_csv(const std::string& path, const TrayCsvOptions& options) {
   while (in.read(block.data(), static_cast<std::streamsize>(block.size())) || in.gcount() > 0) {
     const bool first = content.empty();
     content.append(block.data(), static_cast<std::size_t>(in.gcount()));
-    if (first && looks_binary(content)) throw TrayCsvError(path, 0, binary_problem());
+    if (first) require_text(content, path);
     if (content.size() > kLargestTrayFile_bytes) {
       std::snprintf(text, sizeof text, "more than %.0f MB read: a tray-test file is read up to that (a tray "
                     "test is well under 1 MB) — is it the right file?", static_cast<double>(kLargestTrayFile_bytes) / 1e6);
