@@ -80,3 +80,20 @@ TEST(MissingTrays, NothingMissingIsTheMetricsCv) {
     }
   }
 }
+
+TEST(MissingTrays, NoCvFromLessThanTwoTraysWeight) {
+  // 47 trays of 0.5 m (a triangle), the one at -4.5 m missing. At W = 1 m (two trays; 47 - 2 is odd, so
+  // the bout edges cut their trays: weights 1/2, 1, 1/2) the missing tray feeds one edge tray of the
+  // to-and-fro bout, leaving 1.5 trays' weight: no CV (cv_without_missing.hpp), not one from 1.5 trays.
+  std::string text = "position_m,mass_g\n";
+  for (int k = -23; k <= 23; ++k) {
+    text += std::to_string(0.5 * k) + "," + (k == -9 ? std::string("NA") : std::to_string(24 - std::abs(k))) + "\n";
+  }
+  const cal::TrayTest t = cal::parse_tray_csv(text, "t.csv");
+  ASSERT_EQ(t.layout.tray_count, 47);
+  const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, 0.15, 1.0);
+  EXPECT_TRUE(std::isnan(a.cv_to_and_fro)) << a.cv_to_and_fro;
+  EXPECT_TRUE(std::isnan(a.cv_to_and_fro_curve[0])) << a.cv_to_and_fro_curve[0];
+  // Three trays keep at least two trays' weight: a CV.
+  EXPECT_TRUE(std::isfinite(a.cv_to_and_fro_curve[1]));
+}

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libspread/analysis/calibration/calibrated_table.hpp"
+#include "libspread/analysis/calibration/disc_speed_check.hpp"
 #include "libspread/analysis/calibration/fit_acceptance.hpp"
 #include "libspread/analysis/calibration/pass_scatter.hpp"
 #include "libspread/analysis/calibration/pattern_fit.hpp"
@@ -30,6 +31,7 @@
 #include "libspread/analysis/calibration/synthetic_tray_test.hpp"
 #include "libspread/analysis/calibration/tray_analysis.hpp"
 #include "libspread/analysis/calibration/tray_csv.hpp"
+#include "libspread/analysis/calibration/tray_plausibility.hpp"
 #include "libspread/analysis/plot/plot.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
@@ -234,6 +236,25 @@ std::vector<std::string> tray_warnings(const cal::TrayTest& t, const cal::TrayTe
   return warnings;
 }
 
+// A CV as printed: NaN is a bout left with less than two trays' weight measured (cv_without_missing.hpp).
+std::string cv_text(double cv) {
+  return std::isnan(cv) ? std::string("none (missing trays leave under two trays of the bout measured)")
+                        : format("%.1f %%", 100.0 * cv);
+}
+
+// --width beyond the trays: the CV would describe the ground no tray covered (tray_plausibility.hpp).
+void require_width_within_trays(const cal::TrayTest& t, double width_m) {
+  if (width_m <= 0.0) return;
+  const std::string problem = cal::bout_width_problem(t.layout, width_m);
+  if (!problem.empty()) throw BadInput("--width " + problem);
+}
+
+// The rate a tray test caught counts the trays read: a missing tray's share of the bout is not in it.
+std::optional<std::string> missing_rate_note(const cal::TrayTest& t, const std::optional<spread::plot::ReportRate>& rate) {
+  if (!rate || !t.has_missing_trays()) return std::nullopt;
+  return std::string("the caught rate counts the trays read only: missing trays lower it");
+}
+
 // Runs the plots; a failure is kept (the report is printed first) rather than thrown.
 template <typename Plot>
 std::string plot_or_error(Plot plot) {
@@ -284,8 +305,8 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   r.chart.bout_width_m = bout_width_m;
   if (bout_width_m > 0.0) {
     r.chart.bout_cv = curve_cv(a, a.cv_to_and_fro_curve, bout_width_m);
-    std::snprintf(text, sizeof text, "at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack%s", bout_width_m,
-                  100.0 * r.chart.bout_cv, 100.0 * curve_cv(a, a.cv_racetrack_curve, bout_width_m),
+    std::snprintf(text, sizeof text, "at W = %.2f m: CV %s to-and-fro, %s racetrack%s", bout_width_m,
+                  cv_text(r.chart.bout_cv).c_str(), cv_text(curve_cv(a, a.cv_racetrack_curve, bout_width_m)).c_str(),
                   a.bout_width_m > 0.0 ? "" : " (no --width: the working width, in whole trays)");
     r.summary.emplace_back(text);
   }
@@ -407,13 +428,15 @@ void run_tray(const TrayOptions& o) {
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
   const cal::TrayTest t = cal::read_tray_csv(o.file);
+  require_width_within_trays(t, o.width_m);
   const cal::TrayTestAnalysis a = cal::analyse_tray_test(t, cv_target, o.width_m);
   const std::vector<std::string> warnings = tray_warnings(t, a);
-  const std::vector<std::string> notes = missing_notes(t);
+  std::vector<std::string> notes = missing_notes(t);
   const cal::PassScatter scatter = cal::pass_scatter(t);
   const double report_width_m = report_bout_width_m(t, a);
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, a.total_mass_kg, report_width_m, t.layout.tray_width_m);
+  const std::optional<std::string> rate_note = missing_rate_note(t, rate);
   json written = json::object();
   const std::string plot_error =
       o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, o.report.tray_area_m2, written); });
@@ -429,9 +452,7 @@ void run_tray(const TrayOptions& o) {
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
-      if (rate && t.has_missing_trays()) {
-        page.notes.emplace_back("the caught rate counts the trays read only: missing trays lower it");
-      }
+      if (rate_note) page.notes.push_back(*rate_note);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
     });
@@ -444,6 +465,7 @@ void run_tray(const TrayOptions& o) {
     json out = tray_json(t, a);
     out["warnings"] = warnings;
     out["notes"] = notes;
+    if (rate_note) out["notes"].push_back(*rate_note);
     out["written"] = written;
     out["rate"] = spread::cli::rate_json(rate);
     if (!plot_error.empty()) out["plot_error"] = plot_error;
@@ -457,8 +479,8 @@ void run_tray(const TrayOptions& o) {
   std::printf("%s: %zu trays of %.2f m, %zu pass(es), %.1f g in total, throw width %.1f m\n", t.source.c_str(),
               t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg, a.throw_width_m);
   if (a.bout_width_m > 0.0) {
-    std::printf("at W = %.2f m: CV %.1f %% to-and-fro, %.1f %% racetrack\n", a.bout_width_m, 100.0 * a.cv_to_and_fro,
-                100.0 * a.cv_racetrack);
+    std::printf("at W = %.2f m: CV %s to-and-fro, %s racetrack\n", a.bout_width_m, cv_text(a.cv_to_and_fro).c_str(),
+                cv_text(a.cv_racetrack).c_str());
   }
   for (const std::string& w : warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
@@ -471,6 +493,7 @@ void run_tray(const TrayOptions& o) {
                 100.0 * scatter.rms_mean_fraction);
   }
   for (const std::string& line : spread::cli::rate_lines(rate)) std::printf("%s\n", line.c_str());
+  if (rate_note) std::printf("note: %s\n", rate_note->c_str());
   if (!std::isnan(o.report.tray_area_m2) && !rate) {
     std::printf("note: no rate: --tray-area needs a bout width (--width, or a working width of two trays or more)\n");
   }
@@ -639,6 +662,7 @@ void run_pattern(const PatternOptions& o) {
       o.name.empty() ? cal::calibrated_material_name(o.material, spread::plot::utc_date(spread::cli::report_time_s()))
                      : o.name;
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
+  require_width_within_trays(test, o.width_m);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
   const std::vector<double> dem_rpm = cal::non_analytic_rows(contents, o.material);
   const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm, o.allow_analytic);
@@ -651,6 +675,7 @@ void run_pattern(const PatternOptions& o) {
   const cal::FitAcceptance acceptance = cal::assess_fit(fit, scatter);
   std::vector<std::string> warnings = fit_warnings(fit);
   warnings.insert(warnings.end(), acceptance.warnings.begin(), acceptance.warnings.end());
+  for (const std::string& w : cal::disc_speed_warnings(fit, o.rpm)) warnings.push_back(w);
   if (!dem_rpm.empty() && o.allow_analytic) {
     warnings.push_back("the table's rows of '" + o.material + "' came from the DEM; the fit used the analytic "
                        "launch model and the calibrated material's rows are analytic (--allow-analytic)");
@@ -710,6 +735,7 @@ void run_pattern(const PatternOptions& o) {
   }
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);
+  const std::optional<std::string> rate_note = missing_rate_note(test, rate);
   std::string report_error;
   if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
@@ -740,6 +766,7 @@ void run_pattern(const PatternOptions& o) {
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+      if (rate_note) page.notes.push_back(*rate_note);
       for (const std::string& line : guidance.lines) page.notes.push_back(line);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
@@ -749,6 +776,7 @@ void run_pattern(const PatternOptions& o) {
   if (o.json) {
     report["warnings"] = warnings;
     report["notes"] = notes;
+    if (rate_note) report["notes"].push_back(*rate_note);
     if (summary) {
       report["output"] = {{"path", summary->output_path},
                           {"material", summary->material},
@@ -807,6 +835,7 @@ void run_pattern(const PatternOptions& o) {
       std::printf("nothing written: %s was not created\n", o.output.c_str());
     }
     for (const std::string& rate_line : spread::cli::rate_lines(rate)) std::printf("%s\n", rate_line.c_str());
+    if (rate_note) std::printf("note: %s\n", rate_note->c_str());
     for (const std::string& advice : guidance.lines) std::printf("%s\n", advice.c_str());
     for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
   }

@@ -27,4 +27,13 @@ std::string command_path(const CLI::App& app);
 // Writes "<command>: error: <what>" to stderr and returns exit_code_for(failure).
 int report_failure(const std::string& command, const std::exception& failure);
 
+// A command line CLI11 cannot parse, in the same one-line format with kExitUsage: "Could not convert:
+// --mass = 25kg" becomes "--mass: '25kg' is not a value it takes (a number without its unit; see
+// --help)", CLI11's other messages are kept on one line. --help and --version (not failures) print as
+// CLI11 prints them and return kExitOk.
+int report_parse_failure(const CLI::App& app, const CLI::ParseError& failure);
+
+// The message of report_parse_failure, without the command: one line.
+std::string parse_failure_message(const CLI::ParseError& failure);
+
 }  // namespace spread::cli

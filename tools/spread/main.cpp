@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? spread::cli::kExitOk : spread::cli::kExitUsage;
+    return spread::cli::report_parse_failure(app, e);
   } catch (const std::exception& e) {
     // Commands throw; this is the one place a failure becomes a stderr line and an exit code.
     return spread::cli::report_failure(spread::cli::command_path(app), e);

@@ -31,7 +31,7 @@ double cv_without_missing(const std::vector<double>& tray_mass_kg, const std::ve
     weights += weight(j);
     total_kg += weight(j) * bout_kg[j];
   }
-  if (!(weights > 1.0)) return std::numeric_limits<double>::quiet_NaN();
+  if (weights < 2.0 - 1e-9) return std::numeric_limits<double>::quiet_NaN();
   const double mean_kg = total_kg / weights;
   if (!(mean_kg > 0.0)) return std::numeric_limits<double>::infinity();
   double squares_kg2 = 0.0;

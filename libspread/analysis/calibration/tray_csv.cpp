@@ -1,11 +1,15 @@
 #include "libspread/analysis/calibration/tray_csv.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
-#include <sstream>
+#include <set>
+
+#include "libspread/analysis/calibration/text_excerpt.hpp"
 
 namespace spread::calibration {
 namespace {
@@ -126,6 +130,96 @@ std::string format_m(double value) {
   return text;
 }
 
+// What the reader does with a header's column.
+enum class ColumnRole { kPosition, kGrams, kKilograms, kIgnored, kUnnamed };
+
+// The header name lower-cased, with a unit in parentheses or brackets as a suffix: "Pass2 (g)" → "pass2_g".
+std::string normalised_name(const std::string& name) {
+  std::string n = lower(trim(name));
+  const char close = n.empty() ? '\0' : n.back();
+  const char open = close == ')' ? '(' : close == ']' ? '[' : '\0';
+  const auto at = open == '\0' ? std::string::npos : n.rfind(open);
+  if (at != std::string::npos) {
+    const std::string base = trim(std::string_view(n).substr(0, at));
+    const std::string unit = trim(std::string_view(n).substr(at + 1, n.size() - at - 2));
+    n = base.empty() ? unit : base + "_" + unit;
+  }
+  return n;
+}
+
+// The role of a column, or a TrayCsvError at the header's line naming a column the reader will not take.
+ColumnRole column_role(const std::string& name, const std::string& source, int line) {
+  const std::string n = normalised_name(name);
+  if (n.empty()) return ColumnRole::kUnnamed;
+  if (n == "position_m" || n == "x_m") return ColumnRole::kPosition;
+  if (ends_with(n, "_kg")) return ColumnRole::kKilograms;
+  if (ends_with(n, "_g")) return ColumnRole::kGrams;
+  // Tray numbers and notes as spreadsheets name them ("Tray #", "tray no.", "Nr"): letters and digits only.
+  std::string key;
+  for (const char c : n) {
+    if (std::isalnum(static_cast<unsigned char>(c))) key += c;
+  }
+  static const std::set<std::string> kIgnored{"", "tray", "trayno", "traynr", "traynumber", "trayid", "no", "nr",
+                                              "number", "id", "index", "note", "notes", "comment", "comments",
+                                              "remark", "remarks"};
+  if (kIgnored.count(key) > 0) return ColumnRole::kIgnored;
+  const std::string quoted = "column '" + excerpt(name) + "'";
+  const auto unit_at = n.rfind('_');
+  const std::string unit = unit_at == std::string::npos ? std::string() : n.substr(unit_at + 1);
+  static const std::set<std::string> kOtherMassUnits{"mg", "t", "lb", "lbs", "oz", "gr", "gram", "grams", "kilo",
+                                                     "kilos", "kilogram", "kilograms", "kgs", "gm", "gms"};
+  if (kOtherMassUnits.count(unit) > 0) {
+    throw TrayCsvError(source, line,
+                       quoted + ": mass in '" + excerpt(unit) + "' is not read — mass columns are in grams "
+                       "(*_g or '(g)') or kilograms (*_kg or '(kg)'): convert the column and rename it");
+  }
+  const std::string base = unit_at == std::string::npos ? n : n.substr(0, unit_at);
+  if (base == "position" || base == "x" || n == "position" || n == "x") {
+    throw TrayCsvError(source, line,
+                       quoted + ": positions are read in metres only — write them in metres and name the column "
+                       "position_m");
+  }
+  throw TrayCsvError(source, line,
+                     quoted + " is not one the reader knows, and no column is dropped unseen: position_m (or "
+                     "x_m), mass columns *_g or *_kg (one per pass), or a tray number or notes column (tray, no, "
+                     "id, notes); rename or delete it");
+}
+
+// The file's lines, ended by LF, CRLF or a CR alone.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  bool next(std::string_view& line) {
+    if (at_ >= text_.size()) return false;
+    const std::size_t end = text_.find_first_of("\r\n", at_);
+    if (end == std::string_view::npos) {
+      line = text_.substr(at_);
+      at_ = text_.size();
+      return true;
+    }
+    line = text_.substr(at_, end - at_);
+    at_ = end + (text_[end] == '\r' && end + 1 < text_.size() && text_[end + 1] == '\n' ? 2 : 1);
+    return true;
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t at_ = 0;
+};
+
+// A UTF-16 file ("Unicode text") is text, but not what the reader takes: said so before its NUL bytes
+// make it look binary. Anything else with NULs or many control bytes is not a tray test at all.
+void require_text(std::string_view text, const std::string& source) {
+  if (text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'))) {
+    throw TrayCsvError(source, 1, "the file is UTF-16 text (\"Unicode text\"): save it as CSV (UTF-8 or plain)");
+  }
+  if (looks_binary(text)) {
+    throw TrayCsvError(source, 0,
+                       "not a text file: binary content (a NUL or control bytes near the start) — give the tray "
+                       "test saved as CSV");
+  }
+}
+
 }  // namespace
 
 TrayCsvError::TrayCsvError(const std::string& source, int line, const std::string& problem, ErrorKind kind)
@@ -175,6 +269,7 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
   std::size_t position_column = 0;
   bool have_position = false;
   std::vector<Column> mass_columns;
+  std::vector<std::size_t> unnamed_columns;  // read only to check that they hold nothing
   std::size_t cell_count = 0;
   char separator = ',';
   bool have_header = false;
@@ -183,13 +278,11 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
   // Spreadsheets save "CSV UTF-8" with a byte-order mark: invisible in the header the error would quote.
   constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
   if (text.substr(0, kUtf8Bom.size()) == kUtf8Bom) text.remove_prefix(kUtf8Bom.size());
-  if (text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'))) {
-    throw TrayCsvError(source, 1, "the file is UTF-16 text (\"Unicode text\"): save it as CSV (UTF-8 or plain)");
-  }
-  std::istringstream in{std::string(text)};
-  std::string raw;
+  require_text(text, source);
+  Lines lines(text);
+  std::string_view raw;
   int line_number = 0;
-  while (std::getline(in, raw)) {
+  while (lines.next(raw)) {
     ++line_number;
     const std::string line = trim(strip_comment(raw));
     if (line.empty()) continue;
@@ -202,28 +295,38 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
       if (!problem.empty()) throw TrayCsvError(source, line_number, "header: " + problem);
       cell_count = names.size();
       for (std::size_t i = 0; i < names.size(); ++i) {
-        const std::string name = lower(trim(names[i]));
-        if (name == "position_m" || name == "x_m") {
-          if (have_position) throw TrayCsvError(source, line_number, "two position columns ('" + names[i] + "')");
-          have_position = true;
-          position_column = i;
-        } else if (ends_with(name, "_kg")) {
-          mass_columns.push_back({i, 1.0});
-          test.mass_columns.push_back(names[i]);
-        } else if (ends_with(name, "_g")) {
-          mass_columns.push_back({i, 1e-3});
-          test.mass_columns.push_back(names[i]);
+        switch (column_role(names[i], source, line_number)) {
+          case ColumnRole::kPosition:
+            if (have_position) {
+              throw TrayCsvError(source, line_number, "two position columns ('" + excerpt(names[i]) + "')");
+            }
+            have_position = true;
+            position_column = i;
+            break;
+          case ColumnRole::kKilograms:
+            mass_columns.push_back({i, 1.0});
+            test.mass_columns.push_back(names[i]);
+            break;
+          case ColumnRole::kGrams:
+            mass_columns.push_back({i, 1e-3});
+            test.mass_columns.push_back(names[i]);
+            break;
+          case ColumnRole::kUnnamed:
+            unnamed_columns.push_back(i);
+            break;
+          case ColumnRole::kIgnored:
+            break;
         }
       }
       if (!have_position) {
         throw TrayCsvError(source, line_number,
                            "missing column position_m (tray centre in metres from the centre line); header is '" +
-                               line + "'");
+                               excerpt(line) + "'");
       }
       if (mass_columns.empty()) {
         throw TrayCsvError(source, line_number,
                            "missing mass column: name at least one column *_g (grams) or *_kg, e.g. mass_g or "
-                           "pass1_g,pass2_g; header is '" + line + "'");
+                           "pass1_g,pass2_g; header is '" + excerpt(line) + "'");
       }
       test.pass_mass_kg.resize(mass_columns.size());
       continue;
@@ -241,6 +344,13 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
                              (comma_hint ? " (decimal commas? with ',' separators '0,221' is two cells: write "
                                            "0.221, or save the file with ';' separators)"
                                          : ""));
+    }
+    for (const std::size_t column : unnamed_columns) {
+      if (!cells[column].empty()) {
+        throw TrayCsvError(source, line_number,
+                           "cell " + std::to_string(column + 1) + " '" + excerpt(cells[column]) +
+                               "' is in a column without a name: name the column in the header, or delete it");
+      }
     }
     auto number = [&](std::size_t column, const std::string& what) {
       std::string cell = trim(cells[column]);
@@ -260,12 +370,20 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
       if (cell.empty() || used != cell.size() || !std::isfinite(value)) {
         const bool comma = separator == ',' && cell.find(',') != std::string::npos;
         throw TrayCsvError(source, line_number,
-                           what + ": '" + cells[column] + "' is not a number" +
+                           excerpt(what) + ": '" + excerpt(cells[column]) + "' is not a number" +
                                (comma ? " (decimal commas only in files separated by ';' or tab)" : ""));
       }
       return value;
     };
     const double position = number(position_column, "position_m");
+    if (!(std::abs(position) <= options.farthest_tray_m)) {
+      char message[256];
+      std::snprintf(message, sizeof message,
+                    "position_m %.6g is %.6g m from the centre line: no spreader throws beyond about 50 m, and "
+                    "trays are read up to %g m — position_m in centimetres or millimetres? it takes metres",
+                    position, std::abs(position), options.farthest_tray_m);
+      throw TrayCsvError(source, line_number, message);
+    }
     double sum_kg = 0.0;
     int read = 0;
     for (std::size_t c = 0; c < mass_columns.size(); ++c) {
@@ -277,7 +395,11 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
       }
       const double mass = number(mass_columns[c].index, test.mass_columns[c]);
       if (mass < 0.0) {
-        throw TrayCsvError(source, line_number, test.mass_columns[c] + ": negative mass " + cell);
+        throw TrayCsvError(source, line_number, excerpt(test.mass_columns[c]) + ": negative mass " + excerpt(cell));
+      }
+      if (const std::string implausible = tray_mass_problem(mass, mass_columns[c].to_kg, test.mass_columns[c]);
+          !implausible.empty()) {
+        throw TrayCsvError(source, line_number, implausible);
       }
       test.pass_mass_kg[c].push_back(mass * mass_columns[c].to_kg);
       sum_kg += mass * mass_columns[c].to_kg;
@@ -285,7 +407,7 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
     }
     if (!test.position_m.empty() && !(position > test.position_m.back())) {
       throw TrayCsvError(source, line_number,
-                         "position_m " + cells[position_column] + " is not greater than the previous tray's " +
+                         "position_m " + excerpt(cells[position_column]) + " is not greater than the previous tray's " +
                              format_m(test.position_m.back()) + " (list the trays from left to right)");
     }
     test.position_m.push_back(position);
@@ -314,6 +436,12 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
     }
   }
   test.tray_width_m = (test.position_m.back() - test.position_m.front()) / (trays - 1);
+  if (!(test.tray_width_m >= options.narrowest_tray_m - 1e-12)) {
+    throw TrayCsvError(source, row_line[1],
+                       "the trays are " + format_m(test.tray_width_m) + " m apart: no collecting tray is narrower "
+                       "than " + format_m(options.narrowest_tray_m) + " m — position_m in kilometres? it takes "
+                       "metres");
+  }
 
   // Symmetric layout: with an odd tray count the centres sit at multiples of the width, with an even
   // count midway between. Which of the two the first tray is on decides the parity.
@@ -357,11 +485,40 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
 }
 
 TrayTest read_tray_csv(const std::string& path, const TrayCsvOptions& options) {
+  namespace fs = std::filesystem;
+  std::error_code ignored;
+  const fs::file_status status = fs::status(path, ignored);
+  if (fs::is_directory(status)) {
+    throw TrayCsvError(path, 0, "is a directory, not a tray-test file", ErrorKind::kMissing);
+  }
+  char text[160];
+  if (fs::is_regular_file(status)) {
+    std::error_code error;
+    const std::uintmax_t bytes = fs::file_size(path, error);
+    if (!error && bytes > kLargestTrayFile_bytes) {
+      std::snprintf(text, sizeof text, "the file is %.1f MB: a tray-test file is read up to %.0f MB (a tray test "
+                    "is well under 1 MB) — is it the right file?", static_cast<double>(bytes) / 1e6,
+                    static_cast<double>(kLargestTrayFile_bytes) / 1e6);
+      throw TrayCsvError(path, 0, text);
+    }
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw TrayCsvError(path, 0, "cannot open the file", ErrorKind::kMissing);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_tray_csv(text.str(), path, options);
+  // In blocks, so that a device or a growing file stops at the limit, and binary content at its first block.
+  std::string content;
+  std::vector<char> block(64 * 1024);
+  while (in.read(block.data(), static_cast<std::streamsize>(block.size())) || in.gcount() > 0) {
+    const bool first = content.empty();
+    content.append(block.data(), static_cast<std::size_t>(in.gcount()));
+    if (first) require_text(content, path);
+    if (content.size() > kLargestTrayFile_bytes) {
+      std::snprintf(text, sizeof text, "more than %.0f MB read: a tray-test file is read up to that (a tray "
+                    "test is well under 1 MB) — is it the right file?", static_cast<double>(kLargestTrayFile_bytes) / 1e6);
+      throw TrayCsvError(path, 0, text);
+    }
+  }
+  if (in.bad()) throw TrayCsvError(path, 0, "cannot read the file", ErrorKind::kIo);
+  return parse_tray_csv(content, path, options);
 }
 
 void write_tray_csv(const std::string& path, const std::vector<double>& position_m,

@@ -12,23 +12,31 @@
 // byte-order mark (spreadsheets' "CSV UTF-8") is skipped. A mass cell that is empty or `NA` is a missing
 // reading (a tray knocked over, a bag lost): a tray missing in every pass is left out of the CVs and the
 // fit; a tray missing in some passes is the mean of the others.
-// Columns (separator ',' — or ';' / tab when the header uses it):
+// Lines end in LF, CRLF or CR alone (old Mac spreadsheets' "CSV (Macintosh)").
+// Columns (separator ',' — or ';' / tab when the header uses it); a unit may also be written in
+// parentheses or brackets, "pass2 (g)" being pass2_g:
 //   position_m (or x_m)  tray centre, lateral, metres from the tractor centre line, left negative;
 //   one or more mass columns named *_g (grams) or *_kg (kilograms): one per pass, averaged per tray;
-//   any other column (e.g. "tray") is ignored.
+//   a tray number or notes column (tray, no, nr, id, number, index, notes, comment) is ignored, as is
+//   a column with neither name nor values (a trailing separator). Every other column is refused by
+//   name, so a pass is never dropped unseen: a mass in another unit (pass1_lb), a position in another
+//   unit (position_cm), an unknown name.
 // Checks, each failure a TrayCsvError whose message starts "<file>:<line>: ": quoting closed on its
 // line, nothing after a closing quote, no quote inside an unquoted cell; a header with a position
 // and at least one mass column; every row the header's cell count; numbers that parse completely and are
-// finite; masses >= 0; positions strictly increasing with one uniform spacing (within 1 mm); the
+// finite; masses >= 0 and within what a tray can catch (tray_plausibility.hpp); trays within
+// TrayCsvOptions::farthest_tray_m of the centre line and at least narrowest_tray_m apart; positions strictly increasing with one uniform spacing (within 1 mm); the
 // tray centres on the half-tray grid of the centre line (centres at multiples of the spacing, or
 // midway between), so the pattern can be overlapped about x = 0; at least kMinimumTrays trays with a
 // reading; some mass.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "libspread/core/error.hpp"
+#include "libspread/analysis/calibration/tray_plausibility.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
 
 namespace spread::calibration {
@@ -80,10 +88,19 @@ struct TrayTest {
 struct TrayCsvOptions {
   int minimum_trays = kMinimumTrays;  // trays with a reading
   bool centre_line_grid = true;       // require the centres on the centre line's grid
+  double farthest_tray_m = kFarthestTray_m;    // |position_m| at most this
+  double narrowest_tray_m = kNarrowestTray_m;  // tray spacing at least this
 };
 
+// A tray test of the largest plausible row (4,000 trays, tray_plausibility.hpp) with a dozen passes is
+// about 1 MB; 64 MB leaves room for long comments and still refuses a wrong file (a disc image, a
+// device such as /dev/zero) before it fills the memory.
+inline constexpr std::size_t kLargestTrayFile_bytes = 64'000'000;
+
 TrayTest parse_tray_csv(std::string_view text, const std::string& source, const TrayCsvOptions& options = {});
-// Reads the file; a file that cannot be opened is a TrayCsvError with line 0.
+// Reads the file; a file that cannot be opened, a directory, a file over kLargestTrayFile_bytes and a
+// binary file are each a TrayCsvError with line 0 saying which — read no further than the limit, and for
+// binary content no further than the first 64 KiB.
 TrayTest read_tray_csv(const std::string& path, const TrayCsvOptions& options = {});
 
 // Writes a tray-test CSV (position_m and one column per pass in grams), with '#' comment lines first.
