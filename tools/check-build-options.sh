@@ -17,7 +17,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=${1:-$root/build-options}
-common=(-G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG=-O0 -DCMAKE_CXX_FLAGS_DEBUG=-O0)
+. "$root/tools/ci/ccache.sh"
+common=(-G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG=-O0 -DCMAKE_CXX_FLAGS_DEBUG=-O0 "${spread_launcher[@]}")
 fail() { echo "build-options: FAIL: $*" >&2; exit 1; }
 
 # Neither the cache nor the build rules may mention a dependency the configuration turned off.

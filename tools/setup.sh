@@ -30,6 +30,7 @@ fi
 # third less time than with full debug information (-g). For gdb's variables, configure a build of your own
 # with -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g -DNDEBUG". The C API's shipped objects always carry full
 # debug information: the ABI check reads their types (capi/CMakeLists.txt).
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+. "$root/tools/ci/ccache.sh"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${spread_launcher[@]}" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" >/dev/null
 cmake --build "$build" -j2 "${targets[@]}"

@@ -11,6 +11,7 @@
 #   sanitizer_configure BUILD_DIR   configure (idempotent: an existing directory keeps its generator)
 #   sanitizer_environment           export the sanitizers' options for a test or fuzz run
 sanitizer_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+. "$sanitizer_root/tools/ci/ccache.sh"
 
 sanitizer_configure() {
   local build=$1 generator=()
@@ -18,7 +19,7 @@ sanitizer_configure() {
   # The generator of an existing build directory cannot change; keep whatever it was configured with.
   [ -f "$build/CMakeCache.txt" ] && generator=()
   # libFuzzer needs clang; CC/CXX may name another clang.
-  CC=${CC:-clang} CXX=${CXX:-clang++} cmake -S "$sanitizer_root" -B "$build" "${generator[@]}" \
+  CC=${CC:-clang} CXX=${CXX:-clang++} cmake -S "$sanitizer_root" -B "$build" "${generator[@]}" "${spread_launcher[@]}" \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
