@@ -4,10 +4,21 @@
 #include <string>
 
 #include "libspread/io/scene/scene.hpp"
+#include "libspread/analysis/calibration/tray_csv.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "tests/support/temp_path.hpp"
 
 namespace spread::testing {
+
+// The message of the TrayCsvError that parsing `text` (as file "t.csv") throws; "" when it is accepted.
+inline std::string tray_csv_error(const std::string& text) {
+  try {
+    calibration::parse_tray_csv(text, "t.csv");
+  } catch (const calibration::TrayCsvError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 // Urea of scenes/default.toml at 500 and 600 rpm, `samples` per run, with the seed's narrow Case 1 inlet
 // (r 0.0145 m at 0.1 m). The overrides go through the scene's provenance text, so reading them back is

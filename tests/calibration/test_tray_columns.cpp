@@ -5,19 +5,13 @@
 #include <vector>
 
 #include "libspread/analysis/calibration/tray_csv.hpp"
+#include "tests/calibration/calibration_test_support.hpp"
 
 namespace cal = spread::calibration;
 
 namespace {
 
-std::string error_of(const std::string& text) {
-  try {
-    cal::parse_tray_csv(text, "t.csv");
-  } catch (const cal::TrayCsvError& e) {
-    return e.what();
-  }
-  return "";
-}
+using spread::testing::tray_csv_error;
 
 // Five trays, three cells each after the position.
 const std::string kRows = "-1.0,1,2,3\n-0.5,2,3,4\n0.0,3,4,5\n0.5,2,3,4\n1.0,1,2,3\n";
@@ -34,19 +28,19 @@ TEST(TrayColumns, UnitInParenthesesIsRead) {
 }
 
 TEST(TrayColumns, MassInAnotherUnitIsRefusedByName) {
-  const std::string message = error_of("position_m,pass1_lb,pass2_g,pass3_g\n" + kRows);
+  const std::string message = tray_csv_error("position_m,pass1_lb,pass2_g,pass3_g\n" + kRows);
   EXPECT_NE(message.find("t.csv:1: column 'pass1_lb': mass in 'lb' is not read — mass columns are in grams (*_g "
                          "or '(g)') or kilograms (*_kg or '(kg)')"),
             std::string::npos)
       << message;
-  EXPECT_NE(error_of("position_m,pass1_g,pass2 (oz),pass3_g\n" + kRows).find("column 'pass2 (oz)': mass in 'oz'"),
+  EXPECT_NE(tray_csv_error("position_m,pass1_g,pass2 (oz),pass3_g\n" + kRows).find("column 'pass2 (oz)': mass in 'oz'"),
             std::string::npos);
 }
 
 TEST(TrayColumns, UnknownColumnIsRefusedByName) {
-  const std::string message = error_of("position_m,pass1_g,pass2_g,weight\n" + kRows);
+  const std::string message = tray_csv_error("position_m,pass1_g,pass2_g,weight\n" + kRows);
   EXPECT_NE(message.find("t.csv:1: column 'weight' is not one the reader knows"), std::string::npos) << message;
-  EXPECT_NE(error_of("position_cm,pass1_g,pass2_g,pass3_g\n" + kRows).find("column 'position_cm': positions are read in "
+  EXPECT_NE(tray_csv_error("position_cm,pass1_g,pass2_g,pass3_g\n" + kRows).find("column 'position_cm': positions are read in "
                                                                            "metres only"),
             std::string::npos);
 }
@@ -57,7 +51,7 @@ TEST(TrayColumns, TrayNumberNotesAndEmptyTrailingColumnAreIgnored) {
   EXPECT_EQ(t.mass_columns, (std::vector<std::string>{"mass_g"}));
   EXPECT_NEAR(t.total_mass_kg(), 9e-3, 1e-15);
   // A column without a name that holds a value is not dropped.
-  EXPECT_NE(error_of("position_m,mass_g,\n-1.0,1,\n-0.5,2,7\n0.0,3,\n0.5,2,\n1.0,1,\n")
+  EXPECT_NE(tray_csv_error("position_m,mass_g,\n-1.0,1,\n-0.5,2,7\n0.0,3,\n0.5,2,\n1.0,1,\n")
                 .find("t.csv:3: cell 3 '7' is in a column without a name"),
             std::string::npos);
 }

@@ -9,6 +9,7 @@
 
 #include "libspread/analysis/calibration/text_excerpt.hpp"
 #include "libspread/analysis/calibration/tray_csv.hpp"
+#include "tests/calibration/calibration_test_support.hpp"
 #include "tests/support/temp_path.hpp"
 
 namespace cal = spread::calibration;
@@ -16,19 +17,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using spread::testing::tray_csv_error;
+
 // The message of the TrayCsvError reading `path` raises ("" when it reads).
 std::string read_error(const std::string& path) {
   try {
     cal::read_tray_csv(path);
-  } catch (const cal::TrayCsvError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-std::string parse_error(const std::string& text) {
-  try {
-    cal::parse_tray_csv(text, "t.csv");
   } catch (const cal::TrayCsvError& e) {
     return e.what();
   }
@@ -54,20 +48,20 @@ TEST(TrayFileSafety, ExcerptCutsAndEscapes) {
 }
 
 TEST(TrayFileSafety, HugeCellIsQuotedCut) {
-  const std::string message = parse_error("position_m,pass1_g\n-1.0," + std::string(5'000'000, '9') + "\n" + kTrays);
+  const std::string message = tray_csv_error("position_m,pass1_g\n-1.0," + std::string(5'000'000, '9') + "\n" + kTrays);
   EXPECT_NE(message.find("t.csv:2: pass1_g: '"), std::string::npos) << message.substr(0, 200);
   EXPECT_NE(message.find("…' is not a number"), std::string::npos) << message.substr(0, 200);
   EXPECT_LT(message.size(), 200u);
 }
 
 TEST(TrayFileSafety, HugeHeaderIsQuotedCut) {
-  const std::string message = parse_error("position_m," + std::string(1'000'000, 'x') + "\n" + kTrays);
+  const std::string message = tray_csv_error("position_m," + std::string(1'000'000, 'x') + "\n" + kTrays);
   EXPECT_NE(message.find("column 'xxx"), std::string::npos) << message.substr(0, 200);
   EXPECT_LT(message.size(), 400u);
 }
 
 TEST(TrayFileSafety, ControlBytesInACellAreEscaped) {
-  const std::string message = parse_error("position_m,pass1_g\n-1.0,1\x1b[2J\n" + kTrays);
+  const std::string message = tray_csv_error("position_m,pass1_g\n-1.0,1\x1b[2J\n" + kTrays);
   EXPECT_NE(message.find("'1\\x1B[2J' is not a number"), std::string::npos) << message;
   EXPECT_EQ(message.find('\x1b'), std::string::npos);
 }
@@ -115,7 +109,7 @@ TEST(TrayFileSafety, CarriageReturnLineEndingsAreRead) {
   ASSERT_EQ(t.mass_kg.size(), 5u);
   EXPECT_NEAR(t.mass_kg[2], 3e-3, 1e-15);
   // Line numbers count CR-ended lines: the bad cell is on line 4.
-  EXPECT_NE(parse_error("position_m,pass1_g\r-1.0,1\r-0.5,2\r0.0,x\r0.5,2\r1.0,1\r").find("t.csv:4: pass1_g"),
+  EXPECT_NE(tray_csv_error("position_m,pass1_g\r-1.0,1\r-0.5,2\r0.0,x\r0.5,2\r1.0,1\r").find("t.csv:4: pass1_g"),
             std::string::npos);
   // Mixed CRLF and LF.
   EXPECT_EQ(cal::parse_tray_csv("position_m,pass1_g\r\n-1.0,1\n-0.5,2\r\n0.0,3\n0.5,2\r\n1.0,1", "t.csv").mass_kg.size(),
