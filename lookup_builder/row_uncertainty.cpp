@@ -16,12 +16,10 @@ double row_working_width_ci_m(const tables::Machine& machine, const tables::Mate
   request.material = material.name;
   request.rpm = run.rpm;
   predict::Prediction prediction;
-  if (predictor.predict(request, prediction) != predict::PredictStatus::kOk ||
-      !(prediction.working_width_to_and_fro_m > 0.0)) {
+  if (predictor.predict(request, prediction) != predict::PredictStatus::kOk || prediction.band_count_to_and_fro == 0) {
     return std::numeric_limits<double>::quiet_NaN();
   }
-  constexpr double kZ95 = 1.96;  // two-sided 95 % of the normal distribution
-  return kZ95 * prediction.working_width_to_and_fro_se_m;
+  return predict::kConfidence95 * prediction.bands_to_and_fro[0].upper_se_m;
 }
 
 }  // namespace spread::lookup

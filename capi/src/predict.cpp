@@ -20,6 +20,7 @@ static_assert(SPREAD_EFFECT_DRAG == spread::effect::find("drag")->bit &&
 static_assert(SPREAD_EFFECT_ALL == spread::effect::kFlightEffects);
 static_assert(SPREAD_EFFECTS_AS_TABLE == spread::predict::kTableEffects);
 static_assert((SPREAD_EFFECTS_AS_TABLE & SPREAD_EFFECT_ALL) == 0);
+static_assert(SPREAD_MAX_BANDS == spread::predict::kMaxBands);
 
 namespace {
 
@@ -36,7 +37,21 @@ spread_status status_of(spread::predict::PredictStatus status) {
   return SPREAD_ERROR_INTERNAL;
 }
 
-void copy_result(const spread::predict::Prediction& p, bool v2, spread_prediction& r) {
+void copy_band(const spread::predict::PredictedBand& b, spread_band& out) {
+  out.lower_m = b.lower_m;
+  out.upper_m = b.upper_m;
+  out.upper_se_m = b.upper_se_m;
+  out.bout_width_m = b.bout_width_m;
+  out.cv_percent = 100.0 * b.cv;
+  out.cv_se_percent = 100.0 * b.cv_se;
+  out.lowest_cv_percent = 100.0 * b.lowest_cv;
+  out.lowest_cv_se_percent = 100.0 * b.lowest_cv_se;
+  out.lowest_cv_bout_width_m = b.lowest_cv_bout_width_m;
+  out.established = b.established ? 1 : 0;
+  out.limited_by_layout = b.limited_by_layout ? 1 : 0;
+}
+
+void copy_result(const spread::predict::Prediction& p, bool v2, bool v3, spread_prediction& r) {
   r.throw_width_m = p.throw_width_m;
   r.working_width_to_and_fro_m = p.working_width_to_and_fro_m;
   r.working_width_racetrack_m = p.working_width_racetrack_m;
@@ -62,6 +77,20 @@ void copy_result(const spread::predict::Prediction& p, bool v2, spread_predictio
   r.cv_crossings_racetrack = p.cv_crossings_racetrack;
   r.effects = p.effects;
   r.kernel_half_width_m = p.kernel_half_width_m;
+  if (!v3) return;
+  r.band_count_to_and_fro = p.band_count_to_and_fro;
+  r.band_count_racetrack = p.band_count_racetrack;
+  r.headline_band_to_and_fro = p.headline_band_to_and_fro;
+  r.headline_band_racetrack = p.headline_band_racetrack;
+  r.first_band_width_to_and_fro_m = p.first_band_width_to_and_fro_m;
+  r.first_band_width_racetrack_m = p.first_band_width_racetrack_m;
+  // Unused slots are zeroed: a caller never reads stale bands of an earlier prediction.
+  for (int b = 0; b < SPREAD_MAX_BANDS; ++b) {
+    r.bands_to_and_fro[b] = spread_band{};
+    r.bands_racetrack[b] = spread_band{};
+  }
+  for (int b = 0; b < p.stored_bands_to_and_fro(); ++b) copy_band(p.bands_to_and_fro[b], r.bands_to_and_fro[b]);
+  for (int b = 0; b < p.stored_bands_racetrack(); ++b) copy_band(p.bands_racetrack[b], r.bands_racetrack[b]);
 }
 
 // What a refused request was, for spread_last_error_detail (vsnprintf into the thread's buffer: no
@@ -118,11 +147,13 @@ spread_status predict_with(const spread::predict::Predictor& predictor, const sp
     request.tray_width_m = def->tray_width_m;
     const bool v2 = def->struct_size >= spread::capi::kPredictionDefV2Size;
     if (v2) request.kernel_half_width_m = def->kernel_half_width_m;
+    const bool v3 = def->struct_size >= spread::capi::kPredictionDefV3Size &&
+                    def->result_size >= spread::capi::kPredictionV3Size;
 
     spread::predict::Prediction prediction;
     const auto status = run(request, prediction);
     if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, v2);
-    copy_result(prediction, v2, *result);
+    copy_result(prediction, v2, v3, *result);
     if (transverse_mass_fraction != nullptr) {
       const auto& trays = prediction.tray_mass_fraction;
       if (transverse_capacity < trays.size()) {

@@ -56,7 +56,10 @@ int main(int argc, char** argv) {
   CHECK(traj.reserved == 0u);
   CHECK(sizeof(spread_trajectory_def) == offsetof(spread_trajectory_def, reserved) + sizeof traj.reserved);
   CHECK(sizeof(spread_landing) == offsetof(spread_landing, reserved) + sizeof landing.reserved);
-  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, kernel_half_width_m) + sizeof(double));
+  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, reserved) + sizeof def.reserved);
+  CHECK(def.result_size == sizeof(spread_prediction) && def.reserved == 0u);
+  CHECK(sizeof(spread_band) == offsetof(spread_band, limited_by_layout) + sizeof(int32_t));
+  CHECK(sizeof(spread_prediction) == offsetof(spread_prediction, bands_racetrack) + sizeof result.bands_racetrack);
   CHECK(spread_version() == SPREAD_VERSION_NUMBER);
   CHECK(strcmp(spread_version_string(), SPREAD_VERSION_STRING) == 0);
   CHECK(strncmp(spread_status_str(SPREAD_ERROR_FILE_CORRUPT), "SPREAD_ERROR_FILE_CORRUPT", 25) == 0);

@@ -59,7 +59,7 @@ def check_predict(out, args):
     # Uncertainty, crossings, the CV(W) curve and the wider bands it allows, per overlap.
     for key in ("throw_width_se_m", "cv_to_and_fro_se_percent"):
         number(out, key, "predict", positive=True)
-    for key in ("cv_target_crossings", "wider_bands_within_target_m"):
+    for key in ("cv_target_crossings", "bands", "band_count", "first_band_width_m"):
         if not isinstance(out.get(key), dict) or set(out[key]) != {"to_and_fro", "racetrack"}:
             fail(f"predict: '{key}' is not an object with to_and_fro and racetrack: {out.get(key)!r}")
     curve = out.get("cv_curve")
@@ -67,10 +67,28 @@ def check_predict(out, args):
             isinstance(p, dict) and {"bout_width_m", "cv_to_and_fro_percent", "cv_racetrack_percent"} <= set(p)
             for p in curve):
         fail(f"predict: 'cv_curve' is not a list of {{bout_width_m, cv_to_and_fro_percent, cv_racetrack_percent}}: {curve!r}")
-    for mode, bands in out["wider_bands_within_target_m"].items():
+    # Every band: ordered, the headline's upper end is the working width, the first band's is
+    # first_band_width_m, and a band is established exactly when its lowest CV's 95 % bound is within
+    # the target.
+    target = out["cv_target_percent"]
+    for mode, bands in out["bands"].items():
+        if out["band_count"][mode] < len(bands):
+            fail(f"predict: band_count {out['band_count'][mode]} ({mode}) below the {len(bands)} bands listed")
+        previous_upper = 0.0
         for band in bands:
-            if not (isinstance(band, list) and len(band) == 2 and widths[mode] < band[0] <= band[1]):
-                fail(f"predict: wider band {band!r} ({mode}) is not [first, last] beyond the working width")
+            if not (previous_upper <= band["lower_m"] <= band["bout_width_m"] <= band["upper_m"]):
+                fail(f"predict: band {band!r} ({mode}) is not ordered after {previous_upper} m")
+            previous_upper = band["upper_m"]
+            if band["cv_percent"] is None or band["cv_percent"] > target + 1e-9:
+                fail(f"predict: band {band!r} ({mode}) has a CV above the target at its widest bout")
+            bound = band["lowest_cv_percent"] + 1.96 * (band["lowest_cv_se_percent"] or float("inf"))
+            if band["established"] != (bound <= target):
+                fail(f"predict: band {band!r} ({mode}): established disagrees with its lowest CV's 95 % bound {bound}")
+        headline = [b for b in bands if b["headline"]]
+        if bands and (len(headline) != 1 or headline[0]["upper_m"] != widths[mode]):
+            fail(f"predict: the headline band ({mode}) does not end at the working width {widths[mode]} m: {bands!r}")
+        if bands and bands[0]["upper_m"] != out["first_band_width_m"][mode]:
+            fail(f"predict: first_band_width_m ({mode}) is not the first band's upper end")
     if "--repeat" in args:
         number(out, "time_per_prediction_us", "predict", positive=True)
         if out.get("repeat") != int(args[args.index("--repeat") + 1]):

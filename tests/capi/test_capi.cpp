@@ -369,6 +369,38 @@ TEST_F(Capi, OlderDefinitionIsReadAndAnsweredAsItsVersion) {
   EXPECT_EQ(spread_predict(tables_, &d, &current, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
 }
 
+// A 0.2 caller (definition up to kernel_half_width_m) gets the 0.2 result and nothing beyond it; from 0.3
+// on the definition's result_size decides, so a caller whose result is a 0.2 one is answered as such.
+TEST_F(Capi, BandsAreWrittenOnlyForACallerWhoseResultHasThem) {
+  spread_prediction_def d = def();
+  spread_prediction current{};
+  ASSERT_EQ(spread_predict(tables_, &d, &current, nullptr, 0), SPREAD_OK);
+  ASSERT_GE(current.band_count_to_and_fro, 1);
+  ASSERT_GE(current.headline_band_to_and_fro, 0);
+  EXPECT_EQ(current.working_width_to_and_fro_m, current.bands_to_and_fro[current.headline_band_to_and_fro].upper_m);
+  EXPECT_EQ(current.first_band_width_to_and_fro_m, current.bands_to_and_fro[0].upper_m);
+  for (int b = std::min(current.band_count_to_and_fro, SPREAD_MAX_BANDS); b < SPREAD_MAX_BANDS; ++b) {
+    EXPECT_EQ(current.bands_to_and_fro[b].upper_m, 0.0) << "unused band slot " << b << " not zeroed";
+  }
+  struct Case {
+    uint32_t def_size, result_size;
+  };
+  for (const Case c : {Case{static_cast<uint32_t>(spread::capi::kPredictionDefV2Size), static_cast<uint32_t>(sizeof current)},
+                       Case{static_cast<uint32_t>(sizeof d), static_cast<uint32_t>(spread::capi::kPredictionV2Size)},
+                       Case{static_cast<uint32_t>(sizeof d), static_cast<uint32_t>(spread::capi::kPredictionV3Size - 1)}}) {
+    d.struct_size = c.def_size;
+    d.result_size = c.result_size;
+    spread_prediction older;
+    std::memset(&older, 0xAB, sizeof older);
+    ASSERT_EQ(spread_predict(tables_, &d, &older, nullptr, 0), SPREAD_OK);
+    EXPECT_EQ(older.kernel_half_width_m, current.kernel_half_width_m);
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&older);
+    for (std::size_t i = spread::capi::kPredictionV2Size; i < sizeof older; ++i) {
+      ASSERT_EQ(bytes[i], 0xAB) << "result byte " << i << " written for def " << c.def_size << ", result " << c.result_size;
+    }
+  }
+}
+
 TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {
   spread_trajectory_def t = spread_trajectory_def_default();
   EXPECT_EQ(t.reserved, 0u);

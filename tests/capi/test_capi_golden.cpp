@@ -292,7 +292,18 @@ struct Reported {
   double kernel_half_width_m = 0.0;
   long sample_count = 0;
   bool vacuum = false;  // no flight effect ran
+  bool headline_is_widest_established = false;
 };
+
+// The headline rule on the C API's bands: the working width is the upper end of the widest established
+// band (the first band when none is).
+bool headline_is_widest_established(const spread_band* bands, int32_t count, int32_t headline, double width_m) {
+  int32_t want = count > 0 ? 0 : -1;
+  for (int32_t b = 0; b < std::min<int32_t>(count, SPREAD_MAX_BANDS); ++b) {
+    if (bands[b].established != 0) want = b;
+  }
+  return headline == want && (want < 0 ? width_m == 0.0 : width_m == bands[want].upper_m);
+}
 
 Reported predict_capi(const std::string& table, double kernel_half_width_m) {
   Reported out;
@@ -317,10 +328,21 @@ Reported predict_capi(const std::string& table, double kernel_half_width_m) {
   EXPECT_DOUBLE_EQ(r.tray_left_edge_m, out.layout.left_edge_m());
   out.throw_width_m = r.throw_width_m;
   out.throw_width_se_m = r.throw_width_se_m;
-  out.working_width_to_and_fro_m = r.working_width_to_and_fro_m;
-  out.working_width_to_and_fro_se_m = r.working_width_to_and_fro_se_m;
-  out.working_width_racetrack_m = r.working_width_racetrack_m;
-  out.working_width_racetrack_se_m = r.working_width_racetrack_se_m;
+  // The widest band's upper end: the closed form's working width (metrics::working_width, exact trays).
+  // The headline may be a narrower band when the samples do not establish the widest
+  // (HeadlineIsTheWidestEstablishedBand).
+  const auto widest = [](const spread_band* bands, int32_t count) {
+    return count > 0 ? bands[std::min<int32_t>(count, SPREAD_MAX_BANDS) - 1] : spread_band{};
+  };
+  const spread_band to_and_fro = widest(r.bands_to_and_fro, r.band_count_to_and_fro);
+  const spread_band racetrack = widest(r.bands_racetrack, r.band_count_racetrack);
+  out.working_width_to_and_fro_m = to_and_fro.upper_m;
+  out.working_width_to_and_fro_se_m = to_and_fro.upper_se_m;
+  out.working_width_racetrack_m = racetrack.upper_m;
+  out.working_width_racetrack_se_m = racetrack.upper_se_m;
+  out.headline_is_widest_established =
+      headline_is_widest_established(r.bands_to_and_fro, r.band_count_to_and_fro, r.headline_band_to_and_fro,
+                                     r.working_width_to_and_fro_m);
   out.bout_width_m = r.bout_width_m;
   out.cv_to_and_fro_percent = r.cv_percent;
   out.cv_to_and_fro_se_percent = r.cv_se_percent;
@@ -363,10 +385,18 @@ Reported predict_cli(const std::string& table, double kernel_half_width_m) {
   EXPECT_NEAR(centres.front() - 0.5 * out.layout.tray_width_m, out.layout.left_edge_m(), 1e-12);
   out.throw_width_m = number(j.at("throw_width_m"));
   out.throw_width_se_m = number(j.at("throw_width_se_m"));
-  out.working_width_to_and_fro_m = number(j.at("working_width_to_and_fro_m"));
-  out.working_width_to_and_fro_se_m = number(j.at("working_width_to_and_fro_se_m"));
-  out.working_width_racetrack_m = number(j.at("working_width_racetrack_m"));
-  out.working_width_racetrack_se_m = number(j.at("working_width_racetrack_se_m"));
+  const auto& to_and_fro = j.at("bands").at("to_and_fro").back();  // the widest band, as predict_capi
+  const auto& racetrack = j.at("bands").at("racetrack").back();
+  out.working_width_to_and_fro_m = number(to_and_fro.at("upper_m"));
+  out.working_width_to_and_fro_se_m = number(to_and_fro.at("upper_se_m"));
+  out.working_width_racetrack_m = number(racetrack.at("upper_m"));
+  out.working_width_racetrack_se_m = number(racetrack.at("upper_se_m"));
+  out.headline_is_widest_established = true;
+  double headline_m = 0.0;
+  for (const auto& band : j.at("bands").at("to_and_fro")) {
+    if (band.at("established").get<bool>()) headline_m = band.at("upper_m").get<double>();
+  }
+  if (headline_m > 0.0) out.headline_is_widest_established = headline_m == number(j.at("working_width_to_and_fro_m"));
   out.bout_width_m = number(j.at("bout_width_m"));
   out.cv_to_and_fro_percent = number(j.at("cv_to_and_fro_percent"));
   out.cv_to_and_fro_se_percent = number(j.at("cv_to_and_fro_se_percent"));
@@ -398,6 +428,7 @@ std::vector<std::string> disagreements(const Reported& got, double radius_m, boo
     return line.str();
   };
   check(got.vacuum, "a flight effect ran: the table records none");
+  check(got.headline_is_widest_established, "the working width is not the widest established band's upper end");
   check(got.sample_count == kLaunches, text("sample_count ", got.sample_count, " != ", kLaunches));
   check(got.lost_mass_fraction <= 1e-12, text("lost mass ", got.lost_mass_fraction));
   // Every landing on the circle: R̄ = ρ, ξ = 0 (seed Eqs. 51–52).
@@ -604,15 +635,14 @@ TEST_F(GoldenPattern, RejectsLaunchesOnePercentFaster) {
 }
 
 // The bands of the working widths and CVs (3 SE, ~0.13 m and ~4 points at N = 4096) catch an 8 % error
-// in the landing radius on their own.
+// in the landing radius on their own with the automatic kernel (working width 7.60 m against 8.09 m).
+// With point masses the spiky arcsine pattern's widest band ends at 5.58 m against 5.65 m: within 3 SE,
+// so there only the trays catch it (RejectsACircleOnePercentTooLarge).
 TEST_F(GoldenPattern, WidthAndCvBandsRejectACircleEightPercentTooLarge) {
   const double wrong_radius_m = 1.08 * landing_circle(kRpm).radius_m;
-  for (double kernel_m : {0.0, kAutomatic}) {
-    const auto problems = disagreements(predict_capi(table_, kernel_m), wrong_radius_m, std::isnan(kernel_m));
-    EXPECT_TRUE(flags(problems, "working width to-and-fro")) << "kernel " << kernel_m << "\n" << joined(problems);
-    EXPECT_TRUE(flags(problems, "working width racetrack")) << "kernel " << kernel_m << "\n" << joined(problems);
-  }
   const auto problems = disagreements(predict_capi(table_, kAutomatic), wrong_radius_m, true);
+  EXPECT_TRUE(flags(problems, "working width to-and-fro")) << joined(problems);
+  EXPECT_TRUE(flags(problems, "working width racetrack")) << joined(problems);
   EXPECT_TRUE(flags(problems, "CV to-and-fro")) << joined(problems);
   EXPECT_TRUE(flags(problems, "CV racetrack")) << joined(problems);
 }

@@ -61,8 +61,9 @@ TEST_F(DefaultTable, WorkingWidthsDoNotMoveWithTheTrayWidth) {
   }
 }
 
-// The answer's uncertainty on every row: the 95 % interval of the to-and-fro working width within ±0.5 m
-// (lookup_builder runs each DEM row until it is: sweep.working_width_ci_m).
+// The answer's uncertainty on every row: the 95 % interval of the to-and-fro first band's upper end within
+// ±0.5 m (lookup_builder runs each DEM row until it is: sweep.working_width_ci_m), and the headline's
+// interval finite.
 TEST_F(DefaultTable, EveryRowKnowsItsWorkingWidthWithinHalfAMetre) {
   int32_t materials = 0;
   ASSERT_EQ(spread_material_count(tables_, &materials), SPREAD_OK);
@@ -78,7 +79,9 @@ TEST_F(DefaultTable, EveryRowKnowsItsWorkingWidthWithinHalfAMetre) {
       spread_prediction r{};
       ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK) << name << " " << rpm;
       EXPECT_EQ(r.flights, 0) << "the machine's own conditions come from the landing cache";
-      EXPECT_LE(1.96 * r.working_width_to_and_fro_se_m, 0.5) << name << " " << rpm << " rpm";
+      ASSERT_GE(r.band_count_to_and_fro, 1) << name << " " << rpm << " rpm";
+      EXPECT_LE(1.96 * r.bands_to_and_fro[0].upper_se_m, 0.5) << name << " " << rpm << " rpm";
+      EXPECT_TRUE(std::isfinite(r.working_width_to_and_fro_se_m)) << name << " " << rpm << " rpm";
     }
   }
 }

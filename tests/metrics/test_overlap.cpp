@@ -6,6 +6,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -333,10 +334,16 @@ TEST(EffectiveWorkingWidth, StripWithHandComputedCurve) {
   EXPECT_NEAR(cv19, 0.2179, 1e-4);
   for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
     // The strip's own zig-zag (n that do not divide 20) rises above 15 % well before 10 m and comes back
-    // to 0 at 10 m: the working width stops at the first crossing and the curve is flagged.
+    // to 0 at 10 m: the first band ends early, the widest ends between 20 trays (CV 0) and 21 (cv21),
+    // which is where a 10 m strip is driven.
     const sm::WorkingWidth at15 = sm::working_width(p, trays, overlap, 0.15);
-    EXPECT_LT(at15.width_m, 10.0);
-    EXPECT_GE(at15.crossings, 2);
+    ASSERT_GE(at15.band_count, 2);
+    EXPECT_LT(at15.first_band_upper_m(), 10.0);
+    EXPECT_EQ(at15.trays_below, 20);
+    EXPECT_NEAR(at15.width_m, 10.0 + 0.5 * 0.15 / cv21, 1e-12);
+    EXPECT_EQ(at15.bands[at15.stored_bands() - 1].lowest_cv_trays, 20);
+    EXPECT_NEAR(at15.bands[at15.stored_bands() - 1].lowest_cv, 0.0, 1e-12);
+    EXPECT_GE(at15.crossings, 3);
     EXPECT_FALSE(at15.limited_by_layout);
   }
 }
@@ -384,48 +391,73 @@ TEST(EffectiveWorkingWidth, TheSameRuleOnASampledCurve) {
       EXPECT_EQ(on_curve.limited_by_layout, direct.limited_by_layout) << target;
     }
   }
-  // A hand-made zig-zag: 2 m 10 %, 3 m 12 %, 4 m 20 %, 5 m 12 %: first crossing between 3 and 4 m at
-  // 15 %: 3 + (15 − 12)/(20 − 12) = 3.375 m, two crossings (the dip at 5 m is never taken).
+  // A hand-made zig-zag: 2 m 10 %, 3 m 12 %, 4 m 20 %, 5 m 12 %: the first band ends between 3 and 4 m
+  // at 15 %: 3 + (15 − 12)/(20 − 12) = 3.375 m; the second starts at 4 + (20 − 15)/(20 − 12) = 4.625 m
+  // and runs to the end of the curve, 5 m: the working width.
   const sm::WorkingWidth zig = sm::working_width_on_curve(std::vector<double>{2, 3, 4, 5},
                                                           std::vector<double>{0.10, 0.12, 0.20, 0.12}, 0.15);
-  EXPECT_DOUBLE_EQ(zig.width_m, 3.375);
+  EXPECT_DOUBLE_EQ(zig.width_m, 5.0);
+  EXPECT_TRUE(zig.limited_by_layout);
   EXPECT_EQ(zig.crossings, 2);
+  ASSERT_EQ(zig.band_count, 2);
+  EXPECT_DOUBLE_EQ(zig.bands[0].lower_m, 2.0);
+  EXPECT_DOUBLE_EQ(zig.bands[0].upper_m, 3.375);
+  EXPECT_DOUBLE_EQ(zig.bands[0].lowest_cv, 0.10);
+  EXPECT_DOUBLE_EQ(zig.bands[1].lower_m, 4.625);
+  EXPECT_DOUBLE_EQ(zig.bands[1].upper_m, 5.0);
+  EXPECT_DOUBLE_EQ(zig.first_band_upper_m(), 3.375);
+  // A curve that starts above the target has its first band where it dips under.
+  const sm::WorkingWidth late = sm::working_width_on_curve(std::vector<double>{2, 3, 4},
+                                                           std::vector<double>{0.30, 0.10, 0.20}, 0.15);
+  ASSERT_EQ(late.band_count, 1);
+  EXPECT_DOUBLE_EQ(late.bands[0].lower_m, 2.0 + 15.0 / 20.0);
+  EXPECT_DOUBLE_EQ(late.width_m, 3.5);
   EXPECT_THROW(sm::working_width_on_curve(std::vector<double>{2, 2}, std::vector<double>{0.1, 0.1}, 0.15),
                std::invalid_argument);
   EXPECT_THROW(sm::working_width_on_curve(std::vector<double>{2}, std::vector<double>{0.1, 0.1}, 0.15),
                std::invalid_argument);
 }
 
-TEST(EffectiveWorkingWidth, IsTheFirstCrossingAndNeverAnIsolatedDip) {
-  // A hand-made CV(W) zig-zag: the first width above the target ends the working width, a later dip
-  // below it does not count (it is flagged as a second crossing).
+TEST(EffectiveWorkingWidth, BandsAreTheRunsWithinTheTarget) {
+  // Every run of whole-tray widths with CV <= target is one band, found by brute force here; the working
+  // width ends the widest run.
   const std::vector<double> p = random_pattern(36, 21);
   for (double target : {0.05, 0.1, 0.15, 0.3}) {
     for (auto overlap : {sm::Overlap::kRacetrack, sm::Overlap::kToAndFro}) {
       const sm::WorkingWidth w = sm::working_width(p, layout(36), overlap, target);
+      std::vector<std::pair<int, int>> runs;  // first and last tray count within the target
       int crossings = 0;
-      bool below = sm::cv_at_trays(p, layout(36), 2, overlap) <= target;
-      int first_above = 0;
-      if (!below) {
+      bool before = false;
+      for (int n = 2; n <= 36; ++n) {
+        const bool now = sm::cv_at_trays(p, layout(36), n, overlap) <= target;
+        if (n > 2 && now != before) ++crossings;
+        if (now && !before) runs.emplace_back(n, n);
+        if (now) runs.back().second = n;
+        before = now;
+      }
+      EXPECT_EQ(w.crossings, crossings) << target;
+      ASSERT_EQ(w.band_count, static_cast<int>(runs.size())) << target;
+      if (runs.empty()) {
         EXPECT_EQ(w.width_m, 0.0);
         continue;
       }
-      for (int n = 3; n <= 36; ++n) {
-        const bool now = sm::cv_at_trays(p, layout(36), n, overlap) <= target;
-        if (now != below) {
-          ++crossings;
-          if (first_above == 0) first_above = n;
-        }
-        below = now;
+      for (int b = 0; b < w.stored_bands(); ++b) {
+        const auto [first, last] = runs[static_cast<std::size_t>(b)];
+        const sm::WidthBand& band = w.bands[b];
+        EXPECT_EQ(band.trays_below, last) << target << " band " << b;
+        EXPECT_GE(band.upper_m, last * 0.5);
+        EXPECT_LE(band.upper_m, (last + 1) * 0.5);
+        EXPECT_LE(band.lower_m, first * 0.5);
+        EXPECT_GE(band.lower_m, first == 2 ? 1.0 : (first - 1) * 0.5);
+        double lowest = std::numeric_limits<double>::infinity();
+        for (int n = first; n <= last; ++n) lowest = std::min(lowest, sm::cv_at_trays(p, layout(36), n, overlap));
+        EXPECT_DOUBLE_EQ(band.lowest_cv, lowest);
+        EXPECT_DOUBLE_EQ(sm::cv_at_trays(p, layout(36), band.lowest_cv_trays, overlap), lowest);
       }
-      EXPECT_EQ(w.crossings, crossings) << target;
-      if (first_above == 0) {
+      EXPECT_EQ(w.trays_below, runs.back().second);
+      if (runs.back().second == 36) {
         EXPECT_TRUE(w.limited_by_layout);
         EXPECT_DOUBLE_EQ(w.width_m, 18.0);
-      } else {
-        EXPECT_EQ(w.trays_below, first_above - 1);
-        EXPECT_GE(w.width_m, (first_above - 1) * 0.5);
-        EXPECT_LE(w.width_m, first_above * 0.5);
       }
     }
   }
@@ -449,6 +481,13 @@ void expect_same_widths(const std::vector<double>& p, const sm::TrayLayout& tray
     EXPECT_EQ(got[k]->cv_below, want.cv_below) << where;
     EXPECT_EQ(got[k]->cv_above, want.cv_above) << where;
     EXPECT_EQ(got[k]->limited_by_layout, want.limited_by_layout) << where;
+    ASSERT_EQ(got[k]->band_count, want.band_count) << where;
+    for (int b = 0; b < want.stored_bands(); ++b) {
+      EXPECT_EQ(got[k]->bands[b].lower_m, want.bands[b].lower_m) << where << " band " << b;
+      EXPECT_EQ(got[k]->bands[b].upper_m, want.bands[b].upper_m) << where << " band " << b;
+      // The band's lowest point is ranked by the FFT's CVs: a tie within their rounding may pick the other.
+      EXPECT_NEAR(got[k]->bands[b].lowest_cv, want.bands[b].lowest_cv, 1e-9) << where << " band " << b;
+    }
   }
 }
 

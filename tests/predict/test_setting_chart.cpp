@@ -1,9 +1,11 @@
-// The setting chart: the rpm it finds gives the width asked, widths beyond the table's range are said to
-// be so, and bad input is refused.
+// The setting chart: at each width it picks the disc speed with the lowest CV (no point of a 25 rpm scan
+// is better by more than half a CV point), every width that some setting reaches is reachable, the spans
+// within the target are where the CV is, and bad input is refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -13,41 +15,62 @@
 namespace spread::predict {
 namespace {
 
-TEST(SettingChart, FoundRpmGivesTheWidth) {
+double cv_at(Predictor& predictor, double rpm, double width_m) {
+  PredictionRequest request;
+  request.material = "can";
+  request.rpm = rpm;
+  request.bout_width_m = width_m;
+  Prediction p;
+  EXPECT_EQ(predictor.predict(request, p), PredictStatus::kOk);
+  return p.cv_to_and_fro;
+}
+
+TEST(SettingChart, PicksTheLowestCvAndEveryReachableWidth) {
   Predictor predictor(testing::synthetic_contents());
   SettingChartOptions options;
-  // A first chart only to learn the range of working widths the "can" rows give.
-  const std::vector<double> probe{1.0};
-  const SettingChart range = setting_chart(predictor, "can", probe, options);
-  ASSERT_EQ(range.scan_rpm.size(), static_cast<std::size_t>(kScanPoints));
-  EXPECT_EQ(range.min_rpm, 500.0);
-  EXPECT_EQ(range.max_rpm, 800.0);
-  const double narrowest = *std::min_element(range.scan_working_width_m.begin(), range.scan_working_width_m.end());
-  const double widest = *std::max_element(range.scan_working_width_m.begin(), range.scan_working_width_m.end());
-  ASSERT_GT(widest, narrowest + 1.0);
-
-  const std::vector<double> widths{0.5 * (narrowest + widest), 0.5 * narrowest, widest + 50.0};
+  std::vector<double> widths;
+  for (double w = 2.0; w <= 30.0; w += 2.0) widths.push_back(w);
   const SettingChart chart = setting_chart(predictor, "can", widths, options);
-  ASSERT_EQ(chart.rows.size(), 3u);
-  const SettingChartRow& middle = chart.rows[0];
-  // The synthetic rows' working width grows smoothly with rpm: the middle width is reached.
-  ASSERT_EQ(middle.reach, ChartReach::kReached) << to_string(middle.reach);
-  {
-    EXPECT_GE(middle.rpm, 500.0);
-    EXPECT_LE(middle.rpm, 800.0);
-    // The predictor at that rpm: the working width within half a tray of the width asked.
-    PredictionRequest request;
-    request.material = "can";
-    request.rpm = middle.rpm;
-    Prediction p;
-    ASSERT_EQ(predictor.predict(request, p), PredictStatus::kOk);
-    EXPECT_NEAR(p.working_width_to_and_fro_m, widths[0], 0.5 * options.tray_width_m);
-    EXPECT_TRUE(std::isfinite(middle.cv_to_and_fro));
-    EXPECT_GT(middle.cv_to_and_fro_se, 0.0);
+  EXPECT_EQ(chart.min_rpm, 500.0);
+  EXPECT_EQ(chart.max_rpm, 800.0);
+  ASSERT_EQ(chart.rows.size(), widths.size());
+  // The grid holds every row and steps of at most kChartScanStep_rpm.
+  for (std::size_t k = 1; k < chart.scan_rpm.size(); ++k) {
+    EXPECT_LE(chart.scan_rpm[k] - chart.scan_rpm[k - 1], kChartScanStep_rpm + 1e-9);
   }
-  EXPECT_EQ(chart.rows[1].reach, ChartReach::kTooNarrow);
-  EXPECT_TRUE(std::isnan(chart.rows[1].rpm));
-  EXPECT_EQ(chart.rows[2].reach, ChartReach::kTooWide);
+  int reached = 0, not_reached = 0;
+  for (const SettingChartRow& row : chart.rows) {
+    // A technician's scan in 25 rpm steps never finds a setting better by more than half a CV point.
+    double scan_best = std::numeric_limits<double>::infinity();
+    for (double rpm = 500.0; rpm <= 800.0; rpm += 25.0) scan_best = std::min(scan_best, cv_at(predictor, rpm, row.width_m));
+    ASSERT_TRUE(std::isfinite(row.rpm)) << row.width_m;
+    EXPECT_GE(row.cv_to_and_fro, 0.0);
+    EXPECT_LE(row.cv_to_and_fro, scan_best + 0.005) << row.width_m << " m at " << row.rpm << " rpm";
+    // The CV reported is the predictor's at that setting.
+    EXPECT_DOUBLE_EQ(row.cv_to_and_fro, cv_at(predictor, row.rpm, row.width_m));
+    // Reachable exactly when some setting meets the target.
+    if (scan_best <= options.cv_target) EXPECT_NE(row.reach, ChartReach::kNotReached) << row.width_m;
+    if (row.reach == ChartReach::kNotReached) {
+      ++not_reached;
+      EXPECT_GT(row.cv_to_and_fro, options.cv_target);
+      EXPECT_TRUE(row.within_target_rpm.empty());
+    } else {
+      ++reached;
+      EXPECT_LE(row.cv_to_and_fro, options.cv_target);
+      EXPECT_EQ(row.reach == ChartReach::kReached,
+                row.cv_to_and_fro + kConfidence95 * row.cv_to_and_fro_se <= options.cv_target);
+      EXPECT_FALSE(row.within_target_rpm.empty()) << row.width_m;
+    }
+    // Inside each span the CV is within the target, just outside it is not (at grid points).
+    for (const auto& [low, high] : row.within_target_rpm) {
+      EXPECT_LE(low, high);
+      const double mid = 0.5 * (low + high);
+      EXPECT_LE(cv_at(predictor, mid, row.width_m), options.cv_target + 0.01) << row.width_m << " m at " << mid;
+    }
+  }
+  // The synthetic rows reach the narrow widths and not the widest.
+  EXPECT_GT(reached, 0);
+  EXPECT_GT(not_reached, 0);
 }
 
 TEST(SettingChart, BadInputIsRefused) {

@@ -186,6 +186,7 @@ json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
            {"cv_target_percent", 100.0 * a.cv_target},
            {"working_width_to_and_fro_m", a.working_width_to_and_fro_m},
            {"working_width_racetrack_m", a.working_width_racetrack_m},
+           {"bands_m", {{"to_and_fro", a.bands_to_and_fro_m}, {"racetrack", a.bands_racetrack_m}}},
            {"cv_curve", curve}};
   if (a.bout_width_m > 0.0) {
     out["bout_width_m"] = a.bout_width_m;
@@ -486,6 +487,19 @@ void run_tray(const TrayOptions& o) {
   for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
   std::printf("effective working width (CV <= %.3g %%): %.2f m to-and-fro, %.2f m racetrack\n", 100.0 * a.cv_target,
               a.working_width_to_and_fro_m, a.working_width_racetrack_m);
+  if (a.bands_to_and_fro_m.size() > 1 || a.bands_racetrack_m.size() > 1) {
+    const auto list = [](const std::vector<std::pair<double, double>>& bands) {
+      std::string text;
+      for (const auto& [lower, upper] : bands) {
+        char band[48];
+        std::snprintf(band, sizeof band, "%s%.2f-%.2f m", text.empty() ? "" : ", ", lower, upper);
+        text += band;
+      }
+      return text;
+    };
+    std::printf("bands within the target: to-and-fro %s; racetrack %s (the working width ends the widest)\n",
+                list(a.bands_to_and_fro_m).c_str(), list(a.bands_racetrack_m).c_str());
+  }
   if (scatter.available) {
     std::printf("pass-to-pass scatter: rms %.2f g per tray between the %d passes (%.3f %% of a pass per tray; "
                 "%.3f %% for their mean)\n",

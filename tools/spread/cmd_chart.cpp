@@ -1,9 +1,11 @@
 // spread chart --tables FILE --material NAME [--cv-target PCT] [--widths 12,15,18,21,24] [--tray-width W]
 //              [--height M] [--json] [--report OUT.pdf] [--speed KM_H]
-// The setting chart of a material: for each working width, the disc speed within the table's rpm rows
-// whose predicted to-and-fro working width equals it, with the CVs at that width ± their 95 % intervals
-// (libspread/analysis/predict/setting_chart.hpp; docs/field-calibration.md, "Spread chart"). Uses the C++
-// predictor directly, as `spread plot` does. Bad input → a message naming it on stderr, exit code 2.
+//              [--wind VX,VY]
+// The setting chart of a material: for each tramline width, the disc speed within the table's rpm rows
+// with the lowest predicted to-and-fro CV at that width, the CVs there ± their 95 % intervals and the
+// spans of disc speed that keep the CV within the target (libspread/analysis/predict/setting_chart.hpp;
+// docs/field-calibration.md, "Spread chart"). Uses the C++ predictor directly, as `spread plot` does.
+// Bad input → a message naming it on stderr, exit code 2.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,6 +36,7 @@ struct Options {
   std::string widths = "12,15,18,21,24";
   double tray_width_m = 0.5;
   double height_m = std::numeric_limits<double>::quiet_NaN();
+  std::string wind = "0,0";  // "VX,VY", m/s
   bool json = false;
   spread::cli::ReportArgs report;
 };
@@ -75,31 +78,26 @@ std::string cv_text(double cv, double se) {
   return text;
 }
 
-std::string unreachable_text(const pr::SettingChartRow& row, const pr::SettingChart& chart) {
+std::string spans_text(const pr::SettingChartRow& row) {
+  std::string list;
+  for (const auto& [low, high] : row.within_target_rpm) {
+    list += (list.empty() ? "" : ", ") + format("%.0f", low) + "-" + format("%.0f rpm", high);
+  }
+  return list.empty() ? "-" : list;
+}
+
+std::string reach_note(const pr::SettingChartRow& row, const pr::SettingChart& chart, double cv_target_percent) {
   switch (row.reach) {
-    case pr::ChartReach::kTooNarrow:
-      return "not reachable: narrower than the working width at every rpm of " + format("%.0f", chart.min_rpm) +
-             "-" + format("%.0f rpm", chart.max_rpm);
-    case pr::ChartReach::kTooWide:
-      return "not reachable: wider than the working width at every rpm of " + format("%.0f", chart.min_rpm) + "-" +
-             format("%.0f rpm", chart.max_rpm);
-    case pr::ChartReach::kJumpedOver:
-      return "not reachable: the working width jumps over it near " + format("%.0f rpm", row.rpm) + " (to " +
-             format("%.2f m", row.working_width_to_and_fro_m) + ")";
+    case pr::ChartReach::kNotReached:
+      return format("%.1f m", row.width_m) + " is not reachable: no disc speed of " + format("%.0f", chart.min_rpm) +
+             "-" + format("%.0f rpm", chart.max_rpm) + " keeps the CV within " + format("%g %%", cv_target_percent) +
+             " (lowest " + format("%.1f %%", 100.0 * row.cv_to_and_fro) + " at " + format("%.0f rpm", row.rpm) + ")";
+    case pr::ChartReach::kMarginal:
+      return format("%.1f m", row.width_m) + " is marginal: the best setting's 95 % interval reaches over " +
+             format("%g %%", cv_target_percent) + " (a field test should confirm it)";
     case pr::ChartReach::kReached: break;
   }
   return {};
-}
-
-// The lowest rpm is the row's; the working width is not monotone in rpm when it crosses the width again.
-std::string other_crossings_text(const pr::SettingChartRow& row) {
-  if (row.other_crossings_rpm.empty()) return "";
-  std::string list;
-  for (const auto& [low, high] : row.other_crossings_rpm) {
-    list += (list.empty() ? "" : ", ") + format("%.0f", low) + "-" + format("%.0f rpm", high);
-  }
-  return format("%.1f m", row.width_m) + " is also the working width between " + list +
-         " (the working width is not monotone in rpm): the chart gives the lowest disc speed";
 }
 
 void run(const Options& o, int& exit_code) {
@@ -118,14 +116,15 @@ void run(const Options& o, int& exit_code) {
   options.cv_target = cv_target;
   options.tray_width_m = o.tray_width_m;
   options.disc_height_m = o.height_m;
+  const spread::cli::WindXY wind = spread::cli::parse_wind(o.wind);
+  options.wind_x_m_s = wind.x_m_s;
+  options.wind_y_m_s = wind.y_m_s;
   const pr::SettingChart chart = pr::setting_chart(predictor, o.material, widths, options);
 
-  const double narrowest_m = *std::min_element(chart.scan_working_width_m.begin(), chart.scan_working_width_m.end());
-  const double widest_m = *std::max_element(chart.scan_working_width_m.begin(), chart.scan_working_width_m.end());
-  const std::string range_line = "'" + o.material + "' of " + o.tables + ": " + format("%.0f", chart.min_rpm) + "-" +
-                                 format("%.0f rpm", chart.max_rpm) + " give to-and-fro working widths " +
-                                 format("%.2f", narrowest_m) + "-" + format("%.2f m", widest_m) + " at CV <= " +
-                                 format("%g %%", o.cv_target_percent);
+  const std::string range_line = "'" + o.material + "' of " + o.tables + ": the disc speed of " +
+                                 format("%.0f", chart.min_rpm) + "-" + format("%.0f rpm", chart.max_rpm) +
+                                 " with the lowest to-and-fro CV at each width (target " +
+                                 format("%g %%", o.cv_target_percent) + ")";
 
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
@@ -141,20 +140,21 @@ void run(const Options& o, int& exit_code) {
       page.header.made_by = spread::cli::command_line();
       page.summary.push_back(range_line);
       page.caption = "Disc speed per working width (CV target " + format("%g %%", o.cv_target_percent) + ")";
-      page.columns = {"working width", "disc speed", "CV to-and-fro", "CV racetrack"};
+      page.columns = {"width", "disc speed", "CV to-and-fro", "CV racetrack", "CV within target at"};
       for (const pr::SettingChartRow& row : chart.rows) {
-        if (row.reach == pr::ChartReach::kReached) {
+        if (row.reach == pr::ChartReach::kNotReached) {
+          page.rows.push_back({format("%.1f m", row.width_m), "not reachable", cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se),
+                               "-", "-"});
+        } else {
           page.rows.push_back({format("%.1f m", row.width_m), format("%.0f rpm", row.rpm),
                                cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se),
-                               cv_text(row.cv_racetrack, row.cv_racetrack_se)});
-        } else {
-          page.rows.push_back({format("%.1f m", row.width_m), "not reachable", "-", "-"});
-          page.notes.push_back(format("%.1f m: ", row.width_m) + unreachable_text(row, chart));
+                               cv_text(row.cv_racetrack, row.cv_racetrack_se), spans_text(row)});
         }
-        if (!row.other_crossings_rpm.empty()) page.notes.push_back(other_crossings_text(row));
+        const std::string note = reach_note(row, chart, o.cv_target_percent);
+        if (!note.empty()) page.notes.push_back(note);
       }
       page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the disc speed "
-                           "is where the predicted to-and-fro working width equals the width");
+                           "is the one with the lowest predicted to-and-fro CV at the width");
       spread::plot::write_report_pdf(o.report.path, nullptr, &page);
     } catch (const std::exception& e) {
       report_error = e.what();
@@ -165,22 +165,26 @@ void run(const Options& o, int& exit_code) {
     json rows = json::array();
     for (const pr::SettingChartRow& row : chart.rows) {
       rows.push_back({{"width_m", row.width_m},
-                      {"reachable", row.reach == pr::ChartReach::kReached},
+                      {"reachable", row.reach != pr::ChartReach::kNotReached},
                       {"reach", pr::to_string(row.reach)},
                       {"rpm", number_or_null(row.rpm)},
-                      {"working_width_to_and_fro_m", number_or_null(row.working_width_to_and_fro_m)},
-                      {"working_width_to_and_fro_se_m", number_or_null(row.working_width_to_and_fro_se_m)},
                       {"bout_width_m", number_or_null(row.bout_width_m)},
                       {"cv_to_and_fro_percent", number_or_null(100.0 * row.cv_to_and_fro)},
                       {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.cv_to_and_fro_se)},
                       {"cv_racetrack_percent", number_or_null(100.0 * row.cv_racetrack)},
                       {"cv_racetrack_se_percent", number_or_null(100.0 * row.cv_racetrack_se)},
+                      {"working_width_to_and_fro_m", number_or_null(row.working_width_to_and_fro_m)},
+                      {"working_width_to_and_fro_se_m", number_or_null(row.working_width_to_and_fro_se_m)},
                       {"sample_count", row.sample_count},
-                      {"other_crossings_rpm", row.other_crossings_rpm}});
+                      {"within_target_rpm", row.within_target_rpm}});
     }
     json scan = json::array();
     for (std::size_t k = 0; k < chart.scan_rpm.size(); ++k) {
-      scan.push_back({{"rpm", chart.scan_rpm[k]}, {"working_width_to_and_fro_m", chart.scan_working_width_m[k]}});
+      json cvs = json::array();
+      for (std::size_t w = 0; w < chart.rows.size(); ++w) {
+        cvs.push_back(number_or_null(100.0 * chart.scan_cv_to_and_fro[w * chart.scan_rpm.size() + k]));
+      }
+      scan.push_back({{"rpm", chart.scan_rpm[k]}, {"cv_to_and_fro_percent", cvs}});
     }
     json out{{"tables", o.tables},
              {"material", o.material},
@@ -193,22 +197,21 @@ void run(const Options& o, int& exit_code) {
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("%s\n", range_line.c_str());
-    std::printf("  %-8s %-10s %-18s %-18s %s\n", "width", "disc", "CV to-and-fro", "CV racetrack", "working width");
+    std::printf("  %-8s %-10s %-18s %-18s %s\n", "width", "disc", "CV to-and-fro", "CV racetrack", "CV within target at");
     for (const pr::SettingChartRow& row : chart.rows) {
-      if (row.reach != pr::ChartReach::kReached) {
-        std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), unreachable_text(row, chart).c_str());
+      if (row.reach == pr::ChartReach::kNotReached) {
+        std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), "not reachable");
         continue;
       }
-      std::string ww = format("%.2f m", row.working_width_to_and_fro_m);
-      if (std::isfinite(row.working_width_to_and_fro_se_m)) ww += format(" ± %.2f", 1.96 * row.working_width_to_and_fro_se_m);
       std::printf("  %-8s %-10s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(),
                   format("%.0f rpm", row.rpm).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
-                  cv_text(row.cv_racetrack, row.cv_racetrack_se).c_str(), ww.c_str());
+                  cv_text(row.cv_racetrack, row.cv_racetrack_se).c_str(), spans_text(row).c_str());
     }
     std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples; %d predictions)\n",
                 chart.predictions);
     for (const pr::SettingChartRow& row : chart.rows) {
-      if (!row.other_crossings_rpm.empty()) std::printf("  note: %s\n", other_crossings_text(row).c_str());
+      const std::string note = reach_note(row, chart, o.cv_target_percent);
+      if (!note.empty()) std::printf("  note: %s\n", note.c_str());
     }
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::printf("wrote %s\n", o.report.path.c_str());
@@ -220,13 +223,15 @@ void run(const Options& o, int& exit_code) {
 
 spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) {
   static Options options;
-  auto* sub = app.add_subcommand("chart", "setting chart: the disc speed that spreads each working width, with its CV");
+  auto* sub = app.add_subcommand("chart", "setting chart: the disc speed with the lowest CV at each tramline width");
   sub->add_option("--tables", options.tables, "launch-table file (SQLite) written by lookup_builder")->required();
   sub->add_option("--material", options.material, "material name as in the table")->required();
   sub->add_option("--cv-target", options.cv_target_percent, "CV target of the working width (%)")->capture_default_str();
   sub->add_option("--widths", options.widths, "working widths (m), comma-separated")->capture_default_str();
   sub->add_option("--tray-width", options.tray_width_m, "collecting tray width (m)")->capture_default_str();
   sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
+  sub->add_option("--wind", options.wind, "wind of the day VX,VY (m/s): lateral (+ to the right), along (+ forward)")
+      ->capture_default_str();
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);
   sub->callback([&exit_code] { run(options, exit_code); });

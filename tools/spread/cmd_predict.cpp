@@ -139,32 +139,25 @@ json cv_curve_json(const CvCurve& c) {
   return curve;
 }
 
-// The whole-tray bout widths beyond the working width where CV(W) is back within the target, as runs
-// [first, last] (m). The working width never takes them (it is the first crossing, docs/metrics.md), but
-// a user choosing a wider bout should see where the curve allows one.
-std::vector<std::pair<double, double>> wider_bands_m(const spread_prediction& r, const std::vector<double>& trays,
-                                                     spread::metrics::Overlap overlap, double working_width_m,
-                                                     double cv_target) {
-  std::vector<std::pair<double, double>> bands;
-  if (!(working_width_m > 0.0)) return bands;
-  spread::metrics::TrayLayout layout;
-  layout.tray_width_m = r.tray_width_m;
-  layout.tray_count = r.tray_count;
-  const std::span<const double> mass(trays.data(), static_cast<std::size_t>(r.tray_count));
-  bool open = false;
-  for (int n = 2; n <= r.tray_count; ++n) {
-    const double w = n * r.tray_width_m;
-    const bool within = w > working_width_m && spread::metrics::cv_at_trays(mass, layout, n, overlap) <= cv_target;
-    if (within && !open) bands.emplace_back(w, w);
-    if (within) bands.back().second = w;
-    open = within;
-  }
-  return bands;
-}
-
-json bands_json(const std::vector<std::pair<double, double>>& bands) {
+// Every band of bout widths within the target, as the C API reports them (docs/metrics.md "Effective
+// working width"); `headline` marks the working width's band.
+json bands_json(const spread_band* bands, int count, int headline) {
   json out = json::array();
-  for (const auto& [first, last] : bands) out.push_back({first, last});
+  for (int b = 0; b < std::min(count, SPREAD_MAX_BANDS); ++b) {
+    const spread_band& band = bands[b];
+    out.push_back({{"lower_m", band.lower_m},
+                   {"upper_m", band.upper_m},
+                   {"upper_se_m", number_or_null(band.upper_se_m)},
+                   {"bout_width_m", band.bout_width_m},
+                   {"cv_percent", number_or_null(band.cv_percent)},
+                   {"cv_se_percent", number_or_null(band.cv_se_percent)},
+                   {"lowest_cv_percent", number_or_null(band.lowest_cv_percent)},
+                   {"lowest_cv_se_percent", number_or_null(band.lowest_cv_se_percent)},
+                   {"lowest_cv_bout_width_m", band.lowest_cv_bout_width_m},
+                   {"established", band.established != 0},
+                   {"limited_by_layout", band.limited_by_layout != 0},
+                   {"headline", b == headline}});
+  }
   return out;
 }
 
@@ -326,11 +319,14 @@ void run(const Options& o, int& exit_code) {
                                 {"centres_m", centres},
                                 {"mass_fraction", fractions}}},
                 {"cv_curve", cv_curve_json(curve)},
-                {"wider_bands_within_target_m",
-                 {{"to_and_fro", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kToAndFro,
-                                                          result.working_width_to_and_fro_m, o.cv_target_percent / 100.0))},
-                  {"racetrack", bands_json(wider_bands_m(result, trays, spread::metrics::Overlap::kRacetrack,
-                                                         result.working_width_racetrack_m, o.cv_target_percent / 100.0))}}}};
+                {"bands", {{"to_and_fro", bands_json(result.bands_to_and_fro, result.band_count_to_and_fro,
+                                                     result.headline_band_to_and_fro)},
+                           {"racetrack", bands_json(result.bands_racetrack, result.band_count_racetrack,
+                                                    result.headline_band_racetrack)}}},
+                {"band_count", {{"to_and_fro", result.band_count_to_and_fro},
+                                {"racetrack", result.band_count_racetrack}}},
+                {"first_band_width_m", {{"to_and_fro", result.first_band_width_to_and_fro_m},
+                                        {"racetrack", result.first_band_width_racetrack_m}}}};
     out["adjustments"] = spread::cli::setting_guidance_json(guidance);
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
@@ -356,29 +352,32 @@ void run(const Options& o, int& exit_code) {
     } else {
       std::cout << "  CV: no bout width meets the target\n";
     }
-    struct Curve {
-      int crossings;
+    struct Bands {
       const char* mode;
-      spread::metrics::Overlap overlap;
-      double working_width_m;
+      const spread_band* bands;
+      int count, headline;
     };
-    for (const Curve& c : {Curve{result.cv_crossings_to_and_fro, "to-and-fro", spread::metrics::Overlap::kToAndFro,
-                                 result.working_width_to_and_fro_m},
-                           Curve{result.cv_crossings_racetrack, "racetrack", spread::metrics::Overlap::kRacetrack,
-                                 result.working_width_racetrack_m}}) {
-      if (c.crossings <= 1) continue;
-      std::cout << "  note: the " << c.mode << " CV(W) curve crosses the target " << c.crossings
-                << " times; the working width is its first crossing";
-      const auto bands = wider_bands_m(result, trays, c.overlap, c.working_width_m, o.cv_target_percent / 100.0);
-      if (!bands.empty()) {
-        std::cout << "; back within the target at";
-        for (std::size_t k = 0; k < bands.size(); ++k) {
-          std::cout << (k ? "," : "") << " " << bands[k].first;
-          if (bands[k].second > bands[k].first) std::cout << "-" << bands[k].second;
-          std::cout << " m";
+    for (const Bands& c : {Bands{"to-and-fro", result.bands_to_and_fro, result.band_count_to_and_fro,
+                                 result.headline_band_to_and_fro},
+                           Bands{"racetrack", result.bands_racetrack, result.band_count_racetrack,
+                                 result.headline_band_racetrack}}) {
+      if (c.count == 0) continue;
+      std::cout << "  " << c.mode << " bands within the target:";
+      for (int b = 0; b < std::min(c.count, SPREAD_MAX_BANDS); ++b) {
+        const spread_band& band = c.bands[b];
+        std::cout << (b ? ";" : "") << " " << band.lower_m << "-" << band.upper_m << " m (CV "
+                  << band.cv_percent << " %" << plus_minus(band.cv_se_percent) << " at " << band.bout_width_m
+                  << " m";
+        if (band.lowest_cv_bout_width_m != band.bout_width_m) {
+          std::cout << ", lowest " << band.lowest_cv_percent << " %" << plus_minus(band.lowest_cv_se_percent)
+                    << " at " << band.lowest_cv_bout_width_m << " m";
         }
+        std::cout << ")";
+        if (b == c.headline) std::cout << " = working width";
+        if (!band.established) std::cout << " [not established: the lowest CV's 95 % interval reaches over the target]";
       }
-      std::cout << " (see --json cv_curve)\n";
+      if (c.count > SPREAD_MAX_BANDS) std::cout << " (" << c.count << " bands; the first and the widest shown)";
+      std::cout << "\n";
     }
     if (result.sample_count < kFewSamples) {
       std::cout << "  note: only " << result.sample_count << " launch samples: below " << kFewSamples

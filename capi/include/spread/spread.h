@@ -51,10 +51,10 @@
 /* Compile-time version. spread_version() returns the run-time one: compare them to detect a mismatch
  * between the header you compiled with and the library you linked. */
 #define SPREAD_VERSION_MAJOR 0
-#define SPREAD_VERSION_MINOR 1
+#define SPREAD_VERSION_MINOR 3
 #define SPREAD_VERSION_PATCH 0
 #define SPREAD_VERSION_NUMBER (SPREAD_VERSION_MAJOR * 10000 + SPREAD_VERSION_MINOR * 100 + SPREAD_VERSION_PATCH)
-#define SPREAD_VERSION_STRING "0.1.0"
+#define SPREAD_VERSION_STRING "0.3.0"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define SPREAD_API __attribute__((visibility("default")))
@@ -161,30 +161,37 @@ typedef struct spread_prediction_def {
   /* --- appended in 0.2 --- */
   double kernel_half_width_m;  /* half-width of the kernel each landing's mass is spread over, m, 0..10;
                                   NaN (default) = automatic (docs/metrics.md), 0 = point masses */
+  /* --- appended in 0.3 --- */
+  uint32_t result_size;        /* sizeof(spread_prediction) of the caller's header; set by _default().
+                                  The library writes the result fields of every version it covers whole
+                                  (from 0.3 on the result grows without the definition growing) */
+  uint32_t reserved;           /* fills the trailing padding; 0 from _default(), never read */
 } spread_prediction_def;
 
-/* Defaults. Static inline on purpose: the struct is built with the caller's sizeof, so a newer library
- * with a larger struct never writes past the caller's memory. */
-static inline spread_prediction_def spread_prediction_def_default(void) {
-  spread_prediction_def def;
-  def.struct_size = (uint32_t)sizeof(spread_prediction_def);
-  def.material = NULL;
-  def.rpm = 0.0;
-  def.disc_height_m = NAN;
-  def.wind_m_s[0] = 0.0;
-  def.wind_m_s[1] = 0.0;
-  def.cv_target_percent = 15.0;
-  def.effects = SPREAD_EFFECTS_AS_TABLE;
-  def.bout_width_m = 0.0;
-  def.tray_width_m = 0.5;
-  def.kernel_half_width_m = NAN;
-  return def;
-}
+/* One band of bout widths whose CV meets the target (appended in 0.3). */
+#define SPREAD_MAX_BANDS 4
+typedef struct spread_band {
+  double lower_m;                     /* narrowest bout width of the band */
+  double upper_m;                     /* widest bout width, interpolated between whole trays */
+  double upper_se_m;                  /* its standard error; NaN when the band reaches the layout's edge */
+  double bout_width_m;                /* the widest whole-tray bout inside the band */
+  double cv_percent;                  /* CV there */
+  double cv_se_percent;
+  double lowest_cv_percent;           /* the band's lowest CV */
+  double lowest_cv_se_percent;
+  double lowest_cv_bout_width_m;      /* and where */
+  int32_t established;                /* 1: lowest_cv + 1.96 SE <= target (the headline rule's test) */
+  int32_t limited_by_layout;          /* 1: CV stays within the target to the widest layout */
+} spread_band;
 
 /* Result of one prediction (whole machine: one disc or two counter-rotating discs). Caller-owned. */
 typedef struct spread_prediction {
   double throw_width_m;               /* lateral extent holding 99 % of the mass */
-  double working_width_to_and_fro_m;  /* largest bout width with CV <= target, to-and-fro; 0 = none */
+  double working_width_to_and_fro_m;  /* the headline working width, to-and-fro (docs/metrics.md "Effective
+                                         working width"): the upper end of the widest band of bout widths
+                                         with CV <= target whose lowest CV meets the target at 95 %
+                                         confidence (the first band when none does); 0 = none. Before 0.3
+                                         this was the first band's upper end (first_band_width_*_m) */
   double working_width_racetrack_m;   /* the same for racetrack driving */
   double bout_width_m;                /* bout width cv_percent refers to (the requested one, or the
                                          to-and-fro working width); 0 when that width is 0 */
@@ -212,12 +219,44 @@ typedef struct spread_prediction {
   double working_width_racetrack_se_m;
   double cv_se_percent;               /* of cv_percent */
   double cv_racetrack_se_percent;     /* of cv_racetrack_percent */
-  int32_t cv_crossings_to_and_fro;    /* times CV(W) crosses the target; > 1: the curve dips back under it
-                                         at a wider bout, which the working width never takes */
+  int32_t cv_crossings_to_and_fro;    /* times CV(W) crosses the target; > 1: more than one band of bout
+                                         widths meets it (see the bands below) */
   int32_t cv_crossings_racetrack;
   uint32_t effects;                   /* the SPREAD_EFFECT_* bits that ran */
   double kernel_half_width_m;         /* as used */
+  /* --- appended in 0.3: written when def->result_size covers them ---
+   * Every band of bout widths whose CV meets the target, narrowest first: the first
+   * SPREAD_MAX_BANDS - 1 bands and the widest are kept (a spreader pattern has one to three). */
+  int32_t band_count_to_and_fro;      /* bands found (may exceed SPREAD_MAX_BANDS) */
+  int32_t band_count_racetrack;
+  int32_t headline_band_to_and_fro;   /* index into bands_to_and_fro of the working width's band; -1 none */
+  int32_t headline_band_racetrack;
+  double first_band_width_to_and_fro_m;  /* the first band's upper end (the first rise of CV(W) above the
+                                            target) */
+  double first_band_width_racetrack_m;
+  spread_band bands_to_and_fro[SPREAD_MAX_BANDS];
+  spread_band bands_racetrack[SPREAD_MAX_BANDS];
 } spread_prediction;
+
+/* Defaults. Static inline on purpose: the struct is built with the caller's sizeof, so a newer library
+ * with a larger struct never writes past the caller's memory. */
+static inline spread_prediction_def spread_prediction_def_default(void) {
+  spread_prediction_def def;
+  def.struct_size = (uint32_t)sizeof(spread_prediction_def);
+  def.material = NULL;
+  def.rpm = 0.0;
+  def.disc_height_m = NAN;
+  def.wind_m_s[0] = 0.0;
+  def.wind_m_s[1] = 0.0;
+  def.cv_target_percent = 15.0;
+  def.effects = SPREAD_EFFECTS_AS_TABLE;
+  def.bout_width_m = 0.0;
+  def.tray_width_m = 0.5;
+  def.kernel_half_width_m = NAN;
+  def.result_size = (uint32_t)sizeof(struct spread_prediction);
+  def.reserved = 0u;
+  return def;
+}
 
 /* Upper bound of spread_prediction.tray_count for any prediction on this handle with this tray width
  * (zstd-style bounds query): a transverse buffer of this many doubles is always large enough. */

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -106,8 +107,12 @@ Study sampling_study(const StudyOptions& options) {
       req.rpm = run.rpm;
       predict::Prediction out;
       if (p.predict(req, out) != predict::PredictStatus::kOk) throw std::runtime_error("sampling study: prediction refused");
-      widths.push_back(out.working_width_to_and_fro_m);
-      ses.push_back(out.working_width_to_and_fro_se_m);
+      // The first band's upper end: a smooth statistic of the samples. The headline working width may
+      // switch to a wider band once the samples establish it (docs/metrics.md "Effective working width"),
+      // which is a different quantity, not a convergence.
+      const bool banded = out.band_count_to_and_fro > 0;
+      widths.push_back(banded ? out.bands_to_and_fro[0].upper_m : 0.0);
+      ses.push_back(banded ? out.bands_to_and_fro[0].upper_se_m : std::numeric_limits<double>::quiet_NaN());
       cv_ses.push_back(100.0 * out.cv_to_and_fro_se);
       if (k == 0) time_s = detail::median_time_s([&] { (void)p.predict(req, out); }, options.quick ? 0.02 : 0.2);
     }

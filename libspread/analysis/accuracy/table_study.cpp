@@ -73,7 +73,9 @@ Metrics predict_metrics(predict::Predictor& p, const std::string& material, doub
   req.effects = flight::kDrag | flight::kMagnus | flight::kSpinDecay;
   predict::Prediction out;
   if (p.predict(req, out) != predict::PredictStatus::kOk) throw std::runtime_error("accuracy: prediction refused");
-  Metrics m{out.throw_width_m, out.mean_radius_m, out.working_width_to_and_fro_m};
+  // The working width as the first band's upper end: the headline may switch to a wider band once the
+  // samples establish it (docs/metrics.md "Effective working width"), which is another quantity.
+  Metrics m{out.throw_width_m, out.mean_radius_m, out.first_band_width_to_and_fro_m};
   if (time_s != nullptr) *time_s = detail::median_time_s([&] { (void)p.predict(req, out); }, min_time_s);
   return m;
 }

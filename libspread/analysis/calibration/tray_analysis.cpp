@@ -44,11 +44,18 @@ TrayTestAnalysis analyse_tray_test(const TrayTest& test, double cv_target, doubl
   a.cv_racetrack_curve.resize(a.widths_m.size());
   if (bout_width_m > 0.0) a.bout_width_m = metrics::bout_tray_count(test.layout, bout_width_m) * test.layout.tray_width_m;
 
+  // Measured trays carry no sampling standard error: the headline rule takes the widest band
+  // (docs/metrics.md "Effective working width").
+  const auto keep = [](const metrics::WorkingWidth& w, double& width_m, std::vector<std::pair<double, double>>& bands) {
+    width_m = w.width_m;
+    bands.clear();
+    for (int b = 0; b < w.stored_bands(); ++b) bands.emplace_back(w.bands[b].lower_m, w.bands[b].upper_m);
+  };
   if (!test.has_missing_trays()) {
-    a.working_width_to_and_fro_m =
-        metrics::effective_working_width(test.layout_mass_kg, test.layout, Overlap::kToAndFro, cv_target);
-    a.working_width_racetrack_m =
-        metrics::effective_working_width(test.layout_mass_kg, test.layout, Overlap::kRacetrack, cv_target);
+    keep(metrics::working_width(test.layout_mass_kg, test.layout, Overlap::kToAndFro, cv_target),
+         a.working_width_to_and_fro_m, a.bands_to_and_fro_m);
+    keep(metrics::working_width(test.layout_mass_kg, test.layout, Overlap::kRacetrack, cv_target),
+         a.working_width_racetrack_m, a.bands_racetrack_m);
     if (bout_width_m > 0.0) {
       a.cv_to_and_fro = metrics::cv_at_width(test.layout_mass_kg, test.layout, bout_width_m, Overlap::kToAndFro);
       a.cv_racetrack = metrics::cv_at_width(test.layout_mass_kg, test.layout, bout_width_m, Overlap::kRacetrack);
@@ -74,10 +81,10 @@ TrayTestAnalysis analyse_tray_test(const TrayTest& test, double cv_target, doubl
       widths.push_back(a.widths_m[i]);
       cvs.push_back(curve[i]);
     }
-    return widths.empty() ? 0.0 : metrics::working_width_on_curve(widths, cvs, cv_target).width_m;
+    return widths.empty() ? metrics::WorkingWidth{} : metrics::working_width_on_curve(widths, cvs, cv_target);
   };
-  a.working_width_to_and_fro_m = working_width(a.cv_to_and_fro_curve);
-  a.working_width_racetrack_m = working_width(a.cv_racetrack_curve);
+  keep(working_width(a.cv_to_and_fro_curve), a.working_width_to_and_fro_m, a.bands_to_and_fro_m);
+  keep(working_width(a.cv_racetrack_curve), a.working_width_racetrack_m, a.bands_racetrack_m);
   if (bout_width_m > 0.0) {
     const int n = metrics::bout_tray_count(test.layout, bout_width_m);
     a.cv_to_and_fro = cv(n, Overlap::kToAndFro);

@@ -4,6 +4,7 @@
 // measured trays, through spread::metrics on the tray test's symmetric layout.
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libspread/analysis/calibration/tray_csv.hpp"
@@ -14,8 +15,13 @@ struct TrayTestAnalysis {
   double total_mass_kg = 0.0;              // sum over the measured trays (mean of the passes)
   double throw_width_m = 0.0;              // lateral extent of 99 % of the mass
   double cv_target = 0.15;                 // fraction
-  double working_width_to_and_fro_m = 0.0; // largest W with CV <= target; 0 = none
+  // The widest band's upper end (measured trays have no sampling error to establish a band by;
+  // docs/metrics.md "Effective working width"); 0 = none.
+  double working_width_to_and_fro_m = 0.0;
   double working_width_racetrack_m = 0.0;
+  // Every band of bout widths with CV <= target, [lower, upper] (m), narrowest first (the first three
+  // and the widest are kept).
+  std::vector<std::pair<double, double>> bands_to_and_fro_m, bands_racetrack_m;
   // A tray test resolves the bout in whole trays: the CVs are at the requested width rounded to the
   // nearest whole number of trays (metrics::bout_tray_count). Both are reported, and the tools warn
   // when they differ, so "at W = 3.3 m" is never printed for the CV of 3.5 m.

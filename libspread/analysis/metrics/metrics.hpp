@@ -124,17 +124,36 @@ void cv_curve(std::span<const double> tray_mass_kg, const TrayLayout& trays,
               std::span<const double> widths_m, Overlap overlap, std::span<double> cv_out);
 
 // Effective working width (docs/metrics.md "Effective working width"): CV(W) is evaluated at every
-// whole-tray width from 2 trays to the layout width; the working width is where the curve, rising from
-// narrow bouts, first exceeds the target, interpolated linearly in CV between the two whole-tray widths
-// around that crossing. A later dip back under the target is never taken (it is counted in `crossings`,
-// so callers can flag a curve that crosses the target more than once).
-struct WorkingWidth {
-  double width_m = 0.0;          // 0: not even a bout of two trays meets the target
-  int crossings = 0;             // times CV(W) crosses the target between 2 trays and the layout width
-  int trays_below = 0;           // the crossing lies between trays_below and trays_below + 1 trays
+// whole-tray width from 2 trays to the layout width. A band is a run of widths with CV <= target; its
+// ends are interpolated linearly in CV between the two whole-tray widths around each crossing (an end at
+// the narrowest bout or at the layout width is that width). The working width is the upper end of the
+// widest band: the largest bout width whose CV meets the target (ASAE S341.4 "effective swath width";
+// docs/metrics.md gives the sources and why later bands are not skipped).
+struct WidthBand {
+  double lower_m = 0.0;          // narrowest width of the band (2 trays when the band starts there)
+  double upper_m = 0.0;          // widest width of the band
+  int trays_below = 0;           // the upper crossing lies between trays_below and trays_below + 1 trays
   double cv_below = 0.0;         // CV at trays_below trays (<= target)
-  double cv_above = 0.0;         // CV at trays_below + 1 trays (> target; may be +inf)
-  bool limited_by_layout = false;  // CV stays within the target up to the whole layout (width = layout)
+  double cv_above = 0.0;         // CV at trays_below + 1 trays (> target; may be +inf); 0 when limited
+  bool limited_by_layout = false;  // CV stays within the target up to the whole layout (upper = layout)
+  int lowest_cv_trays = 0;       // the band's whole-tray width of lowest CV
+  double lowest_cv = 0.0;        // and that CV
+};
+// Bands kept: the first kMaxWidthBands − 1 and the widest (a spreader pattern has one to three).
+inline constexpr int kMaxWidthBands = 4;
+struct WorkingWidth {
+  double width_m = 0.0;          // the widest band's upper end; 0: no width meets the target
+  int crossings = 0;             // times CV(W) crosses the target between 2 trays and the layout width
+  int trays_below = 0;           // of the widest band (WidthBand::trays_below)
+  double cv_below = 0.0;         // of the widest band
+  double cv_above = 0.0;         // of the widest band
+  bool limited_by_layout = false;  // of the widest band
+  int band_count = 0;            // bands found; bands[0 .. min(band_count, kMaxWidthBands)) are kept
+  WidthBand bands[kMaxWidthBands];
+  // The first band's upper end: the working width read as the first rise above the target (what this
+  // library reported before the widest band became the rule; 0 when no band).
+  double first_band_upper_m() const { return band_count > 0 ? bands[0].upper_m : 0.0; }
+  int stored_bands() const { return band_count < kMaxWidthBands ? band_count : kMaxWidthBands; }
 };
 WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
                            double cv_target);
@@ -154,7 +173,7 @@ WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<
 // as for cv_at_trays). R and C for all lags come from one FFT pair, and the sums over d are harmonic:
 // Σ_n T/n = O(T log T). Then CV² = n (n Σ_bout P² / M² − 1) / (n − 1), M the total mass.
 // The FFT's rounding (about ε·T·log₂T in CV²) only matters where CV(n) is within that of the target:
-// there, and at the two widths around the first crossing (interpolation, cv_below, cv_above), CV is
+// there, and at the two widths around each crossing (interpolation, cv_below, cv_above), CV is
 // evaluated exactly as cv_at_trays does — at most kExactWidthEvaluations widths per overlap, beyond
 // which the fast value decides (a CV curve touching the target at so many widths to 1e-9 is not a
 // spreader pattern). So the crossings, the widths and cv_below/cv_above are those of working_width.

@@ -281,45 +281,100 @@ void cv_curve(std::span<const double> tray_mass_kg, const TrayLayout& trays,
 namespace {
 
 // The working-width rule (docs/metrics.md "Effective working width") on a CV(W) curve sampled at
-// count increasing widths, width_at(i) and cv_at(i): the first rise above the target, interpolated
-// linearly in CV between the two samples around it; later crossings are only counted. `index_below` is
-// the sample just below the crossing (count − 1 when the curve never leaves the target).
-struct CurveCrossing {
-  WorkingWidth width;
-  std::size_t index_below = 0;
-};
-
-template <typename WidthAt, typename CvAt>
-CurveCrossing first_crossing(std::size_t count, WidthAt width_at, CvAt cv_at, double cv_target) {
-  CurveCrossing r;
+// `count` increasing widths width_at(i): within(i) says whether sample i meets the target, exact_cv(i)
+// is its CV (called around each crossing, for the interpolation, and once at each band's lowest point),
+// rough_cv(i) ranks the samples inside a band, trays_at(i) is sample i's whole-tray count (0 for a curve
+// not on trays). Each band's ends are interpolated linearly in CV between the samples around the
+// crossing; an infinite CV puts the crossing at the finite sample.
+template <typename WidthAt, typename Within, typename ExactCv, typename RoughCv, typename TraysAt>
+WorkingWidth scan_bands(std::size_t count, WidthAt width_at, Within within, ExactCv exact_cv, RoughCv rough_cv,
+                        TraysAt trays_at, double cv_target) {
+  WorkingWidth r;
   if (count == 0) return r;
-  double previous_cv = cv_at(0);
-  bool below = previous_cv <= cv_target;
-  if (!below) return r;  // not even the narrowest bout meets the target
-  r.width.width_m = width_at(count - 1);
-  r.width.limited_by_layout = true;
-  r.index_below = count - 1;
+  WidthBand band;
+  std::size_t lowest_index = 0;
+  double lowest_rough = 0.0;
+  const auto open_band = [&](std::size_t i, double lower_m) {
+    band = WidthBand{};
+    band.lower_m = lower_m;
+    lowest_index = i;
+    lowest_rough = rough_cv(i);
+  };
+  const auto close_band = [&](std::size_t i_below, double upper_m, double cv_below, double cv_above, bool limited) {
+    band.upper_m = upper_m;
+    band.trays_below = trays_at(i_below);
+    band.cv_below = cv_below;
+    band.cv_above = cv_above;
+    band.limited_by_layout = limited;
+    band.lowest_cv_trays = trays_at(lowest_index);
+    band.lowest_cv = lowest_index == i_below ? cv_below : exact_cv(lowest_index);
+    // The first kMaxWidthBands − 1 bands stay; the last slot always holds the latest (widest) one.
+    r.bands[r.band_count < kMaxWidthBands ? r.band_count : kMaxWidthBands - 1] = band;
+    ++r.band_count;
+  };
+  bool below = within(0);
+  if (below) open_band(0, width_at(0));
   for (std::size_t i = 1; i < count; ++i) {
-    const double cv = cv_at(i);
-    const bool now_below = cv <= cv_target;
-    if (now_below != below) {
-      ++r.width.crossings;
-      if (r.width.crossings == 1) {
-        r.index_below = i - 1;
-        r.width.cv_below = previous_cv;
-        r.width.cv_above = cv;
-        r.width.limited_by_layout = false;
-        // Linear in CV between the two widths; an infinite CV (empty bout) puts the crossing at the lower.
-        const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
-        const double lower = width_at(i - 1);
-        r.width.width_m = lower + std::clamp(fraction, 0.0, 1.0) * (width_at(i) - lower);
+    const bool now_below = within(i);
+    if (now_below == below) {
+      if (below) {
+        const double rough = rough_cv(i);
+        if (rough < lowest_rough) {
+          lowest_rough = rough;
+          lowest_index = i;
+        }
       }
-      below = now_below;
+      continue;
     }
-    previous_cv = cv;
+    ++r.crossings;
+    const double previous_cv = exact_cv(i - 1), cv = exact_cv(i);
+    const double lower = width_at(i - 1), upper = width_at(i);
+    if (below) {  // leaving the band: CV rises through the target
+      const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
+      close_band(i - 1, lower + std::clamp(fraction, 0.0, 1.0) * (upper - lower), previous_cv, cv, false);
+    } else {  // entering a band: CV falls through the target
+      const double fraction = std::isfinite(previous_cv) ? (previous_cv - cv_target) / (previous_cv - cv) : 1.0;
+      open_band(i, lower + std::clamp(fraction, 0.0, 1.0) * (upper - lower));
+    }
+    below = now_below;
+  }
+  if (below) close_band(count - 1, width_at(count - 1), exact_cv(count - 1), 0.0, true);
+  if (r.band_count > 0) {
+    const WidthBand& widest = r.bands[r.stored_bands() - 1];
+    r.width_m = widest.upper_m;
+    r.trays_below = widest.trays_below;
+    r.cv_below = widest.cv_below;
+    r.cv_above = widest.cv_above;
+    r.limited_by_layout = widest.limited_by_layout;
   }
   return r;
 }
+
+// The last two CVs evaluated, so that scan_bands' classification and interpolation of one sample do not
+// evaluate its bout twice.
+template <typename Cv>
+class RecentCv {
+ public:
+  explicit RecentCv(Cv cv) : cv_(cv) {}
+  double operator()(std::size_t i) {
+    for (int k = 0; k < 2; ++k) {
+      if (valid_[k] && index_[k] == i) return value_[k];
+    }
+    const int slot = next_;
+    next_ = 1 - next_;
+    valid_[slot] = true;
+    index_[slot] = i;
+    value_[slot] = cv_(i);
+    return value_[slot];
+  }
+
+ private:
+  Cv cv_;
+  bool valid_[2] = {false, false};
+  std::size_t index_[2] = {0, 0};
+  double value_[2] = {0.0, 0.0};
+  int next_ = 0;
+};
 
 }  // namespace
 
@@ -332,11 +387,11 @@ WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayou
   // CV(W) at every whole-tray width from the narrowest bout of two trays up.
   const auto count = static_cast<std::size_t>(widest - 1);
   const auto trays_at = [](std::size_t i) { return static_cast<int>(i) + 2; };
-  CurveCrossing c = first_crossing(
+  RecentCv cv([&](std::size_t i) { return cv_of_bout(tray_mass_kg, bout_trays(trays, trays_at(i)), overlap); });
+  return scan_bands(
       count, [&](std::size_t i) { return trays_at(i) * trays.tray_width_m; },
-      [&](std::size_t i) { return cv_of_bout(tray_mass_kg, bout_trays(trays, trays_at(i)), overlap); }, cv_target);
-  if (c.width.width_m > 0.0) c.width.trays_below = trays_at(c.index_below);
-  return c.width;
+      [&](std::size_t i) { return cv(i) <= cv_target; }, [&](std::size_t i) { return cv(i); },
+      [&](std::size_t i) { return cv(i); }, trays_at, cv_target);
 }
 
 WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<const double> cv,
@@ -349,10 +404,10 @@ WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<
   for (std::size_t i = 1; i < widths_m.size(); ++i) {
     if (!(widths_m[i] > widths_m[i - 1])) throw std::invalid_argument("working_width_on_curve: widths_m must increase");
   }
-  return first_crossing(
-             widths_m.size(), [&](std::size_t i) { return widths_m[i]; }, [&](std::size_t i) { return cv[i]; },
-             cv_target)
-      .width;
+  const auto cv_at = [&](std::size_t i) { return cv[i]; };
+  return scan_bands(
+      widths_m.size(), [&](std::size_t i) { return widths_m[i]; }, [&](std::size_t i) { return cv[i] <= cv_target; },
+      cv_at, cv_at, [](std::size_t) { return 0; }, cv_target);
 }
 
 namespace {
@@ -491,30 +546,14 @@ WorkingWidths working_widths(std::span<const double> tray_mass_kg, const TrayLay
       }
       return cv_target >= 0.0 && cv_squared <= target_squared;
     };
-    // working_width's rule (first_crossing) with these classifications.
-    WorkingWidth r;
-    bool below = within(2);
-    if (!below) return r;
-    r.width_m = widest * trays.tray_width_m;
-    r.limited_by_layout = true;
-    r.trays_below = widest;
-    for (long n = 3; n <= t; ++n) {
-      const bool now_below = within(n);
-      if (now_below == below) continue;
-      ++r.crossings;
-      if (r.crossings == 1) {
-        const double previous_cv = exact_cv(n - 1), cv = exact_cv(n);
-        r.trays_below = static_cast<int>(n - 1);
-        r.cv_below = previous_cv;
-        r.cv_above = cv;
-        r.limited_by_layout = false;
-        const double fraction = std::isfinite(cv) ? (cv_target - previous_cv) / (cv - previous_cv) : 0.0;
-        const double lower = static_cast<int>(n - 1) * trays.tray_width_m;
-        r.width_m = lower + std::clamp(fraction, 0.0, 1.0) * (static_cast<int>(n) * trays.tray_width_m - lower);
-      }
-      below = now_below;
-    }
-    return r;
+    // working_width's rule (scan_bands) with these classifications; sample i is a bout of i + 2 trays.
+    const auto trays_at = [](std::size_t i) { return static_cast<int>(i) + 2; };
+    RecentCv exact([&](std::size_t i) { return exact_cv(trays_at(i)); });
+    return scan_bands(
+        static_cast<std::size_t>(t - 1), [&](std::size_t i) { return trays_at(i) * trays.tray_width_m; },
+        [&](std::size_t i) { return within(trays_at(i)); }, exact,
+        [&](std::size_t i) { return std::sqrt(std::max(fast_cv_squared(data, t, trays_at(i), overlap), 0.0)); },
+        trays_at, cv_target);
   };
   return {search(Overlap::kToAndFro), search(Overlap::kRacetrack)};
 }

@@ -1,5 +1,5 @@
 // CV(W) curves for to-and-fro and racetrack, the CV target, and each curve's effective working width
-// (metrics::working_width_on_curve: the first rise above the target, as every prediction reports it).
+// (metrics::working_width_on_curve: the widest band's upper end, docs/metrics.md "Effective working width").
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -62,8 +62,8 @@ struct CvCurveOptions {
 };
 
 // CV(W) in percent against bout width W (m) for to-and-fro and racetrack, the target line, and each
-// curve's effective working width (metrics::working_width_on_curve: the first crossing, as predictions
-// report it) marked by a dot on the curve, which the legend shows with the curve. `widths_m` increase;
+// curve's effective working width (metrics::working_width_on_curve: the widest band's upper end, the
+// headline rule on a curve without standard errors) marked by a dot on the curve, which the legend shows with the curve. `widths_m` increase;
 // `cv_*` are fractions (0.1 = 10 %), the same size as `widths_m`; infinite CV values (empty bouts) are
 // clipped to the top. The W axis ends one width after the last point of any curve on the CV axis (where
 // the pattern lives; beyond, the bouts outgrow the throw and the CV only climbs). Either curve may be

@@ -312,6 +312,10 @@ void Predictor::assign_cells(const MaterialRows& rows) {
 const tables::Material& Predictor::material(std::size_t index) const {
   return contents_.materials.at(materials_.at(index).material);
 }
+std::span<const double> Predictor::row_rpm(std::size_t index) const {
+  const MaterialRows& rows = materials_.at(index);
+  return std::span(run_rpm_).subspan(rows.first_run, rows.run_count);
+}
 double Predictor::min_rpm(std::size_t index) const { return contents_.runs[materials_.at(index).first_run].rpm; }
 double Predictor::max_rpm(std::size_t index) const {
   const auto& rows = materials_.at(index);
@@ -583,7 +587,10 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass);
   }
 
-  Prediction p;
+  // Written into `out` in place (every request check is behind us): a Prediction with its bands is over
+  // a kilobyte, and the C API's stack budget has no room for a second one.
+  Prediction& p = out;
+  p = Prediction{};
   p.trays = trays;
   p.flights = flights;
   p.disc_height_m = height_m;
@@ -599,69 +606,156 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const metrics::WorkingWidths widths = metrics::working_widths(tray_mass, trays, request.cv_target, metrics_scratch);
   const metrics::WorkingWidth& to_and_fro = widths.to_and_fro;
   const metrics::WorkingWidth& racetrack = widths.racetrack;
-  p.working_width_to_and_fro_m = to_and_fro.width_m;
-  p.working_width_racetrack_m = racetrack.width_m;
-  p.cv_crossings_to_and_fro = to_and_fro.crossings;
-  p.cv_crossings_racetrack = racetrack.crossings;
-  // Without a requested bout width the CVs are at the widest whole-tray bout that meets the target (the
-  // working width itself lies between two whole-tray widths, where no CV is defined).
-  p.bout_width_m = request.bout_width_m > 0.0
-                       ? metrics::bout_tray_count(trays, request.bout_width_m) * trays.tray_width_m
-                       : (to_and_fro.width_m > 0.0 ? to_and_fro.trays_below * trays.tray_width_m : 0.0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  // The four CV and width standard errors share one pass over the landings
-  // (SampleInfluence::standard_errors): their gradients first, then the pass. An empty gradient = NaN.
-  const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
-  const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
-  std::span<const double> se_gradients[SampleInfluence::kMaxGradients];  // CV t&f, CV racetrack, W t&f, W rt
-  const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
+  // The bands (metrics::WorkingWidth) with the standard errors the headline rule needs
+  // (docs/metrics.md "Effective working width"): per band the CV at its widest whole-tray bout, its
+  // lowest CV and its upper end; per to-and-fro band also the racetrack CV at that bout (the CVs a
+  // request without a bout width reports are at the headline band's widest bout). All standard errors
+  // share passes over the landings of SampleInfluence::kMaxGradients gradients each (one pass for a
+  // pattern with one band per overlap).
+  // Per band beside its PredictedBand (written in place into p): to-and-fro bands also carry the racetrack
+  // CV at their bout and its standard error.
+  struct BandExtra {
+    const metrics::WidthBand* band;
+    double racetrack_cv = std::numeric_limits<double>::quiet_NaN();
+    double racetrack_cv_se = std::numeric_limits<double>::quiet_NaN();
+  };
+  BandExtra extras[2][kMaxBands];
+  PredictedBand* band_out[2] = {p.bands_to_and_fro, p.bands_racetrack};
+  const metrics::WorkingWidth* overlap_widths[2] = {&to_and_fro, &racetrack};
+  const metrics::Overlap overlaps[2] = {metrics::Overlap::kToAndFro, metrics::Overlap::kRacetrack};
+  // One standard error to compute: of the CV at `trays` trays, or (width_band set) of that band's
+  // interpolated upper end W* = (n + (t − c_n)/(c_{n+1} − c_n))·w, whose gradient combines the gradients
+  // of the two CVs around the crossing.
+  struct SeTask {
+    double* out;
+    metrics::Overlap overlap;
+    int trays;
+    const metrics::WidthBand* width_band;
+  };
+  SeTask tasks[2 + 2 * kMaxBands * 4];
+  std::size_t task_count = 0;
+  const int request_bout_trays =
+      request.bout_width_m > 0.0 ? metrics::bout_tray_count(trays, request.bout_width_m) : 0;
+  double request_cv[2] = {nan, nan}, request_cv_se[2] = {nan, nan};
+  if (request_bout_trays > 0) {
+    for (int o = 0; o < 2; ++o) {
+      request_cv[o] = metrics::cv_at_trays(tray_mass, trays, request_bout_trays, overlaps[o], metrics_scratch);
+      if (std::isfinite(request_cv[o])) tasks[task_count++] = {&request_cv_se[o], overlaps[o], request_bout_trays, nullptr};
+    }
+  }
+  for (int o = 0; o < 2; ++o) {
+    const metrics::WorkingWidth& ww = *overlap_widths[o];
+    for (int b = 0; b < ww.stored_bands(); ++b) {
+      const metrics::WidthBand& in = ww.bands[b];
+      BandExtra& extra = extras[o][b];
+      PredictedBand& band = band_out[o][b];
+      extra.band = &in;
+      band.lower_m = in.lower_m;
+      band.upper_m = in.upper_m;
+      band.upper_se_m = nan;
+      band.bout_width_m = in.trays_below * trays.tray_width_m;
+      band.cv = in.cv_below;
+      band.cv_se = nan;
+      band.lowest_cv = in.lowest_cv;
+      band.lowest_cv_se = nan;
+      band.lowest_cv_bout_width_m = in.lowest_cv_trays * trays.tray_width_m;
+      band.limited_by_layout = in.limited_by_layout;
+      tasks[task_count++] = {&band.cv_se, overlaps[o], in.trays_below, nullptr};
+      if (in.lowest_cv_trays != in.trays_below) {
+        tasks[task_count++] = {&band.lowest_cv_se, overlaps[o], in.lowest_cv_trays, nullptr};
+      }
+      if (!in.limited_by_layout && std::isfinite(in.cv_above) && in.cv_above > in.cv_below) {
+        tasks[task_count++] = {&band.upper_se_m, overlaps[o], in.trays_below, &in};
+      }
+      if (o == 0 && request_bout_trays == 0) {
+        extra.racetrack_cv =
+            metrics::cv_at_trays(tray_mass, trays, in.trays_below, metrics::Overlap::kRacetrack, metrics_scratch);
+        if (std::isfinite(extra.racetrack_cv)) {
+          tasks[task_count++] = {&extra.racetrack_cv_se, metrics::Overlap::kRacetrack, in.trays_below, nullptr};
+        }
+      }
+    }
+  }
   // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
   // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
+  const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
   const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m};
-  if (p.bout_width_m > 0.0) {
-    const int bout_trays = metrics::bout_tray_count(trays, p.bout_width_m);
-    p.cv_to_and_fro = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, metrics_scratch);
-    p.cv_racetrack = metrics::cv_at_trays(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, metrics_scratch);
-    if (std::isfinite(p.cv_to_and_fro)) {
-      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kToAndFro, gradient(0), metrics_scratch);
-      se_gradients[0] = gradient(0);
+  const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
+  const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
+  for (std::size_t first = 0; first < task_count; first += SampleInfluence::kMaxGradients) {
+    const std::size_t count = std::min(task_count - first, SampleInfluence::kMaxGradients);
+    std::span<const double> pass_gradients[SampleInfluence::kMaxGradients];
+    for (std::size_t g = 0; g < count; ++g) {
+      const SeTask& task = tasks[first + g];
+      const std::span<double> grad = gradient(g);
+      if (task.width_band == nullptr) {
+        metrics::cv_gradient(tray_mass, trays, task.trays, task.overlap, grad, metrics_scratch);
+      } else {
+        const metrics::WidthBand& in = *task.width_band;
+        const double span = in.cv_above - in.cv_below;
+        const double d_below = -trays.tray_width_m * (in.cv_above - request.cv_target) / (span * span);
+        const double d_above = -trays.tray_width_m * (request.cv_target - in.cv_below) / (span * span);
+        metrics::cv_gradient(tray_mass, trays, in.trays_below, task.overlap, grad, metrics_scratch);
+        metrics::cv_gradient(tray_mass, trays, in.trays_below + 1, task.overlap, scratch, metrics_scratch);
+        for (std::size_t k = 0; k < tray_count; ++k) grad[k] = d_below * grad[k] + d_above * scratch[k];
+      }
+      if (mirrored) fold_mirror(grad);
+      pass_gradients[g] = grad;
     }
-    if (std::isfinite(p.cv_racetrack)) {
-      metrics::cv_gradient(tray_mass, trays, bout_trays, metrics::Overlap::kRacetrack, gradient(1), metrics_scratch);
-      se_gradients[1] = gradient(1);
-    }
-  } else {
-    p.cv_to_and_fro = p.cv_racetrack = nan;
+    double pass_se[SampleInfluence::kMaxGradients];
+    (mirrored ? left_influence : influence).standard_errors(std::span(pass_gradients, count), pass_se);
+    for (std::size_t g = 0; g < count; ++g) *tasks[first + g].out = pass_se[g];
   }
-  // Working width W* = (n + (t − c_n)/(c_{n+1} − c_n))·w: its gradient is a combination of the gradients
-  // of the two CVs around the crossing.
-  auto width_gradient = [&](const metrics::WorkingWidth& ww, metrics::Overlap overlap, std::size_t slot) {
-    if (!(ww.width_m > 0.0) || ww.limited_by_layout || !std::isfinite(ww.cv_above)) return;
-    const double span = ww.cv_above - ww.cv_below;
-    if (!(span > 0.0)) return;
-    const double d_below = -trays.tray_width_m * (ww.cv_above - request.cv_target) / (span * span);
-    const double d_above = -trays.tray_width_m * (request.cv_target - ww.cv_below) / (span * span);
-    const std::span<double> g = gradient(slot);
-    metrics::cv_gradient(tray_mass, trays, ww.trays_below, overlap, g, metrics_scratch);
-    metrics::cv_gradient(tray_mass, trays, ww.trays_below + 1, overlap, scratch, metrics_scratch);
-    for (std::size_t k = 0; k < tray_count; ++k) g[k] = d_below * g[k] + d_above * scratch[k];
-    se_gradients[slot] = g;
-  };
-  width_gradient(to_and_fro, metrics::Overlap::kToAndFro, 2);
-  width_gradient(racetrack, metrics::Overlap::kRacetrack, 3);
-  double se[SampleInfluence::kMaxGradients];
-  if (mirrored) {
-    for (std::size_t slot = 0; slot < SampleInfluence::kMaxGradients; ++slot) {
-      if (!se_gradients[slot].empty()) fold_mirror(gradient(slot));
+
+  // The headline: the widest band whose lowest CV meets the target at 95 % confidence over the launch
+  // samples (CV + 1.96 SE <= target); a band that the samples do not establish is reported but not taken.
+  // When none is established, the first band.
+  int headline[2] = {-1, -1};
+  for (int o = 0; o < 2; ++o) {
+    const int stored = overlap_widths[o]->stored_bands();
+    for (int b = 0; b < stored; ++b) {
+      PredictedBand& band = band_out[o][b];
+      if (extras[o][b].band->lowest_cv_trays == extras[o][b].band->trays_below) band.lowest_cv_se = band.cv_se;
+      band.established = band.lowest_cv + kConfidence95 * band.lowest_cv_se <= request.cv_target;
+      if (band.established) headline[o] = b;
     }
-    left_influence.standard_errors(se_gradients, se);
-  } else {
-    influence.standard_errors(se_gradients, se);
+    if (headline[o] < 0 && stored > 0) headline[o] = 0;
   }
-  p.cv_to_and_fro_se = p.bout_width_m > 0.0 ? se[0] : nan;
-  p.cv_racetrack_se = p.bout_width_m > 0.0 ? se[1] : nan;
-  p.working_width_to_and_fro_se_m = se[2];
-  p.working_width_racetrack_se_m = se[3];
+  double* widths_out[2] = {&p.working_width_to_and_fro_m, &p.working_width_racetrack_m};
+  double* widths_se_out[2] = {&p.working_width_to_and_fro_se_m, &p.working_width_racetrack_se_m};
+  for (int o = 0; o < 2; ++o) {
+    const PredictedBand* h = headline[o] >= 0 ? &band_out[o][headline[o]] : nullptr;
+    *widths_out[o] = h != nullptr ? h->upper_m : 0.0;
+    *widths_se_out[o] = h != nullptr ? h->upper_se_m : nan;
+  }
+  p.headline_band_to_and_fro = headline[0];
+  p.headline_band_racetrack = headline[1];
+  p.cv_crossings_to_and_fro = to_and_fro.crossings;
+  p.cv_crossings_racetrack = racetrack.crossings;
+  p.band_count_to_and_fro = to_and_fro.band_count;
+  p.band_count_racetrack = racetrack.band_count;
+  p.first_band_width_to_and_fro_m = to_and_fro.first_band_upper_m();
+  p.first_band_width_racetrack_m = racetrack.first_band_upper_m();
+  // The CVs: at the requested bout, or without one at the to-and-fro headline band's widest whole-tray
+  // bout (the working width itself lies between two whole-tray widths, where no CV is defined).
+  if (request_bout_trays > 0) {
+    p.bout_width_m = request_bout_trays * trays.tray_width_m;
+    p.cv_to_and_fro = request_cv[0];
+    p.cv_racetrack = request_cv[1];
+    p.cv_to_and_fro_se = request_cv_se[0];
+    p.cv_racetrack_se = request_cv_se[1];
+  } else if (headline[0] >= 0) {
+    const PredictedBand& h = band_out[0][headline[0]];
+    p.bout_width_m = h.bout_width_m;
+    p.cv_to_and_fro = h.cv;
+    p.cv_to_and_fro_se = h.cv_se;
+    p.cv_racetrack = extras[0][headline[0]].racetrack_cv;
+    p.cv_racetrack_se = extras[0][headline[0]].racetrack_cv_se;
+  } else {
+    p.bout_width_m = 0.0;
+    p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;
+  }
   p.throw_width_se_m = p.throw_width_m > 0.0 ? influence.throw_width_standard_error(tray_mass, extent, 0.99) : nan;
   p.mean_radius_m = w.radial_mean_m_;
   p.radial_width_m = w.radial_width_m_;
@@ -669,7 +763,6 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   p.landing_x_m = xs;
   p.landing_y_m = ys;
   p.landing_mass_fraction = weights;
-  out = p;
   return PredictStatus::kOk;
 }
 

@@ -80,9 +80,33 @@ struct PredictionRequest {
 inline constexpr double kKernelScale = 0.5;
 double kernel_half_width_for(double sd_x_m, std::size_t sample_count);
 
+// One band of bout widths whose CV meets the target (metrics::WidthBand), as predicted, with the
+// standard errors over the launch samples.
+struct PredictedBand {
+  double lower_m = 0.0;             // narrowest bout width of the band
+  double upper_m = 0.0;             // widest, interpolated between whole trays (the layout's edge if limited)
+  double upper_se_m = 0.0;          // NaN when limited by the layout
+  double bout_width_m = 0.0;        // the widest whole-tray bout inside the band
+  double cv = 0.0;                  // CV there (fraction)
+  double cv_se = 0.0;               // its standard error (fraction)
+  double lowest_cv = 0.0;           // the band's lowest CV (fraction) and its bout width
+  double lowest_cv_se = 0.0;
+  double lowest_cv_bout_width_m = 0.0;
+  bool limited_by_layout = false;   // CV stays within the target up to the widest layout
+  // lowest_cv + kConfidence95 · lowest_cv_se <= target: the launch samples establish the band (the
+  // headline rule takes the widest established band).
+  bool established = false;
+};
+inline constexpr int kMaxBands = metrics::kMaxWidthBands;
+// Two-sided 95 % normal quantile: the intervals the tools print and the headline rule's confidence.
+inline constexpr double kConfidence95 = 1.96;
+
 struct Prediction {
   double throw_width_m = 0.0;               // 99 % of the mass
-  double working_width_to_and_fro_m = 0.0;  // largest W with CV <= target; 0 = none
+  // The headline working width (docs/metrics.md "Effective working width"): the upper end of the widest
+  // band of bout widths with CV <= target whose lowest CV meets the target at 95 % confidence (the first
+  // band when none does), PredictedBand::established; 0 = no width meets the target.
+  double working_width_to_and_fro_m = 0.0;
   double working_width_racetrack_m = 0.0;
   double bout_width_m = 0.0;                // where the CVs below were evaluated
   double cv_to_and_fro = 0.0;               // fraction; NaN when bout_width_m == 0
@@ -102,10 +126,24 @@ struct Prediction {
   double working_width_racetrack_se_m = 0.0;
   double cv_to_and_fro_se = 0.0;            // fraction
   double cv_racetrack_se = 0.0;             // fraction
-  // Times CV(W) crosses the target between two trays and the layout width: more than 1 means the curve
-  // dips back under the target at a wider bout (never taken as the working width; say so to the user).
+  // Times CV(W) crosses the target between two trays and the layout width: more than 1 means more than
+  // one band (a bout width between two bands does not meet the target; say so to the user).
   int cv_crossings_to_and_fro = 0;
   int cv_crossings_racetrack = 0;
+  // Every band of bout widths within the target (the first kMaxBands − 1 and the widest are kept), each
+  // with its CV and standard error at its widest whole-tray bout; headline_band_*: the index of the band
+  // whose upper end is the working width above (−1: none). first_band_width_*_m: the narrowest band's
+  // upper end (the first rise of CV(W) above the target).
+  int band_count_to_and_fro = 0;
+  int band_count_racetrack = 0;
+  int headline_band_to_and_fro = -1;
+  int headline_band_racetrack = -1;
+  PredictedBand bands_to_and_fro[kMaxBands];
+  PredictedBand bands_racetrack[kMaxBands];
+  double first_band_width_to_and_fro_m = 0.0;
+  double first_band_width_racetrack_m = 0.0;
+  int stored_bands_to_and_fro() const { return band_count_to_and_fro < kMaxBands ? band_count_to_and_fro : kMaxBands; }
+  int stored_bands_racetrack() const { return band_count_racetrack < kMaxBands ? band_count_racetrack : kMaxBands; }
   std::size_t sample_count = 0;             // independent launch samples behind the estimate
   flight::EffectSet effects = 0;            // the flight effects that ran
   double kernel_half_width_m = 0.0;         // as used
@@ -162,7 +200,7 @@ class PredictorWorkspace {
   std::pmr::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
   std::pmr::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
   std::pmr::vector<double> tray_mass_;
-  // Per tray, for the standard errors: four gradients side by side (SampleInfluence::kMaxGradients),
+  // Per tray, for the standard errors: one pass's gradients side by side (SampleInfluence::kMaxGradients),
   // and one more for the width gradients' second CV.
   std::pmr::vector<double> gradients_, gradient_scratch_;
   // metrics::working_widths' scratch, also the bout buffer of cv_at_trays / cv_gradient (up to the widest
@@ -190,6 +228,8 @@ class Predictor {
   const tables::Material& material(std::size_t index) const;  // sorted by name
   double min_rpm(std::size_t index) const;
   double max_rpm(std::size_t index) const;
+  // The rpm of each of the material's rows, ascending (a view into the Predictor).
+  std::span<const double> row_rpm(std::size_t index) const;
   std::optional<std::size_t> find_material(std::string_view name) const;
   const PredictorLimits& limits() const { return limits_; }
 

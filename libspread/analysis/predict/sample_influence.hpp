@@ -28,7 +28,7 @@ struct SampleInfluence {
   // The same for up to kMaxGradients statistics at once: out[g] = standard_error(gradients[g]), bit for
   // bit, in one pass over the landings — each landing's kernel shares K_k(x_l) are computed once and
   // dotted with every gradient (the shares are most of the cost). An empty gradient gives NaN.
-  static constexpr std::size_t kMaxGradients = 4;
+  static constexpr std::size_t kMaxGradients = 8;
   void standard_errors(std::span<const std::span<const double>> gradients, std::span<double> out) const;
   // Standard error of the throw width (the extent between the (1∓f)/2 mass quantiles `extent`): the
   // influence of a sample on a quantile x_q is (q − F_s(x_q)) / f(x_q), f the tray density there and

@@ -1,5 +1,6 @@
 #include "libspread/analysis/predict/setting_adjustment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -41,11 +42,10 @@ SettingAdjustments setting_adjustments(Predictor& predictor, const PredictionReq
     return a;
   };
 
-  const Prediction& now = predict(present);
+  const Prediction now = predict(present);  // a copy: predict() reuses one Prediction
   out.present_cv_to_and_fro = now.cv_to_and_fro;
   out.present_bout_width_m = now.bout_width_m;
   out.present_disc_height_m = now.disc_height_m;
-  const double working_width_m = now.working_width_to_and_fro_m;
 
   // Disc speed: the lowest CV at the bout width over the rows' range.
   const double low = predictor.min_rpm(*index), high = predictor.max_rpm(*index);
@@ -58,11 +58,26 @@ SettingAdjustments setting_adjustments(Predictor& predictor, const PredictionReq
   }
   out.adjustments.push_back(best_speed);
 
-  // Bout width: the working width at the present rpm, where the CV is at the target.
-  if (working_width_m > 0.0) {
-    r = present;
-    r.bout_width_m = std::floor(working_width_m / present.tray_width_m + 1e-9) * present.tray_width_m;
-    if (r.bout_width_m > 0.0) out.adjustments.push_back(adjustment(AdjustedSetting::kBoutWidth, r, predict(r)));
+  // Bout width: the whole-tray bout nearest to the present one inside a band within the target at the
+  // present rpm (docs/metrics.md "Effective working width": a pattern may have more than one band).
+  {
+    const double tray_m = present.tray_width_m;
+    double nearest_m = 0.0;
+    for (int b = 0; b < now.stored_bands_to_and_fro(); ++b) {
+      const PredictedBand& band = now.bands_to_and_fro[b];
+      const double first_m = std::ceil(band.lower_m / tray_m - 1e-9) * tray_m;
+      const double last_m = std::floor(band.upper_m / tray_m + 1e-9) * tray_m;
+      if (last_m < first_m || !(last_m > 0.0)) continue;
+      const double candidate_m = std::clamp(present.bout_width_m, first_m, last_m);
+      if (nearest_m == 0.0 || std::abs(candidate_m - present.bout_width_m) < std::abs(nearest_m - present.bout_width_m)) {
+        nearest_m = candidate_m;
+      }
+    }
+    if (nearest_m > 0.0) {
+      r = present;
+      r.bout_width_m = nearest_m;
+      out.adjustments.push_back(adjustment(AdjustedSetting::kBoutWidth, r, predict(r)));
+    }
   }
 
   // Disc height: a few steps either way, the disc kept at least 0.1 m above the ground.

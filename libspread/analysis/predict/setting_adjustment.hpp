@@ -4,7 +4,8 @@
 // rule of thumb. From the same Predictor as `spread predict`:
 //   disc speed   the rpm of the material's rows (kAdjustmentScanPoints evenly over them) with the lowest
 //                to-and-fro CV at the bout width;
-//   bout width   the to-and-fro effective working width at the present rpm (whole trays), and its CV;
+//   bout width   the whole-tray bout nearest the present one inside a band of bout widths within the
+//                target at the present rpm (Prediction::bands_to_and_fro), and its CV;
 //   disc height  the present height ± kHeightSteps, the lowest CV at the bout width.
 // A drop point or vane setting is not in a launch table (its runs were made with one feed): a table built
 // for another setting predicts that.

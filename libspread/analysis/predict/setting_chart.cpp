@@ -1,8 +1,11 @@
 #include "libspread/analysis/predict/setting_chart.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace spread::predict {
 namespace {
@@ -10,14 +13,16 @@ namespace {
 class Search {
  public:
   Search(Predictor& predictor, std::string_view material, const SettingChartOptions& options, int& predictions)
-      : predictor_(predictor), options_(options), predictions_(predictions) {
+      : predictor_(predictor), predictions_(predictions) {
     request_.material = material;
     request_.cv_target = options.cv_target;
     request_.tray_width_m = options.tray_width_m;
     request_.disc_height_m = options.disc_height_m;
+    request_.wind_x_m_s = options.wind_x_m_s;
+    request_.wind_y_m_s = options.wind_y_m_s;
   }
 
-  // The prediction at `rpm` with the CVs at `bout_width_m` (0: at the working width).
+  // The prediction at `rpm` with the CVs at `bout_width_m`.
   const Prediction& at(double rpm, double bout_width_m) {
     request_.rpm = rpm;
     request_.bout_width_m = bout_width_m;
@@ -29,24 +34,65 @@ class Search {
     }
     return prediction_;
   }
-  double working_width_m(double rpm) { return at(rpm, 0.0).working_width_to_and_fro_m; }
+  // The to-and-fro CV at bout_width_m; +infinity where it is undefined (nothing to rank).
+  double cv(double rpm, double bout_width_m) {
+    const double value = at(rpm, bout_width_m).cv_to_and_fro;
+    return std::isnan(value) ? std::numeric_limits<double>::infinity() : value;
+  }
 
  private:
   Predictor& predictor_;
-  const SettingChartOptions& options_;
   int& predictions_;
   PredictionRequest request_;
   Prediction prediction_;
 };
+
+// Every row of the material, and evenly spaced points between two rows at most kChartScanStep_rpm apart.
+std::vector<double> scan_grid(std::span<const double> rows_rpm) {
+  std::vector<double> grid{rows_rpm.front()};
+  for (std::size_t r = 1; r < rows_rpm.size(); ++r) {
+    const double low = rows_rpm[r - 1], high = rows_rpm[r];
+    const int steps = std::max(1, static_cast<int>(std::ceil((high - low) / kChartScanStep_rpm - 1e-9)));
+    for (int k = 1; k < steps; ++k) grid.push_back(low + (high - low) * k / steps);
+    grid.push_back(high);
+  }
+  return grid;
+}
+
+// Golden-section search for the lowest CV over [low, high], starting from the grid's best `best_rpm`
+// with `best_cv`; returns the lower of the two.
+std::pair<double, double> refine(Search& search, double width_m, double low, double high, double best_rpm,
+                                 double best_cv, double tolerance) {
+  constexpr double kInverseGolden = 0.6180339887498949;  // (√5 − 1)/2
+  double a = low, b = high;
+  double c = b - kInverseGolden * (b - a), d = a + kInverseGolden * (b - a);
+  double fc = search.cv(c, width_m), fd = search.cv(d, width_m);
+  while (b - a > tolerance) {
+    if (fc <= fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - kInverseGolden * (b - a);
+      fc = search.cv(c, width_m);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + kInverseGolden * (b - a);
+      fd = search.cv(d, width_m);
+    }
+  }
+  const double rpm = fc <= fd ? c : d, cv = std::min(fc, fd);
+  return cv < best_cv ? std::pair{rpm, cv} : std::pair{best_rpm, best_cv};
+}
 
 }  // namespace
 
 const char* to_string(ChartReach reach) {
   switch (reach) {
     case ChartReach::kReached: return "reached";
-    case ChartReach::kTooNarrow: return "too_narrow";
-    case ChartReach::kTooWide: return "too_wide";
-    case ChartReach::kJumpedOver: return "jumped_over";
+    case ChartReach::kMarginal: return "marginal";
+    case ChartReach::kNotReached: return "not_reached";
   }
   return "?";
 }
@@ -62,63 +108,61 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
   SettingChart chart;
   chart.min_rpm = predictor.min_rpm(*index);
   chart.max_rpm = predictor.max_rpm(*index);
+  chart.scan_rpm = scan_grid(predictor.row_rpm(*index));
+  const std::size_t points = chart.scan_rpm.size();
+  chart.scan_cv_to_and_fro.resize(widths_m.size() * points);
   Search search(predictor, material, options, chart.predictions);
-  for (int k = 0; k < kScanPoints; ++k) {
-    const double rpm = chart.min_rpm + (chart.max_rpm - chart.min_rpm) * k / (kScanPoints - 1);
-    chart.scan_rpm.push_back(rpm);
-    chart.scan_working_width_m.push_back(search.working_width_m(rpm));
-    if (chart.max_rpm == chart.min_rpm) break;
-  }
-  double narrowest_m = chart.scan_working_width_m[0], widest_m = narrowest_m;
-  for (double w : chart.scan_working_width_m) {
-    narrowest_m = std::min(narrowest_m, w);
-    widest_m = std::max(widest_m, w);
-  }
 
-  for (double width_m : widths_m) {
+  for (std::size_t w = 0; w < widths_m.size(); ++w) {
+    const double width_m = widths_m[w];
     SettingChartRow row;
     row.width_m = width_m;
-    // The lowest grid interval whose ends lie on either side of the width (or one end on it).
-    std::size_t bracket = chart.scan_rpm.size();
-    for (std::size_t k = 0; k + 1 < chart.scan_rpm.size(); ++k) {
-      const double a = chart.scan_working_width_m[k] - width_m, b = chart.scan_working_width_m[k + 1] - width_m;
-      if ((a <= 0.0 && b >= 0.0) || (a >= 0.0 && b <= 0.0)) {
-        bracket = k;
-        break;
-      }
+    const std::span<double> cv = std::span(chart.scan_cv_to_and_fro).subspan(w * points, points);
+    std::size_t best = 0;
+    for (std::size_t k = 0; k < points; ++k) {
+      cv[k] = search.cv(chart.scan_rpm[k], width_m);
+      if (cv[k] < cv[best]) best = k;
     }
-    if (bracket == chart.scan_rpm.size()) {
-      row.reach = width_m < narrowest_m ? ChartReach::kTooNarrow : ChartReach::kTooWide;
-      chart.rows.push_back(row);
-      continue;
+    // Spans within the target, ends interpolated linearly in CV between grid points.
+    const double target = options.cv_target;
+    const auto crossing = [&](std::size_t k) {  // between grid points k and k + 1
+      const double a = cv[k], b = cv[k + 1];
+      if (!std::isfinite(a) || !std::isfinite(b)) return std::isfinite(a) ? chart.scan_rpm[k] : chart.scan_rpm[k + 1];
+      return chart.scan_rpm[k] + (target - a) / (b - a) * (chart.scan_rpm[k + 1] - chart.scan_rpm[k]);
+    };
+    for (std::size_t k = 0; k < points; ++k) {
+      if (!(cv[k] <= target)) continue;
+      const double low = k == 0 ? chart.scan_rpm[0] : crossing(k - 1);
+      std::size_t last = k;
+      while (last + 1 < points && cv[last + 1] <= target) ++last;
+      const double high = last + 1 == points ? chart.scan_rpm[last] : crossing(last);
+      row.within_target_rpm.emplace_back(low, high);
+      k = last;
     }
-    // Later crossings (a grid point on the width counts once: the interval after it must change sign).
-    for (std::size_t k = bracket + 1; k + 1 < chart.scan_rpm.size(); ++k) {
-      const double a = chart.scan_working_width_m[k] - width_m, b = chart.scan_working_width_m[k + 1] - width_m;
-      const double before = chart.scan_working_width_m[k - 1] - width_m;
-      const bool crosses = (a < 0.0 && b >= 0.0) || (a > 0.0 && b <= 0.0) || (a == 0.0 && (before < 0.0) != (b < 0.0));
-      if (crosses) row.other_crossings_rpm.emplace_back(chart.scan_rpm[k], chart.scan_rpm[k + 1]);
+    // The grid's best, refined between its neighbours.
+    double best_rpm = chart.scan_rpm[best], best_cv = cv[best];
+    if (points > 1 && std::isfinite(best_cv)) {
+      const double low = chart.scan_rpm[best == 0 ? 0 : best - 1];
+      const double high = chart.scan_rpm[std::min(best + 1, points - 1)];
+      std::tie(best_rpm, best_cv) = refine(search, width_m, low, high, best_rpm, best_cv, options.rpm_tolerance);
     }
-    double lo = chart.scan_rpm[bracket], hi = chart.scan_rpm[bracket + 1];
-    const bool rising = chart.scan_working_width_m[bracket + 1] >= chart.scan_working_width_m[bracket];
-    while (hi - lo > options.rpm_tolerance) {
-      const double mid = 0.5 * (lo + hi);
-      const bool beyond = search.working_width_m(mid) > width_m;
-      ((beyond == rising) ? hi : lo) = mid;
-    }
-    row.rpm = 0.5 * (lo + hi);
-    const Prediction& p = search.at(row.rpm, width_m);
-    row.working_width_to_and_fro_m = p.working_width_to_and_fro_m;
-    row.working_width_to_and_fro_se_m = p.working_width_to_and_fro_se_m;
+    const Prediction& p = search.at(best_rpm, width_m);
+    row.rpm = best_rpm;
     row.bout_width_m = p.bout_width_m;
     row.cv_to_and_fro = p.cv_to_and_fro;
     row.cv_to_and_fro_se = p.cv_to_and_fro_se;
     row.cv_racetrack = p.cv_racetrack;
     row.cv_racetrack_se = p.cv_racetrack_se;
+    row.working_width_to_and_fro_m = p.working_width_to_and_fro_m;
+    row.working_width_to_and_fro_se_m = p.working_width_to_and_fro_se_m;
     row.sample_count = p.sample_count;
-    row.reach = std::abs(p.working_width_to_and_fro_m - width_m) <= 0.5 * options.tray_width_m ? ChartReach::kReached
-                                                                                                : ChartReach::kJumpedOver;
-    chart.rows.push_back(row);
+    if (!(row.cv_to_and_fro <= target)) {
+      row.reach = ChartReach::kNotReached;
+    } else {
+      const double upper = row.cv_to_and_fro + kConfidence95 * (std::isfinite(row.cv_to_and_fro_se) ? row.cv_to_and_fro_se : 0.0);
+      row.reach = upper <= target ? ChartReach::kReached : ChartReach::kMarginal;
+    }
+    chart.rows.push_back(std::move(row));
   }
   return chart;
 }

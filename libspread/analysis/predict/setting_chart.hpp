@@ -1,20 +1,18 @@
 #pragma once
-// The setting chart a spreader's manual prints, from a launch table: for each working width, the disc
-// speed that spreads it — the rpm within the table's rows at which the predicted to-and-fro effective
-// working width (at the CV target) equals the width — with the CVs at that width and their standard
-// errors (docs/field-calibration.md, "Spread chart").
+// The setting chart a spreader's manual prints, from a launch table: for each tramline (bout) width W,
+// the disc speed (both discs alike) with the lowest predicted to-and-fro CV at W, that CV and the
+// racetrack CV with their standard errors, and every span of disc speeds that keeps the CV within the
+// target (docs/field-calibration.md, "Spread chart").
 //
-// Search: the working width W(rpm) is evaluated on a grid of kScanPoints rpm over the material's rows;
-// the lowest grid interval where W(rpm) − width changes sign is bisected down to `rpm_tolerance`. The
-// working width is a first crossing of a sampled CV(W) curve (metrics.hpp): it can jump when a dip of the
-// curve moves under the target, so the found rpm is accepted only when W(rpm) there is within half a tray
-// of the width; otherwise the row says the width is jumped over (not reachable). A width outside what the
-// grid's rpm give is not reachable either, and the row says which end of the range it lies beyond.
+// Search: CV(rpm) at each W is evaluated on a grid over the material's rows (every table row, and steps
+// of at most kChartScanStep_rpm between them); the best grid point is then refined by golden-section
+// search over the two grid intervals around it, down to `rpm_tolerance`. CV(rpm) between rows is an
+// interpolation of launch samples (launch_interpolation.hpp), smooth on the scale of the grid; the
+// refinement only keeps a point that is lower than the grid's best. A width is reachable when some
+// setting's CV meets the target there; the span ends are interpolated linearly in CV between grid points.
 #include <cstddef>
-#include <optional>
 #include <limits>
 #include <span>
-#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -27,42 +25,45 @@ struct SettingChartOptions {
   double cv_target = 0.15;         // fraction
   double tray_width_m = 0.5;
   double disc_height_m = std::numeric_limits<double>::quiet_NaN();  // NaN: the table's
-  double rpm_tolerance = 0.5;      // r/min: bisection stops below this interval
+  double wind_x_m_s = 0.0;         // lateral wind of the day (the search then predicts in it)
+  double wind_y_m_s = 0.0;
+  double rpm_tolerance = 0.5;      // r/min: the refinement stops below this interval
 };
 
-inline constexpr int kScanPoints = 13;
+// Largest grid step between two grid points (r/min): a fifth of the 25 rpm a technician turns the dial by.
+inline constexpr double kChartScanStep_rpm = 5.0;
 
 enum class ChartReach {
-  kReached,
-  kTooNarrow,   // narrower than the working width at every rpm of the range
-  kTooWide,     // wider than the working width at every rpm of the range
-  kJumpedOver,   // W(rpm) jumps across the width (a dip of CV(W) under the target appears or vanishes)
+  kReached,      // the best setting's CV + 1.96 SE is within the target
+  kMarginal,     // the best setting's CV is within the target but its 95 % interval reaches over it
+  kNotReached,   // no setting of the table's range has a CV within the target at this width
 };
 
 struct SettingChartRow {
   double width_m = 0.0;
-  ChartReach reach = ChartReach::kTooWide;
-  double rpm = std::numeric_limits<double>::quiet_NaN();  // reached: the disc speed; jumped over: where
-  // At `rpm` (reached or jumped over): the working width and, at a bout of width_m, the CVs (fractions)
-  // with their standard errors over the launch samples (Prediction's delta-method errors).
-  double working_width_to_and_fro_m = std::numeric_limits<double>::quiet_NaN();
-  double working_width_to_and_fro_se_m = std::numeric_limits<double>::quiet_NaN();
-  double bout_width_m = std::numeric_limits<double>::quiet_NaN();  // width_m in whole trays, as evaluated
+  ChartReach reach = ChartReach::kNotReached;
+  double rpm = std::numeric_limits<double>::quiet_NaN();  // the best setting (lowest to-and-fro CV at W)
+  // At `rpm`: the CVs (fractions) at a bout of width_m in whole trays, with their standard errors over
+  // the launch samples, and the headline working width there (Prediction's rule).
+  double bout_width_m = std::numeric_limits<double>::quiet_NaN();
   double cv_to_and_fro = std::numeric_limits<double>::quiet_NaN();
   double cv_to_and_fro_se = std::numeric_limits<double>::quiet_NaN();
   double cv_racetrack = std::numeric_limits<double>::quiet_NaN();
   double cv_racetrack_se = std::numeric_limits<double>::quiet_NaN();
+  double working_width_to_and_fro_m = std::numeric_limits<double>::quiet_NaN();
+  double working_width_to_and_fro_se_m = std::numeric_limits<double>::quiet_NaN();
   std::size_t sample_count = 0;
-  // Grid intervals [low, high] rpm above the one bisected where W(rpm) crosses the width again: the working
-  // width is not monotone in rpm, and the row gives the lowest rpm only.
-  std::vector<std::pair<double, double>> other_crossings_rpm;
+  // Spans [low, high] of disc speed (r/min) whose to-and-fro CV at W is within the target.
+  std::vector<std::pair<double, double>> within_target_rpm;
 };
 
 struct SettingChart {
-  double min_rpm = 0.0, max_rpm = 0.0;                // the material's rows
-  std::vector<double> scan_rpm, scan_working_width_m;  // the grid of the search, to-and-fro working widths
-  std::vector<SettingChartRow> rows;                  // one per width asked, in that order
-  int predictions = 0;                                // predictions made
+  double min_rpm = 0.0, max_rpm = 0.0;  // the material's rows
+  std::vector<double> scan_rpm;         // the grid of the search
+  // scan_cv_to_and_fro[w * scan_rpm.size() + k]: the CV at width w (the order asked) and grid point k.
+  std::vector<double> scan_cv_to_and_fro;
+  std::vector<SettingChartRow> rows;    // one per width asked, in that order
+  int predictions = 0;                  // predictions made
 };
 
 // Throws std::invalid_argument naming the problem for an unknown material, widths that are not > 0 and
