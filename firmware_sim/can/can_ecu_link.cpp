@@ -69,7 +69,8 @@ isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings
   isobus::TcClientSettings tc;
   tc.version.sections = static_cast<std::uint8_t>(d.section_count);
   const auto& device = std::get<isobus::DeviceObject>(pool.objects.front());
-  return isobus::TaskControllerClient(isobus::write_ddop(pool), device.structure_label, device.localization_label, tc);
+  return isobus::TaskControllerClient(isobus::write_ddop(pool), device.structure_label, device.localization_label, tc,
+                                      isobus::write_ddop(pool, 3));
 }
 
 }  // namespace
@@ -130,7 +131,10 @@ void CanEcuProcessor::service() {
   const Nanoseconds now = clock_.now();
   tc_client_.update(now);
   // A connection that ended takes its measurement triggers with it; the next one sets them again.
-  if (tc_was_connected_ && !tc_client_.connected()) triggers_.clear();
+  if (tc_was_connected_ && !tc_client_.connected()) {
+    triggers_.clear();
+    section_control_state_ = 0;  // nobody switches the sections automatically any more
+  }
   tc_was_connected_ = tc_client_.connected();
   send_measurements(now);
   send_dm1(now);
@@ -313,6 +317,7 @@ std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, con
     case Ddi::kSetpointRevolutions: return to_int32(s.rpm_target * kRevolutionsScale);
     case Ddi::kActualRevolutions: return to_int32(s.rpm_actual * kRevolutionsScale);
     case Ddi::kActualSpeed: return to_int32(s.ground_speed_m_s * 1000.0);
+    case Ddi::kSectionControlState: return section_control_state_;
   }
   return std::nullopt;
 }
@@ -353,6 +358,14 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
     }
     case Ddi::kSetpointRevolutions:
       rejection = ecu_.set_rpm_setpoint(m.value / kRevolutionsScale);
+      break;
+    case Ddi::kSectionControlState:
+      // 0 manual, 1 automatic; 2 (error) and 3 (not installed) are states to report, not to set.
+      if (m.value != 0 && m.value != 1) {
+        ecu_.record_fault(Fault::kSetpointOutOfRange);
+        return kPdackValueOutOfRange;
+      }
+      section_control_state_ = m.value;
       break;
     case Ddi::kActualMassPerArea:
     case Ddi::kActualWorkingWidth:

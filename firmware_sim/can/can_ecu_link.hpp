@@ -112,6 +112,9 @@ class CanEcuProcessor {
   MeasurementTriggers triggers_;
   std::optional<Nanoseconds> last_measurement_time_;
   bool tc_was_connected_ = false;
+  // DDI 160 as the TC set it: 1 while the TC switches the sections automatically (ISO 11783-10 section
+  // control), 0 (manual) at start and again when the TC connection ends.
+  std::int32_t section_control_state_ = 0;
 };
 
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).

@@ -252,7 +252,11 @@ void TcServer::handle_pool(std::uint8_t source, std::span<const std::uint8_t> po
     send_to_client(answer);
     return;
   }
-  DdopParseResult parsed = parse_ddop(pool_bytes);
+  // The client writes its pool for the lower of the two versions (version 4 adds the DVC's extended
+  // structure label); a client that never answered our version request is taken as version 4.
+  const std::uint8_t version =
+      std::min(config_.version.version, client_version_ ? client_version_->version : std::uint8_t{4});
+  DdopParseResult parsed = parse_ddop(pool_bytes, version);
   if (!parsed.pool) {
     answer[1] = 0x01;  // bit 0: error in the pool (ISO 11783-10 object-pool transfer response)
     ++counters_.pools_refused;
