@@ -53,6 +53,12 @@ class StatusPrinter final : public LoopIo {
   Nanoseconds start_{};
 };
 
+std::string hex_byte(std::uint8_t b) {
+  char buf[3];
+  std::snprintf(buf, sizeof buf, "%02X", unsigned{b});
+  return buf;
+}
+
 void print_fault_summary(const Ecu& ecu) {
   std::fprintf(stderr, "firmware_sim: fault counts:");
   bool any = false;
@@ -254,6 +260,22 @@ int main(int argc, char** argv) {
               << " overruns, worst step " << std::chrono::duration<double, std::micro>(loop.statistics().worst_step).count()
               << " us\n";
     print_fault_summary(ecu);
+    const can::CanEcuProcessor* processor =
+        can_io ? &can_io->processor() : replay_processor ? replay_processor.get() : nullptr;
+    if (processor != nullptr) {
+      // The partner task controller (ISO 11783-10): whom the ECU obeyed, and what it ignored from others.
+      const auto& partner = processor->task_controller_partner();
+      const auto& c = processor->counters();
+      std::fprintf(stderr,
+                   "firmware_sim: task controller %s, partners chosen %llu lost %llu%s%s, ignored from other nodes "
+                   "%llu, TC status of other TCs %llu\n",
+                   partner.address() ? ("0x" + hex_byte(*partner.address())).c_str() : "none",
+                   static_cast<unsigned long long>(partner.counters().partners_chosen),
+                   static_cast<unsigned long long>(partner.counters().partners_lost),
+                   partner.last_loss().empty() ? "" : ", last lost: ", partner.last_loss().c_str(),
+                   static_cast<unsigned long long>(c.not_from_partner),
+                   static_cast<unsigned long long>(c.other_task_controllers));
+    }
     if (can_io) {
       const auto& network = can_io->processor().network();
       const auto& claim = network.claim().counters();

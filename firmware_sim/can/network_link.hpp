@@ -25,6 +25,7 @@ struct NetworkCounters {
   std::uint64_t requests_nacked = 0;    // requests to us for a PGN we do not provide: NACK sent
   std::uint64_t requests_ignored = 0;   // global requests for a PGN we do not provide (never NACKed)
   std::uint64_t address_losses = 0;     // a standing claim taken by a lower NAME (or a failed re-claim)
+  std::uint64_t claim_requests_sent = 0;  // our requests for everyone's address claim (once our claim stands)
   std::uint64_t send_failures = 0;
 };
 
@@ -59,6 +60,7 @@ class NetworkLink {
  private:
   Verdict handle_request(const IsobusId& id, const can_frame& frame);
   void send_nack(std::uint32_t pgn, std::uint8_t requester);
+  void request_address_claims();
   void flush_claims();
 
   const Clock& clock_;

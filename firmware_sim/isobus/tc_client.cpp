@@ -51,6 +51,10 @@ void TaskControllerClient::end_connection(std::string why, Nanoseconds now) {
   tc_.reset();
 }
 
+void TaskControllerClient::drop(std::string why, Nanoseconds now) {
+  if (tc_) end_connection(std::move(why), now);
+}
+
 void TaskControllerClient::handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now) {
   const auto kind = tc_message_kind(data);
   if (!kind) return;

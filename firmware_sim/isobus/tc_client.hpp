@@ -67,6 +67,8 @@ class TaskControllerClient {
   void handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now);
   // Timeouts and the periodic client task message.
   void update(Nanoseconds now);
+  // The partner TC is gone (its address taken or released): the connection ends as on a timeout.
+  void drop(std::string why, Nanoseconds now);
   std::vector<TcOutgoing> take_outgoing();
 
   TcClientState state() const { return state_; }

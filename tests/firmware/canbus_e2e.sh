@@ -27,7 +27,9 @@ grep -q "rx 0x80->0x81 PD value element 0 DDI 389 set-point revolutions = 700.00
 kill -INT "$ecu"  # firmware_sim stops on SIGINT and prints its summary
 wait "$ecu" || true
 cat "$dir/ecu.log" "$dir/ecu2.log"
-grep -Eq "ISOBUS address none, last 0xFE, claims sent [0-9]+, contentions won 0 lost 1, cannot-claim sent 1" "$dir/ecu.log" ||
+# Cannot-claim twice: on losing, and in answer to the newcomer's request for every claim once its own
+# stood (ISO 11783-5 §4.4.4.3: a function without an address answers that request with cannot-claim).
+grep -Eq "ISOBUS address none, last 0xFE, claims sent [0-9]+, contentions won 0 lost 1, cannot-claim sent 2" "$dir/ecu.log" ||
   { echo "FAIL: the first ECU did not give up 0x80 to the lower NAME"; exit 1; }
 grep -Eq "ISOBUS address 0x80, claims sent [0-9]+, contentions won 0 lost 0" "$dir/ecu2.log" ||
   { echo "FAIL: the second ECU does not hold 0x80"; exit 1; }

@@ -10,6 +10,8 @@
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/isobus/address_claim.hpp"
 #include "firmware_sim/isobus/iso_name.hpp"
+#include "firmware_sim/isobus/tc_messages.hpp"
+#include "firmware_sim/isobus/tc_partner.hpp"
 
 namespace spread::firmware::isobus {
 namespace {
@@ -223,6 +225,18 @@ class NetworkedEcu : public ::testing::Test {
     clock_.advance(by);
     processor_.service();
   }
+  // 0x81 claims its address with a task controller's NAME and sends its status: the ECU's partner TC, whose
+  // process data it takes (ISO 11783-10).
+  void become_partner() {
+    isobus::IsoName tc;
+    tc.self_configurable = true;
+    tc.device_class = isobus::kDeviceClassNonSpecific;
+    tc.function = isobus::kFunctionTaskController;
+    const auto name = isobus::name_to_bytes(isobus::encode_name(tc));
+    deliver(kAddressClaimedPgn, kGlobalAddress, 0x81, {name.begin(), name.end()});
+    const auto status = isobus::encode_tc_status(true);
+    processor_.handle_frame(make_frame(encode_id({3, kProcessDataPgn, kGlobalAddress, 0x81}), status.data(), 8));
+  }
 
   ManualClock clock_;
   RecordingSink sink_;
@@ -241,10 +255,19 @@ TEST_F(NetworkedEcu, SendsNothingButItsClaimUntilTheClaimStands) {
   EXPECT_TRUE(sink_.take().empty()) << "process data answered before the claim stood";
   advance(150ms);
   EXPECT_TRUE(processor_.has_address());
-  request_rate();
   sent = sink_.take();
   // Once the claim stands the ECU also broadcasts its DM1 (once a second): not part of this check.
   std::erase_if(sent, [](const can_frame& f) { return decode_id(f.can_id & CAN_EFF_MASK).pgn == 0xFECAu; });
+  // ... and asks every node for its address claim, to learn who holds which address (a TC that claimed
+  // before the ECU joined).
+  ASSERT_EQ(sent.size(), 1u);
+  EXPECT_EQ(sent[0].can_id, 0x18EAFF80u | CAN_EFF_FLAG);
+  ASSERT_EQ(sent[0].len, 3);
+  EXPECT_EQ(sent[0].data[0] | (sent[0].data[1] << 8) | (sent[0].data[2] << 16), 0xEE00);
+  become_partner();
+  sink_.take();  // the TC client's connection start
+  request_rate();
+  sent = sink_.take();
   ASSERT_EQ(sent.size(), 1u);
   EXPECT_EQ(decode_id(sent[0].can_id & CAN_EFF_MASK).pgn, kProcessDataPgn);
 }
