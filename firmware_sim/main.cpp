@@ -123,9 +123,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 15));
   name_fields->add_option("--isobus-manufacturer", iso_name.manufacturer_code, "NAME manufacturer code (0..2047)")
       ->check(CLI::Range(0, 2047));
-  name_fields->add_option("--isobus-identity", iso_name.identity_number, "NAME identity number (0..2097151)")
+  auto* identity = name_fields->add_option("--isobus-identity", iso_name.identity_number,
+                                           "NAME identity number (0..2097151)")
+                        ->check(CLI::Range(0, 2097151))
+                        ->capture_default_str();
+  // ISO 11783-5: the identity number makes a unit's NAME unique among units of one manufacturer; two units
+  // with one NAME both lose their address. Each unit is started with its own serial number.
+  name_fields->add_option("--serial", iso_name.identity_number,
+                          "this unit's serial number (0..2097151): the NAME's identity number and the pool's "
+                          "serial SIM-<n>; give every unit its own")
       ->check(CLI::Range(0, 2097151))
-      ->capture_default_str();
+      ->excludes(identity);
   name_fields->excludes(name_hex);
   app.add_option("--tables", tables_path, "launch-table file (lookup_builder output); enables automatic mode")
       ->check(CLI::ExistingFile);
@@ -281,13 +289,16 @@ int main(int argc, char** argv) {
       const auto& claim = network.claim().counters();
       std::fprintf(stderr,
                    "firmware_sim: ISOBUS address %s0x%02X, claims sent %llu, contentions won %llu lost %llu, "
-                   "cannot-claim sent %llu, requests NACKed %llu\n",
+                   "cannot-claim sent %llu, requests NACKed %llu, our NAME from another node %llu, address "
+                   "violations %llu\n",
                    network.has_address() ? "" : "none, last ", unsigned{network.address()},
                    static_cast<unsigned long long>(claim.claims_sent),
                    static_cast<unsigned long long>(claim.contentions_won),
                    static_cast<unsigned long long>(claim.contentions_lost),
                    static_cast<unsigned long long>(claim.cannot_claim_sent),
-                   static_cast<unsigned long long>(network.counters().requests_nacked));
+                   static_cast<unsigned long long>(network.counters().requests_nacked),
+                   static_cast<unsigned long long>(claim.duplicate_names),
+                   static_cast<unsigned long long>(claim.address_violations));
     }
   } catch (const std::exception& e) {
     std::cerr << "firmware_sim: error: " << e.what() << "\n";

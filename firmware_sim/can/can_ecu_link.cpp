@@ -62,6 +62,8 @@ namespace {
 isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings& settings) {
   isobus::SpreaderDescription d;
   d.name = settings.name;
+  // The pool's serial number is the unit's: the NAME's identity number, which differs between units.
+  d.serial_number = "SIM-" + std::to_string(isobus::decode_name(settings.name).identity_number);
   d.section_count = ecu.parameters().section_count;
   d.maximum_width_m = ecu.parameters().width_max_m;
   d.working_width_m = std::min(settings.nominal_width_m, d.maximum_width_m);
@@ -224,7 +226,10 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
     case NetworkLink::Verdict::kMalformed: ecu_.record_fault(Fault::kCanMalformedFrame); return;
   }
   if (id.source == network_.address()) {
-    ++counters_.frames_not_for_us;  // our own transmission echoed back by the bus
+    // Our own frames never come back (CAN_RAW without RECV_OWN_MSGS, spread-canbus without echo): another
+    // node is sending from our address. Not acted on; our claim goes out again (ISO 11783-5).
+    ++counters_.frames_not_for_us;
+    network_.on_address_violation();
     return;
   }
   const bool to_us = id.destination == network_.address();

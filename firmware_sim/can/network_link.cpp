@@ -53,6 +53,12 @@ NetworkLink::Verdict NetworkLink::handle(const IsobusId& id, const can_frame& fr
   return Verdict::kNotNetwork;
 }
 
+void NetworkLink::on_address_violation() {
+  if (!started_) return;
+  claim_.on_address_violation(clock_.now());
+  flush_claims();
+}
+
 NetworkLink::Verdict NetworkLink::handle_request(const IsobusId& id, const can_frame& frame) {
   const bool to_us = address() < kNullAddress && id.destination == address();
   const bool to_all = id.destination == kGlobalAddress;

@@ -47,6 +47,9 @@ class NetworkLink {
   bool service();
 
   Verdict handle(const IsobusId& id, const can_frame& frame);
+  // Another node sent a frame (not an address claim) from our address: ISO 11783-5 address violation,
+  // answered with our claim (rate-limited in AddressClaim). Nothing when not started (a replay).
+  void on_address_violation();
 
   // The source address to send from: the claimed one, or the configured one when not started.
   std::uint8_t address() const { return started_ ? claim_.address() : configured_address_; }

@@ -26,7 +26,7 @@ namespace spread::firmware::isobus {
 struct SpreaderDescription {
   std::string designator = "libspread spreader";
   std::string software_version = "0.1.0";
-  std::string serial_number = "SIM-0001";
+  std::string serial_number = "SIM-0001";  // the unit's serial (the ECU uses "SIM-" + its identity number)
   std::uint64_t name = 0;           // ISO 11783-5 NAME of the ECU (the working-set master)
   int section_count = 8;            // 1..16
   double working_width_m = 24.0;    // width the sections divide evenly [m] (> 0)

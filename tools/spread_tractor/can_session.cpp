@@ -98,7 +98,7 @@ bool wait_for_address_claim(CanFramePort& port, std::uint8_t own, std::uint8_t e
         const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
         if (id.pgn != 0xEE00 || id.source != ecu) continue;
         std::cout << "rx " << describe_frame(frame) << std::endl;
-        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        drain(port, std::chrono::milliseconds(250), own);  // answering requests meanwhile
         return true;
       }
     }
@@ -137,7 +137,9 @@ int run_can_session(const CanSessionOptions& o) {
     std::cerr << "spread-tractor: warning: no address claim from 0x" << std::hex << int{ecu} << std::dec
               << " within " << o.wait_for_ecu_s << " s; sending anyway\n";
   }
-  // The TC status first: it makes us the ECU's partner TC (ISO 11783-10), whose process data it takes.
+  // Our claim once more, then the TC status: the ECU learns our NAME from the claim even if it joined after
+  // our first one, and the status that follows it on the bus makes us its partner TC (ISO 11783-10).
+  send_address_claim(port, own);
   const auto first_status = firmware::isobus::encode_tc_status(true);
   port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), first_status.data(), 8));
   auto send_pd = [&](ProcessDataCommand command, std::uint16_t ddi, std::int32_t value) {
