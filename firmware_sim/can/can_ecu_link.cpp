@@ -482,10 +482,13 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   }
   // Each DDI lives on the element the device descriptor object pool gives it; element 0, the device
   // element, is accepted for every DDI as well, for tools that address the machine as a whole.
+  // ISO 11783-10 PDACK: an element the pool does not have is "invalid element number"; an element it has
+  // that does not carry the DDI is "DDI not supported by element".
   const auto element = isobus::element_for_ddi(m.ddi);
   if (m.element != 0 && (!element || m.element != *element)) {
     ecu_.record_fault(Fault::kCanUnknownDdi);
-    nack(kPdackInvalidElement);
+    nack(isobus::spreader_has_element(m.element, ecu_.parameters().section_count) ? kPdackDdiNotSupported
+                                                                                  : kPdackInvalidElement);
     return;
   }
   if (is_measurement) {

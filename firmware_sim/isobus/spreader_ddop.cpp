@@ -67,6 +67,11 @@ std::int32_t millimetres(double metres) { return static_cast<std::int32_t>(std::
 
 }  // namespace
 
+bool spreader_has_element(std::uint16_t element, int section_count) {
+  return element < kFirstSectionElement || element == kConnectorElement ||
+         (element >= kFirstSectionElement && element < kFirstSectionElement + section_count);
+}
+
 std::optional<std::uint16_t> element_for_ddi(std::uint16_t value) {
   switch (static_cast<Ddi>(value)) {
     case Ddi::kActualWorkState:

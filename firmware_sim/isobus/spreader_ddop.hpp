@@ -40,6 +40,9 @@ Ddop make_spreader_ddop(const SpreaderDescription& description);
 // Element number of the connector (after the highest possible section element, 4 + 15).
 inline constexpr std::uint16_t kConnectorElement = 20;
 
+// Whether the pool of a spreader with `section_count` sections has an element with this number.
+bool spreader_has_element(std::uint16_t element, int section_count);
+
 // Element number that carries `ddi` in the pool (nullopt: the ECU has no such process data).
 std::optional<std::uint16_t> element_for_ddi(std::uint16_t ddi);
 

@@ -563,9 +563,9 @@ TEST_F(VirtualBus, TaskControllerReceivesActivatesAndDrivesThePool) {
   send_pd(ProcessDataCommand::kRequestValue, 161, 0, 1);
   EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF0055u) << "sections 1-4 on, 5-8 off";
   EXPECT_EQ(request(141), 1);
-  // A DDI on an element that does not carry it is refused.
+  // A DDI on an element that does not carry it is refused (the boom has no rate).
   send_pd(ProcessDataCommand::kRequestValue, 6, 0, 1);
-  EXPECT_EQ(pdack_errors(6), kPdackInvalidElement);
+  EXPECT_EQ(pdack_errors(6), kPdackDdiNotSupported);
 }
 
 // DM1 (ISO 11783-12): once a second the active faults, each as its proprietary SPN with a failure mode;
@@ -640,7 +640,41 @@ TEST_F(VirtualBus, MeasurementCommandsMakeTheEcuSendValuesByItself) {
   EXPECT_TRUE(values_of(run(60), 7).empty());
   // A trigger on an element that does not carry the DDI is refused.
   send_pd(static_cast<ProcessDataCommand>(0x4), 7, 1000, 1);
-  EXPECT_EQ(pdack_errors(7), kPdackInvalidElement);
+  EXPECT_EQ(pdack_errors(7), kPdackDdiNotSupported);
+}
+
+// Threshold triggers report once per crossing, not on every change while the value is past the threshold
+// (the disc speed changes every loop step while it spins up or down).
+TEST_F(VirtualBus, ThresholdTriggersReportOnceOnCrossing) {
+  auto rpm_values = [](const std::vector<can_frame>& frames) {
+    std::vector<std::int32_t> v;
+    for (const can_frame& f : frames) {
+      ProcessDataBytes b{};
+      std::copy(f.data, f.data + 8, b.begin());
+      const ProcessData m = decode_process_data(b);
+      if (m.command == 3 && m.ddi == 390) v.push_back(m.value);
+    }
+    return v;
+  };
+  go_live();  // the TC's status keeps it the partner through the 30 s below
+  send_pd(static_cast<ProcessDataCommand>(0x7), 390, 3000000, 3);  // at or below 300 r/min
+  auto values = rpm_values(run(2));
+  ASSERT_EQ(values.size(), 1u) << "the resting disc is inside at once: reported once";
+  EXPECT_EQ(values[0], 0);
+  send_pd(ProcessDataCommand::kValue, 389, 7500000);  // spin up to 750 r/min: leaves the window
+  EXPECT_TRUE(rpm_values(run(200)).empty());
+  send_pd(static_cast<ProcessDataCommand>(0x6), 390, 6000000, 3);  // and at or above 600 r/min
+  EXPECT_TRUE(rpm_values(run(2)).empty()) << "750 r/min is outside the window 600-300";
+  send_pd(static_cast<ProcessDataCommand>(0x7), 390, 8000000, 3);  // the window is now 600-800 r/min
+  values = rpm_values(run(2));
+  ASSERT_EQ(values.size(), 1u) << "inside the new window: once";
+  send_pd(ProcessDataCommand::kValue, 389, 0);  // spin down through 600 r/min
+  EXPECT_TRUE(rpm_values(run(200)).empty()) << "leaving the window sends nothing";
+  send_pd(ProcessDataCommand::kValue, 389, 7000000);  // up again: enters 600-800 once
+  values = rpm_values(run(200));
+  ASSERT_EQ(values.size(), 1u);
+  EXPECT_GE(values[0], 6000000);
+  EXPECT_LE(values[0], 8000000);
 }
 
 TEST_F(VirtualBus, StandardAndRemoteFramesOfOtherNodesAreNoFault) {
@@ -725,7 +759,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadProcessDataCase{"unknown_ddi_request", 0x2, 999, 0, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
         BadProcessDataCase{"unknown_ddi_set", 0xA, 1234, 5, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
-        BadProcessDataCase{"wrong_element", 0x2, 6, 0, 5, kPdackInvalidElement, Fault::kCanUnknownDdi},
+        // Element 5 (section 2) exists but does not carry DDI 6; element 100 does not exist; DDI 1 (volume
+        // per area) is on no element of this spreader, the hopper (2) included.
+        BadProcessDataCase{"ddi_not_on_that_element", 0x2, 6, 0, 5, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
+        BadProcessDataCase{"element_does_not_exist", 0x2, 6, 0, 100, kPdackInvalidElement, Fault::kCanUnknownDdi},
+        BadProcessDataCase{"volume_rate_on_the_hopper", 0x3, 1, 20000, 2, kPdackDdiNotSupported,
+                           Fault::kCanUnknownDdi},
         BadProcessDataCase{"unsupported_command", 0x9, 6, 1000, 0, kPdackCommandNotSupported,
                            Fault::kCanUnsupportedCommand},
         BadProcessDataCase{"negative_time_interval", 0x4, 7, -100, 0, kPdackInvalidInterval,
