@@ -471,7 +471,8 @@ TEST_F(VirtualBus, OnlyThePartnerTaskControllerIsObeyed) {
   const ProcessDataBytes off = encode_process_data({static_cast<std::uint8_t>(ProcessDataCommand::kValue), 0, 289, 0});
   ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kEcu, 0x90}), off.data(), 8)));
   claim_address(0x91, isobus::encode_name(isobus::IsoName{}));
-  const ProcessDataBytes ask = encode_process_data({static_cast<std::uint8_t>(ProcessDataCommand::kRequestValue), 0, 7, 0});
+  const ProcessDataBytes ask =
+      encode_process_data({static_cast<std::uint8_t>(ProcessDataCommand::kRequestValue), 0, 7, 0});
   ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kEcu, 0x91}), ask.data(), 8)));
   EXPECT_TRUE(run(1).empty()) << "no answer, no PDACK to a node that is not the partner";
   EXPECT_TRUE(ecu_.status().work_state_actual);

@@ -68,7 +68,8 @@ std::vector<StdObject> decode(const std::vector<std::uint8_t>& b, int version) {
   };
   auto bytes = [&](std::size_t n) {
     need(n);
-    std::vector<std::uint8_t> v(b.begin() + static_cast<std::ptrdiff_t>(i), b.begin() + static_cast<std::ptrdiff_t>(i + n));
+    std::vector<std::uint8_t> v(b.begin() + static_cast<std::ptrdiff_t>(i),
+                                b.begin() + static_cast<std::ptrdiff_t>(i + n));
     i += n;
     return v;
   };

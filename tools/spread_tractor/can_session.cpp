@@ -141,7 +141,8 @@ int run_can_session(const CanSessionOptions& o) {
   // our first one, and the status that follows it on the bus makes us its partner TC (ISO 11783-10).
   send_address_claim(port, own);
   const auto first_status = firmware::isobus::encode_tc_status(true);
-  port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), first_status.data(), 8));
+  port.send(
+      make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), first_status.data(), 8));
   auto send_pd = [&](ProcessDataCommand command, std::uint16_t ddi, std::int32_t value) {
     const ProcessDataBytes bytes = encode_process_data({static_cast<std::uint8_t>(command), 0, ddi, value});
     const can_frame frame = make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, ecu, own}), bytes.data(), 8);
