@@ -44,6 +44,33 @@ bool someone_serves(const sockaddr_un& address) {
 // briefly busy client loses nothing. The kernel caps it at net.core.wmem_max.
 constexpr int kSendBufferBytes = 1 << 20;
 
+// What one recvmsg() on a client's SEQPACKET socket found.
+enum class Received { kDatagram, kNothing, kEndOfStream, kError };
+
+// Reads one datagram into `buffer` (its real length in `length`, even when longer than the buffer). recv()
+// returns 0 both for an empty datagram and for the peer's end of stream; with SO_PASSCRED set on the
+// socket, every datagram taken off the queue carries an SCM_CREDENTIALS message (unix(7)), end of stream
+// none, which tells the two apart.
+Received receive_datagram(int fd, unsigned char* buffer, std::size_t size, std::size_t& length) {
+  iovec io{buffer, size};
+  alignas(cmsghdr) unsigned char control[CMSG_SPACE(sizeof(ucred))];
+  msghdr message{};
+  message.msg_iov = &io;
+  message.msg_iovlen = 1;
+  message.msg_control = control;
+  message.msg_controllen = sizeof(control);
+  // MSG_TRUNC: the return value is the datagram's real length, so longer ones are recognised too.
+  const ssize_t got = ::recvmsg(fd, &message, MSG_DONTWAIT | MSG_TRUNC);
+  if (got < 0) {
+    return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? Received::kNothing : Received::kError;
+  }
+  length = static_cast<std::size_t>(got);
+  if (got == 0 && CMSG_FIRSTHDR(&message) == nullptr && (message.msg_flags & MSG_CTRUNC) == 0) {
+    return Received::kEndOfStream;
+  }
+  return Received::kDatagram;
+}
+
 }  // namespace
 
 CanBusRelay::CanBusRelay(std::string path) : path_(std::move(path)) {
@@ -132,6 +159,11 @@ void CanBusRelay::accept_clients() {
       throw errno_error("accept()");
     }
     ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &kSendBufferBytes, sizeof(kSendBufferBytes));
+    const int on = 1;  // credentials on every datagram: how an empty one is told from end of stream
+    if (::setsockopt(fd, SOL_SOCKET, SO_PASSCRED, &on, sizeof(on)) != 0) {
+      ::close(fd);
+      throw errno_error("setsockopt(SO_PASSCRED)");
+    }
     clients_.push_back({fd, 0, 0, false});
     ++counters_.clients_accepted;
   }
@@ -143,18 +175,14 @@ void CanBusRelay::read_client(std::size_t index) {
   constexpr int kBurst = 64;
   for (int n = 0; n < kBurst; ++n) {
     unsigned char buffer[sizeof(can_frame) + 1];
-    // MSG_TRUNC: the return value is the datagram's real length, so longer ones are recognised too.
-    const ssize_t got = ::recv(clients_[index].fd, buffer, sizeof(buffer), MSG_DONTWAIT | MSG_TRUNC);
-    if (got < 0) {
-      if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) return;
+    std::size_t got = 0;
+    const Received outcome = receive_datagram(clients_[index].fd, buffer, sizeof(buffer), got);
+    if (outcome == Received::kNothing) return;
+    if (outcome != Received::kDatagram) {  // end of stream (it left or shut down) or a socket error
       clients_[index].gone = true;
       return;
     }
-    if (got == 0) {  // orderly shutdown (SEQPACKET has no empty datagrams: 0 means end of stream)
-      clients_[index].gone = true;
-      return;
-    }
-    if (static_cast<std::size_t>(got) != sizeof(can_frame)) {
+    if (got != sizeof(can_frame)) {  // an empty datagram too: malformed, its sender stays on the bus
       ++counters_.wrong_size_datagrams;
       continue;
     }
