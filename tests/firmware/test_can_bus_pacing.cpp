@@ -3,13 +3,21 @@
 // show what the pacing changes.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <stdlib.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <optional>
+#include <regex>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "firmware_sim/can/can_bus_relay.hpp"
@@ -168,6 +176,68 @@ TEST(CanBusPacing, AFrameOnTheBusIsNeverPreemptedAndTheWaitingLowerIdentifierGoe
   EXPECT_EQ(got[1].data[0], 3);
   EXPECT_EQ(got[2].data[0], 2);
 }
+
+#ifdef SPREAD_CANBUS_EXE
+// The executable with --paced and --status-interval: a flood for 0.4 s is carried at the bus's capacity,
+// and the status lines and the exit summary report the load.
+TEST(SpreadCanbusExecutable, PacedBusReportsItsLoad) {
+  SocketDir dir;
+  const std::string path = dir.bus();
+  const std::string err_path = path + ".err";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    ::dup2(err, 2);
+    ::execl(SPREAD_CANBUS_EXE, SPREAD_CANBUS_EXE, path.c_str(), "--paced", "--status-interval", "0.1",
+            "--duration", "20", static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  std::optional<CanFramePort> sender;
+  const auto deadline = Clock::now() + 5s;
+  while (!sender && Clock::now() < deadline) {
+    try {
+      sender.emplace(connect_unix_can_bus(path));
+    } catch (const std::runtime_error&) {
+      std::this_thread::sleep_for(10ms);
+    }
+  }
+  ASSERT_TRUE(sender.has_value()) << "spread-canbus did not start serving " << path;
+  CanFramePort reader = connect_unix_can_bus(path);
+  std::this_thread::sleep_for(50ms);
+  const can_frame frame = numbered(0x18FF0080, 0);
+  int received = 0;
+  const auto end = Clock::now() + 400ms;
+  while (Clock::now() < end) {
+    while (sender->send(frame)) {
+    }
+    can_frame f{};
+    if (reader.wait_readable(1ms)) {
+      while (reader.read(f) == ReadOutcome::kFrame) ++received;
+    }
+  }
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  std::ifstream err_file(err_path);
+  std::stringstream text;
+  text << err_file.rdbuf();
+  const std::string err = text.str();
+  EXPECT_NE(err.find("paced at 250000 bit/s"), std::string::npos) << err;
+  // 0.4 s at ~1,786 frames/s: about 714 frames, never more than the bus carries.
+  EXPECT_LE(received, static_cast<int>(0.45 * 250000.0 / can_frame_bit_count(frame)) + 1);
+  EXPECT_GE(received, 300);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(err, m, std::regex(R"(s  2 clients, ([0-9]+) frames/s, bus load ([0-9.]+) %)")))
+      << err;
+  EXPECT_LE(std::stod(m[2]), 100.5) << "a paced bus busier than its bit rate allows";
+  ASSERT_TRUE(std::regex_search(err, m, std::regex(R"(bus load ([0-9.]+) % at 250 kbit/s over [0-9.]+ s \(paced\))")))
+      << err;
+  EXPECT_GT(std::stod(m[1]), 0.0);
+  EXPECT_LE(std::stod(m[1]), 100.0);
+}
+#endif
 
 }  // namespace
 }  // namespace spread::firmware::can
