@@ -53,6 +53,12 @@ class StatusPrinter final : public LoopIo {
   Nanoseconds start_{};
 };
 
+std::string hex_byte(std::uint8_t b) {
+  char buf[3];
+  std::snprintf(buf, sizeof buf, "%02X", unsigned{b});
+  return buf;
+}
+
 void print_fault_summary(const Ecu& ecu) {
   std::fprintf(stderr, "firmware_sim: fault counts:");
   bool any = false;
@@ -117,9 +123,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 15));
   name_fields->add_option("--isobus-manufacturer", iso_name.manufacturer_code, "NAME manufacturer code (0..2047)")
       ->check(CLI::Range(0, 2047));
-  name_fields->add_option("--isobus-identity", iso_name.identity_number, "NAME identity number (0..2097151)")
+  auto* identity = name_fields->add_option("--isobus-identity", iso_name.identity_number,
+                                           "NAME identity number (0..2097151)")
+                        ->check(CLI::Range(0, 2097151))
+                        ->capture_default_str();
+  // ISO 11783-5: the identity number makes a unit's NAME unique among units of one manufacturer; two units
+  // with one NAME both lose their address. Each unit is started with its own serial number.
+  name_fields->add_option("--serial", iso_name.identity_number,
+                          "this unit's serial number (0..2097151): the NAME's identity number and the pool's "
+                          "serial SIM-<n>; give every unit its own")
       ->check(CLI::Range(0, 2097151))
-      ->capture_default_str();
+      ->excludes(identity);
   name_fields->excludes(name_hex);
   app.add_option("--tables", tables_path, "launch-table file (lookup_builder output); enables automatic mode")
       ->check(CLI::ExistingFile);
@@ -254,18 +268,37 @@ int main(int argc, char** argv) {
               << " overruns, worst step " << std::chrono::duration<double, std::micro>(loop.statistics().worst_step).count()
               << " us\n";
     print_fault_summary(ecu);
+    const can::CanEcuProcessor* processor =
+        can_io ? &can_io->processor() : replay_processor ? replay_processor.get() : nullptr;
+    if (processor != nullptr) {
+      // The partner task controller (ISO 11783-10): whom the ECU obeyed, and what it ignored from others.
+      const auto& partner = processor->task_controller_partner();
+      const auto& c = processor->counters();
+      std::fprintf(stderr,
+                   "firmware_sim: task controller %s, partners chosen %llu lost %llu%s%s, ignored from other nodes "
+                   "%llu, TC status of other TCs %llu\n",
+                   partner.address() ? ("0x" + hex_byte(*partner.address())).c_str() : "none",
+                   static_cast<unsigned long long>(partner.counters().partners_chosen),
+                   static_cast<unsigned long long>(partner.counters().partners_lost),
+                   partner.last_loss().empty() ? "" : ", last lost: ", partner.last_loss().c_str(),
+                   static_cast<unsigned long long>(c.not_from_partner),
+                   static_cast<unsigned long long>(c.other_task_controllers));
+    }
     if (can_io) {
       const auto& network = can_io->processor().network();
       const auto& claim = network.claim().counters();
       std::fprintf(stderr,
                    "firmware_sim: ISOBUS address %s0x%02X, claims sent %llu, contentions won %llu lost %llu, "
-                   "cannot-claim sent %llu, requests NACKed %llu\n",
+                   "cannot-claim sent %llu, requests NACKed %llu, our NAME from another node %llu, address "
+                   "violations %llu\n",
                    network.has_address() ? "" : "none, last ", unsigned{network.address()},
                    static_cast<unsigned long long>(claim.claims_sent),
                    static_cast<unsigned long long>(claim.contentions_won),
                    static_cast<unsigned long long>(claim.contentions_lost),
                    static_cast<unsigned long long>(claim.cannot_claim_sent),
-                   static_cast<unsigned long long>(network.counters().requests_nacked));
+                   static_cast<unsigned long long>(network.counters().requests_nacked),
+                   static_cast<unsigned long long>(claim.duplicate_names),
+                   static_cast<unsigned long long>(claim.address_violations));
     }
   } catch (const std::exception& e) {
     std::cerr << "firmware_sim: error: " << e.what() << "\n";

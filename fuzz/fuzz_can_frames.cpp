@@ -32,8 +32,11 @@ class CheckingSink final : public can::CanFrameSink {
     if ((frame.can_id & CAN_EFF_FLAG) == 0 || (frame.can_id & (CAN_RTR_FLAG | CAN_ERR_FLAG)) != 0) {
       spread::fuzz::fail(kHarness, "answer is not an extended data frame");
     }
-    if (frame.len != 8) spread::fuzz::fail(kHarness, "answer with DLC " + std::to_string(frame.len));
     const can::IsobusId id = can::decode_id(frame.can_id & CAN_EFF_MASK);
+    // A request (PGN 0xEA00) has 3 data bytes (ISO 11783-3): the ECU asks for every address claim once its
+    // own stands.
+    const bool request = id.pgn == can::kRequestPgn && frame.len == 3;
+    if (frame.len != 8 && !request) spread::fuzz::fail(kHarness, "answer with DLC " + std::to_string(frame.len));
     // The one message allowed from elsewhere: cannot-claim, from the null address, after losing 0x80.
     const bool cannot_claim = id.pgn == can::kAddressClaimedPgn && id.source == can::kNullAddress;
     if (id.source != own_address_ && !cannot_claim) {
@@ -76,6 +79,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // Let the claim stand (250 ms, ISO 11783-5) so that the inputs reach the process-data handler.
   clock.advance(std::chrono::milliseconds(250));
   processor.service();
+  // A partner task controller at 0x81 (its claim with a TC's NAME, then its status), so that the inputs'
+  // process data from 0x81 reach the handler past the partner check; the inputs may still take it away.
+  spread::firmware::isobus::IsoName tc;
+  tc.self_configurable = true;
+  tc.device_class = spread::firmware::isobus::kDeviceClassNonSpecific;
+  tc.function = spread::firmware::isobus::kFunctionTaskController;
+  const auto tc_name = spread::firmware::isobus::name_to_bytes(spread::firmware::isobus::encode_name(tc));
+  processor.handle_frame(can::make_frame(can::encode_id({6, can::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
+  const std::uint8_t status[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0xFF, 0xFF, 0xFF};
+  processor.handle_frame(can::make_frame(can::encode_id({3, can::kProcessDataPgn, 0xFF, 0x81}), status, 8));
   while (input.remaining() > 0) {
     const can_frame frame = input.take<can_frame>();
     check_codecs(frame);

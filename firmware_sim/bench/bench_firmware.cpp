@@ -208,6 +208,16 @@ void BM_CanRequestAnswered(benchmark::State& state) {
     std::uint64_t sent = 0;
   } sink;
   can::CanEcuProcessor processor(ecu, clock, sink);
+  // The requester is the ECU's partner task controller (its claim with a TC's NAME, then its status):
+  // the ECU answers no other node.
+  isobus::IsoName tc;
+  tc.self_configurable = true;
+  tc.device_class = isobus::kDeviceClassNonSpecific;
+  tc.function = isobus::kFunctionTaskController;
+  const auto tc_name = isobus::name_to_bytes(isobus::encode_name(tc));
+  processor.handle_frame(can::make_frame(can::encode_id({6, can::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
+  const auto status = isobus::encode_tc_status(true);
+  processor.handle_frame(can::make_frame(can::encode_id({3, can::kProcessDataPgn, 0xFF, 0x81}), status.data(), 8));
   const can::ProcessDataBytes b = can::encode_process_data({2, 0, 390, 0});
   const can_frame request = can::make_frame(can::encode_id({3, can::kProcessDataPgn, 0x80, 0x81}), b.data(), 8);
   for (auto _ : state) processor.handle_frame(request);

@@ -8,9 +8,12 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
+
+#include "firmware_sim/can/can_frame_bits.hpp"
 
 namespace spread::firmware::can {
 namespace {
@@ -44,9 +47,38 @@ bool someone_serves(const sockaddr_un& address) {
 // briefly busy client loses nothing. The kernel caps it at net.core.wmem_max.
 constexpr int kSendBufferBytes = 1 << 20;
 
+// What one recvmsg() on a client's SEQPACKET socket found.
+enum class Received { kDatagram, kNothing, kEndOfStream, kError };
+
+// Reads one datagram into `buffer` (its real length in `length`, even when longer than the buffer). recv()
+// returns 0 both for an empty datagram and for the peer's end of stream; with SO_PASSCRED set on the
+// socket, every datagram taken off the queue carries an SCM_CREDENTIALS message (unix(7)), end of stream
+// none, which tells the two apart.
+Received receive_datagram(int fd, unsigned char* buffer, std::size_t size, std::size_t& length) {
+  iovec io{buffer, size};
+  alignas(cmsghdr) unsigned char control[CMSG_SPACE(sizeof(ucred))];
+  msghdr message{};
+  message.msg_iov = &io;
+  message.msg_iovlen = 1;
+  message.msg_control = control;
+  message.msg_controllen = sizeof(control);
+  // MSG_TRUNC: the return value is the datagram's real length, so longer ones are recognised too.
+  const ssize_t got = ::recvmsg(fd, &message, MSG_DONTWAIT | MSG_TRUNC);
+  if (got < 0) {
+    return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? Received::kNothing : Received::kError;
+  }
+  length = static_cast<std::size_t>(got);
+  if (got == 0 && CMSG_FIRSTHDR(&message) == nullptr && (message.msg_flags & MSG_CTRUNC) == 0) {
+    return Received::kEndOfStream;
+  }
+  return Received::kDatagram;
+}
+
 }  // namespace
 
-CanBusRelay::CanBusRelay(std::string path) : path_(std::move(path)) {
+CanBusRelay::CanBusRelay(std::string path, CanBusTiming timing) : path_(std::move(path)), timing_(timing) {
+  if (timing_.bit_rate == 0) throw std::runtime_error("spread-canbus: the bit rate must be above 0");
+  if (timing_.paced) pacer_.emplace(timing_.bit_rate);
   const sockaddr_un address = make_address(path_);
   struct stat existing{};
   if (::lstat(path_.c_str(), &existing) == 0) {
@@ -92,32 +124,50 @@ std::vector<std::uint64_t> CanBusRelay::drops_per_client() const {
   return out;
 }
 
+std::chrono::nanoseconds CanBusRelay::now() const {
+  return std::chrono::steady_clock::now().time_since_epoch();
+}
+
+double CanBusRelay::bus_load(std::uint64_t bits, std::chrono::nanoseconds elapsed) const {
+  if (elapsed.count() <= 0) return 0.0;
+  return static_cast<double>(bits) / timing_.bit_rate / std::chrono::duration<double>(elapsed).count();
+}
+
 bool CanBusRelay::run_once(std::chrono::milliseconds timeout, const sigset_t* signal_mask) {
+  std::chrono::nanoseconds wait = timeout;
+  if (pacer_) {
+    run_bus(now());
+    // Wake when the frame on the bus ends, to deliver it and start the next one.
+    if (const auto end = pacer_->next_end()) wait = std::clamp(*end - now(), std::chrono::nanoseconds(0), wait);
+  }
   std::vector<pollfd> fds;
   fds.reserve(clients_.size() + 1);
   fds.push_back({listen_fd_, POLLIN, 0});
-  for (const Client& c : clients_) fds.push_back({c.fd, POLLIN, 0});
-  int ready = 0;
-  if (signal_mask != nullptr) {
-    timespec ts{static_cast<time_t>(timeout.count() / 1000), static_cast<long>((timeout.count() % 1000) * 1000000)};
-    ready = ::ppoll(fds.data(), fds.size(), &ts, signal_mask);
-  } else {
-    ready = ::poll(fds.data(), fds.size(), static_cast<int>(timeout.count()));
+  for (const Client& c : clients_) {
+    // Paced, a client whose frame waits for the bus is not read (nor polled: a departure shows when it
+    // is read next); its further frames wait in its socket.
+    const bool holding = pacer_ && pacer_->has_frame(c.id);
+    fds.push_back({holding ? -1 : c.fd, POLLIN, 0});
   }
+  const timespec ts{static_cast<time_t>(wait.count() / 1'000'000'000),
+                    static_cast<long>(wait.count() % 1'000'000'000)};
+  const int ready = ::ppoll(fds.data(), fds.size(), &ts, signal_mask);
   if (ready < 0) {
     if (errno == EINTR) return false;
     throw errno_error("poll()");
   }
+  const std::chrono::nanoseconds woke = now();
   // Clients first (their indices match fds[1..]), then newcomers: a frame sent before a client joined is
   // not delivered to it, as on a real bus.
   for (std::size_t i = 0; i + 1 < fds.size(); ++i) {
     const short revents = fds[i + 1].revents;
     if ((revents & POLLIN) != 0) {
-      read_client(i);
+      read_client(i, woke);
     } else if ((revents & (POLLHUP | POLLERR | POLLNVAL)) != 0) {
       clients_[i].gone = true;
     }
   }
+  if (pacer_) run_bus(woke);
   remove_gone_clients();
   if ((fds[0].revents & POLLIN) != 0) accept_clients();
   return true;
@@ -132,50 +182,85 @@ void CanBusRelay::accept_clients() {
       throw errno_error("accept()");
     }
     ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &kSendBufferBytes, sizeof(kSendBufferBytes));
-    clients_.push_back({fd, 0, 0, false});
+    const int on = 1;  // credentials on every datagram: how an empty one is told from end of stream
+    if (::setsockopt(fd, SOL_SOCKET, SO_PASSCRED, &on, sizeof(on)) != 0) {
+      ::close(fd);
+      throw errno_error("setsockopt(SO_PASSCRED)");
+    }
+    clients_.push_back({fd, next_client_id_++, 0, 0, false});
     ++counters_.clients_accepted;
   }
 }
 
-void CanBusRelay::read_client(std::size_t index) {
-  // Drain what this client has queued, but at most a burst per wake-up so that one chatty client cannot
-  // starve the others' turn in the poll set (a CAN bus arbitrates per frame, not per node).
-  constexpr int kBurst = 64;
-  for (int n = 0; n < kBurst; ++n) {
+CanBusRelay::Read CanBusRelay::read_frame(Client& client, can_frame& frame) {
+  // Bounded, so that a client sending nothing but malformed datagrams cannot hold the relay.
+  constexpr int kMaxDatagrams = 64;
+  for (int n = 0; n < kMaxDatagrams; ++n) {
     unsigned char buffer[sizeof(can_frame) + 1];
-    // MSG_TRUNC: the return value is the datagram's real length, so longer ones are recognised too.
-    const ssize_t got = ::recv(clients_[index].fd, buffer, sizeof(buffer), MSG_DONTWAIT | MSG_TRUNC);
-    if (got < 0) {
-      if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) return;
-      clients_[index].gone = true;
-      return;
+    std::size_t got = 0;
+    const Received outcome = receive_datagram(client.fd, buffer, sizeof(buffer), got);
+    if (outcome == Received::kNothing) return Read::kNothing;
+    if (outcome != Received::kDatagram) {  // end of stream (it left or shut down) or a socket error
+      client.gone = true;
+      return Read::kGone;
     }
-    if (got == 0) {  // orderly shutdown (SEQPACKET has no empty datagrams: 0 means end of stream)
-      clients_[index].gone = true;
-      return;
-    }
-    if (static_cast<std::size_t>(got) != sizeof(can_frame)) {
+    if (got != sizeof(can_frame)) {  // an empty datagram too: malformed, its sender stays on the bus
       ++counters_.wrong_size_datagrams;
       continue;
     }
-    can_frame frame;
     std::memcpy(&frame, buffer, sizeof(frame));
     if (frame.len > CAN_MAX_DLEN) {
       ++counters_.invalid_frames;
       continue;
     }
-    ++clients_[index].frames_in;
+    ++client.frames_in;
+    return Read::kFrame;
+  }
+  return Read::kNothing;
+}
+
+void CanBusRelay::read_client(std::size_t index, std::chrono::nanoseconds now) {
+  Client& client = clients_[index];
+  can_frame frame{};
+  if (pacer_) {
+    // One frame into the client's transmit buffer; it goes out when it wins the bus.
+    if (!pacer_->has_frame(client.id) && read_frame(client, frame) == Read::kFrame) {
+      pacer_->offer(client.id, frame, now);
+    }
+    return;
+  }
+  // Drain what this client has queued, but at most a burst per wake-up so that one chatty client cannot
+  // starve the others' turn in the poll set.
+  constexpr int kBurst = 64;
+  for (int n = 0; n < kBurst && read_frame(client, frame) == Read::kFrame; ++n) {
     ++counters_.frames_relayed;
-    fan_out(index, buffer);
+    counters_.bits += static_cast<std::uint64_t>(can_frame_bit_count(frame));
+    fan_out(client.id, frame);
   }
 }
 
-void CanBusRelay::fan_out(std::size_t from, const unsigned char* frame) {
-  for (std::size_t i = 0; i < clients_.size(); ++i) {
-    Client& to = clients_[i];
-    if (i == from || to.gone) continue;
+void CanBusRelay::run_bus(std::chrono::nanoseconds now) {
+  const auto refill = [this](std::uint64_t sender, std::chrono::nanoseconds start) {
+    // The sender's frame is on the bus: its next one (already queued in its socket) is ready from the
+    // start of this one and contends when the bus is free again.
+    for (Client& c : clients_) {
+      if (c.id != sender || c.gone) continue;
+      can_frame next{};
+      if (read_frame(c, next) == Read::kFrame) pacer_->offer(c.id, next, start);
+    }
+  };
+  for (const CanBusPacer::Transmitted& t : pacer_->advance(now, refill)) {
+    ++counters_.frames_relayed;
+    counters_.bits += static_cast<std::uint64_t>(can_frame_bit_count(t.frame));
+    fan_out(t.sender, t.frame);
+  }
+}
+
+void CanBusRelay::fan_out(std::uint64_t from, const can_frame& frame) {
+  for (Client& to : clients_) {
+    if (to.id == from || to.gone) continue;
     // MSG_NOSIGNAL: a receiver that just left must not kill the bus with SIGPIPE.
-    const ssize_t sent = ::send(to.fd, frame, sizeof(can_frame), MSG_DONTWAIT | MSG_NOSIGNAL);
+    const ssize_t sent = ::send(to.fd, &frame, sizeof(can_frame), MSG_DONTWAIT | MSG_NOSIGNAL);
     if (sent == static_cast<ssize_t>(sizeof(can_frame))) {
       ++counters_.deliveries;
     } else if (sent < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == ENOBUFS)) {
@@ -190,6 +275,10 @@ void CanBusRelay::fan_out(std::size_t from, const unsigned char* frame) {
 void CanBusRelay::remove_gone_clients() {
   for (std::size_t i = 0; i < clients_.size();) {
     if (clients_[i].gone) {
+      if (pacer_ && pacer_->has_frame(clients_[i].id)) {
+        pacer_->withdraw(clients_[i].id);  // a node that leaves takes its unsent frame with it
+        ++counters_.withdrawn;
+      }
       ::close(clients_[i].fd);
       clients_.erase(clients_.begin() + static_cast<std::ptrdiff_t>(i));
       ++counters_.clients_left;

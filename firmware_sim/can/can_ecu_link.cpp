@@ -62,6 +62,8 @@ namespace {
 isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings& settings) {
   isobus::SpreaderDescription d;
   d.name = settings.name;
+  // The pool's serial number is the unit's: the NAME's identity number, which differs between units.
+  d.serial_number = "SIM-" + std::to_string(isobus::decode_name(settings.name).identity_number);
   d.section_count = ecu.parameters().section_count;
   d.maximum_width_m = ecu.parameters().width_max_m;
   d.working_width_m = std::min(settings.nominal_width_m, d.maximum_width_m);
@@ -69,7 +71,8 @@ isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings
   isobus::TcClientSettings tc;
   tc.version.sections = static_cast<std::uint8_t>(d.section_count);
   const auto& device = std::get<isobus::DeviceObject>(pool.objects.front());
-  return isobus::TaskControllerClient(isobus::write_ddop(pool), device.structure_label, device.localization_label, tc);
+  return isobus::TaskControllerClient(isobus::write_ddop(pool), device.structure_label, device.localization_label, tc,
+                                      isobus::write_ddop(pool, 3));
 }
 
 }  // namespace
@@ -128,9 +131,13 @@ void CanEcuProcessor::service() {
   network_.service();
   ecu_.set_bus_address(network_.has_address());
   const Nanoseconds now = clock_.now();
+  if (partner_.update(now, ecu_.parameters().task_controller_timeout)) partner_lost(now);
   tc_client_.update(now);
   // A connection that ended takes its measurement triggers with it; the next one sets them again.
-  if (tc_was_connected_ && !tc_client_.connected()) triggers_.clear();
+  if (tc_was_connected_ && !tc_client_.connected()) {
+    triggers_.clear();
+    section_control_state_ = 0;  // nobody switches the sections automatically any more
+  }
   tc_was_connected_ = tc_client_.connected();
   send_measurements(now);
   send_dm1(now);
@@ -206,6 +213,11 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
     return;
   }
   const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
+  // Every address claim also tells who holds which address: the partner TC is known by its NAME.
+  if (id.pgn == isobus::kAddressClaimedPgn && frame.len == 8 &&
+      partner_.on_address_claimed(id.source, isobus::name_from_bytes(frame.data))) {
+    partner_lost(clock_.now());
+  }
   // Network management first: another node's claim for our address carries our source address and must
   // not be mistaken for our own echo below.
   switch (network_.handle(id, frame)) {
@@ -214,7 +226,10 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
     case NetworkLink::Verdict::kMalformed: ecu_.record_fault(Fault::kCanMalformedFrame); return;
   }
   if (id.source == network_.address()) {
-    ++counters_.frames_not_for_us;  // our own transmission echoed back by the bus
+    // Our own frames never come back (CAN_RAW without RECV_OWN_MSGS, spread-canbus without echo): another
+    // node is sending from our address. Not acted on; our claim goes out again (ISO 11783-5).
+    ++counters_.frames_not_for_us;
+    network_.on_address_violation();
     return;
   }
   const bool to_us = id.destination == network_.address();
@@ -239,7 +254,13 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
       const Nanoseconds now = clock_.now();
       transport_.handle_frame(f, now);
       for (const isobus::TransportMessage& m : transport_.take_received()) {
-        if (m.pgn == kProcessDataPgn) tc_client_.handle_message(m.source, m.data, now);
+        if (m.pgn != kProcessDataPgn) continue;
+        if (partner_.is_partner(m.source)) {
+          tc_client_.handle_message(m.source, m.data, now);
+        } else {
+          ++counters_.not_from_partner;
+          ecu_.record_fault(Fault::kCanNotFromTaskController);
+        }
       }
       flush_isobus(now);
       return;
@@ -313,6 +334,7 @@ std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, con
     case Ddi::kSetpointRevolutions: return to_int32(s.rpm_target * kRevolutionsScale);
     case Ddi::kActualRevolutions: return to_int32(s.rpm_actual * kRevolutionsScale);
     case Ddi::kActualSpeed: return to_int32(s.ground_speed_m_s * 1000.0);
+    case Ddi::kSectionControlState: return section_control_state_;
   }
   return std::nullopt;
 }
@@ -354,6 +376,14 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
     case Ddi::kSetpointRevolutions:
       rejection = ecu_.set_rpm_setpoint(m.value / kRevolutionsScale);
       break;
+    case Ddi::kSectionControlState:
+      // 0 manual, 1 automatic; 2 (error) and 3 (not installed) are states to report, not to set.
+      if (m.value != 0 && m.value != 1) {
+        ecu_.record_fault(Fault::kSetpointOutOfRange);
+        return kPdackValueOutOfRange;
+      }
+      section_control_state_ = m.value;
+      break;
     case Ddi::kActualMassPerArea:
     case Ddi::kActualWorkingWidth:
     case Ddi::kMaximumWorkingWidth:
@@ -370,6 +400,34 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
   return rejection ? pdack_bits_for(*rejection) : std::uint8_t{kPdackNoError};
 }
 
+void CanEcuProcessor::partner_lost(Nanoseconds now) {
+  ecu_.task_controller_gone();
+  tc_client_.drop("the partner TC is gone: " + partner_.last_loss(), now);
+}
+
+void CanEcuProcessor::handle_tc_status(const can_frame& frame, std::uint8_t source) {
+  ++counters_.task_controller_status;
+  const Nanoseconds now = clock_.now();
+  switch (partner_.on_tc_status(source, now)) {
+    case isobus::TaskControllerPartner::Status::kPartner:
+      // The TC status (every 2 s) is how the ECU core knows its TC is still there, and starts the
+      // TC client's connection.
+      ecu_.note_task_controller_alive();
+      tc_client_.handle_message(source, std::span<const std::uint8_t>(frame.data, 8), now);
+      flush_isobus(now);
+      return;
+    case isobus::TaskControllerPartner::Status::kOtherTc:
+      ++counters_.other_task_controllers;  // a second TC on the bus: legal, not ours
+      return;
+    case isobus::TaskControllerPartner::Status::kNotATc:
+      // A TC status from a node that never claimed an address as a task controller: it must neither
+      // keep the ECU's supervision alive nor become the TC it connects to.
+      ++counters_.not_from_partner;
+      ecu_.record_fault(Fault::kCanNotFromTaskController);
+      return;
+  }
+}
+
 void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t source, bool addressed_to_us) {
   // Without a standing address claim the ECU could not answer, and nobody could supervise it: process
   // data is not acted on (ISO 11783-5 §4.4.2).
@@ -380,23 +438,8 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   ++counters_.process_data_handled;
   const ProcessData m = decode_process_data(frame_bytes(frame));
   const auto command = static_cast<ProcessDataCommand>(m.command);
-  // A negative acknowledge is only sent to a specific requester, never in answer to a broadcast.
-  auto nack = [&](std::uint8_t bits) {
-    if (!addressed_to_us) return;
-    const ProcessDataBytes out = encode_pdack(m, bits);
-    send(kProcessDataPgn, source, kProcessDataPriority, out.data());
-  };
-  if (command == ProcessDataCommand::kTaskControllerStatus || command == ProcessDataCommand::kTechnicalCapabilities ||
-      command == ProcessDataCommand::kDeviceDescriptor) {
-    // ISO 11783-10 connection messages go to the TC client. The TC status (every 2 s) is also how the
-    // ECU core knows the TC is still there.
-    if (command == ProcessDataCommand::kTaskControllerStatus) {
-      ++counters_.task_controller_status;
-      ecu_.note_task_controller_alive();
-    }
-    const Nanoseconds now = clock_.now();
-    tc_client_.handle_message(source, std::span<const std::uint8_t>(frame.data, 8), now);
-    flush_isobus(now);
+  if (command == ProcessDataCommand::kTaskControllerStatus) {
+    handle_tc_status(frame, source);
     return;
   }
   if (command == ProcessDataCommand::kClientTask) {
@@ -405,6 +448,27 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   }
   if (command == ProcessDataCommand::kAcknowledge) {
     ++counters_.frames_not_for_us;  // PDACKs from others need no answer
+    return;
+  }
+  // ISO 11783-10: an implement takes process data from its partner TC only. Anything else — values,
+  // requests, measurement commands, connection messages from another node — is counted and ignored, with
+  // no PDACK (the sender may not even hold an address).
+  if (!partner_.is_partner(source)) {
+    ++counters_.not_from_partner;
+    ecu_.record_fault(Fault::kCanNotFromTaskController);
+    return;
+  }
+  // A negative acknowledge is only sent to a specific requester, never in answer to a broadcast.
+  auto nack = [&](std::uint8_t bits) {
+    if (!addressed_to_us) return;
+    const ProcessDataBytes out = encode_pdack(m, bits);
+    send(kProcessDataPgn, source, kProcessDataPriority, out.data());
+  };
+  if (command == ProcessDataCommand::kTechnicalCapabilities || command == ProcessDataCommand::kDeviceDescriptor) {
+    // ISO 11783-10 connection messages go to the TC client.
+    const Nanoseconds now = clock_.now();
+    tc_client_.handle_message(source, std::span<const std::uint8_t>(frame.data, 8), now);
+    flush_isobus(now);
     return;
   }
   const bool is_request = command == ProcessDataCommand::kRequestValue;
@@ -418,10 +482,13 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   }
   // Each DDI lives on the element the device descriptor object pool gives it; element 0, the device
   // element, is accepted for every DDI as well, for tools that address the machine as a whole.
+  // ISO 11783-10 PDACK: an element the pool does not have is "invalid element number"; an element it has
+  // that does not carry the DDI is "DDI not supported by element".
   const auto element = isobus::element_for_ddi(m.ddi);
   if (m.element != 0 && (!element || m.element != *element)) {
     ecu_.record_fault(Fault::kCanUnknownDdi);
-    nack(kPdackInvalidElement);
+    nack(isobus::spreader_has_element(m.element, ecu_.parameters().section_count) ? kPdackDdiNotSupported
+                                                                                  : kPdackInvalidElement);
     return;
   }
   if (is_measurement) {

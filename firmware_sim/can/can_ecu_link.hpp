@@ -14,6 +14,7 @@
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 #include "firmware_sim/isobus/iso_name.hpp"
 #include "firmware_sim/isobus/tc_client.hpp"
+#include "firmware_sim/isobus/tc_partner.hpp"
 #include "firmware_sim/isobus/transport_protocol.hpp"
 
 namespace spread::firmware::can {
@@ -49,6 +50,10 @@ struct CanLinkCounters {
   std::uint64_t transport_frames_sent = 0;   // TP/ETP frames (the pool transfer, DM1 with several faults)
   std::uint64_t dm1_sent = 0;                // DM1 messages (one a second)
   std::uint64_t measurements_sent = 0;       // values sent by a measurement trigger (commands 4-8)
+  // Process data (and TC status) from a node that is not the partner task controller: ignored, and
+  // counted as fault can_not_from_task_controller (ISO 11783-10: the client obeys its partner TC only).
+  std::uint64_t not_from_partner = 0;
+  std::uint64_t other_task_controllers = 0;  // TC status of a second, claimed TC: ignored, no fault
 };
 
 // The speed sources a tractor broadcasts, in order of precedence.
@@ -74,6 +79,8 @@ class CanEcuProcessor {
   const NetworkLink& network() const { return network_; }
   // The task-controller client: connection state, the TC's address, why the last connection ended.
   const isobus::TaskControllerClient& task_controller_client() const { return tc_client_; }
+  // The partner TC: the only node whose process data and TC status the ECU takes.
+  const isobus::TaskControllerPartner& task_controller_partner() const { return partner_; }
   const isobus::TransportProtocol& transport() const { return transport_; }
   const MeasurementTriggers& measurement_triggers() const { return triggers_; }
 
@@ -82,6 +89,10 @@ class CanEcuProcessor {
 
  private:
   void handle_process_data(const can_frame& frame, std::uint8_t source, bool addressed_to_us);
+  // TC status: from the partner it keeps the TC alive and drives the TC client; from others it is ignored.
+  void handle_tc_status(const can_frame& frame, std::uint8_t source);
+  // The partner TC is gone: metering stops as for a silent TC, the TC client's connection ends.
+  void partner_lost(Nanoseconds now);
   void handle_speed(const can_frame& frame, SpeedSource source);
   std::optional<std::int32_t> actual_value(std::uint16_t ddi, const EcuStatus& status) const;
   // Applies a set-value; returns the PDACK error bits (0 = accepted).
@@ -108,10 +119,14 @@ class CanEcuProcessor {
   NetworkLink network_;
   isobus::TransportProtocol transport_;
   isobus::TaskControllerClient tc_client_;
+  isobus::TaskControllerPartner partner_;
   std::optional<Nanoseconds> next_dm1_;
   MeasurementTriggers triggers_;
   std::optional<Nanoseconds> last_measurement_time_;
   bool tc_was_connected_ = false;
+  // DDI 160 as the TC set it: 1 while the TC switches the sections automatically (ISO 11783-10 section
+  // control), 0 (manual) at start and again when the TC connection ends.
+  std::int32_t section_control_state_ = 0;
 };
 
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).

@@ -12,6 +12,7 @@ enum class Ddi : std::uint16_t {
   kMaximumWorkingWidth = 70,         // [mm]
   kActualWorkState = 141,            // 0 off, 1 on
   kSetpointWorkState = 289,          // 0 off, 1 on, settable
+  kSectionControlState = 160,       // 0 manual (off), 1 automatic (on); settable by the TC
   kActualCondensedWorkState1_16 = 161,    // 2 bits per section, section 1 in bits 0-1: 00 off 01 on 11 n/a
   kSetpointCondensedWorkState1_16 = 290,  // same layout, settable; 11 = leave unchanged / not installed
   kSetpointRevolutions = 389,        // [r/min * 1e-4] (value = rpm * 10000), settable in manual mode

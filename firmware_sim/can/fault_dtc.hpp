@@ -18,6 +18,7 @@ constexpr isobus::Fmi fmi_for(Fault fault) {
     case Fault::kCanUnsupportedCommand:
     case Fault::kCanNotSettable:
     case Fault::kReplayParseError:
+    case Fault::kCanNotFromTaskController:
       return isobus::Fmi::kReceivedNetworkDataError;
     case Fault::kSetpointOutOfRange:
     case Fault::kNotANumber:

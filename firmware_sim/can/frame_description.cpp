@@ -67,6 +67,7 @@ std::string ddi_name(std::uint16_t ddi) {
     case Ddi::kSetpointRevolutions: return "set-point revolutions";
     case Ddi::kActualRevolutions: return "actual revolutions";
     case Ddi::kActualSpeed: return "actual speed";
+    case Ddi::kSectionControlState: return "section control state";
   }
   return "unknown DDI";
 }
@@ -92,6 +93,7 @@ std::string format_ddi_value(std::uint16_t ddi, std::int32_t raw) {
     case Ddi::kSetpointRevolutions:
     case Ddi::kActualRevolutions: return printf_string("%.4f r/min", raw / kRevolutionsScale);
     case Ddi::kActualSpeed: return std::to_string(raw) + " mm/s";
+    case Ddi::kSectionControlState: return raw == 1 ? "automatic" : raw == 0 ? "manual" : std::to_string(raw);
   }
   return std::to_string(raw);
 }

@@ -34,8 +34,14 @@ bool MeasurementTriggers::apply(std::uint8_t requester, std::uint8_t command, st
       slot->distance_interval_mm = value;
       slot->distance_mm = 0.0;
       break;
-    case 0x6: slot->minimum = value; break;
-    case 0x7: slot->maximum = value; break;
+    case 0x6:
+      slot->minimum = value;
+      slot->inside_thresholds = false;  // a value inside the new window is reported once
+      break;
+    case 0x7:
+      slot->maximum = value;
+      slot->inside_thresholds = false;
+      break;
     case 0x8: slot->change_threshold = value; break;
     default: break;
   }

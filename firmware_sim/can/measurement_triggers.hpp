@@ -3,8 +3,12 @@
 // itself, per element and DDI,
 //   4 time interval [ms]        every interval
 //   5 distance interval [mm]    every so much distance driven
-//   6 minimum threshold         on a change, while the value is at or above the threshold
-//   7 maximum threshold         on a change, while the value is at or below the threshold
+//   6 minimum threshold         once when the value crosses to at or above the threshold
+//   7 maximum threshold         once when the value crosses to at or below the threshold
+// (with both set: once on entering the window between them; a value already inside when the threshold is
+// set is sent once at the next evaluation, as a crossing from unknown). Sending on every change while
+// inside would flood the bus with a value that moves each loop step, and a TC asks for a threshold to
+// learn when it is crossed.
 //   8 change threshold          when the value moved at least this much since it was last sent
 // An interval or change threshold of 0 cancels that trigger. The triggers live in a fixed table (no
 // allocation in the loop); the TC's connection ending clears it.
@@ -26,6 +30,7 @@ struct MeasurementSubscription {
   std::optional<std::int32_t> minimum;     // command 6
   std::optional<std::int32_t> maximum;     // command 7
   std::int32_t change_threshold = 0;       // command 8; 0: off
+  bool inside_thresholds = false;          // the value was within the thresholds at the last evaluation
   Nanoseconds next_time{};
   double distance_mm = 0.0;                // driven since the last distance-triggered value [mm]
   std::optional<std::int32_t> last_sent;
@@ -62,9 +67,11 @@ class MeasurementTriggers {
           s.distance_mm = 0.0;
         }
       }
-      const bool changed = !s.last_sent || *v != *s.last_sent;
-      const bool in_window = (!s.minimum || *v >= *s.minimum) && (!s.maximum || *v <= *s.maximum);
-      if ((s.minimum || s.maximum) && changed && in_window) due = true;
+      if (s.minimum || s.maximum) {
+        const bool inside = (!s.minimum || *v >= *s.minimum) && (!s.maximum || *v <= *s.maximum);
+        if (inside && !s.inside_thresholds) due = true;  // crossing into the window: once
+        s.inside_thresholds = inside;
+      }
       if (s.change_threshold > 0 &&
           (!s.last_sent || std::llabs(static_cast<long long>(*v) - *s.last_sent) >= s.change_threshold)) {
         due = true;

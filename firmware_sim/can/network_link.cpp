@@ -32,6 +32,10 @@ bool NetworkLink::service() {
   const bool has = claim_.has_address();
   const bool lost = had_address_ && !has;
   if (lost) ++counters_.address_losses;
+  // Nodes that claimed before we joined (a task controller already running) are known only by asking:
+  // once our claim stands, a global request for the address claim makes every node claim again
+  // (ISO 11783-5 §4.4.3), and the ECU learns which NAME holds which address.
+  if (has && !had_address_) request_address_claims();
   had_address_ = has;
   return lost;
 }
@@ -47,6 +51,12 @@ NetworkLink::Verdict NetworkLink::handle(const IsobusId& id, const can_frame& fr
   }
   if (id.pgn == kRequestPgnNumber) return handle_request(id, frame);
   return Verdict::kNotNetwork;
+}
+
+void NetworkLink::on_address_violation() {
+  if (!started_) return;
+  claim_.on_address_violation(clock_.now());
+  flush_claims();
 }
 
 NetworkLink::Verdict NetworkLink::handle_request(const IsobusId& id, const can_frame& frame) {
@@ -77,6 +87,18 @@ NetworkLink::Verdict NetworkLink::handle_request(const IsobusId& id, const can_f
     ++counters_.requests_ignored;
   }
   return Verdict::kHandled;
+}
+
+void NetworkLink::request_address_claims() {
+  const std::uint8_t data[3] = {static_cast<std::uint8_t>(isobus::kAddressClaimedPgn),
+                                static_cast<std::uint8_t>(isobus::kAddressClaimedPgn >> 8),
+                                static_cast<std::uint8_t>(isobus::kAddressClaimedPgn >> 16)};
+  const IsobusId id{kNetworkPriority, kRequestPgnNumber, kGlobalAddress, address()};
+  if (tx_.send(make_frame(encode_id(id), data, 3))) {
+    ++counters_.claim_requests_sent;
+  } else {
+    ++counters_.send_failures;
+  }
 }
 
 void NetworkLink::send_nack(std::uint32_t pgn, std::uint8_t requester) {

@@ -25,6 +25,7 @@ struct NetworkCounters {
   std::uint64_t requests_nacked = 0;    // requests to us for a PGN we do not provide: NACK sent
   std::uint64_t requests_ignored = 0;   // global requests for a PGN we do not provide (never NACKed)
   std::uint64_t address_losses = 0;     // a standing claim taken by a lower NAME (or a failed re-claim)
+  std::uint64_t claim_requests_sent = 0;  // our requests for everyone's address claim (once our claim stands)
   std::uint64_t send_failures = 0;
 };
 
@@ -46,6 +47,9 @@ class NetworkLink {
   bool service();
 
   Verdict handle(const IsobusId& id, const can_frame& frame);
+  // Another node sent a frame (not an address claim) from our address: ISO 11783-5 address violation,
+  // answered with our claim (rate-limited in AddressClaim). Nothing when not started (a replay).
+  void on_address_violation();
 
   // The source address to send from: the claimed one, or the configured one when not started.
   std::uint8_t address() const { return started_ ? claim_.address() : configured_address_; }
@@ -59,6 +63,7 @@ class NetworkLink {
  private:
   Verdict handle_request(const IsobusId& id, const can_frame& frame);
   void send_nack(std::uint32_t pgn, std::uint8_t requester);
+  void request_address_claims();
   void flush_claims();
 
   const Clock& clock_;

@@ -219,6 +219,9 @@ void Ecu::set_ground_speed_unavailable() {
 
 void Ecu::note_task_controller_alive() { last_task_controller_time_ = clock_.now(); }
 
+// No time of life left: the next step's supervision sees a silent task controller.
+void Ecu::task_controller_gone() { last_task_controller_time_.reset(); }
+
 void Ecu::set_bus_address(bool has_address) {
   if (has_bus_address_ && !has_address) {
     work_state_setpoint_ = false;

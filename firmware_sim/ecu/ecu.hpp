@@ -47,6 +47,9 @@ class Ecu {
   void set_ground_speed_unavailable();
   // The task controller is alive: its status message (ISO 11783-10, every 2 s) or a set-value from it.
   void note_task_controller_alive();
+  // The task controller is gone without falling silent (its address taken by another NAME, or released):
+  // handled exactly as a task controller whose status stopped (work state off, task_controller_lost).
+  void task_controller_gone();
   // The CAN link's address claim (ISO 11783-5): without a standing claim nobody can address or supervise
   // the ECU, so metering stays closed; losing the claim also switches the work state off.
   void set_bus_address(bool has_address);

@@ -27,6 +27,7 @@ std::string_view fault_name(Fault fault) {
     case Fault::kTaskControllerLost: return "task_controller_lost";
     case Fault::kSequenceJump: return "sequence_jump";
     case Fault::kNoBusAddress: return "no_bus_address";
+    case Fault::kCanNotFromTaskController: return "can_not_from_task_controller";
   }
   return "unknown_fault";
 }

@@ -35,8 +35,9 @@ enum class Fault : std::uint8_t {
   kTaskControllerLost = 20,   // state: the task controller owning the work state stopped its status; work state off
   kSequenceJump = 21,         // command sequence far ahead of the last one, not (yet) confirmed by its successor
   kNoBusAddress = 22,         // state: the ECU has no standing ISO 11783-5 address claim; metering closed
+  kCanNotFromTaskController = 23,  // process data / TC status from a node that is not the partner TC: ignored
 };
-inline constexpr std::size_t kFaultCount = 23;
+inline constexpr std::size_t kFaultCount = 24;
 
 // Short stable identifier, e.g. "setpoint_out_of_range".
 std::string_view fault_name(Fault fault);

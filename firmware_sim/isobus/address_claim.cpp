@@ -65,12 +65,24 @@ void AddressClaim::lose(Nanoseconds now) {
 }
 
 void AddressClaim::on_address_claimed(std::uint8_t source, std::uint64_t name, Nanoseconds now) {
+  const bool active = state_ == ClaimState::kClaiming || state_ == ClaimState::kClaimed;
+  if (name == name_) {
+    // ISO 11783-5 §4.3: a NAME identifies one control function on the network. Our NAME from another node
+    // (our own frames never come back: CAN_RAW without RECV_OWN_MSGS, spread-canbus without echo) means two
+    // units share an identity number; neither can be told apart, so neither may hold an address. This one
+    // gives up for good, and its cannot-claim makes the other do the same.
+    if (active) {
+      ++counters_.duplicate_names;
+      state_ = ClaimState::kCannotClaim;
+      address_ = kNullAddress;
+      queue({kNullAddress, name_}, now + cannot_claim_delay());
+    }
+    return;
+  }
   if (source >= kNullAddress) return;  // another function's cannot-claim: it holds nothing
   holders_[source] = name;
-  if (state_ != ClaimState::kClaiming && state_ != ClaimState::kClaimed) return;
+  if (!active) return;
   if (source != address_) return;
-  // The same NAME at our address is our own claim coming back (a bus with echo): not a contention.
-  if (name == name_) return;
   if (name_ < name) {
     // §4.4.3.3: the lower NAME wins; the winner repeats its claim so the loser and every other node see it.
     ++counters_.contentions_won;
@@ -93,6 +105,17 @@ void AddressClaim::on_request_for_claim(Nanoseconds now) {
     case ClaimState::kNotStarted:
       return;
   }
+}
+
+void AddressClaim::on_address_violation(Nanoseconds now) {
+  if (state_ != ClaimState::kClaiming && state_ != ClaimState::kClaimed) return;
+  ++counters_.address_violations;
+  // ISO 11783-5 (address violation): the holder answers a frame sent from its address with its claim, so
+  // that the offender learns the address is taken and other nodes keep the right NAME for it.
+  if (last_violation_claim_ && now - *last_violation_claim_ < kClaimSettleTime) return;
+  last_violation_claim_ = now;
+  ++counters_.violation_claims;
+  queue({address_, name_}, now);
 }
 
 std::vector<ClaimMessage> AddressClaim::poll(Nanoseconds now) {

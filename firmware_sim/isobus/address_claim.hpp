@@ -5,6 +5,8 @@
 //   not started --start()--> claiming --250 ms uncontested--> claimed
 //        claiming/claimed --a lower NAME claims our address--> claiming (next free address, if
 //                                       self-configurable) or cannot claim (cannot-claim message)
+//        claiming/claimed --our own NAME from another node--> cannot claim (two units with one NAME)
+//        claiming/claimed --another node sends from our address--> our claim again (address violation)
 //
 // Only in `claimed` may the function send anything but address claims (§4.4.2: no transmission until
 // 250 ms after a successful claim, to give a contender with a lower NAME time to object).
@@ -44,6 +46,9 @@ struct AddressClaimCounters {
   std::uint64_t contentions_won = 0;   // a higher NAME claimed our address: we re-asserted our claim
   std::uint64_t contentions_lost = 0;  // a lower NAME claimed our address
   std::uint64_t cannot_claim_sent = 0;
+  std::uint64_t duplicate_names = 0;     // claims (or cannot-claims) carrying our own NAME from another node
+  std::uint64_t address_violations = 0;  // other nodes' frames from our address
+  std::uint64_t violation_claims = 0;    // claims re-sent because of an address violation
 };
 
 class AddressClaim {
@@ -57,6 +62,10 @@ class AddressClaim {
   void on_address_claimed(std::uint8_t source, std::uint64_t name, Nanoseconds now);
   // A request for PGN 0xEE00 sent to the global address or to our address (the caller filters others).
   void on_request_for_claim(Nanoseconds now);
+  // A frame other than an address claim, from another node, with our address as its source: an address
+  // violation. The claim is sent again (at most once per kClaimSettleTime, so a flood of spoofed frames
+  // cannot make us flood the bus in turn).
+  void on_address_violation(Nanoseconds now);
   // Advances the timers and returns the claim messages due now, oldest first.
   std::vector<ClaimMessage> poll(Nanoseconds now);
 
@@ -81,6 +90,7 @@ class AddressClaim {
   ClaimState state_ = ClaimState::kNotStarted;
   std::uint8_t address_ = kNullAddress;
   Nanoseconds claim_sent_at_{};
+  std::optional<Nanoseconds> last_violation_claim_;
   // The NAME last seen claiming each address (0-253): a self-configurable function skips addresses whose
   // holder would beat it.
   std::array<std::optional<std::uint64_t>, 254> holders_{};

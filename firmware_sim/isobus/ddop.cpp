@@ -33,6 +33,7 @@ class Writer {
   void bytes(const std::array<std::uint8_t, N>& b) {
     out_.insert(out_.end(), b.begin(), b.end());
   }
+  void raw(const std::vector<std::uint8_t>& b) { out_.insert(out_.end(), b.begin(), b.end()); }
   std::vector<std::uint8_t> take() { return std::move(out_); }
 
  private:
@@ -83,6 +84,12 @@ class Reader {
     pos_ += N;
     return true;
   }
+  bool raw(std::vector<std::uint8_t>& v, std::size_t n) {
+    if (b_.size() - pos_ < n) return false;
+    v.assign(b_.begin() + static_cast<std::ptrdiff_t>(pos_), b_.begin() + static_cast<std::ptrdiff_t>(pos_ + n));
+    pos_ += n;
+    return true;
+  }
 
  private:
   std::span<const std::uint8_t> b_;
@@ -107,7 +114,7 @@ std::string label_hex(const std::array<std::uint8_t, 7>& label) {
   return s;
 }
 
-std::vector<std::uint8_t> write_ddop(const Ddop& pool) {
+std::vector<std::uint8_t> write_ddop(const Ddop& pool, std::uint8_t version) {
   Writer w;
   for (const DdopObject& object : pool.objects) {
     if (const auto* d = std::get_if<DeviceObject>(&object)) {
@@ -119,6 +126,15 @@ std::vector<std::uint8_t> write_ddop(const Ddop& pool) {
       w.text(d->serial_number, "serial number");
       w.bytes(d->structure_label);
       w.bytes(d->localization_label);
+      if (version >= 4) {
+        // ISO 11783-10 Annex B, device object of version 4: a length byte and the extended structure
+        // label after the localisation label.
+        if (d->extended_structure_label.size() > kMaxExtendedStructureLabel) {
+          throw std::invalid_argument("DDOP extended structure label is longer than 32 bytes");
+        }
+        w.u8(static_cast<std::uint8_t>(d->extended_structure_label.size()));
+        w.raw(d->extended_structure_label);
+      }
     } else if (const auto* e = std::get_if<DeviceElement>(&object)) {
       if (e->children.size() > 0xFFFF) throw std::invalid_argument("DDOP element has more than 65535 children");
       w.tag("DET");
@@ -156,7 +172,7 @@ std::vector<std::uint8_t> write_ddop(const Ddop& pool) {
   return w.take();
 }
 
-DdopParseResult parse_ddop(std::span<const std::uint8_t> bytes) {
+DdopParseResult parse_ddop(std::span<const std::uint8_t> bytes, std::uint8_t version) {
   DdopParseResult result;
   Ddop pool;
   Reader r(bytes);
@@ -175,6 +191,14 @@ DdopParseResult parse_ddop(std::span<const std::uint8_t> bytes) {
       DeviceObject d;
       ok = r.u16(d.id) && r.text(d.designator) && r.text(d.software_version) && r.u64(d.working_set_master_name) &&
            r.text(d.serial_number) && r.bytes(d.structure_label) && r.bytes(d.localization_label);
+      if (ok && version >= 4) {
+        std::uint8_t n = 0;
+        ok = r.u8(n);
+        if (ok && n > kMaxExtendedStructureLabel) {
+          return fail("extended structure label of " + std::to_string(n) + " bytes (at most 32)", start);
+        }
+        ok = ok && r.raw(d.extended_structure_label, n);
+      }
       if (ok) pool.objects.emplace_back(std::move(d));
     } else if (t == "DET") {
       DeviceElement e;
@@ -266,12 +290,15 @@ DdopParseResult parse_ddop(std::span<const std::uint8_t> bytes) {
                      ", which is not a device element";
       return result;
     }
+    // ISO 11783-10 Annex B, device element object: its object references are its DPD and DPT objects;
+    // child elements are found through their parent object ID, never listed here.
     for (const std::uint16_t child : e->children) {
       const DdopObject* c = find(child);
-      if (c == nullptr || std::holds_alternative<DeviceObject>(*c) ||
-          std::holds_alternative<DeviceValuePresentation>(*c)) {
+      const bool allowed =
+          c != nullptr && (std::holds_alternative<DeviceProcessData>(*c) || std::holds_alternative<DeviceProperty>(*c));
+      if (!allowed) {
         result.error = "element " + std::to_string(e->id) + " lists child " + std::to_string(child) +
-                       ", which is not a DET, DPD or DPT of this pool";
+                       ", which is not a DPD or DPT of this pool";
         return result;
       }
     }

@@ -3,13 +3,19 @@
 // controller. A pool is a list of objects, each a 3-letter type tag, a 16-bit object ID and its fields,
 // all little endian:
 //   DVC device                  designator, software version, working-set master NAME (8 bytes), serial
-//                               number, structure label (7 bytes), localisation label (7 bytes)
-//   DET device element          type, designator, element number, parent object ID, child object IDs
+//                               number, structure label (7 bytes), localisation label (7 bytes) and, from
+//                               version 4 on, the extended structure label: a length byte (0-32) and
+//                               that many bytes (Annex B, device object)
+//   DET device element          type, designator, element number, parent object ID, the IDs of its DPD
+//                               and DPT objects (Annex B, device element object)
 //   DPD device process data     DDI, properties, available trigger methods, designator, presentation ID
 //   DPT device property         DDI, value (int32), designator, presentation ID
 //   DVP device value presentation  offset (int32), scale (float32), decimals, unit designator
-// Strings are a length byte and that many bytes (no terminator). The writer and the reader here are each
-// other's inverse, and the reader checks every reference a task controller would rely on.
+// Strings are a length byte and that many bytes (no terminator). The element tree is built through each
+// DET's parent object ID (the device element's parent is the DVC); a DET's object list names only its DPD
+// and DPT objects, never another element, and task controllers refuse a pool that does otherwise. The
+// writer and the reader here are each other's inverse for one version, and the reader checks every
+// reference a task controller would rely on.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -21,6 +27,10 @@
 namespace spread::firmware::isobus {
 
 inline constexpr std::uint16_t kNullObjectId = 0xFFFF;  // "no presentation object"
+// The TC version the pool is written for (ISO 11783-10 technical capabilities): version 4 adds the DVC's
+// extended structure label; a client connecting to a version-3 TC writes its pool without it.
+inline constexpr std::uint8_t kDdopVersion = 4;
+inline constexpr std::size_t kMaxExtendedStructureLabel = 32;  // bytes (Annex B, device object)
 
 enum class ElementType : std::uint8_t {
   kDevice = 1,
@@ -52,6 +62,7 @@ struct DeviceObject {
   std::string serial_number;
   std::array<std::uint8_t, 7> structure_label{};     // changes whenever the pool's structure changes
   std::array<std::uint8_t, 7> localization_label{};  // ISO 11783-6 language command bytes 1-7
+  std::vector<std::uint8_t> extended_structure_label;  // version 4 only; 0-32 bytes
 };
 
 struct DeviceElement {
@@ -60,7 +71,7 @@ struct DeviceElement {
   std::string designator;
   std::uint16_t element_number = 0;  // the element number process data messages address (12 bits)
   std::uint16_t parent_id = 0;       // the DVC for the device element, another DET otherwise
-  std::vector<std::uint16_t> children;  // DPD / DPT objects and child elements
+  std::vector<std::uint16_t> children;  // its DPD and DPT objects (child elements name it as parent)
 };
 
 struct DeviceProcessData {
@@ -100,18 +111,20 @@ std::uint16_t object_id(const DdopObject& object);
 std::string label_hex(const std::array<std::uint8_t, 7>& label);
 
 // Bytes of the pool as transferred with the "object pool transfer" message (ISO 11783-10 B.1), without
-// the leading command byte. Throws std::invalid_argument for a string longer than 255 bytes or more
-// than 65535 children.
-std::vector<std::uint8_t> write_ddop(const Ddop& pool);
+// the leading command byte, for a TC of `version` (3 or 4; below 4 the extended structure label is left
+// out). Throws std::invalid_argument for a string longer than 255 bytes, more than 65535 children or an
+// extended structure label longer than 32 bytes.
+std::vector<std::uint8_t> write_ddop(const Ddop& pool, std::uint8_t version = kDdopVersion);
 
 struct DdopParseResult {
   std::optional<Ddop> pool;  // set when the bytes are a valid pool
   std::string error;         // otherwise what is wrong, with the byte offset
 };
 
-// Parses and validates: known type tags, complete fields, unique object IDs below 0xFFFF, exactly one
-// DVC and one device-type DET whose parent is the DVC, every child and presentation reference resolving
-// to an object of an allowed type, DET parents resolving to the DVC or a DET, no element number twice.
-DdopParseResult parse_ddop(std::span<const std::uint8_t> bytes);
+// Parses and validates a pool written for a TC of `version`: known type tags, complete fields, unique
+// object IDs below 0xFFFF, exactly one DVC and one device-type DET whose parent is the DVC, every DET's
+// objects resolving to DPD or DPT objects, presentation references resolving to DVPs, DET parents
+// resolving to the DVC or a DET, no element number twice, an extended structure label of at most 32 bytes.
+DdopParseResult parse_ddop(std::span<const std::uint8_t> bytes, std::uint8_t version = kDdopVersion);
 
 }  // namespace spread::firmware::isobus

@@ -23,6 +23,7 @@ enum : std::uint16_t {
   kDetBoom = 2,
   kDetBin = 3,
   kDetDisc = 4,
+  kDetConnector = 5,
   kDvpRate = 10,
   kDvpMetre = 11,
   kDvpRpm = 12,
@@ -38,14 +39,24 @@ enum : std::uint16_t {
   kDptBoomX = 35,
   kDptBoomY = 36,
   kDptBoomZ = 37,
+  kDpdSectionControlState = 38,
   kDpdSetpointRate = 40,
   kDpdActualRate = 41,
   kDpdSetpointRpm = 50,
   kDpdActualRpm = 51,
+  kDptConnectorX = 60,
+  kDptConnectorY = 61,
+  kDptConnectorType = 62,
   kFirstSection = 100,
 };
 
 constexpr std::uint8_t kSetpoint = kPropertyDefaultSet | kPropertySettable;
+// DDI 157 connector type 3: ISO 730 three-point hitch, mounted (ISO 11783-11).
+constexpr std::int32_t kConnectorThreePointMounted = 3;
+constexpr std::uint16_t kDdiOffsetX = 134;
+constexpr std::uint16_t kDdiOffsetY = 135;
+constexpr std::uint16_t kDdiOffsetZ = 136;
+constexpr std::uint16_t kDdiConnectorType = 157;
 // Actual values: the TC may ask for them on a time or distance interval, on thresholds or on change.
 constexpr std::uint8_t kMeasured = kTriggerTimeInterval | kTriggerDistanceInterval | kTriggerThresholdLimits |
                                    kTriggerOnChange;
@@ -55,6 +66,11 @@ std::uint16_t ddi(Ddi d) { return static_cast<std::uint16_t>(d); }
 std::int32_t millimetres(double metres) { return static_cast<std::int32_t>(std::lround(metres * 1000.0)); }
 
 }  // namespace
+
+bool spreader_has_element(std::uint16_t element, int section_count) {
+  return element < kFirstSectionElement || element == kConnectorElement ||
+         (element >= kFirstSectionElement && element < kFirstSectionElement + section_count);
+}
 
 std::optional<std::uint16_t> element_for_ddi(std::uint16_t value) {
   switch (static_cast<Ddi>(value)) {
@@ -67,6 +83,7 @@ std::optional<std::uint16_t> element_for_ddi(std::uint16_t value) {
     case Ddi::kMaximumWorkingWidth:
     case Ddi::kSetpointCondensedWorkState1_16:
     case Ddi::kActualCondensedWorkState1_16:
+    case Ddi::kSectionControlState:
       return kBoomElement;
     case Ddi::kSetpointMassPerArea:
     case Ddi::kActualMassPerArea:
@@ -98,27 +115,38 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   device.software_version = d.software_version;
   device.working_set_master_name = d.name;
   device.serial_number = d.serial_number;
-  // The structure label changes with the layout, so a TC holding an older pool of this machine reloads it.
+  // The structure label changes with the layout, so a TC holding an older pool of this machine reloads it:
+  // sections, width and the layout revision (2: elements by parent ID, connector, DDI 160) in the 7 bytes
+  // every TC version compares; the boom's X offset, the one other value the pool carries, in the
+  // version-4 extended structure label.
   const auto width_cm = static_cast<std::uint32_t>(std::lround(d.working_width_m * 100.0));
   device.structure_label = {'L', 'S', 'P', static_cast<std::uint8_t>(d.section_count),
                             static_cast<std::uint8_t>(width_cm & 0xFFu), static_cast<std::uint8_t>(width_cm >> 8),
-                            0x01};
+                            0x02};
+  const auto offset_mm = static_cast<std::uint32_t>(millimetres(d.boom_offset_x_m));
+  device.extended_structure_label = {'L',
+                                     'S',
+                                     'P',
+                                     static_cast<std::uint8_t>(offset_mm),
+                                     static_cast<std::uint8_t>(offset_mm >> 8),
+                                     static_cast<std::uint8_t>(offset_mm >> 16),
+                                     static_cast<std::uint8_t>(offset_mm >> 24)};
   // ISO 11783-6 language command bytes: "en", decimal point and 24 h, day-month-year, metric units.
   device.localization_label = {'e', 'n', 0x50, 0x00, 0x00, 0x00, 0xFF};
   o.emplace_back(device);
 
-  DeviceElement root{kDetDevice, ElementType::kDevice, "Spreader", kDeviceElement, kDvc,
-                     {kDpdActualWorkState, kDpdSetpointWorkState, kDpdActualSpeed, kDetBoom, kDetBin, kDetDisc}};
-  o.emplace_back(root);
-  DeviceElement boom{kDetBoom, ElementType::kFunction, "Boom", kBoomElement, kDetDevice,
-                     {kDpdSetpointWidth, kDpdActualWidth, kDpdMaximumWidth, kDpdSetpointCondensed,
-                      kDpdActualCondensed, kDptBoomX, kDptBoomY, kDptBoomZ}};
-  for (int i = 0; i < d.section_count; ++i) boom.children.push_back(static_cast<std::uint16_t>(kFirstSection + 4 * i));
-  o.emplace_back(boom);
+  // The tree: each element names its parent; its object list holds only its DPD / DPT objects.
+  o.emplace_back(DeviceElement{kDetDevice, ElementType::kDevice, "Spreader", kDeviceElement, kDvc,
+                               {kDpdActualWorkState, kDpdSetpointWorkState, kDpdActualSpeed}});
+  o.emplace_back(DeviceElement{kDetBoom, ElementType::kFunction, "Boom", kBoomElement, kDetDevice,
+                               {kDpdSetpointWidth, kDpdActualWidth, kDpdMaximumWidth, kDpdSetpointCondensed,
+                                kDpdActualCondensed, kDpdSectionControlState, kDptBoomX, kDptBoomY, kDptBoomZ}});
   o.emplace_back(DeviceElement{kDetBin, ElementType::kBin, "Hopper", kBinElement, kDetDevice,
                                {kDpdSetpointRate, kDpdActualRate}});
   o.emplace_back(DeviceElement{kDetDisc, ElementType::kFunction, "Discs", kDiscElement, kDetDevice,
                                {kDpdSetpointRpm, kDpdActualRpm}});
+  o.emplace_back(DeviceElement{kDetConnector, ElementType::kConnector, "Hitch", kConnectorElement, kDetDevice,
+                               {kDptConnectorX, kDptConnectorY, kDptConnectorType}});
 
   // Presentations: raw value + offset, times scale, gives the unit shown.
   o.emplace_back(DeviceValuePresentation{kDvpRate, 0, 0.01f, 1, "kg/ha"});   // mg/m² -> kg/ha
@@ -142,9 +170,17 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   o.emplace_back(DeviceProcessData{kDpdActualCondensed, ddi(Ddi::kActualCondensedWorkState1_16),
                                    kPropertyDefaultSet, kTriggerOnChange | kTriggerTimeInterval, "Sections",
                                    kNullObjectId});
-  o.emplace_back(DeviceProperty{kDptBoomX, 134, millimetres(d.boom_offset_x_m), "Offset X", kDvpMetre});
-  o.emplace_back(DeviceProperty{kDptBoomY, 135, 0, "Offset Y", kDvpMetre});
-  o.emplace_back(DeviceProperty{kDptBoomZ, 136, 0, "Offset Z", kDvpMetre});
+  // Section control state (DDI 160): the TC says whether it switches the sections automatically.
+  o.emplace_back(DeviceProcessData{kDpdSectionControlState, ddi(Ddi::kSectionControlState), kSetpoint,
+                                   kTriggerOnChange | kTriggerTimeInterval, "Section control", kNullObjectId});
+  o.emplace_back(DeviceProperty{kDptBoomX, kDdiOffsetX, millimetres(d.boom_offset_x_m), "Offset X", kDvpMetre});
+  o.emplace_back(DeviceProperty{kDptBoomY, kDdiOffsetY, 0, "Offset Y", kDvpMetre});
+  o.emplace_back(DeviceProperty{kDptBoomZ, kDdiOffsetZ, 0, "Offset Z", kDvpMetre});
+  // The connector is the device reference point: its offsets are 0.
+  o.emplace_back(DeviceProperty{kDptConnectorX, kDdiOffsetX, 0, "Offset X", kDvpMetre});
+  o.emplace_back(DeviceProperty{kDptConnectorY, kDdiOffsetY, 0, "Offset Y", kDvpMetre});
+  o.emplace_back(DeviceProperty{kDptConnectorType, kDdiConnectorType, kConnectorThreePointMounted, "Type",
+                                kNullObjectId});
   o.emplace_back(DeviceProcessData{kDpdSetpointRate, ddi(Ddi::kSetpointMassPerArea), kSetpoint,
                                    kTriggerOnChange | kTriggerTimeInterval, "Rate set-point", kDvpRate});
   o.emplace_back(DeviceProcessData{kDpdActualRate, ddi(Ddi::kActualMassPerArea), kPropertyDefaultSet, kMeasured,
@@ -162,9 +198,10 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
                                  static_cast<std::uint16_t>(kFirstSectionElement + i), kDetBoom,
                                  {static_cast<std::uint16_t>(id + 1), static_cast<std::uint16_t>(id + 2),
                                   static_cast<std::uint16_t>(id + 3)}});
-    o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(id + 1), 134, millimetres(d.boom_offset_x_m),
+    o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(id + 1), kDdiOffsetX, millimetres(d.boom_offset_x_m),
                                   "Offset X", kDvpMetre});
-    o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(id + 2), 135, millimetres(y_m), "Offset Y", kDvpMetre});
+    o.emplace_back(
+        DeviceProperty{static_cast<std::uint16_t>(id + 2), kDdiOffsetY, millimetres(y_m), "Offset Y", kDvpMetre});
     o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(id + 3), ddi(Ddi::kActualWorkingWidth),
                                   millimetres(section_width_m), "Width", kDvpMetre});
   }

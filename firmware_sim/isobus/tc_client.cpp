@@ -21,11 +21,17 @@ const char* tc_client_state_name(TcClientState state) {
 }
 
 TaskControllerClient::TaskControllerClient(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
-                                           std::array<std::uint8_t, 7> localization_label, TcClientSettings settings)
+                                           std::array<std::uint8_t, 7> localization_label, TcClientSettings settings,
+                                           std::vector<std::uint8_t> pool_version3)
     : pool_(std::move(pool)),
+      pool_version3_(std::move(pool_version3)),
       structure_label_(structure_label),
       localization_label_(localization_label),
       settings_(settings) {}
+
+const std::vector<std::uint8_t>& TaskControllerClient::pool_for_tc() const {
+  return tc_version_ < 4 && !pool_version3_.empty() ? pool_version3_ : pool_;
+}
 
 void TaskControllerClient::send(std::uint32_t pgn, std::uint8_t destination, std::span<const std::uint8_t> data) {
   out_.push_back(TcOutgoing{pgn, destination, std::vector<std::uint8_t>(data.begin(), data.end())});
@@ -43,6 +49,10 @@ void TaskControllerClient::end_connection(std::string why, Nanoseconds now) {
   state_ = TcClientState::kRetryWait;
   deadline_ = now + settings_.retry_delay;
   tc_.reset();
+}
+
+void TaskControllerClient::drop(std::string why, Nanoseconds now) {
+  if (tc_) end_connection(std::move(why), now);
 }
 
 void TaskControllerClient::handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now) {
@@ -71,6 +81,7 @@ void TaskControllerClient::handle_message(std::uint8_t source, std::span<const s
     }
     case TcMessage::kVersion:
       if (state_ != TcClientState::kWaitVersion) return;
+      tc_version_ = data[1];
       send_tc(tc_frame(TcMessage::kRequestStructureLabel));
       expect(TcClientState::kWaitStructureLabel, now, settings_.answer_timeout);
       return;
@@ -90,7 +101,7 @@ void TaskControllerClient::handle_message(std::uint8_t source, std::span<const s
         send_tc(encode_activate(true));
         expect(TcClientState::kWaitActivateAnswer, now, settings_.answer_timeout);
       } else {
-        send_tc(encode_request_pool_transfer(static_cast<std::uint32_t>(pool_.size())));
+        send_tc(encode_request_pool_transfer(static_cast<std::uint32_t>(pool_for_tc().size())));
         expect(TcClientState::kWaitTransferAnswer, now, settings_.answer_timeout);
       }
       return;
@@ -98,11 +109,11 @@ void TaskControllerClient::handle_message(std::uint8_t source, std::span<const s
     case TcMessage::kRequestPoolTransferResponse:
       if (state_ != TcClientState::kWaitTransferAnswer) return;
       if (data[1] != 0) {
-        end_connection("the TC has no room for the " + std::to_string(pool_.size()) + "-byte pool", now);
+        end_connection("the TC has no room for the " + std::to_string(pool_for_tc().size()) + "-byte pool", now);
         return;
       }
       {
-        const std::vector<std::uint8_t> message = encode_pool_transfer(pool_);
+        const std::vector<std::uint8_t> message = encode_pool_transfer(pool_for_tc());
         send(0xCB00, *tc_, message);
       }
       // The transfer itself takes time on a loaded bus (TP windows of 7-byte packets).

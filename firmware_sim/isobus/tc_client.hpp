@@ -55,15 +55,20 @@ struct TcOutgoing {
 
 class TaskControllerClient {
  public:
-  // `pool` is the DDOP as write_ddop gives it; the labels are the ones inside it.
+  // `pool` is the DDOP as write_ddop gives it for version 4; the labels are the ones inside it.
+  // `pool_version3`, when given, is the same pool written for version 3 (no extended structure label):
+  // what a TC that answers version 3 gets (ISO 11783-10: the pool follows the lower of the two versions).
   TaskControllerClient(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
-                       std::array<std::uint8_t, 7> localization_label, TcClientSettings settings = {});
+                       std::array<std::uint8_t, 7> localization_label, TcClientSettings settings = {},
+                       std::vector<std::uint8_t> pool_version3 = {});
 
   // A PGN 0xCB00 message from `source` addressed to us or to all (single frame or reassembled). Messages
   // that are not connection messages (process data values, ...) are ignored here.
   void handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now);
   // Timeouts and the periodic client task message.
   void update(Nanoseconds now);
+  // The partner TC is gone (its address taken or released): the connection ends as on a timeout.
+  void drop(std::string why, Nanoseconds now);
   std::vector<TcOutgoing> take_outgoing();
 
   TcClientState state() const { return state_; }
@@ -78,7 +83,11 @@ class TaskControllerClient {
   void expect(TcClientState state, Nanoseconds now, Nanoseconds timeout);
   void end_connection(std::string why, Nanoseconds now);
 
+  const std::vector<std::uint8_t>& pool_for_tc() const;
+
   std::vector<std::uint8_t> pool_;
+  std::vector<std::uint8_t> pool_version3_;
+  std::uint8_t tc_version_ = 4;  // the connected TC's version answer
   std::array<std::uint8_t, 7> structure_label_;
   std::array<std::uint8_t, 7> localization_label_;
   bool structure_known_ = false;  // the TC's structure label was ours

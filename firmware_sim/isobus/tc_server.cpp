@@ -74,6 +74,11 @@ void TcServer::handle_frame(std::uint32_t pgn, std::uint8_t source, std::uint8_t
     f.destination = destination;
     std::copy(data.begin(), data.end(), f.data.begin());
     transport_.handle_frame(f, now);
+    // The transport's own answers first: a message is the receiver's once its session ended with the
+    // end-of-message acknowledgement (ISO 11783-3 §5.10.3.3, ISO 11783-6 ETP), and the sender takes no
+    // answer to the message before it (ISO 11783-10: the object-pool transfer response follows the
+    // transfer).
+    for (const TransportFrame& t : transport_.take_frames()) out_.push_back(t);
     for (TransportMessage& m : transport_.take_received()) {
       if (m.pgn != kTcProcessDataPgn) continue;
       if (!m.data.empty() && m.data[0] == static_cast<std::uint8_t>(TcMessage::kPoolTransfer)) {
@@ -252,7 +257,11 @@ void TcServer::handle_pool(std::uint8_t source, std::span<const std::uint8_t> po
     send_to_client(answer);
     return;
   }
-  DdopParseResult parsed = parse_ddop(pool_bytes);
+  // The client writes its pool for the lower of the two versions (version 4 adds the DVC's extended
+  // structure label); a client that never answered our version request is taken as version 4.
+  const std::uint8_t version =
+      std::min(config_.version.version, client_version_ ? client_version_->version : std::uint8_t{4});
+  DdopParseResult parsed = parse_ddop(pool_bytes, version);
   if (!parsed.pool) {
     answer[1] = 0x01;  // bit 0: error in the pool (ISO 11783-10 object-pool transfer response)
     ++counters_.pools_refused;

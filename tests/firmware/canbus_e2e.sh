@@ -22,13 +22,16 @@ grep -q "rx 0x80->0xFF address claimed" <<<"$out" || { echo "FAIL: no address cl
 grep -q "rx 0x80->0x81 PD acknowledge of set value and acknowledge element 0 DDI 389 (set-point revolutions): ok" <<<"$out" || { echo "FAIL: no PDACK for DDI 389"; exit 1; }
 grep -q "rx 0x80->0x81 PD value element 0 DDI 389 set-point revolutions = 700.0000 r/min" <<<"$out" ||
   { echo "FAIL: no answer with DDI 389 = 700 r/min"; exit 1; }
-# Identity 1 < 0x1234: the newcomer's NAME is lower and wins 0x80.
-"$firmware_sim" --no-lcm --can "unix:$bus" --isobus-identity 1 --duration 1 >"$dir/ecu2.log" 2>&1
+# Serial 1 (the NAME's identity number) < 0x1234: the newcomer's NAME is lower and wins 0x80.
+"$firmware_sim" --no-lcm --can "unix:$bus" --serial 1 --duration 1 >"$dir/ecu2.log" 2>&1
 kill -INT "$ecu"  # firmware_sim stops on SIGINT and prints its summary
 wait "$ecu" || true
 cat "$dir/ecu.log" "$dir/ecu2.log"
-grep -Eq "ISOBUS address none, last 0xFE, claims sent [0-9]+, contentions won 0 lost 1, cannot-claim sent 1" "$dir/ecu.log" ||
+# Cannot-claim twice: on losing, and in answer to the newcomer's request for every claim once its own
+# stood (ISO 11783-5 §4.4.4.3: a function without an address answers that request with cannot-claim).
+grep -Eq "ISOBUS address none, last 0xFE, claims sent [0-9]+, contentions won 0 lost 1, cannot-claim sent 2" "$dir/ecu.log" ||
   { echo "FAIL: the first ECU did not give up 0x80 to the lower NAME"; exit 1; }
+grep -q "NAME 0x200A800000000001 " "$dir/ecu2.log" || { echo "FAIL: --serial 1 is not the NAME's identity"; exit 1; }
 grep -Eq "ISOBUS address 0x80, claims sent [0-9]+, contentions won 0 lost 0" "$dir/ecu2.log" ||
   { echo "FAIL: the second ECU does not hold 0x80"; exit 1; }
 echo "canbus e2e: ok"

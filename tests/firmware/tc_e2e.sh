@@ -13,7 +13,7 @@ firmware_sim=$2
 tractor=$3
 . "$(dirname "$0")/canbus_fixture.sh"
 start_canbus "$canbus" tc-e2e 40
-"$firmware_sim" --no-lcm --can "unix:$bus" --duration 6 >"$dir/ecu.log" 2>&1 &
+"$firmware_sim" --no-lcm --can "unix:$bus" --duration 6 --record "$dir/ecu.candump" >"$dir/ecu.log" 2>&1 &
 pids+=($!)
 status=0
 "$tractor" tc --iface "unix:$bus" --speed 3 --rate 250 --width 24 --rpm 700 --sections 11110000 --work-state on \
@@ -40,4 +40,12 @@ grep -q "s  client 0x80 silent for 6 s (no client task message): disconnected" <
   { echo "FAIL: the TC did not notice the ECU going silent"; exit 1; }
 grep -q '^[0-9.]*,0x80,1,161,"actual condensed work state 1-16",-65451,"sections 11110000--------"$' "$dir/as_applied.csv" ||
   { echo "FAIL: the as-applied log lacks the section states"; exit 1; }
+# On the bus, as the ECU received them: the TC's end-of-message acknowledgement of the pool (TP.CM 19,
+# 1CEC80F7#13...) before its object-pool transfer response (0CCB80F7#71...), ISO 11783-3 §5.10.3.3.
+eoma=$(grep -n ' 1CEC80F7#13' "$dir/ecu.candump" | head -n 1 | cut -d: -f1)
+answer=$(grep -n ' 0CCB80F7#71' "$dir/ecu.candump" | head -n 1 | cut -d: -f1)
+[ -n "$eoma" ] && [ -n "$answer" ] ||
+  { echo "FAIL: no EoMA ($eoma) or pool transfer response ($answer) on the bus"; exit 1; }
+echo "pool transfer: EoMA at line $eoma of the ECU's candump, pool transfer response at line $answer"
+[ "$eoma" -lt "$answer" ] || { echo "FAIL: the TC answered the pool before its EoMA"; exit 1; }
 echo "tc e2e: ok"

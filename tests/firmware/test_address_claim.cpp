@@ -5,11 +5,18 @@
 
 #include <vector>
 
+#include <cstdlib>
+#include <filesystem>
+
+#include "firmware_sim/can/can_bus_relay.hpp"
 #include "firmware_sim/can/can_ecu_link.hpp"
+#include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/can/isobus_id.hpp"
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/isobus/address_claim.hpp"
 #include "firmware_sim/isobus/iso_name.hpp"
+#include "firmware_sim/isobus/tc_messages.hpp"
+#include "firmware_sim/isobus/tc_partner.hpp"
 
 namespace spread::firmware::isobus {
 namespace {
@@ -105,10 +112,45 @@ TEST(AddressClaim, LowerNameWinsTheWinnerRepeatsItsClaim) {
   EXPECT_EQ(sent[0].source, 0x80);
   EXPECT_TRUE(claim.has_address());
   EXPECT_EQ(claim.counters().contentions_won, 1u);
-  // Our own claim coming back (a bus with echo) is not a contention.
-  claim.on_address_claimed(0x80, name_with(false, 10), 500ms);
-  EXPECT_TRUE(claim.poll(500ms).empty());
-  EXPECT_TRUE(claim.has_address());
+}
+
+// Two units with one NAME (one identity number): neither can be told apart, neither keeps an address.
+TEST(AddressClaim, OurNameFromAnotherNodeMakesUsGiveUp) {
+  for (const std::uint8_t other_address : {std::uint8_t{0x80}, std::uint8_t{0x81}, kNullAddress}) {
+    AddressClaim claim(name_with(true, 10), 0x80);  // even a self-configurable one: moving would not help
+    claim.start(0ms);
+    claim.poll(300ms);
+    ASSERT_TRUE(claim.has_address());
+    claim.on_address_claimed(other_address, name_with(true, 10), 400ms);
+    EXPECT_EQ(claim.state(), ClaimState::kCannotClaim) << int{other_address};
+    EXPECT_EQ(claim.counters().duplicate_names, 1u);
+    const auto sent = claim.poll(600ms);
+    ASSERT_EQ(sent.size(), 1u);
+    EXPECT_EQ(sent[0].source, kNullAddress) << "cannot-claim, which the other unit sees in turn";
+    // The other unit's cannot-claim (our NAME again) changes nothing more: no ping-pong.
+    claim.on_address_claimed(kNullAddress, name_with(true, 10), 700ms);
+    EXPECT_TRUE(claim.poll(1000ms).empty());
+    EXPECT_EQ(claim.counters().duplicate_names, 1u);
+  }
+}
+
+TEST(AddressClaim, AddressViolationIsAnsweredWithOurClaimAtMostEvery250Ms) {
+  AddressClaim claim(name_with(false, 10), 0x80);
+  claim.on_address_violation(0ms);
+  EXPECT_TRUE(claim.poll(0ms).empty()) << "nothing to defend before start";
+  claim.start(0ms);
+  claim.poll(300ms);
+  claim.on_address_violation(400ms);
+  auto sent = claim.poll(400ms);
+  ASSERT_EQ(sent.size(), 1u);
+  EXPECT_EQ(sent[0].source, 0x80);
+  for (auto t = 401ms; t < 650ms; t += 10ms) claim.on_address_violation(t);  // a flood of spoofed frames
+  EXPECT_TRUE(claim.poll(649ms).empty());
+  claim.on_address_violation(650ms);
+  EXPECT_EQ(claim.poll(650ms).size(), 1u);
+  EXPECT_EQ(claim.counters().address_violations, 27u);
+  EXPECT_EQ(claim.counters().violation_claims, 2u);
+  EXPECT_TRUE(claim.has_address()) << "a violation is no contention: the address stays ours";
 }
 
 TEST(AddressClaim, NotSelfConfigurableLoserSendsCannotClaimAfterItsDelayAndFallsSilent) {
@@ -223,6 +265,18 @@ class NetworkedEcu : public ::testing::Test {
     clock_.advance(by);
     processor_.service();
   }
+  // 0x81 claims its address with a task controller's NAME and sends its status: the ECU's partner TC, whose
+  // process data it takes (ISO 11783-10).
+  void become_partner() {
+    isobus::IsoName tc;
+    tc.self_configurable = true;
+    tc.device_class = isobus::kDeviceClassNonSpecific;
+    tc.function = isobus::kFunctionTaskController;
+    const auto name = isobus::name_to_bytes(isobus::encode_name(tc));
+    deliver(kAddressClaimedPgn, kGlobalAddress, 0x81, {name.begin(), name.end()});
+    const auto status = isobus::encode_tc_status(true);
+    processor_.handle_frame(make_frame(encode_id({3, kProcessDataPgn, kGlobalAddress, 0x81}), status.data(), 8));
+  }
 
   ManualClock clock_;
   RecordingSink sink_;
@@ -241,10 +295,19 @@ TEST_F(NetworkedEcu, SendsNothingButItsClaimUntilTheClaimStands) {
   EXPECT_TRUE(sink_.take().empty()) << "process data answered before the claim stood";
   advance(150ms);
   EXPECT_TRUE(processor_.has_address());
-  request_rate();
   sent = sink_.take();
   // Once the claim stands the ECU also broadcasts its DM1 (once a second): not part of this check.
   std::erase_if(sent, [](const can_frame& f) { return decode_id(f.can_id & CAN_EFF_MASK).pgn == 0xFECAu; });
+  // ... and asks every node for its address claim, to learn who holds which address (a TC that claimed
+  // before the ECU joined).
+  ASSERT_EQ(sent.size(), 1u);
+  EXPECT_EQ(sent[0].can_id, 0x18EAFF80u | CAN_EFF_FLAG);
+  ASSERT_EQ(sent[0].len, 3);
+  EXPECT_EQ(sent[0].data[0] | (sent[0].data[1] << 8) | (sent[0].data[2] << 16), 0xEE00);
+  become_partner();
+  sink_.take();  // the TC client's connection start
+  request_rate();
+  sent = sink_.take();
   ASSERT_EQ(sent.size(), 1u);
   EXPECT_EQ(decode_id(sent[0].can_id & CAN_EFF_MASK).pgn, kProcessDataPgn);
 }
@@ -276,6 +339,22 @@ TEST_F(NetworkedEcu, LosingTheAddressSwitchesTheWorkStateOffAndSilencesTheEcu) {
   EXPECT_EQ(sent[0].can_id, 0x18EEFFFEu | CAN_EFF_FLAG);
 }
 
+TEST_F(NetworkedEcu, AFrameFromOurAddressMakesTheEcuClaimAgain) {
+  processor_.start_address_claim();
+  advance(300ms);
+  become_partner();
+  sink_.take();
+  // Another node sends process data from 0x80, our address: not acted on, our claim goes out again.
+  const ProcessDataBytes b = encode_process_data({static_cast<std::uint8_t>(ProcessDataCommand::kValue), 0, 289, 1});
+  processor_.handle_frame(make_frame(encode_id({3, kProcessDataPgn, kGlobalAddress, 0x80}), b.data(), 8));
+  const auto sent = sink_.take();
+  ASSERT_EQ(sent.size(), 1u);
+  EXPECT_EQ(sent[0].can_id, 0x18EEFF80u | CAN_EFF_FLAG);
+  EXPECT_FALSE(ecu_.status().work_state_setpoint);
+  EXPECT_EQ(processor_.network().claim().counters().address_violations, 1u);
+  EXPECT_TRUE(processor_.has_address());
+}
+
 TEST_F(NetworkedEcu, ARequestToUsForAnUnsupportedPgnIsNackedAGlobalOneIsNot) {
   processor_.start_address_claim();
   advance(300ms);
@@ -298,6 +377,65 @@ TEST_F(NetworkedEcu, ARequestToUsForAnUnsupportedPgnIsNackedAGlobalOneIsNot) {
   deliver(kRequestPgn, 0x80, 0x81, {0x00, 0xEE});  // two bytes: not a request
   EXPECT_EQ(ecu_.faults().count(Fault::kCanMalformedFrame), 1u);
   EXPECT_TRUE(sink_.take().empty());
+}
+
+// Two ECUs on one bus (spread-canbus's relay, real sockets): with one NAME neither may hold an address,
+// whether they prefer one address or two; with their own serial numbers both do.
+struct TwoUnits {
+  static bool both_hold_an_address(std::uint32_t identity_a, std::uint8_t address_a, std::uint32_t identity_b,
+                                   std::uint8_t address_b, std::string* report) {
+    char pattern[] = "/tmp/canbus-XXXXXX";
+    const std::string dir = ::mkdtemp(pattern);
+    bool a_has = false;
+    bool b_has = false;
+    {
+      CanBusRelay bus(dir + "/bus");
+      ManualClock clock;
+      EcuParameters p;
+      p.command_timeout = 0s;
+      Ecu ecu_a(clock, p);
+      Ecu ecu_b(clock, p);
+      CanFramePort port_a = connect_unix_can_bus(bus.path());
+      CanFramePort port_b = connect_unix_can_bus(bus.path());
+      auto settings = [](std::uint32_t identity, std::uint8_t address) {
+        isobus::IsoName n;
+        n.identity_number = identity;
+        CanEcuSettings s;
+        s.name = isobus::encode_name(n);
+        s.address = address;
+        return s;
+      };
+      CanPortIo a(port_a, ecu_a, clock, settings(identity_a, address_a));
+      CanPortIo b(port_b, ecu_b, clock, settings(identity_b, address_b));
+      auto run = [&](std::chrono::milliseconds span) {
+        for (auto t = 0ms; t < span; t += 10ms) {
+          bus.run_once(1ms);
+          a.pump(Nanoseconds::zero());
+          b.pump(Nanoseconds::zero());
+          clock.advance(10ms);
+        }
+      };
+      a.processor().start_address_claim();
+      run(500ms);  // A's claim stands before B joins, as with a unit switched on later
+      b.processor().start_address_claim();
+      run(1000ms);
+      a_has = a.processor().has_address();
+      b_has = b.processor().has_address();
+      *report = "A duplicates " + std::to_string(a.processor().network().claim().counters().duplicate_names) +
+                ", B duplicates " + std::to_string(b.processor().network().claim().counters().duplicate_names);
+    }
+    std::filesystem::remove_all(dir);
+    return a_has && b_has;
+  }
+};
+
+TEST(TwoUnitsOnOneBus, OneNameMeansNeitherHoldsAnAddress) {
+  std::string report;
+  EXPECT_FALSE(TwoUnits::both_hold_an_address(0x1234, 0x80, 0x1234, 0x80, &report)) << report;
+  EXPECT_EQ(report, "A duplicates 1, B duplicates 1");
+  EXPECT_FALSE(TwoUnits::both_hold_an_address(0x1234, 0x80, 0x1234, 0x81, &report)) << report;
+  EXPECT_EQ(report, "A duplicates 1, B duplicates 1");
+  EXPECT_TRUE(TwoUnits::both_hold_an_address(1001, 0x80, 1002, 0x81, &report)) << report;
 }
 
 }  // namespace

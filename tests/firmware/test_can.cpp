@@ -18,7 +18,9 @@
 #include "firmware_sim/can/virtual_can_bus.hpp"
 #include "firmware_sim/isobus/ddop.hpp"
 #include "firmware_sim/isobus/dm1.hpp"
+#include "firmware_sim/isobus/iso_name.hpp"
 #include "firmware_sim/isobus/tc_messages.hpp"
+#include "firmware_sim/isobus/tc_partner.hpp"
 #include "firmware_sim/isobus/transport_protocol.hpp"
 
 namespace spread::firmware::can {
@@ -188,6 +190,28 @@ class VirtualBus : public ::testing::Test {
     EcuParameters p;
     p.command_timeout = 0s;
     return p;
+  }
+
+  // The test is the ECU's partner task controller: its address claimed with a TC's NAME (ISO 11783-5),
+  // then its status (ISO 11783-10). Processed with the first tick, before what a test sends.
+  void SetUp() override {
+    claim_address(kTractor, task_controller_name());
+    send_tc_status();
+  }
+
+  static std::uint64_t task_controller_name(std::uint32_t identity = 0x81) {
+    isobus::IsoName n;
+    n.self_configurable = true;
+    n.device_class = isobus::kDeviceClassNonSpecific;
+    n.function = isobus::kFunctionTaskController;
+    n.identity_number = identity;
+    return isobus::encode_name(n);
+  }
+
+  void claim_address(std::uint8_t source, std::uint64_t name) {
+    const auto bytes = isobus::name_to_bytes(name);
+    ASSERT_TRUE(tractor().send(
+        make_frame(encode_id({6, isobus::kAddressClaimedPgn, kGlobalAddress, source}), bytes.data(), 8)));
   }
 
   void send_pd(ProcessDataCommand command, std::uint16_t ddi, std::int32_t value, std::uint16_t element = 0,
@@ -420,9 +444,13 @@ TEST_F(VirtualBus, SilentTaskControllerSwitchesTheWorkStateOff) {
   run(80);           // 9 s: within the 6 s the TC is given
   EXPECT_EQ(request(141), 1);
   run(40);
-  EXPECT_EQ(request(289), 0) << "work state set-point switched off";
-  EXPECT_EQ(request(141), 0);
+  EXPECT_FALSE(ecu_.status().work_state_setpoint) << "work state set-point switched off";
+  EXPECT_FALSE(ecu_.status().work_state_actual);
   EXPECT_TRUE(fault_active(Fault::kTaskControllerLost));
+  // A TC silent for 6 s is no longer the partner: its requests go unanswered until its status returns.
+  send_pd(ProcessDataCommand::kRequestValue, 141, 0);
+  EXPECT_TRUE(run(1).empty());
+  EXPECT_EQ(ecu_io_.processor().task_controller_partner().counters().partners_lost, 1u);
   // The TC returns: the fault clears, the work state stays off until the TC switches it on again.
   send_tc_status();
   EXPECT_EQ(request(141), 0);
@@ -430,6 +458,34 @@ TEST_F(VirtualBus, SilentTaskControllerSwitchesTheWorkStateOff) {
   send_pd(ProcessDataCommand::kValue, 289, 1);
   run(1);
   EXPECT_EQ(request(141), 1);
+}
+
+// Partner-only control (ISO 11783-10): another node's set-values and TC status are ignored and counted;
+// the partner's address taken by another NAME stops metering at once, as a silent TC does after 6 s.
+TEST_F(VirtualBus, OnlyThePartnerTaskControllerIsObeyed) {
+  set_spreading();
+  go_live(3.0);
+  run(100);
+  ASSERT_EQ(request(141), 1);
+  // An unclaimed node at 0x90 switches the work state off, and a claimed non-TC node asks a value.
+  const ProcessDataBytes off = encode_process_data({static_cast<std::uint8_t>(ProcessDataCommand::kValue), 0, 289, 0});
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kEcu, 0x90}), off.data(), 8)));
+  claim_address(0x91, isobus::encode_name(isobus::IsoName{}));
+  const ProcessDataBytes ask =
+      encode_process_data({static_cast<std::uint8_t>(ProcessDataCommand::kRequestValue), 0, 7, 0});
+  ASSERT_TRUE(tractor().send(make_frame(encode_id({3, kProcessDataPgn, kEcu, 0x91}), ask.data(), 8)));
+  EXPECT_TRUE(run(1).empty()) << "no answer, no PDACK to a node that is not the partner";
+  EXPECT_TRUE(ecu_.status().work_state_actual);
+  EXPECT_EQ(ecu_io_.processor().counters().not_from_partner, 2u);
+  EXPECT_EQ(ecu_.faults().count(Fault::kCanNotFromTaskController), 2u);
+
+  // Another NAME claims the partner's address: the partner is gone now, not 6 s later.
+  claim_address(kTractor, task_controller_name(0x99));
+  run(1);
+  EXPECT_FALSE(ecu_.status().work_state_actual);
+  EXPECT_FALSE(ecu_.status().work_state_setpoint);
+  EXPECT_TRUE(fault_active(Fault::kTaskControllerLost));
+  EXPECT_EQ(ecu_io_.processor().task_controller_partner().last_loss(), "its address was claimed by another NAME");
 }
 
 // The ISO 11783-10 connection, with this test as the task controller: the ECU hands over its device
@@ -508,9 +564,9 @@ TEST_F(VirtualBus, TaskControllerReceivesActivatesAndDrivesThePool) {
   send_pd(ProcessDataCommand::kRequestValue, 161, 0, 1);
   EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF0055u) << "sections 1-4 on, 5-8 off";
   EXPECT_EQ(request(141), 1);
-  // A DDI on an element that does not carry it is refused.
+  // A DDI on an element that does not carry it is refused (the boom has no rate).
   send_pd(ProcessDataCommand::kRequestValue, 6, 0, 1);
-  EXPECT_EQ(pdack_errors(6), kPdackInvalidElement);
+  EXPECT_EQ(pdack_errors(6), kPdackDdiNotSupported);
 }
 
 // DM1 (ISO 11783-12): once a second the active faults, each as its proprietary SPN with a failure mode;
@@ -585,7 +641,41 @@ TEST_F(VirtualBus, MeasurementCommandsMakeTheEcuSendValuesByItself) {
   EXPECT_TRUE(values_of(run(60), 7).empty());
   // A trigger on an element that does not carry the DDI is refused.
   send_pd(static_cast<ProcessDataCommand>(0x4), 7, 1000, 1);
-  EXPECT_EQ(pdack_errors(7), kPdackInvalidElement);
+  EXPECT_EQ(pdack_errors(7), kPdackDdiNotSupported);
+}
+
+// Threshold triggers report once per crossing, not on every change while the value is past the threshold
+// (the disc speed changes every loop step while it spins up or down).
+TEST_F(VirtualBus, ThresholdTriggersReportOnceOnCrossing) {
+  auto rpm_values = [](const std::vector<can_frame>& frames) {
+    std::vector<std::int32_t> v;
+    for (const can_frame& f : frames) {
+      ProcessDataBytes b{};
+      std::copy(f.data, f.data + 8, b.begin());
+      const ProcessData m = decode_process_data(b);
+      if (m.command == 3 && m.ddi == 390) v.push_back(m.value);
+    }
+    return v;
+  };
+  go_live();  // the TC's status keeps it the partner through the 30 s below
+  send_pd(static_cast<ProcessDataCommand>(0x7), 390, 3000000, 3);  // at or below 300 r/min
+  auto values = rpm_values(run(2));
+  ASSERT_EQ(values.size(), 1u) << "the resting disc is inside at once: reported once";
+  EXPECT_EQ(values[0], 0);
+  send_pd(ProcessDataCommand::kValue, 389, 7500000);  // spin up to 750 r/min: leaves the window
+  EXPECT_TRUE(rpm_values(run(200)).empty());
+  send_pd(static_cast<ProcessDataCommand>(0x6), 390, 6000000, 3);  // and at or above 600 r/min
+  EXPECT_TRUE(rpm_values(run(2)).empty()) << "750 r/min is outside the window 600-300";
+  send_pd(static_cast<ProcessDataCommand>(0x7), 390, 8000000, 3);  // the window is now 600-800 r/min
+  values = rpm_values(run(2));
+  ASSERT_EQ(values.size(), 1u) << "inside the new window: once";
+  send_pd(ProcessDataCommand::kValue, 389, 0);  // spin down through 600 r/min
+  EXPECT_TRUE(rpm_values(run(200)).empty()) << "leaving the window sends nothing";
+  send_pd(ProcessDataCommand::kValue, 389, 7000000);  // up again: enters 600-800 once
+  values = rpm_values(run(200));
+  ASSERT_EQ(values.size(), 1u);
+  EXPECT_GE(values[0], 6000000);
+  EXPECT_LE(values[0], 8000000);
 }
 
 TEST_F(VirtualBus, StandardAndRemoteFramesOfOtherNodesAreNoFault) {
@@ -670,7 +760,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadProcessDataCase{"unknown_ddi_request", 0x2, 999, 0, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
         BadProcessDataCase{"unknown_ddi_set", 0xA, 1234, 5, 0, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
-        BadProcessDataCase{"wrong_element", 0x2, 6, 0, 5, kPdackInvalidElement, Fault::kCanUnknownDdi},
+        // Element 5 (section 2) exists but does not carry DDI 6; element 100 does not exist; DDI 1 (volume
+        // per area) is on no element of this spreader, the hopper (2) included.
+        BadProcessDataCase{"ddi_not_on_that_element", 0x2, 6, 0, 5, kPdackDdiNotSupported, Fault::kCanUnknownDdi},
+        BadProcessDataCase{"element_does_not_exist", 0x2, 6, 0, 100, kPdackInvalidElement, Fault::kCanUnknownDdi},
+        BadProcessDataCase{"volume_rate_on_the_hopper", 0x3, 1, 20000, 2, kPdackDdiNotSupported,
+                           Fault::kCanUnknownDdi},
         BadProcessDataCase{"unsupported_command", 0x9, 6, 1000, 0, kPdackCommandNotSupported,
                            Fault::kCanUnsupportedCommand},
         BadProcessDataCase{"negative_time_interval", 0x4, 7, -100, 0, kPdackInvalidInterval,

@@ -1,4 +1,4 @@
-// spread-canbus: the relay in-process (fan-out, no echo, wrong-size datagrams, DLC > 8, clients leaving, a
+// spread-canbus: the relay in-process (fan-out, no echo, wrong-size and empty datagrams, DLC > 8, clients leaving, a
 // client that never reads, stale and live socket files) and the real executable with three clients.
 #include <gtest/gtest.h>
 
@@ -107,6 +107,41 @@ TEST(CanBusRelay, WrongSizeDatagramsAndOversizedDlcAreCountedNotRelayed) {
   ASSERT_EQ(at_b.size(), 1u);
   EXPECT_EQ(at_b[0].data[0], 0x42);
   EXPECT_EQ(bus.client_count(), 2u);
+}
+
+// On a SEQPACKET socket recv() returns 0 both for an empty datagram and for the peer's end of stream: an
+// empty datagram is a malformed record like any other wrong size, and its sender stays on the bus.
+TEST(CanBusRelay, ZeroLengthDatagramIsCountedAndItsSenderStaysConnected) {
+  TempDir dir;
+  CanBusRelay bus(dir.file("bus"));
+  CanFramePort a = connect_unix_can_bus(bus.path());
+  CanFramePort b = connect_unix_can_bus(bus.path());
+  settle(bus);
+  ASSERT_EQ(::send(a.fd(), "", 0, 0), 0);
+  ASSERT_EQ(::send(a.fd(), "", 0, 0), 0);
+  ASSERT_TRUE(a.send(frame_with(0x0CCB8081, 0x42)));
+  settle(bus);
+  EXPECT_EQ(bus.counters().wrong_size_datagrams, 2u);
+  EXPECT_EQ(bus.counters().clients_left, 0u);
+  EXPECT_EQ(bus.client_count(), 2u);
+  const auto at_b = read_all(b);
+  ASSERT_EQ(at_b.size(), 1u) << "the frame after the empty datagrams was not relayed";
+  EXPECT_EQ(at_b[0].data[0], 0x42);
+  ASSERT_TRUE(b.send(frame_with(0x0CCB8180, 0x43)));  // and a still hears the bus
+  settle(bus);
+  const auto at_a = read_all(a);
+  ASSERT_EQ(at_a.size(), 1u);
+  EXPECT_EQ(at_a[0].data[0], 0x43);
+  // An empty datagram just before its sender closes: the datagram is counted, then the departure seen.
+  ASSERT_EQ(::send(a.fd(), "", 0, 0), 0);
+  ASSERT_TRUE(a.send(frame_with(0x0CCB8081, 0x44)));
+  ::shutdown(a.fd(), SHUT_RDWR);
+  settle(bus);
+  EXPECT_EQ(bus.counters().wrong_size_datagrams, 3u);
+  const auto last = read_all(b);
+  ASSERT_EQ(last.size(), 1u) << "a frame queued behind an empty datagram was lost when its sender left";
+  EXPECT_EQ(last[0].data[0], 0x44);
+  EXPECT_EQ(bus.counters().clients_left, 1u);
 }
 
 TEST(CanBusRelay, ClientsJoinAndLeaveWhileTheBusRuns) {
@@ -225,7 +260,7 @@ TEST(UnixCanBus, TheEcuLoopIdlesWhenTheBusCloses) {
 }
 
 #ifdef SPREAD_CANBUS_EXE
-// The real executable: three clients, fan-out, a wrong-size datagram, a client leaving, and SIGTERM
+// The real executable: three clients, fan-out, a wrong-size and an empty datagram, a client leaving, and SIGTERM
 // removing the socket file.
 TEST(SpreadCanbusExecutable, RelaysBetweenThreeProcessesAndCleansUpOnSigterm) {
   TempDir dir;
@@ -264,10 +299,11 @@ TEST(SpreadCanbusExecutable, RelaysBetweenThreeProcessesAndCleansUpOnSigterm) {
   EXPECT_FALSE(a->wait_readable(100ms)) << "the sender got its own frame back";
   const unsigned char junk[5] = {1, 2, 3, 4, 5};
   ASSERT_TRUE(c.send_raw(junk, sizeof(junk)));
+  ASSERT_EQ(::send(c.fd(), "", 0, 0), 0);  // an empty datagram: dropped, c stays connected
   ASSERT_TRUE(c.send(frame_with(0x0CCB8081, 0x33)));
   const auto a2 = receive_one(*a);
   ASSERT_TRUE(a2);
-  EXPECT_EQ(a2->data[0], 0x33) << "the wrong-size datagram was relayed";
+  EXPECT_EQ(a2->data[0], 0x33) << "a wrong-size datagram was relayed or its sender dropped";
   ASSERT_TRUE(receive_one(*b));
   b.reset();  // b leaves; the bus goes on
   ASSERT_TRUE(a->send(frame_with(0x0CCB8081, 0x44)));

@@ -38,6 +38,7 @@ TEST(Ddop, ObjectBytesFollowAnnexB) {
   dvc.serial_number = "9";
   dvc.structure_label = {1, 2, 3, 4, 5, 6, 7};
   dvc.localization_label = {'e', 'n', 0x50, 0, 0, 0, 0xFF};
+  dvc.extended_structure_label = {0xAB, 0xCD};
   pool.objects.emplace_back(dvc);
   pool.objects.emplace_back(DeviceElement{1, ElementType::kDevice, "D", 0, 0, {2, 3}});
   pool.objects.emplace_back(DeviceProcessData{2, 141, 0x01, 0x0F, "W", 0xFFFF});
@@ -45,7 +46,7 @@ TEST(Ddop, ObjectBytesFollowAnnexB) {
   pool.objects.emplace_back(DeviceValuePresentation{4, 0, 0.001f, 2, "m"});
   const std::vector<std::uint8_t> expected = {
       'D', 'V', 'C', 0x00, 0x00, 1, 'S', 1, '1', 0x08, 0x07, 0x06, 0x05, 0x04, 0x03, 0x02, 0x01, 1, '9',
-      1, 2, 3, 4, 5, 6, 7, 'e', 'n', 0x50, 0, 0, 0, 0xFF,
+      1, 2, 3, 4, 5, 6, 7, 'e', 'n', 0x50, 0, 0, 0, 0xFF, 2, 0xAB, 0xCD,  // version 4: extended label
       'D', 'E', 'T', 0x01, 0x00, 1, 1, 'D', 0x00, 0x00, 0x00, 0x00, 0x02, 0x00, 0x02, 0x00, 0x03, 0x00,
       'D', 'P', 'D', 0x02, 0x00, 0x8D, 0x00, 0x01, 0x0F, 1, 'W', 0xFF, 0xFF,
       'D', 'P', 'T', 0x03, 0x00, 0x86, 0x00, 0x18, 0xFC, 0xFF, 0xFF, 1, 'X', 0x04, 0x00,
@@ -54,6 +55,19 @@ TEST(Ddop, ObjectBytesFollowAnnexB) {
   const DdopParseResult back = parse_ddop(expected);
   ASSERT_TRUE(back.pool.has_value()) << back.error;
   EXPECT_EQ(write_ddop(*back.pool), expected);
+
+  // Version 3 has no extended structure label: the same pool is 3 bytes shorter and reads back at 3.
+  std::vector<std::uint8_t> v3 = expected;
+  v3.erase(v3.begin() + 33, v3.begin() + 36);
+  EXPECT_EQ(write_ddop(pool, 3), v3);
+  const DdopParseResult back3 = parse_ddop(v3, 3);
+  ASSERT_TRUE(back3.pool.has_value()) << back3.error;
+  EXPECT_TRUE(std::get<DeviceObject>(back3.pool->objects[0]).extended_structure_label.empty());
+  EXPECT_FALSE(parse_ddop(v3, 4).pool.has_value()) << "a version-3 pool is not a valid version-4 pool";
+
+  dvc.extended_structure_label.assign(33, 0);
+  pool.objects[0] = dvc;
+  EXPECT_THROW(write_ddop(pool), std::invalid_argument) << "at most 32 bytes";
 }
 
 TEST(Ddop, SpreaderPoolDescribesDeviceBoomBinDiscAndEachSection) {
@@ -101,11 +115,12 @@ TEST(Ddop, SpreaderPoolDescribesDeviceBoomBinDiscAndEachSection) {
     const auto element = element_for_ddi(p.ddi);
     ASSERT_TRUE(element.has_value()) << "DDI " << p.ddi;
     EXPECT_EQ(parent_element.at(p.id), *element) << "DDI " << p.ddi;
-    const bool setpoint = p.ddi == 6 || p.ddi == 66 || p.ddi == 289 || p.ddi == 290 || p.ddi == 389;
+    const bool setpoint =
+        p.ddi == 6 || p.ddi == 66 || p.ddi == 160 || p.ddi == 289 || p.ddi == 290 || p.ddi == 389;
     EXPECT_EQ((p.properties & kPropertySettable) != 0, setpoint) << "DDI " << p.ddi;
     EXPECT_NE(p.triggers, 0) << "DDI " << p.ddi;
   }
-  for (const int d : {6, 7, 66, 67, 70, 141, 161, 289, 290, 389, 390, 397}) {
+  for (const int d : {6, 7, 66, 67, 70, 141, 160, 161, 289, 290, 389, 390, 397}) {
     EXPECT_EQ(seen[static_cast<std::uint16_t>(d)], 1) << "DDI " << d;
   }
   EXPECT_FALSE(element_for_ddi(999).has_value());
@@ -124,16 +139,20 @@ TEST(Ddop, StructureLabelChangesWithTheLayout) {
 
 TEST(Ddop, EveryTruncationIsRefusedWithItsOffset) {
   const std::vector<std::uint8_t> bytes = spreader_bytes(2);
-  std::size_t refused = 0;
+  std::vector<int> accepted_sections;
   for (std::size_t n = 0; n < bytes.size(); ++n) {
     const DdopParseResult r = parse_ddop(std::span<const std::uint8_t>(bytes.data(), n));
     if (!r.pool) {
-      ++refused;
       EXPECT_FALSE(r.error.empty());
+      continue;
     }
+    // Sections come last, each a DET and its three DPTs, and the tree is built by parent ID: a prefix that
+    // ends after a whole section is a smaller valid pool (the transport's size catches such a cut, not
+    // the pool). Any other prefix is refused for a cut object or a dangling reference.
+    EXPECT_EQ(write_ddop(*r.pool), std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + static_cast<long>(n)));
+    accepted_sections.push_back(static_cast<int>(all_of<DeviceElement>(*r.pool).size()) - 5);
   }
-  // A prefix ending on an object boundary is a complete but incomplete pool: refused for its references.
-  EXPECT_EQ(refused, bytes.size()) << "no proper prefix of the pool is a valid pool";
+  EXPECT_EQ(accepted_sections, (std::vector<int>{0, 1})) << "only the prefixes with 0 and 1 whole sections";
   EXPECT_NE(parse_ddop(std::span<const std::uint8_t>(bytes.data(), 10)).error.find("byte 0"), std::string::npos);
 }
 
@@ -167,6 +186,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadPool{"duplicate_id", [](Ddop& p) { element_named(p, "Hopper").id = 0; }, "used twice"},
         BadPool{"dangling_child", [](Ddop& p) { element_named(p, "Hopper").children.push_back(4242); }, "child 4242"},
+        BadPool{"child_is_an_element",
+                [](Ddop& p) { element_named(p, "Spreader").children.push_back(element_named(p, "Hopper").id); },
+                "not a DPD or DPT"},
         BadPool{"child_is_a_presentation", [](Ddop& p) { element_named(p, "Hopper").children.push_back(10); },
                 "child 10"},
         BadPool{"section_parent_missing", [](Ddop& p) { element_named(p, "Section 1").parent_id = 999; },

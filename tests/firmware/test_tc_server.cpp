@@ -34,6 +34,7 @@ struct Harness {
   TransportProtocol client_tp{kClient};
   Nanoseconds now{};
   std::vector<TransportFrame> to_client;  // TC frames on PGN 0xCB00 (TP frames are consumed here)
+  std::vector<TransportFrame> from_tc;    // every frame the TC sent, transport ones included, in order
 
   Harness() { tc.start(kTc, now); pump(); }
 
@@ -42,6 +43,7 @@ struct Harness {
       bool moved = false;
       for (const TransportFrame& f : tc.take_frames()) {
         moved = true;
+        from_tc.push_back(f);
         if (f.pgn == kTcProcessDataPgn) {
           to_client.push_back(f);
         } else {
@@ -81,6 +83,28 @@ struct Harness {
     ASSERT_EQ((*last(0x51))[1], 0);
     ASSERT_TRUE(client_tp.send({kTcProcessDataPgn, kClient, kTc, encode_pool_transfer(pool)}, now));
     pump();
+  }
+  // Where in from_tc the TC's end-of-message acknowledgement (TP.CM 19 / ETP.CM 23) and its object-pool
+  // transfer response (0x71) stand; -1 when absent.
+  std::pair<int, int> eoma_and_pool_response() const {
+    int eoma = -1;
+    int response = -1;
+    for (std::size_t i = 0; i < from_tc.size(); ++i) {
+      const TransportFrame& f = from_tc[i];
+      if (f.destination != kClient) continue;
+      if ((f.pgn == kTpConnectionManagementPgn && f.data[0] == 19) ||
+          (f.pgn == kEtpConnectionManagementPgn && f.data[0] == 23)) {
+        eoma = static_cast<int>(i);
+      }
+      if (f.pgn == kTcProcessDataPgn && f.data[0] == 0x71) response = static_cast<int>(i);
+    }
+    return {eoma, response};
+  }
+  void answer_version(std::uint8_t version) {
+    TcVersion v;
+    v.version = version;
+    v.sections = 8;
+    send(encode_version(v));
   }
   void connect(const std::vector<std::uint8_t>& pool) {
     send(encode_working_set_master(), kWorkingSetMasterPgn, 0xFF);
@@ -156,6 +180,79 @@ TEST(TcServer, ConnectsTransfersParsesAndActivatesThePool) {
   }
   EXPECT_EQ(h.tc.section_elements().size(), 8u);
   EXPECT_EQ(h.tc.section_elements().front(), 4);
+}
+
+// ISO 11783-3 §5.10.3.3 (TP) / ISO 11783-6 (ETP): the message is the receiver's only once its transport
+// session is over, so the TC answers the object-pool transfer (ISO 11783-10) after its own
+// end-of-message acknowledgement; a client that gets the answer while its session is still open takes it
+// for a protocol error. Checked for a pool by TP, one by ETP, and a refused pool.
+TEST(TcServer, PoolTransferIsAnsweredAfterTheTransportsEndOfMessageAcknowledgement) {
+  for (const int sections : {8, 16}) {
+    Harness h;
+    h.send(encode_working_set_master(), kWorkingSetMasterPgn, 0xFF);
+    h.send(tc_frame(TcMessage::kRequestVersion));
+    const auto pool = spreader_pool(sections);
+    ASSERT_EQ(pool.size() > kTpMaxBytes, sections == 16) << pool.size() << " bytes";
+    h.transfer(pool);
+    const auto [eoma, response] = h.eoma_and_pool_response();
+    ASSERT_GE(eoma, 0) << sections << " sections: no end-of-message acknowledgement";
+    ASSERT_GE(response, 0) << sections << " sections: no pool transfer response";
+    EXPECT_LT(eoma, response) << sections << " sections: the pool was answered inside its transport session";
+    EXPECT_EQ((*h.last(0x71))[1], 0);
+  }
+  Harness refused;
+  refused.send(encode_working_set_master(), kWorkingSetMasterPgn, 0xFF);
+  refused.send(tc_frame(TcMessage::kRequestVersion));
+  auto corrupt = spreader_pool();
+  corrupt[0] = 'X';
+  refused.transfer(corrupt);
+  const auto [eoma, response] = refused.eoma_and_pool_response();
+  ASSERT_GE(eoma, 0);
+  ASSERT_GE(response, 0);
+  EXPECT_LT(eoma, response);
+  EXPECT_EQ((*refused.last(0x71))[1], 0x01);
+}
+
+// ISO 11783-10: the pool follows the lower of the two versions; the version-4 device object adds the
+// extended structure label. A client that answers version 3 sends its pool without it, one that answers
+// 4 with it, and the TC reads each at that version; a TC of version 3 reads a version-3 pool.
+TEST(TcServer, ReadsVersion3AndVersion4PoolsAtTheNegotiatedVersion) {
+  SpreaderDescription d;
+  d.section_count = 8;
+  d.name = 0xA00A8000001234ull;
+  const Ddop spreader = make_spreader_ddop(d);
+  const auto objects = [](const TcServer& tc) { return tc.pool() ? tc.pool()->objects.size() : 0u; };
+  for (const std::uint8_t version : {std::uint8_t{3}, std::uint8_t{4}}) {
+    Harness h;
+    h.send(encode_working_set_master(), kWorkingSetMasterPgn, 0xFF);
+    h.send(tc_frame(TcMessage::kRequestVersion));
+    h.answer_version(version);
+    h.transfer(write_ddop(spreader, version));
+    ASSERT_TRUE(h.last(0x71));
+    EXPECT_EQ((*h.last(0x71))[1], 0) << "version " << int{version};
+    EXPECT_EQ(objects(h.tc), spreader.objects.size()) << "version " << int{version};
+    h.send(encode_activate(true));
+    EXPECT_TRUE(h.tc.active()) << "version " << int{version};
+  }
+  // The other version's layout is refused: the version decides how the device object is read.
+  Harness mismatch;
+  mismatch.send(encode_working_set_master(), kWorkingSetMasterPgn, 0xFF);
+  mismatch.send(tc_frame(TcMessage::kRequestVersion));
+  mismatch.answer_version(3);
+  mismatch.transfer(write_ddop(spreader, 4));
+  EXPECT_EQ((*mismatch.last(0x71))[1], 0x01);
+
+  TcServerConfig version3;
+  version3.version.version = 3;
+  Harness old_tc;
+  old_tc.tc = TcServer(version3);
+  old_tc.tc.start(kTc, old_tc.now);
+  old_tc.send(encode_working_set_master(), kWorkingSetMasterPgn, 0xFF);
+  old_tc.send(tc_frame(TcMessage::kRequestVersion));
+  old_tc.answer_version(4);
+  old_tc.transfer(write_ddop(spreader, 3));
+  EXPECT_EQ((*old_tc.last(0x71))[1], 0);
+  EXPECT_EQ(objects(old_tc.tc), spreader.objects.size());
 }
 
 TEST(TcServer, SetValuesGoToThePoolsElementsAndReportedValuesAreLogged) {

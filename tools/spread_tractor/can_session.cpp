@@ -11,7 +11,10 @@
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/can/speed_messages.hpp"
+#include "firmware_sim/isobus/address_claim.hpp"
+#include "firmware_sim/isobus/iso_name.hpp"
 #include "firmware_sim/isobus/tc_messages.hpp"
+#include "firmware_sim/isobus/tc_partner.hpp"
 #include "tools/spread_tractor/sessions.hpp"
 
 namespace spread::tractor {
@@ -37,6 +40,31 @@ bool parse_int(std::string_view text, long long& value) {
   return true;
 }
 
+// The tractor acts as the ECU's task controller, and the ECU takes process data only from a node whose
+// address claim carries a TC's NAME (ISO 11783-1: industry group 2, device class 0, function 130).
+std::uint64_t task_controller_name() {
+  firmware::isobus::IsoName name;
+  name.self_configurable = true;
+  name.device_class = firmware::isobus::kDeviceClassNonSpecific;
+  name.function = firmware::isobus::kFunctionTaskController;
+  name.identity_number = 0x81;
+  return firmware::isobus::encode_name(name);
+}
+
+void send_address_claim(CanFramePort& port, std::uint8_t own) {
+  const auto name = firmware::isobus::name_to_bytes(task_controller_name());
+  port.send(make_frame(encode_id({6, firmware::isobus::kAddressClaimedPgn, kGlobalAddress, own}), name.data(), 8));
+}
+
+// A request for the address claim (to all or to us) is answered with our claim (ISO 11783-5 §4.4.3): the
+// ECU asks once its own claim stands, to learn which NAME holds which address.
+void answer_claim_request(CanFramePort& port, const can_frame& frame, std::uint8_t own) {
+  const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
+  if (id.pgn != 0xEA00 || frame.len < 3 || (id.destination != kGlobalAddress && id.destination != own)) return;
+  const std::uint32_t pgn = frame.data[0] | (frame.data[1] << 8) | (std::uint32_t{frame.data[2]} << 16);
+  if (pgn == firmware::isobus::kAddressClaimedPgn) send_address_claim(port, own);
+}
+
 void drain(CanFramePort& port, Clock::duration wait, std::uint8_t own_address) {
   const auto end = Clock::now() + wait;
   can_frame frame{};
@@ -46,6 +74,7 @@ void drain(CanFramePort& port, Clock::duration wait, std::uint8_t own_address) {
       // Show what concerns us: frames addressed to us or broadcast by others.
       const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
       if (id.source == own_address) continue;
+      answer_claim_request(port, frame, own_address);
       std::cout << "rx " << describe_frame(frame) << std::endl;
     }
   }
@@ -65,10 +94,11 @@ bool wait_for_address_claim(CanFramePort& port, std::uint8_t own, std::uint8_t e
     while (Clock::now() < retry) {
       if (!port.wait_readable(std::chrono::duration_cast<std::chrono::nanoseconds>(retry - Clock::now()))) continue;
       while (port.read(frame) == ReadOutcome::kFrame) {
+        answer_claim_request(port, frame, own);
         const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
         if (id.pgn != 0xEE00 || id.source != ecu) continue;
         std::cout << "rx " << describe_frame(frame) << std::endl;
-        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        drain(port, std::chrono::milliseconds(250), own);  // answering requests meanwhile
         return true;
       }
     }
@@ -99,10 +129,20 @@ int run_can_session(const CanSessionOptions& o) {
   CanFramePort port = open_can_bus(o.interface);
   const auto own = static_cast<std::uint8_t>(o.own_address);
   const auto ecu = static_cast<std::uint8_t>(o.ecu_address);
+  // Our own claim first, as a task controller; it stands after 250 ms uncontested (§4.4.2). (This simple
+  // TC does not defend its address: a contender is left to the TC role, spread-tractor tc.)
+  send_address_claim(port, own);
+  drain(port, std::chrono::milliseconds(250), own);
   if (o.wait_for_ecu_s > 0.0 && !wait_for_address_claim(port, own, ecu, o.wait_for_ecu_s)) {
     std::cerr << "spread-tractor: warning: no address claim from 0x" << std::hex << int{ecu} << std::dec
               << " within " << o.wait_for_ecu_s << " s; sending anyway\n";
   }
+  // Our claim once more, then the TC status: the ECU learns our NAME from the claim even if it joined after
+  // our first one, and the status that follows it on the bus makes us its partner TC (ISO 11783-10).
+  send_address_claim(port, own);
+  const auto first_status = firmware::isobus::encode_tc_status(true);
+  port.send(
+      make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), first_status.data(), 8));
   auto send_pd = [&](ProcessDataCommand command, std::uint16_t ddi, std::int32_t value) {
     const ProcessDataBytes bytes = encode_process_data({static_cast<std::uint8_t>(command), 0, ddi, value});
     const can_frame frame = make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, ecu, own}), bytes.data(), 8);
@@ -117,7 +157,7 @@ int run_can_session(const CanSessionOptions& o) {
   const auto start = Clock::now();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.send_hz));
   std::uint32_t distance_mm = 0;
-  auto next_tc_status = start;
+  auto next_tc_status = start + std::chrono::seconds(2);
   while (!stop_requested() && Clock::now() - start < std::chrono::duration<double>(o.duration_s)) {
     // As the task controller: its status every 2 s (ISO 11783-10), which keeps the work state it set alive.
     if (Clock::now() >= next_tc_status) {

@@ -48,6 +48,17 @@ std::string properties_text(std::uint8_t properties, std::uint8_t triggers) {
   return s;
 }
 
+// Bytes as hex digits, for the version-4 extended structure label (any length up to 32).
+std::string hex_bytes(const std::vector<std::uint8_t>& bytes) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  std::string s;
+  for (const std::uint8_t b : bytes) {
+    s += kDigits[b >> 4];
+    s += kDigits[b & 0x0F];
+  }
+  return s;
+}
+
 class TreeWriter {
  public:
   explicit TreeWriter(const Ddop& pool) {
@@ -64,7 +75,11 @@ class TreeWriter {
       out_ += "DVC " + std::to_string(d->id) + " \"" + d->designator + "\" software " + d->software_version +
               ", serial " + d->serial_number + "\n    " + describe_name(d->working_set_master_name) +
               "\n    structure label " + firmware::isobus::label_hex(d->structure_label) + ", localisation label " +
-              firmware::isobus::label_hex(d->localization_label) + "\n";
+              firmware::isobus::label_hex(d->localization_label) +
+              (d->extended_structure_label.empty() ? std::string()
+                                                   : ", extended structure label " +
+                                                         hex_bytes(d->extended_structure_label)) +
+              "\n";
       elements_under(d->id, "");
     }
     return out_;
