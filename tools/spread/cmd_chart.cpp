@@ -21,7 +21,9 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/number_format.hpp"
 
+namespace spread::cli::cmd_chart {
 namespace {
 
 using nlohmann::json;
@@ -57,12 +59,6 @@ std::vector<double> parse_widths(const std::string& text) {
   }
   if (widths.empty()) throw BadInput("--widths: give at least one width in metres");
   return widths;
-}
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
 }
 
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -233,3 +229,4 @@ spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) 
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_chart
