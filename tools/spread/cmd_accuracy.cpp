@@ -17,6 +17,7 @@
 #include "libspread/analysis/accuracy/accuracy.hpp"
 #include "tools/spread/command_registry.hpp"
 
+namespace spread::cli::cmd_accuracy {
 namespace {
 
 namespace accuracy = spread::accuracy;
@@ -128,3 +129,4 @@ spread::cli::CommandRegistration registration{"accuracy", [](CLI::App& app, int&
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_accuracy

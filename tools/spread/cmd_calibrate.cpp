@@ -42,7 +42,9 @@
 #include "tools/spread/output_paths.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/number_format.hpp"
 
+namespace spread::cli::cmd_calibrate {
 namespace {
 
 using nlohmann::json;
@@ -60,12 +62,6 @@ class FailedAfterReport : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
 
 // ---------------------------------------------------------------------------------------------- rate
 
@@ -1048,3 +1044,4 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& /*exit_
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_calibrate

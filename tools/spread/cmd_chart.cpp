@@ -23,7 +23,9 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/number_format.hpp"
 
+namespace spread::cli::cmd_chart {
 namespace {
 
 using nlohmann::json;
@@ -60,12 +62,6 @@ std::vector<double> parse_widths(const std::string& text) {
   }
   if (widths.empty()) throw BadInput("--widths: give at least one width in metres");
   return widths;
-}
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
 }
 
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -238,3 +234,4 @@ spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) 
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_chart

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/drum_command.hpp"
 
 #include "libspread/core/error.hpp"
 
@@ -18,10 +19,6 @@
 #include "libspread/physics/drum/regime_map_plot.hpp"
 
 namespace spread::drum {
-int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
-                     const std::string& sweep, const std::string& map_path);
-}
-
 namespace {
 
 using nlohmann::json;
@@ -58,8 +55,6 @@ json result_json(const spread::drum::DrumResult& r) {
 }
 
 }  // namespace
-
-namespace spread::drum {
 
 int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
                      const std::string& sweep, const std::string& map_path) {
@@ -123,6 +118,7 @@ int run_drum_command(const std::string& scene_path, const std::vector<std::strin
 
 }  // namespace spread::drum
 
+namespace spread::cli::cmd_drum {
 namespace {
 
 struct DrumState {
@@ -148,3 +144,4 @@ spread::cli::CommandRegistration reg{"drum", [](CLI::App& app, int& exit_code) {
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_drum

@@ -11,6 +11,7 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/error_exit.hpp"
 
+namespace spread::cli::cmd_inspect {
 namespace {
 
 using nlohmann::json;
@@ -147,3 +148,4 @@ spread::cli::CommandRegistration reg{"inspect", [](CLI::App& app, int& exit_code
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_inspect

@@ -20,6 +20,7 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 
+namespace spread::cli::cmd_plot {
 namespace {
 
 using nlohmann::json;
@@ -134,3 +135,4 @@ spread::cli::CommandRegistration reg{"plot", [](CLI::App& app, int& exit_code) {
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_plot

@@ -23,9 +23,11 @@
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/number_format.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 
+namespace spread::cli::cmd_predict {
 namespace {
 
 using nlohmann::json;
@@ -159,12 +161,6 @@ json bands_json(const spread_band* bands, int count, int headline) {
                    {"headline", b == headline}});
   }
   return out;
-}
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
 }
 
 // The guidance when the CV at --width is above the target (setting_guidance.hpp): the same table and
@@ -413,3 +409,4 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_predict

@@ -9,12 +9,9 @@
 #include <vector>
 
 #include "tools/spread/command_registry.hpp"
+#include "tools/spread/drum_command.hpp"
 
 #include "libspread/physics/drum/drum_scene.hpp"
-namespace spread::drum {  // defined in cmd_drum.cpp
-int run_drum_command(const std::string& scene_path, const std::vector<std::string>& overrides, bool json_out,
-                     const std::string& sweep, const std::string& map_path);
-}
 
 #include "libspread/analysis/accuracy/monolithic_reference.hpp"
 #include "libspread/physics/dem/scene_config.hpp"
@@ -22,6 +19,7 @@ int run_drum_command(const std::string& scene_path, const std::vector<std::strin
 #include "libspread/analysis/metrics/metrics.hpp"
 #include "libspread/analysis/plot/plot.hpp"
 
+namespace spread::cli::cmd_simulate {
 namespace {
 
 using nlohmann::json;
@@ -160,3 +158,4 @@ spread::cli::CommandRegistration reg{"simulate", [](CLI::App& app, int& exit_cod
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_simulate

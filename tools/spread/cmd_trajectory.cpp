@@ -13,6 +13,7 @@
 #include "libspread/physics/flight/flight.hpp"
 #include "tools/spread/command_registry.hpp"
 
+namespace spread::cli::cmd_trajectory {
 namespace {
 
 using spread::Vec3;
@@ -162,3 +163,4 @@ spread::cli::CommandRegistration registration{"trajectory", [](CLI::App& app, in
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_trajectory

@@ -11,6 +11,7 @@
 #include "libspread/physics/dem/verify.hpp"
 #include "tools/spread/command_registry.hpp"
 
+namespace spread::cli::cmd_verify {
 namespace {
 
 using nlohmann::json;
@@ -140,3 +141,4 @@ spread::cli::CommandRegistration reg{"verify", [](CLI::App& app, int& exit_code)
 }};
 
 }  // namespace
+}  // namespace spread::cli::cmd_verify

@@ -1,6 +1,8 @@
 #pragma once
 // Subcommands of the `spread` CLI register themselves here at static-initialisation time, so adding a
-// command is adding one cmd_<name>.cpp file.
+// command is adding one cmd_<name>.cpp file. Its helpers go in namespace spread::cli::cmd_<name> (an
+// anonymous namespace inside it): the files are compiled together in unity batches (CMakeLists.txt), where
+// two files' anonymous namespaces at the same level would be one.
 #include <CLI/CLI.hpp>
 
 #include <functional>

@@ -1,12 +1,12 @@
 #include "tools/spread/report_args.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "libspread/analysis/calibration/tray_rate_check.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
 #include "tools/spread/output_paths.hpp"
+#include "tools/spread/number_format.hpp"
 
 namespace spread::cli {
 namespace {
@@ -14,12 +14,6 @@ namespace {
 std::string& recorded_command_line() {
   static std::string line;
   return line;
-}
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
 }
 
 }  // namespace

@@ -1,18 +1,12 @@
 #include "tools/spread/setting_guidance.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "libspread/io/tables/table_reader.hpp"
+#include "tools/spread/number_format.hpp"
 
 namespace spread::cli {
 namespace {
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
 
 // " ± x" with the 95 % half-interval (1.96 standard errors), or nothing when it is undefined.
 std::string plus_minus_percent(double standard_error) {
