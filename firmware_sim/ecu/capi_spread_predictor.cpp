@@ -65,6 +65,7 @@ PredictionOutcome CapiSpreadPredictor::predict(std::string_view material, double
     // Spreaders are driven to-and-fro (EN 13739's default overlap): its working width is the one used.
     out.throw_width_m = result.throw_width_m;
     out.effective_width_m = result.working_width_to_and_fro_m;
+    out.first_band_width_m = result.first_band_width_to_and_fro_m;
     out.cv_percent = result.cv_percent;
     out.throw_width_se_m = result.throw_width_se_m;
     out.effective_width_se_m = result.working_width_to_and_fro_se_m;

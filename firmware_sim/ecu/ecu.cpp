@@ -283,7 +283,7 @@ void Ecu::check_achieved_width() {
   // between grid widths can miss the target although the grid width next above meets it). A miss asks
   // the solver for a wider margin; out of margin, the width is out of reach and the status says so.
   if (mode_ != Mode::kAutomatic || !prediction_valid_ || !predicted_settled_) return;
-  const bool misses = prediction_.effective_width_m < width_setpoint_m_ ||
+  const bool misses = prediction_.first_band_width_m < width_setpoint_m_ ||
                       prediction_.cv_percent > predictor_->cv_target_percent();
   if (!misses) return;
   const RpmSolverSettings& solver = parameters_.solver;

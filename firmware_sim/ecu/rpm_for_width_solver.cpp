@@ -22,7 +22,7 @@ WidthCurve sample_width_curve(SpreadPredictor& predictor, std::string_view mater
     // The bout width only changes the CV, not the effective width: any positive value does.
     const bool ok = predictor.predict(material, rpm, 1.0, p) == PredictionOutcome::kOk;
     curve.rpm.push_back(rpm);
-    curve.width_m.push_back(ok ? p.effective_width_m : std::numeric_limits<double>::quiet_NaN());
+    curve.width_m.push_back(ok ? p.first_band_width_m : std::numeric_limits<double>::quiet_NaN());
   }
   return curve;
 }
@@ -76,13 +76,13 @@ RpmSolution RpmForWidthSolver::solve(SpreadPredictor& predictor, const WidthCurv
     SpreadPrediction p;
     ++solution.predictions;
     if (predictor.predict(curve.material, mid, width_setpoint_m, p) != PredictionOutcome::kOk ||
-        !std::isfinite(p.effective_width_m)) {
+        !std::isfinite(p.first_band_width_m)) {
       solution.prediction_failed = true;
       break;  // keep the bracket found so far: its upper end is known to reach the set-point
     }
-    if (p.effective_width_m >= width_setpoint_m) {
+    if (p.first_band_width_m >= width_setpoint_m) {
       hi = mid;
-      hi_width = p.effective_width_m;
+      hi_width = p.first_band_width_m;
     } else {
       lo = mid;
     }

@@ -1,6 +1,9 @@
 #pragma once
-// Automatic mode's inverse problem: the disc speed whose effective working width (at the CV target)
-// reaches the set-point working width.
+// Automatic mode's inverse problem: the disc speed whose first band of bout widths within the CV target
+// (SpreadPrediction::first_band_width_m) reaches the set-point working width — every narrower bout then
+// meets the target too, and the width grows steadily with the speed. (The headline working width can
+// jump to a wider band: at 450 rpm the main job's Urea headline is 11.6 m, its first band 5.9 m, and a
+// set-point of 8 m lies between the two bands.)
 //
 // One prediction through the C API costs milliseconds (measured 3.8 ms on the default tables), so a
 // search inside the 50 ms loop step must be bounded. The width does not depend on the bout width, only
@@ -31,7 +34,7 @@ struct RpmSolverSettings {
 struct WidthCurve {
   std::string material;
   std::vector<double> rpm;       // ascending [r/min]
-  std::vector<double> width_m;   // effective width at rpm[i] [m]; NaN where the prediction failed
+  std::vector<double> width_m;   // first band's width at rpm[i] [m]; NaN where the prediction failed
 };
 
 // Samples [range.min_rpm, range.max_rpm] every `rpm_step`. Throws std::invalid_argument on a bad range.
@@ -40,7 +43,7 @@ WidthCurve sample_width_curve(SpreadPredictor& predictor, std::string_view mater
 
 struct RpmSolution {
   double rpm = 0.0;                 // chosen disc speed [r/min]
-  double effective_width_m = 0.0;   // predicted effective width at `rpm` [m]
+  double effective_width_m = 0.0;   // predicted first band's width at `rpm` [m]
   bool reachable = false;           // false: the set-point lies outside what the range can deliver
   bool prediction_failed = false;   // a refinement prediction returned an error
   int predictions = 0;              // predictor calls spent in this solve (cost indicator)

@@ -9,7 +9,11 @@ namespace spread::firmware {
 
 struct SpreadPrediction {
   double throw_width_m = 0.0;      // lateral extent holding 99 % of the mass [m]
-  double effective_width_m = 0.0;  // largest bout width with CV <= target [m]
+  double effective_width_m = 0.0;  // the headline working width (docs/metrics.md "Effective working width") [m]
+  // The first band's upper end: every bout from the narrowest up to it meets the CV target. What automatic
+  // mode aims at (rpm_for_width_solver.hpp): it grows steadily with the disc speed, where the headline
+  // jumps to a wider band once that band is established [m].
+  double first_band_width_m = 0.0;
   double cv_percent = 0.0;         // coefficient of variation at the requested bout width [%]
   // Monte Carlo standard errors of the three above over the table's launch samples (docs/metrics.md
   // "Uncertainty"); NaN = not known (a predictor without them, or undefined at this point).

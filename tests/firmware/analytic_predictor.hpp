@@ -33,6 +33,7 @@ class AnalyticPredictor final : public SpreadPredictor {
     const double material_factor = material == "urea" ? 1.0 : 0.9;
     out.throw_width_m = material_factor * kThrowWidthPerRpmSquared * rpm * rpm;
     out.effective_width_m = kEffectiveFraction * out.throw_width_m;
+    out.first_band_width_m = out.effective_width_m;  // one band
     const double ratio = bout_width_m / out.effective_width_m;
     out.cv_percent = 10.0 * ratio * ratio;
     return PredictionOutcome::kOk;

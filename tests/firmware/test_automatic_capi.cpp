@@ -47,10 +47,10 @@ class AutomaticModeCapi : public ::testing::Test {
     return c;
   }
 
-  double effective_width_at(double rpm) {
+  double first_band_width_at(double rpm) {
     SpreadPrediction p;
     EXPECT_EQ(predictor_->predict(material_, rpm, 24.0, p), PredictionOutcome::kOk);
-    return p.effective_width_m;
+    return p.first_band_width_m;  // what automatic mode aims at (rpm_for_width_solver.hpp)
   }
 
   std::unique_ptr<CapiSpreadPredictor> predictor_;
@@ -66,7 +66,7 @@ TEST_F(AutomaticModeCapi, ReachesARequestedWidth) {
   p.auto_rpm_min = std::max(range.min_rpm, p.auto_rpm_min);
   p.auto_rpm_max = std::min(range.max_rpm, p.auto_rpm_max);
   const double probe_rpm = p.auto_rpm_min + 0.6 * (p.auto_rpm_max - p.auto_rpm_min);
-  const double requested_m = effective_width_at(probe_rpm);
+  const double requested_m = first_band_width_at(probe_rpm);
   ASSERT_GT(requested_m, 0.0) << "no usable working width at " << probe_rpm << " r/min";
 
   ManualClock clock;
@@ -83,7 +83,7 @@ TEST_F(AutomaticModeCapi, ReachesARequestedWidth) {
   EXPECT_NEAR(s.rpm_actual, s.rpm_target, 0.5) << "disc settled after 10 s (tau 0.8 s)";
   // The solved speed reaches the width. (Table-based widths are quantised by the 0.5 m trays and not
   // monotonic in rpm, so the check is on the prediction at the chosen speed.)
-  EXPECT_GE(effective_width_at(s.rpm_target), requested_m);
+  EXPECT_GE(first_band_width_at(s.rpm_target), requested_m);
   EXPECT_TRUE(std::isfinite(s.throw_width_m));
   EXPECT_TRUE(std::isfinite(s.effective_width_m));
   // Every predicted width carries its Monte Carlo standard error from the C API.
@@ -109,8 +109,8 @@ TEST_F(AutomaticModeCapi, ReachableMeansTheSettledPatternDelivers) {
   const RpmRange range = predictor_->rpm_range(material_);
   p.auto_rpm_min = std::max(range.min_rpm, p.auto_rpm_min);
   p.auto_rpm_max = std::min(range.max_rpm, p.auto_rpm_max);
-  const double narrowest = effective_width_at(p.auto_rpm_min);
-  const double widest = effective_width_at(p.auto_rpm_max);
+  const double narrowest = first_band_width_at(p.auto_rpm_min);
+  const double widest = first_band_width_at(p.auto_rpm_max);
   ASSERT_LT(narrowest, widest);
   int reachable = 0;
   for (double width_m = std::ceil(narrowest); width_m <= std::floor(widest); width_m += 0.1) {
@@ -139,7 +139,7 @@ TEST_F(AutomaticModeCapi, ReportsAWidthOutOfReach) {
   const RpmRange range = predictor_->rpm_range(material_);
   p.auto_rpm_min = std::max(range.min_rpm, p.auto_rpm_min);
   p.auto_rpm_max = std::min(range.max_rpm, p.auto_rpm_max);
-  const double widest = std::max(effective_width_at(p.auto_rpm_max), effective_width_at(p.auto_rpm_min));
+  const double widest = std::max(first_band_width_at(p.auto_rpm_max), first_band_width_at(p.auto_rpm_min));
   const double requested_m = std::min(widest + 10.0, p.width_max_m);
   ASSERT_GT(requested_m, widest + 1.0) << "the tables reach the machine's maximum width";
   ManualClock clock;
