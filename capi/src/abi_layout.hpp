@@ -13,12 +13,12 @@ namespace spread::capi {
 // Each constant is the end of the last field of one published version, oldest first. The first of
 // each struct is the smallest struct_size accepted; a struct_size between two constants is read as the
 // older version (only whole fields are read).
-// spread_prediction_def: 0.1 ended with tray_width_m; 0.2 appended kernel_half_width_m; 0.3 result_size
-// (and reserved).
+// spread_prediction_def: 0.1 ended with tray_width_m; 0.2 appended kernel_half_width_m; 0.3 result_size,
+// reserved and drop_point_turn_rad.
 inline constexpr std::size_t kPredictionDefV1Size = offsetof(spread_prediction_def, kernel_half_width_m);
 inline constexpr std::size_t kPredictionDefV2Size =
     offsetof(spread_prediction_def, kernel_half_width_m) + sizeof(double);
-inline constexpr std::size_t kPredictionDefV3Size = offsetof(spread_prediction_def, reserved) + sizeof(uint32_t);
+inline constexpr std::size_t kPredictionDefV3Size = offsetof(spread_prediction_def, drop_point_turn_rad) + sizeof(double);
 // spread_trajectory_def: 0.1 ended with effects. `reserved` filled its trailing padding later; where the
 // ABI had no such padding (4-byte aligned doubles) that made the struct larger, hence two sizes.
 inline constexpr std::size_t kTrajectoryDefV1Size = offsetof(spread_trajectory_def, reserved);

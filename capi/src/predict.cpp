@@ -112,9 +112,11 @@ spread_status refused(spread_status status, const spread::predict::Predictor& pr
     default:
       return fail(status,
                   "spread_predict: %s: rpm %g, disc_height_m %g, wind_m_s {%g, %g}, cv_target_percent %g, "
-                  "bout_width_m %g, tray_width_m %g, kernel_half_width_m %g (bounds: docs/c-api.md)",
+                  "bout_width_m %g, tray_width_m %g, kernel_half_width_m %g, drop_point_turn_rad %g "
+                  "(bounds: docs/c-api.md)",
                   spread_status_str(status), def.rpm, def.disc_height_m, def.wind_m_s[0], def.wind_m_s[1],
-                  def.cv_target_percent, def.bout_width_m, def.tray_width_m, v2 ? def.kernel_half_width_m : NAN);
+                  def.cv_target_percent, def.bout_width_m, def.tray_width_m, v2 ? def.kernel_half_width_m : NAN,
+                  def.struct_size >= spread::capi::kPredictionDefV3Size ? def.drop_point_turn_rad : 0.0);
   }
 }
 
@@ -147,8 +149,9 @@ spread_status predict_with(const spread::predict::Predictor& predictor, const sp
     request.tray_width_m = def->tray_width_m;
     const bool v2 = def->struct_size >= spread::capi::kPredictionDefV2Size;
     if (v2) request.kernel_half_width_m = def->kernel_half_width_m;
-    const bool v3 = def->struct_size >= spread::capi::kPredictionDefV3Size &&
-                    def->result_size >= spread::capi::kPredictionV3Size;
+    const bool v3_def = def->struct_size >= spread::capi::kPredictionDefV3Size;
+    if (v3_def) request.drop_point_turn_rad = def->drop_point_turn_rad;
+    const bool v3 = v3_def && def->result_size >= spread::capi::kPredictionV3Size;
 
     spread::predict::Prediction prediction;
     const auto status = run(request, prediction);

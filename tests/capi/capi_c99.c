@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
   CHECK(traj.reserved == 0u);
   CHECK(sizeof(spread_trajectory_def) == offsetof(spread_trajectory_def, reserved) + sizeof traj.reserved);
   CHECK(sizeof(spread_landing) == offsetof(spread_landing, reserved) + sizeof landing.reserved);
-  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, reserved) + sizeof def.reserved);
+  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, drop_point_turn_rad) + sizeof(double));
+  CHECK(def.drop_point_turn_rad == 0.0);
   CHECK(def.result_size == sizeof(spread_prediction) && def.reserved == 0u);
   CHECK(sizeof(spread_band) == offsetof(spread_band, limited_by_layout) + sizeof(int32_t));
   CHECK(sizeof(spread_prediction) == offsetof(spread_prediction, bands_racetrack) + sizeof result.bands_racetrack);

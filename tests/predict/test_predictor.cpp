@@ -424,3 +424,67 @@ TEST(Predictor, FlightBoundThinsTheSamplesAndSaysSo) {
 
 }  // namespace
 }  // namespace spread::predict
+
+namespace spread::predict {
+namespace {
+
+// The drop point turned by Δ predicts what a table whose launches were all turned by Δ about the disc axis
+// predicts at the table's drop point: turned here by hand, in polar form, on a row and between rows, in
+// still air and in a crosswind, from the landing cache and flown.
+TEST(Predictor, DropPointTurnIsTheTableTurnedAboutTheDiscAxis) {
+  constexpr double kTurn_rad = 0.35;
+  tables::TableContents turned_contents = testing::synthetic_contents();
+  const auto turn = [](float& x, float& y) {
+    const double r = std::hypot(double{x}, double{y}), phi = std::atan2(double{y}, double{x}) + kTurn_rad;
+    x = static_cast<float>(r * std::cos(phi));
+    y = static_cast<float>(r * std::sin(phi));
+  };
+  for (tables::Run& run : turned_contents.runs) {
+    for (tables::LaunchSample& s : run.samples) {
+      turn(s.x_m, s.y_m);
+      turn(s.vx_norm, s.vy_norm);
+      turn(s.wx_norm, s.wy_norm);
+    }
+  }
+  Predictor turned_table(std::move(turned_contents));
+  Predictor predictor(testing::synthetic_contents());
+  for (const bool cached : {true, false}) {
+    predictor.set_landing_cache_enabled(cached);
+    turned_table.set_landing_cache_enabled(cached);
+    for (const double rpm : {700.0, 640.0}) {
+      for (const double wind_x_m_s : {0.0, 3.0}) {
+        PredictionRequest r = request("can", rpm);
+        r.wind_x_m_s = wind_x_m_s;
+        Prediction expected;
+        ASSERT_EQ(turned_table.predict(r, expected), PredictStatus::kOk);
+        const std::vector<double> expected_trays = copy(expected.tray_mass_fraction);
+        r.drop_point_turn_rad = kTurn_rad;
+        Prediction got;
+        ASSERT_EQ(predictor.predict(r, got), PredictStatus::kOk);
+        const std::string where = std::string(cached ? "cached" : "flown") + " at " + std::to_string(rpm) +
+                                  " rpm, wind " + std::to_string(wind_x_m_s);
+        ASSERT_EQ(got.tray_mass_fraction.size(), expected_trays.size()) << where;
+        for (std::size_t k = 0; k < expected_trays.size(); ++k) {
+          EXPECT_NEAR(got.tray_mass_fraction[k], expected_trays[k], 1e-5) << where << " tray " << k;
+        }
+        EXPECT_NEAR(got.throw_width_m, expected.throw_width_m, 1e-3) << where;
+        EXPECT_NEAR(got.working_width_to_and_fro_m, expected.working_width_to_and_fro_m, 1e-3) << where;
+        // And the turn changes the pattern (the check has power): the fan of a twin-disc machine turned
+        // towards the rear or the front throws differently across the driving direction.
+        r.drop_point_turn_rad = 0.0;
+        Prediction unturned;
+        ASSERT_EQ(predictor.predict(r, unturned), PredictStatus::kOk);
+        EXPECT_GT(std::abs(unturned.throw_width_m - expected.throw_width_m), 0.05) << where;
+      }
+    }
+  }
+  PredictionRequest bad = request("can", 700.0);
+  bad.drop_point_turn_rad = 3.2;
+  Prediction out;
+  EXPECT_EQ(predictor.predict(bad, out), PredictStatus::kOutOfRange);
+  bad.drop_point_turn_rad = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(predictor.predict(bad, out), PredictStatus::kNotFinite);
+}
+
+}  // namespace
+}  // namespace spread::predict

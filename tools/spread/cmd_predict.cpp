@@ -237,6 +237,7 @@ void run(const Options& o, int& exit_code) {
   def.tray_width_m = o.tray_width_m;
   def.effects = parse_effects(o.effects);
   def.kernel_half_width_m = o.kernel_half_width_m;
+  def.drop_point_turn_rad = spread::cli::drop_point_turn_rad(o);
 
   spread_tables* raw = nullptr;
   const spread_status opened = spread_open(o.tables.c_str(), &raw);
@@ -290,6 +291,7 @@ void run(const Options& o, int& exit_code) {
                 {"rpm", o.rpm},
                 {"disc_height_m", result.disc_height_m},
                 {"wind_m_s", {def.wind_m_s[0], def.wind_m_s[1]}},
+                {"drop_point_turn_deg", o.drop_point_turn_deg},
                 {"effects", spread::effect::names_in(result.effects)},
                 {"cv_target_percent", o.cv_target_percent},
                 {"throw_width_m", result.throw_width_m},

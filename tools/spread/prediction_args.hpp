@@ -20,10 +20,15 @@ struct PredictionArgs {
   std::string wind = "0,0";                                     // "VX,VY", m/s
   double cv_target_percent = 15.0;                              // CV target of the working widths, %
   double tray_width_m = 0.5;                                    // collecting tray width, m
+  double drop_point_turn_deg = 0.0;                             // drop point turned from the table's, degrees
 };
 
-// Adds --tables, --material, --rpm (required), --height, --wind, --cv-target and --tray-width.
+// Adds --tables, --material, --rpm (required), --height, --wind, --cv-target, --tray-width and
+// --drop-point-turn.
 void add_prediction_args(CLI::App& sub, PredictionArgs& args);
+
+// --drop-point-turn in radians; BadInput naming it outside ±180 degrees.
+double drop_point_turn_rad(const PredictionArgs& args);
 
 struct WindXY {
   double x_m_s = 0.0;  // lateral, to the right

@@ -165,7 +165,11 @@ typedef struct spread_prediction_def {
   uint32_t result_size;        /* sizeof(spread_prediction) of the caller's header; set by _default().
                                   The library writes the result fields of every version it covers whole
                                   (from 0.3 on the result grows without the definition growing) */
-  uint32_t reserved;           /* fills the trailing padding; 0 from _default(), never read */
+  uint32_t reserved;           /* fills the padding before the next double; 0 from _default(), never read */
+  double drop_point_turn_rad;  /* the drop point (feed position on the disc) turned from the table's, rad,
+                                  within [-pi, pi]: counter-clockwise seen from above for the left disc,
+                                  mirrored for the right (both discs alike). A disc the same all round
+                                  turns its fan of launches by the same angle (docs/c-api.md). Default 0 */
 } spread_prediction_def;
 
 /* One band of bout widths whose CV meets the target (appended in 0.3). */
@@ -255,6 +259,7 @@ static inline spread_prediction_def spread_prediction_def_default(void) {
   def.kernel_half_width_m = NAN;
   def.result_size = (uint32_t)sizeof(struct spread_prediction);
   def.reserved = 0u;
+  def.drop_point_turn_rad = 0.0;
   return def;
 }
 

@@ -336,7 +336,8 @@ int Predictor::tray_capacity(double tray_width_m) const {
 
 PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) const {
   height_m = std::isnan(r.disc_height_m) ? contents_.machine.disc_height_m : r.disc_height_m;
-  for (double v : {r.rpm, height_m, r.wind_x_m_s, r.wind_y_m_s, r.cv_target, r.bout_width_m, r.tray_width_m}) {
+  for (double v : {r.rpm, height_m, r.wind_x_m_s, r.wind_y_m_s, r.cv_target, r.bout_width_m, r.tray_width_m,
+                   r.drop_point_turn_rad}) {
     if (!std::isfinite(v)) return PredictStatus::kNotFinite;
   }
   // Every field's domain, before any is used (docs/c-api.md, PredictorLimits).
@@ -348,6 +349,7 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
   }
   if (!(r.cv_target > 0.0) || r.cv_target > limits_.max_cv_target) return PredictStatus::kOutOfRange;
   if (r.bout_width_m < 0.0 || r.bout_width_m > limits_.max_bout_width_m) return PredictStatus::kOutOfRange;
+  if (std::abs(r.drop_point_turn_rad) > kPi) return PredictStatus::kOutOfRange;
   if (tray_capacity(r.tray_width_m) == 0) return PredictStatus::kOutOfRange;
   if (!std::isnan(r.kernel_half_width_m)) {
     if (!std::isfinite(r.kernel_half_width_m)) return PredictStatus::kNotFinite;
@@ -495,6 +497,25 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const std::size_t upper_run = bracket->upper_weight == 0.0 ? lower_run : rows.first_run + bracket->upper;
   std::size_t n = interpolate(lower_run, upper_run, bracket->upper_weight, w.samples_, w.sample_weight_kg_);
   const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
+  // The drop point turned by Δ about the disc axis turns the fan of launches by Δ (a disc the same all
+  // round, fed continuously, has no phase of its own: test LookupDem.TurningTheFeedTurnsTheLaunchFan).
+  // The table's frame is the left disc's, centred on its axis; the right disc is its mirror image, so its
+  // drop point turns by Δ mirrored. Positions, velocities and spins turn alike (the landing cache reads
+  // the turned horizontal launch as any other).
+  if (request.drop_point_turn_rad != 0.0) {
+    const double c = std::cos(request.drop_point_turn_rad), s = std::sin(request.drop_point_turn_rad);
+    const auto turn = [&](float& x, float& y) {
+      const double x0 = x, y0 = y;
+      x = static_cast<float>(c * x0 - s * y0);
+      y = static_cast<float>(s * x0 + c * y0);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      tables::LaunchSample& sample = w.samples_[i];
+      turn(sample.x_m, sample.y_m);
+      turn(sample.vx_norm, sample.vy_norm);
+      turn(sample.wx_norm, sample.wy_norm);
+    }
+  }
 
   // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
   // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.

@@ -44,7 +44,8 @@ namespace spread::predict {
 enum class PredictStatus : std::uint8_t {
   kOk,
   kNotFinite,          // a NaN/Inf in rpm, height, wind, CV target, bout or tray width
-  kOutOfRange,         // height < 0 (or disc below the ground) or > max_disc_height_m, |wind| component >
+  kOutOfRange,         // height < 0 (or disc below the ground) or > max_disc_height_m, |drop point turn| > π,
+                       // |wind| component >
                        // max_wind_m_s, CV target <= 0 or > max_cv_target, bout width < 0 or >
                        // max_bout_width_m, tray width outside [min_tray_width_m, max_half_extent_m]
   kUnknownEffect,      // bits outside flight::kAllEffects | kTableEffects
@@ -72,6 +73,10 @@ struct PredictionRequest {
   // (metrics::accumulate_transverse_kernel). NaN: the automatic rule (kernel_half_width_for); 0: each
   // landing falls into one tray as a point mass.
   double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
+  // The drop point (feed position on the disc) turned from the table's by this angle (rad) about the disc
+  // axis, counter-clockwise seen from above for the left disc, mirrored for the right (both discs set
+  // alike, as a twin-disc spreader's mirrored scales are); within [−π, π].
+  double drop_point_turn_rad = 0.0;
 };
 
 // The automatic kernel half-width (m) for N launch samples whose landings (one disc) have lateral
