@@ -2,8 +2,9 @@
 # The build options tested off (docs/architecture.md, "Build options"). Each off-configuration is configured
 # and built in its own build directory, only the targets its checks need, and runs what it can:
 #   capi-only   SPREAD_CAPI_ONLY=ON: libspreadc.so and libspreadc.a alone; the package test
-#               (tests/capi/package_test.sh: installed, consumed with pkg-config, the static link line and
-#               find_package); the C example of docs/c-api.md (tests/capi/c_api_example.c) compiled with cc
+#               (tests/capi/package_test.sh: installed, only spread_* global in either library, consumed with
+#               pkg-config, the static link line, cc -static, find_package and a C++ program linked with
+#               -static-libstdc++); the C example of docs/c-api.md (tests/capi/c_api_example.c) compiled with cc
 #               as C99 against the build tree, outside CMake. Each program runs on the committed small
 #               table of the default scene (fuzz/corpus/capi_open/default_small.sqlite).
 #   no-extras   SPREAD_WITH_LCM=OFF, SPREAD_WITH_MPI=OFF, SPREAD_WITH_PLOTS=OFF: spread, lookup_builder and the
@@ -34,8 +35,8 @@ cmake --build "$dir" -j2
 check_absent "$dir" "\(CAIRO\|LCM\|MPI\|tomlplusplus\|CLI11\|GTest\)_" "libcairo|-lcairo|liblcm|libmpi|toml|CLI11|gtest" \
   "a dependency the C API does not need"
 # The package end to end: installed, then the C example of docs/c-api.md built outside the tree with
-# pkg-config (shared), the documented static link line and find_package(spreadc), each run on the committed
-# small table of the default scene.
+# pkg-config (shared), the documented static link line, cc -static and find_package(spreadc), and a C++
+# program with -static-libstdc++, each run on the committed small table of the default scene.
 "$root/tests/capi/package_test.sh" "$root" "$dir/package" "$root/fuzz/corpus/capi_open/default_small.sqlite" \
   "$root/tests/capi/c_api_example.c" "$dir" >"$dir/package.out" 2>&1 ||
   { cat "$dir/package.out"; fail "capi-only: the package test"; }
