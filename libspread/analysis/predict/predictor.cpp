@@ -1,6 +1,8 @@
 #include "libspread/analysis/predict/predictor.hpp"
 
 #include <algorithm>
+#include <memory>
+#include <new>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -611,7 +613,7 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   // Written into `out` in place (every request check is behind us): a Prediction with its bands is over
   // a kilobyte, and the C API's stack budget has no room for a second one.
   Prediction& p = out;
-  p = Prediction{};
+  std::construct_at(&p);  // reset in place: no temporary Prediction on the stack, also unoptimised
   p.trays = trays;
   p.flights = flights;
   p.disc_height_m = height_m;
@@ -624,7 +626,11 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   // Both working widths in O(T log T) (metrics::working_widths): the whole-tray scan is O(T²), 0.13 s at
   // 4,000 trays of 5 cm.
   const std::span<double> metrics_scratch(w.metrics_scratch_);
-  const metrics::WorkingWidths widths = metrics::working_widths(tray_mass, trays, request.cv_target, metrics_scratch);
+  // In the workspace, as the bookkeeping of the standard errors below: the bands make them hundreds of bytes,
+  // and the C API's stack budget holds in an unoptimised build too.
+  ::new (static_cast<void*>(&w.widths_))
+      metrics::WorkingWidths(metrics::working_widths(tray_mass, trays, request.cv_target, metrics_scratch));
+  const metrics::WorkingWidths& widths = w.widths_;
   const metrics::WorkingWidth& to_and_fro = widths.to_and_fro;
   const metrics::WorkingWidth& racetrack = widths.racetrack;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -636,25 +642,17 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   // pattern with one band per overlap).
   // Per band beside its PredictedBand (written in place into p): to-and-fro bands also carry the racetrack
   // CV at their bout and its standard error.
-  struct BandExtra {
-    const metrics::WidthBand* band;
-    double racetrack_cv = std::numeric_limits<double>::quiet_NaN();
-    double racetrack_cv_se = std::numeric_limits<double>::quiet_NaN();
-  };
-  BandExtra extras[2][kMaxBands];
+  using BandExtra = PredictorWorkspace::BandExtra;
+  const auto extras = [&w](int o) { return &w.band_extras_[static_cast<std::size_t>(o) * kMaxBands]; };
+  w.band_extras_.fill(BandExtra{});
   PredictedBand* band_out[2] = {p.bands_to_and_fro, p.bands_racetrack};
   const metrics::WorkingWidth* overlap_widths[2] = {&to_and_fro, &racetrack};
   const metrics::Overlap overlaps[2] = {metrics::Overlap::kToAndFro, metrics::Overlap::kRacetrack};
   // One standard error to compute: of the CV at `trays` trays, or (width_band set) of that band's
   // interpolated upper end W* = (n + (t − c_n)/(c_{n+1} − c_n))·w, whose gradient combines the gradients
   // of the two CVs around the crossing.
-  struct SeTask {
-    double* out;
-    metrics::Overlap overlap;
-    int trays;
-    const metrics::WidthBand* width_band;
-  };
-  SeTask tasks[2 + 2 * kMaxBands * 4];
+  using SeTask = PredictorWorkspace::SeTask;
+  SeTask* const tasks = w.se_tasks_.data();
   std::size_t task_count = 0;
   const int request_bout_trays =
       request.bout_width_m > 0.0 ? metrics::bout_tray_count(trays, request.bout_width_m) : 0;
@@ -669,7 +667,7 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     const metrics::WorkingWidth& ww = *overlap_widths[o];
     for (int b = 0; b < ww.stored_bands(); ++b) {
       const metrics::WidthBand& in = ww.bands[b];
-      BandExtra& extra = extras[o][b];
+      BandExtra& extra = extras(o)[b];
       PredictedBand& band = band_out[o][b];
       extra.band = &in;
       band.lower_m = in.lower_m;
@@ -737,7 +735,7 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     const int stored = overlap_widths[o]->stored_bands();
     for (int b = 0; b < stored; ++b) {
       PredictedBand& band = band_out[o][b];
-      if (extras[o][b].band->lowest_cv_trays == extras[o][b].band->trays_below) band.lowest_cv_se = band.cv_se;
+      if (extras(o)[b].band->lowest_cv_trays == extras(o)[b].band->trays_below) band.lowest_cv_se = band.cv_se;
       band.established = band.lowest_cv + kConfidence95 * band.lowest_cv_se <= request.cv_target;
       if (band.established) headline[o] = b;
     }
@@ -771,8 +769,8 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     p.bout_width_m = h.bout_width_m;
     p.cv_to_and_fro = h.cv;
     p.cv_to_and_fro_se = h.cv_se;
-    p.cv_racetrack = extras[0][headline[0]].racetrack_cv;
-    p.cv_racetrack_se = extras[0][headline[0]].racetrack_cv_se;
+    p.cv_racetrack = extras(0)[headline[0]].racetrack_cv;
+    p.cv_racetrack_se = extras(0)[headline[0]].racetrack_cv_se;
   } else {
     p.bout_width_m = 0.0;
     p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;

@@ -22,6 +22,7 @@
 // Sharing (as zstd's CDict and CCtx): the Predictor holds the read-only part (tables, quantile cells) and
 // one workspace of its own for predict(request, out). Threads that predict at once each make a
 // PredictorWorkspace from it and call predict(request, out, workspace), which only reads the Predictor.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -211,6 +212,23 @@ class PredictorWorkspace {
   // metrics::working_widths' scratch, also the bout buffer of cv_at_trays / cv_gradient (up to the widest
   // requested bout at the narrowest trays), so that no bout is built on the stack.
   std::pmr::vector<double> metrics_scratch_;
+  // predict()'s bookkeeping of the bands and their standard errors (kept here, not on the caller's stack):
+  // one standard error to compute — of the CV at `trays` trays, or (width_band set) of that band's upper
+  // end —, and per band the racetrack CV at a to-and-fro band's bout.
+  struct SeTask {
+    double* out;
+    metrics::Overlap overlap;
+    int trays;
+    const metrics::WidthBand* width_band;
+  };
+  struct BandExtra {
+    const metrics::WidthBand* band = nullptr;
+    double racetrack_cv = std::numeric_limits<double>::quiet_NaN();
+    double racetrack_cv_se = std::numeric_limits<double>::quiet_NaN();
+  };
+  std::array<SeTask, 2 + 2 * kMaxBands * 4> se_tasks_{};
+  std::array<BandExtra, 2 * kMaxBands> band_extras_{};
+  metrics::WorkingWidths widths_;
   double radial_mean_m_ = 0.0;  // R̄, ξ of the last fly_launches()
   double radial_width_m_ = 0.0;
 };
