@@ -123,9 +123,9 @@ spread_status refused(spread_status status, const spread::predict::Predictor& pr
 // Both spread_predict and spread_workspace_predict: `run(request, prediction)` predicts with the
 // workspace the entry point chose.
 template <typename Run>
-spread_status predict_with(const spread::predict::Predictor& predictor, const spread_prediction_def* def,
-                           spread_prediction* result, double* transverse_mass_fraction, size_t transverse_capacity,
-                           Run run) {
+spread_status predict_with(const spread::predict::Predictor& predictor, spread::predict::Prediction& prediction,
+                           const spread_prediction_def* def, spread_prediction* result,
+                           double* transverse_mass_fraction, size_t transverse_capacity, Run run) {
   using spread::capi::fail;
   if (def == nullptr || result == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_predict: def or result is NULL");
   // struct_size first: a definition not made by spread_prediction_def_default() is refused before any
@@ -153,7 +153,6 @@ spread_status predict_with(const spread::predict::Predictor& predictor, const sp
     if (v3_def) request.drop_point_turn_rad = def->drop_point_turn_rad;
     const bool v3 = v3_def && def->result_size >= spread::capi::kPredictionV3Size;
 
-    spread::predict::Prediction prediction;
     const auto status = run(request, prediction);
     if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, v2);
     copy_result(prediction, v2, v3, *result);
@@ -185,7 +184,7 @@ extern "C" spread_status spread_predict(spread_tables* tables, const spread_pred
     return spread::capi::fail(SPREAD_ERROR_BAD_HANDLE, "spread_predict: not a live spread_tables handle (closed?)");
   }
   spread::predict::Predictor& predictor = tables->predictor;
-  return predict_with(predictor, def, result, transverse_mass_fraction, transverse_capacity,
+  return predict_with(predictor, tables->prediction, def, result, transverse_mass_fraction, transverse_capacity,
                       [&](const spread::predict::PredictionRequest& request, spread::predict::Prediction& out) {
                         return predictor.predict(request, out);
                       });
@@ -200,7 +199,7 @@ extern "C" spread_status spread_workspace_predict(spread_workspace* workspace, c
                               "spread_workspace_predict: the workspace or its spread_tables handle is not live");
   }
   const spread::predict::Predictor& predictor = workspace->tables->predictor;
-  return predict_with(predictor, def, result, transverse_mass_fraction, transverse_capacity,
+  return predict_with(predictor, workspace->prediction, def, result, transverse_mass_fraction, transverse_capacity,
                       [&](const spread::predict::PredictionRequest& request, spread::predict::Prediction& out) {
                         return predictor.predict(request, out, workspace->workspace);
                       });

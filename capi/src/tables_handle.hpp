@@ -53,6 +53,9 @@ struct spread_tables {
   std::uint64_t tag = spread::capi::kTablesTag;  // first member: read before anything else
   spread::capi::CallerMemory memory;  // before the predictor: it outlives the predictor's buffers
   spread::predict::Predictor predictor;
+  // spread_predict's result before it is copied out (one thread at a time per handle): over a kilobyte with
+  // its bands, kept here rather than on the caller's stack (spread.h: under 8 KiB, unoptimised too).
+  spread::predict::Prediction prediction;
 };
 
 struct spread_workspace {
@@ -63,6 +66,7 @@ struct spread_workspace {
   // Its own copy of the handle's allocator: freeing the workspace never touches the handle.
   spread::capi::CallerMemory memory;
   spread::predict::PredictorWorkspace workspace;
+  spread::predict::Prediction prediction;  // as spread_tables::prediction, for this workspace's thread
 };
 
 namespace spread::capi {
