@@ -295,6 +295,18 @@ TEST(SampleInfluence, StandardErrorsInOnePassEqualOneByOne) {
     EXPECT_EQ(se[2], influence.standard_error(b)) << h;
     EXPECT_EQ(se[3], influence.standard_error(c)) << h;
     EXPECT_GT(se[0], 0.0);
+    // Blocks naming the same landings are the same samples; blocks in another order sum the same squares.
+    const SampleBlock same[1] = {SampleBlock{4, {0, 4}}};
+    const SampleInfluence by_block{x, w, 4, 1, trays, h, same};
+    EXPECT_EQ(by_block.standard_error(a), influence.standard_error(a)) << h;
+    const SampleBlock split[3] = {SampleBlock{2, {2, 6}}, SampleBlock{2, {0, SampleBlock::kNoLanding}},
+                                  SampleBlock{2, {SampleBlock::kNoLanding, 4}}};
+    const SampleInfluence unshared{x, w, 6, 1, trays, h, split};
+    double split_se[4];
+    unshared.standard_errors(gradients, split_se);
+    EXPECT_EQ(split_se[2], unshared.standard_error(b)) << h;
+    // Landings 0, 1 and 4, 5 as samples of their own instead of pairs: another variance.
+    EXPECT_NE(split_se[0], se[0]) << h;
   }
 }
 
@@ -431,6 +443,124 @@ namespace {
 // The drop point turned by Δ predicts what a table whose launches were all turned by Δ about the disc axis
 // predicts at the table's drop point: turned here by hand, in polar form, on a row and between rows, in
 // still air and in a crosswind, from the landing cache and flown.
+// Each disc at its own setting is that disc of the machine with both discs at that setting: the left
+// disc's landings are those of the alike prediction at the left setting, the right disc's those at the
+// right setting, each disc carries half the mass, and a launch sample of the table that feeds both discs
+// is counted once in the uncertainty.
+TEST(Predictor, EachDiscAtItsOwnSettingIsThatDiscOfTheAlikeMachine) {
+  Predictor predictor(testing::synthetic_contents());
+  struct Case {
+    const char* material;
+    DiscSetting left, right;
+  };
+  const Case cases[] = {
+      {"can", {640.0, 0.0}, {660.0, 0.0}},     // pairwise, the same rows
+      {"can", {600.0, 0.0}, {750.0, 0.3}},     // a row, and a pair with its own drop point
+      {"urea", {550.0, -0.2}, {650.0, 0.0}},   // quantile cells, the same rows
+      {"urea", {500.0, 0.0}, {700.0, 0.0}},    // two rows, no row shared
+  };
+  for (const bool cached : {true, false}) {
+    predictor.set_landing_cache_enabled(cached);
+    for (const Case& c : cases) {
+      for (const double wind_x_m_s : {0.0, 2.0}) {
+        const std::string where = std::string(c.material) + " " + std::to_string(c.left.rpm) + "/" +
+                                  std::to_string(c.right.rpm) + (cached ? " cached" : " flown") + " wind " +
+                                  std::to_string(wind_x_m_s);
+        PredictionRequest r = request(c.material, 0.0);
+        r.wind_x_m_s = wind_x_m_s;
+        r.disc_rpm = {c.left.rpm, c.right.rpm};
+        r.disc_drop_point_turn_rad = {c.left.drop_point_turn_rad, c.right.drop_point_turn_rad};
+        Prediction own;
+        ASSERT_EQ(predictor.predict(r, own), PredictStatus::kOk) << where;
+        EXPECT_EQ(own.discs[kLeftDisc], c.left) << where;
+        EXPECT_EQ(own.discs[kRightDisc], c.right) << where;
+        const std::vector<double> own_x = copy(own.landing_x_m), own_mass = copy(own.landing_mass_fraction);
+        const std::size_t own_samples = own.sample_count;
+        double tray_sum = 0.0;
+        for (double m : own.tray_mass_fraction) tray_sum += m;
+        EXPECT_NEAR(tray_sum + own.lost_mass_fraction, 1.0, 1e-9) << where;
+
+        std::size_t alike_samples[2] = {0, 0};
+        std::size_t left_count = 0;
+        for (int d = 0; d < 2; ++d) {
+          const DiscSetting setting = d == kLeftDisc ? c.left : c.right;
+          PredictionRequest alike = request(c.material, setting.rpm);
+          alike.wind_x_m_s = wind_x_m_s;
+          alike.drop_point_turn_rad = setting.drop_point_turn_rad;
+          Prediction both;
+          ASSERT_EQ(predictor.predict(alike, both), PredictStatus::kOk) << where;
+          const std::size_t n = both.landing_x_m.size() / 2;
+          alike_samples[d] = both.sample_count;
+          if (d == kLeftDisc) left_count = n;
+          const std::size_t own_first = d == kLeftDisc ? 0 : left_count;
+          ASSERT_GE(own_x.size(), own_first + n) << where;
+          double disc_mass = 0.0;
+          for (std::size_t i = 0; i < n; ++i) {
+            const double expected_x = both.landing_x_m[d == kLeftDisc ? i : n + i];
+            EXPECT_NEAR(own_x[own_first + i], expected_x, 1e-9) << where << " disc " << d << " landing " << i;
+            disc_mass += own_mass[own_first + i];
+          }
+          EXPECT_NEAR(disc_mass, 0.5, 1e-12) << where << " disc " << d;
+        }
+        EXPECT_EQ(own_x.size(), left_count + alike_samples[1]) << where;
+        // The samples behind it: the union of both discs' (rows shared are counted once).
+        const bool same_rows = c.left.rpm != 500.0 || c.right.rpm != 700.0;
+        EXPECT_EQ(own_samples, same_rows ? std::max(alike_samples[0], alike_samples[1])
+                                         : alike_samples[0] + alike_samples[1])
+            << where;
+        EXPECT_TRUE(std::isfinite(own.throw_width_se_m)) << where;
+      }
+    }
+  }
+}
+
+TEST(Predictor, PerDiscSettingsAlikeGiveTheBothDiscsPrediction) {
+  Predictor predictor(testing::synthetic_contents());
+  PredictionRequest both = request("urea", 620.0);
+  both.drop_point_turn_rad = 0.25;
+  Prediction expected;
+  ASSERT_EQ(predictor.predict(both, expected), PredictStatus::kOk);
+  const std::vector<double> expected_trays = copy(expected.tray_mass_fraction);
+  PredictionRequest each = request("urea", 0.0);
+  each.disc_rpm = {620.0, 620.0};
+  each.disc_drop_point_turn_rad = {0.25, 0.25};
+  Prediction got;
+  ASSERT_EQ(predictor.predict(each, got), PredictStatus::kOk);
+  EXPECT_EQ(copy(got.tray_mass_fraction), expected_trays);
+  EXPECT_EQ(got.working_width_to_and_fro_m, expected.working_width_to_and_fro_m);
+  EXPECT_EQ(got.cv_to_and_fro_se, expected.cv_to_and_fro_se);
+}
+
+TEST(Predictor, RefusesPerDiscSettingsOutsideTheTable) {
+  Predictor predictor(testing::synthetic_contents());
+  Prediction out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  PredictionRequest r = request("can", 600.0);
+  r.disc_rpm = {nan, 900.0};
+  EXPECT_EQ(predictor.predict(r, out), PredictStatus::kRpmOutsideTable);
+  r.disc_rpm = {450.0, nan};
+  EXPECT_EQ(predictor.predict(r, out), PredictStatus::kRpmOutsideTable);
+  r.disc_rpm = {nan, std::numeric_limits<double>::infinity()};
+  EXPECT_EQ(predictor.predict(r, out), PredictStatus::kNotFinite);
+  r.disc_rpm = {650.0, 700.0};  // both given: the both-discs rpm would be dropped
+  EXPECT_EQ(predictor.predict(r, out), PredictStatus::kOutOfRange);
+  r.rpm = 0.0;
+  EXPECT_EQ(predictor.predict(r, out), PredictStatus::kOk);
+  r.disc_drop_point_turn_rad = {nan, 3.5};
+  EXPECT_EQ(predictor.predict(r, out), PredictStatus::kOutOfRange);
+  r.disc_drop_point_turn_rad = {0.1, -0.1};
+  r.drop_point_turn_rad = 0.2;
+  EXPECT_EQ(predictor.predict(r, out), PredictStatus::kOutOfRange);
+  // A one-disc machine has no right disc to set.
+  Predictor single(testing::synthetic_contents(testing::default_synthetic_materials(), 1));
+  PredictionRequest one = request("can", 600.0);
+  one.disc_rpm = {nan, 650.0};
+  EXPECT_EQ(single.predict(one, out), PredictStatus::kOutOfRange);
+  one.disc_rpm = {650.0, nan};
+  one.rpm = 0.0;
+  EXPECT_EQ(single.predict(one, out), PredictStatus::kOk);
+}
+
 TEST(Predictor, DropPointTurnIsTheTableTurnedAboutTheDiscAxis) {
   constexpr double kTurn_rad = 0.35;
   tables::TableContents turned_contents = testing::synthetic_contents();

@@ -352,6 +352,25 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
   if (!(r.cv_target > 0.0) || r.cv_target > limits_.max_cv_target) return PredictStatus::kOutOfRange;
   if (r.bout_width_m < 0.0 || r.bout_width_m > limits_.max_bout_width_m) return PredictStatus::kOutOfRange;
   if (std::abs(r.drop_point_turn_rad) > kPi) return PredictStatus::kOutOfRange;
+  // Each disc's own setting: NaN is "as both discs"; an infinity is not finite.
+  for (std::size_t d = 0; d < 2; ++d) {
+    const double rpm = r.disc_rpm[d], turn_rad = r.disc_drop_point_turn_rad[d];
+    if (std::isinf(rpm) || std::isinf(turn_rad)) return PredictStatus::kNotFinite;
+    if (std::abs(turn_rad) > kPi) return PredictStatus::kOutOfRange;
+    if (d == kRightDisc && contents_.machine.disc_count < 2 && (!std::isnan(rpm) || !std::isnan(turn_rad))) {
+      return PredictStatus::kOutOfRange;
+    }
+  }
+  const std::size_t discs = contents_.machine.disc_count < 2 ? 1 : 2;
+  const auto all_given = [&](const std::array<double, 2>& values) {
+    for (std::size_t d = 0; d < discs; ++d) {
+      if (std::isnan(values[d])) return false;
+    }
+    return true;
+  };
+  // A both-discs value that no disc would use is refused, not dropped.
+  if (all_given(r.disc_rpm) && r.rpm != 0.0) return PredictStatus::kOutOfRange;
+  if (all_given(r.disc_drop_point_turn_rad) && r.drop_point_turn_rad != 0.0) return PredictStatus::kOutOfRange;
   if (tray_capacity(r.tray_width_m) == 0) return PredictStatus::kOutOfRange;
   if (!std::isnan(r.kernel_half_width_m)) {
     if (!std::isfinite(r.kernel_half_width_m)) return PredictStatus::kNotFinite;
@@ -363,9 +382,54 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
   return PredictStatus::kOk;
 }
 
+DiscSetting disc_setting(const PredictionRequest& request, int disc) {
+  const double rpm = request.disc_rpm[static_cast<std::size_t>(disc)];
+  const double turn_rad = request.disc_drop_point_turn_rad[static_cast<std::size_t>(disc)];
+  return {std::isnan(rpm) ? request.rpm : rpm, std::isnan(turn_rad) ? request.drop_point_turn_rad : turn_rad};
+}
+
+std::size_t Predictor::disc_samples(PredictorWorkspace& w, std::size_t lower_run, std::size_t upper_run, double t,
+                                    double drop_point_turn_rad, std::size_t max_flights,
+                                    std::size_t flights_per_sample) const {
+  std::size_t n = interpolate(lower_run, upper_run, t, w.samples_, w.sample_weight_kg_);
+  // The drop point turned by Δ about the disc axis turns the fan of launches by Δ (a disc the same all
+  // round, fed continuously, has no phase of its own: test LookupDem.TurningTheFeedTurnsTheLaunchFan).
+  // The table's frame is the left disc's, centred on its axis; the right disc is its mirror image, so its
+  // drop point turns by Δ mirrored. Positions, velocities and spins turn alike (the landing cache reads
+  // the turned horizontal launch as any other).
+  if (drop_point_turn_rad != 0.0) {
+    const double c = std::cos(drop_point_turn_rad), s = std::sin(drop_point_turn_rad);
+    const auto turn = [&](float& x, float& y) {
+      const double x0 = x, y0 = y;
+      x = static_cast<float>(c * x0 - s * y0);
+      y = static_cast<float>(s * x0 + c * y0);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      tables::LaunchSample& sample = w.samples_[i];
+      turn(sample.x_m, sample.y_m);
+      turn(sample.vx_norm, sample.vy_norm);
+      turn(sample.wx_norm, sample.wy_norm);
+    }
+  }
+  if (max_flights > 0 && flights_per_sample * n > max_flights) {
+    // The flight bound: every k-th sample (a systematic subsample; each keeps its weight, and the weights
+    // are normalised by the caller), the middle one of each stride so that the first and last samples do
+    // not always count.
+    const std::size_t stride = (flights_per_sample * n + max_flights - 1) / max_flights;
+    std::size_t kept = 0;
+    for (std::size_t i = stride / 2; i < n; i += stride, ++kept) {
+      w.samples_[kept] = w.samples_[i];
+      w.sample_weight_kg_[kept] = w.sample_weight_kg_[i];
+    }
+    n = kept;
+  }
+  return n;
+}
+
 std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double omega_rad_s, double height_m,
-                                    const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
-                                    double density_kg_m3, const LandingCache* cache, double t) const {
+                                    const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
+                                    std::size_t right_offset, double density_kg_m3, const LandingCache* cache,
+                                    double t) const {
   const auto& machine = contents_.machine;
   const bool two_discs = machine.disc_count == 2;
   const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
@@ -383,12 +447,14 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
     launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
     launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
   };
-  // Flight f < n is left-disc sample f; n <= f < 2n (lateral wind) is the right disc's mirror of sample
-  // f − n. They are flown kFlightChunk at a time: flight::fly_many flies several at once in SIMD lanes
-  // where the effects allow and gives fly_to_ground's landings bit for bit, so the chunking changes no
-  // result, and the launch and landing buffers stay small (a workspace per thread: docs/c-api.md).
-  const bool right_flown = two_discs && fly_right_disc;
-  const std::size_t flights = right_flown ? 2 * n : n;
+  // Flight f < n is left-disc sample f; n <= f < 2n (right disc flown with the left) is the right disc's
+  // mirror of sample f − n; with the right disc alone flight f is its mirror of sample f. They are flown
+  // kFlightChunk at a time: flight::fly_many flies several at once in SIMD lanes where the effects allow
+  // and gives fly_to_ground's landings bit for bit, so the chunking changes no result, and the launch and
+  // landing buffers stay small (a workspace per thread: docs/c-api.md).
+  const bool left_flown = discs != DiscFlights::kRightOnly;
+  const bool right_flown = discs == DiscFlights::kLeftAndRightFlown || discs == DiscFlights::kRightOnly;
+  const std::size_t flights = discs == DiscFlights::kLeftAndRightFlown ? 2 * n : n;
   std::size_t radial_count = 0;
   double node_weight[LandingCache::kPairNodes];
   if (cache != nullptr) cache->node_weights(t, node_weight);
@@ -408,16 +474,17 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
       w.radial_weight_[radial_count] = weight;
       ++radial_count;
     }
-    if (!two_discs) return;
-    if (!right_flown) {  // the right disc is the left one's mirror image
-      w.landing_x_m_[n + i] = half_spacing_m - x;
-      w.landing_y_m_[n + i] = y;
+    if (discs == DiscFlights::kLeftOnly) return;
+    if (discs == DiscFlights::kLeftAndMirror) {  // the right disc is the left one's mirror image
+      w.landing_x_m_[right_offset + i] = half_spacing_m - x;
+      w.landing_y_m_[right_offset + i] = y;
     }
-    w.landing_weight_[n + i] = weight;
+    w.landing_weight_[right_offset + i] = weight;
   };
   const auto record_right = [&](std::size_t i, bool landed, double x, double y) {
-    w.landing_x_m_[n + i] = landed ? x + half_spacing_m : nan;
-    w.landing_y_m_[n + i] = landed ? y : nan;
+    w.landing_x_m_[right_offset + i] = landed ? x + half_spacing_m : nan;
+    w.landing_y_m_[right_offset + i] = landed ? y : nan;
+    if (!left_flown) w.landing_weight_[right_offset + i] = w.sample_weight_kg_[i];
   };
   if (cache != nullptr) {
     // Sample by sample, both discs at once: a granule's cubics are read from memory once. Only the
@@ -426,8 +493,10 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
       const tables::LaunchSample& s = w.samples_[i];
       const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
       double x = 0.0, y = 0.0;
-      cache->landing(i, node_weight, LandingCache::Launch{s.x_m, s.y_m, vx_m_s, vy_m_s}, wind_x_m_s, wind_y_m_s, x, y);
-      record_left(i, true, x, y);
+      if (left_flown) {
+        cache->landing(i, node_weight, LandingCache::Launch{s.x_m, s.y_m, vx_m_s, vy_m_s}, wind_x_m_s, wind_y_m_s, x, y);
+        record_left(i, true, x, y);
+      }
       if (!right_flown) continue;
       const double mirror_x_m = -1.0 * s.x_m, mirror_vx_m_s = rim_speed_m_s * (-1.0 * s.vx_norm);
       cache->landing(i, node_weight, LandingCache::Launch{mirror_x_m, s.y_m, mirror_vx_m_s, vy_m_s}, wind_x_m_s,
@@ -435,11 +504,12 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
       record_right(i, true, x, y);
     }
   } else {
+    const std::size_t first_right = left_flown ? n : 0;  // flights from here on are the right disc's
     for (std::size_t first = 0; first < flights; first += kFlightChunk) {
       const std::size_t count = std::min(kFlightChunk, flights - first);
       for (std::size_t c = 0; c < count; ++c) {
         const std::size_t f = first + c;
-        launch_of(w.samples_[f < n ? f : f - n], f < n ? 1.0 : -1.0, c);
+        launch_of(w.samples_[f < first_right ? f : f - first_right], f < first_right ? 1.0 : -1.0, c);
       }
       flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
                        settings_, std::span(w.landings_).first(count));
@@ -447,19 +517,21 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
         const std::size_t f = first + c;
         const flight::Landing& landing = w.landings_[c];
         const double x = landing.state.position_m.x(), y = landing.state.position_m.y();
-        if (f >= n) {
-          record_right(f - n, landing.landed, x, y);
+        if (f >= first_right) {
+          record_right(f - first_right, landing.landed, x, y);
         } else {
           record_left(f, landing.landed, x, y);
         }
       }
     }
   }
-  const auto stats = metrics::radial_statistics(std::span(w.radial_x_m_).first(radial_count),
-                                                std::span(w.radial_y_m_).first(radial_count),
-                                                std::span(w.radial_weight_).first(radial_count));
-  w.radial_mean_m_ = stats.mean_radius_m;
-  w.radial_width_m_ = stats.radial_width_m;
+  if (left_flown) {
+    const auto stats = metrics::radial_statistics(std::span(w.radial_x_m_).first(radial_count),
+                                                  std::span(w.radial_y_m_).first(radial_count),
+                                                  std::span(w.radial_weight_).first(radial_count));
+    w.radial_mean_m_ = stats.mean_radius_m;
+    w.radial_width_m_ = stats.radial_width_m;
+  }
   return cache != nullptr ? 0 : flights;
 }
 
@@ -489,41 +561,33 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const auto material_index = find_material(request.material);
   if (!material_index) return PredictStatus::kUnknownMaterial;
   const MaterialRows& rows = materials_[*material_index];
-  const auto bracket =
-      bracket_rpm(std::span(run_rpm_).subspan(rows.first_run, rows.run_count), request.rpm);
-  if (!bracket) return PredictStatus::kRpmOutsideTable;
-
-  // 1–2. Launch samples at this rpm (normalised), then scaled during the flight loop.
-  // On a row (t = 0) that row alone.
-  const std::size_t lower_run = rows.first_run + bracket->lower;
-  const std::size_t upper_run = bracket->upper_weight == 0.0 ? lower_run : rows.first_run + bracket->upper;
-  std::size_t n = interpolate(lower_run, upper_run, bracket->upper_weight, w.samples_, w.sample_weight_kg_);
-  const double omega_rad_s = request.rpm * 2.0 * kPi / 60.0;
-  // The drop point turned by Δ about the disc axis turns the fan of launches by Δ (a disc the same all
-  // round, fed continuously, has no phase of its own: test LookupDem.TurningTheFeedTurnsTheLaunchFan).
-  // The table's frame is the left disc's, centred on its axis; the right disc is its mirror image, so its
-  // drop point turns by Δ mirrored. Positions, velocities and spins turn alike (the landing cache reads
-  // the turned horizontal launch as any other).
-  if (request.drop_point_turn_rad != 0.0) {
-    const double c = std::cos(request.drop_point_turn_rad), s = std::sin(request.drop_point_turn_rad);
-    const auto turn = [&](float& x, float& y) {
-      const double x0 = x, y0 = y;
-      x = static_cast<float>(c * x0 - s * y0);
-      y = static_cast<float>(s * x0 + c * y0);
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-      tables::LaunchSample& sample = w.samples_[i];
-      turn(sample.x_m, sample.y_m);
-      turn(sample.vx_norm, sample.vy_norm);
-      turn(sample.wx_norm, sample.wy_norm);
-    }
+  const bool two_discs = contents_.machine.disc_count == 2;
+  const DiscSetting left = disc_setting(request, kLeftDisc);
+  const DiscSetting right = two_discs ? disc_setting(request, kRightDisc) : left;
+  // Discs at their own settings each get their own samples, flights and landings; alike, the right disc
+  // is the left one's mirror image (flown as such only in a lateral wind).
+  const bool per_disc = two_discs && !(left == right);
+  struct DiscRows {
+    std::size_t lower_run = 0, upper_run = 0;
+    double t = 0.0;
+  };
+  DiscRows disc_rows[2];
+  const DiscSetting settings[2] = {left, right};
+  for (int d = 0; d < (per_disc ? 2 : 1); ++d) {
+    const auto bracket = bracket_rpm(std::span(run_rpm_).subspan(rows.first_run, rows.run_count), settings[d].rpm);
+    if (!bracket) return PredictStatus::kRpmOutsideTable;
+    // On a row (t = 0) that row alone.
+    disc_rows[d].lower_run = rows.first_run + bracket->lower;
+    disc_rows[d].upper_run = bracket->upper_weight == 0.0 ? disc_rows[d].lower_run : rows.first_run + bracket->upper;
+    disc_rows[d].t = bracket->upper_weight;
   }
+  if (!per_disc) disc_rows[1] = disc_rows[0];
 
   // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
   // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
   flight::EffectSet effects = request.effects & flight::kAllEffects;
   if ((request.effects & kTableEffects) != 0) {
-    effects |= run_effects_[lower_run] | run_effects_[upper_run];
+    for (const DiscRows& r : disc_rows) effects |= run_effects_[r.lower_run] | run_effects_[r.upper_run];
     if (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0) effects |= flight::kWind;
   }
   flight::Air air;
@@ -533,42 +597,119 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   } else {
     effects &= ~flight::EffectSet{flight::kWind};
   }
-  const bool two_discs = contents_.machine.disc_count == 2;
-  const bool fly_right_disc = two_discs && windy && request.wind_x_m_s != 0.0;
-  const LandingCache* cache = landing_cache_for(lower_run, upper_run, height_m, effects, air);
-  if (cache == nullptr && limits_.max_flights > 0) {
-    // The flight bound: every k-th sample (a systematic subsample; each keeps its weight, and the weights
-    // are normalised below), the middle one of each stride so that the first and last samples do not
-    // always count.
-    const std::size_t per_sample = fly_right_disc ? 2 : 1;
-    if (per_sample * n > limits_.max_flights) {
-      const std::size_t stride = (per_sample * n + limits_.max_flights - 1) / limits_.max_flights;
-      std::size_t kept = 0;
-      for (std::size_t i = stride / 2; i < n; i += stride, ++kept) {
-        w.samples_[kept] = w.samples_[i];
-        w.sample_weight_kg_[kept] = w.sample_weight_kg_[i];
-      }
-      n = kept;
-    }
-  }
+  const bool fly_right_disc = two_discs && (per_disc || (windy && request.wind_x_m_s != 0.0));
+  const double density_kg_m3 = contents_.materials[rows.material].density_kg_m3;
+  const auto omega_of = [](double rpm) { return rpm * 2.0 * kPi / 60.0; };
 
-  // 3–4. Flights, machine frame.
-  const int flights = static_cast<int>(fly_launches(w, n, omega_rad_s, height_m, air, effects, fly_right_disc,
-                                                    contents_.materials[rows.material].density_kg_m3, cache,
-                                                    bracket->upper_weight));
-  const std::size_t landings = two_discs ? 2 * n : n;
+  // 1–4. Launch samples at each disc's setting (normalised, scaled during the flight loop), flights,
+  // machine frame. The sample blocks say which landings each launch sample of the table owns (the
+  // standard errors' samples, SampleInfluence).
+  int flights = 0;
+  std::size_t n = 0;  // left-disc landings; the right disc's start at n
+  std::size_t landings = 0;
+  SampleBlock blocks[kMaxSampleBlocks];
+  std::size_t block_count = 0;
+  std::size_t sample_total = 0;  // independent launch samples behind the pattern
+  if (!per_disc) {
+    const DiscRows& r = disc_rows[0];
+    const LandingCache* cache = landing_cache_for(r.lower_run, r.upper_run, height_m, effects, air);
+    const std::size_t max_flights = cache == nullptr ? limits_.max_flights : 0;
+    n = disc_samples(w, r.lower_run, r.upper_run, r.t, left.drop_point_turn_rad, max_flights, fly_right_disc ? 2 : 1);
+    const DiscFlights discs = !two_discs        ? DiscFlights::kLeftOnly
+                              : fly_right_disc ? DiscFlights::kLeftAndRightFlown
+                                               : DiscFlights::kLeftAndMirror;
+    flights = static_cast<int>(
+        fly_launches(w, n, omega_of(left.rpm), height_m, air, effects, discs, n, density_kg_m3, cache, r.t));
+    landings = two_discs ? 2 * n : n;
+    sample_total = n;
+  } else {
+    // One disc after the other through the same sample buffers; each disc's landings carry half of the
+    // machine's mass (both discs are fed alike), whatever the count of its samples.
+    bool thinned = false;
+    std::size_t disc_count[2] = {0, 0};
+    for (int d = 0; d < 2; ++d) {
+      const DiscRows& r = disc_rows[d];
+      const LandingCache* cache = landing_cache_for(r.lower_run, r.upper_run, height_m, effects, air);
+      const std::size_t max_flights = cache == nullptr ? limits_.max_flights / 2 : 0;
+      const std::size_t count = disc_samples(w, r.lower_run, r.upper_run, r.t, settings[d].drop_point_turn_rad,
+                                             max_flights, 1);
+      const std::size_t unthinned = r.lower_run == r.upper_run || pairwise(r.lower_run, r.upper_run)
+                                        ? run_samples(r.lower_run).size()
+                                        : run_samples(r.lower_run).size() + run_samples(r.upper_run).size();
+      thinned = thinned || count != unthinned;
+      disc_count[d] = count;
+      if (d == kLeftDisc) n = count;
+      flights += static_cast<int>(fly_launches(w, count, omega_of(settings[d].rpm), height_m, air, effects,
+                                               d == kLeftDisc ? DiscFlights::kLeftOnly : DiscFlights::kRightOnly,
+                                               n, density_kg_m3, cache, r.t));
+      double disc_kg = 0.0;
+      const std::span<double> disc_weights = std::span(w.landing_weight_).subspan(d == kLeftDisc ? 0 : n, count);
+      for (double weight : disc_weights) disc_kg += weight;
+      for (double& weight : disc_weights) weight = disc_kg > 0.0 ? 0.5 * weight / disc_kg : 0.0;
+    }
+    landings = disc_count[0] + disc_count[1];
+    // A launch sample of the table is one sample however many discs it feeds: the discs' blocks by source
+    // row (interpolate(): a row alone or rows pairwise is one block of the lower row's samples, quantile
+    // cells the lower row's then the upper row's), a source both discs draw on shared. Thinned samples
+    // are taken as the discs' own.
+    if (thinned) {
+      blocks[block_count++] = SampleBlock{disc_count[0], {0, SampleBlock::kNoLanding}};
+      blocks[block_count++] = SampleBlock{disc_count[1], {SampleBlock::kNoLanding, n}};
+    } else {
+      struct RowBlock {
+        std::size_t run, count, first_landing;
+      };
+      // Rows that interpolate pairwise draw the same granules (the analytic builder's sample k is one
+      // granule in every row): such a chain of rows is one source, named by its first row.
+      const auto source_of = [&](std::size_t run) {
+        while (run > rows.first_run && pairwise(run - 1, run)) --run;
+        return run;
+      };
+      RowBlock row_blocks[2][2];
+      std::size_t row_block_count[2] = {0, 0};
+      for (int d = 0; d < 2; ++d) {
+        const DiscRows& r = disc_rows[d];
+        const std::size_t first = d == kLeftDisc ? 0 : n;
+        const std::size_t lower_count = run_samples(r.lower_run).size();
+        row_blocks[d][row_block_count[d]++] = {source_of(r.lower_run), lower_count, first};
+        if (r.lower_run != r.upper_run && !pairwise(r.lower_run, r.upper_run)) {
+          row_blocks[d][row_block_count[d]++] = {source_of(r.upper_run), run_samples(r.upper_run).size(),
+                                                 first + lower_count};
+        }
+      }
+      bool right_shared[2] = {false, false};
+      for (std::size_t i = 0; i < row_block_count[0]; ++i) {
+        SampleBlock block{row_blocks[0][i].count, {row_blocks[0][i].first_landing, SampleBlock::kNoLanding}};
+        for (std::size_t j = 0; j < row_block_count[1]; ++j) {
+          if (row_blocks[1][j].run == row_blocks[0][i].run && row_blocks[1][j].count == row_blocks[0][i].count) {
+            block.first_landing[kRightDisc] = row_blocks[1][j].first_landing;
+            right_shared[j] = true;
+          }
+        }
+        blocks[block_count++] = block;
+      }
+      for (std::size_t j = 0; j < row_block_count[1]; ++j) {
+        if (!right_shared[j]) {
+          blocks[block_count++] = SampleBlock{row_blocks[1][j].count, {SampleBlock::kNoLanding, row_blocks[1][j].first_landing}};
+        }
+      }
+    }
+    for (std::size_t b = 0; b < block_count; ++b) sample_total += blocks[b].count;
+  }
   const std::span<const double> xs = std::span(w.landing_x_m_).first(landings);
   const std::span<const double> ys = std::span(w.landing_y_m_).first(landings);
   const std::span<double> weights = std::span(w.landing_weight_).first(landings);
 
   // 5. Kernel, trays fitted to the landings plus the kernel (symmetric about the centre line), capped at
   // the widest layout.
-  double total_kg = 0.0;
-  for (double weight : weights) total_kg += weight;
-  // Weights as fractions of the machine's discharged mass: the tray contents then read directly as the
-  // share of the application rate per tray.
-  const double scale = total_kg > 0.0 ? 1.0 / total_kg : 0.0;
-  for (double& weight : weights) weight *= scale;
+  if (!per_disc) {
+    double total_kg = 0.0;
+    for (double weight : weights) total_kg += weight;
+    // Weights as fractions of the machine's discharged mass: the tray contents then read directly as the
+    // share of the application rate per tray.
+    const double scale = total_kg > 0.0 ? 1.0 / total_kg : 0.0;
+    for (double& weight : weights) weight *= scale;
+  }
   double kernel_m = request.kernel_half_width_m;
   if (std::isnan(kernel_m)) {
     // One disc's lateral spread; with two discs the root mean square of both, so that the choice is the
@@ -578,7 +719,8 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
       const double right_sd_m = lateral_sd_m(xs.subspan(n), weights.subspan(n));
       sd_m = std::sqrt(0.5 * (sd_m * sd_m + right_sd_m * right_sd_m));
     }
-    kernel_m = kernel_half_width_for(sd_m, n);
+    // Discs at their own settings: the samples per disc on average.
+    kernel_m = kernel_half_width_for(sd_m, per_disc ? (landings + 1) / 2 : n);
   }
   double half_extent_m = request.tray_width_m;
   for (double x : xs) {
@@ -618,7 +760,9 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   p.flights = flights;
   p.disc_height_m = height_m;
   p.lost_mass_fraction = std::clamp(lost, 0.0, 1.0);
-  p.sample_count = n;
+  p.sample_count = sample_total;
+  p.discs[kLeftDisc] = left;
+  p.discs[kRightDisc] = two_discs ? right : DiscSetting{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
   p.effects = effects;
   p.kernel_half_width_m = kernel_m;
   const metrics::ThrowExtent extent = metrics::throw_extent(tray_mass, trays, 0.99);
@@ -698,7 +842,8 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   }
   // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
   // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
-  const SampleInfluence influence{xs, weights, n, two_discs ? 2u : 1u, trays, kernel_m};
+  const SampleInfluence influence{xs,     weights, sample_total, two_discs ? 2u : 1u, trays, kernel_m,
+                                  std::span<const SampleBlock>(blocks, block_count)};
   const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m};
   const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
   const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);

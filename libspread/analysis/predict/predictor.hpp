@@ -45,13 +45,14 @@ namespace spread::predict {
 enum class PredictStatus : std::uint8_t {
   kOk,
   kNotFinite,          // a NaN/Inf in rpm, height, wind, CV target, bout or tray width
-  kOutOfRange,         // height < 0 (or disc below the ground) or > max_disc_height_m, |drop point turn| > π,
-                       // |wind| component >
-                       // max_wind_m_s, CV target <= 0 or > max_cv_target, bout width < 0 or >
-                       // max_bout_width_m, tray width outside [min_tray_width_m, max_half_extent_m]
+  kOutOfRange,         // height < 0 (or disc below the ground) or > max_disc_height_m, |drop point turn| > π
+                       // (either disc's), |wind| component > max_wind_m_s, CV target <= 0 or > max_cv_target,
+                       // bout width < 0 or > max_bout_width_m, tray width outside [min_tray_width_m,
+                       // max_half_extent_m], a right-disc setting on a one-disc machine, rpm or
+                       // drop_point_turn_rad not 0 while both discs' own are given
   kUnknownEffect,      // bits outside flight::kAllEffects | kTableEffects
   kUnknownMaterial,
-  kRpmOutsideTable,
+  kRpmOutsideTable,    // rpm (or a disc's own rpm) outside the material's rows
 };
 const char* to_string(PredictStatus status);
 
@@ -78,7 +79,24 @@ struct PredictionRequest {
   // axis, counter-clockwise seen from above for the left disc, mirrored for the right (both discs set
   // alike, as a twin-disc spreader's mirrored scales are); within [−π, π].
   double drop_point_turn_rad = 0.0;
+  // Each disc's own setting (kLeftDisc, kRightDisc as the driver sees them), NaN: the both-discs value above.
+  // A disc turned by its own drop point turns as drop_point_turn_rad does for it (mirrored on the right).
+  // When both discs' rpm are given `rpm` is unused and must be 0, and likewise drop_point_turn_rad
+  // (a value that would be dropped is refused). A one-disc machine has only kLeftDisc.
+  std::array<double, 2> disc_rpm = {std::numeric_limits<double>::quiet_NaN(),
+                                    std::numeric_limits<double>::quiet_NaN()};
+  std::array<double, 2> disc_drop_point_turn_rad = {std::numeric_limits<double>::quiet_NaN(),
+                                                    std::numeric_limits<double>::quiet_NaN()};
 };
+inline constexpr int kLeftDisc = 0, kRightDisc = 1;
+
+// The speed (r/min) and drop-point turn (rad) disc `disc` runs at under this request.
+struct DiscSetting {
+  double rpm = 0.0;
+  double drop_point_turn_rad = 0.0;
+  bool operator==(const DiscSetting&) const = default;
+};
+DiscSetting disc_setting(const PredictionRequest& request, int disc);
 
 // The automatic kernel half-width (m) for N launch samples whose landings (one disc) have lateral
 // standard deviation sd_x_m: h = kKernelScale · sd_x · N^(−1/5) (the rate of Silverman's rule; the
@@ -120,6 +138,7 @@ struct Prediction {
   double mean_radius_m = 0.0;               // R̄ of the left disc about its centre, Eq. 51
   double radial_width_m = 0.0;              // ξ, Eq. 52
   double disc_height_m = 0.0;               // as used
+  DiscSetting discs[2];                     // each disc's setting as used (kLeftDisc, kRightDisc)
   double lost_mass_fraction = 0.0;          // outside the trays or not landed
   metrics::TrayLayout trays;
   int flights = 0;                          // trajectories integrated (0: landings from the cache)
@@ -315,9 +334,22 @@ class Predictor {
   // The cache that serves this request, or null (fly).
   const LandingCache* landing_cache_for(std::size_t lower_run, std::size_t upper_run, double height_m,
                                         flight::EffectSet effects, const flight::Air& air) const;
+  // Which discs fly_launches() lands from the samples in the workspace: the left disc alone (one disc, or
+  // the left of two at their own settings), the left and its mirror image (still air across), the left
+  // and the right flown as its mirror (a lateral wind), or the right disc alone (at its own setting).
+  enum class DiscFlights : std::uint8_t { kLeftOnly, kLeftAndMirror, kLeftAndRightFlown, kRightOnly };
+  // Lands the workspace's first sample_count samples: left-disc landing i at i, right-disc landing i at
+  // right_offset + i (machine frame, with each landing's weight); R̄ and ξ when the left disc is landed.
+  // Returns the flights integrated.
   std::size_t fly_launches(PredictorWorkspace& w, std::size_t sample_count, double omega_rad_s, double height_m,
-                           const flight::Air& air, flight::EffectSet effects, bool fly_right_disc,
-                           double density_kg_m3, const LandingCache* cache, double t) const;
+                           const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
+                           std::size_t right_offset, double density_kg_m3, const LandingCache* cache,
+                           double t) const;
+  // Steps 1–2 of predict() for one disc: its samples at `setting` into the workspace (turned to its drop
+  // point), thinned to at most max_flights flights (flights_per_sample per sample); the count, and the
+  // sample blocks (by source row, for SampleInfluence) with their first landing at landing_offset.
+  std::size_t disc_samples(PredictorWorkspace& w, std::size_t lower_run, std::size_t upper_run, double t,
+                           double drop_point_turn_rad, std::size_t max_flights, std::size_t flights_per_sample) const;
 
   tables::TableContents contents_;  // without the samples (in samples_)
   PredictorLimits limits_;

@@ -105,21 +105,42 @@ void kernel_dots(double x, std::span<const std::span<const double>> gradients, c
   }
 }
 
+// Calls visit(s, landing) for every landing of sample s, sample by sample in order (s = 0 … n − 1), and
+// done(s) after each sample's landings.
+template <typename Visit, typename Done>
+void for_each_sample(const SampleInfluence& in, Visit visit, Done done) {
+  const std::size_t n = in.sample_count;
+  if (in.blocks.empty()) {
+    for (std::size_t s = 0; s < n; ++s) {
+      for (unsigned d = 0; d < in.landings_per_sample; ++d) visit(s + d * n);
+      done();
+    }
+    return;
+  }
+  for (const SampleBlock& block : in.blocks) {
+    for (std::size_t j = 0; j < block.count; ++j) {
+      for (std::size_t first : block.first_landing) {
+        if (first != SampleBlock::kNoLanding) visit(first + j);
+      }
+      done();
+    }
+  }
+}
+
 template <typename PerLanding>
 double influence_standard_error(const SampleInfluence& in, PerLanding per_landing) {
   const std::size_t n = in.sample_count;
   if (n < 2) return std::numeric_limits<double>::quiet_NaN();
   double sum = 0.0, sum_squares = 0.0;
-  for (std::size_t s = 0; s < n; ++s) {
-    double z = 0.0;
-    for (unsigned d = 0; d < in.landings_per_sample; ++d) {
-      const std::size_t l = s + d * n;
-      z += in.weight[l] * per_landing(in.x_m[l]);
-    }
-    z *= static_cast<double>(n);
-    sum += z;
-    sum_squares += z * z;
-  }
+  double z = 0.0;
+  for_each_sample(
+      in, [&](std::size_t l) { z += in.weight[l] * per_landing(in.x_m[l]); },
+      [&] {
+        z *= static_cast<double>(n);
+        sum += z;
+        sum_squares += z * z;
+        z = 0.0;
+      });
   const double mean = sum / static_cast<double>(n);
   const double variance_of_z = std::max(0.0, (sum_squares - mean * sum) / static_cast<double>(n - 1));
   return std::sqrt(variance_of_z / static_cast<double>(n));
@@ -151,19 +172,21 @@ void SampleInfluence::standard_errors(std::span<const std::span<const double>> g
   double sum[kMaxGradients] = {}, sum_squares[kMaxGradients] = {};
   double z[kMaxGradients], dots[kMaxGradients];
   const std::span<const std::span<const double>> active(used, count);
-  for (std::size_t s = 0; s < n; ++s) {
-    for (std::size_t g = 0; g < count; ++g) z[g] = 0.0;
-    for (unsigned d = 0; d < landings_per_sample; ++d) {
-      const std::size_t l = s + d * n;
-      kernel_dots(x_m[l], active, trays, kernel_half_width_m, dots);
-      for (std::size_t g = 0; g < count; ++g) z[g] += weight[l] * dots[g];
-    }
-    for (std::size_t g = 0; g < count; ++g) {
-      z[g] *= static_cast<double>(n);
-      sum[g] += z[g];
-      sum_squares[g] += z[g] * z[g];
-    }
-  }
+  for (std::size_t g = 0; g < count; ++g) z[g] = 0.0;
+  for_each_sample(
+      *this,
+      [&](std::size_t l) {
+        kernel_dots(x_m[l], active, trays, kernel_half_width_m, dots);
+        for (std::size_t g = 0; g < count; ++g) z[g] += weight[l] * dots[g];
+      },
+      [&] {
+        for (std::size_t g = 0; g < count; ++g) {
+          z[g] *= static_cast<double>(n);
+          sum[g] += z[g];
+          sum_squares[g] += z[g] * z[g];
+          z[g] = 0.0;
+        }
+      });
   for (std::size_t g = 0; g < count; ++g) {
     const double mean = sum[g] / static_cast<double>(n);
     const double variance_of_z = std::max(0.0, (sum_squares[g] - mean * sum[g]) / static_cast<double>(n - 1));

@@ -7,13 +7,25 @@
 // with φ_l the landing's share of the total mass and K_k(x) the share of a kernel at x that tray k
 // receives. T is invariant to the scale of P (CV, widths), so the normalisation of P needs no term of
 // its own. Linear in the landings, no resampling, no allocation. A sample is one launch: with two discs
-// its landing s and its mirror (or right-disc flight) n + s move together.
+// its landing s and its mirror (or right-disc flight) n + s move together. With each disc at its own
+// setting the discs' landings come from their own interpolations; a table sample that feeds both (the
+// rows the two settings share) is still one sample, and SampleBlock says which landings it owns.
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 #include "libspread/analysis/metrics/metrics.hpp"
 
 namespace spread::predict {
+
+// `count` samples in a row, sample j of the block owning landing first_landing[d] + j of each disc d that
+// it feeds (kNoLanding: none).
+struct SampleBlock {
+  static constexpr std::size_t kNoLanding = SIZE_MAX;
+  std::size_t count = 0;
+  std::size_t first_landing[2] = {kNoLanding, kNoLanding};
+};
+inline constexpr std::size_t kMaxSampleBlocks = 4;
 
 struct SampleInfluence {
   std::span<const double> x_m;       // landings, machine frame; sample s owns s (and n + s with two discs)
@@ -22,6 +34,9 @@ struct SampleInfluence {
   unsigned landings_per_sample = 1;  // 1 or 2
   metrics::TrayLayout trays;
   double kernel_half_width_m = 0.0;  // 0: point masses
+  // When not empty, the samples instead (sample_count = the sum of the counts, landings_per_sample unused):
+  // the blocks in order, each sample owning the landings its block names.
+  std::span<const SampleBlock> blocks = {};
 
   // Standard error of a statistic whose derivative with respect to tray k's mass is gradient[k].
   double standard_error(std::span<const double> gradient) const;
