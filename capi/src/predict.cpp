@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <numbers>
 #include <string_view>
 
 #include "capi/src/error_detail.hpp"
@@ -51,7 +52,7 @@ void copy_band(const spread::predict::PredictedBand& b, spread_band& out) {
   out.limited_by_layout = b.limited_by_layout ? 1 : 0;
 }
 
-void copy_result(const spread::predict::Prediction& p, bool v2, bool v3, spread_prediction& r) {
+void copy_result(const spread::predict::Prediction& p, bool v2, bool v3, bool v4, spread_prediction& r) {
   r.throw_width_m = p.throw_width_m;
   r.working_width_to_and_fro_m = p.working_width_to_and_fro_m;
   r.working_width_racetrack_m = p.working_width_racetrack_m;
@@ -91,25 +92,80 @@ void copy_result(const spread::predict::Prediction& p, bool v2, bool v3, spread_
   }
   for (int b = 0; b < p.stored_bands_to_and_fro(); ++b) copy_band(p.bands_to_and_fro[b], r.bands_to_and_fro[b]);
   for (int b = 0; b < p.stored_bands_racetrack(); ++b) copy_band(p.bands_racetrack[b], r.bands_racetrack[b]);
+  if (!v4) return;
+  for (int d = 0; d < 2; ++d) {
+    r.disc_rpm[d] = p.discs[d].rpm;
+    r.disc_drop_point_turn_rad[d] = p.discs[d].drop_point_turn_rad;
+  }
 }
 
 // What a refused request was, for spread_last_error_detail (vsnprintf into the thread's buffer: no
 // allocation).
+constexpr const char* kDiscName[2] = {"left", "right"};
+constexpr const char* kDiscRpmField[2] = {"disc_rpm[0]", "disc_rpm[1]"};
+constexpr const char* kDiscTurnField[2] = {"disc_drop_point_turn_rad[0]", "disc_drop_point_turn_rad[1]"};
+
 spread_status refused(spread_status status, const spread::predict::Predictor& predictor,
                       const spread_prediction_def& def, bool v2) {
   using spread::capi::fail;
+  const bool v4 = def.struct_size >= spread::capi::kPredictionDefV4Size;
   switch (status) {
     case SPREAD_ERROR_UNKNOWN_MATERIAL:
       return fail(status, "spread_predict: no material \"%.200s\" in the table", def.material);
     case SPREAD_ERROR_RPM_OUTSIDE_TABLE: {
       const auto index = predictor.find_material(def.material);
+      const double min_rpm = index ? predictor.min_rpm(*index) : 0.0, max_rpm = index ? predictor.max_rpm(*index) : 0.0;
+      // The disc whose speed is outside: its own, or the both-discs rpm it takes.
+      for (std::size_t d = 0; v4 && d < 2; ++d) {
+        const double rpm = std::isnan(def.disc_rpm[d]) ? def.rpm : def.disc_rpm[d];
+        if (!(rpm >= min_rpm && rpm <= max_rpm)) {
+          return fail(status, "spread_predict: the %s disc's speed %g rpm (%s) outside the rows of \"%.200s\", [%g, %g]",
+                      kDiscName[d], rpm, std::isnan(def.disc_rpm[d]) ? "rpm" : kDiscRpmField[d], def.material,
+                      min_rpm, max_rpm);
+        }
+      }
       return fail(status, "spread_predict: rpm %g outside the rows of \"%.200s\", [%g, %g]", def.rpm, def.material,
-                  index ? predictor.min_rpm(*index) : 0.0, index ? predictor.max_rpm(*index) : 0.0);
+                  min_rpm, max_rpm);
     }
     case SPREAD_ERROR_UNKNOWN_EFFECT:
       return fail(status, "spread_predict: effects 0x%x has bits outside SPREAD_EFFECT_ALL | SPREAD_EFFECTS_AS_TABLE",
                   static_cast<unsigned>(def.effects));
     default:
+      if (v4) {
+        // The per-disc fields' own refusals, named (spread::predict::Predictor::validate has the same rules).
+        const bool one_disc = predictor.machine().disc_count < 2;
+        for (std::size_t d = 0; d < 2; ++d) {
+          const double turn_rad = def.disc_drop_point_turn_rad[d];
+          if (std::isinf(def.disc_rpm[d])) {
+            return fail(status, "spread_predict: the %s disc's speed %s is %g", kDiscName[d], kDiscRpmField[d],
+                        def.disc_rpm[d]);
+          }
+          if (std::isinf(turn_rad) || std::abs(turn_rad) > std::numbers::pi) {
+            return fail(status, "spread_predict: the %s disc's drop point %s %g outside [-pi, pi]", kDiscName[d],
+                        kDiscTurnField[d], turn_rad);
+          }
+          if (d == 1 && one_disc && (!std::isnan(def.disc_rpm[d]) || !std::isnan(turn_rad))) {
+            return fail(status, "spread_predict: %s %g, %s %g: the machine has one disc (only [0] may be set)",
+                        kDiscRpmField[d], def.disc_rpm[d], kDiscTurnField[d], turn_rad);
+          }
+        }
+        const std::size_t discs = one_disc ? 1 : 2;
+        const auto all_given = [&](const double (&values)[2]) {
+          for (std::size_t d = 0; d < discs; ++d) {
+            if (std::isnan(values[d])) return false;
+          }
+          return true;
+        };
+        if (all_given(def.disc_rpm) && def.rpm != 0.0) {
+          return fail(status, "spread_predict: rpm %g given while every disc has its own disc_rpm (set rpm to 0)", def.rpm);
+        }
+        if (all_given(def.disc_drop_point_turn_rad) && def.drop_point_turn_rad != 0.0) {
+          return fail(status,
+                      "spread_predict: drop_point_turn_rad %g given while every disc has its own "
+                      "disc_drop_point_turn_rad (set drop_point_turn_rad to 0)",
+                      def.drop_point_turn_rad);
+        }
+      }
       return fail(status,
                   "spread_predict: %s: rpm %g, disc_height_m %g, wind_m_s {%g, %g}, cv_target_percent %g, "
                   "bout_width_m %g, tray_width_m %g, kernel_half_width_m %g, drop_point_turn_rad %g "
@@ -152,10 +208,18 @@ spread_status predict_with(const spread::predict::Predictor& predictor, spread::
     const bool v3_def = def->struct_size >= spread::capi::kPredictionDefV3Size;
     if (v3_def) request.drop_point_turn_rad = def->drop_point_turn_rad;
     const bool v3 = v3_def && def->result_size >= spread::capi::kPredictionV3Size;
+    const bool v4_def = def->struct_size >= spread::capi::kPredictionDefV4Size;
+    if (v4_def) {
+      for (std::size_t d = 0; d < 2; ++d) {
+        request.disc_rpm[d] = def->disc_rpm[d];
+        request.disc_drop_point_turn_rad[d] = def->disc_drop_point_turn_rad[d];
+      }
+    }
+    const bool v4 = v3_def && def->result_size >= spread::capi::kPredictionV4Size;
 
     const auto status = run(request, prediction);
     if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, v2);
-    copy_result(prediction, v2, v3, *result);
+    copy_result(prediction, v2, v3, v4, *result);
     if (transverse_mass_fraction != nullptr) {
       const auto& trays = prediction.tray_mass_fraction;
       if (transverse_capacity < trays.size()) {

@@ -56,11 +56,13 @@ int main(int argc, char** argv) {
   CHECK(traj.reserved == 0u);
   CHECK(sizeof(spread_trajectory_def) == offsetof(spread_trajectory_def, reserved) + sizeof traj.reserved);
   CHECK(sizeof(spread_landing) == offsetof(spread_landing, reserved) + sizeof landing.reserved);
-  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, drop_point_turn_rad) + sizeof(double));
+  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, disc_drop_point_turn_rad) + sizeof def.disc_drop_point_turn_rad);
   CHECK(def.drop_point_turn_rad == 0.0);
+  CHECK(isnan(def.disc_rpm[0]) && isnan(def.disc_rpm[1]));
+  CHECK(isnan(def.disc_drop_point_turn_rad[0]) && isnan(def.disc_drop_point_turn_rad[1]));
   CHECK(def.result_size == sizeof(spread_prediction) && def.reserved == 0u);
   CHECK(sizeof(spread_band) == offsetof(spread_band, limited_by_layout) + sizeof(int32_t));
-  CHECK(sizeof(spread_prediction) == offsetof(spread_prediction, bands_racetrack) + sizeof result.bands_racetrack);
+  CHECK(sizeof(spread_prediction) == offsetof(spread_prediction, disc_drop_point_turn_rad) + sizeof result.disc_drop_point_turn_rad);
   CHECK(spread_version() == SPREAD_VERSION_NUMBER);
   CHECK(strcmp(spread_version_string(), SPREAD_VERSION_STRING) == 0);
   CHECK(strncmp(spread_status_str(SPREAD_ERROR_FILE_CORRUPT), "SPREAD_ERROR_FILE_CORRUPT", 25) == 0);

@@ -401,6 +401,64 @@ TEST_F(Capi, BandsAreWrittenOnlyForACallerWhoseResultHasThem) {
   }
 }
 
+// Each disc's own speed and drop point (0.4): the result says what each disc ran at; a 0.3 definition's
+// caller is answered as before, and a 0.3 result gets nothing beyond its size; refusals name the disc.
+TEST_F(Capi, EachDiscAtItsOwnSettingAndRefusalsNameTheDisc) {
+  spread_prediction_def d = def("can", 0.0);
+  d.disc_rpm[0] = 600.0;
+  d.disc_rpm[1] = 700.0;
+  d.disc_drop_point_turn_rad[1] = 0.2;
+  spread_prediction own{};
+  ASSERT_EQ(spread_predict(tables_, &d, &own, nullptr, 0), SPREAD_OK) << spread_last_error_detail();
+  EXPECT_EQ(own.disc_rpm[0], 600.0);
+  EXPECT_EQ(own.disc_rpm[1], 700.0);
+  EXPECT_EQ(own.disc_drop_point_turn_rad[0], 0.0);
+  EXPECT_EQ(own.disc_drop_point_turn_rad[1], 0.2);
+  spread_prediction alike{};
+  spread_prediction_def both = def("can", 600.0);
+  ASSERT_EQ(spread_predict(tables_, &both, &alike, nullptr, 0), SPREAD_OK);
+  EXPECT_NE(own.throw_width_m, alike.throw_width_m);
+  EXPECT_TRUE(std::isnan(alike.disc_drop_point_turn_rad[0]) == false);
+
+  // A 0.3 definition: the per-disc fields are not read (here, whatever the bytes beyond its size hold).
+  spread_prediction_def older = both;
+  older.disc_rpm[1] = 700.0;
+  older.struct_size = static_cast<uint32_t>(spread::capi::kPredictionDefV3Size);
+  older.result_size = static_cast<uint32_t>(spread::capi::kPredictionV3Size);
+  spread_prediction older_result;
+  std::memset(&older_result, 0xAB, sizeof older_result);
+  ASSERT_EQ(spread_predict(tables_, &older, &older_result, nullptr, 0), SPREAD_OK);
+  EXPECT_EQ(older_result.throw_width_m, alike.throw_width_m);
+  const auto* bytes = reinterpret_cast<const unsigned char*>(&older_result);
+  for (std::size_t i = spread::capi::kPredictionV3Size; i < sizeof older_result; ++i) {
+    ASSERT_EQ(bytes[i], 0xAB) << "result byte " << i << " written for a 0.3 result";
+  }
+
+  struct Refusal {
+    double rpm, disc_rpm[2], turn_rad, disc_turn_rad[2];
+    spread_status status;
+    const char* detail;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Refusal& r : {
+           Refusal{600.0, {nan, 900.0}, 0.0, {nan, nan}, SPREAD_ERROR_RPM_OUTSIDE_TABLE, "right disc's speed 900 rpm (disc_rpm[1])"},
+           Refusal{100.0, {nan, 600.0}, 0.0, {nan, nan}, SPREAD_ERROR_RPM_OUTSIDE_TABLE, "left disc's speed 100 rpm (rpm)"},
+           Refusal{600.0, {650.0, 600.0}, 0.0, {nan, nan}, SPREAD_ERROR_OUT_OF_RANGE, "rpm 600 given while every disc"},
+           Refusal{600.0, {nan, nan}, 0.0, {4.0, nan}, SPREAD_ERROR_OUT_OF_RANGE, "left disc's drop point disc_drop_point_turn_rad[0] 4"},
+           Refusal{600.0, {nan, nan}, 0.1, {0.1, 0.2}, SPREAD_ERROR_OUT_OF_RANGE, "drop_point_turn_rad 0.1 given while"},
+       }) {
+    spread_prediction_def bad = def("can", r.rpm);
+    bad.disc_rpm[0] = r.disc_rpm[0];
+    bad.disc_rpm[1] = r.disc_rpm[1];
+    bad.drop_point_turn_rad = r.turn_rad;
+    bad.disc_drop_point_turn_rad[0] = r.disc_turn_rad[0];
+    bad.disc_drop_point_turn_rad[1] = r.disc_turn_rad[1];
+    EXPECT_EQ(predict(bad), r.status) << r.detail;
+    EXPECT_NE(std::string(spread_last_error_detail()).find(r.detail), std::string::npos)
+        << spread_last_error_detail();
+  }
+}
+
 TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {
   spread_trajectory_def t = spread_trajectory_def_default();
   EXPECT_EQ(t.reserved, 0u);

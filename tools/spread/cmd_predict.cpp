@@ -9,6 +9,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -77,14 +78,15 @@ std::string explain(spread_status status, const Options& o, spread_tables* table
         double lo = 0, hi = 0;
         if (spread_material_name(tables, i, &name) == SPREAD_OK && o.material == name &&
             spread_material_rpm_range(tables, i, &lo, &hi) == SPREAD_OK) {
-          out << "--rpm " << o.rpm << " is outside the table rows of '" << o.material << "' [" << lo << ", "
-              << hi << "] rpm";
+          out << spread::cli::disc_speed_outside(o, lo, hi) << " is outside the table rows of '" << o.material
+              << "' [" << lo << ", " << hi << "] rpm";
         }
       }
       return out.str();
     case SPREAD_ERROR_NOT_FINITE: return "an argument is not finite (NaN or Inf) in --rpm/--height/--wind/--cv-target/--width/--tray-width";
     case SPREAD_ERROR_OUT_OF_RANGE:
-      return "out of range: --height must be >= 0, --cv-target > 0, --width >= 0, --tray-width in [0.05, 100] m";
+      return "out of range: --height must be >= 0, --cv-target > 0, --width >= 0, --tray-width in [0.05, 100] m (" +
+             std::string(spread_last_error_detail()) + ")";
     default: return spread_status_str(status);
   }
 }
@@ -163,10 +165,30 @@ json bands_json(const spread_band* bands, int count, int headline) {
   return out;
 }
 
+bool own_disc_settings(const Options& o) {
+  for (int d = 0; d < 2; ++d) {
+    if (!std::isnan(o.disc_rpm[d]) || !std::isnan(o.disc_drop_point_turn_deg[d])) return true;
+  }
+  return false;
+}
+
+// "600 rpm", or with the discs at their own settings "600 / 650 rpm (left / right), drop point +10 / 0°".
+std::string setting_label(const Options& o, const spread_prediction& r) {
+  if (!own_disc_settings(o)) return format("%.2f rpm", o.rpm);
+  return format("%.2f", r.disc_rpm[0]) + " / " + format("%.2f rpm (left / right)", r.disc_rpm[1]) +
+         format(", drop point turned %+.1f", r.disc_drop_point_turn_rad[0] * 180.0 / std::numbers::pi) +
+         format(" / %+.1f deg", r.disc_drop_point_turn_rad[1] * 180.0 / std::numbers::pi);
+}
+
 // The guidance when the CV at --width is above the target (setting_guidance.hpp): the same table and
 // conditions through the Predictor, the C API's own engine.
 spread::cli::SettingGuidance guidance_for(const Options& o, const spread_prediction& r) {
   if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return {};
+  if (own_disc_settings(o)) {
+    spread::cli::SettingGuidance note;
+    note.lines.push_back("setting guidance turns both discs alike: `spread chart` finds the best setting at this width");
+    return note;
+  }
   spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
   request.effects = o.effects == "table" ? spread::predict::kTableEffects
                     : o.effects == "all" ? spread::flight::kAllEffects
@@ -187,6 +209,7 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
     page.header.machine = spread::tables::read_table_file(o.tables).machine.name;
     page.header.material = o.material;
     page.header.rpm = o.rpm;
+    if (own_disc_settings(o)) page.header.rpm_text = setting_label(o, r);
     page.header.speed_km_h = o.report.speed_km_h;
     page.header.time_s = time_s;
     page.header.made_by = spread::cli::command_line();
@@ -238,6 +261,11 @@ void run(const Options& o, int& exit_code) {
   def.effects = parse_effects(o.effects);
   def.kernel_half_width_m = o.kernel_half_width_m;
   def.drop_point_turn_rad = spread::cli::drop_point_turn_rad(o);
+  spread::cli::check_disc_settings(o);
+  for (int d = 0; d < 2; ++d) {
+    def.disc_rpm[d] = o.disc_rpm[d];
+    def.disc_drop_point_turn_rad[d] = spread::cli::disc_drop_point_turn_rad(o, d);
+  }
 
   spread_tables* raw = nullptr;
   const spread_status opened = spread_open(o.tables.c_str(), &raw);
@@ -292,6 +320,13 @@ void run(const Options& o, int& exit_code) {
                 {"disc_height_m", result.disc_height_m},
                 {"wind_m_s", {def.wind_m_s[0], def.wind_m_s[1]}},
                 {"drop_point_turn_deg", o.drop_point_turn_deg},
+                {"discs", {{{"disc", "left"},
+                            {"rpm", result.disc_rpm[0]},
+                            {"drop_point_turn_deg", result.disc_drop_point_turn_rad[0] * 180.0 / std::numbers::pi}},
+                           {{"disc", "right"},
+                            {"rpm", number_or_null(result.disc_rpm[1])},
+                            {"drop_point_turn_deg",
+                             number_or_null(result.disc_drop_point_turn_rad[1] * 180.0 / std::numbers::pi)}}}},
                 {"effects", spread::effect::names_in(result.effects)},
                 {"cv_target_percent", o.cv_target_percent},
                 {"throw_width_m", result.throw_width_m},
@@ -333,7 +368,7 @@ void run(const Options& o, int& exit_code) {
     spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
   } else {
-    std::cout << std::fixed << std::setprecision(2) << o.material << " at " << o.rpm << " rpm, disc "
+    std::cout << std::fixed << std::setprecision(2) << o.material << " at " << setting_label(o, result) << ", disc "
               << result.disc_height_m << " m above ground, " << result.sample_count << " launch samples, "
               << (result.flights > 0 ? std::to_string(result.flights) + " trajectories"
                                      : std::string("landings from the landing cache"))

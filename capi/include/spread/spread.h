@@ -51,10 +51,10 @@
 /* Compile-time version. spread_version() returns the run-time one: compare them to detect a mismatch
  * between the header you compiled with and the library you linked. */
 #define SPREAD_VERSION_MAJOR 0
-#define SPREAD_VERSION_MINOR 3
+#define SPREAD_VERSION_MINOR 4
 #define SPREAD_VERSION_PATCH 0
 #define SPREAD_VERSION_NUMBER (SPREAD_VERSION_MAJOR * 10000 + SPREAD_VERSION_MINOR * 100 + SPREAD_VERSION_PATCH)
-#define SPREAD_VERSION_STRING "0.3.0"
+#define SPREAD_VERSION_STRING "0.4.0"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define SPREAD_API __attribute__((visibility("default")))
@@ -170,6 +170,14 @@ typedef struct spread_prediction_def {
                                   within [-pi, pi]: counter-clockwise seen from above for the left disc,
                                   mirrored for the right (both discs alike). A disc the same all round
                                   turns its fan of launches by the same angle (docs/c-api.md). Default 0 */
+  /* --- appended in 0.4 --- */
+  double disc_rpm[2];          /* each disc's own speed, r/min: [0] the left disc, [1] the right (as the
+                                  driver sees them); NaN (default) = rpm above. Within the material's
+                                  table range. With both given, rpm must be 0 (it would be unused) */
+  double disc_drop_point_turn_rad[2]; /* each disc's own drop-point turn, rad, within [-pi, pi], as
+                                  drop_point_turn_rad for that disc; NaN (default) = drop_point_turn_rad.
+                                  With both given, drop_point_turn_rad must be 0. A one-disc machine has
+                                  only [0]: a value in [1] is refused */
 } spread_prediction_def;
 
 /* One band of bout widths whose CV meets the target (appended in 0.3). */
@@ -240,6 +248,9 @@ typedef struct spread_prediction {
   double first_band_width_racetrack_m;
   spread_band bands_to_and_fro[SPREAD_MAX_BANDS];
   spread_band bands_racetrack[SPREAD_MAX_BANDS];
+  /* --- appended in 0.4: written when def->result_size covers them --- */
+  double disc_rpm[2];                 /* each disc's speed as used, r/min ([1]: NaN on a one-disc machine) */
+  double disc_drop_point_turn_rad[2]; /* each disc's drop-point turn as used, rad */
 } spread_prediction;
 
 /* Defaults. Static inline on purpose: the struct is built with the caller's sizeof, so a newer library
@@ -260,6 +271,10 @@ static inline spread_prediction_def spread_prediction_def_default(void) {
   def.result_size = (uint32_t)sizeof(struct spread_prediction);
   def.reserved = 0u;
   def.drop_point_turn_rad = 0.0;
+  def.disc_rpm[0] = NAN;
+  def.disc_rpm[1] = NAN;
+  def.disc_drop_point_turn_rad[0] = NAN;
+  def.disc_drop_point_turn_rad[1] = NAN;
   return def;
 }
 
