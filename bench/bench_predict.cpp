@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -197,6 +198,25 @@ void BM_PredictCApiFile(benchmark::State& state) {
   predict_file(state, path, def);
 }
 
+// Each disc at its own setting against both discs alike, on a real table file (SPREAD_BENCH_TABLE):
+// range(0) = lateral wind (m/s); range(1) = 0: both discs at 560 rpm, 1: the right disc at 580 rpm (the
+// same rows), 2: the right disc's drop point turned 10 degrees, 3: the right disc at 650 rpm (rows of its
+// own).
+void BM_PredictCApiFileDiscs(benchmark::State& state) {
+  const char* path = std::getenv("SPREAD_BENCH_TABLE");
+  if (path == nullptr || *path == '\0') {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  spread_prediction_def def = capi_request();
+  def.wind_m_s[0] = static_cast<double>(state.range(0));
+  def.rpm = 560.0;
+  if (state.range(1) == 1) def.disc_rpm[1] = 580.0;
+  if (state.range(1) == 2) def.disc_drop_point_turn_rad[1] = 10.0 * std::numbers::pi / 180.0;
+  if (state.range(1) == 3) def.disc_rpm[1] = 650.0;
+  predict_file(state, path, def);
+}
+
 // The landing cache's cost and error on a real table file (SPREAD_BENCH_TABLE).
 void BM_PredictLandingCache(benchmark::State& state) {
   const char* path = std::getenv("SPREAD_BENCH_TABLE");
@@ -241,6 +261,10 @@ BENCHMARK(BM_PredictCApiDrag)
 BENCHMARK(BM_PredictCApiFile)
     ->ArgsProduct({{0, 3}, {560, 600}})
     ->ArgNames({"wind", "rpm"})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PredictCApiFileDiscs)
+    ->ArgsProduct({{0, 3}, {0, 1, 2, 3}})
+    ->ArgNames({"wind", "discs"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictLandingCache)
     ->ArgsProduct({{0, 3}, {0, 1}})

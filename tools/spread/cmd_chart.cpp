@@ -1,9 +1,10 @@
 // spread chart --tables FILE --material NAME [--cv-target PCT] [--widths 12,15,18,21,24] [--tray-width W]
 //              [--height M] [--json] [--report OUT.pdf] [--speed KM_H]
-//              [--wind VX,VY]
-// The setting chart of a material: for each tramline width, the disc speed within the table's rpm rows
-// with the lowest predicted to-and-fro CV at that width, the CVs there ± their 95 % intervals and the
-// spans of disc speed that keep the CV within the target (libspread/analysis/predict/setting_chart.hpp;
+//              [--wind VX,VY] [--drop-point-range DEG] [--drop-point-step DEG]
+// The setting chart of a material: for each tramline width, the setting of both discs — disc speed
+// within the table's rpm rows and drop point within ±--drop-point-range of the table's — with the lowest
+// predicted to-and-fro CV at that width, the CVs there ± their 95 % intervals and the spans of disc speed
+// (at that drop point) that keep the CV within the target (libspread/analysis/predict/setting_chart.hpp;
 // docs/field-calibration.md, "Spread chart"). Uses the C++ predictor directly, as `spread plot` does.
 // Bad input → a message naming it on stderr, exit code 2.
 #include <algorithm>
@@ -31,6 +32,12 @@ namespace {
 using nlohmann::json;
 using spread::cli::BadInput;
 namespace pr = spread::predict;
+constexpr double kRadPerDeg = 0.017453292519943295;
+
+// "620 rpm, +15.0°" — the setting of both discs.
+std::string setting_text(const pr::SettingChartRow& row) {
+  return format("%.0f rpm", row.rpm) + format(", %+.1f deg", row.drop_point_turn_rad / kRadPerDeg);
+}
 
 struct Options {
   std::string tables, material;
@@ -39,6 +46,8 @@ struct Options {
   double tray_width_m = 0.5;
   double height_m = std::numeric_limits<double>::quiet_NaN();
   std::string wind = "0,0";  // "VX,VY", m/s
+  double drop_point_range_deg = 90.0;  // the drop points searched: turns within ± this of the table's
+  double drop_point_step_deg = 5.0;    // their grid step
   bool json = false;
   spread::cli::ReportArgs report;
 };
@@ -86,8 +95,9 @@ std::string reach_note(const pr::SettingChartRow& row, const pr::SettingChart& c
   switch (row.reach) {
     case pr::ChartReach::kNotReached:
       return format("%.1f m", row.width_m) + " is not reachable: no disc speed of " + format("%.0f", chart.min_rpm) +
-             "-" + format("%.0f rpm", chart.max_rpm) + " keeps the CV within " + format("%g %%", cv_target_percent) +
-             " (lowest " + format("%.1f %%", 100.0 * row.cv_to_and_fro) + " at " + format("%.0f rpm", row.rpm) + ")";
+             "-" + format("%.0f rpm", chart.max_rpm) + " and drop point searched keeps the CV within " +
+             format("%g %%", cv_target_percent) + " (lowest " + format("%.1f %%", 100.0 * row.cv_to_and_fro) + " at " +
+             setting_text(row) + ")";
     case pr::ChartReach::kMarginal:
       return format("%.1f m", row.width_m) + " is marginal: the best setting's 95 % interval reaches over " +
              format("%g %%", cv_target_percent) + " (a field test should confirm it)";
@@ -115,11 +125,20 @@ void run(const Options& o, int& exit_code) {
   const spread::cli::WindXY wind = spread::cli::parse_wind(o.wind);
   options.wind_x_m_s = wind.x_m_s;
   options.wind_y_m_s = wind.y_m_s;
+  if (!(o.drop_point_range_deg >= 0.0 && o.drop_point_range_deg <= 180.0)) {
+    throw BadInput("--drop-point-range " + format("%g", o.drop_point_range_deg) + ": within 0..180 degrees");
+  }
+  if (!(o.drop_point_step_deg >= 0.5 && o.drop_point_step_deg <= 90.0)) {
+    throw BadInput("--drop-point-step " + format("%g", o.drop_point_step_deg) + ": within 0.5..90 degrees");
+  }
+  options.max_drop_point_turn_rad = o.drop_point_range_deg * kRadPerDeg;
+  options.drop_point_step_rad = o.drop_point_step_deg * kRadPerDeg;
   const pr::SettingChart chart = pr::setting_chart(predictor, o.material, widths, options);
 
   const std::string range_line = "'" + o.material + "' of " + o.tables + ": the disc speed of " +
                                  format("%.0f", chart.min_rpm) + "-" + format("%.0f rpm", chart.max_rpm) +
-                                 " with the lowest to-and-fro CV at each width (target " +
+                                 " and drop point within " + format("±%g deg", o.drop_point_range_deg) +
+                                 " of the table's (both discs alike) with the lowest to-and-fro CV at each width (target " +
                                  format("%g %%", o.cv_target_percent) + ")";
 
   std::string report_error;
@@ -136,21 +155,23 @@ void run(const Options& o, int& exit_code) {
       page.header.made_by = spread::cli::command_line();
       page.summary.push_back(range_line);
       page.caption = "Disc speed per working width (CV target " + format("%g %%", o.cv_target_percent) + ")";
-      page.columns = {"width", "disc speed", "CV to-and-fro", "CV racetrack", "CV within target at"};
+      page.columns = {"width", "speed, drop point", "CV to-and-fro", "CV racetrack", "CV within target at"};
       for (const pr::SettingChartRow& row : chart.rows) {
         if (row.reach == pr::ChartReach::kNotReached) {
           page.rows.push_back({format("%.1f m", row.width_m), "not reachable", cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se),
                                "-", "-"});
         } else {
-          page.rows.push_back({format("%.1f m", row.width_m), format("%.0f rpm", row.rpm),
+          page.rows.push_back({format("%.1f m", row.width_m), setting_text(row),
                                cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se),
                                cv_text(row.cv_racetrack, row.cv_racetrack_se), spans_text(row)});
         }
         const std::string note = reach_note(row, chart, o.cv_target_percent);
         if (!note.empty()) page.notes.push_back(note);
       }
-      page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the disc speed "
-                           "is the one with the lowest predicted to-and-fro CV at the width");
+      page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the setting is "
+                           "the one with the lowest predicted to-and-fro CV at the width; the drop point is turned "
+                           "from the table's (+ counter-clockwise from above on the left disc, mirrored on the "
+                           "right), and the speed spans are at that drop point");
       spread::plot::write_report_pdf(o.report.path, nullptr, &page);
     } catch (const std::exception& e) {
       report_error = e.what();
@@ -164,6 +185,7 @@ void run(const Options& o, int& exit_code) {
                       {"reachable", row.reach != pr::ChartReach::kNotReached},
                       {"reach", pr::to_string(row.reach)},
                       {"rpm", number_or_null(row.rpm)},
+                      {"drop_point_turn_deg", number_or_null(row.drop_point_turn_rad / kRadPerDeg)},
                       {"bout_width_m", number_or_null(row.bout_width_m)},
                       {"cv_to_and_fro_percent", number_or_null(100.0 * row.cv_to_and_fro)},
                       {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.cv_to_and_fro_se)},
@@ -186,6 +208,12 @@ void run(const Options& o, int& exit_code) {
              {"material", o.material},
              {"cv_target_percent", o.cv_target_percent},
              {"rpm_range", {chart.min_rpm, chart.max_rpm}},
+             {"drop_point_range_deg", o.drop_point_range_deg},
+             {"grid", {{"rpm", chart.grid_rpm}, {"drop_point_turn_deg", [&] {
+                          json turns = json::array();
+                          for (double t : chart.grid_drop_point_turn_rad) turns.push_back(t / kRadPerDeg);
+                          return turns;
+                        }()}}},
              {"rows", rows},
              {"scan", scan},
              {"predictions", chart.predictions}};
@@ -193,14 +221,14 @@ void run(const Options& o, int& exit_code) {
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("%s\n", range_line.c_str());
-    std::printf("  %-8s %-10s %-18s %-18s %s\n", "width", "disc", "CV to-and-fro", "CV racetrack", "CV within target at");
+    std::printf("  %-8s %-20s %-18s %-18s %s\n", "width", "speed, drop point", "CV to-and-fro", "CV racetrack",
+                "CV within target at");
     for (const pr::SettingChartRow& row : chart.rows) {
       if (row.reach == pr::ChartReach::kNotReached) {
         std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), "not reachable");
         continue;
       }
-      std::printf("  %-8s %-10s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(),
-                  format("%.0f rpm", row.rpm).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
+      std::printf("  %-8s %-20s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(), setting_text(row).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
                   cv_text(row.cv_racetrack, row.cv_racetrack_se).c_str(), spans_text(row).c_str());
     }
     std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples; %d predictions)\n",
@@ -219,7 +247,7 @@ void run(const Options& o, int& exit_code) {
 
 spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) {
   static Options options;
-  auto* sub = app.add_subcommand("chart", "setting chart: the disc speed with the lowest CV at each tramline width");
+  auto* sub = app.add_subcommand("chart", "setting chart: the disc speed and drop point with the lowest CV at each tramline width");
   sub->add_option("--tables", options.tables, "launch-table file (SQLite) written by lookup_builder")->required();
   sub->add_option("--material", options.material, "material name as in the table")->required();
   sub->add_option("--cv-target", options.cv_target_percent, "CV target of the working width (%)")->capture_default_str();
@@ -227,6 +255,11 @@ spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) 
   sub->add_option("--tray-width", options.tray_width_m, "collecting tray width (m)")->capture_default_str();
   sub->add_option("--height", options.height_m, "disc height above the ground (m); default: the table's");
   sub->add_option("--wind", options.wind, "wind of the day VX,VY (m/s): lateral (+ to the right), along (+ forward)")
+      ->capture_default_str();
+  sub->add_option("--drop-point-range", options.drop_point_range_deg,
+                  "drop points searched: turns within ± this of the table's (degrees; 0 = the table's only)")
+      ->capture_default_str();
+  sub->add_option("--drop-point-step", options.drop_point_step_deg, "grid step of the drop points searched (degrees)")
       ->capture_default_str();
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);

@@ -847,6 +847,8 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m};
   const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
   const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
+  // Without standard errors (a search comparing settings) the passes are skipped: about half the cost.
+  if (!request.standard_errors) task_count = 0;
   for (std::size_t first = 0; first < task_count; first += SampleInfluence::kMaxGradients) {
     const std::size_t count = std::min(task_count - first, SampleInfluence::kMaxGradients);
     std::span<const double> pass_gradients[SampleInfluence::kMaxGradients];
@@ -881,7 +883,9 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     for (int b = 0; b < stored; ++b) {
       PredictedBand& band = band_out[o][b];
       if (extras(o)[b].band->lowest_cv_trays == extras(o)[b].band->trays_below) band.lowest_cv_se = band.cv_se;
-      band.established = band.lowest_cv + kConfidence95 * band.lowest_cv_se <= request.cv_target;
+      band.established = request.standard_errors
+                             ? band.lowest_cv + kConfidence95 * band.lowest_cv_se <= request.cv_target
+                             : band.lowest_cv <= request.cv_target;
       if (band.established) headline[o] = b;
     }
     if (headline[o] < 0 && stored > 0) headline[o] = 0;
@@ -920,7 +924,9 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     p.bout_width_m = 0.0;
     p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;
   }
-  p.throw_width_se_m = p.throw_width_m > 0.0 ? influence.throw_width_standard_error(tray_mass, extent, 0.99) : nan;
+  p.throw_width_se_m = p.throw_width_m > 0.0 && request.standard_errors
+                           ? influence.throw_width_standard_error(tray_mass, extent, 0.99)
+                           : nan;
   p.mean_radius_m = w.radial_mean_m_;
   p.radial_width_m = w.radial_width_m_;
   p.tray_mass_fraction = tray_mass;

@@ -87,6 +87,10 @@ struct PredictionRequest {
                                     std::numeric_limits<double>::quiet_NaN()};
   std::array<double, 2> disc_drop_point_turn_rad = {std::numeric_limits<double>::quiet_NaN(),
                                                     std::numeric_limits<double>::quiet_NaN()};
+  // False: no standard errors (all NaN) — for a search that compares many settings, at about half the
+  // cost. The headline rule then takes a band as established when its lowest CV meets the target, with
+  // no confidence test.
+  bool standard_errors = true;
 };
 inline constexpr int kLeftDisc = 0, kRightDisc = 1;
 

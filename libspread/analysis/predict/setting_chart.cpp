@@ -22,22 +22,35 @@ class Search {
     request_.wind_y_m_s = options.wind_y_m_s;
   }
 
-  // The prediction at `rpm` with the CVs at `bout_width_m`.
-  const Prediction& at(double rpm, double bout_width_m) {
+  // The prediction at this setting; with standard errors, the CVs at `bout_width_m`.
+  const Prediction& at(double rpm, double turn_rad, double bout_width_m, bool standard_errors) {
     request_.rpm = rpm;
+    request_.drop_point_turn_rad = turn_rad;
     request_.bout_width_m = bout_width_m;
+    request_.standard_errors = standard_errors;
     const PredictStatus status = predictor_.predict(request_, prediction_);
     ++predictions_;
     if (status != PredictStatus::kOk) {
-      throw std::invalid_argument(std::string("prediction at ") + std::to_string(rpm) + " rpm refused: " +
-                                  to_string(status));
+      throw std::invalid_argument(std::string("prediction at ") + std::to_string(rpm) + " rpm, drop point turned " +
+                                  std::to_string(turn_rad) + " rad refused: " + to_string(status));
     }
     return prediction_;
   }
-  // The to-and-fro CV at bout_width_m; +infinity where it is undefined (nothing to rank).
-  double cv(double rpm, double bout_width_m) {
-    const double value = at(rpm, bout_width_m).cv_to_and_fro;
-    return std::isnan(value) ? std::numeric_limits<double>::infinity() : value;
+  // The to-and-fro CVs at each of `widths_m` of one prediction (the trays do not depend on the bout: the
+  // same values as a prediction at that bout); +infinity where undefined (nothing to rank).
+  void cvs(double rpm, double turn_rad, std::span<const double> widths_m, std::span<double> out) {
+    const Prediction& p = at(rpm, turn_rad, 0.0, false);
+    for (std::size_t w = 0; w < widths_m.size(); ++w) {
+      const int trays = metrics::bout_tray_count(p.trays, widths_m[w]);
+      scratch_.resize(static_cast<std::size_t>(trays) + 1);
+      const double value = metrics::cv_at_trays(p.tray_mass_fraction, p.trays, trays, metrics::Overlap::kToAndFro, scratch_);
+      out[w] = std::isnan(value) ? std::numeric_limits<double>::infinity() : value;
+    }
+  }
+  double cv(double rpm, double turn_rad, double width_m) {
+    double value = 0.0;
+    cvs(rpm, turn_rad, std::span(&width_m, 1), std::span(&value, 1));
+    return value;
   }
 
  private:
@@ -45,45 +58,60 @@ class Search {
   int& predictions_;
   PredictionRequest request_;
   Prediction prediction_;
+  std::vector<double> scratch_;
 };
 
-// Every row of the material, and evenly spaced points between two rows at most kChartScanStep_rpm apart.
-std::vector<double> scan_grid(std::span<const double> rows_rpm) {
+// Every row of the material, and evenly spaced points between two rows at most `step_rpm` apart.
+std::vector<double> speed_grid(std::span<const double> rows_rpm, double step_rpm) {
   std::vector<double> grid{rows_rpm.front()};
   for (std::size_t r = 1; r < rows_rpm.size(); ++r) {
     const double low = rows_rpm[r - 1], high = rows_rpm[r];
-    const int steps = std::max(1, static_cast<int>(std::ceil((high - low) / kChartScanStep_rpm - 1e-9)));
+    const int steps = std::max(1, static_cast<int>(std::ceil((high - low) / step_rpm - 1e-9)));
     for (int k = 1; k < steps; ++k) grid.push_back(low + (high - low) * k / steps);
     grid.push_back(high);
   }
   return grid;
 }
 
-// Golden-section search for the lowest CV over [low, high], starting from the grid's best `best_rpm`
-// with `best_cv`; returns the lower of the two.
-std::pair<double, double> refine(Search& search, double width_m, double low, double high, double best_rpm,
-                                 double best_cv, double tolerance) {
+// 0 and every multiple of `step_rad` within ±max_rad, ascending.
+std::vector<double> drop_point_grid(double max_rad, double step_rad) {
+  const int steps = static_cast<int>(std::floor(max_rad / step_rad + 1e-9));
+  std::vector<double> grid;
+  for (int k = -steps; k <= steps; ++k) grid.push_back(k * step_rad);
+  return grid;
+}
+
+// Golden-section search for the lowest f over [low, high] down to `tolerance`, starting from the best so
+// far (best_x, best_f); returns the lower of the two.
+template <typename F>
+std::pair<double, double> refine(F f, double low, double high, double best_x, double best_f, double tolerance) {
   constexpr double kInverseGolden = 0.6180339887498949;  // (√5 − 1)/2
+  if (!(high - low > tolerance)) return {best_x, best_f};
   double a = low, b = high;
   double c = b - kInverseGolden * (b - a), d = a + kInverseGolden * (b - a);
-  double fc = search.cv(c, width_m), fd = search.cv(d, width_m);
+  double fc = f(c), fd = f(d);
   while (b - a > tolerance) {
     if (fc <= fd) {
       b = d;
       d = c;
       fd = fc;
       c = b - kInverseGolden * (b - a);
-      fc = search.cv(c, width_m);
+      fc = f(c);
     } else {
       a = c;
       c = d;
       fc = fd;
       d = a + kInverseGolden * (b - a);
-      fd = search.cv(d, width_m);
+      fd = f(d);
     }
   }
-  const double rpm = fc <= fd ? c : d, cv = std::min(fc, fd);
-  return cv < best_cv ? std::pair{rpm, cv} : std::pair{best_rpm, best_cv};
+  const double x = fc <= fd ? c : d, value = std::min(fc, fd);
+  return value < best_f ? std::pair{x, value} : std::pair{best_x, best_f};
+}
+
+// The grid neighbours of index k: [grid[k − 1], grid[k + 1]] within the grid.
+std::pair<double, double> around(const std::vector<double>& grid, std::size_t k) {
+  return {grid[k == 0 ? 0 : k - 1], grid[std::min(k + 1, grid.size() - 1)]};
 }
 
 }  // namespace
@@ -105,27 +133,68 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
     if (!std::isfinite(w) || !(w > 0.0)) throw std::invalid_argument("widths must be finite and > 0 m");
   }
   if (!(options.rpm_tolerance > 0.0)) throw std::invalid_argument("rpm_tolerance must be > 0");
+  if (!(options.max_drop_point_turn_rad >= 0.0 && options.max_drop_point_turn_rad <= kPi)) {
+    throw std::invalid_argument("max_drop_point_turn_rad must be within [0, pi]");
+  }
+  if (!(options.drop_point_step_rad > 0.0) || !(options.drop_point_tolerance_rad > 0.0)) {
+    throw std::invalid_argument("drop_point_step_rad and drop_point_tolerance_rad must be > 0");
+  }
   SettingChart chart;
   chart.min_rpm = predictor.min_rpm(*index);
   chart.max_rpm = predictor.max_rpm(*index);
-  chart.scan_rpm = scan_grid(predictor.row_rpm(*index));
-  const std::size_t points = chart.scan_rpm.size();
-  chart.scan_cv_to_and_fro.resize(widths_m.size() * points);
+  chart.grid_rpm = speed_grid(predictor.row_rpm(*index), kChartGridStep_rpm);
+  chart.grid_drop_point_turn_rad = drop_point_grid(options.max_drop_point_turn_rad, options.drop_point_step_rad);
+  chart.scan_rpm = speed_grid(predictor.row_rpm(*index), kChartScanStep_rpm);
+  const std::size_t widths = widths_m.size(), speeds = chart.grid_rpm.size();
+  const std::size_t turns = chart.grid_drop_point_turn_rad.size(), points = chart.scan_rpm.size();
+  chart.scan_cv_to_and_fro.resize(widths * points);
   Search search(predictor, material, options, chart.predictions);
 
-  for (std::size_t w = 0; w < widths_m.size(); ++w) {
+  // The grid: grid_cv[(t * speeds + k) * widths + w].
+  std::vector<double> grid_cv(turns * speeds * widths);
+  for (std::size_t t = 0; t < turns; ++t) {
+    for (std::size_t k = 0; k < speeds; ++k) {
+      search.cvs(chart.grid_rpm[k], chart.grid_drop_point_turn_rad[t], widths_m,
+                 std::span(grid_cv).subspan((t * speeds + k) * widths, widths));
+    }
+  }
+
+  const double target = options.cv_target;
+  for (std::size_t w = 0; w < widths; ++w) {
     const double width_m = widths_m[w];
     SettingChartRow row;
     row.width_m = width_m;
-    const std::span<double> cv = std::span(chart.scan_cv_to_and_fro).subspan(w * points, points);
-    std::size_t best = 0;
-    for (std::size_t k = 0; k < points; ++k) {
-      cv[k] = search.cv(chart.scan_rpm[k], width_m);
-      if (cv[k] < cv[best]) best = k;
+    std::size_t best_t = 0, best_k = 0;
+    for (std::size_t t = 0; t < turns; ++t) {
+      for (std::size_t k = 0; k < speeds; ++k) {
+        if (grid_cv[(t * speeds + k) * widths + w] < grid_cv[(best_t * speeds + best_k) * widths + w]) {
+          best_t = t;
+          best_k = k;
+        }
+      }
     }
-    // Spans within the target, ends interpolated linearly in CV between grid points.
-    const double target = options.cv_target;
-    const auto crossing = [&](std::size_t k) {  // between grid points k and k + 1
+    double best_rpm = chart.grid_rpm[best_k], best_turn_rad = chart.grid_drop_point_turn_rad[best_t];
+    double best_cv = grid_cv[(best_t * speeds + best_k) * widths + w];
+    if (std::isfinite(best_cv)) {
+      // Along the speed, the drop point, and the speed again.
+      const auto along_speed = [&](double rpm) { return search.cv(rpm, best_turn_rad, width_m); };
+      const auto along_turn = [&](double turn_rad) { return search.cv(best_rpm, turn_rad, width_m); };
+      const auto [low_rpm, high_rpm] = around(chart.grid_rpm, best_k);
+      std::tie(best_rpm, best_cv) = refine(along_speed, low_rpm, high_rpm, best_rpm, best_cv, options.rpm_tolerance);
+      const auto [low_turn, high_turn] = around(chart.grid_drop_point_turn_rad, best_t);
+      std::tie(best_turn_rad, best_cv) =
+          refine(along_turn, low_turn, high_turn, best_turn_rad, best_cv, options.drop_point_tolerance_rad);
+      if (turns > 1) {
+        const double step_rpm = 0.5 * (high_rpm - low_rpm);
+        std::tie(best_rpm, best_cv) =
+            refine(along_speed, std::max(chart.min_rpm, best_rpm - step_rpm), std::min(chart.max_rpm, best_rpm + step_rpm),
+                   best_rpm, best_cv, options.rpm_tolerance);
+      }
+    }
+    // The spans within the target at the chosen drop point, ends interpolated linearly in CV.
+    const std::span<double> cv = std::span(chart.scan_cv_to_and_fro).subspan(w * points, points);
+    for (std::size_t k = 0; k < points; ++k) cv[k] = search.cv(chart.scan_rpm[k], best_turn_rad, width_m);
+    const auto crossing = [&](std::size_t k) {  // between scan points k and k + 1
       const double a = cv[k], b = cv[k + 1];
       if (!std::isfinite(a) || !std::isfinite(b)) return std::isfinite(a) ? chart.scan_rpm[k] : chart.scan_rpm[k + 1];
       return chart.scan_rpm[k] + (target - a) / (b - a) * (chart.scan_rpm[k + 1] - chart.scan_rpm[k]);
@@ -139,15 +208,16 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
       row.within_target_rpm.emplace_back(low, high);
       k = last;
     }
-    // The grid's best, refined between its neighbours.
-    double best_rpm = chart.scan_rpm[best], best_cv = cv[best];
-    if (points > 1 && std::isfinite(best_cv)) {
-      const double low = chart.scan_rpm[best == 0 ? 0 : best - 1];
-      const double high = chart.scan_rpm[std::min(best + 1, points - 1)];
-      std::tie(best_rpm, best_cv) = refine(search, width_m, low, high, best_rpm, best_cv, options.rpm_tolerance);
+    // The scan at the chosen drop point may still find a lower point (a finer speed step).
+    for (std::size_t k = 0; k < points; ++k) {
+      if (cv[k] < best_cv) {
+        best_cv = cv[k];
+        best_rpm = chart.scan_rpm[k];
+      }
     }
-    const Prediction& p = search.at(best_rpm, width_m);
+    const Prediction& p = search.at(best_rpm, best_turn_rad, width_m, true);
     row.rpm = best_rpm;
+    row.drop_point_turn_rad = best_turn_rad;
     row.bout_width_m = p.bout_width_m;
     row.cv_to_and_fro = p.cv_to_and_fro;
     row.cv_to_and_fro_se = p.cv_to_and_fro_se;
