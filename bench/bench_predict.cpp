@@ -217,6 +217,34 @@ void BM_PredictCApiFileDiscs(benchmark::State& state) {
   predict_file(state, path, def);
 }
 
+// spread_compensate_wind on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 8 m bout,
+// range(0) = lateral wind (m/s). Counter cv_percent: the CV at the setting found.
+void BM_CompensateWindCApiFile(benchmark::State& state) {
+  const char* path = std::getenv("SPREAD_BENCH_TABLE");
+  if (path == nullptr || *path == '\0') {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  spread_tables* tables = nullptr;
+  if (spread_open(path, &tables) != SPREAD_OK) {
+    state.SkipWithError("spread_open failed");
+    return;
+  }
+  spread_prediction_def def = capi_request();
+  def.rpm = 600.0;
+  def.bout_width_m = 8.0;
+  def.wind_m_s[0] = static_cast<double>(state.range(0));
+  spread_prediction result{};
+  for (auto _ : state) {
+    const spread_status status = spread_compensate_wind(tables, &def, &result, nullptr, 0);
+    benchmark::DoNotOptimize(status);
+  }
+  state.counters["cv_percent"] = result.cv_percent;
+  state.counters["left_rpm"] = result.disc_rpm[0];
+  state.counters["right_rpm"] = result.disc_rpm[1];
+  spread_close(tables);
+}
+
 // The landing cache's cost and error on a real table file (SPREAD_BENCH_TABLE).
 void BM_PredictLandingCache(benchmark::State& state) {
   const char* path = std::getenv("SPREAD_BENCH_TABLE");
@@ -266,6 +294,7 @@ BENCHMARK(BM_PredictCApiFileDiscs)
     ->ArgsProduct({{0, 3}, {0, 1, 2, 3}})
     ->ArgNames({"wind", "discs"})
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictLandingCache)
     ->ArgsProduct({{0, 3}, {0, 1}})
     ->ArgNames({"wind", "cache"})

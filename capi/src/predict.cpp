@@ -11,6 +11,7 @@
 #include "capi/src/error_detail.hpp"
 #include "capi/src/fault_seam.hpp"
 #include "capi/src/tables_handle.hpp"
+#include "libspread/analysis/predict/wind_compensation.hpp"
 
 // The C bits are passed through unchanged: each must be its effect registry row's, looked up by the
 // name the docs give it, and together they must be every flight row (a new flight effect needs its bit).
@@ -176,7 +177,7 @@ spread_status refused(spread_status status, const spread::predict::Predictor& pr
   }
 }
 
-// Both spread_predict and spread_workspace_predict: `run(request, prediction)` predicts with the
+// spread_predict, spread_workspace_predict and spread_compensate_wind: `run(request, prediction)` predicts with the
 // workspace the entry point chose.
 template <typename Run>
 spread_status predict_with(const spread::predict::Predictor& predictor, spread::predict::Prediction& prediction,
@@ -266,5 +267,36 @@ extern "C" spread_status spread_workspace_predict(spread_workspace* workspace, c
   return predict_with(predictor, workspace->prediction, def, result, transverse_mass_fraction, transverse_capacity,
                       [&](const spread::predict::PredictionRequest& request, spread::predict::Prediction& out) {
                         return predictor.predict(request, out, workspace->workspace);
+                      });
+}
+
+extern "C" spread_status spread_compensate_wind(spread_tables* tables, const spread_prediction_def* def,
+                                                spread_prediction* result, double* transverse_mass_fraction,
+                                                size_t transverse_capacity) {
+  using spread::capi::fail;
+  if (tables == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_compensate_wind: the handle is NULL");
+  if (!spread::capi::live(tables)) {
+    return fail(SPREAD_ERROR_BAD_HANDLE, "spread_compensate_wind: not a live spread_tables handle (closed?)");
+  }
+  if (def == nullptr || result == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_compensate_wind: def or result is NULL");
+  // The answer is a per-disc setting: only a caller whose structs have the 0.4 fields can read it.
+  if (def->struct_size < spread::capi::kPredictionDefV4Size || def->result_size < spread::capi::kPredictionV4Size) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "spread_compensate_wind: def->struct_size %u / result_size %u older than 0.4 (%zu / %zu): the "
+                "per-disc setting it answers has no field there",
+                static_cast<unsigned>(def->struct_size), static_cast<unsigned>(def->result_size),
+                spread::capi::kPredictionDefV4Size, spread::capi::kPredictionV4Size);
+  }
+  spread::predict::Predictor& predictor = tables->predictor;
+  if (predictor.machine().disc_count < 2) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_compensate_wind: the machine has one disc (nothing to set apart)");
+  }
+  if (!(def->bout_width_m > 0.0)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_compensate_wind: def->bout_width_m %g: the bout width to compensate at must be > 0",
+                def->bout_width_m);
+  }
+  return predict_with(predictor, tables->prediction, def, result, transverse_mass_fraction, transverse_capacity,
+                      [&](const spread::predict::PredictionRequest& request, spread::predict::Prediction& out) {
+                        return spread::predict::compensate_wind(predictor, request, out, predictor.own_workspace()).status;
                       });
 }

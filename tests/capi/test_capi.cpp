@@ -459,6 +459,33 @@ TEST_F(Capi, EachDiscAtItsOwnSettingAndRefusalsNameTheDisc) {
   }
 }
 
+// spread_compensate_wind: the per-disc setting in the result, the CV no higher than the present
+// setting's, and the requests it cannot answer refused with the reason.
+TEST_F(Capi, CompensateWindAnswersAPerDiscSetting) {
+  spread_prediction_def d = def("can", 650.0);
+  d.bout_width_m = 12.0;
+  d.wind_m_s[0] = 3.0;
+  spread_prediction present{}, compensated{};
+  ASSERT_EQ(spread_predict(tables_, &d, &present, nullptr, 0), SPREAD_OK);
+  ASSERT_EQ(spread_compensate_wind(tables_, &d, &compensated, nullptr, 0), SPREAD_OK) << spread_last_error_detail();
+  EXPECT_LT(compensated.cv_percent, present.cv_percent);
+  EXPECT_NE(compensated.disc_rpm[0], compensated.disc_rpm[1]);
+  EXPECT_EQ(compensated.disc_rpm[0] - 650.0, 650.0 - compensated.disc_rpm[1]);
+
+  spread_prediction_def no_bout = d;
+  no_bout.bout_width_m = 0.0;
+  EXPECT_EQ(spread_compensate_wind(tables_, &no_bout, &compensated, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("bout_width_m"), std::string::npos);
+  spread_prediction_def older = d;
+  older.result_size = static_cast<uint32_t>(spread::capi::kPredictionV3Size);
+  EXPECT_EQ(spread_compensate_wind(tables_, &older, &compensated, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("older than 0.4"), std::string::npos);
+  EXPECT_EQ(spread_compensate_wind(nullptr, &d, &compensated, nullptr, 0), SPREAD_ERROR_NULL_POINTER);
+  spread_prediction_def outside = d;
+  outside.rpm = 950.0;
+  EXPECT_EQ(spread_compensate_wind(tables_, &outside, &compensated, nullptr, 0), SPREAD_ERROR_RPM_OUTSIDE_TABLE);
+}
+
 TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {
   spread_trajectory_def t = spread_trajectory_def_default();
   EXPECT_EQ(t.reserved, 0u);

@@ -108,6 +108,20 @@ TEST(CapiNoAllocation, PredictDoesNotAllocate) {
     EXPECT_EQ(calls, 0) << c.material << " " << c.rpm << " wind " << c.wind_x_m_s;
   }
   {
+    // Each disc at its own setting, and the wind compensation's search (45 or so predictions).
+    spread_prediction_def def = spread_prediction_def_default();
+    def.material = "can";
+    def.rpm = 0.0;
+    def.disc_rpm[0] = 620.0;
+    def.disc_rpm[1] = 700.0;
+    def.bout_width_m = 12.0;
+    def.wind_m_s[0] = 3.0;
+    CountingScope scope;
+    EXPECT_EQ(spread_predict(tables, &def, &result, trays.data(), trays.size()), SPREAD_OK);
+    EXPECT_EQ(spread_compensate_wind(tables, &def, &result, trays.data(), trays.size()), SPREAD_OK);
+    EXPECT_EQ(scope.calls(), 0);
+  }
+  {
     spread_trajectory_def t = spread_trajectory_def_default();
     spread_landing landing{};
     CountingScope scope;

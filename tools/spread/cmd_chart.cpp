@@ -83,6 +83,16 @@ std::string cv_text(double cv, double se) {
   return text;
 }
 
+// "left 506 rpm, +18.4 deg; right 694 rpm, -18.4 deg: CV 4.8 % ± 3.3" — a row's discs set apart in the wind.
+std::string compensation_text(const pr::SettingChartRow& row) {
+  const auto disc = [&](int d) {
+    return format("%.0f rpm", row.compensated_discs[d].rpm) +
+           format(", %+.1f deg", row.compensated_discs[d].drop_point_turn_rad / kRadPerDeg);
+  };
+  return "left " + disc(pr::kLeftDisc) + "; right " + disc(pr::kRightDisc) + ": CV " +
+         cv_text(row.compensated_cv, row.compensated_cv_se);
+}
+
 std::string spans_text(const pr::SettingChartRow& row) {
   std::string list;
   for (const auto& [low, high] : row.within_target_rpm) {
@@ -167,6 +177,10 @@ void run(const Options& o, int& exit_code) {
         }
         const std::string note = reach_note(row, chart, o.cv_target_percent);
         if (!note.empty()) page.notes.push_back(note);
+        if (row.compensated) {
+          page.notes.push_back(format("%.1f m", row.width_m) + " in this wind, each disc set apart: " +
+                               compensation_text(row));
+        }
       }
       page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the setting is "
                            "the one with the lowest predicted to-and-fro CV at the width; the drop point is turned "
@@ -194,7 +208,18 @@ void run(const Options& o, int& exit_code) {
                       {"working_width_to_and_fro_m", number_or_null(row.working_width_to_and_fro_m)},
                       {"working_width_to_and_fro_se_m", number_or_null(row.working_width_to_and_fro_se_m)},
                       {"sample_count", row.sample_count},
-                      {"within_target_rpm", row.within_target_rpm}});
+                      {"within_target_rpm", row.within_target_rpm},
+                      {"wind_compensation",
+                       row.compensated
+                           ? json{{"left", {{"rpm", row.compensated_discs[pr::kLeftDisc].rpm},
+                                            {"drop_point_turn_deg",
+                                             row.compensated_discs[pr::kLeftDisc].drop_point_turn_rad / kRadPerDeg}}},
+                                  {"right", {{"rpm", row.compensated_discs[pr::kRightDisc].rpm},
+                                             {"drop_point_turn_deg",
+                                              row.compensated_discs[pr::kRightDisc].drop_point_turn_rad / kRadPerDeg}}},
+                                  {"cv_to_and_fro_percent", number_or_null(100.0 * row.compensated_cv)},
+                                  {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.compensated_cv_se)}}
+                           : json(nullptr)}});
     }
     json scan = json::array();
     for (std::size_t k = 0; k < chart.scan_rpm.size(); ++k) {
@@ -236,6 +261,13 @@ void run(const Options& o, int& exit_code) {
     for (const pr::SettingChartRow& row : chart.rows) {
       const std::string note = reach_note(row, chart, o.cv_target_percent);
       if (!note.empty()) std::printf("  note: %s\n", note.c_str());
+    }
+    bool heading = false;
+    for (const pr::SettingChartRow& row : chart.rows) {
+      if (!row.compensated) continue;
+      if (!heading) std::printf("  in this wind, each disc set apart from the setting above (wind compensation):\n");
+      heading = true;
+      std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), compensation_text(row).c_str());
     }
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::printf("wrote %s\n", o.report.path.c_str());

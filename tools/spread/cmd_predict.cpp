@@ -39,6 +39,7 @@ struct Options : spread::cli::PredictionArgs {
   std::string effects = "table";
   double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
   int repeat = 0;
+  bool compensate_wind = false;
   bool json = false;
   spread::cli::ReportArgs report;
 };
@@ -184,6 +185,7 @@ std::string setting_label(const Options& o, const spread_prediction& r) {
 // conditions through the Predictor, the C API's own engine.
 spread::cli::SettingGuidance guidance_for(const Options& o, const spread_prediction& r) {
   if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return {};
+  if (o.compensate_wind) return {};  // the setting shown is the search's already
   if (own_disc_settings(o)) {
     spread::cli::SettingGuidance note;
     note.lines.push_back("setting guidance turns both discs alike: `spread chart` finds the best setting at this width");
@@ -248,6 +250,9 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
 void run(const Options& o, int& exit_code) {
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
+  if (o.compensate_wind && !(o.bout_width_m > 0.0)) {
+    throw BadInput("--compensate-wind needs --width (the bout width to compensate at, m)");
+  }
   spread_prediction_def def = spread_prediction_def_default();
   def.material = o.material.c_str();
   def.rpm = o.rpm;
@@ -282,6 +287,13 @@ void run(const Options& o, int& exit_code) {
   std::vector<double> trays(status == SPREAD_OK ? capacity : 0);
   spread_prediction result{};
   if (status == SPREAD_OK) status = spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
+  // --compensate-wind: the present setting's CV in this wind, then the prediction at the compensated setting.
+  const double present_cv_percent = result.cv_percent, present_cv_se_percent = result.cv_se_percent;
+  const auto predict_once = [&] {
+    return o.compensate_wind ? spread_compensate_wind(tables.get(), &def, &result, trays.data(), trays.size())
+                             : spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
+  };
+  if (status == SPREAD_OK && o.compensate_wind) status = predict_once();
   if (status != SPREAD_OK) {
     std::cerr << "spread predict: error: " << explain(status, o, tables.get()) << "\n";
     exit_code = status == SPREAD_ERROR_INTERNAL ? spread::cli::kExitFailure : spread::cli::kExitUsage;
@@ -294,7 +306,7 @@ void run(const Options& o, int& exit_code) {
     std::vector<double> times_us(static_cast<std::size_t>(o.repeat));
     for (double& t : times_us) {
       const auto start = std::chrono::steady_clock::now();
-      spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
+      predict_once();
       t = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     }
     std::sort(times_us.begin(), times_us.end());
@@ -361,6 +373,11 @@ void run(const Options& o, int& exit_code) {
                 {"first_band_width_m", {{"to_and_fro", result.first_band_width_to_and_fro_m},
                                         {"racetrack", result.first_band_width_racetrack_m}}}};
     out["adjustments"] = spread::cli::setting_guidance_json(guidance);
+    if (o.compensate_wind) {
+      out["wind_compensation"] = {{"present_cv_to_and_fro_percent", number_or_null(present_cv_percent)},
+                                  {"present_cv_to_and_fro_se_percent", number_or_null(present_cv_se_percent)},
+                                  {"meets_target", result.cv_percent <= o.cv_target_percent}};
+    }
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
@@ -378,6 +395,15 @@ void run(const Options& o, int& exit_code) {
               << result.working_width_to_and_fro_m << " m" << plus_minus(result.working_width_to_and_fro_se_m)
               << ", racetrack " << result.working_width_racetrack_m << " m"
               << plus_minus(result.working_width_racetrack_se_m) << "\n";
+    if (o.compensate_wind) {
+      std::cout << "  wind compensation: CV at " << result.bout_width_m << " m in this wind " << present_cv_percent
+                << " %" << plus_minus(present_cv_se_percent) << " at the present setting; each disc set apart:\n"
+                << "    left " << result.disc_rpm[0] << " rpm, drop point "
+                << format("%+.1f deg", result.disc_drop_point_turn_rad[0] * 180.0 / std::numbers::pi) << "; right "
+                << result.disc_rpm[1] << " rpm, drop point "
+                << format("%+.1f deg", result.disc_drop_point_turn_rad[1] * 180.0 / std::numbers::pi) << " ("
+                << (result.cv_percent <= o.cv_target_percent ? "meets" : "does not meet") << " the target)\n";
+    }
     if (result.bout_width_m > 0.0) {
       std::cout << "  CV at " << result.bout_width_m << " m: to-and-fro " << result.cv_percent << " %"
                 << plus_minus(result.cv_se_percent) << ", racetrack " << result.cv_racetrack_percent << " %"
@@ -439,6 +465,9 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
   sub->add_option("--effects", options.effects, "in-flight effects: table (as the table was built, the default), all, none, or a list of drag,magnus,spin_decay,wind");
   sub->add_option("--kernel", options.kernel_half_width_m,
                   "half-width (m) of the kernel each landing is spread over; default automatic, 0 = point masses");
+  sub->add_flag("--compensate-wind", options.compensate_wind,
+                "in the --wind, set each disc apart (speed and drop point) for the lowest CV at --width (C API "
+                "spread_compensate_wind); the prediction shown is at that setting");
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);

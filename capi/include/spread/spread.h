@@ -293,6 +293,22 @@ SPREAD_API spread_status spread_predict(spread_tables* tables, const spread_pred
                                         spread_prediction* result, double* transverse_mass_fraction,
                                         size_t transverse_capacity);
 
+/* Wind compensation (0.4): the setting of each disc that brings the to-and-fro CV at def->bout_width_m
+ * (> 0, required) back towards def->cv_target_percent in the wind def->wind_m_s, from the present setting
+ * in def (rpm and drop point, or each disc's own). The discs' speeds move apart by ±d (the left disc +d)
+ * within the table's rows and at most 150 rpm, and their drop points turn by ±t (the left +t, the right
+ * -t in its mirrored frame: both fans turn the same way seen from above) within 45 degrees: a 5 x 5 grid,
+ * then golden-section search along d (to 4 rpm) and t (to 0.5 degrees), about 45 predictions without
+ * standard errors and one with them (docs/c-api.md "Wind compensation" gives the cost). *result is the
+ * prediction at the setting found; result->disc_rpm and result->disc_drop_point_turn_rad say the setting,
+ * so def->result_size must cover 0.4's result (spread_prediction_def_default() sets it). Whether the CV
+ * now meets the target: result->cv_percent. The same errors as spread_predict, and SPREAD_ERROR_OUT_OF_RANGE
+ * without a bout width, on a one-disc machine or for a definition or result older than 0.4. Does not
+ * allocate. Not re-entrant on one handle. */
+SPREAD_API spread_status spread_compensate_wind(spread_tables* tables, const spread_prediction_def* def,
+                                                spread_prediction* result, double* transverse_mass_fraction,
+                                                size_t transverse_capacity);
+
 /* ---------------------------------------------------------------------------------------------------
  * Single trajectory (no table needed)
  * ------------------------------------------------------------------------------------------------- */

@@ -305,6 +305,10 @@ class Predictor {
   // with a workspace each may call it at once. The views in `out` point into `workspace`.
   PredictStatus predict(const PredictionRequest& request, Prediction& out, PredictorWorkspace& workspace) const;
 
+  // The Predictor's own workspace, the one predict(request, out) uses (for searches that predict many
+  // times through the Predictor's workspace: one thread at a time).
+  PredictorWorkspace& own_workspace() { return *own_workspace_; }
+
   // Launch samples of the largest pair of neighbouring rows (what a workspace is sized for).
   std::size_t largest_pair() const { return largest_pair_; }
   // Launch samples of run k (runs sorted by material and rpm, as TableContents::runs).

@@ -21,9 +21,9 @@ double kernel_dot(double x, std::span<const double> gradient, const metrics::Tra
   const long first = std::max(0L, static_cast<long>(std::floor((x - h - left_m) / w)));
   const long end = std::min(last, static_cast<long>(std::floor((x + h - left_m) / w)));
   double sum = 0.0;
-  double below = metrics::epanechnikov_cdf((left_m + first * w - x) / h);
+  double below = metrics::epanechnikov_cdf((left_m + static_cast<double>(first) * w - x) / h);
   for (long k = first; k <= end; ++k) {
-    const double above = metrics::epanechnikov_cdf((left_m + (k + 1) * w - x) / h);
+    const double above = metrics::epanechnikov_cdf((left_m + static_cast<double>(k + 1) * w - x) / h);
     sum += gradient[static_cast<std::size_t>(k)] * (above - below);
     below = above;
   }

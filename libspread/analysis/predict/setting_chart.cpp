@@ -1,5 +1,8 @@
 #include "libspread/analysis/predict/setting_chart.hpp"
 
+#include "libspread/analysis/predict/golden_section.hpp"
+#include "libspread/analysis/predict/wind_compensation.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -81,34 +84,6 @@ std::vector<double> drop_point_grid(double max_rad, double step_rad) {
   return grid;
 }
 
-// Golden-section search for the lowest f over [low, high] down to `tolerance`, starting from the best so
-// far (best_x, best_f); returns the lower of the two.
-template <typename F>
-std::pair<double, double> refine(F f, double low, double high, double best_x, double best_f, double tolerance) {
-  constexpr double kInverseGolden = 0.6180339887498949;  // (√5 − 1)/2
-  if (!(high - low > tolerance)) return {best_x, best_f};
-  double a = low, b = high;
-  double c = b - kInverseGolden * (b - a), d = a + kInverseGolden * (b - a);
-  double fc = f(c), fd = f(d);
-  while (b - a > tolerance) {
-    if (fc <= fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - kInverseGolden * (b - a);
-      fc = f(c);
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + kInverseGolden * (b - a);
-      fd = f(d);
-    }
-  }
-  const double x = fc <= fd ? c : d, value = std::min(fc, fd);
-  return value < best_f ? std::pair{x, value} : std::pair{best_x, best_f};
-}
-
 // The grid neighbours of index k: [grid[k − 1], grid[k + 1]] within the grid.
 std::pair<double, double> around(const std::vector<double>& grid, std::size_t k) {
   return {grid[k == 0 ? 0 : k - 1], grid[std::min(k + 1, grid.size() - 1)]};
@@ -180,14 +155,14 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
       const auto along_speed = [&](double rpm) { return search.cv(rpm, best_turn_rad, width_m); };
       const auto along_turn = [&](double turn_rad) { return search.cv(best_rpm, turn_rad, width_m); };
       const auto [low_rpm, high_rpm] = around(chart.grid_rpm, best_k);
-      std::tie(best_rpm, best_cv) = refine(along_speed, low_rpm, high_rpm, best_rpm, best_cv, options.rpm_tolerance);
+      std::tie(best_rpm, best_cv) = golden_section_minimum(along_speed, low_rpm, high_rpm, best_rpm, best_cv, options.rpm_tolerance);
       const auto [low_turn, high_turn] = around(chart.grid_drop_point_turn_rad, best_t);
       std::tie(best_turn_rad, best_cv) =
-          refine(along_turn, low_turn, high_turn, best_turn_rad, best_cv, options.drop_point_tolerance_rad);
+          golden_section_minimum(along_turn, low_turn, high_turn, best_turn_rad, best_cv, options.drop_point_tolerance_rad);
       if (turns > 1) {
         const double step_rpm = 0.5 * (high_rpm - low_rpm);
         std::tie(best_rpm, best_cv) =
-            refine(along_speed, std::max(chart.min_rpm, best_rpm - step_rpm), std::min(chart.max_rpm, best_rpm + step_rpm),
+            golden_section_minimum(along_speed, std::max(chart.min_rpm, best_rpm - step_rpm), std::min(chart.max_rpm, best_rpm + step_rpm),
                    best_rpm, best_cv, options.rpm_tolerance);
       }
     }
@@ -226,6 +201,28 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
     row.working_width_to_and_fro_m = p.working_width_to_and_fro_m;
     row.working_width_to_and_fro_se_m = p.working_width_to_and_fro_se_m;
     row.sample_count = p.sample_count;
+    if (options.wind_x_m_s != 0.0 && predictor.machine().disc_count == 2) {
+      PredictionRequest request;
+      request.material = material;
+      request.rpm = best_rpm;
+      request.drop_point_turn_rad = best_turn_rad;
+      request.cv_target = options.cv_target;
+      request.tray_width_m = options.tray_width_m;
+      request.disc_height_m = options.disc_height_m;
+      request.wind_x_m_s = options.wind_x_m_s;
+      request.wind_y_m_s = options.wind_y_m_s;
+      request.bout_width_m = width_m;
+      Prediction compensated;
+      const WindCompensation found = compensate_wind(predictor, request, compensated, predictor.own_workspace());
+      chart.predictions += found.predictions;
+      if (found.status == PredictStatus::kOk) {
+        row.compensated = true;
+        row.compensated_discs[kLeftDisc] = found.discs[kLeftDisc];
+        row.compensated_discs[kRightDisc] = found.discs[kRightDisc];
+        row.compensated_cv = compensated.cv_to_and_fro;
+        row.compensated_cv_se = compensated.cv_to_and_fro_se;
+      }
+    }
     if (!(row.cv_to_and_fro <= target)) {
       row.reach = ChartReach::kNotReached;
     } else {

@@ -15,7 +15,8 @@
 // CV over the drop point is not monotonic (the fan turns against the neighbouring pass), hence the grid
 // over the whole range first. The spans come from a finer scan of the speed (every row and steps of at
 // most kChartScanStep_rpm) at the chosen drop point, their ends interpolated linearly in CV. A width is
-// reachable when some setting's CV meets the target there.
+// reachable when some setting's CV meets the target there. In a lateral wind each row also gets the discs
+// set apart from its setting (compensate_wind), the answer to the wind a twin-disc spreader has.
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -71,6 +72,12 @@ struct SettingChartRow {
   // Spans [low, high] of disc speed (r/min) whose to-and-fro CV at W is within the target, at the
   // chosen drop point.
   std::vector<std::pair<double, double>> within_target_rpm;
+  // In a lateral wind: the discs set apart from the setting above (wind_compensation.hpp), with the
+  // to-and-fro CV at W there and its standard error (fractions); compensated false otherwise.
+  bool compensated = false;
+  DiscSetting compensated_discs[2];
+  double compensated_cv = std::numeric_limits<double>::quiet_NaN();
+  double compensated_cv_se = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SettingChart {
