@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/predict/edge_spreading.hpp"
 #include "libspread/analysis/predict/setting_chart.hpp"
 #include "libspread/analysis/predict/wind_compensation.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -87,6 +88,34 @@ TEST(DefaultWind, CompensationRestoresTheCvInACrosswind) {
   EXPECT_LE(out.cv_to_and_fro, 0.15);
   EXPECT_EQ(out.cv_to_and_fro, found.cv);
   EXPECT_NE(out.discs[pr::kLeftDisc].rpm, out.discs[pr::kRightDisc].rpm);
+}
+
+// Urea at 600 rpm on 15 m bouts (its working width): border spreading puts at most 0.1 % of the last
+// pass's mass over the edge line and edge spreading keeps 80 % of the rate at the edge, neither
+// over-applying the last bout; the normal setting does neither.
+TEST(DefaultEdge, BorderAndEdgeSettingsMeetTheirThresholds) {
+  if (!std::filesystem::exists(SPREAD_DEFAULT_TABLE)) {
+    GTEST_SKIP() << SPREAD_DEFAULT_TABLE << " missing: run through ctest (fixture capi.fixture.default_scene)";
+  }
+  pr::Predictor predictor(spread::tables::read_table_file(SPREAD_DEFAULT_TABLE));
+  pr::PredictionRequest field;
+  field.material = "Urea";
+  field.rpm = 600.0;
+  field.bout_width_m = 15.0;
+  for (const pr::EdgeKind kind : {pr::EdgeKind::kBorder, pr::EdgeKind::kEdge}) {
+    pr::EdgeRequest edge;
+    edge.kind = kind;
+    const pr::EdgeResult r = pr::find_edge_setting(predictor, field, edge);
+    ASSERT_EQ(r.status, pr::PredictStatus::kOk);
+    EXPECT_TRUE(r.profile.meets) << pr::to_string(kind);
+    EXPECT_FALSE(r.normal_profile.meets) << pr::to_string(kind);
+    EXPECT_LE(r.profile.max_rate_inside, r.profile.over_limit);
+    if (kind == pr::EdgeKind::kBorder) {
+      EXPECT_LE(r.profile.mass_beyond_fraction, 0.001);
+    } else {
+      EXPECT_GE(r.profile.rate_at_edge, 0.8);
+    }
+  }
 }
 
 }  // namespace

@@ -931,6 +931,7 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   p.radial_width_m = w.radial_width_m_;
   p.tray_mass_fraction = tray_mass;
   p.landing_x_m = xs;
+  p.left_landing_count = n;
   p.landing_y_m = ys;
   p.landing_mass_fraction = weights;
   return PredictStatus::kOk;

@@ -181,6 +181,7 @@ struct Prediction {
   // Landings of the whole machine in the machine frame (both discs; the left disc's first), with the
   // fraction of the total mass each stands for. Not-landed granules have x = y = NaN.
   std::span<const double> landing_x_m, landing_y_m, landing_mass_fraction;
+  std::size_t left_landing_count = 0;  // the left disc's landings come first, the right disc's after them
 };
 
 struct PredictorLimits {

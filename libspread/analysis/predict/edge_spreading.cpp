@@ -1,0 +1,344 @@
+#include "libspread/analysis/predict/edge_spreading.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+
+namespace spread::predict {
+
+const char* to_string(EdgeKind kind) {
+  switch (kind) {
+    case EdgeKind::kBorder: return "border";
+    case EdgeKind::kEdge: return "edge";
+  }
+  return "?";
+}
+
+namespace {
+
+// Mass of a landing (kernel of half-width h) beyond the line at `line_m`; a granule that did not land
+// (x not finite) is nowhere.
+double beyond(double x, double weight, double line_m, double h) {
+  if (!std::isfinite(x)) return 0.0;
+  if (h == 0.0) return x >= line_m ? weight : 0.0;
+  return weight * (1.0 - metrics::epanechnikov_cdf((line_m - x) / h));
+}
+
+// What does not change with the edge-side disc's setting: the layout, the passes before this one and this
+// pass's other disc, all at the normal setting.
+struct Frame {
+  metrics::TrayLayout trays;
+  double bout_width_m = 0.0, line_m = 0.0, kernel_m = 0.0;
+  double target_per_tray = 0.0;   // the field's rate inside, as mass per tray
+  std::vector<double> fixed;      // per tray
+  double fixed_beyond = 0.0;      // mass beyond the line
+  double inner_mass = 0.0;        // this pass's other disc's discharged mass
+  int first_inside = 0, end_inside = 0;  // trays of the last bout, [−W/2, line]
+  double over_limit = 0.0;        // the rate above which a tray is over-applied
+  double under_limit = 0.0;       // … and below which under-applied
+  std::vector<double> interior;   // per tray, the rate the field's interior gets there (all passes)
+};
+
+// The edge-side disc's landings of `p`, x turned so that the edge lies towards +x.
+template <typename Visit>
+void edge_disc_landings(const Prediction& p, int side, Visit visit) {
+  const double orient = side == kRightDisc ? 1.0 : -1.0;
+  const std::size_t first = side == kRightDisc ? p.left_landing_count : 0;
+  const std::size_t end = side == kRightDisc ? p.landing_x_m.size() : p.left_landing_count;
+  for (std::size_t i = first; i < end; ++i) visit(orient * p.landing_x_m[i], p.landing_mass_fraction[i]);
+}
+
+Frame make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_width_m, double tray_width_m) {
+  Frame f;
+  f.bout_width_m = bout_width_m;
+  f.line_m = 0.5 * bout_width_m - edge.gap_m;
+  f.kernel_m = normal.kernel_half_width_m;
+  const double orient = edge.side == kRightDisc ? 1.0 : -1.0;
+  double reach_m = 0.0, landed = 0.0;
+  for (std::size_t i = 0; i < normal.landing_x_m.size(); ++i) {
+    if (!std::isfinite(normal.landing_x_m[i])) continue;
+    reach_m = std::max(reach_m, std::abs(normal.landing_x_m[i]));
+    landed += normal.landing_mass_fraction[i];
+  }
+  reach_m += f.kernel_m;
+  f.trays = metrics::tray_layout_covering(bout_width_m + reach_m, tray_width_m);
+  f.target_per_tray = landed * tray_width_m / bout_width_m;
+  f.fixed.assign(static_cast<std::size_t>(f.trays.tray_count), 0.0);
+  // The passes before: pass k at −kW, mirrored for odd k (to-and-fro), while it still reaches the layout.
+  const int passes = static_cast<int>(std::ceil(2.0 * reach_m / bout_width_m)) + 1;
+  std::vector<double> x(normal.landing_x_m.size());
+  for (int k = 1; k <= passes; ++k) {
+    const double mirror = k % 2 == 1 ? -1.0 : 1.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      x[i] = mirror * orient * normal.landing_x_m[i] - k * bout_width_m;
+      f.fixed_beyond += beyond(x[i], normal.landing_mass_fraction[i], f.line_m, f.kernel_m);
+    }
+    metrics::accumulate_transverse_kernel(x, normal.landing_mass_fraction, f.trays, f.kernel_m, f.fixed);
+  }
+  // This pass's other disc.
+  const int inner = edge.side == kRightDisc ? kLeftDisc : kRightDisc;
+  std::vector<double> inner_x, inner_w;
+  edge_disc_landings(normal, inner, [&](double xi, double wi) {
+    // edge_disc_landings turns x by the inner side's orientation, the opposite of the edge's.
+    inner_x.push_back(-xi);
+    inner_w.push_back(wi);
+  });
+  for (std::size_t i = 0; i < inner_x.size(); ++i) {
+    f.inner_mass += inner_w[i];
+    f.fixed_beyond += beyond(inner_x[i], inner_w[i], f.line_m, f.kernel_m);
+  }
+  metrics::accumulate_transverse_kernel(inner_x, inner_w, f.trays, f.kernel_m, f.fixed);
+  const double left_m = f.trays.left_edge_m(), w = f.trays.tray_width_m;
+  f.first_inside = std::max(0, static_cast<int>(std::ceil((-0.5 * bout_width_m - left_m) / w - 1e-9)));
+  // Over-applied: above 1 + tolerance, or above the highest rate the field's interior gets at the normal
+  // setting where that is higher (the last bout cannot be asked to be more even than the field). The
+  // interior: the same passes continued past the edge (pass −k at +kW), read over the last bout.
+  std::vector<double> interior(f.fixed.size(), 0.0);
+  for (int k = -passes; k <= passes; ++k) {
+    const double mirror = k % 2 != 0 ? -1.0 : 1.0;
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = mirror * orient * normal.landing_x_m[i] - k * bout_width_m;
+    metrics::accumulate_transverse_kernel(x, normal.landing_mass_fraction, f.trays, f.kernel_m, interior);
+  }
+  double interior_peak = 0.0, interior_low = std::numeric_limits<double>::infinity();
+  for (double& v : interior) v /= f.target_per_tray;
+  for (int k = f.first_inside; k < std::min(f.trays.tray_count, f.first_inside + metrics::bout_tray_count(f.trays, bout_width_m)); ++k) {
+    interior_peak = std::max(interior_peak, interior[static_cast<std::size_t>(k)]);
+    interior_low = std::min(interior_low, interior[static_cast<std::size_t>(k)]);
+  }
+  f.interior = std::move(interior);
+  f.under_limit = std::min(1.0 - edge.rate_tolerance, interior_low);
+  f.over_limit = std::max(1.0 + edge.rate_tolerance, interior_peak);
+  f.end_inside = std::min(f.trays.tray_count, static_cast<int>(std::floor((f.line_m - left_m) / w + 1e-9)));
+  return f;
+}
+
+// The edge-side disc at one setting: its trays and its mass beyond the line, at full flow.
+struct EdgeDisc {
+  std::vector<double> trays;
+  double beyond = 0.0, mass = 0.0;
+};
+
+// The profile's figures at flow f (strips only when `strips`).
+void evaluate(const Frame& frame, const EdgeDisc& disc, double flow, const EdgeRequest& edge, EdgeProfile& out,
+              bool strips) {
+  const double w = frame.trays.tray_width_m, left_m = frame.trays.left_edge_m();
+  const double pass_mass = frame.inner_mass + flow * disc.mass;
+  out.mass_beyond_fraction = pass_mass > 0.0 ? (frame.fixed_beyond + flow * disc.beyond) / pass_mass : 0.0;
+  out.max_rate_inside = 0.0;
+  out.missing_inside_m = 0.0;
+  out.rate_at_edge = 0.0;
+  out.under_applied_m.clear();
+  out.over_applied_m.clear();
+  const auto rate = [&](int k) {
+    return (frame.fixed[static_cast<std::size_t>(k)] + flow * disc.trays[static_cast<std::size_t>(k)]) / frame.target_per_tray;
+  };
+  const auto strip = [&](std::vector<std::pair<double, double>>& list, int k) {
+    const double from = left_m + k * w;
+    if (!list.empty() && std::abs(list.back().second - from) < 1e-9) {
+      list.back().second = from + w;
+    } else {
+      list.emplace_back(from, from + w);
+    }
+  };
+  for (int k = frame.first_inside; k < frame.end_inside; ++k) {
+    const double r = rate(k);
+    out.max_rate_inside = std::max(out.max_rate_inside, r);
+    out.missing_inside_m += std::max(0.0, frame.interior[static_cast<std::size_t>(k)] - r) * w;
+    out.rate_at_edge = r;
+    if (strips && r < frame.under_limit) strip(out.under_applied_m, k);
+    if (strips && r > frame.over_limit) strip(out.over_applied_m, k);
+  }
+  out.over_limit = frame.over_limit;
+  out.under_limit = frame.under_limit;
+  const bool not_over = out.max_rate_inside <= frame.over_limit;
+  out.meets = edge.kind == EdgeKind::kBorder ? out.mass_beyond_fraction <= edge.max_beyond_fraction && not_over
+                                             : out.rate_at_edge >= edge.min_edge_rate && not_over;
+}
+
+// Lower is better: the settings that meet the thresholds first (by the kind's aim), then the rest by how
+// far they miss them.
+double score(const EdgeProfile& p, const EdgeRequest& edge, double bout_width_m) {
+  // Border spreading: the least fertiliser missing inside (nothing may go over). Edge spreading, whose
+  // thresholds allow mass over the edge: the least fertiliser misplaced, missing inside or thrown over,
+  // in the same unit (a share b of the pass's mass over the edge is about b·W metres of field rate).
+  if (p.meets) {
+    return edge.kind == EdgeKind::kBorder ? p.missing_inside_m : p.missing_inside_m + p.mass_beyond_fraction * bout_width_m;
+  }
+  const double over = std::max(0.0, p.max_rate_inside - p.over_limit) / edge.rate_tolerance;
+  const double miss = edge.kind == EdgeKind::kBorder
+                          ? std::max(0.0, p.mass_beyond_fraction / edge.max_beyond_fraction - 1.0)
+                          : std::max(0.0, 1.0 - p.rate_at_edge / edge.min_edge_rate);
+  return 1e6 * (1.0 + over + miss);
+}
+
+bool valid(const PredictionRequest& normal, const EdgeRequest& edge, const Predictor& predictor) {
+  const double half = 0.5 * normal.bout_width_m;
+  return normal.bout_width_m > 0.0 && predictor.machine().disc_count == 2 &&
+         (edge.side == kLeftDisc || edge.side == kRightDisc) && edge.gap_m >= 0.0 && edge.gap_m < half &&
+         edge.max_beyond_fraction > 0.0 && edge.max_beyond_fraction <= 1.0 && edge.rate_tolerance > 0.0 &&
+         edge.rate_tolerance <= 1.0 && edge.min_edge_rate > 0.0 && edge.min_edge_rate <= 1.0 &&
+         edge.max_drop_point_turn_rad >= 0.0 && edge.max_drop_point_turn_rad <= kPi;
+}
+
+class EdgeSearch {
+ public:
+  EdgeSearch(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge)
+      : predictor_(predictor), normal_(normal), edge_(edge) {}
+
+  // The normal prediction and the frame; false with status_ set when refused.
+  bool start() {
+    if (!valid(normal_, edge_, predictor_)) {
+      status_ = PredictStatus::kOutOfRange;
+      return false;
+    }
+    PredictionRequest r = normal_;
+    r.standard_errors = false;
+    status_ = predictor_.predict(r, prediction_);
+    ++predictions_;
+    if (status_ != PredictStatus::kOk) return false;
+    frame_ = make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m);
+    normal_disc_ = disc_setting(normal_, edge_.side);
+    kernel_m_ = prediction_.kernel_half_width_m;
+    return true;
+  }
+  // The edge-side disc at `setting` (full flow).
+  bool disc_at(const DiscSetting& setting, EdgeDisc& out) {
+    PredictionRequest r = normal_;
+    r.standard_errors = false;
+    r.kernel_half_width_m = kernel_m_;
+    const std::size_t side = static_cast<std::size_t>(edge_.side);
+    const std::size_t other = 1 - side;
+    // The other disc keeps the normal setting; a both-discs value no disc would use is cleared.
+    r.disc_rpm[other] = disc_setting(normal_, static_cast<int>(other)).rpm;
+    r.disc_drop_point_turn_rad[other] = disc_setting(normal_, static_cast<int>(other)).drop_point_turn_rad;
+    r.disc_rpm[side] = setting.rpm;
+    r.disc_drop_point_turn_rad[side] = setting.drop_point_turn_rad;
+    r.rpm = 0.0;
+    r.drop_point_turn_rad = 0.0;
+    ++predictions_;
+    if (predictor_.predict(r, prediction_) != PredictStatus::kOk) return false;
+    out.trays.assign(frame_.fixed.size(), 0.0);
+    out.beyond = out.mass = 0.0;
+    x_.clear();
+    w_.clear();
+    edge_disc_landings(prediction_, edge_.side, [&](double x, double w) {
+      x_.push_back(x);
+      w_.push_back(w);
+      out.mass += w;
+      out.beyond += beyond(x, w, frame_.line_m, frame_.kernel_m);
+    });
+    metrics::accumulate_transverse_kernel(x_, w_, frame_.trays, frame_.kernel_m, out.trays);
+    return true;
+  }
+  // The best flow at this disc setting; its score.
+  double best_flow(const EdgeDisc& disc, double& flow) {
+    EdgeProfile p;
+    double best = std::numeric_limits<double>::infinity();
+    const int steps = static_cast<int>(std::lround((kEdgeMaxFlow - kEdgeMinFlow) / kEdgeFlowStep));
+    for (int i = 0; i <= steps; ++i) {
+      const double f = kEdgeMinFlow + i * kEdgeFlowStep;
+      evaluate(frame_, disc, f, edge_, p, false);
+      const double s = score(p, edge_, frame_.bout_width_m);
+      if (s < best) {
+        best = s;
+        flow = f;
+      }
+    }
+    return best;
+  }
+  EdgeProfile profile(const EdgeDisc& disc, double flow) {
+    EdgeProfile p;
+    evaluate(frame_, disc, flow, edge_, p, true);
+    p.trays = frame_.trays;
+    p.edge_line_m = frame_.line_m;
+    p.rate.resize(frame_.fixed.size());
+    for (std::size_t k = 0; k < p.rate.size(); ++k) p.rate[k] = (frame_.fixed[k] + flow * disc.trays[k]) / frame_.target_per_tray;
+    return p;
+  }
+
+  PredictStatus status_ = PredictStatus::kOk;
+  int predictions_ = 0;
+  DiscSetting normal_disc_;
+
+ private:
+  Predictor& predictor_;
+  PredictionRequest normal_;
+  EdgeRequest edge_;
+  Prediction prediction_;
+  Frame frame_;
+  double kernel_m_ = 0.0;
+  std::vector<double> x_, w_;
+};
+
+}  // namespace
+
+EdgeProfile edge_profile(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                         const EdgeSetting& setting, PredictStatus& status) {
+  EdgeSearch search(predictor, normal, edge);
+  if (!search.start()) {
+    status = search.status_;
+    return {};
+  }
+  EdgeDisc disc;
+  if (!(setting.flow_fraction >= 0.0) || !search.disc_at(setting.disc, disc)) {
+    status = PredictStatus::kOutOfRange;
+    return {};
+  }
+  status = PredictStatus::kOk;
+  return search.profile(disc, setting.flow_fraction);
+}
+
+EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge) {
+  EdgeResult result;
+  EdgeSearch search(predictor, normal, edge);
+  if (!search.start()) {
+    result.status = search.status_;
+    return result;
+  }
+  const std::optional<std::size_t> material = predictor.find_material(normal.material);
+  const double min_rpm = predictor.min_rpm(*material), max_rpm = predictor.max_rpm(*material);
+  EdgeDisc disc;
+  search.disc_at(search.normal_disc_, disc);
+  result.normal_profile = search.profile(disc, 1.0);
+
+  // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within ±π.
+  const double base_turn = search.normal_disc_.drop_point_turn_rad;
+  const double turn_low = std::max(-kPi, base_turn - edge.max_drop_point_turn_rad);
+  const double turn_high = std::min(kPi, base_turn + edge.max_drop_point_turn_rad);
+  double best_score = std::numeric_limits<double>::infinity();
+  EdgeSetting best;
+  const auto consider = [&](double rpm, double turn_rad) {
+    rpm = std::clamp(rpm, min_rpm, max_rpm);
+    turn_rad = std::clamp(turn_rad, turn_low, turn_high);
+    if (!search.disc_at(DiscSetting{rpm, turn_rad}, disc)) return;
+    double flow = 1.0;
+    const double s = search.best_flow(disc, flow);
+    if (s < best_score) {
+      best_score = s;
+      best = EdgeSetting{DiscSetting{rpm, turn_rad}, flow};
+    }
+  };
+  const double step_rad = kEdgeGridStep_deg * kPi / 180.0;
+  const int turns = static_cast<int>(std::floor(edge.max_drop_point_turn_rad / step_rad + 1e-9));
+  const int speeds = std::max(1, static_cast<int>(std::ceil((max_rpm - min_rpm) / kEdgeGridStep_rpm - 1e-9)));
+  for (int i = 0; i <= speeds; ++i) {
+    for (int j = -turns; j <= turns; ++j) consider(min_rpm + (max_rpm - min_rpm) * i / speeds, base_turn + j * step_rad);
+  }
+  // A finer grid around the best: a tenth of each step, over one step each way.
+  const EdgeSetting coarse = best;
+  for (int i = -5; i <= 5; ++i) {
+    for (int j = -5; j <= 5; ++j) {
+      if (i == 0 && j == 0) continue;
+      consider(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad);
+    }
+  }
+  search.disc_at(best.disc, disc);
+  result.setting = best;
+  result.profile = search.profile(disc, best.flow_fraction);
+  result.predictions = search.predictions_;
+  return result;
+}
+
+}  // namespace spread::predict

@@ -1,0 +1,98 @@
+#pragma once
+// Border and edge spreading: the last bout along a field edge, with the edge-side disc set apart.
+//
+// The tramline of the last bout lies half a bout width W from the field edge. Across it (x from the
+// tramline, towards the edge positive) the field receives this pass plus the passes before it: pass k at
+// −kW, driven the other way for odd k (to-and-fro: its pattern mirrored). The passes before are at the
+// normal setting; on this pass the disc on the edge side runs at its own speed, drop point and flow (the
+// share of the normal metered flow it receives: a border setting reduces the rate on that side so that
+// the field inside is not over-applied). The rate is read in trays, as a fraction of the field's rate
+// inside (one pass's landed mass per bout width).
+//
+// Two kinds of edge (the German fertiliser ordinance, DüV §5, and the manufacturers' border settings):
+// - border spreading (a road, a path, water): at most max_beyond_fraction of this pass's mass beyond the
+//   edge line and no over-application in the last bout (no tray of [−W/2, edge line] above 1 +
+//   rate_tolerance, or above the highest rate of the field's interior at the normal setting where that is
+//   higher: the last bout cannot be asked to be more even than the field); next to water the edge line
+//   lies gap_m inside the field edge (1 m with a border spreading device, 3 m without). Among the
+//   settings that meet both, the one with the least fertiliser missing in the last bout.
+// - edge spreading (next to another field): the rate at the edge line at least min_edge_rate of the
+//   field's and no over-application inside; among those, the least fertiliser misplaced — missing in the
+//   last bout or thrown over the edge, in the same unit.
+//
+// Search: the edge-side disc's speed over the material's rows in kEdgeGridStep_rpm steps times its drop
+// point in kEdgeGridStep_deg steps within ±max_drop_point_turn_rad, then a finer grid around the best; at
+// each the flow in steps of kEdgeFlowStep (the flow scales that disc's landings: no flight per step).
+// Predictions without standard errors, each disc's landings kept apart (Prediction::left_landing_count).
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
+
+namespace spread::predict {
+
+enum class EdgeKind : std::uint8_t { kBorder, kEdge };
+const char* to_string(EdgeKind kind);
+
+struct EdgeRequest {
+  EdgeKind kind = EdgeKind::kBorder;
+  int side = kRightDisc;                 // the edge's side as the driver sees it (kLeftDisc, kRightDisc)
+  double gap_m = 0.0;                    // the edge line this far inside the field edge, m (>= 0, < W/2)
+  double max_beyond_fraction = 0.001;    // border: of this pass's mass, beyond the edge line
+  double rate_tolerance = 0.10;          // inside: over-applied above 1 + this, under-applied below 1 − this
+  double min_edge_rate = 0.80;           // edge: the rate at the edge line, of the field's
+  // The edge-side disc's drop point searched: turns within ± this of the field's setting (±90°, as the
+  // setting chart; up to π).
+  double max_drop_point_turn_rad = 1.5707963267948966;
+};
+
+inline constexpr double kEdgeGridStep_rpm = 25.0;
+inline constexpr double kEdgeGridStep_deg = 10.0;
+inline constexpr double kEdgeFlowStep = 0.01;
+inline constexpr double kEdgeMinFlow = 0.0, kEdgeMaxFlow = 1.20;  // 0: the edge-side disc off
+
+// The edge-side disc's setting on the last pass.
+struct EdgeSetting {
+  DiscSetting disc;
+  double flow_fraction = 1.0;  // of the normal metered flow to that disc
+};
+
+struct EdgeProfile {
+  metrics::TrayLayout trays;      // x from the last tramline, towards the edge positive
+  std::vector<double> rate;       // per tray, of the field's rate inside
+  double edge_line_m = 0.0;       // x of the edge line: W/2 − gap_m
+  double mass_beyond_fraction = 0.0;  // of this pass's mass, beyond the edge line
+  double max_rate_inside = 0.0;   // over the last bout's trays, [−W/2, edge line]
+  double over_limit = 0.0;        // above it a tray is over-applied (1 + tolerance, or the interior's peak)
+  double under_limit = 0.0;       // below it under-applied (1 − tolerance, or the interior's lowest)
+  double rate_at_edge = 0.0;      // of the last tray inside the line
+  // ∫ max(0, interior − rate) dx over the last bout: the fertiliser missing against what the field's
+  // interior gets at each place, in metres of field rate.
+  double missing_inside_m = 0.0;
+  // Strips of the last bout where the rate is below under_limit or above over_limit, [from, to] m.
+  std::vector<std::pair<double, double>> under_applied_m, over_applied_m;
+  bool meets = false;             // the kind's thresholds
+};
+
+struct EdgeResult {
+  PredictStatus status = PredictStatus::kOk;  // of the normal setting's request
+  EdgeSetting setting;            // found (meets or, when nothing meets, the least violation)
+  EdgeProfile profile;            // at that setting
+  EdgeProfile normal_profile;     // the same pass with the edge-side disc at the normal setting
+  int predictions = 0;
+};
+
+// `normal`: the setting of the field (rpm, drop point or each disc's own), bout width (> 0), wind, height,
+// CV target. kOutOfRange without a bout width, on a one-disc machine, or for an edge request out of its
+// domain (gap outside [0, W/2), thresholds not in (0, 1], side not 0 or 1); a refused normal request is
+// its status.
+EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge);
+
+// The profile of the last pass with the edge-side disc at `setting` (status as find_edge_setting's).
+EdgeProfile edge_profile(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                         const EdgeSetting& setting, PredictStatus& status);
+
+}  // namespace spread::predict

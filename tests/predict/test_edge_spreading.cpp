@@ -1,0 +1,82 @@
+// Border and edge spreading on the synthetic table: the setting found meets its thresholds in its own
+// profile, a border setting throws less over the line than the normal one, an edge on the left is the
+// mirror image of one on the right, the profile of a setting is the same however it is asked for, and
+// requests out of the domain are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "libspread/analysis/predict/edge_spreading.hpp"
+#include "tests/predict/synthetic_table.hpp"
+
+namespace spread::predict {
+namespace {
+
+PredictionRequest field(double bout_width_m) {
+  PredictionRequest r;
+  r.material = "can";
+  r.rpm = 650.0;
+  r.bout_width_m = bout_width_m;
+  return r;
+}
+
+TEST(EdgeSpreading, BorderAndEdgeSettingsMeetTheirThresholds) {
+  Predictor predictor(testing::synthetic_contents());
+  for (const EdgeKind kind : {EdgeKind::kBorder, EdgeKind::kEdge}) {
+    EdgeRequest edge;
+    edge.kind = kind;
+    const EdgeResult r = find_edge_setting(predictor, field(18.0), edge);
+    ASSERT_EQ(r.status, PredictStatus::kOk);
+    const EdgeProfile& p = r.profile;
+    ASSERT_TRUE(p.meets) << to_string(kind);
+    EXPECT_LE(p.max_rate_inside, p.over_limit);
+    EXPECT_TRUE(p.over_applied_m.empty());
+    if (kind == EdgeKind::kBorder) {
+      EXPECT_LE(p.mass_beyond_fraction, edge.max_beyond_fraction);
+      EXPECT_GT(r.normal_profile.mass_beyond_fraction, edge.max_beyond_fraction);  // the check has power
+    } else {
+      EXPECT_GE(p.rate_at_edge, edge.min_edge_rate);
+    }
+    EXPECT_EQ(p.edge_line_m, 9.0);
+    EXPECT_GE(r.setting.flow_fraction, kEdgeMinFlow);
+    EXPECT_LE(r.setting.flow_fraction, kEdgeMaxFlow);
+    EXPECT_GE(r.setting.disc.rpm, 500.0);
+    EXPECT_LE(r.setting.disc.rpm, 800.0);
+    // The same setting's profile asked for directly.
+    PredictStatus status = PredictStatus::kOk;
+    const EdgeProfile again = edge_profile(predictor, field(18.0), edge, r.setting, status);
+    ASSERT_EQ(status, PredictStatus::kOk);
+    EXPECT_EQ(again.rate, p.rate);
+    EXPECT_EQ(again.mass_beyond_fraction, p.mass_beyond_fraction);
+    // An edge on the left: the mirror image.
+    EdgeRequest left = edge;
+    left.side = kLeftDisc;
+    const EdgeResult l = find_edge_setting(predictor, field(18.0), left);
+    EXPECT_EQ(l.setting.disc.rpm, r.setting.disc.rpm) << to_string(kind);
+    EXPECT_EQ(l.setting.flow_fraction, r.setting.flow_fraction);
+    EXPECT_NEAR(l.profile.mass_beyond_fraction, p.mass_beyond_fraction, 1e-12);
+  }
+}
+
+TEST(EdgeSpreading, RefusesRequestsOutOfTheDomain) {
+  Predictor predictor(testing::synthetic_contents());
+  EdgeRequest edge;
+  EXPECT_EQ(find_edge_setting(predictor, field(0.0), edge).status, PredictStatus::kOutOfRange);
+  EdgeRequest gap = edge;
+  gap.gap_m = 6.0;  // the edge line on the tramline
+  EXPECT_EQ(find_edge_setting(predictor, field(12.0), gap).status, PredictStatus::kOutOfRange);
+  EdgeRequest side = edge;
+  side.side = 2;
+  EXPECT_EQ(find_edge_setting(predictor, field(12.0), side).status, PredictStatus::kOutOfRange);
+  EdgeRequest share = edge;
+  share.max_beyond_fraction = 0.0;
+  EXPECT_EQ(find_edge_setting(predictor, field(12.0), share).status, PredictStatus::kOutOfRange);
+  PredictionRequest outside = field(12.0);
+  outside.rpm = 900.0;
+  EXPECT_EQ(find_edge_setting(predictor, outside, edge).status, PredictStatus::kRpmOutsideTable);
+  Predictor single(testing::synthetic_contents(testing::default_synthetic_materials(), 1));
+  EXPECT_EQ(find_edge_setting(single, field(12.0), edge).status, PredictStatus::kOutOfRange);
+}
+
+}  // namespace
+}  // namespace spread::predict
