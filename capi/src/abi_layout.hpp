@@ -46,5 +46,7 @@ static_assert(sizeof(spread_trajectory_def) == kTrajectoryDefReservedSize);
 static_assert(sizeof(spread_prediction) == kPredictionV4Size);
 static_assert(sizeof(spread_band) == offsetof(spread_band, limited_by_layout) + sizeof(int32_t));
 static_assert(sizeof(spread_landing) == offsetof(spread_landing, reserved) + sizeof(int32_t));
+static_assert(sizeof(spread_edge_def) == offsetof(spread_edge_def, min_edge_rate_percent) + sizeof(double));
+static_assert(sizeof(spread_edge_result) == offsetof(spread_edge_result, tray_left_edge_m) + sizeof(double));
 
 }  // namespace spread::capi

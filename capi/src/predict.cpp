@@ -10,6 +10,7 @@
 
 #include "capi/src/error_detail.hpp"
 #include "capi/src/fault_seam.hpp"
+#include "capi/src/predict_status.hpp"
 #include "capi/src/tables_handle.hpp"
 #include "libspread/analysis/predict/wind_compensation.hpp"
 
@@ -26,18 +27,7 @@ static_assert(SPREAD_MAX_BANDS == spread::predict::kMaxBands);
 
 namespace {
 
-spread_status status_of(spread::predict::PredictStatus status) {
-  using S = spread::predict::PredictStatus;
-  switch (status) {
-    case S::kOk: return SPREAD_OK;
-    case S::kNotFinite: return SPREAD_ERROR_NOT_FINITE;
-    case S::kOutOfRange: return SPREAD_ERROR_OUT_OF_RANGE;
-    case S::kUnknownEffect: return SPREAD_ERROR_UNKNOWN_EFFECT;
-    case S::kUnknownMaterial: return SPREAD_ERROR_UNKNOWN_MATERIAL;
-    case S::kRpmOutsideTable: return SPREAD_ERROR_RPM_OUTSIDE_TABLE;
-  }
-  return SPREAD_ERROR_INTERNAL;
-}
+using spread::capi::status_of;
 
 void copy_band(const spread::predict::PredictedBand& b, spread_band& out) {
   out.lower_m = b.lower_m;

@@ -14,6 +14,8 @@
 
 #include "capi/src/abi_layout.hpp"
 #include "capi/src/fault_seam.hpp"
+#include "libspread/analysis/predict/edge_spreading.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 #include "spread/spread.h"
 #include "tests/capi/capi_test_files.hpp"
 #include "tests/predict/synthetic_table.hpp"
@@ -484,6 +486,79 @@ TEST_F(Capi, CompensateWindAnswersAPerDiscSetting) {
   spread_prediction_def outside = d;
   outside.rpm = 950.0;
   EXPECT_EQ(spread_compensate_wind(tables_, &outside, &compensated, nullptr, 0), SPREAD_ERROR_RPM_OUTSIDE_TABLE);
+}
+
+// spread_predict_edge: the profile of the last bout is the library's (the setting `spread border` finds
+// meets its thresholds through the C API too), an edge on the left mirrors one on the right, and the
+// definitions out of their domain are refused with the field named.
+TEST_F(Capi, PredictEdgeGivesTheLastBoutsProfile) {
+  spread::predict::Predictor predictor(spread::tables::read_table_file(path_));
+  spread::predict::PredictionRequest field;
+  field.material = "can";
+  field.rpm = 650.0;
+  field.bout_width_m = 18.0;
+  const spread::predict::EdgeResult found = spread::predict::find_edge_setting(predictor, field, {});
+  ASSERT_TRUE(found.profile.meets);
+
+  spread_prediction_def d = def("can", 650.0);
+  d.bout_width_m = 18.0;
+  d.disc_rpm[1] = found.setting.disc.rpm;
+  d.disc_drop_point_turn_rad[1] = found.setting.disc.drop_point_turn_rad;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.flow_fraction = found.setting.flow_fraction;
+  spread_edge_result result{};
+  std::vector<double> rate(2000);
+  ASSERT_EQ(spread_predict_edge(tables_, &d, &edge, &result, rate.data(), rate.size()), SPREAD_OK)
+      << spread_last_error_detail();
+  EXPECT_EQ(result.meets, 1);
+  EXPECT_EQ(result.edge_line_m, 9.0);
+  EXPECT_DOUBLE_EQ(result.mass_beyond_percent, 100.0 * found.profile.mass_beyond_fraction);
+  EXPECT_LE(result.mass_beyond_percent, 0.1);
+  ASSERT_EQ(static_cast<std::size_t>(result.tray_count), found.profile.rate.size());
+  for (int k = 0; k < result.tray_count; ++k) EXPECT_DOUBLE_EQ(rate[k], 100.0 * found.profile.rate[k]);
+  // The edge on the left, that disc set apart: the mirror image.
+  spread_prediction_def mirrored = def("can", 650.0);
+  mirrored.bout_width_m = 18.0;
+  mirrored.disc_rpm[0] = d.disc_rpm[1];
+  mirrored.disc_drop_point_turn_rad[0] = d.disc_drop_point_turn_rad[1];
+  spread_edge_def left = edge;
+  left.side = 0;
+  spread_edge_result left_result{};
+  ASSERT_EQ(spread_predict_edge(tables_, &mirrored, &left, &left_result, nullptr, 0), SPREAD_OK);
+  EXPECT_NEAR(left_result.mass_beyond_percent, result.mass_beyond_percent, 1e-9);
+  // The normal setting on the edge side throws over the line.
+  spread_prediction_def normal = def("can", 650.0);
+  normal.bout_width_m = 18.0;
+  spread_edge_result normal_result{};
+  spread_edge_def full_flow = spread_edge_def_default();
+  ASSERT_EQ(spread_predict_edge(tables_, &normal, &full_flow, &normal_result, nullptr, 0), SPREAD_OK);
+  EXPECT_GT(normal_result.mass_beyond_percent, 0.1);
+  EXPECT_EQ(normal_result.meets, 0);
+
+  struct Bad {
+    const char* what;
+    spread_edge_def edge;
+    spread_status status;
+  };
+  spread_edge_def gap = spread_edge_def_default(), kind = gap, flow = gap, share = gap, side = gap;
+  gap.gap_m = 9.0;
+  kind.kind = 7;
+  flow.flow_fraction = 1.5;
+  share.max_beyond_percent = 0.0;
+  side.side = 2;
+  for (const Bad& b : {Bad{"gap_m 9", gap, SPREAD_ERROR_OUT_OF_RANGE}, Bad{"kind 7", kind, SPREAD_ERROR_OUT_OF_RANGE},
+                       Bad{"flow_fraction 1.5", flow, SPREAD_ERROR_OUT_OF_RANGE},
+                       Bad{"max_beyond_percent 0", share, SPREAD_ERROR_OUT_OF_RANGE},
+                       Bad{"side 2", side, SPREAD_ERROR_OUT_OF_RANGE}}) {
+    EXPECT_EQ(spread_predict_edge(tables_, &normal, &b.edge, &result, nullptr, 0), b.status) << b.what;
+    EXPECT_NE(std::string(spread_last_error_detail()).find(b.what), std::string::npos) << spread_last_error_detail();
+  }
+  spread_prediction_def no_bout = def("can", 650.0);
+  EXPECT_EQ(spread_predict_edge(tables_, &no_bout, &edge, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  spread_prediction_def other = normal;
+  other.disc_rpm[0] = 600.0;  // the disc away from the edge keeps the field's setting
+  EXPECT_EQ(spread_predict_edge(tables_, &other, &edge, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_EQ(spread_predict_edge(tables_, &normal, &edge, &result, rate.data(), 3), SPREAD_ERROR_BUFFER_TOO_SMALL);
 }
 
 TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {

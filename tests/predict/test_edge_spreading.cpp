@@ -43,9 +43,8 @@ TEST(EdgeSpreading, BorderAndEdgeSettingsMeetTheirThresholds) {
     EXPECT_GE(r.setting.disc.rpm, 500.0);
     EXPECT_LE(r.setting.disc.rpm, 800.0);
     // The same setting's profile asked for directly.
-    PredictStatus status = PredictStatus::kOk;
-    const EdgeProfile again = edge_profile(predictor, field(18.0), edge, r.setting, status);
-    ASSERT_EQ(status, PredictStatus::kOk);
+    EdgeProfile again;
+    ASSERT_EQ(edge_profile(predictor, field(18.0), edge, r.setting, again), PredictStatus::kOk);
     EXPECT_EQ(again.rate, p.rate);
     EXPECT_EQ(again.mass_beyond_fraction, p.mass_beyond_fraction);
     // An edge on the left: the mirror image.

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,13 +42,13 @@ struct Options : spread::cli::PredictionArgs {
   bool json = false;
 };
 
-std::string strips_text(const std::vector<std::pair<double, double>>& strips) {
+std::string strips_text(std::span<const std::pair<double, double>> strips) {
   std::string text;
   for (const auto& [from, to] : strips) text += (text.empty() ? "" : ", ") + format("%.1f", from) + format(" to %.1f m", to);
   return text.empty() ? "none" : text;
 }
 
-json strips_json(const std::vector<std::pair<double, double>>& strips) {
+json strips_json(std::span<const std::pair<double, double>> strips) {
   json list = json::array();
   for (const auto& [from, to] : strips) list.push_back({from, to});
   return list;

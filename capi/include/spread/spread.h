@@ -310,6 +310,70 @@ SPREAD_API spread_status spread_compensate_wind(spread_tables* tables, const spr
                                                 size_t transverse_capacity);
 
 /* ---------------------------------------------------------------------------------------------------
+ * Border and edge spreading (0.4): the last bout along a field edge (docs/c-api.md "Border and edge")
+ * ------------------------------------------------------------------------------------------------- */
+#define SPREAD_EDGE_BORDER 0u /* road, path, water: at most max_beyond_percent over the edge line */
+#define SPREAD_EDGE_FIELD 1u  /* next to another field: the rate at the edge line at least min_edge_rate */
+typedef struct spread_edge_def {
+  uint32_t struct_size;         /* sizeof(spread_edge_def) of the caller's header; set by _default() */
+  uint32_t kind;                /* SPREAD_EDGE_BORDER (default) or SPREAD_EDGE_FIELD */
+  int32_t side;                 /* the edge's side as the driver sees it: 0 left, 1 right (default) */
+  uint32_t reserved;            /* 0 from _default(), never read */
+  double gap_m;                 /* the edge line this far inside the field edge, m, in [0, bout width / 2):
+                                   water 1 with a border spreading device, 3 without (default 0) */
+  double flow_fraction;         /* the edge-side disc's flow on the last pass, of the field's, [0, 1.2]
+                                   (default 1; 0: that disc off) */
+  double max_beyond_percent;    /* border: the most of the pass's mass over the line, (0, 100] (default 0.1) */
+  double tolerance_percent;     /* over-applied above 100 + this (or the field interior's peak, where
+                                   higher), under-applied below 100 - this, (0, 100] (default 10) */
+  double min_edge_rate_percent; /* field edge: the rate at the edge line at least this, (0, 100] (default 80) */
+} spread_edge_def;
+
+static inline spread_edge_def spread_edge_def_default(void) {
+  spread_edge_def edge;
+  edge.struct_size = (uint32_t)sizeof(spread_edge_def);
+  edge.kind = SPREAD_EDGE_BORDER;
+  edge.side = 1;
+  edge.reserved = 0u;
+  edge.gap_m = 0.0;
+  edge.flow_fraction = 1.0;
+  edge.max_beyond_percent = 0.1;
+  edge.tolerance_percent = 10.0;
+  edge.min_edge_rate_percent = 80.0;
+  return edge;
+}
+
+/* The profile of the last bout: x from the last tramline, towards the edge positive; rates as a percent
+ * of the field's rate inside (one pass's landed mass per bout width). */
+typedef struct spread_edge_result {
+  double edge_line_m;              /* bout width / 2 - gap */
+  double mass_beyond_percent;      /* of this pass's mass, over the edge line */
+  double max_rate_inside_percent;  /* the highest rate of the last bout, [-W/2, edge line] */
+  double rate_at_edge_percent;     /* of its last tray inside the line */
+  double over_limit_percent;       /* above it a tray is over-applied */
+  double under_limit_percent;      /* below it under-applied */
+  double missing_inside_m;         /* fertiliser missing in the last bout against the field's interior,
+                                      in metres of field rate */
+  int32_t meets;                   /* 1: the kind's thresholds hold */
+  int32_t tray_count;              /* trays of the profile (needed buffer size) */
+  double tray_width_m;
+  double tray_left_edge_m;         /* tray k is centred at tray_left_edge_m + (k + 0.5) * tray_width_m */
+} spread_edge_result;
+
+/* The last bout along a field edge with the edge-side disc set apart. def: the field's setting (rpm, drop
+ * point, wind, height, bout_width_m > 0 required — the last tramline lies half of it from the field edge)
+ * and, in disc_rpm[side] / disc_drop_point_turn_rad[side], the edge-side disc's own setting on the last
+ * pass (NaN: as the field); the other disc's own fields must be NaN. `rate` may be NULL; otherwise it
+ * receives result->tray_count rates (percent), or SPREAD_ERROR_BUFFER_TOO_SMALL as spread_predict. The
+ * errors of spread_predict, and SPREAD_ERROR_OUT_OF_RANGE for an edge definition out of its domain (named
+ * in spread_last_error_detail), a one-disc machine or a 0.3 definition. Allocates its working arrays
+ * (tens of kilobytes) through the handle's allocator; about three predictions of time. Not re-entrant on
+ * one handle. The search for a setting that meets the thresholds: `spread border` (the tools). */
+SPREAD_API spread_status spread_predict_edge(spread_tables* tables, const spread_prediction_def* def,
+                                             const spread_edge_def* edge, spread_edge_result* result,
+                                             double* rate_percent, size_t rate_capacity);
+
+/* ---------------------------------------------------------------------------------------------------
  * Single trajectory (no table needed)
  * ------------------------------------------------------------------------------------------------- */
 typedef struct spread_trajectory_def {

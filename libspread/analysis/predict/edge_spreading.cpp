@@ -29,16 +29,17 @@ double beyond(double x, double weight, double line_m, double h) {
 // What does not change with the edge-side disc's setting: the layout, the passes before this one and this
 // pass's other disc, all at the normal setting.
 struct Frame {
+  explicit Frame(std::pmr::memory_resource* memory) : fixed(memory), interior(memory) {}
   metrics::TrayLayout trays;
   double bout_width_m = 0.0, line_m = 0.0, kernel_m = 0.0;
   double target_per_tray = 0.0;   // the field's rate inside, as mass per tray
-  std::vector<double> fixed;      // per tray
+  std::pmr::vector<double> fixed;     // per tray
   double fixed_beyond = 0.0;      // mass beyond the line
   double inner_mass = 0.0;        // this pass's other disc's discharged mass
   int first_inside = 0, end_inside = 0;  // trays of the last bout, [−W/2, line]
   double over_limit = 0.0;        // the rate above which a tray is over-applied
   double under_limit = 0.0;       // … and below which under-applied
-  std::vector<double> interior;   // per tray, the rate the field's interior gets there (all passes)
+  std::pmr::vector<double> interior;  // per tray, the rate the field's interior gets there (all passes)
 };
 
 // The edge-side disc's landings of `p`, x turned so that the edge lies towards +x.
@@ -50,8 +51,8 @@ void edge_disc_landings(const Prediction& p, int side, Visit visit) {
   for (std::size_t i = first; i < end; ++i) visit(orient * p.landing_x_m[i], p.landing_mass_fraction[i]);
 }
 
-Frame make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_width_m, double tray_width_m) {
-  Frame f;
+void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_width_m, double tray_width_m,
+                std::pmr::memory_resource* memory, Frame& f) {
   f.bout_width_m = bout_width_m;
   f.line_m = 0.5 * bout_width_m - edge.gap_m;
   f.kernel_m = normal.kernel_half_width_m;
@@ -68,7 +69,7 @@ Frame make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_
   f.fixed.assign(static_cast<std::size_t>(f.trays.tray_count), 0.0);
   // The passes before: pass k at −kW, mirrored for odd k (to-and-fro), while it still reaches the layout.
   const int passes = static_cast<int>(std::ceil(2.0 * reach_m / bout_width_m)) + 1;
-  std::vector<double> x(normal.landing_x_m.size());
+  std::pmr::vector<double> x(normal.landing_x_m.size(), 0.0, memory);
   for (int k = 1; k <= passes; ++k) {
     const double mirror = k % 2 == 1 ? -1.0 : 1.0;
     for (std::size_t i = 0; i < x.size(); ++i) {
@@ -79,7 +80,7 @@ Frame make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_
   }
   // This pass's other disc.
   const int inner = edge.side == kRightDisc ? kLeftDisc : kRightDisc;
-  std::vector<double> inner_x, inner_w;
+  std::pmr::vector<double> inner_x(memory), inner_w(memory);
   edge_disc_landings(normal, inner, [&](double xi, double wi) {
     // edge_disc_landings turns x by the inner side's orientation, the opposite of the edge's.
     inner_x.push_back(-xi);
@@ -95,7 +96,7 @@ Frame make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_
   // Over-applied: above 1 + tolerance, or above the highest rate the field's interior gets at the normal
   // setting where that is higher (the last bout cannot be asked to be more even than the field). The
   // interior: the same passes continued past the edge (pass −k at +kW), read over the last bout.
-  std::vector<double> interior(f.fixed.size(), 0.0);
+  std::pmr::vector<double> interior(f.fixed.size(), 0.0, memory);
   for (int k = -passes; k <= passes; ++k) {
     const double mirror = k % 2 != 0 ? -1.0 : 1.0;
     for (std::size_t i = 0; i < x.size(); ++i) x[i] = mirror * orient * normal.landing_x_m[i] - k * bout_width_m;
@@ -111,12 +112,12 @@ Frame make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_
   f.under_limit = std::min(1.0 - edge.rate_tolerance, interior_low);
   f.over_limit = std::max(1.0 + edge.rate_tolerance, interior_peak);
   f.end_inside = std::min(f.trays.tray_count, static_cast<int>(std::floor((f.line_m - left_m) / w + 1e-9)));
-  return f;
 }
 
 // The edge-side disc at one setting: its trays and its mass beyond the line, at full flow.
 struct EdgeDisc {
-  std::vector<double> trays;
+  explicit EdgeDisc(std::pmr::memory_resource* memory) : trays(memory) {}
+  std::pmr::vector<double> trays;
   double beyond = 0.0, mass = 0.0;
 };
 
@@ -134,7 +135,7 @@ void evaluate(const Frame& frame, const EdgeDisc& disc, double flow, const EdgeR
   const auto rate = [&](int k) {
     return (frame.fixed[static_cast<std::size_t>(k)] + flow * disc.trays[static_cast<std::size_t>(k)]) / frame.target_per_tray;
   };
-  const auto strip = [&](std::vector<std::pair<double, double>>& list, int k) {
+  const auto strip = [&](std::pmr::vector<std::pair<double, double>>& list, int k) {
     const double from = left_m + k * w;
     if (!list.empty() && std::abs(list.back().second - from) < 1e-9) {
       list.back().second = from + w;
@@ -184,8 +185,9 @@ bool valid(const PredictionRequest& normal, const EdgeRequest& edge, const Predi
 
 class EdgeSearch {
  public:
-  EdgeSearch(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge)
-      : predictor_(predictor), normal_(normal), edge_(edge) {}
+  EdgeSearch(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+             std::pmr::memory_resource* memory)
+      : predictor_(predictor), normal_(normal), edge_(edge), frame_(memory), x_(memory), w_(memory) {}
 
   // The normal prediction and the frame; false with status_ set when refused.
   bool start() {
@@ -198,7 +200,8 @@ class EdgeSearch {
     status_ = predictor_.predict(r, prediction_);
     ++predictions_;
     if (status_ != PredictStatus::kOk) return false;
-    frame_ = make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m);
+    make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m, frame_.fixed.get_allocator().resource(),
+               frame_);
     normal_disc_ = disc_setting(normal_, edge_.side);
     kernel_m_ = prediction_.kernel_half_width_m;
     return true;
@@ -234,13 +237,12 @@ class EdgeSearch {
   }
   // The best flow at this disc setting; its score.
   double best_flow(const EdgeDisc& disc, double& flow) {
-    EdgeProfile p;
     double best = std::numeric_limits<double>::infinity();
     const int steps = static_cast<int>(std::lround((kEdgeMaxFlow - kEdgeMinFlow) / kEdgeFlowStep));
     for (int i = 0; i <= steps; ++i) {
       const double f = kEdgeMinFlow + i * kEdgeFlowStep;
-      evaluate(frame_, disc, f, edge_, p, false);
-      const double s = score(p, edge_, frame_.bout_width_m);
+      evaluate(frame_, disc, f, edge_, scratch_, false);
+      const double s = score(scratch_, edge_, frame_.bout_width_m);
       if (s < best) {
         best = s;
         flow = f;
@@ -248,14 +250,12 @@ class EdgeSearch {
     }
     return best;
   }
-  EdgeProfile profile(const EdgeDisc& disc, double flow) {
-    EdgeProfile p;
+  void profile(const EdgeDisc& disc, double flow, EdgeProfile& p) {
     evaluate(frame_, disc, flow, edge_, p, true);
     p.trays = frame_.trays;
     p.edge_line_m = frame_.line_m;
     p.rate.resize(frame_.fixed.size());
     for (std::size_t k = 0; k < p.rate.size(); ++k) p.rate[k] = (frame_.fixed[k] + flow * disc.trays[k]) / frame_.target_per_tray;
-    return p;
   }
 
   PredictStatus status_ = PredictStatus::kOk;
@@ -269,39 +269,37 @@ class EdgeSearch {
   Prediction prediction_;
   Frame frame_;
   double kernel_m_ = 0.0;
-  std::vector<double> x_, w_;
+  std::pmr::vector<double> x_, w_;
+  EdgeProfile scratch_;  // best_flow's evaluations (figures only: its vectors stay empty)
 };
 
 }  // namespace
 
-EdgeProfile edge_profile(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
-                         const EdgeSetting& setting, PredictStatus& status) {
-  EdgeSearch search(predictor, normal, edge);
-  if (!search.start()) {
-    status = search.status_;
-    return {};
+PredictStatus edge_profile(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                           const EdgeSetting& setting, EdgeProfile& out, std::pmr::memory_resource* memory) {
+  EdgeSearch search(predictor, normal, edge, memory);
+  if (!search.start()) return search.status_;
+  EdgeDisc disc(memory);
+  if (!(setting.flow_fraction >= 0.0 && setting.flow_fraction <= kEdgeMaxFlow) || !search.disc_at(setting.disc, disc)) {
+    return PredictStatus::kOutOfRange;
   }
-  EdgeDisc disc;
-  if (!(setting.flow_fraction >= 0.0) || !search.disc_at(setting.disc, disc)) {
-    status = PredictStatus::kOutOfRange;
-    return {};
-  }
-  status = PredictStatus::kOk;
-  return search.profile(disc, setting.flow_fraction);
+  search.profile(disc, setting.flow_fraction, out);
+  return PredictStatus::kOk;
 }
 
-EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge) {
+EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                             std::pmr::memory_resource* memory) {
   EdgeResult result;
-  EdgeSearch search(predictor, normal, edge);
+  EdgeSearch search(predictor, normal, edge, memory);
   if (!search.start()) {
     result.status = search.status_;
     return result;
   }
   const std::optional<std::size_t> material = predictor.find_material(normal.material);
   const double min_rpm = predictor.min_rpm(*material), max_rpm = predictor.max_rpm(*material);
-  EdgeDisc disc;
+  EdgeDisc disc(memory);
   search.disc_at(search.normal_disc_, disc);
-  result.normal_profile = search.profile(disc, 1.0);
+  search.profile(disc, 1.0, result.normal_profile);
 
   // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within ±π.
   const double base_turn = search.normal_disc_.drop_point_turn_rad;
@@ -336,7 +334,7 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   }
   search.disc_at(best.disc, disc);
   result.setting = best;
-  result.profile = search.profile(disc, best.flow_fraction);
+  search.profile(disc, best.flow_fraction, result.profile);
   result.predictions = search.predictions_;
   return result;
 }

@@ -26,6 +26,7 @@
 // Predictions without standard errors, each disc's landings kept apart (Prediction::left_landing_count).
 #include <cstdint>
 #include <limits>
+#include <memory_resource>
 #include <utility>
 #include <vector>
 
@@ -61,8 +62,11 @@ struct EdgeSetting {
 };
 
 struct EdgeProfile {
+  EdgeProfile() = default;
+  // Its vectors from `memory`.
+  explicit EdgeProfile(std::pmr::memory_resource* memory) : rate(memory), under_applied_m(memory), over_applied_m(memory) {}
   metrics::TrayLayout trays;      // x from the last tramline, towards the edge positive
-  std::vector<double> rate;       // per tray, of the field's rate inside
+  std::pmr::vector<double> rate;  // per tray, of the field's rate inside
   double edge_line_m = 0.0;       // x of the edge line: W/2 − gap_m
   double mass_beyond_fraction = 0.0;  // of this pass's mass, beyond the edge line
   double max_rate_inside = 0.0;   // over the last bout's trays, [−W/2, edge line]
@@ -73,7 +77,7 @@ struct EdgeProfile {
   // interior gets at each place, in metres of field rate.
   double missing_inside_m = 0.0;
   // Strips of the last bout where the rate is below under_limit or above over_limit, [from, to] m.
-  std::vector<std::pair<double, double>> under_applied_m, over_applied_m;
+  std::pmr::vector<std::pair<double, double>> under_applied_m, over_applied_m;
   bool meets = false;             // the kind's thresholds
 };
 
@@ -89,10 +93,15 @@ struct EdgeResult {
 // CV target. kOutOfRange without a bout width, on a one-disc machine, or for an edge request out of its
 // domain (gap outside [0, W/2), thresholds not in (0, 1], side not 0 or 1); a refused normal request is
 // its status.
-EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge);
+// Predicts through the Predictor's own workspace; its working arrays come from `memory`.
+EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                             std::pmr::memory_resource* memory = std::pmr::get_default_resource());
 
-// The profile of the last pass with the edge-side disc at `setting` (status as find_edge_setting's).
-EdgeProfile edge_profile(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
-                         const EdgeSetting& setting, PredictStatus& status);
+// The profile of the last pass with the edge-side disc at `setting` into `out` (its vectors keep their
+// allocator), the working arrays from `memory`. Status as find_edge_setting's; kOutOfRange too for a flow
+// outside [0, kEdgeMaxFlow] or an edge-side setting the predictor refuses. `out` is unchanged on a refusal.
+PredictStatus edge_profile(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                           const EdgeSetting& setting, EdgeProfile& out,
+                           std::pmr::memory_resource* memory = std::pmr::get_default_resource());
 
 }  // namespace spread::predict

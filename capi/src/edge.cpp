@@ -1,0 +1,149 @@
+// spread_predict_edge: the C definitions → the field's PredictionRequest, the edge-side disc's
+// EdgeSetting and an EdgeRequest → predict::edge_profile → the C result and the rate per tray.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <string_view>
+
+#include "capi/src/abi_layout.hpp"
+#include "capi/src/error_detail.hpp"
+#include "capi/src/predict_status.hpp"
+#include "capi/src/tables_handle.hpp"
+#include "libspread/analysis/predict/edge_spreading.hpp"
+
+namespace {
+
+using spread::capi::fail;
+namespace pr = spread::predict;
+
+// The edge definition's domain, each field named (edge_spreading.hpp's rules).
+spread_status check_edge(const spread_edge_def& e, double bout_width_m) {
+  if (e.kind != SPREAD_EDGE_BORDER && e.kind != SPREAD_EDGE_FIELD) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: edge->kind %u is neither SPREAD_EDGE_BORDER nor SPREAD_EDGE_FIELD",
+                static_cast<unsigned>(e.kind));
+  }
+  if (e.side != 0 && e.side != 1) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: edge->side %d is neither 0 (left) nor 1 (right)",
+                static_cast<int>(e.side));
+  }
+  const struct {
+    const char* name;
+    double value, low, high;
+    bool low_open;
+  } ranges[] = {{"gap_m", e.gap_m, 0.0, 0.5 * bout_width_m, false},
+                {"flow_fraction", e.flow_fraction, 0.0, pr::kEdgeMaxFlow, false},
+                {"max_beyond_percent", e.max_beyond_percent, 0.0, 100.0, true},
+                {"tolerance_percent", e.tolerance_percent, 0.0, 100.0, true},
+                {"min_edge_rate_percent", e.min_edge_rate_percent, 0.0, 100.0, true}};
+  for (const auto& r : ranges) {
+    if (!std::isfinite(r.value)) {
+      return fail(SPREAD_ERROR_NOT_FINITE, "spread_predict_edge: edge->%s is %g", r.name, r.value);
+    }
+    const bool above_low = r.low_open ? r.value > r.low : r.value >= r.low;
+    // gap_m: below half the bout width (the edge line must lie beyond the tramline).
+    const bool below_high = r.name == std::string_view("gap_m") ? r.value < r.high : r.value <= r.high;
+    if (!above_low || !below_high) {
+      return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: edge->%s %g outside %s%g, %g%s", r.name, r.value,
+                  r.low_open ? "(" : "[", r.low, r.high, r.name == std::string_view("gap_m") ? ")" : "]");
+    }
+  }
+  return SPREAD_OK;
+}
+
+}  // namespace
+
+extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread_prediction_def* def,
+                                             const spread_edge_def* edge, spread_edge_result* result,
+                                             double* rate_percent, size_t rate_capacity) {
+  if (tables == nullptr || def == nullptr || edge == nullptr || result == nullptr) {
+    return fail(SPREAD_ERROR_NULL_POINTER, "spread_predict_edge: tables, def, edge or result is NULL");
+  }
+  if (!spread::capi::live(tables)) {
+    return fail(SPREAD_ERROR_BAD_HANDLE, "spread_predict_edge: not a live spread_tables handle (closed?)");
+  }
+  if (def->struct_size < spread::capi::kPredictionDefV4Size || edge->struct_size < sizeof(spread_edge_def)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "spread_predict_edge: def->struct_size %u or edge->struct_size %u older than 0.4 (%zu, %zu)",
+                static_cast<unsigned>(def->struct_size), static_cast<unsigned>(edge->struct_size),
+                spread::capi::kPredictionDefV4Size, sizeof(spread_edge_def));
+  }
+  if (def->material == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_predict_edge: def->material is NULL");
+  pr::Predictor& predictor = tables->predictor;
+  if (predictor.machine().disc_count < 2) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: the machine has one disc (no edge-side disc to set apart)");
+  }
+  if (!(def->bout_width_m > 0.0)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "spread_predict_edge: def->bout_width_m %g: the bout width (the last tramline lies half of it from "
+                "the field edge) must be > 0",
+                def->bout_width_m);
+  }
+  if (const spread_status s = check_edge(*edge, def->bout_width_m); s != SPREAD_OK) return s;
+  const int side = edge->side, other = 1 - side;
+  if (!std::isnan(def->disc_rpm[other]) || !std::isnan(def->disc_drop_point_turn_rad[other])) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "spread_predict_edge: disc_rpm[%d] %g / disc_drop_point_turn_rad[%d] %g set: the disc away from the "
+                "edge runs at the field's setting (rpm, drop_point_turn_rad)",
+                other, def->disc_rpm[other], other, def->disc_drop_point_turn_rad[other]);
+  }
+  try {
+    // The field: both discs at rpm and drop_point_turn_rad.
+    pr::PredictionRequest field;
+    field.material = std::string_view(def->material, std::strlen(def->material));
+    field.rpm = def->rpm;
+    field.drop_point_turn_rad = def->drop_point_turn_rad;
+    field.disc_height_m = def->disc_height_m;
+    field.wind_x_m_s = def->wind_m_s[0];
+    field.wind_y_m_s = def->wind_m_s[1];
+    field.cv_target = def->cv_target_percent / 100.0;
+    field.effects = def->effects;
+    field.bout_width_m = def->bout_width_m;
+    field.tray_width_m = def->tray_width_m;
+    field.kernel_half_width_m = def->kernel_half_width_m;
+    pr::EdgeSetting setting;
+    setting.disc.rpm = std::isnan(def->disc_rpm[side]) ? def->rpm : def->disc_rpm[side];
+    setting.disc.drop_point_turn_rad =
+        std::isnan(def->disc_drop_point_turn_rad[side]) ? def->drop_point_turn_rad : def->disc_drop_point_turn_rad[side];
+    setting.flow_fraction = edge->flow_fraction;
+    pr::EdgeRequest request;
+    request.kind = edge->kind == SPREAD_EDGE_BORDER ? pr::EdgeKind::kBorder : pr::EdgeKind::kEdge;
+    request.side = side;
+    request.gap_m = edge->gap_m;
+    request.max_beyond_fraction = edge->max_beyond_percent / 100.0;
+    request.rate_tolerance = edge->tolerance_percent / 100.0;
+    request.min_edge_rate = edge->min_edge_rate_percent / 100.0;
+    pr::EdgeProfile profile(&tables->memory);
+    const pr::PredictStatus status = pr::edge_profile(predictor, field, request, setting, profile, &tables->memory);
+    if (status != pr::PredictStatus::kOk) {
+      return fail(spread::capi::status_of(status),
+                  "spread_predict_edge: %s: the field's rpm %g, drop_point_turn_rad %g, or the edge-side disc's "
+                  "%g rpm, %g rad (bounds: docs/c-api.md)",
+                  spread_status_str(spread::capi::status_of(status)), def->rpm, def->drop_point_turn_rad,
+                  setting.disc.rpm, setting.disc.drop_point_turn_rad);
+    }
+    result->edge_line_m = profile.edge_line_m;
+    result->mass_beyond_percent = 100.0 * profile.mass_beyond_fraction;
+    result->max_rate_inside_percent = 100.0 * profile.max_rate_inside;
+    result->rate_at_edge_percent = 100.0 * profile.rate_at_edge;
+    result->over_limit_percent = 100.0 * profile.over_limit;
+    result->under_limit_percent = 100.0 * profile.under_limit;
+    result->missing_inside_m = profile.missing_inside_m;
+    result->meets = profile.meets ? 1 : 0;
+    result->tray_count = profile.trays.tray_count;
+    result->tray_width_m = profile.trays.tray_width_m;
+    result->tray_left_edge_m = profile.trays.left_edge_m();
+    if (rate_percent != nullptr) {
+      if (rate_capacity < profile.rate.size()) {
+        return fail(SPREAD_ERROR_BUFFER_TOO_SMALL, "spread_predict_edge: rate buffer of %zu values, the profile has %zu trays",
+                    rate_capacity, profile.rate.size());
+      }
+      std::transform(profile.rate.begin(), profile.rate.end(), rate_percent, [](double r) { return 100.0 * r; });
+    }
+    return SPREAD_OK;
+  } catch (const std::bad_alloc&) {
+    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "spread_predict_edge: out of memory");
+  } catch (const std::exception& e) {
+    return fail(SPREAD_ERROR_INTERNAL, "spread_predict_edge: %.400s", e.what());
+  }
+}
