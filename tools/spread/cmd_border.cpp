@@ -158,6 +158,17 @@ void run(const Options& o, int& exit_code) {
                 format("%.0f %%", 100.0 * s.flow_fraction).c_str(),
                 r.profile.meets ? "meets the thresholds" : "NO setting searched meets the thresholds; the closest");
     print_profile("with it", r.profile);
+    if (!r.profile.meets && edge.kind == pr::EdgeKind::kBorder) {
+      // Why not: what reaches over the line with the edge-side disc off.
+      pr::EdgeProfile off;
+      pr::EdgeSetting none = s;
+      none.flow_fraction = 0.0;
+      if (pr::edge_profile(predictor, normal, edge, none, off) == pr::PredictStatus::kOk) {
+        std::printf("  why: with the %s disc off, %s of this pass's mass still lands beyond the line (the other disc "
+                    "and the passes before reach it): move the last tramline in or lower the field's speed\n",
+                    side_name, format("%.3f %%", 100.0 * off.mass_beyond_fraction).c_str());
+      }
+    }
     print_profile("at the normal setting", r.normal_profile);
     std::printf("  (x from the last tramline, towards the edge; rates as a share of the field's; %d predictions)\n",
                 r.predictions);
