@@ -43,13 +43,53 @@ quick_check_report)
   [ $rc -eq 2 ] || fail "--plot with --quick-check: exit $rc, expected 2"
   pass ;;
 chart_spans)
-  # The narrow inlet's CV at 2 m is within the target in several spans of disc speed; 12 m in none.
-  run chart --tables "$work/urea.sqlite" --material Urea --widths 2,12
+  # The narrow inlet's CV at 2 m is within the target in several spans of disc speed; 12 m in none. With
+  # the table's drop point only, and with the drop point searched.
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 2,12 --drop-point-range 0
   [ $rc -eq 0 ] || fail "exit $rc"
   has "$out.stdout" "450-460 rpm, 531-592 rpm, 615-750 rpm"
-  has "$out.stdout" "note: 12.0 m is not reachable: no disc speed of 450-750 rpm keeps the CV within 15 %"
+  has "$out.stdout" "note: 12.0 m is not reachable: no disc speed of 450-750 rpm and drop point searched keeps the CV within 15 %"
   run chart --tables "$work/urea.sqlite" --material Urea --widths 2 --json
   has "$out.stdout" '"within_target_rpm": ['
+  has "$out.stdout" '"drop_point_turn_deg": '
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 2 --drop-point-range 200
+  [ $rc -eq 2 ] || fail "--drop-point-range 200: exit $rc, expected 2"
+  has "$out.stderr" "--drop-point-range 200: within 0..180 degrees"
+  pass ;;
+per_disc)
+  # Each disc at its own setting, its refusals naming the disc, and the wind compensation.
+  run predict --tables "$work/urea.sqlite" --material Urea --left-rpm 600 --right-rpm 650 --width 3
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "Urea at 600.00 / 650.00 rpm (left / right)"
+  run predict --tables "$work/urea.sqlite" --material Urea --rpm 600 --right-rpm 900
+  [ $rc -eq 2 ] || fail "--right-rpm 900: exit $rc, expected 2"
+  has "$out.stderr" "--right-rpm 900 is outside the table rows of 'Urea' [450, 750] rpm"
+  run predict --tables "$work/urea.sqlite" --material Urea --rpm 600 --left-rpm 600 --right-rpm 650
+  [ $rc -eq 2 ] || fail "--rpm beside both discs' own: exit $rc, expected 2"
+  has "$out.stderr" "--rpm 600 would be unused"
+  run predict --tables "$work/urea.sqlite" --material Urea --rpm 600 --wind 3,0 --compensate-wind
+  [ $rc -eq 2 ] || fail "--compensate-wind without --width: exit $rc, expected 2"
+  has "$out.stderr" "--compensate-wind needs --width"
+  run predict --tables "$work/urea.sqlite" --material Urea --rpm 600 --width 3 --wind 3,0 --compensate-wind --json
+  [ $rc -eq 0 ] || fail "compensate: exit $rc"
+  has "$out.stdout" '"wind_compensation": {'
+  has "$out.stdout" '"meets_target": true'
+  pass ;;
+border)
+  # Border spreading on the narrow inlet's table at a 4 m bout, and its refusals before any work.
+  run border --tables "$work/urea.sqlite" --material Urea --rpm 600 --width 4 --json
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" '"flow_percent": '
+  has "$out.stdout" '"meets": true'
+  run border --tables "$work/urea.sqlite" --material Urea --rpm 600
+  [ $rc -eq 2 ] || fail "no --width: exit $rc, expected 2"
+  has "$out.stderr" "--width is required"
+  run border --tables "$work/urea.sqlite" --material Urea --rpm 600 --width 4 --gap 2
+  [ $rc -eq 2 ] || fail "--gap 2 at a 4 m bout: exit $rc, expected 2"
+  has "$out.stderr" "--gap 2: from 0 m up to half the bout width (2 m)"
+  run border --tables "$work/urea.sqlite" --material Urea --rpm 600 --width 4 --edge ditch
+  [ $rc -eq 2 ] || fail "--edge ditch: exit $rc, expected 2"
+  has "$out.stderr" "--edge 'ditch'"
   pass ;;
 name_date)
   # The calibrated material's default name carries SOURCE_DATE_EPOCH's date (reproducible), not the clock's.
