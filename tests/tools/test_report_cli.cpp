@@ -291,11 +291,12 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
     EXPECT_GE(rpm, 450.0);
     EXPECT_LE(rpm, 750.0);
     EXPECT_GT(row["cv_to_and_fro_se_percent"].get<double>(), 0.0);
-    // `spread predict` (the C API) at that rpm and width gives that CV.
-    char rpm_text[32];
-    std::snprintf(rpm_text, sizeof rpm_text, "%.9f", rpm);
+    // `spread predict` (the C API) at that setting and width gives that CV.
+    char setting_text[96];
+    std::snprintf(setting_text, sizeof setting_text, "--rpm %.9f --drop-point-turn %.12f", rpm,
+                  row["drop_point_turn_deg"].get<double>());
     const CommandRun predicted = run("'" + kSpread + "' predict --tables '" + table.string() +
-                                     "' --material Urea --json --rpm " + rpm_text + " --width " +
+                                     "' --material Urea --json " + setting_text + " --width " +
                                      std::to_string(row["width_m"].get<double>()));
     ASSERT_EQ(predicted.exit_code, 0) << predicted.err;
     EXPECT_NEAR(json::parse(predicted.out)["cv_to_and_fro_percent"].get<double>(),
@@ -303,8 +304,10 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
         << row.dump();
   }
   // The numbers docs/field-calibration.md quotes for this table.
-  EXPECT_NEAR(j["rows"][0]["rpm"].get<double>(), 523.0, 1.0);
-  EXPECT_NEAR(j["rows"][1]["rpm"].get<double>(), 689.0, 1.0);
+  EXPECT_NEAR(j["rows"][0]["rpm"].get<double>(), 682.0, 1.0);
+  EXPECT_NEAR(j["rows"][0]["drop_point_turn_deg"].get<double>(), 70.0, 0.1);
+  EXPECT_NEAR(j["rows"][1]["rpm"].get<double>(), 734.0, 1.0);
+  EXPECT_NEAR(j["rows"][1]["drop_point_turn_deg"].get<double>(), 5.0, 0.1);
   EXPECT_FALSE(j["rows"][2]["reachable"].get<bool>());
   EXPECT_EQ(j["rows"][2]["reach"], "not_reached");
 
@@ -317,8 +320,8 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
   std::snprintf(rpm_cell, sizeof rpm_cell, "%.0f rpm", j["rows"][0]["rpm"].get<double>());
   EXPECT_NE(text.find(rpm_cell), std::string::npos) << rpm_cell << "\n" << text;
   EXPECT_NE(text.find("not reachable"), std::string::npos) << text;
-  for (const char* line : {"3.0 m    523 rpm    0.4 % ± 14.0      0.4 % ± 14.0      503-689 rpm",
-                           "4.0 m    689 rpm    7.7 % ± 13.1      7.7 % ± 13.1      450-460 rpm, 662-750 rpm",
+  for (const char* line : {"3.0 m    682 rpm, +70.0 deg   0.4 % ± 13.9      0.4 % ± 13.9      501-527 rpm, 629-750 rpm",
+                           "4.0 m    734 rpm, +5.0 deg    2.1 % ± 13.8      2.1 % ± 13.8      501-521 rpm, 679-750 rpm",
                            "12.0 m   not reachable"}) {
     EXPECT_NE(made.out.find(line), std::string::npos) << line << "\n" << made.out;
   }

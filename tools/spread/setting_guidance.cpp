@@ -34,8 +34,8 @@ SettingGuidance setting_guidance(const std::string& tables, const predict::Predi
                       plus_minus_percent(a.cv_to_and_fro_se) + " to-and-fro" +
                       (a.meets_target ? " (meets the target)" : " (still above the target)"));
   }
-  g.lines.push_back("  (drop point and vane settings are not in a launch table: a table built for another setting "
-                    "predicts them)");
+  g.lines.push_back("  (the drop point too: `spread chart` searches it with the speed; vane settings are not in a "
+                    "launch table: a table built for another setting predicts them)");
   return g;
 }
 
