@@ -224,6 +224,21 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
                              plus_minus(r.cv_se_percent) + " to-and-fro, " + format("%.1f %%", r.cv_racetrack_percent) +
                              plus_minus(r.cv_racetrack_se_percent) + " racetrack (± = 95 % interval over the launch samples)");
     }
+    // Every band, and which is the working width (the headline rule, docs/metrics.md "Effective working
+    // width"): the same as the text and JSON outputs.
+    if (r.band_count_to_and_fro > 0) {
+      std::string bands = "bands of bout widths within the target (to-and-fro):";
+      for (int b = 0; b < std::min(r.band_count_to_and_fro, SPREAD_MAX_BANDS); ++b) {
+        const spread_band& band = r.bands_to_and_fro[b];
+        bands += (b ? "; " : " ") + format("%.2f", band.lower_m) + format("-%.2f m", band.upper_m) + " (CV " +
+                 format("%.1f %%", band.cv_percent) + plus_minus(band.cv_se_percent) + " at " +
+                 format("%.2f m", band.bout_width_m) + ")";
+        if (b == r.headline_band_to_and_fro) bands += " = working width";
+        if (!band.established) bands += " [not established]";
+      }
+      page.summary.push_back(bands + "; the working width is the widest band whose lowest CV meets the target at 95 % "
+                                     "confidence");
+    }
     page.tray_mass_kg.assign(trays.begin(), trays.begin() + r.tray_count);
     page.trays.tray_width_m = r.tray_width_m;
     page.trays.tray_count = r.tray_count;
