@@ -184,14 +184,21 @@ void BM_PredictCApiDrag(benchmark::State& state) {
   std::filesystem::remove(path);
 }
 
-// A real table file (SPREAD_BENCH_TABLE); range(0) = lateral wind (m/s), range(1) = rpm (560: between two
-// rows of the default scene's sweep, both rows fly; 600: on a row, that row alone).
-void BM_PredictCApiFile(benchmark::State& state) {
+// SPREAD_BENCH_TABLE, or null after marking the benchmark skipped.
+const char* bench_table(benchmark::State& state) {
   const char* path = std::getenv("SPREAD_BENCH_TABLE");
   if (path == nullptr || *path == '\0') {
     state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
-    return;
+    return nullptr;
   }
+  return path;
+}
+
+// A real table file (SPREAD_BENCH_TABLE); range(0) = lateral wind (m/s), range(1) = rpm (560: between two
+// rows of the default scene's sweep, both rows fly; 600: on a row, that row alone).
+void BM_PredictCApiFile(benchmark::State& state) {
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
   spread_prediction_def def = capi_request();
   def.wind_m_s[0] = static_cast<double>(state.range(0));
   def.rpm = static_cast<double>(state.range(1));
@@ -203,11 +210,8 @@ void BM_PredictCApiFile(benchmark::State& state) {
 // same rows), 2: the right disc's drop point turned 10 degrees, 3: the right disc at 650 rpm (rows of its
 // own).
 void BM_PredictCApiFileDiscs(benchmark::State& state) {
-  const char* path = std::getenv("SPREAD_BENCH_TABLE");
-  if (path == nullptr || *path == '\0') {
-    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
-    return;
-  }
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
   spread_prediction_def def = capi_request();
   def.wind_m_s[0] = static_cast<double>(state.range(0));
   def.rpm = 560.0;
@@ -220,11 +224,8 @@ void BM_PredictCApiFileDiscs(benchmark::State& state) {
 // spread_compensate_wind on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 8 m bout,
 // range(0) = lateral wind (m/s). Counter cv_percent: the CV at the setting found.
 void BM_CompensateWindCApiFile(benchmark::State& state) {
-  const char* path = std::getenv("SPREAD_BENCH_TABLE");
-  if (path == nullptr || *path == '\0') {
-    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
-    return;
-  }
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
   spread_tables* tables = nullptr;
   if (spread_open(path, &tables) != SPREAD_OK) {
     state.SkipWithError("spread_open failed");
@@ -247,11 +248,8 @@ void BM_CompensateWindCApiFile(benchmark::State& state) {
 
 // The landing cache's cost and error on a real table file (SPREAD_BENCH_TABLE).
 void BM_PredictLandingCache(benchmark::State& state) {
-  const char* path = std::getenv("SPREAD_BENCH_TABLE");
-  if (path == nullptr || *path == '\0') {
-    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
-    return;
-  }
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
   spread::predict::Predictor p(spread::tables::read_table_file(path));
   spread::predict::Predictor reference(spread::tables::read_table_file(path));
   reference.set_flight_settings(spread::predict::reference_flight_settings());

@@ -25,13 +25,19 @@ class Search {
     request_.wind_y_m_s = options.wind_y_m_s;
   }
 
+  // The chart's request at this setting and bout width.
+  PredictionRequest request(double rpm, double turn_rad, double bout_width_m) const {
+    PredictionRequest r = request_;
+    r.rpm = rpm;
+    r.drop_point_turn_rad = turn_rad;
+    r.bout_width_m = bout_width_m;
+    return r;
+  }
   // The prediction at this setting; with standard errors, the CVs at `bout_width_m`.
   const Prediction& at(double rpm, double turn_rad, double bout_width_m, bool standard_errors) {
-    request_.rpm = rpm;
-    request_.drop_point_turn_rad = turn_rad;
-    request_.bout_width_m = bout_width_m;
-    request_.standard_errors = standard_errors;
-    const PredictStatus status = predictor_.predict(request_, prediction_);
+    PredictionRequest r = request(rpm, turn_rad, bout_width_m);
+    r.standard_errors = standard_errors;
+    const PredictStatus status = predictor_.predict(r, prediction_);
     ++predictions_;
     if (status != PredictStatus::kOk) {
       throw std::invalid_argument(std::string("prediction at ") + std::to_string(rpm) + " rpm, drop point turned " +
@@ -202,18 +208,9 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
     row.working_width_to_and_fro_se_m = p.working_width_to_and_fro_se_m;
     row.sample_count = p.sample_count;
     if (options.wind_x_m_s != 0.0 && predictor.machine().disc_count == 2) {
-      PredictionRequest request;
-      request.material = material;
-      request.rpm = best_rpm;
-      request.drop_point_turn_rad = best_turn_rad;
-      request.cv_target = options.cv_target;
-      request.tray_width_m = options.tray_width_m;
-      request.disc_height_m = options.disc_height_m;
-      request.wind_x_m_s = options.wind_x_m_s;
-      request.wind_y_m_s = options.wind_y_m_s;
-      request.bout_width_m = width_m;
       Prediction compensated;
-      const WindCompensation found = compensate_wind(predictor, request, compensated, predictor.own_workspace());
+      const WindCompensation found = compensate_wind(predictor, search.request(best_rpm, best_turn_rad, width_m),
+                                                     compensated, predictor.own_workspace());
       chart.predictions += found.predictions;
       if (found.status == PredictStatus::kOk) {
         row.compensated = true;
