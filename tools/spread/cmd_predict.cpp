@@ -225,7 +225,8 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
                              plus_minus(r.cv_racetrack_se_percent) + " racetrack (± = 95 % interval over the launch samples)");
     }
     // Every band, and which is the working width (the headline rule, docs/metrics.md "Effective working
-    // width"): the same as the text and JSON outputs.
+    // width"): the same as the text and JSON outputs. A note under the chart.
+    std::string bands_note;
     if (r.band_count_to_and_fro > 0) {
       std::string bands = "bands of bout widths within the target (to-and-fro):";
       for (int b = 0; b < std::min(r.band_count_to_and_fro, SPREAD_MAX_BANDS); ++b) {
@@ -236,8 +237,7 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
         if (b == r.headline_band_to_and_fro) bands += " = working width";
         if (!band.established) bands += " [not established]";
       }
-      page.summary.push_back(bands + "; the working width is the widest band whose lowest CV meets the target at 95 % "
-                                     "confidence");
+      bands_note = bands + "; the working width is the widest band whose lowest CV meets the target at 95 % confidence";
     }
     page.tray_mass_kg.assign(trays.begin(), trays.begin() + r.tray_count);
     page.trays.tray_width_m = r.tray_width_m;
@@ -252,6 +252,7 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
     page.working_width_racetrack_m = r.working_width_racetrack_m;
     page.cv_table = spread::plot::cv_table(spread::plot::cv_table_widths_m(r.throw_width_m, curve.widths_m),
                                            curve.widths_m, curve.to_and_fro, curve.racetrack);
+    if (!bands_note.empty()) page.notes.push_back(bands_note);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
                          "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
     for (const std::string& line : guidance.lines) page.notes.push_back(line);
