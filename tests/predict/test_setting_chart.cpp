@@ -56,7 +56,9 @@ TEST(SettingChart, PicksTheLowestCvAndEveryReachableWidth) {
     // The CV reported is the predictor's at that setting.
     EXPECT_DOUBLE_EQ(row.cv_to_and_fro, cv_at(predictor, row.rpm, row.width_m, row.drop_point_turn_rad));
     // Reachable exactly when some setting meets the target.
-    if (scan_best <= options.cv_target) EXPECT_NE(row.reach, ChartReach::kNotReached) << row.width_m;
+    if (scan_best <= options.cv_target) {
+      EXPECT_NE(row.reach, ChartReach::kNotReached) << row.width_m;
+    }
     if (row.reach == ChartReach::kNotReached) {
       ++not_reached;
       EXPECT_GT(row.cv_to_and_fro, options.cv_target);

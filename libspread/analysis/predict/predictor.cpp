@@ -547,68 +547,22 @@ void fold_mirror(std::span<double> values) {
 }
 }  // namespace
 
-PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
-  return predict(request, out, *own_workspace_);
-}
-
-PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out, PredictorWorkspace& w) const {
-  if (w.sample_capacity_ < largest_pair_ ||
-      w.tray_capacity_ < static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m))) {
-    throw std::invalid_argument("Predictor::predict: the workspace was made for a smaller table");
-  }
-  double height_m = 0.0;
-  if (const PredictStatus s = validate(request, height_m); s != PredictStatus::kOk) return s;
-  const auto material_index = find_material(request.material);
-  if (!material_index) return PredictStatus::kUnknownMaterial;
-  const MaterialRows& rows = materials_[*material_index];
+Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRows& rows, const DiscRows (&disc_rows)[2],
+                                         const DiscSetting (&settings)[2], bool per_disc, double height_m,
+                                         const flight::Air& air, flight::EffectSet effects, bool fly_right_disc) const {
+  // Launch samples at each disc's setting (normalised, scaled during the flight loop), flights, machine
+  // frame. The sample blocks say which landings each launch sample of the table owns (the standard
+  // errors' samples, SampleInfluence); empty when the discs are alike (sample s owns s and n + s).
   const bool two_discs = contents_.machine.disc_count == 2;
-  const DiscSetting left = disc_setting(request, kLeftDisc);
-  const DiscSetting right = two_discs ? disc_setting(request, kRightDisc) : left;
-  // Discs at their own settings each get their own samples, flights and landings; alike, the right disc
-  // is the left one's mirror image (flown as such only in a lateral wind).
-  const bool per_disc = two_discs && !(left == right);
-  struct DiscRows {
-    std::size_t lower_run = 0, upper_run = 0;
-    double t = 0.0;
-  };
-  DiscRows disc_rows[2];
-  const DiscSetting settings[2] = {left, right};
-  for (int d = 0; d < (per_disc ? 2 : 1); ++d) {
-    const auto bracket = bracket_rpm(std::span(run_rpm_).subspan(rows.first_run, rows.run_count), settings[d].rpm);
-    if (!bracket) return PredictStatus::kRpmOutsideTable;
-    // On a row (t = 0) that row alone.
-    disc_rows[d].lower_run = rows.first_run + bracket->lower;
-    disc_rows[d].upper_run = bracket->upper_weight == 0.0 ? disc_rows[d].lower_run : rows.first_run + bracket->upper;
-    disc_rows[d].t = bracket->upper_weight;
-  }
-  if (!per_disc) disc_rows[1] = disc_rows[0];
-
-  // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
-  // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
-  flight::EffectSet effects = request.effects & flight::kAllEffects;
-  if ((request.effects & kTableEffects) != 0) {
-    for (const DiscRows& r : disc_rows) effects |= run_effects_[r.lower_run] | run_effects_[r.upper_run];
-    if (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0) effects |= flight::kWind;
-  }
-  flight::Air air;
-  const bool windy = (effects & flight::kWind) != 0 && (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0);
-  if (windy) {
-    air.wind_m_s = Vec3(request.wind_x_m_s, request.wind_y_m_s, 0.0);
-  } else {
-    effects &= ~flight::EffectSet{flight::kWind};
-  }
-  const bool fly_right_disc = two_discs && (per_disc || (windy && request.wind_x_m_s != 0.0));
+  const DiscSetting& left = settings[kLeftDisc];
   const double density_kg_m3 = contents_.materials[rows.material].density_kg_m3;
   const auto omega_of = [](double rpm) { return rpm * 2.0 * kPi / 60.0; };
-
-  // 1–4. Launch samples at each disc's setting (normalised, scaled during the flight loop), flights,
-  // machine frame. The sample blocks say which landings each launch sample of the table owns (the
-  // standard errors' samples, SampleInfluence).
   int flights = 0;
   std::size_t n = 0;  // left-disc landings; the right disc's start at n
   std::size_t landings = 0;
-  SampleBlock blocks[kMaxSampleBlocks];
-  std::size_t block_count = 0;
+  SampleBlock* const blocks = w.sample_blocks_.data();
+  std::size_t& block_count = w.sample_block_count_;
+  block_count = 0;
   std::size_t sample_total = 0;  // independent launch samples behind the pattern
   if (!per_disc) {
     const DiscRows& r = disc_rows[0];
@@ -696,6 +650,73 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
     }
     for (std::size_t b = 0; b < block_count; ++b) sample_total += blocks[b].count;
   }
+  return Landed{n, landings, sample_total, flights};
+}
+
+PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
+  return predict(request, out, *own_workspace_);
+}
+
+PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out, PredictorWorkspace& w) const {
+  if (w.sample_capacity_ < largest_pair_ ||
+      w.tray_capacity_ < static_cast<std::size_t>(tray_capacity(limits_.min_tray_width_m))) {
+    throw std::invalid_argument("Predictor::predict: the workspace was made for a smaller table");
+  }
+  double height_m = 0.0;
+  if (const PredictStatus s = validate(request, height_m); s != PredictStatus::kOk) return s;
+  const auto material_index = find_material(request.material);
+  if (!material_index) return PredictStatus::kUnknownMaterial;
+  const MaterialRows& rows = materials_[*material_index];
+  const bool two_discs = contents_.machine.disc_count == 2;
+  const DiscSetting left = disc_setting(request, kLeftDisc);
+  const DiscSetting right = two_discs ? disc_setting(request, kRightDisc) : left;
+  // Discs at their own settings each get their own samples, flights and landings; alike, the right disc
+  // is the left one's mirror image (flown as such only in a lateral wind).
+  const bool per_disc = two_discs && !(left == right);
+  DiscRows disc_rows[2];
+  const DiscSetting settings[2] = {left, right};
+  for (int d = 0; d < (per_disc ? 2 : 1); ++d) {
+    const auto bracket = bracket_rpm(std::span(run_rpm_).subspan(rows.first_run, rows.run_count), settings[d].rpm);
+    if (!bracket) return PredictStatus::kRpmOutsideTable;
+    // On a row (t = 0) that row alone.
+    disc_rows[d].lower_run = rows.first_run + bracket->lower;
+    disc_rows[d].upper_run = bracket->upper_weight == 0.0 ? disc_rows[d].lower_run : rows.first_run + bracket->upper;
+    disc_rows[d].t = bracket->upper_weight;
+  }
+  if (!per_disc) disc_rows[1] = disc_rows[0];
+
+  // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
+  // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
+  flight::EffectSet effects = request.effects & flight::kAllEffects;
+  if ((request.effects & kTableEffects) != 0) {
+    for (const DiscRows& r : disc_rows) effects |= run_effects_[r.lower_run] | run_effects_[r.upper_run];
+    if (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0) effects |= flight::kWind;
+  }
+  flight::Air air;
+  const bool windy = (effects & flight::kWind) != 0 && (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0);
+  if (windy) {
+    air.wind_m_s = Vec3(request.wind_x_m_s, request.wind_y_m_s, 0.0);
+  } else {
+    effects &= ~flight::EffectSet{flight::kWind};
+  }
+  const bool fly_right_disc = two_discs && (per_disc || (windy && request.wind_x_m_s != 0.0));
+
+  // 1–4. Launch samples at each disc's setting, flights, machine frame (a function of its own: its
+  // bookkeeping is off the stack by the time the standard errors' passes run).
+  const Landed landed = land_discs(w, rows, disc_rows, settings, per_disc, height_m, air, effects, fly_right_disc);
+  measure(request, landed, per_disc, fly_right_disc, effects, height_m, settings, out, w);
+  return PredictStatus::kOk;
+}
+
+void Predictor::measure(const PredictionRequest& request, const Landed& landed, bool per_disc, bool fly_right_disc,
+                        flight::EffectSet effects, double height_m, const DiscSetting (&settings)[2], Prediction& out,
+                        PredictorWorkspace& w) const {
+  // Step 5, from the landings in the workspace.
+  const bool two_discs = contents_.machine.disc_count == 2;
+  const DiscSetting& left = settings[kLeftDisc];
+  const DiscSetting& right = settings[kRightDisc];
+  const int flights = landed.flights;
+  const std::size_t n = landed.left_landings, landings = landed.landings, sample_total = landed.samples;
   const std::span<const double> xs = std::span(w.landing_x_m_).first(landings);
   const std::span<const double> ys = std::span(w.landing_y_m_).first(landings);
   const std::span<double> weights = std::span(w.landing_weight_).first(landings);
@@ -843,7 +864,7 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
   // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
   const SampleInfluence influence{xs,     weights, sample_total, two_discs ? 2u : 1u, trays, kernel_m,
-                                  std::span<const SampleBlock>(blocks, block_count)};
+                                  std::span<const SampleBlock>(w.sample_blocks_.data(), w.sample_block_count_)};
   const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m};
   const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
   const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
@@ -934,7 +955,6 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   p.left_landing_count = n;
   p.landing_y_m = ys;
   p.landing_mass_fraction = weights;
-  return PredictStatus::kOk;
 }
 
 }  // namespace spread::predict

@@ -36,6 +36,7 @@
 #include "libspread/analysis/metrics/metrics.hpp"
 #include "libspread/analysis/predict/landing_cache.hpp"
 #include "libspread/analysis/predict/launch_quantile_cells.hpp"
+#include "libspread/analysis/predict/sample_influence.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 
 namespace spread::predict {
@@ -251,6 +252,9 @@ class PredictorWorkspace {
     double racetrack_cv_se = std::numeric_limits<double>::quiet_NaN();
   };
   std::array<SeTask, 2 + 2 * kMaxBands * 4> se_tasks_{};
+  // The discs' launch samples by source (SampleInfluence), when each disc has its own setting.
+  std::array<SampleBlock, kMaxSampleBlocks> sample_blocks_{};
+  std::size_t sample_block_count_ = 0;
   std::array<BandExtra, 2 * kMaxBands> band_extras_{};
   metrics::WorkingWidths widths_;
   double radial_mean_m_ = 0.0;  // R̄, ξ of the last fly_launches()
@@ -325,6 +329,26 @@ class Predictor {
   };
 
   PredictStatus validate(const PredictionRequest& request, double& height_m) const;
+  // Where a disc's launch samples come from: the rows around its speed and the upper row's weight t.
+  struct DiscRows {
+    std::size_t lower_run = 0, upper_run = 0;
+    double t = 0.0;
+  };
+  // What steps 1–4 of predict() landed into the workspace (and the sample blocks, w.sample_blocks_).
+  struct Landed {
+    std::size_t left_landings = 0;  // the left disc's landings come first, the right disc's from here
+    std::size_t landings = 0;
+    std::size_t samples = 0;        // independent launch samples behind the pattern
+    int flights = 0;
+  };
+  Landed land_discs(PredictorWorkspace& w, const MaterialRows& rows, const DiscRows (&disc_rows)[2],
+                    const DiscSetting (&settings)[2], bool per_disc, double height_m, const flight::Air& air,
+                    flight::EffectSet effects, bool fly_right_disc) const;
+  // Step 5 of predict(): trays, widths, bands and standard errors from the landings, into `out` (a function
+  // of its own: its frame and land_discs()'s are never on the stack together).
+  void measure(const PredictionRequest& request, const Landed& landed, bool per_disc, bool fly_right_disc,
+               flight::EffectSet effects, double height_m, const DiscSetting (&settings)[2], Prediction& out,
+               PredictorWorkspace& w) const;
   // True when runs a and b (neighbours) interpolate sample by sample: both from the analytic builder
   // (sample k is the same granule in every row) and of equal count.
   bool pairwise(std::size_t run_a, std::size_t run_b) const;
