@@ -17,5 +17,10 @@ mv -f "$out/default.sqlite.new" "$out/default.sqlite"
 material=${MATERIAL:-Urea}
 rpm=${RPM:-600}
 "$bin/tools/spread/spread" predict --tables "$out/default.sqlite" --material "$material" --rpm "$rpm" "$@"
+# The same machine with the drop point turned +45 degrees, the setting of docs/building-tables.md
+# "Choosing the drop point": one band of bout widths at CV <= 10 % for every material and row.
+echo "with the drop point turned +45 degrees (docs/building-tables.md \"Choosing the drop point\"):"
+"$bin/tools/spread/spread" predict --tables "$out/default.sqlite" --material "$material" --rpm "$rpm" \
+  --drop-point-turn 45 --cv-target 10
 "$bin/tools/spread/spread" plot --tables "$out/default.sqlite" --material "$material" --rpm "$rpm" \
   --out "$out/default"
