@@ -56,8 +56,9 @@ std::string refusal(spread::predict::PredictStatus status, const Options& o,
     for (std::size_t i = 0; i < predictor.material_count(); ++i) out << " " << predictor.material(i).name;
   } else if (status == S::kRpmOutsideTable) {
     const auto i = *predictor.find_material(o.material);
-    out << "--rpm " << o.rpm << " is outside the table rows of '" << o.material << "' [" << predictor.min_rpm(i)
-        << ", " << predictor.max_rpm(i) << "] rpm";
+    out << spread::cli::disc_speed_outside(o, predictor.min_rpm(i), predictor.max_rpm(i))
+        << " is outside the table rows of '" << o.material << "' [" << predictor.min_rpm(i) << ", "
+        << predictor.max_rpm(i) << "] rpm";
   } else {
     out << to_string(status) << " (check --rpm, --height >= 0, --cv-target > 0, --tray-width in [0.05, 100] m)";
   }
@@ -79,7 +80,12 @@ void run(const Options& o, int& exit_code) {
   const auto& machine = predictor.machine();
   const spread::metrics::MachineLayout discs{machine.disc_count, machine.disc_spacing_m};
   std::ostringstream title;
-  title << o.material << " at " << o.rpm << " rpm";
+  title << o.material << " at " << p.discs[spread::predict::kLeftDisc].rpm;
+  if (machine.disc_count == 2 && !(p.discs[spread::predict::kLeftDisc] == p.discs[spread::predict::kRightDisc])) {
+    title << " / " << p.discs[spread::predict::kRightDisc].rpm << " rpm (left / right)";
+  } else {
+    title << " rpm";
+  }
   json written = json::object();
 
   if (what.count("pattern")) {
