@@ -246,6 +246,34 @@ void BM_CompensateWindCApiFile(benchmark::State& state) {
   spread_close(tables);
 }
 
+// spread_predict_edge on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 15 m bouts, border
+// spreading with the right disc at 452 rpm, +5 degrees, 86 % of its flow (the setting `spread border`
+// finds there).
+void BM_PredictEdgeCApiFile(benchmark::State& state) {
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
+  spread_tables* tables = nullptr;
+  if (spread_open(path, &tables) != SPREAD_OK) {
+    state.SkipWithError("spread_open failed");
+    return;
+  }
+  spread_prediction_def def = capi_request();
+  def.rpm = 600.0;
+  def.bout_width_m = 15.0;
+  def.disc_rpm[1] = 452.0;
+  def.disc_drop_point_turn_rad[1] = 5.0 * std::numbers::pi / 180.0;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.flow_fraction = 0.86;
+  spread_edge_result result{};
+  for (auto _ : state) {
+    const spread_status status = spread_predict_edge(tables, &def, &edge, &result, nullptr, 0);
+    benchmark::DoNotOptimize(status);
+  }
+  state.counters["mass_beyond_percent"] = result.mass_beyond_percent;
+  state.counters["trays"] = result.tray_count;
+  spread_close(tables);
+}
+
 // The landing cache's cost and error on a real table file (SPREAD_BENCH_TABLE).
 void BM_PredictLandingCache(benchmark::State& state) {
   const char* path = bench_table(state);
@@ -293,6 +321,7 @@ BENCHMARK(BM_PredictCApiFileDiscs)
     ->ArgNames({"wind", "discs"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PredictEdgeCApiFile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictLandingCache)
     ->ArgsProduct({{0, 3}, {0, 1}})
     ->ArgNames({"wind", "cache"})

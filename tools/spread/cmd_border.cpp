@@ -28,7 +28,6 @@ namespace {
 using nlohmann::json;
 using spread::cli::BadInput;
 namespace pr = spread::predict;
-constexpr double kRadPerDeg = 0.017453292519943295;
 
 struct Options : spread::cli::PredictionArgs {
   double bout_width_m = 0.0;

@@ -32,7 +32,6 @@ namespace {
 using nlohmann::json;
 using spread::cli::BadInput;
 namespace pr = spread::predict;
-constexpr double kRadPerDeg = 0.017453292519943295;
 
 // "620 rpm, +15.0°" — the setting of both discs.
 std::string setting_text(const pr::SettingChartRow& row) {

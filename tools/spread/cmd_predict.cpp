@@ -9,7 +9,6 @@
 #include <iostream>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -177,8 +176,8 @@ bool own_disc_settings(const Options& o) {
 std::string setting_label(const Options& o, const spread_prediction& r) {
   if (!own_disc_settings(o)) return format("%.2f rpm", o.rpm);
   return format("%.2f", r.disc_rpm[0]) + " / " + format("%.2f rpm (left / right)", r.disc_rpm[1]) +
-         format(", drop point turned %+.1f", r.disc_drop_point_turn_rad[0] * 180.0 / std::numbers::pi) +
-         format(" / %+.1f deg", r.disc_drop_point_turn_rad[1] * 180.0 / std::numbers::pi);
+         format(", drop point turned %+.1f", r.disc_drop_point_turn_rad[0] / spread::cli::kRadPerDeg) +
+         format(" / %+.1f deg", r.disc_drop_point_turn_rad[1] / spread::cli::kRadPerDeg);
 }
 
 // The guidance when the CV at --width is above the target (setting_guidance.hpp): the same table and
@@ -350,11 +349,11 @@ void run(const Options& o, int& exit_code) {
                 {"drop_point_turn_deg", o.drop_point_turn_deg},
                 {"discs", {{{"disc", "left"},
                             {"rpm", result.disc_rpm[0]},
-                            {"drop_point_turn_deg", result.disc_drop_point_turn_rad[0] * 180.0 / std::numbers::pi}},
+                            {"drop_point_turn_deg", result.disc_drop_point_turn_rad[0] / spread::cli::kRadPerDeg}},
                            {{"disc", "right"},
                             {"rpm", number_or_null(result.disc_rpm[1])},
                             {"drop_point_turn_deg",
-                             number_or_null(result.disc_drop_point_turn_rad[1] * 180.0 / std::numbers::pi)}}}},
+                             number_or_null(result.disc_drop_point_turn_rad[1] / spread::cli::kRadPerDeg)}}}},
                 {"effects", spread::effect::names_in(result.effects)},
                 {"cv_target_percent", o.cv_target_percent},
                 {"throw_width_m", result.throw_width_m},
@@ -415,9 +414,9 @@ void run(const Options& o, int& exit_code) {
       std::cout << "  wind compensation: CV at " << result.bout_width_m << " m in this wind " << present_cv_percent
                 << " %" << plus_minus(present_cv_se_percent) << " at the present setting; each disc set apart:\n"
                 << "    left " << result.disc_rpm[0] << " rpm, drop point "
-                << format("%+.1f deg", result.disc_drop_point_turn_rad[0] * 180.0 / std::numbers::pi) << "; right "
+                << format("%+.1f deg", result.disc_drop_point_turn_rad[0] / spread::cli::kRadPerDeg) << "; right "
                 << result.disc_rpm[1] << " rpm, drop point "
-                << format("%+.1f deg", result.disc_drop_point_turn_rad[1] * 180.0 / std::numbers::pi) << " ("
+                << format("%+.1f deg", result.disc_drop_point_turn_rad[1] / spread::cli::kRadPerDeg) << " ("
                 << (result.cv_percent <= o.cv_target_percent ? "meets" : "does not meet") << " the target)\n";
     }
     if (result.bout_width_m > 0.0) {

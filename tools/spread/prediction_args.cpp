@@ -3,7 +3,6 @@
 #include "tools/spread/number_format.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -39,7 +38,7 @@ double disc_drop_point_turn_rad(const PredictionArgs& args, int disc) {
     throw BadInput(std::string(kDiscDropPointOption[disc]) + " " + std::to_string(deg) +
                    ": the drop point turns within -180..180 degrees of the table's");
   }
-  return deg * std::numbers::pi / 180.0;
+  return deg * kRadPerDeg;
 }
 
 void check_disc_settings(const PredictionArgs& args) {
@@ -73,7 +72,7 @@ double drop_point_turn_rad(const PredictionArgs& args) {
     throw BadInput("--drop-point-turn " + std::to_string(args.drop_point_turn_deg) +
                    ": the drop point turns within -180..180 degrees of the table's");
   }
-  return args.drop_point_turn_deg * std::numbers::pi / 180.0;
+  return args.drop_point_turn_deg * kRadPerDeg;
 }
 
 WindXY parse_wind(const std::string& text) {

@@ -31,6 +31,9 @@ struct PredictionArgs {
 // the per-disc --left-rpm, --right-rpm, --left-drop-point-turn, --right-drop-point-turn.
 void add_prediction_args(CLI::App& sub, PredictionArgs& args);
 
+// Radians per degree: the CLI takes and prints angles in degrees, the library works in radians.
+inline constexpr double kRadPerDeg = 0.017453292519943295;  // π/180
+
 // The option names of each disc's own settings ([0] left, [1] right).
 inline constexpr const char* kDiscRpmOption[2] = {"--left-rpm", "--right-rpm"};
 inline constexpr const char* kDiscDropPointOption[2] = {"--left-drop-point-turn", "--right-drop-point-turn"};

@@ -298,7 +298,7 @@ SPREAD_API spread_status spread_predict(spread_tables* tables, const spread_pred
  * in def (rpm and drop point, or each disc's own). The discs' speeds move apart by ±d (the left disc +d)
  * within the table's rows and at most 150 rpm, and their drop points turn by ±t (the left +t, the right
  * -t in its mirrored frame: both fans turn the same way seen from above) within 45 degrees: a 5 x 5 grid,
- * then golden-section search along d (to 4 rpm) and t (to 0.5 degrees), about 45 predictions without
+ * then golden-section search along d (to 4 rpm) and t (to 0.5 degrees), at most 48 predictions without
  * standard errors and one with them (docs/c-api.md "Wind compensation" gives the cost). *result is the
  * prediction at the setting found; result->disc_rpm and result->disc_drop_point_turn_rad say the setting,
  * so def->result_size must cover 0.4's result (spread_prediction_def_default() sets it). Whether the CV
@@ -367,7 +367,8 @@ typedef struct spread_edge_result {
  * receives result->tray_count rates (percent), or SPREAD_ERROR_BUFFER_TOO_SMALL as spread_predict. The
  * errors of spread_predict, and SPREAD_ERROR_OUT_OF_RANGE for an edge definition out of its domain (named
  * in spread_last_error_detail), a one-disc machine or a 0.3 definition. Allocates its working arrays
- * (tens of kilobytes) through the handle's allocator; about three predictions of time. Not re-entrant on
+ * (the profile's trays and one disc's landings) through the handle's allocator; two predictions without
+ * standard errors and the profile (docs/c-api.md "Border and edge" gives the cost). Not re-entrant on
  * one handle. The search for a setting that meets the thresholds: `spread border` (the tools). */
 SPREAD_API spread_status spread_predict_edge(spread_tables* tables, const spread_prediction_def* def,
                                              const spread_edge_def* edge, spread_edge_result* result,

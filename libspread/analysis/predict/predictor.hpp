@@ -378,9 +378,9 @@ class Predictor {
                            const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
                            std::size_t right_offset, double density_kg_m3, const LandingCache* cache,
                            double t) const;
-  // Steps 1–2 of predict() for one disc: its samples at `setting` into the workspace (turned to its drop
-  // point), thinned to at most max_flights flights (flights_per_sample per sample); the count, and the
-  // sample blocks (by source row, for SampleInfluence) with their first landing at landing_offset.
+  // Steps 1–2 of predict() for one disc: its samples of rows lower_run..upper_run at weight t into the
+  // workspace, turned by drop_point_turn_rad, thinned to at most max_flights flights (flights_per_sample
+  // per sample; 0: no bound). Returns the count.
   std::size_t disc_samples(PredictorWorkspace& w, std::size_t lower_run, std::size_t upper_run, double t,
                            double drop_point_turn_rad, std::size_t max_flights, std::size_t flights_per_sample) const;
 
