@@ -1,6 +1,9 @@
 # Run at build time (cmake -P): writes OUTPUT, a C++ source defining spread::source_revision(), with the
 # git revision of SOURCE_DIR ("unknown" outside a git checkout). The file is rewritten only when the
 # revision changed, so an unchanged tree relinks nothing.
+# A script run with -P sets no policies of its own: take the project's, so file(CONFIGURE) alone expands
+# @revision@ (CMP0053) and cmake prints no developer warning into the build log.
+cmake_minimum_required(VERSION 3.25)
 execute_process(
   COMMAND git -C "${SOURCE_DIR}" describe --always --dirty --abbrev=12
   OUTPUT_VARIABLE revision

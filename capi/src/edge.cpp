@@ -1,5 +1,6 @@
 // spread_predict_edge: the C definitions → the field's PredictionRequest, the edge-side disc's
-// EdgeSetting and an EdgeRequest → predict::edge_profile → the C result and the rate per tray.
+// EdgeSetting (and the other disc's drop point) and an EdgeRequest → predict::edge_profile → the C result
+// and the rate per tray.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -81,11 +82,11 @@ extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread
   }
   if (const spread_status s = check_edge(*edge, def->bout_width_m); s != SPREAD_OK) return s;
   const int side = edge->side, other = 1 - side;
-  if (!std::isnan(def->disc_rpm[other]) || !std::isnan(def->disc_drop_point_turn_rad[other])) {
+  if (!std::isnan(def->disc_rpm[other])) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE,
-                "spread_predict_edge: disc_rpm[%d] %g / disc_drop_point_turn_rad[%d] %g set: the disc away from the "
-                "edge runs at the field's setting (rpm, drop_point_turn_rad)",
-                other, def->disc_rpm[other], other, def->disc_drop_point_turn_rad[other]);
+                "spread_predict_edge: disc_rpm[%d] %g set: the disc away from the edge runs at the field's speed "
+                "(rpm; only its drop point may change on the last pass)",
+                other, def->disc_rpm[other]);
   }
   try {
     // The field: both discs at rpm and drop_point_turn_rad.
@@ -106,6 +107,7 @@ extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread
     setting.disc.drop_point_turn_rad =
         std::isnan(def->disc_drop_point_turn_rad[side]) ? def->drop_point_turn_rad : def->disc_drop_point_turn_rad[side];
     setting.flow_fraction = edge->flow_fraction;
+    setting.field_side_drop_point_turn_rad = def->disc_drop_point_turn_rad[other];  // NaN: the field's
     pr::EdgeRequest request;
     request.kind = edge->kind == SPREAD_EDGE_BORDER ? pr::EdgeKind::kBorder : pr::EdgeKind::kEdge;
     request.side = side;
@@ -117,10 +119,10 @@ extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread
     const pr::PredictStatus status = pr::edge_profile(predictor, field, request, setting, profile, &tables->memory);
     if (status != pr::PredictStatus::kOk) {
       return fail(spread::capi::status_of(status),
-                  "spread_predict_edge: %s: the field's rpm %g, drop_point_turn_rad %g, or the edge-side disc's "
-                  "%g rpm, %g rad (bounds: docs/c-api.md)",
+                  "spread_predict_edge: %s: the field's rpm %g, drop_point_turn_rad %g, the edge-side disc's "
+                  "%g rpm, %g rad, or the other disc's drop point %g rad (bounds: docs/c-api.md)",
                   spread_status_str(spread::capi::status_of(status)), def->rpm, def->drop_point_turn_rad,
-                  setting.disc.rpm, setting.disc.drop_point_turn_rad);
+                  setting.disc.rpm, setting.disc.drop_point_turn_rad, def->disc_drop_point_turn_rad[other]);
     }
     result->edge_line_m = profile.edge_line_m;
     result->mass_beyond_percent = 100.0 * profile.mass_beyond_fraction;

@@ -556,8 +556,26 @@ TEST_F(Capi, PredictEdgeGivesTheLastBoutsProfile) {
   spread_prediction_def no_bout = def("can", 650.0);
   EXPECT_EQ(spread_predict_edge(tables_, &no_bout, &edge, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
   spread_prediction_def other = normal;
-  other.disc_rpm[0] = 600.0;  // the disc away from the edge keeps the field's setting
+  other.disc_rpm[0] = 600.0;  // the disc away from the edge keeps the field's speed
   EXPECT_EQ(spread_predict_edge(tables_, &other, &edge, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("disc_rpm[0]"), std::string::npos);
+  // ... but may turn its drop point on the last pass: the library's profile at that setting.
+  spread_prediction_def turned = d;
+  turned.disc_drop_point_turn_rad[0] = -0.5;
+  spread::predict::EdgeSetting setting = found.setting;
+  setting.field_side_drop_point_turn_rad = -0.5;
+  spread::predict::EdgeProfile expected;
+  ASSERT_EQ(spread::predict::edge_profile(predictor, field, {}, setting, expected), spread::predict::PredictStatus::kOk);
+  spread_edge_result turned_result{};
+  ASSERT_EQ(spread_predict_edge(tables_, &turned, &edge, &turned_result, nullptr, 0), SPREAD_OK)
+      << spread_last_error_detail();
+  EXPECT_DOUBLE_EQ(turned_result.mass_beyond_percent, 100.0 * expected.mass_beyond_fraction);
+  EXPECT_DOUBLE_EQ(turned_result.max_rate_inside_percent, 100.0 * expected.max_rate_inside);
+  EXPECT_NE(turned_result.max_rate_inside_percent, result.max_rate_inside_percent);
+  turned.disc_drop_point_turn_rad[0] = 4.0;  // beyond half a turn
+  EXPECT_EQ(spread_predict_edge(tables_, &turned, &edge, &turned_result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("other disc's drop point 4"), std::string::npos)
+      << spread_last_error_detail();
   EXPECT_EQ(spread_predict_edge(tables_, &normal, &edge, &result, rate.data(), 3), SPREAD_ERROR_BUFFER_TOO_SMALL);
 }
 

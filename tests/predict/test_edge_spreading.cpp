@@ -42,6 +42,8 @@ TEST(EdgeSpreading, BorderAndEdgeSettingsMeetTheirThresholds) {
     EXPECT_LE(r.setting.flow_fraction, kEdgeMaxFlow);
     EXPECT_GE(r.setting.disc.rpm, 500.0);
     EXPECT_LE(r.setting.disc.rpm, 800.0);
+    // The edge-side disc alone meets the thresholds here: the field-side disc keeps the field's setting.
+    EXPECT_TRUE(std::isnan(r.setting.field_side_drop_point_turn_rad));
     // The same setting's profile asked for directly.
     EdgeProfile again;
     ASSERT_EQ(edge_profile(predictor, field(18.0), edge, r.setting, again), PredictStatus::kOk);

@@ -143,7 +143,12 @@ void run(const Options& o, int& exit_code) {
              {"setting", {{"disc", side_name},
                           {"rpm", s.disc.rpm},
                           {"drop_point_turn_deg", s.disc.drop_point_turn_rad / kRadPerDeg},
-                          {"flow_percent", 100.0 * s.flow_fraction}}},
+                          {"flow_percent", 100.0 * s.flow_fraction},
+                          // null: the field-side disc keeps the field's drop point
+                          {"field_side_drop_point_turn_deg",
+                           std::isnan(s.field_side_drop_point_turn_rad)
+                               ? json(nullptr)
+                               : json(s.field_side_drop_point_turn_rad / kRadPerDeg)}}},
              {"profile", profile_json(r.profile)},
              {"normal_profile", profile_json(r.normal_profile)},
              {"predictions", r.predictions}};
@@ -156,6 +161,12 @@ void run(const Options& o, int& exit_code) {
                 format("%.0f rpm", s.disc.rpm).c_str(), format("%+.1f deg", s.disc.drop_point_turn_rad / kRadPerDeg).c_str(),
                 format("%.0f %%", 100.0 * s.flow_fraction).c_str(),
                 r.profile.meets ? "meets the thresholds" : "NO setting searched meets the thresholds; the closest");
+    if (!std::isnan(s.field_side_drop_point_turn_rad)) {
+      const char* other_name = edge.side == pr::kRightDisc ? "left" : "right";
+      std::printf("  and the %s disc on this pass: drop point turned %s (its speed and flow as the field's: it throws "
+                  "over the line at the field's setting)\n",
+                  other_name, format("%+.1f deg", s.field_side_drop_point_turn_rad / kRadPerDeg).c_str());
+    }
     print_profile("with it", r.profile);
     if (!r.profile.meets && edge.kind == pr::EdgeKind::kBorder) {
       // Why not: what reaches over the line with the edge-side disc off.
@@ -192,7 +203,7 @@ spread::cli::CommandRegistration reg{"border", [](CLI::App& app, int& exit_code)
   sub->add_option("--min-edge-rate", options.min_edge_rate_percent, "edge: the rate at the edge line at least this of the field's (%)")
       ->capture_default_str();
   sub->add_option("--drop-point-range", options.drop_point_range_deg,
-                  "the edge-side disc's drop point searched: turns within ± this of the field's setting (degrees)")
+                  "each disc's drop point searched: turns within ± this of the field's setting (degrees)")
       ->capture_default_str();
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   sub->callback([&exit_code] { run(options, exit_code); });

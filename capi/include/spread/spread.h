@@ -363,7 +363,8 @@ typedef struct spread_edge_result {
 /* The last bout along a field edge with the edge-side disc set apart. def: the field's setting (rpm, drop
  * point, wind, height, bout_width_m > 0 required — the last tramline lies half of it from the field edge)
  * and, in disc_rpm[side] / disc_drop_point_turn_rad[side], the edge-side disc's own setting on the last
- * pass (NaN: as the field); the other disc's own fields must be NaN. `rate` may be NULL; otherwise it
+ * pass (NaN: as the field); in disc_drop_point_turn_rad[1 - side] the other disc's drop point on that pass
+ * (NaN: as the field; its disc_rpm must be NaN). `rate` may be NULL; otherwise it
  * receives result->tray_count rates (percent), or SPREAD_ERROR_BUFFER_TOO_SMALL as spread_predict. The
  * errors of spread_predict, and SPREAD_ERROR_OUT_OF_RANGE for an edge definition out of its domain (named
  * in spread_last_error_detail), a one-disc machine or a 0.3 definition. Allocates its working arrays

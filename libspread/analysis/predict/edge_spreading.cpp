@@ -26,8 +26,8 @@ double beyond(double x, double weight, double line_m, double h) {
   return weight * (1.0 - metrics::epanechnikov_cdf((line_m - x) / h));
 }
 
-// What does not change with the edge-side disc's setting: the layout, the passes before this one and this
-// pass's other disc, all at the normal setting.
+// What does not change with this pass's settings: the layout and the passes before this one, at the normal
+// setting.
 struct Frame {
   explicit Frame(std::pmr::memory_resource* memory) : fixed(memory), interior(memory) {}
   metrics::TrayLayout trays;
@@ -35,19 +35,18 @@ struct Frame {
   double target_per_tray = 0.0;   // the field's rate inside, as mass per tray
   std::pmr::vector<double> fixed;     // per tray
   double fixed_beyond = 0.0;      // mass beyond the line
-  double inner_mass = 0.0;        // this pass's other disc's discharged mass
   int first_inside = 0, end_inside = 0;  // trays of the last bout, [−W/2, line]
   double over_limit = 0.0;        // the rate above which a tray is over-applied
   double under_limit = 0.0;       // … and below which under-applied
   std::pmr::vector<double> interior;  // per tray, the rate the field's interior gets there (all passes)
 };
 
-// The edge-side disc's landings of `p`, x turned so that the edge lies towards +x.
+// Disc `disc`'s landings of `p`, x turned so that the edge (on side `edge_side`) lies towards +x.
 template <typename Visit>
-void edge_disc_landings(const Prediction& p, int side, Visit visit) {
-  const double orient = side == kRightDisc ? 1.0 : -1.0;
-  const std::size_t first = side == kRightDisc ? p.left_landing_count : 0;
-  const std::size_t end = side == kRightDisc ? p.landing_x_m.size() : p.left_landing_count;
+void disc_landings(const Prediction& p, int disc, int edge_side, Visit visit) {
+  const double orient = edge_side == kRightDisc ? 1.0 : -1.0;
+  const std::size_t first = disc == kRightDisc ? p.left_landing_count : 0;
+  const std::size_t end = disc == kRightDisc ? p.landing_x_m.size() : p.left_landing_count;
   for (std::size_t i = first; i < end; ++i) visit(orient * p.landing_x_m[i], p.landing_mass_fraction[i]);
 }
 
@@ -78,19 +77,6 @@ void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_w
     }
     metrics::accumulate_transverse_kernel(x, normal.landing_mass_fraction, f.trays, f.kernel_m, f.fixed);
   }
-  // This pass's other disc.
-  const int inner = edge.side == kRightDisc ? kLeftDisc : kRightDisc;
-  std::pmr::vector<double> inner_x(memory), inner_w(memory);
-  edge_disc_landings(normal, inner, [&](double xi, double wi) {
-    // edge_disc_landings turns x by the inner side's orientation, the opposite of the edge's.
-    inner_x.push_back(-xi);
-    inner_w.push_back(wi);
-  });
-  for (std::size_t i = 0; i < inner_x.size(); ++i) {
-    f.inner_mass += inner_w[i];
-    f.fixed_beyond += beyond(inner_x[i], inner_w[i], f.line_m, f.kernel_m);
-  }
-  metrics::accumulate_transverse_kernel(inner_x, inner_w, f.trays, f.kernel_m, f.fixed);
   const double left_m = f.trays.left_edge_m(), w = f.trays.tray_width_m;
   f.first_inside = std::max(0, static_cast<int>(std::ceil((-0.5 * bout_width_m - left_m) / w - 1e-9)));
   // Over-applied: above 1 + tolerance, or above the highest rate the field's interior gets at the normal
@@ -114,26 +100,29 @@ void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_w
   f.end_inside = std::min(f.trays.tray_count, static_cast<int>(std::floor((f.line_m - left_m) / w + 1e-9)));
 }
 
-// The edge-side disc at one setting: its trays and its mass beyond the line, at full flow.
+// One disc of this pass at one setting: its trays and its mass beyond the line, at full flow.
 struct EdgeDisc {
   explicit EdgeDisc(std::pmr::memory_resource* memory) : trays(memory) {}
   std::pmr::vector<double> trays;
   double beyond = 0.0, mass = 0.0;
 };
 
-// The profile's figures at flow f (strips only when `strips`).
-void evaluate(const Frame& frame, const EdgeDisc& disc, double flow, const EdgeRequest& edge, EdgeProfile& out,
-              bool strips) {
+// The profile's figures with the field-side disc `inner` and the edge-side disc at flow f (strips only when
+// `strips`).
+void evaluate(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, double flow, const EdgeRequest& edge,
+              EdgeProfile& out, bool strips) {
   const double w = frame.trays.tray_width_m, left_m = frame.trays.left_edge_m();
-  const double pass_mass = frame.inner_mass + flow * disc.mass;
-  out.mass_beyond_fraction = pass_mass > 0.0 ? (frame.fixed_beyond + flow * disc.beyond) / pass_mass : 0.0;
+  const double pass_mass = inner.mass + flow * disc.mass;
+  out.mass_beyond_fraction =
+      pass_mass > 0.0 ? (frame.fixed_beyond + inner.beyond + flow * disc.beyond) / pass_mass : 0.0;
   out.max_rate_inside = 0.0;
   out.missing_inside_m = 0.0;
   out.rate_at_edge = 0.0;
   out.under_applied_m.clear();
   out.over_applied_m.clear();
   const auto rate = [&](int k) {
-    return (frame.fixed[static_cast<std::size_t>(k)] + flow * disc.trays[static_cast<std::size_t>(k)]) / frame.target_per_tray;
+    const auto i = static_cast<std::size_t>(k);
+    return (frame.fixed[i] + inner.trays[i] + flow * disc.trays[i]) / frame.target_per_tray;
   };
   const auto strip = [&](std::pmr::vector<std::pair<double, double>>& list, int k) {
     const double from = left_m + k * w;
@@ -183,6 +172,10 @@ bool valid(const PredictionRequest& normal, const EdgeRequest& edge, const Predi
          edge.max_drop_point_turn_rad >= 0.0 && edge.max_drop_point_turn_rad <= kPi;
 }
 
+// A setting that changes the field-side disc too ranks after every one that meets the thresholds with that
+// disc at the field's setting (the driver then sets apart one disc only), and before every one that does not.
+constexpr double kFieldSideChangedPenalty = 1e3;
+
 class EdgeSearch {
  public:
   EdgeSearch(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
@@ -203,21 +196,24 @@ class EdgeSearch {
     make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m, frame_.fixed.get_allocator().resource(),
                frame_);
     normal_disc_ = disc_setting(normal_, edge_.side);
+    normal_field_side_ = disc_setting(normal_, field_side());
     kernel_m_ = prediction_.kernel_half_width_m;
     return true;
   }
-  // The edge-side disc at `setting` (full flow).
-  bool disc_at(const DiscSetting& setting, EdgeDisc& out) {
+  int field_side() const { return edge_.side == kRightDisc ? kLeftDisc : kRightDisc; }
+  // Disc `which` of this pass at `setting` (full flow), the other disc at its field setting: the discs fly
+  // apart, so one disc's landings do not depend on the other's setting.
+  bool disc_at(int which, const DiscSetting& setting, EdgeDisc& out) {
     PredictionRequest r = normal_;
     r.standard_errors = false;
     r.kernel_half_width_m = kernel_m_;
-    const std::size_t side = static_cast<std::size_t>(edge_.side);
-    const std::size_t other = 1 - side;
-    // The other disc keeps the normal setting; a both-discs value no disc would use is cleared.
+    const auto at = static_cast<std::size_t>(which);
+    const auto other = 1 - at;
+    // A both-discs value no disc would use is cleared.
     r.disc_rpm[other] = disc_setting(normal_, static_cast<int>(other)).rpm;
     r.disc_drop_point_turn_rad[other] = disc_setting(normal_, static_cast<int>(other)).drop_point_turn_rad;
-    r.disc_rpm[side] = setting.rpm;
-    r.disc_drop_point_turn_rad[side] = setting.drop_point_turn_rad;
+    r.disc_rpm[at] = setting.rpm;
+    r.disc_drop_point_turn_rad[at] = setting.drop_point_turn_rad;
     r.rpm = 0.0;
     r.drop_point_turn_rad = 0.0;
     ++predictions_;
@@ -226,7 +222,7 @@ class EdgeSearch {
     out.beyond = out.mass = 0.0;
     x_.clear();
     w_.clear();
-    edge_disc_landings(prediction_, edge_.side, [&](double x, double w) {
+    disc_landings(prediction_, which, edge_.side, [&](double x, double w) {
       x_.push_back(x);
       w_.push_back(w);
       out.mass += w;
@@ -235,13 +231,13 @@ class EdgeSearch {
     metrics::accumulate_transverse_kernel(x_, w_, frame_.trays, frame_.kernel_m, out.trays);
     return true;
   }
-  // The best flow at this disc setting; its score.
-  double best_flow(const EdgeDisc& disc, double& flow) {
+  // The best flow of the edge-side disc at this pair of settings; its score.
+  double best_flow(const EdgeDisc& inner, const EdgeDisc& disc, double& flow) {
     double best = std::numeric_limits<double>::infinity();
     const int steps = static_cast<int>(std::lround((kEdgeMaxFlow - kEdgeMinFlow) / kEdgeFlowStep));
     for (int i = 0; i <= steps; ++i) {
       const double f = kEdgeMinFlow + i * kEdgeFlowStep;
-      evaluate(frame_, disc, f, edge_, scratch_, false);
+      evaluate(frame_, inner, disc, f, edge_, scratch_, false);
       const double s = score(scratch_, edge_, frame_.bout_width_m);
       if (s < best) {
         best = s;
@@ -250,17 +246,19 @@ class EdgeSearch {
     }
     return best;
   }
-  void profile(const EdgeDisc& disc, double flow, EdgeProfile& p) {
-    evaluate(frame_, disc, flow, edge_, p, true);
+  void profile(const EdgeDisc& inner, const EdgeDisc& disc, double flow, EdgeProfile& p) {
+    evaluate(frame_, inner, disc, flow, edge_, p, true);
     p.trays = frame_.trays;
     p.edge_line_m = frame_.line_m;
     p.rate.resize(frame_.fixed.size());
-    for (std::size_t k = 0; k < p.rate.size(); ++k) p.rate[k] = (frame_.fixed[k] + flow * disc.trays[k]) / frame_.target_per_tray;
+    for (std::size_t k = 0; k < p.rate.size(); ++k) {
+      p.rate[k] = (frame_.fixed[k] + inner.trays[k] + flow * disc.trays[k]) / frame_.target_per_tray;
+    }
   }
 
   PredictStatus status_ = PredictStatus::kOk;
   int predictions_ = 0;
-  DiscSetting normal_disc_;
+  DiscSetting normal_disc_, normal_field_side_;
 
  private:
   Predictor& predictor_;
@@ -273,17 +271,25 @@ class EdgeSearch {
   EdgeProfile scratch_;  // best_flow's evaluations (figures only: its vectors stay empty)
 };
 
+// The field-side disc's drop point on the last pass: NaN means the field's.
+double field_side_turn(const EdgeSetting& setting, const DiscSetting& field) {
+  return std::isnan(setting.field_side_drop_point_turn_rad) ? field.drop_point_turn_rad
+                                                            : setting.field_side_drop_point_turn_rad;
+}
+
 }  // namespace
 
 PredictStatus edge_profile(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
                            const EdgeSetting& setting, EdgeProfile& out, std::pmr::memory_resource* memory) {
   EdgeSearch search(predictor, normal, edge, memory);
   if (!search.start()) return search.status_;
-  EdgeDisc disc(memory);
-  if (!(setting.flow_fraction >= 0.0 && setting.flow_fraction <= kEdgeMaxFlow) || !search.disc_at(setting.disc, disc)) {
+  EdgeDisc inner(memory), disc(memory);
+  const DiscSetting field_side{search.normal_field_side_.rpm, field_side_turn(setting, search.normal_field_side_)};
+  if (!(setting.flow_fraction >= 0.0 && setting.flow_fraction <= kEdgeMaxFlow) ||
+      !search.disc_at(search.field_side(), field_side, inner) || !search.disc_at(edge.side, setting.disc, disc)) {
     return PredictStatus::kOutOfRange;
   }
-  search.profile(disc, setting.flow_fraction, out);
+  search.profile(inner, disc, setting.flow_fraction, out);
   return PredictStatus::kOk;
 }
 
@@ -297,44 +303,75 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   }
   const std::optional<std::size_t> material = predictor.find_material(normal.material);
   const double min_rpm = predictor.min_rpm(*material), max_rpm = predictor.max_rpm(*material);
-  EdgeDisc disc(memory);
-  search.disc_at(search.normal_disc_, disc);
-  search.profile(disc, 1.0, result.normal_profile);
+  const int field_side = search.field_side();
+  EdgeDisc inner_normal(memory), disc(memory);
+  search.disc_at(field_side, search.normal_field_side_, inner_normal);
+  search.disc_at(edge.side, search.normal_disc_, disc);
+  search.profile(inner_normal, disc, 1.0, result.normal_profile);
 
   // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within ±π.
-  const double base_turn = search.normal_disc_.drop_point_turn_rad;
-  const double turn_low = std::max(-kPi, base_turn - edge.max_drop_point_turn_rad);
-  const double turn_high = std::min(kPi, base_turn + edge.max_drop_point_turn_rad);
-  double best_score = std::numeric_limits<double>::infinity();
-  EdgeSetting best;
-  const auto consider = [&](double rpm, double turn_rad) {
-    rpm = std::clamp(rpm, min_rpm, max_rpm);
-    turn_rad = std::clamp(turn_rad, turn_low, turn_high);
-    if (!search.disc_at(DiscSetting{rpm, turn_rad}, disc)) return;
-    double flow = 1.0;
-    const double s = search.best_flow(disc, flow);
-    if (s < best_score) {
-      best_score = s;
-      best = EdgeSetting{DiscSetting{rpm, turn_rad}, flow};
-    }
+  const auto turn_range = [&](double base_rad, double& low, double& high) {
+    low = std::max(-kPi, base_rad - edge.max_drop_point_turn_rad);
+    high = std::min(kPi, base_rad + edge.max_drop_point_turn_rad);
   };
+  const double base_turn = search.normal_disc_.drop_point_turn_rad;
+  const double field_base_turn = search.normal_field_side_.drop_point_turn_rad;
+  double turn_low = 0.0, turn_high = 0.0, field_low = 0.0, field_high = 0.0;
+  turn_range(base_turn, turn_low, turn_high);
+  turn_range(field_base_turn, field_low, field_high);
   const double step_rad = kEdgeGridStep_deg * kPi / 180.0;
   const int turns = static_cast<int>(std::floor(edge.max_drop_point_turn_rad / step_rad + 1e-9));
   const int speeds = std::max(1, static_cast<int>(std::ceil((max_rpm - min_rpm) / kEdgeGridStep_rpm - 1e-9)));
-  for (int i = 0; i <= speeds; ++i) {
-    for (int j = -turns; j <= turns; ++j) consider(min_rpm + (max_rpm - min_rpm) * i / speeds, base_turn + j * step_rad);
+
+  // The field-side disc's drop points on its grid (index `turns`: the field's own), then the edge-side disc's
+  // speed × drop point grid; every pair is judged from the two discs' trays (each disc flown once per setting).
+  std::pmr::vector<double> inner_turns(memory);
+  std::pmr::vector<EdgeDisc> inners(memory);
+  for (int j = -turns; j <= turns; ++j) {
+    const double t = j == 0 ? field_base_turn : std::clamp(field_base_turn + j * step_rad, field_low, field_high);
+    EdgeDisc d(memory);
+    if (j != 0 && !search.disc_at(field_side, DiscSetting{search.normal_field_side_.rpm, t}, d)) continue;
+    inner_turns.push_back(t);
+    inners.push_back(j == 0 ? inner_normal : std::move(d));
   }
-  // A finer grid around the best: a tenth of each step, over one step each way.
+  double best_score = std::numeric_limits<double>::infinity();
+  EdgeSetting best;
+  std::size_t best_inner = 0;
+  const auto judge = [&](std::size_t i, const DiscSetting& setting, const EdgeDisc& d) {
+    double flow = 1.0;
+    double s = search.best_flow(inners[i], d, flow);
+    if (inner_turns[i] != field_base_turn) s += kFieldSideChangedPenalty;
+    if (s < best_score) {
+      best_score = s;
+      best = EdgeSetting{setting, flow, inner_turns[i] == field_base_turn ? std::numeric_limits<double>::quiet_NaN()
+                                                                          : inner_turns[i]};
+      best_inner = i;
+    }
+  };
+  for (int i = 0; i <= speeds; ++i) {
+    for (int j = -turns; j <= turns; ++j) {
+      const DiscSetting setting{std::clamp(min_rpm + (max_rpm - min_rpm) * i / speeds, min_rpm, max_rpm),
+                                std::clamp(base_turn + j * step_rad, turn_low, turn_high)};
+      if (!search.disc_at(edge.side, setting, disc)) continue;
+      for (std::size_t k = 0; k < inners.size(); ++k) judge(k, setting, disc);
+    }
+  }
+  // A finer grid around the best edge-side setting, the field-side disc as found: a tenth of each step, over
+  // one step each way.
   const EdgeSetting coarse = best;
+  const std::size_t coarse_inner = best_inner;
   for (int i = -5; i <= 5; ++i) {
     for (int j = -5; j <= 5; ++j) {
       if (i == 0 && j == 0) continue;
-      consider(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad);
+      const DiscSetting setting{std::clamp(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, min_rpm, max_rpm),
+                                std::clamp(coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad, turn_low, turn_high)};
+      if (!search.disc_at(edge.side, setting, disc)) continue;
+      judge(coarse_inner, setting, disc);
     }
   }
-  search.disc_at(best.disc, disc);
+  search.disc_at(edge.side, best.disc, disc);
   result.setting = best;
-  search.profile(disc, best.flow_fraction, result.profile);
+  search.profile(inners[best_inner], disc, best.flow_fraction, result.profile);
   result.predictions = search.predictions_;
   return result;
 }

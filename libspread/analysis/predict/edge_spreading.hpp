@@ -20,10 +20,17 @@
 //   field's and no over-application inside; among those, the least fertiliser misplaced — missing in the
 //   last bout or thrown over the edge, in the same unit.
 //
+// Where the discs throw across the centre line, the field-side disc can put more over the line than the
+// border allows even with the edge-side disc off; then its drop point changes on this pass too (turned to
+// throw less towards the edge), a setting ranked after every one that meets the thresholds with the
+// field-side disc unchanged.
+//
 // Search: the edge-side disc's speed over the material's rows in kEdgeGridStep_rpm steps times its drop
-// point in kEdgeGridStep_deg steps within ±max_drop_point_turn_rad, then a finer grid around the best; at
-// each the flow in steps of kEdgeFlowStep (the flow scales that disc's landings: no flight per step).
-// Predictions without standard errors, each disc's landings kept apart (Prediction::left_landing_count).
+// point in kEdgeGridStep_deg steps within ±max_drop_point_turn_rad, each against the field-side disc's
+// drop point on the same angular grid, then a finer grid around the best edge-side setting; at each pair
+// the flow in steps of kEdgeFlowStep (the flow scales that disc's landings: no flight per step). The discs
+// fly apart, so each disc is predicted once per setting and the pairs combine their trays. Predictions
+// without standard errors, each disc's landings kept apart (Prediction::left_landing_count).
 #include <cstdint>
 #include <limits>
 #include <memory_resource>
@@ -55,10 +62,12 @@ inline constexpr double kEdgeGridStep_deg = 10.0;
 inline constexpr double kEdgeFlowStep = 0.01;
 inline constexpr double kEdgeMinFlow = 0.0, kEdgeMaxFlow = 1.20;  // 0: the edge-side disc off
 
-// The edge-side disc's setting on the last pass.
+// This pass's setting: the edge-side disc's speed, drop point and flow, and the field-side disc's drop point.
 struct EdgeSetting {
   DiscSetting disc;
   double flow_fraction = 1.0;  // of the normal metered flow to that disc
+  // The field-side disc's drop point on this pass (its speed and flow stay the field's); NaN: the field's.
+  double field_side_drop_point_turn_rad = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct EdgeProfile {
