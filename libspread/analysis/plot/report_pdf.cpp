@@ -3,6 +3,7 @@
 // to the text width.
 #include "libspread/analysis/plot/report_pdf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -47,7 +48,20 @@ double draw_wrapped(cairo_t* cr, const std::string& text, double x, double y, do
     y += line_pt;
     line.clear();
   };
+  auto width_of = [&](const std::string& t) {
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, t.c_str(), &extents);
+    return extents.x_advance;
+  };
   while (words >> word) {
+    // A word longer than the line (a file path without spaces) is cut at UTF-8 character boundaries.
+    while (line.empty() && word.size() > 1 && width_of(word) > width_pt) {
+      std::size_t cut = word.size() - 1;
+      while (cut > 1 && (width_of(word.substr(0, cut)) > width_pt || (static_cast<unsigned char>(word[cut]) & 0xC0) == 0x80)) --cut;
+      line = word.substr(0, cut);
+      flush();
+      word = word.substr(cut);
+    }
     const std::string candidate = line.empty() ? word : line + " " + word;
     cairo_text_extents_t extents;
     cairo_text_extents(cr, candidate.c_str(), &extents);
@@ -59,6 +73,36 @@ double draw_wrapped(cairo_t* cr, const std::string& text, double x, double y, do
 }
 
 void set_black(cairo_t* cr) { cairo_set_source_rgb(cr, 0.0, 0.0, 0.0); }
+
+// The verdicts' colours: green, amber, red (and grey for no verdict), dark enough to print.
+void set_level_colour(cairo_t* cr, ReportVerdict::Level level) {
+  switch (level) {
+    case ReportVerdict::Level::kPass: cairo_set_source_rgb(cr, 0.0, 0.45, 0.0); return;
+    case ReportVerdict::Level::kMarginal: cairo_set_source_rgb(cr, 0.80, 0.45, 0.0); return;
+    case ReportVerdict::Level::kFail: cairo_set_source_rgb(cr, 0.75, 0.0, 0.0); return;
+    case ReportVerdict::Level::kNone: cairo_set_source_rgb(cr, 0.4, 0.4, 0.4); return;
+  }
+}
+
+// The verdicts, one a line: the word bold in its colour in a column of its own, the grounds beside it.
+double draw_verdicts(cairo_t* cr, const std::vector<ReportVerdict>& verdicts, double y) {
+  if (verdicts.empty()) return y;
+  constexpr double kWord_pt = 84.0;  // "MARGINAL" at 12 pt bold and a gap
+  for (const ReportVerdict& v : verdicts) {
+    set_level_colour(cr, v.level);
+    detail::set_font(cr, 12.0, true);
+    detail::draw_text(cr, v.word, kMargin_pt, y, 0.0, 0.0);
+    set_black(cr);
+    detail::set_font(cr, kBody_pt, true);
+    y = draw_wrapped(cr, v.text, kMargin_pt + kWord_pt, y + 1.0, kTextWidth_pt - kWord_pt) + 2.0;
+  }
+  set_black(cr);
+  cairo_set_line_width(cr, 0.5);
+  cairo_move_to(cr, kMargin_pt, y);
+  cairo_line_to(cr, kPageWidth_pt - kMargin_pt, y);
+  cairo_stroke(cr);
+  return y + 10.0;
+}
 
 // Title, date, and the header fields in two columns; returns the y below them.
 double draw_header(cairo_t* cr, const ReportHeader& h) {
@@ -74,13 +118,20 @@ double draw_header(cairo_t* cr, const ReportHeader& h) {
       {"Disc speed", h.rpm_text.empty() ? number(h.rpm, "%.0f rpm") : h.rpm_text},  {"Forward speed", number(h.speed_km_h, "%.1f km/h")},
   };
   double y = kMargin_pt + 32.0;
+  double row_bottom = 0.0;
   for (std::size_t i = 0; i < std::size(fields); ++i) {
     const double x = kMargin_pt + (i % 2 == 0 ? 0.0 : 0.5 * kTextWidth_pt);
     detail::set_font(cr, kBody_pt, true);
     const double label_pt = detail::draw_text(cr, fields[i].first + ": ", x, y, 0.0, 0.0);
     detail::set_font(cr, kBody_pt);
-    detail::draw_text(cr, fields[i].second, x + label_pt, y, 0.0, 0.0);
-    if (i % 2 == 1) y += kLine_pt;
+    // A long name (a material with its batch) wraps within its half of the line instead of running off
+    // the page; the row is as tall as its taller field.
+    const double below = draw_wrapped(cr, fields[i].second, x + label_pt, y, 0.5 * kTextWidth_pt - label_pt - 6.0);
+    row_bottom = std::max(row_bottom, below);
+    if (i % 2 == 1) {
+      y = row_bottom;
+      row_bottom = 0.0;
+    }
   }
   if (!h.source.empty()) {
     detail::set_font(cr, kBody_pt, true);
@@ -150,12 +201,14 @@ double draw_table(cairo_t* cr, const std::string& caption, const std::vector<std
 
 void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
   double y = draw_header(cr, r.header);
+  y = draw_verdicts(cr, r.verdicts, y);
   y = draw_lines(cr, r.summary, y) + 4.0;
 
   // The chart, drawn in the PNG's pixel space scaled to the text width.
-  const double scale = kTextWidth_pt / kImageWidth_px;
+  // 0.9 of the text width, centred: the verdicts above it need the room, and a page holds the notes too.
+  const double scale = 0.9 * kTextWidth_pt / kImageWidth_px;
   cairo_save(cr);
-  cairo_translate(cr, kMargin_pt, y);
+  cairo_translate(cr, kMargin_pt + 0.05 * kTextWidth_pt, y);
   cairo_scale(cr, scale, scale);
   TransverseOptions chart = r.chart;
   chart.mean_band = true;
@@ -165,7 +218,9 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
 
   std::vector<std::vector<std::string>> rows;
   for (const CvTableRow& row : r.cv_table) {
-    rows.push_back({format("%.1f m", row.bout_width_m), cv_cell(row.cv_to_and_fro), cv_cell(row.cv_racetrack)});
+    const bool driven = r.chart.bout_width_m > 0.0 && std::abs(row.bout_width_m - r.chart.bout_width_m) < 1e-3;
+    rows.push_back({format("%.1f m", row.bout_width_m) + (driven ? " (driven)" : ""), cv_cell(row.cv_to_and_fro),
+                    cv_cell(row.cv_racetrack)});
   }
   y = draw_table(cr, "CV per working width (target " + format("%g %%", 100.0 * r.cv_target) + ")",
                  {"working width", "CV to-and-fro", "CV racetrack"}, rows, y);
@@ -188,17 +243,7 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
                          format("%.1f kg/ha", rate.rate_kg_ha) + " (tray area " + format("%.4g m²", rate.tray_area_m2) +
                          ")",
                      kMargin_pt, y, kTextWidth_pt);
-    if (!std::isnan(rate.set_rate_kg_ha)) {
-      detail::set_font(cr, kBody_pt, true);
-      cairo_set_source_rgb(cr, rate.pass ? 0.0 : 0.75, rate.pass ? 0.45 : 0.0, 0.0);
-      y = draw_wrapped(cr,
-                       std::string("EN 13739-2 rate check: ") + (rate.pass ? "PASS" : "FAIL") + " — the trays caught " +
-                           format("%.1f %%", rate.caught_percent) + " of the set rate " +
-                           format("%.1f kg/ha", rate.set_rate_kg_ha) + " (" + format("%g", rate.lowest_percent) + "–" +
-                           format("%g %%", rate.highest_percent) + " required)",
-                       kMargin_pt, y, kTextWidth_pt);
-      set_black(cr);
-    }
+    // EN 13739-2's check is stated with the verdicts at the top of the page (ReportVerdict), not again here.
     y += 6.0;
   }
   if (!r.notes.empty()) {
@@ -212,6 +257,7 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
 
 void draw_table_page(cairo_t* cr, const TablePage& t) {
   double y = draw_header(cr, t.header);
+  y = draw_verdicts(cr, t.verdicts, y);
   y = draw_lines(cr, t.summary, y) + 8.0;
   y = draw_table(cr, t.caption, t.columns, t.rows, y);
   if (!t.notes.empty()) {
