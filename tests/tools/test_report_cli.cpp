@@ -324,6 +324,10 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
   std::snprintf(rpm_cell, sizeof rpm_cell, "%.0f rpm", j["rows"][0]["rpm"].get<double>());
   EXPECT_NE(text.find(rpm_cell), std::string::npos) << rpm_cell << "\n" << text;
   EXPECT_NE(text.find("not reachable"), std::string::npos) << text;
+  // Columns as wide as their cells: no cell runs into the next (the spans were cut over two lines and
+  // the last two headers ran together when every column had a fifth of the page).
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(CV racetrack\s+CV within target at)"))) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(0\.4 % ± 13\.9\s+501-527 rpm, 629-750 rpm)"))) << text;
   for (const char* line : {"3.0 m    682 rpm, +70.0 deg   0.4 % ± 13.9      0.4 % ± 13.9      501-527 rpm, 629-750 rpm",
                            "4.0 m    734 rpm, +5.0 deg    2.1 % ± 13.8      2.1 % ± 13.8      501-521 rpm, 679-750 rpm",
                            "12.0 m   not reachable"}) {

@@ -163,39 +163,63 @@ double draw_lines(cairo_t* cr, const std::vector<std::string>& lines, double y, 
   return y;
 }
 
-// A table with a bold header row; column x positions spread over the text width. Returns the y below.
+// A table with a bold header row. Each column is as wide as its widest cell (header bold, cells plain),
+// the space left over shared between the columns; when the columns need more than the text width the
+// font shrinks until they fit (down to 6 pt) — cells never run into each other. The first column is
+// left-aligned, the others right-aligned at their column's end (numbers line up). Returns the y below.
 double draw_table(cairo_t* cr, const std::string& caption, const std::vector<std::string>& columns,
                   const std::vector<std::vector<std::string>>& rows, double y) {
   set_black(cr);
   detail::set_font(cr, 11.0, true);
   detail::draw_text(cr, caption, kMargin_pt, y, 0.0, 0.0);
   y += kLine_pt + 4.0;
-  const double column_pt = kTextWidth_pt / static_cast<double>(columns.size());
-  // Cells right-aligned in their column (numbers line up), the first column left-aligned.
-  auto cell_x = [&](std::size_t c, double& align) {
-    align = c == 0 ? 0.0 : 1.0;
-    return kMargin_pt + (c == 0 ? 0.0 : (static_cast<double>(c) + 1.0) * column_pt - 10.0);
+  constexpr double kGap_pt = 10.0;
+  auto width_of = [&](const std::string& text, double size_pt, bool bold) {
+    detail::set_font(cr, size_pt, bold);
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, text.c_str(), &extents);
+    return extents.x_advance;
   };
-  detail::set_font(cr, kBody_pt, true);
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    double align = 0.0;
-    const double x = cell_x(c, align);
-    detail::draw_text(cr, columns[c], x, y, align, 0.0);
+  double size_pt = kBody_pt;
+  std::vector<double> widths(columns.size(), 0.0);
+  for (;;) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      widths[c] = width_of(columns[c], size_pt, true);
+      for (const auto& row : rows) widths[c] = std::max(widths[c], width_of(row[c], size_pt, false));
+    }
+    double total = kGap_pt * static_cast<double>(columns.size() - 1);
+    for (double w : widths) total += w;
+    if (total <= kTextWidth_pt || size_pt <= 6.0) {
+      // The room left over, shared out: the table spans the text width as before.
+      const double extra = std::max(0.0, kTextWidth_pt - total) / static_cast<double>(columns.size());
+      for (double& w : widths) w += extra;
+      break;
+    }
+    size_pt -= 0.5;
   }
+  std::vector<double> x_left(columns.size(), kMargin_pt);
+  for (std::size_t c = 1; c < columns.size(); ++c) x_left[c] = x_left[c - 1] + widths[c - 1] + kGap_pt;
+  auto draw_row = [&](const std::vector<std::string>& cells, bool bold) {
+    detail::set_font(cr, size_pt, bold);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (c == 0) {
+        detail::draw_text(cr, cells[c], x_left[c], y, 0.0, 0.0);
+      } else {
+        detail::draw_text(cr, cells[c], x_left[c] + widths[c], y, 1.0, 0.0);
+      }
+    }
+  };
+  draw_row(columns, true);
   y += kLine_pt;
   cairo_set_line_width(cr, 0.5);
   cairo_move_to(cr, kMargin_pt, y - 2.0);
   cairo_line_to(cr, kPageWidth_pt - kMargin_pt, y - 2.0);
   cairo_stroke(cr);
-  detail::set_font(cr, kBody_pt);
   for (const auto& row : rows) {
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      double align = 0.0;
-      const double x = cell_x(c, align);
-      detail::draw_text(cr, row[c], x, y, align, 0.0);
-    }
+    draw_row(row, false);
     y += kLine_pt;
   }
+  detail::set_font(cr, kBody_pt);
   return y + 6.0;
 }
 
