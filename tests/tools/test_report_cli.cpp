@@ -271,12 +271,18 @@ TEST_F(ReportCli, PatternReportShowsMeasuredAndPredicted) {
   fs::remove(output);
   const CommandRun r = run(kEpoch + "'" + kSpread + "' calibrate pattern --tables '" + small_table("urea_pattern").string() +
                            "' --material Urea --rpm 600 --trays '" + kExample + "' --output '" + output.string() +
-                           "' --fit friction,drag --samples 128 --tray-area 0.25 --rate-kg-ha 1200 --report '" +
+                           "' --fit friction,drag --samples 128 --width 3.5 --tray-area 0.25 --rate-kg-ha 850 --report '" +
                            pdf.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   ASSERT_EQ(render(pdf, work_dir() / "pattern"), 1);
   const std::string text = pdf_text(pdf);
   EXPECT_NE(text.find("predicted, calibrated"), std::string::npos) << text;
+  // Each fitted value with its ± as the text report prints it; the values the fit kept marked fixed.
+  std::smatch friction;
+  ASSERT_TRUE(std::regex_search(r.out, friction, std::regex(R"(friction on vanes\s+(\d\.\d{4}) ± (\d\.\d{4}))"))) << r.out;
+  EXPECT_NE(text.find("friction on vanes " + friction[1].str() + " ± " + friction[2].str()), std::string::npos) << text;
+  EXPECT_NE(text.find("fixed at the table's values: launch-angle offset 0.00 deg"), std::string::npos) << text;
+  EXPECT_NE(text.find("CV at the 3.50 m bout, to-and-fro"), std::string::npos) << text;
   EXPECT_TRUE(std::regex_search(text, std::regex(R"(PASS\s+Rate \(EN 13739-2\))"))) << text;
 }
 
@@ -452,25 +458,6 @@ TEST_F(ReportCli, LongNamesWrap) {
   const std::string text = pdf_text(pdf);
   const std::string page = text.substr(0, text.find("made by"));
   for (const char* tail : {"big bags", "serial 12345"}) EXPECT_NE(page.find(tail), std::string::npos) << tail << "\n" << text;
-}
-
-// The calibration page lists each fitted value with its ± and the values the fit kept as fixed.
-TEST_F(ReportCli, PatternReportMarksFittedAndFixedValues) {
-  const fs::path pdf = work_dir() / "pattern_values.pdf", output = work_dir() / "calibrated_values.sqlite";
-  fs::remove(output);
-  const CommandRun r = run(kEpoch + "'" + kSpread + "' calibrate pattern --tables '" + small_table("urea_values").string() +
-                           "' --material Urea --rpm 600 --trays '" + kExample + "' --output '" + output.string() +
-                           "' --fit friction,drag --samples 128 --width 3.5 --report '" + pdf.string() + "' --json");
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  const json j = json::parse(r.out);
-  const std::string text = pdf_text(pdf);
-  char fitted[96];
-  std::snprintf(fitted, sizeof fitted, "friction on vanes %.4f ± %.4f",
-                j["parameters"]["friction_wall"]["value"].get<double>(),
-                j["parameters"]["friction_wall"]["standard_error"].get<double>());
-  EXPECT_NE(text.find(fitted), std::string::npos) << fitted << "\n" << text;
-  EXPECT_NE(text.find("fixed at the table's values: launch-angle offset 0.00 deg"), std::string::npos) << text;
-  EXPECT_NE(text.find("CV at the 3.50 m bout, to-and-fro"), std::string::npos) << text;
 }
 
 // The quick check's page opens with its verdict (five trays at 10.2 %: the interval 6.1-30.4 % holds the
