@@ -169,6 +169,50 @@ class ReportCli : public ::testing::Test {
 
 }  // namespace
 
+namespace {
+
+// The page's text lines (pdftotext -layout), blank lines dropped.
+std::vector<std::string> text_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.find_first_not_of(" \t\f") != std::string::npos) lines.push_back(line);
+  }
+  return lines;
+}
+
+// Index of the first line holding `needle`; -1 when none does.
+int line_of(const std::vector<std::string>& lines, const std::string& needle) {
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].find(needle) != std::string::npos) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// Fraction of the pixels in the band [top, bottom] (fractions of the page height) near a colour.
+double colour_share(const fs::path& png, double top, double bottom, int r0, int g0, int b0) {
+  cairo_surface_t* image = cairo_image_surface_create_from_png(png.c_str());
+  const int width = cairo_image_surface_get_width(image), height = cairo_image_surface_get_height(image);
+  const int stride = cairo_image_surface_get_stride(image);
+  const unsigned char* data = cairo_image_surface_get_data(image);
+  double pixels = 0, near = 0;
+  for (int y = static_cast<int>(top * height); y < static_cast<int>(bottom * height); ++y) {
+    for (int x = 0; x < width; ++x) {
+      const auto* p = reinterpret_cast<const std::uint32_t*>(data + y * stride) + x;
+      const int r = (*p >> 16) & 0xff, g = (*p >> 8) & 0xff, b = *p & 0xff;
+      pixels += 1.0;
+      near += std::abs(r - r0) + std::abs(g - g0) + std::abs(b - b0) < 90 ? 1.0 : 0.0;
+    }
+  }
+  cairo_surface_destroy(image);
+  return pixels > 0 ? near / pixels : 0.0;
+}
+
+// The verdict colours of report_pdf.cpp at 8 bits.
+constexpr int kRed[3] = {191, 0, 0}, kGreen[3] = {0, 115, 0}, kAmber[3] = {204, 115, 0};
+
+}  // namespace
+
 TEST_F(ReportCli, TrayReportIsOnePageWithItsChartDrawn) {
   const fs::path pdf = work_dir() / "tray.pdf";
   fs::remove(pdf);
@@ -333,6 +377,16 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
   // Columns as wide as their cells: no cell runs into the next (the spans were cut over two lines and
   // the last two headers ran together when every column had a fifth of the page).
   EXPECT_TRUE(std::regex_search(text, std::regex(R"(CV racetrack\s+CV within target at)"))) << text;
+  // The widths by their verdict, first under the header: 3 m reached at 95 %, 4 m marginal, 12 m not.
+  const std::vector<std::string> lines = text_lines(text);
+  const int pass = line_of(lines, "3.0 m: the best setting keeps the CV within 15 %");
+  const int marginal = line_of(lines, "4.0 m: the best setting's 95 % interval reaches over 15 %");
+  const int fail = line_of(lines, "12.0 m: no setting searched keeps the CV within 15 %");
+  ASSERT_GE(pass, 0) << text;
+  EXPECT_NE(lines[pass].find("PASS"), std::string::npos) << lines[pass];
+  EXPECT_NE(lines[marginal].find("MARGINAL"), std::string::npos) << text;
+  EXPECT_NE(lines[fail].find("FAIL"), std::string::npos) << text;
+  EXPECT_LT(fail, line_of(lines, "Disc speed per working width")) << text;
   EXPECT_TRUE(std::regex_search(text, std::regex(R"(0\.4 % ± 13\.9\s+501-527 rpm, 629-750 rpm)"))) << text;
   for (const char* line : {"3.0 m    682 rpm, +70.0 deg   0.4 % ± 13.9      0.4 % ± 13.9      501-527 rpm, 629-750 rpm",
                            "4.0 m    734 rpm, +5.0 deg    2.1 % ± 13.8      2.1 % ± 13.8      501-521 rpm, 679-750 rpm",
@@ -341,49 +395,6 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
   }
 }
 
-namespace {
-
-// The page's text lines (pdftotext -layout), blank lines dropped.
-std::vector<std::string> text_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    if (line.find_first_not_of(" \t\f") != std::string::npos) lines.push_back(line);
-  }
-  return lines;
-}
-
-// Index of the first line holding `needle`; -1 when none does.
-int line_of(const std::vector<std::string>& lines, const std::string& needle) {
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (lines[i].find(needle) != std::string::npos) return static_cast<int>(i);
-  }
-  return -1;
-}
-
-// Fraction of the pixels in the band [top, bottom] (fractions of the page height) near a colour.
-double colour_share(const fs::path& png, double top, double bottom, int r0, int g0, int b0) {
-  cairo_surface_t* image = cairo_image_surface_create_from_png(png.c_str());
-  const int width = cairo_image_surface_get_width(image), height = cairo_image_surface_get_height(image);
-  const int stride = cairo_image_surface_get_stride(image);
-  const unsigned char* data = cairo_image_surface_get_data(image);
-  double pixels = 0, near = 0;
-  for (int y = static_cast<int>(top * height); y < static_cast<int>(bottom * height); ++y) {
-    for (int x = 0; x < width; ++x) {
-      const auto* p = reinterpret_cast<const std::uint32_t*>(data + y * stride) + x;
-      const int r = (*p >> 16) & 0xff, g = (*p >> 8) & 0xff, b = *p & 0xff;
-      pixels += 1.0;
-      near += std::abs(r - r0) + std::abs(g - g0) + std::abs(b - b0) < 90 ? 1.0 : 0.0;
-    }
-  }
-  cairo_surface_destroy(image);
-  return pixels > 0 ? near / pixels : 0.0;
-}
-
-// The verdict colours of report_pdf.cpp at 8 bits.
-constexpr int kRed[3] = {191, 0, 0}, kGreen[3] = {0, 115, 0}, kAmber[3] = {204, 115, 0};
-
-}  // namespace
 
 // The example at 6 m is a 23.1 % CV (the table above): the page's first lines after the header say FAIL
 // for the CV, in red, with the rate's own verdict beside it — before the summary, chart and table.
