@@ -39,12 +39,13 @@ std::string cv_cell(double cv) {
 
 // Writes `text` from (x, y) on, broken at spaces into lines no wider than `width_pt`; returns the y
 // below the last line.
+// With draw false, only measures: returns the same y without drawing.
 double draw_wrapped(cairo_t* cr, const std::string& text, double x, double y, double width_pt,
-                    double line_pt = kLine_pt) {
+                    double line_pt = kLine_pt, bool draw = true) {
   std::istringstream words(text);
   std::string word, line;
   auto flush = [&] {
-    detail::draw_text(cr, line, x, y, 0.0, 0.0);
+    if (draw) detail::draw_text(cr, line, x, y, 0.0, 0.0);
     y += line_pt;
     line.clear();
   };
@@ -157,6 +158,40 @@ void draw_footer(cairo_t* cr, const ReportHeader& h) {
   cairo_restore(cr);
 }
 
+// The notes at the bottom of a page. They are drawn at the body size when they fit above the footer, else
+// at the largest size down to 6.5 pt that fits; what does not fit even then continues on a page of its
+// own (with the footer on both) — a note is never drawn over the footer or off the page.
+void draw_notes(cairo_t* cr, const std::vector<std::string>& notes, double y, const ReportHeader& header) {
+  if (notes.empty()) return;
+  constexpr double kLowest_pt = 6.5;
+  const double bottom = kPageHeight_pt - kMargin_pt - 8.0;  // the footer's first line starts below
+  auto height_at = [&](double size_pt) {
+    detail::set_font(cr, size_pt);
+    double end = 0.0;
+    for (const std::string& n : notes) end = draw_wrapped(cr, "• " + n, kMargin_pt, end, kTextWidth_pt, 1.4 * size_pt, false);
+    return end;
+  };
+  set_black(cr);
+  detail::set_font(cr, 11.0, true);
+  detail::draw_text(cr, "Notes", kMargin_pt, y, 0.0, 0.0);
+  y += kLine_pt + 2.0;
+  double size_pt = kBody_pt;
+  while (size_pt > kLowest_pt && y + height_at(size_pt) > bottom) size_pt -= 0.5;
+  for (const std::string& n : notes) {
+    detail::set_font(cr, size_pt);
+    const double below = draw_wrapped(cr, "• " + n, kMargin_pt, y, kTextWidth_pt, 1.4 * size_pt, false);
+    if (below > bottom && y > kMargin_pt + 40.0) {  // continue on a page of its own
+      draw_footer(cr, header);
+      cairo_show_page(cr);
+      detail::set_font(cr, 11.0, true);
+      detail::draw_text(cr, header.title + ": notes (continued)", kMargin_pt, kMargin_pt, 0.0, 0.0);
+      y = kMargin_pt + kLine_pt + 10.0;
+      detail::set_font(cr, size_pt);
+    }
+    y = draw_wrapped(cr, "• " + n, kMargin_pt, y, kTextWidth_pt, 1.4 * size_pt);
+  }
+}
+
 double draw_lines(cairo_t* cr, const std::vector<std::string>& lines, double y, const std::string& prefix = "") {
   detail::set_font(cr, kBody_pt);
   for (const std::string& l : lines) y = draw_wrapped(cr, prefix + l, kMargin_pt, y, kTextWidth_pt);
@@ -229,10 +264,11 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
   y = draw_lines(cr, r.summary, y) + 4.0;
 
   // The chart, drawn in the PNG's pixel space scaled to the text width.
-  // 0.9 of the text width, centred: the verdicts above it need the room, and a page holds the notes too.
-  const double scale = 0.9 * kTextWidth_pt / kImageWidth_px;
+  // 0.8 of the text width, centred: the verdicts above it need the room, and the page holds the notes
+  // (a calibration's guidance among them) too.
+  const double scale = 0.8 * kTextWidth_pt / kImageWidth_px;
   cairo_save(cr);
-  cairo_translate(cr, kMargin_pt + 0.05 * kTextWidth_pt, y);
+  cairo_translate(cr, kMargin_pt + 0.1 * kTextWidth_pt, y);
   cairo_scale(cr, scale, scale);
   TransverseOptions chart = r.chart;
   chart.mean_band = true;
@@ -270,12 +306,7 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
     // EN 13739-2's check is stated with the verdicts at the top of the page (ReportVerdict), not again here.
     y += 6.0;
   }
-  if (!r.notes.empty()) {
-    detail::set_font(cr, 11.0, true);
-    detail::draw_text(cr, "Notes", kMargin_pt, y, 0.0, 0.0);
-    y += kLine_pt + 2.0;
-    draw_lines(cr, r.notes, y, "• ");
-  }
+  draw_notes(cr, r.notes, y, r.header);
   draw_footer(cr, r.header);
 }
 
@@ -284,12 +315,7 @@ void draw_table_page(cairo_t* cr, const TablePage& t) {
   y = draw_verdicts(cr, t.verdicts, y);
   y = draw_lines(cr, t.summary, y) + 8.0;
   y = draw_table(cr, t.caption, t.columns, t.rows, y);
-  if (!t.notes.empty()) {
-    detail::set_font(cr, 11.0, true);
-    detail::draw_text(cr, "Notes", kMargin_pt, y, 0.0, 0.0);
-    y += kLine_pt + 2.0;
-    draw_lines(cr, t.notes, y, "• ");
-  }
+  draw_notes(cr, t.notes, y, t.header);
   draw_footer(cr, t.header);
 }
 
