@@ -152,6 +152,53 @@ TEST(Plot, TransversePng) {
   EXPECT_THROW(sp::write_transverse_png(wrong, trays, plain, "x"), std::invalid_argument);
 }
 
+// A tray without a reading: a cross on the axis, and the overlapped line has a gap over it instead of
+// dropping towards 0 there (the CV leaves it out, so the line must too).
+TEST(Plot, MissingTrayIsAGapInTheOverlappedLine) {
+  const sm::TrayLayout trays{0.5, 21};
+  std::vector<double> mass(21);
+  for (int k = 0; k < 21; ++k) mass[static_cast<std::size_t>(k)] = 1e-3 * (11.0 - std::abs(k - 10.0));
+  const std::size_t gone = 11;  // the tray at +0.5 m, inside the 4 m bout
+  mass[gone] = 0.0;
+  sp::TransverseOptions options;
+  options.bout_width_m = 4.0;
+  const std::string dropped = output_path("transverse_missing_as_zero.png");
+  sp::write_transverse_png(mass, trays, dropped, "missing tray as 0", options);
+  options.missing_trays.assign(21, false);
+  options.missing_trays[gone] = true;
+  const std::string gap = output_path("transverse_missing_gap.png");
+  sp::write_transverse_png(mass, trays, gap, "missing tray as a gap", options);
+  expect_png(gap);
+  // The cross (red) just above the x axis (the axes end at y = 565 px): where the tray is.
+  int x_lo = sp::kImageWidth_px, x_hi = -1;
+  cairo_surface_t* image = cairo_image_surface_create_from_png(gap.c_str());
+  ASSERT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS);
+  const int stride = cairo_image_surface_get_stride(image);
+  const unsigned char* data = cairo_image_surface_get_data(image);
+  for (int y = 545; y < 565; ++y) {
+    const auto* row = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    for (int x = 110; x < 960; ++x) {
+      const int r = static_cast<int>((row[x] >> 16) & 0xff), g = static_cast<int>((row[x] >> 8) & 0xff),
+                b = static_cast<int>(row[x] & 0xff);
+      if (std::abs(r - 204) <= 50 && std::abs(g - 26) <= 50 && std::abs(b - 26) <= 50) {
+        x_lo = std::min(x_lo, x);
+        x_hi = std::max(x_hi, x);
+      }
+    }
+  }
+  cairo_surface_destroy(image);
+  ASSERT_GE(x_hi, x_lo) << "no cross drawn for the missing tray";
+  EXPECT_LT(x_hi - x_lo, 30) << "one cross, a tray wide at most";
+  EXPECT_EQ(count_pixels_near(dropped, 204, 26, 26, 50, 110, 545, 960, 565), 0) << "a cross without a missing tray";
+  // The overlapped line's green over the cross's columns, below the legend: there without the flag, none with it.
+  const int mid = (x_lo + x_hi) / 2;
+  EXPECT_GT(count_pixels_near(dropped, 25, 153, 64, 30, mid - 4, 250, mid + 5, 565), 0);
+  EXPECT_EQ(count_pixels_near(gap, 25, 153, 64, 30, mid - 4, 250, mid + 5, 565), 0);
+  // A flag per layout tray, or none.
+  options.missing_trays.assign(3, false);
+  EXPECT_THROW(sp::write_transverse_png(mass, trays, gap, "x", options), std::invalid_argument);
+}
+
 TEST(Plot, CvCurvePng) {
   const Landings l = synthetic_landings();
   const sm::TrayLayout trays = sm::tray_layout_covering(15.0, 0.5);

@@ -19,6 +19,17 @@ namespace sp = spread::plot;
 
 namespace {
 
+// Page objects: "/Type /Page" not followed by "s" (the page tree is "/Type /Pages").
+std::size_t page_count(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string a(std::istreambuf_iterator<char>(in), {});
+  std::size_t pages = 0;
+  for (std::size_t at = a.find("/Type /Page"); at != std::string::npos; at = a.find("/Type /Page", at + 1)) {
+    pages += at + 11 < a.size() && a[at + 11] != 's' ? 1 : 0;
+  }
+  return pages;
+}
+
 std::vector<double> curve_widths(double tray_m, int trays) {
   std::vector<double> widths;
   for (int n = 2; n <= trays; ++n) widths.push_back(n * tray_m);
@@ -127,4 +138,32 @@ TEST(ReportPdf, TwoPagesAndTheSameFileForTheSameData) {
   for (std::size_t at = a.find("/Type /Page\n"); at != std::string::npos; at = a.find("/Type /Page\n", at + 1)) ++pages;
   for (std::size_t at = a.find("/Type /Page "); at != std::string::npos; at = a.find("/Type /Page ", at + 1)) ++pages;
   EXPECT_EQ(pages, 2u);
+}
+
+// Notes never run over the footer: a few long ones shrink to fit the page, many more continue on a page
+// of their own (a calibration report with the rate and the guidance ran its notes into the footer).
+TEST(ReportPdf, NotesFitAboveTheFooterOrContinue) {
+  sp::PatternReport pattern;
+  pattern.header.time_s = 1764000000;
+  pattern.header.made_by = "spread calibrate pattern --report notes.pdf";
+  pattern.verdicts = {{sp::ReportVerdict::Level::kFail, "FAIL", "CV at the 8.00 m bout: 22.0 %, above the target 15 %"},
+                      {sp::ReportVerdict::Level::kPass, "PASS", "Rate (EN 13739-2): 99.4 % of the set rate"}};
+  pattern.trays = {0.5, 8};
+  pattern.tray_mass_kg = {0.0, 0.001, 0.002, 0.003, 0.003, 0.002, 0.001, 0.0};
+  pattern.chart.bout_width_m = 2.0;
+  pattern.cv_table = {{2.0, 0.05, 0.06}, {3.0, 0.07, 0.08}, {4.0, 0.09, 0.1}, {5.0, 0.11, 0.12}, {6.0, 0.13, 0.14}};
+  sp::ReportRate rate;
+  rate.tray_area_m2 = 0.25;
+  rate.bout_width_m = 2.0;
+  rate.rate_kg_ha = 380.0;
+  pattern.rate = rate;
+  const std::string note(150, 'n');
+  for (int i = 0; i < 6; ++i) pattern.notes.push_back("note " + std::to_string(i) + ": a setting to change, " + note);
+  const std::string fits = ::testing::TempDir() + "/notes_fit.pdf";
+  sp::write_report_pdf(fits, &pattern);
+  EXPECT_EQ(page_count(fits), 1u);
+  for (int i = 0; i < 30; ++i) pattern.notes.push_back("more " + std::to_string(i) + ": " + note);
+  const std::string continued = ::testing::TempDir() + "/notes_continued.pdf";
+  sp::write_report_pdf(continued, &pattern);
+  EXPECT_EQ(page_count(continued), 2u);
 }

@@ -16,6 +16,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -63,9 +64,9 @@ CommandRun run(const std::string& command) {
 
 bool have_poppler() { return std::system("command -v pdftoppm > /dev/null && command -v pdftotext > /dev/null") == 0; }
 
-std::string tray_command(const std::string& extra) {
-  return kEpoch + "'" + kSpread + "' calibrate tray '" + kExample +
-         "' --width 3.5 --machine 'Twin disc, narrow inlet' --material Urea --rpm 600 --speed 12 --tray-area 0.25 "
+std::string tray_command(const std::string& extra, const std::string& width = "3.5") {
+  return kEpoch + "'" + kSpread + "' calibrate tray '" + kExample + "' --width " + width +
+         " --machine 'Twin disc, narrow inlet' --material Urea --rpm 600 --speed 12 --tray-area 0.25 "
          "--rate-kg-ha 850 " + extra;
 }
 
@@ -123,7 +124,7 @@ std::string one_decimal(double value) {
 
 // Rows "W m  a %  b %" of a report's CV table, each checked against the JSON's cv_curve; returns how many.
 int expect_cv_rows_as_json(const std::string& text, const json& j) {
-  const std::regex row(R"(^\s*(\d+\.\d) m\s+(\d+\.\d) %\s+(\d+\.\d) %\s*$)");
+  const std::regex row(R"(^\s*(\d+\.\d) m(?: \(driven\))?\s+(\d+\.\d) %\s+(\d+\.\d) %\s*$)");
   int rows = 0;
   std::istringstream lines(text);
   for (std::string line; std::getline(lines, line);) {
@@ -168,6 +169,50 @@ class ReportCli : public ::testing::Test {
 
 }  // namespace
 
+namespace {
+
+// The page's text lines (pdftotext -layout), blank lines dropped.
+std::vector<std::string> text_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.find_first_not_of(" \t\f") != std::string::npos) lines.push_back(line);
+  }
+  return lines;
+}
+
+// Index of the first line holding `needle`; -1 when none does.
+int line_of(const std::vector<std::string>& lines, const std::string& needle) {
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].find(needle) != std::string::npos) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// Fraction of the pixels in the band [top, bottom] (fractions of the page height) near a colour.
+double colour_share(const fs::path& png, double top, double bottom, int r0, int g0, int b0) {
+  cairo_surface_t* image = cairo_image_surface_create_from_png(png.c_str());
+  const int width = cairo_image_surface_get_width(image), height = cairo_image_surface_get_height(image);
+  const int stride = cairo_image_surface_get_stride(image);
+  const unsigned char* data = cairo_image_surface_get_data(image);
+  double pixels = 0, near = 0;
+  for (int y = static_cast<int>(top * height); y < static_cast<int>(bottom * height); ++y) {
+    for (int x = 0; x < width; ++x) {
+      const auto* p = reinterpret_cast<const std::uint32_t*>(data + y * stride) + x;
+      const int r = (*p >> 16) & 0xff, g = (*p >> 8) & 0xff, b = *p & 0xff;
+      pixels += 1.0;
+      near += std::abs(r - r0) + std::abs(g - g0) + std::abs(b - b0) < 90 ? 1.0 : 0.0;
+    }
+  }
+  cairo_surface_destroy(image);
+  return pixels > 0 ? near / pixels : 0.0;
+}
+
+// The verdict colours of report_pdf.cpp at 8 bits.
+constexpr int kRed[3] = {191, 0, 0}, kGreen[3] = {0, 115, 0}, kAmber[3] = {204, 115, 0};
+
+}  // namespace
+
 TEST_F(ReportCli, TrayReportIsOnePageWithItsChartDrawn) {
   const fs::path pdf = work_dir() / "tray.pdf";
   fs::remove(pdf);
@@ -175,9 +220,9 @@ TEST_F(ReportCli, TrayReportIsOnePageWithItsChartDrawn) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("wrote " + pdf.string()), std::string::npos) << r.out;
   ASSERT_EQ(render(pdf, work_dir() / "tray"), 1);
-  // The chart sits between about 20 % and 55 % of the page's height: bars (blue) and lines (dark) there.
-  // A page without the chart has no blue and only a few axis labels.
-  const Ink chart = ink(work_dir() / "tray-1.png", 0.20, 0.55);
+  // The chart sits between about 27 % and 62 % of the page's height (under the verdicts): bars (blue) and
+  // lines (dark) there. A page without the chart has no blue and only a few axis labels.
+  const Ink chart = ink(work_dir() / "tray-1.png", 0.27, 0.62);
   EXPECT_GT(chart.blue, 0.01) << "the tray bars are not drawn";
   EXPECT_GT(chart.dark, 0.02) << "the chart's frame, profile and labels are not drawn";
 }
@@ -198,21 +243,24 @@ TEST_F(ReportCli, TrayReportTextMatchesTheJson) {
   // With --tray-area the chart's bars are a rate, as the technician sets it.
   EXPECT_NE(text.find("tray mass / tray area (kg/ha)"), std::string::npos) << text;
 
-  // Every row of the CV table equals the JSON's cv_curve at that width (to 0.1 %, as printed).
-  EXPECT_EQ(expect_cv_rows_as_json(text, j), 5) << text;
+  // Every row of the CV table equals the JSON's cv_curve at that width (to 0.1 %, as printed): the five
+  // widths fitting the pattern and the 3.5 m bout driven, marked.
+  EXPECT_EQ(expect_cv_rows_as_json(text, j), 6) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(3\.5 m \(driven\)\s+15\.1 %\s+14\.8 %)"))) << text;
   // The example's 12.5 m throw: widths fitting it, 2 to 10 m; the numbers docs/field-calibration.md quotes.
   EXPECT_TRUE(std::regex_search(text, std::regex(R"(2\.0 m\s+8\.1 %\s+7\.5 %)"))) << text;
   EXPECT_TRUE(std::regex_search(text, std::regex(R"(6\.0 m\s+23\.1 %\s+23\.0 %)"))) << text;
   EXPECT_TRUE(std::regex_search(text, std::regex(R"(10\.0 m\s+138\.8 %\s+138\.8 %)"))) << text;
   EXPECT_NE(text.find("871.4 kg/ha"), std::string::npos) << text;
-  EXPECT_NE(text.find("EN 13739-2 rate check: PASS — the trays caught 102.5 %"), std::string::npos) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(PASS\s+Rate \(EN 13739-2\): the trays caught 871\.4 kg/ha, 102\.5 %)")))
+      << text;
 
   // The rate and its check, as the JSON has them.
   const json& rate = j["rate"];
   ASSERT_TRUE(rate.is_object()) << j.dump(2);
   EXPECT_NE(text.find(one_decimal(rate["rate_kg_ha"].get<double>()) + " kg/ha"), std::string::npos) << text;
   const std::string verdict = rate["rate_check"]["pass"].get<bool>() ? "PASS" : "FAIL";
-  EXPECT_NE(text.find("EN 13739-2 rate check: " + verdict), std::string::npos) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(verdict + R"(\s+Rate \(EN 13739-2\))"))) << text;
   EXPECT_NE(text.find(one_decimal(rate["rate_check"]["caught_percent"].get<double>()) + " %"), std::string::npos);
 }
 
@@ -250,7 +298,7 @@ TEST_F(ReportCli, PredictReportMatchesTheJson) {
   ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
   const json j = json::parse(as_json.out);
   ASSERT_EQ(render(pdf, work_dir() / "predict"), 1);
-  EXPECT_GT(ink(work_dir() / "predict-1.png", 0.20, 0.55).blue, 0.01) << "the tray bars are not drawn";
+  EXPECT_GT(ink(work_dir() / "predict-1.png", 0.27, 0.62).blue, 0.01) << "the tray bars are not drawn";
   const std::string text = pdf_text(pdf);
   EXPECT_NE(text.find("Material: Urea"), std::string::npos) << text;
   EXPECT_NE(text.find("Forward speed: 12.0 km/h"), std::string::npos) << text;
@@ -267,13 +315,19 @@ TEST_F(ReportCli, PatternReportShowsMeasuredAndPredicted) {
   fs::remove(output);
   const CommandRun r = run(kEpoch + "'" + kSpread + "' calibrate pattern --tables '" + small_table("urea_pattern").string() +
                            "' --material Urea --rpm 600 --trays '" + kExample + "' --output '" + output.string() +
-                           "' --fit friction,drag --samples 128 --tray-area 0.25 --rate-kg-ha 1200 --report '" +
+                           "' --fit friction,drag --samples 128 --width 3.5 --tray-area 0.25 --rate-kg-ha 850 --report '" +
                            pdf.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   ASSERT_EQ(render(pdf, work_dir() / "pattern"), 1);
   const std::string text = pdf_text(pdf);
   EXPECT_NE(text.find("predicted, calibrated"), std::string::npos) << text;
-  EXPECT_NE(text.find("EN 13739-2 rate check: PASS"), std::string::npos) << text;
+  // Each fitted value with its ± as the text report prints it; the values the fit kept marked fixed.
+  std::smatch friction;
+  ASSERT_TRUE(std::regex_search(r.out, friction, std::regex(R"(friction on vanes\s+(\d\.\d{4}) ± (\d\.\d{4}))"))) << r.out;
+  EXPECT_NE(text.find("friction on vanes " + friction[1].str() + " ± " + friction[2].str()), std::string::npos) << text;
+  EXPECT_NE(text.find("fixed at the table's values: launch-angle offset 0.00 deg"), std::string::npos) << text;
+  EXPECT_NE(text.find("CV at the 3.50 m bout, to-and-fro"), std::string::npos) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(PASS\s+Rate \(EN 13739-2\))"))) << text;
 }
 
 TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
@@ -320,9 +374,123 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
   std::snprintf(rpm_cell, sizeof rpm_cell, "%.0f rpm", j["rows"][0]["rpm"].get<double>());
   EXPECT_NE(text.find(rpm_cell), std::string::npos) << rpm_cell << "\n" << text;
   EXPECT_NE(text.find("not reachable"), std::string::npos) << text;
+  // Columns as wide as their cells: no cell runs into the next (the spans were cut over two lines and
+  // the last two headers ran together when every column had a fifth of the page).
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(CV racetrack\s+CV within target at)"))) << text;
+  // The widths by their verdict, first under the header: 3 m reached at 95 %, 4 m marginal, 12 m not.
+  const std::vector<std::string> lines = text_lines(text);
+  const int pass = line_of(lines, "3.0 m: the best setting keeps the CV within 15 %");
+  const int marginal = line_of(lines, "4.0 m: the best setting's 95 % interval reaches over 15 %");
+  const int fail = line_of(lines, "12.0 m: no setting searched keeps the CV within 15 %");
+  ASSERT_GE(pass, 0) << text;
+  EXPECT_NE(lines[pass].find("PASS"), std::string::npos) << lines[pass];
+  EXPECT_NE(lines[marginal].find("MARGINAL"), std::string::npos) << text;
+  EXPECT_NE(lines[fail].find("FAIL"), std::string::npos) << text;
+  EXPECT_LT(fail, line_of(lines, "Disc speed per working width")) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"(0\.4 % ± 13\.9\s+501-527 rpm, 629-750 rpm)"))) << text;
   for (const char* line : {"3.0 m    682 rpm, +70.0 deg   0.4 % ± 13.9      0.4 % ± 13.9      501-527 rpm, 629-750 rpm",
                            "4.0 m    734 rpm, +5.0 deg    2.1 % ± 13.8      2.1 % ± 13.8      501-521 rpm, 679-750 rpm",
                            "12.0 m   not reachable"}) {
     EXPECT_NE(made.out.find(line), std::string::npos) << line << "\n" << made.out;
   }
+}
+
+
+// The example at 6 m is a 23.1 % CV (the table above): the page's first lines after the header say FAIL
+// for the CV, in red, with the rate's own verdict beside it — before the summary, chart and table.
+TEST_F(ReportCli, TrayReportStatesTheCvVerdictFirst) {
+  // At 6 m a pass's 152.5 g on 0.25 m² trays is 508.3 kg/ha: set 500 kg/ha, so the rate passes.
+  const std::string command = kEpoch + "'" + kSpread + "' calibrate tray '" + kExample +
+                              "' --width 6 --material Urea --rpm 600 --tray-area 0.25 --rate-kg-ha 500 ";
+  const fs::path pdf = work_dir() / "verdict_fail.pdf";
+  const CommandRun made = run(command + "--report '" + pdf.string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const CommandRun as_json = run(command + "--json");
+  ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
+  const json j = json::parse(as_json.out);
+  EXPECT_EQ(j["cv_verdict"]["verdict"], "fail") << j["cv_verdict"].dump();
+  EXPECT_TRUE(j["rate"]["rate_check"]["pass"].get<bool>()) << j["rate"].dump();
+  const std::string text = pdf_text(pdf);
+  const std::vector<std::string> lines = text_lines(text);
+  const int cv_line = line_of(lines, "CV at the 6.00 m bout, to-and-fro");
+  const int rate_line = line_of(lines, "Rate (EN 13739-2)");
+  ASSERT_GE(cv_line, 0) << text;
+  ASSERT_GT(rate_line, cv_line) << text;
+  // First after the header (title, date, the two lines of fields, the data file): nothing else before.
+  EXPECT_LE(cv_line, 5) << text;
+  EXPECT_LT(rate_line, line_of(lines, "trays of 0.50 m"));
+  EXPECT_LT(rate_line, line_of(lines, "CV per working width"));
+  std::string cv_verdict;  // the CV's verdict, over the lines it wraps to
+  for (int i = cv_line; i < rate_line; ++i) cv_verdict += lines[static_cast<std::size_t>(i)] + " ";
+  EXPECT_NE(lines[cv_line].find("FAIL"), std::string::npos) << lines[cv_line];
+  EXPECT_NE(cv_verdict.find("23.1 %"), std::string::npos) << cv_verdict;
+  EXPECT_NE(cv_verdict.find("above the target 15 %"), std::string::npos) << cv_verdict;
+  EXPECT_NE(lines[rate_line].find("PASS"), std::string::npos) << lines[rate_line];
+  // In colour: the verdict words sit in the top fifth of the page, FAIL red and PASS green.
+  ASSERT_EQ(render(pdf, work_dir() / "verdict_fail"), 1);
+  const fs::path png = work_dir() / "verdict_fail-1.png";
+  EXPECT_GT(colour_share(png, 0.0, 0.2, kRed[0], kRed[1], kRed[2]), 1e-4);
+  EXPECT_GT(colour_share(png, 0.0, 0.2, kGreen[0], kGreen[1], kGreen[2]), 1e-4);
+  EXPECT_EQ(colour_share(png, 0.0, 0.2, kAmber[0], kAmber[1], kAmber[2]), 0.0);
+}
+
+// The rule at the example's 3.5 m bout (15.1 %, the target 15 %): the repeatability interval of its three
+// passes decides between MARGINAL (it straddles 15 %) and FAIL (it lies above); never PASS, and the
+// page and the JSON agree.
+TEST_F(ReportCli, TrayReportAtTheTargetIsMarginalOrFailByTheInterval) {
+  const fs::path pdf = work_dir() / "verdict_15.pdf";
+  ASSERT_EQ(run(tray_command("--report '" + pdf.string() + "'")).exit_code, 0);
+  const CommandRun as_json = run(tray_command("--json"));
+  ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
+  const json verdict = json::parse(as_json.out)["cv_verdict"];
+  ASSERT_TRUE(verdict["interval_percent"].is_array()) << verdict.dump();
+  const double low = verdict["interval_percent"][0].get<double>(), high = verdict["interval_percent"][1].get<double>();
+  EXPECT_LT(low, 15.1);
+  EXPECT_GT(high, 15.1);
+  const std::string expected = low > 15.0 ? "fail" : "marginal";
+  EXPECT_EQ(verdict["verdict"], expected) << verdict.dump();
+  const std::vector<std::string> lines = text_lines(pdf_text(pdf));
+  const int cv_line = line_of(lines, "CV at the 3.50 m bout, to-and-fro");
+  ASSERT_GE(cv_line, 0);
+  EXPECT_LE(cv_line, 5);
+  EXPECT_NE(lines[cv_line].find(expected == "fail" ? "FAIL" : "MARGINAL"), std::string::npos) << lines[cv_line];
+  EXPECT_EQ(lines[cv_line].find("PASS"), std::string::npos) << lines[cv_line];
+}
+
+// A long material name wraps inside its half of the header instead of running off the page.
+TEST_F(ReportCli, LongNamesWrap) {
+  const fs::path pdf = work_dir() / "long_name.pdf";
+  const std::string name = "KAS 27 % N granulated, batch 2025-11 from the northern silo, delivered 2025-11-20 in big bags";
+  const CommandRun made = run(kEpoch + "'" + kSpread + "' calibrate tray '" + kExample + "' --width 3.5 --material '" +
+                              name + "' --machine 'Twin disc spreader with a long model name, serial 12345' --report '" +
+                              pdf.string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  // Above the footer, which quotes the command line (and with it the names) in full.
+  const std::string text = pdf_text(pdf);
+  const std::string page = text.substr(0, text.find("made by"));
+  for (const char* tail : {"big bags", "serial 12345"}) EXPECT_NE(page.find(tail), std::string::npos) << tail << "\n" << text;
+}
+
+// The quick check's page opens with its verdict (five trays at 10.2 %: the interval 6.1-30.4 % holds the
+// target, MARGINAL) and says nothing a farmer cannot act on: no file paths of the docs, no step numbers.
+TEST_F(ReportCli, QuickCheckPageStatesItsVerdictInPlainWords) {
+  const fs::path pdf = work_dir() / "quick.pdf";
+  const CommandRun made = run(kEpoch + "'" + kSpread + "' calibrate tray '" + SPREAD_SOURCE_DIR +
+                              "/scenes/field/quick_check_5trays.csv' --quick-check --tray-area 0.25 --rate-kg-ha 400 "
+                              "--report '" + pdf.string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string text = pdf_text(pdf);
+  const std::vector<std::string> lines = text_lines(text);
+  const int cv_line = line_of(lines, "CV of the bout from 5 trays");
+  ASSERT_GE(cv_line, 0) << text;
+  EXPECT_LE(cv_line, 5) << text;
+  EXPECT_NE(lines[cv_line].find("MARGINAL"), std::string::npos) << lines[cv_line];
+  EXPECT_NE(lines[cv_line].find("6.1-30.4 %"), std::string::npos) << lines[cv_line];
+  const int rate_line = line_of(lines, "Rate (EN 13739-2)");
+  ASSERT_GT(rate_line, cv_line) << text;
+  EXPECT_NE(lines[rate_line].find("PASS"), std::string::npos) << lines[rate_line];
+  EXPECT_LT(rate_line, line_of(lines, "trays read"));
+  EXPECT_EQ(text.find("docs/"), std::string::npos) << text;
+  EXPECT_EQ(text.find(".md"), std::string::npos) << text;
+  EXPECT_EQ(text.find("step 2"), std::string::npos) << text;
 }

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libspread/analysis/calibration/calibrated_table.hpp"
+#include "libspread/analysis/calibration/cv_verdict.hpp"
 #include "libspread/analysis/calibration/disc_speed_check.hpp"
 #include "libspread/analysis/calibration/fit_acceptance.hpp"
 #include "libspread/analysis/calibration/pass_scatter.hpp"
@@ -31,6 +32,7 @@
 #include "libspread/analysis/calibration/synthetic_tray_test.hpp"
 #include "libspread/analysis/calibration/tray_analysis.hpp"
 #include "libspread/analysis/calibration/tray_csv.hpp"
+#include "libspread/analysis/calibration/tray_cv_interval.hpp"
 #include "libspread/analysis/calibration/tray_plausibility.hpp"
 #include "libspread/analysis/plot/plot.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
@@ -279,9 +281,37 @@ double curve_cv(const cal::TrayTestAnalysis& a, const std::vector<double>& curve
   return NAN;
 }
 
-std::vector<spread::plot::CvTableRow> tray_cv_table(const cal::TrayTestAnalysis& a) {
-  return spread::plot::cv_table(spread::plot::cv_table_widths_m(a.throw_width_m, a.widths_m), a.widths_m,
-                                a.cv_to_and_fro_curve, a.cv_racetrack_curve);
+// The table's widths fitting the pattern, and the bout driven among them.
+std::vector<spread::plot::CvTableRow> tray_cv_table(const cal::TrayTestAnalysis& a, double bout_width_m) {
+  const std::vector<double> widths = spread::plot::with_bout_width_m(
+      spread::plot::cv_table_widths_m(a.throw_width_m, a.widths_m), bout_width_m, a.widths_m);
+  return spread::plot::cv_table(widths, a.widths_m, a.cv_to_and_fro_curve, a.cv_racetrack_curve);
+}
+
+// The to-and-fro CV at a whole-tray bout against the target, with the 95 % interval of the test's own
+// repeatability (tray_cv_interval.hpp; none from one pass).
+cal::CvVerdict bout_verdict(const cal::TrayTest& t, double bout_width_m, double cv_target) {
+  const int n = spread::metrics::bout_tray_count(t.layout, bout_width_m);
+  const cal::TrayCvInterval interval = cal::tray_cv_interval(t, n, spread::metrics::Overlap::kToAndFro);
+  return interval.available ? cal::cv_verdict(interval.cv, interval.low, interval.high, cv_target)
+                            : cal::cv_verdict(interval.cv, NAN, NAN, cv_target);
+}
+
+// The verdicts a tray test's page opens with: the CV at the bout, then the rate check.
+std::vector<spread::plot::ReportVerdict> tray_verdicts(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
+                                                       double bout_width_m,
+                                                       const std::optional<spread::plot::ReportRate>& rate) {
+  std::vector<spread::plot::ReportVerdict> verdicts;
+  if (bout_width_m > 0.0) {
+    const std::string what = a.bout_width_m > 0.0
+                                 ? "CV at the " + format("%.2f m", bout_width_m) + " bout, to-and-fro"
+                                 : "CV at " + format("%.2f m", bout_width_m) + " (no bout width given: the working "
+                                   "width in whole trays), to-and-fro";
+    verdicts.push_back(spread::cli::cv_report_verdict(what, bout_verdict(t, bout_width_m, a.cv_target)));
+    if (t.mass_columns.size() < 2) verdicts.back().text += "; one pass shows no repeatability: drive two or more";
+  }
+  if (const auto rate_verdict = spread::cli::rate_report_verdict(rate)) verdicts.push_back(*rate_verdict);
+  return verdicts;
 }
 
 // The report's pattern page of a tray test: its trays as the chart, the CVs of the analysis.
@@ -298,6 +328,7 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   r.summary.emplace_back(text);
   r.tray_mass_kg = t.layout_mass_kg;
   r.trays = t.layout;
+  r.chart.missing_trays = t.layout_missing;
   r.chart.series_label = t.mass_columns.size() > 1 ? "measured, mean of the passes" : "measured";
   r.chart.bout_width_m = bout_width_m;
   if (bout_width_m > 0.0) {
@@ -311,7 +342,7 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   r.cv_target = a.cv_target;
   r.working_width_to_and_fro_m = a.working_width_to_and_fro_m;
   r.working_width_racetrack_m = a.working_width_racetrack_m;
-  r.cv_table = tray_cv_table(a);
+  r.cv_table = tray_cv_table(a, bout_width_m);
   return r;
 }
 
@@ -345,7 +376,7 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
     case cal::QuickCheckVerdict::kUndecided:
       verdict = "undecided: the target " + format("%g %%", 100.0 * cv_target) + " lies inside the interval, " +
                 std::to_string(q.trays) + " trays cannot tell whether the spread meets it; lay a full tray test "
-                "across the throw (step 2) to know";
+                "across the throw to know";
       break;
   }
   std::string report_error;
@@ -367,6 +398,12 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
       page.summary.push_back(format("CV %.1f %%", 100.0 * q.cv) + "; the bout's CV lies between " +
                              format("%.1f %%", 100.0 * q.interval.low) + " and " + high + " (95 % interval, McKay)");
       page.summary.push_back("against the target: " + verdict);
+      // First on the page: the quick check's meets / undecided / fails as the verdict every report states
+      // (cv_verdict.hpp: the same rule on McKay's interval).
+      page.verdicts.push_back(spread::cli::cv_report_verdict(
+          "CV of the bout from " + std::to_string(q.trays) + " trays",
+          cal::cv_verdict(q.cv, q.interval.low, q.interval.high, cv_target)));
+      if (const auto rate_verdict = spread::cli::rate_report_verdict(rate)) page.verdicts.push_back(*rate_verdict);
       for (const std::string& line : spread::cli::rate_lines(rate)) page.summary.push_back(line);
       page.caption = "Trays (mean of the passes)";
       page.columns = {"tray", "position", "mass"};
@@ -375,8 +412,8 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
                              t.missing[i] ? std::string("missing") : format("%.2f g", 1e3 * t.mass_kg[i])});
       }
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
-      page.notes.push_back("a CV from a few trays is itself uncertain: the interval says how much "
-                           "(docs/field-calibration.md, Quick check)");
+      page.notes.push_back("a CV from a few trays is itself uncertain: the 95 % interval says how much; MARGINAL "
+                           "means these trays cannot tell, a full tray test across the throw can");
       spread::plot::write_report_pdf(o.report.path, nullptr, &page);
     });
   }
@@ -446,6 +483,7 @@ void run_tray(const TrayOptions& o) {
       page.header.material = o.material;
       page.header.rpm = o.rpm;
       page.header.speed_km_h = o.report.speed_km_h;
+      page.verdicts = tray_verdicts(t, a, report_width_m, rate);
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
@@ -460,6 +498,7 @@ void run_tray(const TrayOptions& o) {
   };
   if (o.json) {
     json out = tray_json(t, a);
+    if (a.bout_width_m > 0.0) out["cv_verdict"] = spread::cli::cv_verdict_json(bout_verdict(t, a.bout_width_m, a.cv_target));
     out["warnings"] = warnings;
     out["notes"] = notes;
     if (rate_note) out["notes"].push_back(*rate_note);
@@ -597,6 +636,40 @@ json fit_json(const cal::PatternFitResult& f) {
   fit["reduced_chi_square"] = f.reduced_chi_square;
   fit["informative_trays"] = f.informative_trays;
   return fit;
+}
+
+// The report's line of fitted values: each fitted one with its standard error, the others marked fixed
+// (a value the fit did not move is the table's, not a measurement).
+std::string fitted_values_line(const cal::PatternFitResult& f) {
+  const auto values = cal::as_array(f.fitted), errors = cal::as_array(f.standard_error);
+  struct Shown {
+    std::size_t index;
+    const char* name;
+    double unit;
+    const char* pattern;  // of the value and its error
+    const char* suffix;
+  };
+  std::vector<Shown> shown;
+  if (!f.table_samples) shown.push_back({cal::kFriction, "friction on vanes", 1.0, "%.4f", ""});
+  shown.push_back({cal::kDragDiameter, "drag diameter factor", 1.0, "%.4f", ""});
+  shown.push_back({cal::kAngleOffset, "launch-angle offset", kDegPerRad, "%.2f", " deg"});
+  if (f.table_samples || f.fitted_mask[cal::kLaunchSpeed] || f.fitted_mask[cal::kElevationOffset]) {
+    shown.push_back({cal::kLaunchSpeed, "launch speed factor", 1.0, "%.4f", ""});
+    shown.push_back({cal::kElevationOffset, "launch elevation offset", kDegPerRad, "%.2f", " deg"});
+  }
+  std::string fitted, fixed;
+  for (const Shown& p : shown) {
+    const std::string value = format(p.pattern, values[p.index] * p.unit);
+    if (f.fitted_mask[p.index]) {
+      fitted += (fitted.empty() ? "" : ", ") + std::string(p.name) + " " + value + " ± " +
+                format(p.pattern, errors[p.index] * p.unit) + p.suffix;
+    } else {
+      fixed += (fixed.empty() ? "" : ", ") + std::string(p.name) + " " + value + p.suffix;
+    }
+  }
+  return std::string(f.table_samples ? "fitted to the table's DEM launches: " : "fitted: ") + fitted +
+         " (± one standard error)" + (fixed.empty() ? "" : "; fixed at the table's values: " + fixed) +
+         "; residual rms " + format("%.2f g per tray", 1e3 * f.residual_rms_kg);
 }
 
 std::vector<std::string> fit_warnings(const cal::PatternFitResult& f) {
@@ -760,19 +833,8 @@ void run_pattern(const PatternOptions& o) {
       page.header.speed_km_h = o.report.speed_km_h;
       page.chart.second_tray_mass_kg = predicted_kg;
       page.chart.second_label = "predicted, calibrated";
-      char text[256];
-      if (fit.table_samples) {
-        std::snprintf(text, sizeof text, "fitted to the table's DEM launches: speed factor %.4f, launch-angle offset %.2f "
-                      "deg, elevation offset %.2f deg, drag diameter factor %.4f; residual rms %.2f g per tray",
-                      fit.fitted.launch_speed_factor, fit.fitted.launch_angle_offset_rad * kDegPerRad,
-                      fit.fitted.launch_elevation_offset_rad * kDegPerRad, fit.fitted.drag_diameter_factor,
-                      1e3 * fit.residual_rms_kg);
-      } else {
-        std::snprintf(text, sizeof text, "fitted: friction %.4f, drag diameter factor %.4f, launch-angle offset %.2f deg; "
-                      "residual rms %.2f g per tray", fit.fitted.friction_wall, fit.fitted.drag_diameter_factor,
-                      fit.fitted.launch_angle_offset_rad * kDegPerRad, 1e3 * fit.residual_rms_kg);
-      }
-      page.summary.emplace_back(text);
+      page.summary.push_back(fitted_values_line(fit));
+      page.verdicts = tray_verdicts(test, measured, report_width_m, rate);
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);

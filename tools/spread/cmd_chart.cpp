@@ -115,6 +115,35 @@ std::string reach_note(const pr::SettingChartRow& row, const pr::SettingChart& c
   return {};
 }
 
+// The chart page's first lines: the widths by the verdict of their best setting, by the rule of every
+// report (calibration/cv_verdict.hpp) — reached: its 95 % interval within the target (PASS); marginal:
+// the interval reaches over it (MARGINAL); not reachable: no setting meets it (FAIL).
+std::vector<spread::plot::ReportVerdict> chart_verdicts(const pr::SettingChart& chart, double cv_target_percent) {
+  using Level = spread::plot::ReportVerdict::Level;
+  struct Group {
+    pr::ChartReach reach;
+    Level level;
+    const char* word;
+    std::string meaning;
+  };
+  const std::string target = format("%g %%", cv_target_percent);
+  const Group groups[] = {
+      {pr::ChartReach::kReached, Level::kPass, "PASS", "the best setting keeps the CV within " + target + " at 95 % confidence"},
+      {pr::ChartReach::kMarginal, Level::kMarginal, "MARGINAL",
+       "the best setting's 95 % interval reaches over " + target + ": confirm with a tray test"},
+      {pr::ChartReach::kNotReached, Level::kFail, "FAIL", "no setting searched keeps the CV within " + target},
+  };
+  std::vector<spread::plot::ReportVerdict> verdicts;
+  for (const Group& g : groups) {
+    std::string widths;
+    for (const pr::SettingChartRow& row : chart.rows) {
+      if (row.reach == g.reach) widths += (widths.empty() ? "" : ", ") + format("%.1f m", row.width_m);
+    }
+    if (!widths.empty()) verdicts.push_back({g.level, g.word, widths + ": " + g.meaning});
+  }
+  return verdicts;
+}
+
 void run(const Options& o, int& exit_code) {
   const double cv_target = spread::calibration::cv_target_from_percent(o.cv_target_percent, "--cv-target");
   const std::vector<double> widths = parse_widths(o.widths);
@@ -163,6 +192,7 @@ void run(const Options& o, int& exit_code) {
       page.header.time_s = report_time_s;
       page.header.made_by = spread::cli::command_line();
       page.summary.push_back(range_line);
+      page.verdicts = chart_verdicts(chart, o.cv_target_percent);
       page.caption = "Disc speed per working width (CV target " + format("%g %%", o.cv_target_percent) + ")";
       page.columns = {"width", "speed, drop point", "CV to-and-fro", "CV racetrack", "CV within target at"};
       for (const pr::SettingChartRow& row : chart.rows) {

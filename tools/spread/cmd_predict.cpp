@@ -249,8 +249,18 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
     page.cv_target = o.cv_target_percent / 100.0;
     page.working_width_to_and_fro_m = r.working_width_to_and_fro_m;
     page.working_width_racetrack_m = r.working_width_racetrack_m;
-    page.cv_table = spread::plot::cv_table(spread::plot::cv_table_widths_m(r.throw_width_m, curve.widths_m),
-                                           curve.widths_m, curve.to_and_fro, curve.racetrack);
+    page.cv_table = spread::plot::cv_table(
+        spread::plot::with_bout_width_m(spread::plot::cv_table_widths_m(r.throw_width_m, curve.widths_m),
+                                        r.bout_width_m, curve.widths_m),
+        curve.widths_m, curve.to_and_fro, curve.racetrack);
+    if (r.bout_width_m > 0.0) {
+      // The predicted CV against the target with its 95 % interval over the launch samples (1.96 standard
+      // errors, as the text prints it): the rule of every report (calibration/cv_verdict.hpp).
+      const double cv = r.cv_percent / 100.0, half = 1.96 * r.cv_se_percent / 100.0;
+      page.verdicts.push_back(spread::cli::cv_report_verdict(
+          "predicted CV at the " + format("%.2f m", r.bout_width_m) + " bout, to-and-fro",
+          spread::calibration::cv_verdict(cv, std::max(0.0, cv - half), cv + half, page.cv_target)));
+    }
     if (!bands_note.empty()) page.notes.push_back(bands_note);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
                          "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");

@@ -42,6 +42,18 @@ std::vector<double> cv_table_widths_m(double throw_width_m, std::span<const doub
   return widths;
 }
 
+std::vector<double> with_bout_width_m(std::vector<double> widths_m, double bout_width_m,
+                                      std::span<const double> curve_widths_m) {
+  if (!(bout_width_m > 0.0) || curve_widths_m.empty()) return widths_m;
+  const double on_curve = curve_widths_m[nearest(curve_widths_m, bout_width_m)];
+  if (std::abs(on_curve - bout_width_m) > kSameWidth_m) return widths_m;
+  for (double w : widths_m) {
+    if (std::abs(w - on_curve) <= kSameWidth_m) return widths_m;
+  }
+  widths_m.insert(std::upper_bound(widths_m.begin(), widths_m.end(), on_curve), on_curve);
+  return widths_m;
+}
+
 std::vector<CvTableRow> cv_table(std::span<const double> widths_m, std::span<const double> curve_widths_m,
                                  std::span<const double> cv_to_and_fro, std::span<const double> cv_racetrack) {
   if (cv_to_and_fro.size() != curve_widths_m.size() || cv_racetrack.size() != curve_widths_m.size()) {

@@ -26,6 +26,12 @@ inline constexpr double kStandardWidths_m[] = {12.0, 15.0, 18.0, 21.0, 24.0};
 // are dropped. Empty when the curve is.
 std::vector<double> cv_table_widths_m(double throw_width_m, std::span<const double> curve_widths_m);
 
+// `widths_m` (increasing) with the driven bout's width added in order when it is a curve width (within a
+// millimetre) and not there yet: the table then holds the CV the report's verdict is about. A bout of
+// 0 (none driven) leaves the widths as they are.
+std::vector<double> with_bout_width_m(std::vector<double> widths_m, double bout_width_m,
+                                      std::span<const double> curve_widths_m);
+
 // The rows at `widths_m`, each read at the curve point of the same width (within a millimetre); widths
 // that are not curve points are left out. Throws std::invalid_argument when the curves' sizes differ.
 std::vector<CvTableRow> cv_table(std::span<const double> widths_m, std::span<const double> curve_widths_m,

@@ -7,6 +7,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "libspread/analysis/metrics/metrics.hpp"
 
@@ -47,6 +48,11 @@ struct TransverseOptions {
   // > 0 (with kKilograms): the catching area of one tray (m²); the bars are then shown as kg/ha
   // (mass ÷ area · 10 000), what a technician sets the spreader to.
   double tray_area_m2 = 0.0;
+  // One flag per layout tray (empty = none): a tray without a reading (a tray test's NA). It is marked
+  // with a cross; the overlapped profile has a gap over every bout tray it would feed and the bout's
+  // mean leaves those out, as the CV does (calibration/cv_without_missing.hpp) — a line dropping to 0
+  // there would show a hole the spreader did not make.
+  std::vector<bool> missing_trays;
 };
 // Bars per tray (mass per tray; the unit — kg, g or mg — is picked from the data and named on the axis),
 // x in metres.

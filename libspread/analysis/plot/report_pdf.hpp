@@ -36,7 +36,8 @@ struct ReportHeader {
 };
 
 // The rate the trays caught at the bout width, and EN 13739-2's check that it is 90–110 % of the rate
-// set from the catch test.
+// set from the catch test (the page prints the rate; the check's PASS/FAIL is one of the caller's
+// verdicts, stated first).
 struct ReportRate {
   double tray_area_m2 = 0.0;
   double bout_width_m = 0.0;
@@ -47,8 +48,19 @@ struct ReportRate {
   bool pass = false;
 };
 
+// A verdict stated on a page's first lines: its word (PASS, MARGINAL, FAIL) in its colour, then what was
+// judged and on what grounds. The numbers and the rule are the caller's (calibration/cv_verdict.hpp,
+// tray_rate_check.hpp); the page only shows them first, so a farmer reads the outcome before the detail.
+struct ReportVerdict {
+  enum class Level { kPass, kMarginal, kFail, kNone };
+  Level level = Level::kNone;
+  std::string word;  // "PASS"
+  std::string text;  // "CV at the 8.00 m bout, to-and-fro: 22.0 % ..., above the target 15 %"
+};
+
 struct PatternReport {
   ReportHeader header;
+  std::vector<ReportVerdict> verdicts;  // drawn first, under the header
   std::vector<std::string> summary;    // lines under the header (trays, passes, mass, throw width)
   // The chart: one pass's trays, with the overlapped profile at chart.bout_width_m (> 0) and, when
   // chart.bout_cv is finite or computable, the mean line and the ±CV band.
@@ -59,7 +71,7 @@ struct PatternReport {
   double cv_target = 0.15;             // fraction
   double working_width_to_and_fro_m = 0.0;
   double working_width_racetrack_m = 0.0;
-  std::vector<CvTableRow> cv_table;
+  std::vector<CvTableRow> cv_table;      // the row at chart.bout_width_m is marked "(driven)"
   std::optional<ReportRate> rate;
   std::vector<std::string> notes;      // warnings and remarks, printed in full at the bottom
 };
@@ -67,6 +79,7 @@ struct PatternReport {
 // A page holding one table of text cells under a header (the setting chart).
 struct TablePage {
   ReportHeader header;
+  std::vector<ReportVerdict> verdicts;  // drawn first, under the header
   std::vector<std::string> summary;
   std::string caption;
   std::vector<std::string> columns;

@@ -20,6 +20,7 @@ constexpr detail::Rgb kMainColour{0.25, 0.45, 0.75};
 constexpr detail::Rgb kSecondColour{0.90, 0.50, 0.10};
 constexpr detail::Rgb kOverlapColour{0.10, 0.60, 0.25};
 constexpr detail::Rgb kMeanColour{0.15, 0.15, 0.15};
+constexpr detail::Rgb kMissingColour{0.80, 0.10, 0.10};
 
 void require_series(std::span<const double> mass_kg, const metrics::TrayLayout& trays, const char* name) {
   if (mass_kg.size() != static_cast<std::size_t>(trays.tray_count)) {
@@ -56,13 +57,29 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
     throw std::invalid_argument("write_transverse_png: bout_width_m is not finite");
   }
 
+  const bool any_missing = std::find(options.missing_trays.begin(), options.missing_trays.end(), true) !=
+                           options.missing_trays.end();
+  if (!options.missing_trays.empty() && options.missing_trays.size() != static_cast<std::size_t>(trays.tray_count)) {
+    throw std::invalid_argument("write_transverse_png: missing_trays has " + std::to_string(options.missing_trays.size()) +
+                                " flags, the layout " + std::to_string(trays.tray_count) + " trays");
+  }
   std::vector<double> bout_kg;
+  std::vector<bool> bout_gap;  // per bout tray: fed by a missing tray
   metrics::BoutTrays bout;
   double bout_half_m = 0.0;
   if (overlapped) {
     bout = metrics::bout_trays(trays, metrics::bout_tray_count(trays, options.bout_width_m));
     bout_kg.resize(static_cast<std::size_t>(bout.grid_trays));
     metrics::overlapped_profile(tray_mass_kg, trays, options.bout_width_m, options.overlap, bout_kg);
+    // The overlap is a sum of shifted (and for to-and-fro mirrored) copies of the pattern, so overlapping
+    // the missing trays' indicator marks every bout tray one of them feeds.
+    bout_gap.assign(bout_kg.size(), false);
+    if (any_missing) {
+      std::vector<double> indicator(options.missing_trays.size()), fed(bout_kg.size());
+      for (std::size_t k = 0; k < indicator.size(); ++k) indicator[k] = options.missing_trays[k] ? 1.0 : 0.0;
+      metrics::overlapped_profile(indicator, trays, options.bout_width_m, options.overlap, fed);
+      for (std::size_t j = 0; j < fed.size(); ++j) bout_gap[j] = fed[j] > 0.0;
+    }
     bout_half_m = 0.5 * bout.bout_trays * trays.tray_width_m;
   }
   // The CV the legend and band show, and the bout's mean per tray: x̄ = Σ w_j P_j / n with the weights of
@@ -71,12 +88,14 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
                          : std::isnan(options.bout_cv)
                              ? metrics::cv_at_width(tray_mass_kg, trays, options.bout_width_m, options.overlap)
                              : options.bout_cv;
-  double bout_mean_kg = 0.0;
+  double bout_mean_kg = 0.0, bout_weight = 0.0;
   for (std::size_t j = 0; j < bout_kg.size(); ++j) {
+    if (bout_gap[j]) continue;
     const bool cut = bout.cut_edges && (j == 0 || j + 1 == bout_kg.size());
     bout_mean_kg += (cut ? 0.5 : 1.0) * bout_kg[j];
+    bout_weight += cut ? 0.5 : 1.0;
   }
-  if (overlapped) bout_mean_kg /= bout.bout_trays;
+  if (overlapped) bout_mean_kg = bout_weight > 0.0 ? bout_mean_kg / bout_weight : 0.0;
   const bool band = overlapped && options.mean_band && std::isfinite(bout_cv) && bout_mean_kg > 0.0;
 
   double max_kg = 0.0;
@@ -99,7 +118,7 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
   x_hi = std::max(x_hi, bout_half_m);
   detail::nice_range(x_lo, x_hi, 10);
   // Headroom so the legend (22 px a row in a 510 px plot) sits above the tallest bar.
-  const int legend_rows = 1 + (second ? 1 : 0) + (overlapped ? 1 : 0) + (band ? 2 : 0);
+  const int legend_rows = 1 + (second ? 1 : 0) + (overlapped ? 1 : 0) + (band ? 2 : 0) + (any_missing ? 1 : 0);
   const double headroom = 1.0 / (1.0 - (30.0 + 22.0 * legend_rows) / 510.0);
   double y_lo = 0.0, y_hi = (max_kg > 0.0 ? max_kg : 1e-3) * unit.per_kg * headroom;
   detail::nice_range(y_lo, y_hi, 8);
@@ -132,6 +151,23 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
   std::vector<detail::LegendEntry> legend;
   legend.push_back({options.series_label, kMainColour, detail::LegendEntry::Kind::kBox});
   if (second) legend.push_back({options.second_label, kSecondColour, detail::LegendEntry::Kind::kBox});
+  if (any_missing) {
+    // A cross on the axis where a tray has no reading.
+    cairo_set_source_rgb(cr, kMissingColour.r, kMissingColour.g, kMissingColour.b);
+    cairo_set_line_width(cr, 2.5);
+    for (int k = 0; k < trays.tray_count; ++k) {
+      if (!options.missing_trays[static_cast<std::size_t>(k)]) continue;
+      const double x = axes.px(trays.left_edge_m() + (k + 0.5) * w_m), y = axes.py(0.0) - 9.0;
+      cairo_move_to(cr, x - 6.0, y - 6.0);
+      cairo_line_to(cr, x + 6.0, y + 6.0);
+      cairo_move_to(cr, x - 6.0, y + 6.0);
+      cairo_line_to(cr, x + 6.0, y - 6.0);
+    }
+    cairo_stroke(cr);
+    legend.push_back({overlapped ? "missing tray (x); the profile has a gap where it would count"
+                                 : "missing tray (x)",
+                      kMissingColour, detail::LegendEntry::Kind::kLine});
+  }
 
   if (band) {
     // Under the profile: the band mean × (1 ± CV) over the bout, then the mean itself (dashed).
@@ -156,11 +192,17 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
     // bout edges), the bout edges dashed.
     cairo_set_source_rgb(cr, kOverlapColour.r, kOverlapColour.g, kOverlapColour.b);
     cairo_set_line_width(cr, 3.0);
+    bool pen_down = false;
     for (std::size_t j = 0; j < bout_kg.size(); ++j) {
+      if (bout_gap[j]) {  // no value there: the line stops and starts again after it
+        pen_down = false;
+        continue;
+      }
       const double a_m = std::max(-bout_half_m, trays.left_edge_m() + (bout.first_tray + static_cast<double>(j)) * w_m);
       const double b_m = std::min(bout_half_m, trays.left_edge_m() + (bout.first_tray + static_cast<double>(j) + 1.0) * w_m);
       const double y = axes.py(bout_kg[j] * unit.per_kg);
-      if (j == 0) {
+      if (!pen_down) {
+        pen_down = true;
         cairo_move_to(cr, axes.px(a_m), y);
       } else {
         cairo_line_to(cr, axes.px(a_m), y);
