@@ -233,7 +233,8 @@ void BM_CompensateWindCApiFile(benchmark::State& state) {
   }
   spread_prediction_def def = capi_request();
   def.rpm = 600.0;
-  def.bout_width_m = 8.0;
+  def.bout_width_m = 11.0;  // the bundled machine's stated setting (scenes/default.toml)
+  def.cv_target_percent = 10.0;
   def.wind_m_s[0] = static_cast<double>(state.range(0));
   spread_prediction result{};
   for (auto _ : state) {
@@ -246,9 +247,9 @@ void BM_CompensateWindCApiFile(benchmark::State& state) {
   spread_close(tables);
 }
 
-// spread_predict_edge on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 15 m bouts, border
-// spreading with the right disc at 452 rpm, +5 degrees, 86 % of its flow (the setting `spread border`
-// finds there).
+// spread_predict_edge on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 11 m bouts, border
+// spreading with the right disc at 462.5 rpm, -5 degrees, 58 % of its flow and the left disc's drop point
+// turned -90 degrees (the setting `spread border` finds there on the main job's table).
 void BM_PredictEdgeCApiFile(benchmark::State& state) {
   const char* path = bench_table(state);
   if (path == nullptr) return;
@@ -259,11 +260,12 @@ void BM_PredictEdgeCApiFile(benchmark::State& state) {
   }
   spread_prediction_def def = capi_request();
   def.rpm = 600.0;
-  def.bout_width_m = 15.0;
-  def.disc_rpm[1] = 452.0;
-  def.disc_drop_point_turn_rad[1] = 5.0 * std::numbers::pi / 180.0;
+  def.bout_width_m = 11.0;
+  def.disc_rpm[1] = 462.5;
+  def.disc_drop_point_turn_rad[1] = -5.0 * std::numbers::pi / 180.0;
+  def.disc_drop_point_turn_rad[0] = -90.0 * std::numbers::pi / 180.0;
   spread_edge_def edge = spread_edge_def_default();
-  edge.flow_fraction = 0.86;
+  edge.flow_fraction = 0.58;
   spread_edge_result result{};
   for (auto _ : state) {
     const spread_status status = spread_predict_edge(tables, &def, &edge, &result, nullptr, 0);

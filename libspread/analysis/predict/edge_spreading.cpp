@@ -196,39 +196,25 @@ class EdgeSearch {
     make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m, frame_.fixed.get_allocator().resource(),
                frame_);
     normal_disc_ = disc_setting(normal_, edge_.side);
-    normal_field_side_ = disc_setting(normal_, field_side());
+    normal_field_side_ = disc_setting(normal_, field_side_index());
     kernel_m_ = prediction_.kernel_half_width_m;
     return true;
   }
-  int field_side() const { return edge_.side == kRightDisc ? kLeftDisc : kRightDisc; }
+  int field_side_index() const { return edge_.side == kRightDisc ? kLeftDisc : kRightDisc; }
+  // This pass with the field-side disc at `field_side` and the edge-side one at `edge_side` (full flow): one
+  // prediction; each disc's trays into `inner` and `disc`.
+  bool pass_at(const DiscSetting& field_side, const DiscSetting& edge_side, EdgeDisc& inner, EdgeDisc& disc) {
+    if (!predict_pass(field_side, edge_side)) return false;
+    take(field_side_index(), inner);
+    take(edge_.side, disc);
+    return true;
+  }
   // Disc `which` of this pass at `setting` (full flow), the other disc at its field setting: the discs fly
   // apart, so one disc's landings do not depend on the other's setting.
   bool disc_at(int which, const DiscSetting& setting, EdgeDisc& out) {
-    PredictionRequest r = normal_;
-    r.standard_errors = false;
-    r.kernel_half_width_m = kernel_m_;
-    const auto at = static_cast<std::size_t>(which);
-    const auto other = 1 - at;
-    // A both-discs value no disc would use is cleared.
-    r.disc_rpm[other] = disc_setting(normal_, static_cast<int>(other)).rpm;
-    r.disc_drop_point_turn_rad[other] = disc_setting(normal_, static_cast<int>(other)).drop_point_turn_rad;
-    r.disc_rpm[at] = setting.rpm;
-    r.disc_drop_point_turn_rad[at] = setting.drop_point_turn_rad;
-    r.rpm = 0.0;
-    r.drop_point_turn_rad = 0.0;
-    ++predictions_;
-    if (predictor_.predict(r, prediction_) != PredictStatus::kOk) return false;
-    out.trays.assign(frame_.fixed.size(), 0.0);
-    out.beyond = out.mass = 0.0;
-    x_.clear();
-    w_.clear();
-    disc_landings(prediction_, which, edge_.side, [&](double x, double w) {
-      x_.push_back(x);
-      w_.push_back(w);
-      out.mass += w;
-      out.beyond += beyond(x, w, frame_.line_m, frame_.kernel_m);
-    });
-    metrics::accumulate_transverse_kernel(x_, w_, frame_.trays, frame_.kernel_m, out.trays);
+    const bool edge_side = which == edge_.side;
+    if (!predict_pass(edge_side ? normal_field_side_ : setting, edge_side ? setting : normal_disc_)) return false;
+    take(which, out);
     return true;
   }
   // The best flow of the edge-side disc at this pair of settings; its score.
@@ -261,6 +247,37 @@ class EdgeSearch {
   DiscSetting normal_disc_, normal_field_side_;
 
  private:
+  bool predict_pass(const DiscSetting& field_side, const DiscSetting& edge_side) {
+    PredictionRequest r = normal_;
+    r.standard_errors = false;
+    r.kernel_half_width_m = kernel_m_;
+    const auto edge = static_cast<std::size_t>(edge_.side);
+    const auto other = 1 - edge;
+    // Each disc its own setting; the both-discs values, which no disc would use, cleared.
+    r.disc_rpm[other] = field_side.rpm;
+    r.disc_drop_point_turn_rad[other] = field_side.drop_point_turn_rad;
+    r.disc_rpm[edge] = edge_side.rpm;
+    r.disc_drop_point_turn_rad[edge] = edge_side.drop_point_turn_rad;
+    r.rpm = 0.0;
+    r.drop_point_turn_rad = 0.0;
+    ++predictions_;
+    return predictor_.predict(r, prediction_) == PredictStatus::kOk;
+  }
+  // Disc `which`'s landings of the last prediction into `out`'s trays, its mass and its mass beyond the line.
+  void take(int which, EdgeDisc& out) {
+    out.trays.assign(frame_.fixed.size(), 0.0);
+    out.beyond = out.mass = 0.0;
+    x_.clear();
+    w_.clear();
+    disc_landings(prediction_, which, edge_.side, [&](double x, double w) {
+      x_.push_back(x);
+      w_.push_back(w);
+      out.mass += w;
+      out.beyond += beyond(x, w, frame_.line_m, frame_.kernel_m);
+    });
+    metrics::accumulate_transverse_kernel(x_, w_, frame_.trays, frame_.kernel_m, out.trays);
+  }
+
   Predictor& predictor_;
   PredictionRequest normal_;
   EdgeRequest edge_;
@@ -286,7 +303,7 @@ PredictStatus edge_profile(Predictor& predictor, const PredictionRequest& normal
   EdgeDisc inner(memory), disc(memory);
   const DiscSetting field_side{search.normal_field_side_.rpm, field_side_turn(setting, search.normal_field_side_)};
   if (!(setting.flow_fraction >= 0.0 && setting.flow_fraction <= kEdgeMaxFlow) ||
-      !search.disc_at(search.field_side(), field_side, inner) || !search.disc_at(edge.side, setting.disc, disc)) {
+      !search.pass_at(field_side, setting.disc, inner, disc)) {
     return PredictStatus::kOutOfRange;
   }
   search.profile(inner, disc, setting.flow_fraction, out);
@@ -303,10 +320,9 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   }
   const std::optional<std::size_t> material = predictor.find_material(normal.material);
   const double min_rpm = predictor.min_rpm(*material), max_rpm = predictor.max_rpm(*material);
-  const int field_side = search.field_side();
+  const int field_side = search.field_side_index();
   EdgeDisc inner_normal(memory), disc(memory);
-  search.disc_at(field_side, search.normal_field_side_, inner_normal);
-  search.disc_at(edge.side, search.normal_disc_, disc);
+  search.pass_at(search.normal_field_side_, search.normal_disc_, inner_normal, disc);
   search.profile(inner_normal, disc, 1.0, result.normal_profile);
 
   // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within ±π.
