@@ -61,6 +61,25 @@ TEST_F(DefaultTable, WorkingWidthsDoNotMoveWithTheTrayWidth) {
   }
 }
 
+// The bundled machine's stated setting (scenes/default.toml [inlet], tools/run-default.sh): Urea at
+// 600 rpm on an 11 m bout meets CV <= 10 % (8.0 %; its 95 % interval within the standard 15 %), in one
+// band of bout widths from 1 m past 11 m (docs/building-tables.md "Choosing the drop point": every
+// material and row but one spreads one such band).
+TEST_F(DefaultTable, TheStatedSettingIsOneBandWithinTenPercent) {
+  spread_prediction_def def = spread_prediction_def_default();
+  def.material = "Urea";
+  def.rpm = 600.0;
+  def.bout_width_m = 11.0;
+  def.cv_target_percent = 10.0;
+  spread_prediction r{};
+  ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK) << spread_last_error_detail();
+  EXPECT_LE(r.cv_percent + 1.96 * r.cv_se_percent, 15.0);
+  EXPECT_LE(r.cv_percent, 10.0);
+  ASSERT_EQ(r.band_count_to_and_fro, 1);
+  EXPECT_EQ(r.bands_to_and_fro[0].lower_m, 1.0);
+  EXPECT_GE(r.bands_to_and_fro[0].upper_m, 11.0);
+}
+
 // The answer's uncertainty on every row: the 95 % interval of the to-and-fro first band's upper end within
 // ±0.5 m (lookup_builder runs each DEM row until it is: sweep.working_width_ci_m), and the headline's
 // interval finite.
