@@ -1,5 +1,9 @@
 #include "lookup_builder/table_build.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
@@ -15,6 +19,7 @@
 #include <thread>
 
 #include "libspread/io/tables/table_writer.hpp"
+#include "libspread/io/tables/writer_lock.hpp"
 #include "lookup_builder/progress.hpp"
 #include "lookup_builder/run_source.hpp"
 
@@ -128,19 +133,45 @@ std::vector<std::string> table_conflicts(tables::TableWriter& writer, const scen
   return out;
 }
 
+// Where a build writes: beside the table it makes. The table itself changes only by a rename of this file
+// over it (rename(2) is atomic on POSIX file systems), so a reader opens either the previous complete
+// table or the new one, never a file in mid-transaction, whatever moment a build is killed at. A killed
+// build's staging file keeps its finished runs, and the next build of the same table resumes from it.
+std::string staging_path_of(const std::string& path) { return path + ".building"; }
+
+// What the staging file was copied from: the table's device, inode, size and modification time, or
+// "absent". A staging file is resumed only while the table is still the one it was copied from.
+constexpr const char* kStagingBaseKey = "staging_base";
+
+std::string file_identity(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || st.st_size == 0) return "absent";
+  return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + ":" + std::to_string(st.st_size) + ":" +
+         std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec);
+}
+
+// The table's new state made durable before and after it takes the table's name (a crash right after the
+// rename must not leave a name pointing at unwritten data): the file's data, then the directory entry.
+void sync_path(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 }  // namespace
 
 struct SweepWriter::Impl {
   Impl(std::ostream* out, bool terminal, int total) : progress(out, terminal, total) {}
-  // When a --rebuild replaces a file built from another scene, `existing` keeps the file named by the
-  // user (summary.output_path) open and locked while the new table is written to `writer` at
-  // `staging_path`, renamed over it once every run is written: until then the old table stays intact.
-  std::optional<tables::TableWriter> existing;
-  std::optional<tables::TableWriter> writer;
+  // The table's own writer lock, held for the build: a second builder (or any TableWriter) of the same
+  // table is refused, and nothing writes the table while this build replaces it.
+  std::optional<tables::WriterLock> table_lock;
+  std::optional<tables::TableWriter> writer;  // on the staging file
   std::string staging_path;
   Progress progress;
   BuildSummary summary;
   bool rebuild = false;
+  bool changed = false;          // the staging file differs from the table (runs written, rebuilt, resumed)
   std::size_t pending_done = 0;  // pending runs written (or found already written)
   std::string scene_hash;
 };
@@ -152,13 +183,29 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
   impl_->summary.output_path = path;
   impl_->rebuild = options.rebuild;
   impl_->scene_hash = scene.hash();
-  impl_->writer.emplace(path);
-  if (impl_->writer->recovered_interrupted_write() && options.progress != nullptr) {
-    *options.progress << "lookup_builder: " << path
-                      << ": rolled back a write that was interrupted mid-transaction; the file is as after its last "
-                         "finished run\n";
+  impl_->staging_path = staging_path_of(path);
+  // The table as it is, checked before anything is written: ours, of this version, whole (a table left
+  // with a rollback journal by an older builder is rolled back here), and no other writer on it.
+  const bool table_exists = file_identity(path) != "absent";
+  if (table_exists) tables::TableWriter check(path);
+  impl_->table_lock.emplace(path);
+  impl_->writer.emplace(impl_->staging_path);
+  tables::TableWriter& writer = *impl_->writer;
+  const std::string base = file_identity(path);
+  const std::optional<std::string> staged_base = writer.stored_meta(kStagingBaseKey);
+  if (staged_base && *staged_base == base) {
+    impl_->changed = true;
+    if (options.progress != nullptr) {
+      *options.progress << "lookup_builder: " << path << ": resuming the build interrupted in "
+                        << impl_->staging_path << "\n";
+    }
+  } else if (table_exists) {
+    writer.copy_from(path);
+  } else {
+    writer.clear();
   }
-  const std::vector<std::string> conflicts = table_conflicts(*impl_->writer, scene);
+  writer.write_meta(kStagingBaseKey, base);
+  const std::vector<std::string> conflicts = table_conflicts(writer, scene);
   if (!conflicts.empty()) {
     if (!options.rebuild) {
       std::string message = path + ": the file was built from another scene; refusing to mix its rows with this one "
@@ -167,17 +214,16 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
       for (std::size_t i = 0; i < shown; ++i) message += "\n  " + conflicts[i];
       if (conflicts.size() > shown) message += "\n  ... and " + std::to_string(conflicts.size() - shown) + " more";
       message += "\nwrite to a new file (--output), or pass --rebuild to replace this table once the new one is complete";
+      impl_->writer.reset();
+      std::remove(impl_->staging_path.c_str());
       throw BuildConflictError(message);
     }
-    // Rebuild from scratch into a staging file beside it; the old table is replaced only when complete.
-    impl_->existing = std::move(impl_->writer);
-    impl_->writer.reset();
-    impl_->staging_path = path + ".rebuild";
-    std::remove(impl_->staging_path.c_str());
-    std::remove((impl_->staging_path + "-journal").c_str());
-    impl_->writer.emplace(impl_->staging_path);
+    // Rebuilt from scratch in the staging file; the old table is replaced only when the new one is complete.
+    writer.clear();
+    writer.write_meta(kStagingBaseKey, base);
+    impl_->changed = true;
   }
-  tables::TableWriter& writer = *impl_->writer;
+  if (options.rebuild) impl_->changed = true;
   writer.write_machine(scene::table_machine(scene.machine));
   std::vector<tables::Material> rows;
   for (const scene::Material* m : scene.sweep_materials()) rows.push_back(*m);
@@ -190,6 +236,8 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
     }
     pending_.push_back(job);
   }
+  if (!pending_.empty()) impl_->changed = true;
+  if (writer.stored_meta("machine_scene_hash") != impl_->scene_hash) impl_->changed = true;
 }
 
 SweepWriter::~SweepWriter() = default;
@@ -217,18 +265,28 @@ void SweepWriter::failed(const SweepJob& job, const std::string& message) {
 
 BuildSummary SweepWriter::finish() {
   impl_->progress.close();
-  if (impl_->pending_done != pending_.size()) return impl_->summary;  // a run failed: not complete
-  // The scene that completed this file; a failed or interrupted build leaves the previous value.
-  impl_->writer->write_meta("machine_scene_hash", impl_->scene_hash);
-  if (!impl_->staging_path.empty()) {
+  if (!impl_->writer) return impl_->summary;  // already finished
+  tables::TableWriter& writer = *impl_->writer;
+  // The scene that completed this file; a failed build keeps the previous value (its finished runs are
+  // kept all the same).
+  if (impl_->pending_done == pending_.size()) writer.write_meta("machine_scene_hash", impl_->scene_hash);
+  const std::string& path = impl_->summary.output_path;
+  if (!impl_->changed) {
+    // Nothing to do: the table stays byte-identical and the staging copy goes.
     impl_->writer.reset();
-    if (std::rename(impl_->staging_path.c_str(), impl_->summary.output_path.c_str()) != 0) {
-      throw tables::TableError(tables::TableErrorKind::kIo, impl_->summary.output_path + ": cannot replace it with the rebuilt " +
-                                                                impl_->staging_path + ": " + std::strerror(errno));
-    }
-    impl_->existing.reset();
-    impl_->staging_path.clear();
+    std::remove(impl_->staging_path.c_str());
+    return impl_->summary;
   }
+  writer.erase_meta(kStagingBaseKey);
+  sync_path(impl_->staging_path, O_RDONLY);
+  if (std::rename(impl_->staging_path.c_str(), path.c_str()) != 0) {
+    throw tables::TableError(tables::TableErrorKind::kIo,
+                             path + ": cannot replace it with the new table " + impl_->staging_path + ": " + std::strerror(errno));
+  }
+  const std::size_t slash = path.rfind('/');
+  sync_path(slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash)), O_RDONLY | O_DIRECTORY);
+  impl_->writer.reset();  // after the rename: no other builder can take the staging name in between
+  impl_->table_lock.reset();
   return impl_->summary;
 }
 

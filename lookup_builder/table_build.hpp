@@ -49,9 +49,11 @@ struct SweepJob {
 // Materials in sweep order, rpm rows within each: the same list in every process of an MPI build.
 std::vector<SweepJob> sweep_jobs(const scene::Scene& scene);
 
-// The writing side of a sweep: opens (or creates) the file, refusing one that is not ours before
-// anything is computed; records machine and materials; knows which runs are pending; writes each
-// finished run in its own transaction and reports progress.
+// The writing side of a sweep: checks the table (refusing one that is not ours before anything is
+// computed) and locks it; writes into a staging copy beside it (FILE.building, resumed after a killed
+// build); records machine and materials; knows which runs are pending; writes each finished run in its
+// own transaction and reports progress; finish() renames the staging file over the table (or, with
+// nothing to do, removes it and leaves the table byte-identical).
 class SweepWriter {
  public:
   SweepWriter(const scene::Scene& scene, const BuildOptions& options);

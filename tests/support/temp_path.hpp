@@ -1,6 +1,7 @@
 #pragma once
 // Test helpers shared by the suites: a unique path in the temp directory, removed (with any SQLite
-// journal) at scope exit, and whole-file byte reads and writes for damaging files on purpose.
+// journal and a table build's staging file) at scope exit, and whole-file byte reads and writes for
+// damaging files on purpose.
 #include <unistd.h>
 
 #include <filesystem>
@@ -30,8 +31,7 @@ class TempPath {
  private:
   void remove() const {
     std::error_code ec;
-    std::filesystem::remove(path_, ec);
-    std::filesystem::remove(path_ + "-journal", ec);
+    for (const char* suffix : {"", "-journal", ".building", ".building-journal"}) std::filesystem::remove(path_ + suffix, ec);
   }
   std::string path_;
 };

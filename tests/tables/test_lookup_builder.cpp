@@ -1,9 +1,17 @@
 // lookup_builder's sweep on the bundled default scene: deterministic, resumable, explicit about DEM.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <random>
 #include <sstream>
+#include <thread>
 
 #include "libspread/io/scene/scene.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -11,6 +19,8 @@
 #include "lookup_builder/run_source.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "tests/support/temp_path.hpp"
+
+extern char** environ;
 
 namespace spread::lookup {
 namespace {
@@ -69,8 +79,11 @@ TEST(LookupBuilder, RerunSkipsFinishedRunsAndRebuildRedoesThem) {
   options.progress = &progress;
   const int runs = static_cast<int>(scene.materials.size() * scene.sweep.rpm.size());  // 3 x 3
   EXPECT_EQ(build_tables(scene, options).runs_written, runs);
+  const std::vector<char> built = spread::testing::file_bytes(file.path());
   const BuildSummary again = build_tables(scene, options);
   EXPECT_EQ(again.runs_written, 0);
+  EXPECT_EQ(spread::testing::file_bytes(file.path()), built) << "a rerun with nothing to do changed the file";
+  EXPECT_FALSE(std::filesystem::exists(file.path() + ".building"));
   EXPECT_EQ(again.runs_skipped, runs);
   EXPECT_NE(progress.str().find("skipped"), std::string::npos);
   // An extra rpm row is the only run made on the third pass.
@@ -159,7 +172,7 @@ TEST(LookupBuilderConflicts, RebuildReplacesTheTableOnlyWhenTheNewOneIsComplete)
   EXPECT_DOUBLE_EQ(table.machine.disc_radius_m, case2.machine.disc_radius_m);
   EXPECT_EQ(table.runs.size(), case2.sweep_materials().size() * case2.sweep_rpms().size());  // no case1 rows left
   for (const tables::Run& run : table.runs) EXPECT_EQ(run.inputs_hash, case2.run_inputs_hash(*case2.find_material(run.material), run.rpm));
-  EXPECT_FALSE(std::filesystem::exists(file.path() + ".rebuild"));
+  EXPECT_FALSE(std::filesystem::exists(file.path() + ".building"));
 }
 
 TEST(LookupBuilderConflicts, ASecondBuilderIsRefusedBeforeItComputes) {
@@ -233,6 +246,60 @@ TEST(SceneBounds, AbsurdValuesAndAMissingDiscFileAreRefusedAtLoad) {
     EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
   }
 }
+
+// lookup_builder killed (SIGKILL) at a random moment of a --rebuild, again and again: the table it
+// replaces always opens at once, whole (every run), without a journal to roll back — the build writes a
+// staging file and renames it into place — and a build after the kills completes and leaves no staging
+// file. The delays are seeded; where the kills land depends on the machine, the assertions do not.
+void kill_builds_at_random(int kills) {
+  TempPath table("killed_again.sqlite");
+  const std::string scene_path = std::string(SPREAD_SOURCE_DIR) + "/scenes/default.toml";
+  std::vector<std::string> args = {LOOKUP_BUILDER_EXE, scene_path, "--output", table.path(), "--rebuild",
+                                   "--set", "sweep.source=\"analytic\"", "--set", "sweep.samples_per_run=4000",
+                                   "--set", "sweep.rpm=[450, 500, 550, 600, 650, 700, 750]"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t quiet;  // the builder's progress lines to /dev/null
+  posix_spawn_file_actions_init(&quiet);
+  posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
+  const auto run = [&](std::chrono::microseconds kill_after) {
+    pid_t pid = 0;
+    ASSERT_EQ(posix_spawn(&pid, LOOKUP_BUILDER_EXE, &quiet, nullptr, argv.data(), environ), 0);
+    if (kill_after.count() >= 0) {
+      std::this_thread::sleep_for(kill_after);
+      kill(pid, SIGKILL);
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  };
+  run(std::chrono::microseconds(-1));  // the first table, complete
+  const std::size_t runs = tables::read_table_file(table.path()).runs.size();
+  ASSERT_EQ(runs, 21u);
+  std::mt19937 random(1);
+  // A whole build takes about 0.1 s here: kills spread over it, and some after it.
+  std::uniform_int_distribution<int> delay_us(0, 150000);
+  int interrupted = 0;  // kills that landed inside a build (its staging file left behind)
+  for (int k = 0; k < kills; ++k) {
+    run(std::chrono::microseconds(delay_us(random)));
+    if (std::filesystem::exists(table.path() + ".building")) ++interrupted;
+    EXPECT_FALSE(std::filesystem::exists(table.path() + "-journal")) << "kill " << k;
+    try {
+      EXPECT_EQ(tables::read_table_file(table.path()).runs.size(), runs) << "kill " << k;
+    } catch (const tables::TableError& e) {
+      ADD_FAILURE() << "kill " << k << ": the table does not open: " << e.what();
+    }
+  }
+  EXPECT_GT(interrupted, 0) << "no kill landed inside a build";
+  run(std::chrono::microseconds(-1));
+  posix_spawn_file_actions_destroy(&quiet);
+  EXPECT_EQ(tables::read_table_file(table.path()).runs.size(), runs);
+  EXPECT_FALSE(std::filesystem::exists(table.path() + ".building"));
+}
+
+TEST(LookupBuilderKills, TenRandomKillsLeaveTheTableWhole) { kill_builds_at_random(10); }
+TEST(LookupBuilderKills, HundredRandomKillsLeaveTheTableWhole) { kill_builds_at_random(100); }
 
 }  // namespace
 }  // namespace spread::lookup

@@ -1,6 +1,6 @@
 // lookup_builder with the DEM source: runs are deterministic and normalised as the table
-// format says; a build killed mid-run (SIGKILL) resumes to the same content as an uninterrupted build;
-// threads give the same file as one process; damaged, truncated and foreign files are refused and left
+// format says; a build killed mid-run (SIGKILL) leaves the table as it was and resumes to the same content
+// as an uninterrupted build; threads give the same file as one process; damaged, truncated and foreign files are refused and left
 // byte-identical; finished runs survive the MPI message round trip.
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -240,11 +240,22 @@ int runs_in(const std::string& path) {
   }
 }
 
-TEST(LookupDem, BuildKilledMidRunResumesToTheSameContent) {
-  // Slower runs than the other tests so the kill lands inside a run: 4 rows of ~1 s.
+// A build writes into TABLE.building and renames it over the table when done: killed at any moment, the
+// table is the previous complete one, which readers open at once (no journal to roll back), and the next
+// build resumes from the staging file's finished runs.
+TEST(LookupDem, BuildKilledMidRunLeavesTheTableWholeAndResumesToTheSameContent) {
+  // Slower runs than the other tests so the kill lands inside a run: rows of ~1 s.
+  const std::vector<std::string> first = {"sweep.materials=[\"Urea\"]", "sweep.rpm=[500]", "numerics.duration_s=0.3"};
   const std::vector<std::string> overrides = {"sweep.materials=[\"Urea\"]", "sweep.rpm=[500, 550, 600, 650]",
                                               "numerics.duration_s=0.3"};
   TempPath killed("dem_killed"), reference("dem_reference");
+  const std::string staging = killed.path() + ".building";
+  BuildOptions options;
+  options.output_path = killed.path();
+  ASSERT_EQ(build_tables(scene::load_scene_file(kTinyScene, first), options).runs_written, 1);
+  const std::vector<char> complete = file_bytes(killed.path());
+  EXPECT_FALSE(std::filesystem::exists(staging));
+
   std::vector<std::string> args = {LOOKUP_BUILDER_EXE, kTinyScene, "--output", killed.path()};
   for (const std::string& o : overrides) {
     args.push_back("--set");
@@ -255,11 +266,11 @@ TEST(LookupDem, BuildKilledMidRunResumesToTheSameContent) {
   argv.push_back(nullptr);
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, LOOKUP_BUILDER_EXE, nullptr, nullptr, argv.data(), environ), 0);
-  // Kill as soon as the first run is committed: the second is then in progress.
+  // Kill as soon as a new run is committed in the staging file: the next is then in progress.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   int status = 0;
   bool exited = false;
-  while (runs_in(killed.path()) < 1 && std::chrono::steady_clock::now() < deadline) {
+  while (runs_in(staging) < 2 && std::chrono::steady_clock::now() < deadline) {
     if (waitpid(pid, &status, WNOHANG) == pid) {
       exited = true;
       break;
@@ -270,21 +281,29 @@ TEST(LookupDem, BuildKilledMidRunResumesToTheSameContent) {
   ASSERT_EQ(kill(pid, SIGKILL), 0);
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFSIGNALED(status));
-  const int survived = runs_in(killed.path());
-  EXPECT_GE(survived, 1);
+  // The table is the last complete one, byte for byte, and opens at once.
+  EXPECT_EQ(file_bytes(killed.path()), complete);
+  EXPECT_FALSE(std::filesystem::exists(killed.path() + "-journal"));
+  EXPECT_EQ(tables::read_table_file(killed.path()).runs.size(), 1u);
+  const int survived = runs_in(staging);
+  EXPECT_GE(survived, 2);
   EXPECT_LT(survived, 4) << "kill came too late to interrupt a run";
 
   // Resume: only the missing runs are made.
   const scene::Scene scene = scene::load_scene_file(kTinyScene, overrides);
-  BuildOptions options;
-  options.output_path = killed.path();
   const BuildSummary resumed = build_tables(scene, options);
   EXPECT_EQ(resumed.runs_skipped, survived);
   EXPECT_EQ(resumed.runs_written, 4 - survived);
-  // A rerun skips everything; --rebuild is needed to redo.
+  EXPECT_FALSE(std::filesystem::exists(staging));
+  // A rerun skips everything and leaves the file byte-identical; --rebuild is needed to redo.
+  const std::vector<char> built = file_bytes(killed.path());
   EXPECT_EQ(build_tables(scene, options).runs_written, 0);
+  EXPECT_EQ(file_bytes(killed.path()), built);
+  EXPECT_FALSE(std::filesystem::exists(staging));
 
+  // The same two builds without a kill.
   options.output_path = reference.path();
+  build_tables(scene::load_scene_file(kTinyScene, first), options);
   build_tables(scene, options);
   expect_same_runs(tables::read_table_file(killed.path()), tables::read_table_file(reference.path()));
 }

@@ -1,15 +1,8 @@
 #include "libspread/io/tables/table_writer.hpp"
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <unistd.h>
+#include <sqlite3.h>
 
-#include <cerrno>
-#include <cstring>
 #include <ctime>
-#include <fstream>
-#include <sstream>
 
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
@@ -18,6 +11,7 @@
 #include "libspread/io/tables/table_file.hpp"
 #include "libspread/io/tables/table_rows.hpp"
 #include "libspread/io/tables/table_schema.hpp"
+#include "libspread/io/tables/writer_lock.hpp"
 
 namespace spread::tables {
 
@@ -25,57 +19,6 @@ using detail::Connection;
 using detail::Statement;
 
 namespace {
-
-// The pid holding a flock(2) on the inode, from /proc/locks ("1: FLOCK  ADVISORY  WRITE 4242 08:01:1234 0 EOF");
-// 0 when it cannot be told.
-long flock_holder_pid(ino_t inode) {
-  std::ifstream locks("/proc/locks");
-  std::string line;
-  while (std::getline(locks, line)) {
-    std::istringstream fields(line);
-    std::string number, type, advisory, access, device;
-    long pid = 0;
-    if (!(fields >> number >> type)) continue;
-    if (type == "->") fields >> type;  // a waiter's line
-    if (type != "FLOCK" || !(fields >> advisory >> access >> pid >> device)) continue;
-    const std::size_t colon = device.rfind(':');
-    if (colon != std::string::npos && device.substr(colon + 1) == std::to_string(inode)) return pid;
-  }
-  return 0;
-}
-
-// The writer lock: an exclusive flock(2) on the table file itself, held while the writer lives. flock
-// locks are independent of the POSIX record locks SQLite takes, and the kernel drops them when the
-// process dies, so a killed builder never leaves a stale lock. The descriptor is closed only after
-// SQLite's connection (closing it earlier would not matter for flock, but no fd SQLite uses is ours).
-class WriterLock {
- public:
-  explicit WriterLock(const std::string& path) {
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0644);
-    if (fd_ < 0) throw TableError(TableErrorKind::kIo, path + ": cannot open for writing: " + std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      const int error = errno;
-      struct stat st {};
-      const long pid = ::fstat(fd_, &st) == 0 ? flock_holder_pid(st.st_ino) : 0;
-      ::close(fd_);
-      fd_ = -1;
-      if (error == EWOULDBLOCK) {
-        throw TableBusyError(TableErrorKind::kIo, path + ": another writer (" +
-                                                      (pid > 0 ? "pid " + std::to_string(pid) : std::string("pid unknown")) +
-                                                      ") is writing this table file; wait for it to finish");
-      }
-      throw TableError(TableErrorKind::kIo, path + ": cannot lock for writing: " + std::strerror(error));
-    }
-  }
-  ~WriterLock() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  WriterLock(const WriterLock&) = delete;
-  WriterLock& operator=(const WriterLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
 
 // Checks an existing non-empty file before anything opens it for writing: it must be SQLite, ours and
 // of this format version. Read-only, so a refused file stays byte-identical.
@@ -242,6 +185,38 @@ void TableWriter::write_meta(const std::string& key, const std::string& value) {
   upsert.bind(1, key);
   upsert.bind(2, value);
   upsert.step();
+}
+
+std::optional<std::string> TableWriter::stored_meta(const std::string& key) {
+  Statement query(*impl_->connection, "SELECT value FROM meta WHERE key = ?");
+  query.bind(1, key);
+  if (!query.step()) return std::nullopt;
+  return query.column_text(0);
+}
+
+void TableWriter::erase_meta(const std::string& key) {
+  Statement remove(*impl_->connection, "DELETE FROM meta WHERE key = ?");
+  remove.bind(1, key);
+  remove.step();
+}
+
+void TableWriter::copy_from(const std::string& source) {
+  check_existing_file_is_ours(source, detail::inspect_table_file(source, /*allow_missing=*/false));
+  Connection from(source, Connection::Mode::kReadOnly);
+  sqlite3* to = impl_->connection->handle();
+  sqlite3_backup* backup = sqlite3_backup_init(to, "main", from.handle(), "main");
+  if (backup == nullptr) impl_->connection->fail(sqlite3_errcode(to), "copying " + source + " into it");
+  const int stepped = sqlite3_backup_step(backup, -1);
+  const int finished = sqlite3_backup_finish(backup);
+  if (stepped != SQLITE_DONE) impl_->connection->fail(stepped, "copying " + source + " into it");
+  if (finished != SQLITE_OK) impl_->connection->fail(finished, "copying " + source + " into it");
+}
+
+void TableWriter::clear() {
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  for (const char* table : {"runs", "materials", "machine", "meta"}) db.exec(std::string("DELETE FROM ") + table);
+  transaction.commit();
 }
 
 bool TableWriter::has_run(const std::string& material, double rpm) {

@@ -11,15 +11,9 @@
 #include <vector>
 
 #include "libspread/io/tables/table_format.hpp"
+#include "libspread/io/tables/writer_lock.hpp"  // TableBusyError: another process holds the writer lock
 
 namespace spread::tables {
-
-// Another process holds the file's writer lock (an exclusive flock(2) on the table file, taken for the
-// writer's lifetime): two writers never interleave their runs. The message names the holder's pid.
-class TableBusyError : public TableError {
- public:
-  using TableError::TableError;
-};
 
 // write_run() of a (material, rpm) that is already stored, without the replace flag.
 class RunExistsError : public std::runtime_error {
@@ -59,6 +53,16 @@ class TableWriter {
   // material_problem() objects to any of them.
   void write_materials(const std::vector<Material>& materials);
   void write_meta(const std::string& key, const std::string& value);
+  std::optional<std::string> stored_meta(const std::string& key);
+  void erase_meta(const std::string& key);
+
+  // Replaces the whole content of this file with that of the table file at `source` (SQLite's online
+  // backup: page by page, one transaction), which must be a table of ours of this format version that
+  // passes quick_check (TableError otherwise, this file unchanged). For a builder that writes into a
+  // copy of a table and puts the copy in its place only when done.
+  void copy_from(const std::string& source);
+  // Every row of every table removed (the schema stays): a table built from scratch in this file.
+  void clear();
 
   bool has_run(const std::string& material, double rpm);
   // Throws RunExistsError if the run exists and replace is false; std::invalid_argument for a run
