@@ -91,9 +91,12 @@ TEST(CapiOpen, FileWithoutRunsIsEmpty) {
   const std::string p = temp_path("no-runs.sqlite");
   spread::testing::write_table_without_runs(p);
   EXPECT_EQ(open_status(p), SPREAD_ERROR_FILE_EMPTY);
-  // The same when every run of a real file is deleted.
+  // Every run of a real file deleted behind the writer's back: its list of runs names the missing ones.
   const std::string q = copy_of_real("runs-deleted.sqlite");
   exec_sql(q, "DELETE FROM runs;");
+  EXPECT_EQ(open_status(q), SPREAD_ERROR_FILE_CORRUPT);
+  // ... and with the list gone too, a table without runs.
+  exec_sql(q, "DELETE FROM meta WHERE key = 'runs_manifest';");
   EXPECT_EQ(open_status(q), SPREAD_ERROR_FILE_EMPTY);
 }
 

@@ -73,6 +73,51 @@ TEST(RowChecksum, EveryChecksummedRowIsVerified) {
   }
 }
 
+// A run deleted or added whole keeps every row's checksum valid; the table's list of runs (meta
+// `runs_manifest`, written with every run) finds it and names the run. A dropped column is a damaged
+// file too, named, not an I/O error.
+TEST(RunsManifest, ADeletedOrAddedRunOrADroppedColumnIsADamagedFileNamed) {
+  const struct {
+    const char* sql;
+    const char* named;
+  } cases[] = {
+      {"DELETE FROM runs WHERE material = 'A' AND rpm = 600", "run A @ 600 rpm is in the table's list of runs but not in `runs`"},
+      {"INSERT INTO runs SELECT material, 500, source, sample_count, record_layout, record_bytes, samples, scene_hash, "
+       "scene_text, effects, dt_contact_s, dt_flight_s, particle_count, software_version, created_utc, stats_json, "
+       "convergence_json, checksum, inputs_hash FROM runs WHERE material = 'A' AND rpm = 450",
+       nullptr},  // its checksum no longer matches its rpm: the row's own check names it first
+      {"ALTER TABLE runs DROP COLUMN checksum", "table `runs` has no column `checksum`"},
+      {"ALTER TABLE materials DROP COLUMN density_kg_m3", "table `materials` has no column `density_kg_m3`"},
+  };
+  for (const auto& c : cases) {
+    TempPath file("manifest.sqlite");
+    write_sample_table(file.path());
+    ASSERT_EQ(read_problem(file.path()), "");
+    raw_exec(file.path(), c.sql);
+    TableErrorKind kind{};
+    const std::string problem = read_problem(file.path(), &kind);
+    ASSERT_FALSE(problem.empty()) << c.sql;
+    EXPECT_EQ(kind, TableErrorKind::kCorrupt) << problem;
+    if (c.named != nullptr) {
+      EXPECT_NE(problem.find(c.named), std::string::npos) << problem;
+    }
+  }
+  // A run added whole with a valid checksum of its own (written by another writer into another file and
+  // copied over): only the list finds it.
+  TempPath file("added.sqlite"), other("other.sqlite");
+  write_sample_table(file.path());
+  write_sample_table(other.path());
+  {
+    TableWriter writer(other.path());
+    writer.write_run(spread::testing::sample_run("B", 600.0, 64));
+  }
+  raw_exec(file.path(), "ATTACH '" + other.path() + "' AS o; INSERT INTO runs SELECT * FROM o.runs WHERE material = 'B' AND rpm = 600");
+  TableErrorKind kind{};
+  const std::string problem = read_problem(file.path(), &kind);
+  EXPECT_EQ(kind, TableErrorKind::kCorrupt) << problem;
+  EXPECT_NE(problem.find("run B @ 600 rpm is in `runs` but not in the table's list of runs"), std::string::npos) << problem;
+}
+
 TEST(Plausibility, ValuesThePredictorWouldRefuseAreAFileProblem) {
   const struct {
     const char* sql;

@@ -1,10 +1,19 @@
 #include "libspread/io/tables/table_reader.hpp"
 
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <iterator>
+#include <string>
+#include <vector>
+
 #include "libspread/io/tables/row_checksum.hpp"
+#include "libspread/io/tables/runs_manifest.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 #include "libspread/io/tables/sqlite_connection.hpp"
 #include "libspread/io/tables/table_file.hpp"
 #include "libspread/io/tables/table_rows.hpp"
+#include "libspread/io/tables/table_schema.hpp"
 
 namespace spread::tables {
 
@@ -34,11 +43,51 @@ void run_quick_check(Connection& db) {
   if (verdict != "ok") raise(TableErrorKind::kCorrupt, db.path(), "PRAGMA quick_check: " + verdict);
 }
 
+std::vector<std::string> columns_of(sqlite3* db, const char* table) {
+  std::vector<std::string> out;
+  sqlite3_stmt* query = nullptr;
+  if (sqlite3_prepare_v2(db, (std::string("PRAGMA table_info(") + table + ")").c_str(), -1, &query, nullptr) != SQLITE_OK) {
+    return out;
+  }
+  while (sqlite3_step(query) == SQLITE_ROW) out.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(query, 1)));
+  sqlite3_finalize(query);
+  return out;
+}
+
+constexpr const char* kTables[] = {"machine", "materials", "runs", "meta"};
+
+// The columns each table must have: those of the schema this build writes (table_schema.hpp), read once
+// from an in-memory database made with it, so the check follows the schema without a list of its own.
+const std::vector<std::vector<std::string>>& schema_columns() {
+  static const std::vector<std::vector<std::string>> columns = [] {
+    std::vector<std::vector<std::string>> out;
+    sqlite3* db = nullptr;
+    if (sqlite3_open_v2(":memory:", &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) == SQLITE_OK &&
+        sqlite3_exec(db, detail::kSchemaSql, nullptr, nullptr, nullptr) == SQLITE_OK) {
+      for (const char* table : kTables) out.push_back(columns_of(db, table));
+    }
+    sqlite3_close(db);
+    return out;
+  }();
+  return columns;
+}
+
+// Every table and every column of the schema present: a damaged schema (a dropped table or column) is a
+// damaged file, named, not an I/O error of the first query that trips over it.
 void require_tables(Connection& db) {
-  for (const char* table : {"machine", "materials", "runs", "meta"}) {
+  const std::vector<std::vector<std::string>>& expected = schema_columns();
+  for (std::size_t t = 0; t < std::size(kTables); ++t) {
+    const char* table = kTables[t];
     Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
     query.bind(1, std::string(table));
     if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), std::string("table `") + table + "` is missing");
+    if (t >= expected.size()) continue;
+    const std::vector<std::string> present = columns_of(db.handle(), table);
+    for (const std::string& column : expected[t]) {
+      if (std::find(present.begin(), present.end(), column) == present.end()) {
+        raise(TableErrorKind::kCorrupt, db.path(), std::string("table `") + table + "` has no column `" + column + "`");
+      }
+    }
   }
 }
 
@@ -125,6 +174,14 @@ TableContents read_table_file(const std::string& path) {
   contents.machine = *machine;
   contents.materials = detail::read_material_rows(db);
   contents.runs = read_runs(db);
+  {
+    // Runs deleted or added outside the writer (tables written before the list existed carry none).
+    Statement manifest(db, std::string("SELECT value FROM meta WHERE key = '") + detail::kRunsManifestKey + "'");
+    if (manifest.step()) {
+      const std::string problem = detail::manifest_problem(manifest.column_text(0), detail::runs_manifest(db));
+      if (!problem.empty()) raise(TableErrorKind::kCorrupt, path, problem);
+    }
+  }
   if (contents.runs.empty()) raise(TableErrorKind::kEmpty, path, "no runs (the table has no launch data)");
   for (const Run& run : contents.runs) {
     bool known = false;

@@ -6,6 +6,7 @@
 
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
+#include "libspread/io/tables/runs_manifest.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 #include "libspread/io/tables/sqlite_connection.hpp"
 #include "libspread/io/tables/table_file.hpp"
@@ -285,6 +286,7 @@ void TableWriter::write_run(const Run& run, bool replace) {
   insert.bind(18, stored_convergence_json(run));
   insert.bind(19, run_checksum(run, blob, kSampleLayout, static_cast<std::int64_t>(kSampleBytes)));
   insert.step();
+  write_meta(detail::kRunsManifestKey, detail::runs_manifest(db));  // in the run's transaction
   transaction.commit();
 }
 
