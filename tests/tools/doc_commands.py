@@ -22,6 +22,8 @@ import shlex
 import subprocess
 import sys
 
+import doc_blocks
+
 MAIN_JOB_TABLES = ("default.sqlite", "default-calibrated.sqlite")
 REFUSAL = re.compile(r"^spread [a-z ]+: error: ")
 
@@ -39,21 +41,7 @@ def blocks_outside_walkthrough(text):
 
 
 def commands_and_expected(block):
-    commands, expected = [], []
-    lines = block.splitlines()
-    i = 0
-    while i < len(lines):
-        line = lines[i]
-        if line.startswith(("spread ", "mkdir ")) and not REFUSAL.match(line):
-            command = line
-            while command.endswith("\\"):
-                i += 1
-                command = command[:-1] + " " + lines[i].strip()
-            commands.append(command)
-        elif line.strip() and line.strip() != "...":
-            expected.append(line.rstrip())
-        i += 1
-    return commands, expected
+    return doc_blocks.commands_and_expected(block, ("spread ", "mkdir "), lambda line: not REFUSAL.match(line))
 
 
 def tables_read(commands):

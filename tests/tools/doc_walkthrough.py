@@ -17,6 +17,8 @@ import shutil
 import subprocess
 import sys
 
+import doc_blocks
+
 FIXTURE_COMMAND = ["scenes/default.toml", "--output", "default.sqlite", "--jobs", "2"]
 
 
@@ -28,21 +30,7 @@ def blocks_of_walkthrough(text):
 
 
 def commands_and_expected(block):
-    commands, expected = [], []
-    lines = block.splitlines()
-    i = 0
-    while i < len(lines):
-        line = lines[i]
-        if line.startswith(("spread ", "lookup_builder ", "mkdir ")):
-            command = line
-            while command.endswith("\\"):
-                i += 1
-                command = command[:-1] + " " + lines[i].strip()
-            commands.append(command)
-        elif line.strip() and line.strip() != "...":
-            expected.append(line.rstrip())
-        i += 1
-    return commands, expected
+    return doc_blocks.commands_and_expected(block, ("spread ", "lookup_builder ", "mkdir "))
 
 
 def main():
