@@ -300,7 +300,9 @@ void run(const Options& o, int& exit_code) {
   spread_tables* raw = nullptr;
   const spread_status opened = spread_open(o.tables.c_str(), &raw);
   if (opened != SPREAD_OK) {
-    std::cerr << "spread predict: error: --tables '" << o.tables << "': " << spread_status_str(opened) << "\n";
+    // The status, then what exactly (the C API's detail names the row, run or column at fault).
+    std::cerr << "spread predict: error: --tables '" << o.tables << "': " << spread_status_str(opened) << ": "
+              << spread_last_error_detail() << "\n";
     exit_code = opened == SPREAD_ERROR_IO || opened == SPREAD_ERROR_OUT_OF_MEMORY ? spread::cli::kExitFailure
                                                                                   : spread::cli::kExitUsage;
     return;
