@@ -221,8 +221,8 @@ void BM_PredictCApiFileDiscs(benchmark::State& state) {
   predict_file(state, path, def);
 }
 
-// spread_compensate_wind on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 8 m bout,
-// range(0) = lateral wind (m/s). Counter cv_percent: the CV at the setting found.
+// spread_compensate_wind on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 11 m bout against
+// CV <= 10 % (the bundled machine's stated setting), range(0) = lateral wind (m/s). Counter cv_percent: the CV at the setting found.
 void BM_CompensateWindCApiFile(benchmark::State& state) {
   const char* path = bench_table(state);
   if (path == nullptr) return;
