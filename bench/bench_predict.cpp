@@ -194,6 +194,45 @@ const char* bench_table(benchmark::State& state) {
   return path;
 }
 
+// spread_open of a real table file (SPREAD_BENCH_TABLE) with a counting allocator: the time to open
+// and close it, and counters handle_bytes (every block the handle holds after spread_open, its own
+// workspace included) and workspace_bytes (one more workspace, spread_workspace_create).
+struct CountingMemory {
+  std::size_t held = 0;
+  static void* alloc(void* user, std::size_t size, std::size_t alignment) {
+    static_cast<CountingMemory*>(user)->held += size;
+    return std::aligned_alloc(alignment < alignof(std::max_align_t) ? alignof(std::max_align_t) : alignment,
+                              (size + alignment - 1) / alignment * alignment);
+  }
+  static void release(void* user, void* pointer, std::size_t size) {
+    static_cast<CountingMemory*>(user)->held -= size;
+    std::free(pointer);
+  }
+};
+
+void BM_OpenFile(benchmark::State& state) {
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
+  CountingMemory memory;
+  const spread_allocator allocator{&CountingMemory::alloc, &CountingMemory::release, &memory};
+  std::size_t handle_bytes = 0, workspace_bytes = 0;
+  for (auto _ : state) {
+    spread_tables* tables = nullptr;
+    if (spread_open_with_allocator(path, &allocator, &tables) != SPREAD_OK) {
+      state.SkipWithError(spread_last_error_detail());
+      return;
+    }
+    handle_bytes = memory.held;
+    spread_workspace* workspace = nullptr;
+    spread_workspace_create(tables, &workspace);
+    workspace_bytes = memory.held - handle_bytes;
+    spread_workspace_free(workspace);
+    spread_close(tables);
+  }
+  state.counters["handle_bytes"] = static_cast<double>(handle_bytes);
+  state.counters["workspace_bytes"] = static_cast<double>(workspace_bytes);
+}
+
 // A real table file (SPREAD_BENCH_TABLE); range(0) = lateral wind (m/s), range(1) = rpm (560: between two
 // rows of the default scene's sweep, both rows fly; 600: on a row, that row alone).
 void BM_PredictCApiFile(benchmark::State& state) {
@@ -276,14 +315,14 @@ void BM_PredictEdgeCApiFile(benchmark::State& state) {
   spread_close(tables);
 }
 
-// The landing cache's cost and error on a real table file (SPREAD_BENCH_TABLE).
-void BM_PredictLandingCache(benchmark::State& state) {
+// The landing grid's cost and error on a real table file (SPREAD_BENCH_TABLE).
+void BM_PredictLandingGrid(benchmark::State& state) {
   const char* path = bench_table(state);
   if (path == nullptr) return;
   spread::predict::Predictor p(spread::tables::read_table_file(path));
   spread::predict::Predictor reference(spread::tables::read_table_file(path));
   reference.set_flight_settings(spread::predict::reference_flight_settings());
-  p.set_landing_cache_enabled(state.range(1) != 0);
+  p.set_landing_grid_enabled(state.range(1) != 0);
   spread::predict::PredictionRequest r;
   r.material = p.material(p.find_material(kMaterial).value_or(0)).name;
   r.rpm = kRpm;
@@ -305,7 +344,7 @@ void BM_PredictLandingCache(benchmark::State& state) {
   state.counters["max_landing_error_m"] = error_m;
   state.counters["flights"] = out.flights;
   state.counters["working_width_m"] = out.working_width_to_and_fro_m;
-  state.counters["cache_bytes"] = static_cast<double>(p.landing_cache_bytes());
+  state.counters["grid_bytes"] = static_cast<double>(p.landing_grid_bytes());
 }
 
 BENCHMARK(BM_PredictDormandPrince)->Arg(256)->Arg(512)->Unit(benchmark::kMicrosecond);
@@ -314,6 +353,7 @@ BENCHMARK(BM_PredictCApiDrag)
     ->ArgsProduct({{512, 2000}, {0, 3}, {0, 1}})
     ->ArgNames({"samples", "wind", "dem"})
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OpenFile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictCApiFile)
     ->ArgsProduct({{0, 3}, {560, 600}})
     ->ArgNames({"wind", "rpm"})
@@ -324,9 +364,9 @@ BENCHMARK(BM_PredictCApiFileDiscs)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictEdgeCApiFile)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PredictLandingCache)
-    ->ArgsProduct({{0, 3}, {0, 1}})
-    ->ArgNames({"wind", "cache"})
+BENCHMARK(BM_PredictLandingGrid)
+    ->ArgsProduct({{0, 3, 10}, {0, 1}})
+    ->ArgNames({"wind", "grid"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictRk4Fixed1ms)->Arg(256)->Unit(benchmark::kMillisecond);
 

@@ -460,7 +460,7 @@ TEST(Predictor, EachDiscAtItsOwnSettingIsThatDiscOfTheAlikeMachine) {
       {"urea", {500.0, 0.0}, {700.0, 0.0}},    // two rows, no row shared
   };
   for (const bool cached : {true, false}) {
-    predictor.set_landing_cache_enabled(cached);
+    predictor.set_landing_grid_enabled(cached);
     for (const Case& c : cases) {
       for (const double wind_x_m_s : {0.0, 2.0}) {
         const std::string where = std::string(c.material) + " " + std::to_string(c.left.rpm) + "/" +
@@ -579,8 +579,8 @@ TEST(Predictor, DropPointTurnIsTheTableTurnedAboutTheDiscAxis) {
   Predictor turned_table(std::move(turned_contents));
   Predictor predictor(testing::synthetic_contents());
   for (const bool cached : {true, false}) {
-    predictor.set_landing_cache_enabled(cached);
-    turned_table.set_landing_cache_enabled(cached);
+    predictor.set_landing_grid_enabled(cached);
+    turned_table.set_landing_grid_enabled(cached);
     for (const double rpm : {700.0, 640.0}) {
       for (const double wind_x_m_s : {0.0, 3.0}) {
         PredictionRequest r = request("can", rpm);

@@ -119,7 +119,7 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   for (std::size_t k = 0; k < runs.size(); ++k) cell_offset_[k + 1] += cell_offset_[k];
   cell_mean_.assign(cell_offset_.back(), tables::LaunchSample{});
   for (const auto& rows : materials_) assign_cells(rows);
-  build_landing_caches(memory);
+  build_landing_grids(memory);
 
   own_workspace_.emplace(*this, memory);
 }
@@ -138,83 +138,49 @@ std::size_t Predictor::interpolate(std::size_t lower_run, std::size_t upper_run,
 }
 
 namespace {
-// Relative and absolute tolerance (m, m/s) of the landing cache's flights.
-constexpr double kCacheTolerance = 1e-4;
+// Relative and absolute tolerance (m, m/s) of the landing grid's flights: flown once, tighter than a
+// flight in predict() at little cost, so that the interpolation is the grid's only error.
+constexpr double kGridTolerance = 1e-7;
 }  // namespace
 
-void Predictor::build_landing_caches(std::pmr::memory_resource* memory) {
-  const auto& runs = contents_.runs;
-  row_cache_.clear();
-  pair_cache_.clear();
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    row_cache_.emplace_back(memory);
-    pair_cache_.emplace_back(memory);
-  }
-  row_cache_effects_.assign(runs.size(), 0);
-  pair_cache_effects_.assign(runs.size(), 0);
-  const auto& machine = contents_.machine;
-  std::vector<tables::LaunchSample> node_samples[LandingCache::kPairNodes];  // construction only: may allocate
-  std::vector<double> weight_kg(largest_pair_);
-  for (auto& samples : node_samples) samples.resize(largest_pair_);
+void Predictor::build_landing_grids(std::pmr::memory_resource* memory) {
+  domain_ = landing_domain_for(contents_.machine.disc_height_m);
+  grids_.clear();
+  for (std::size_t m = 0; m < contents_.materials.size(); ++m) grids_.emplace_back(memory);
+  flight::Settings settings = settings_;
+  settings.rel_tol = std::min(settings_.rel_tol, kGridTolerance);
+  settings.abs_tol = std::min(settings_.abs_tol, kGridTolerance);
   for (const auto& rows : materials_) {
-    const double density_kg_m3 = contents_.materials[rows.material].density_kg_m3;
-    const auto flying_at = [&](double rpm, flight::EffectSet effects) {
-      LandingCache::Flying f;
-      f.rim_speed_m_s = rpm * 2.0 * kPi / 60.0 * machine.disc_radius_m;
-      f.disc_height_m = machine.disc_height_m;
-      f.density_kg_m3 = density_kg_m3;
-      f.effects = effects;
-      f.settings = settings_;
-      // Flown once: a tighter tolerance than a flight in predict() costs little and leaves the
-      // interpolation as the cache's only error (docs/c-api.md "Landing cache").
-      f.settings.rel_tol = std::min(settings_.rel_tol, kCacheTolerance);
-      f.settings.abs_tol = std::min(settings_.abs_tol, kCacheTolerance);
-      return f;
-    };
+    // Drag alone (wind is a condition of the day): the only flights the grid's four numbers describe.
+    bool drag_only = true;
+    double max_rim_speed_m_s = 0.0;
     for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
-      const flight::EffectSet row_effects = run_effects_[k] & ~flight::EffectSet{flight::kWind};
-      if (LandingCache::covers(row_effects)) {
-        const std::span<const tables::LaunchSample> nodes[1] = {run_samples(k)};
-        const LandingCache::Flying flying[1] = {flying_at(runs[k].rpm, row_effects)};
-        if (row_cache_[k].build(nodes, flying)) row_cache_effects_[k] = row_effects;
-      }
-      if (k + 1 >= rows.first_run + rows.run_count) continue;
-      const flight::EffectSet pair_effects = (run_effects_[k] | run_effects_[k + 1]) & ~flight::EffectSet{flight::kWind};
-      if (!LandingCache::covers(pair_effects)) continue;
-      std::span<const tables::LaunchSample> nodes[LandingCache::kPairNodes];
-      LandingCache::Flying flying[LandingCache::kPairNodes];
-      for (std::size_t node = 0; node < LandingCache::kPairNodes; ++node) {
-        const double t = static_cast<double>(node) / static_cast<double>(LandingCache::kPairNodes - 1);
-        const std::size_t n = interpolate(k, k + 1, t, node_samples[node], weight_kg);
-        nodes[node] = std::span(node_samples[node]).first(n);
-        flying[node] = flying_at(runs[k].rpm + t * (runs[k + 1].rpm - runs[k].rpm), pair_effects);
-      }
-      if (pair_cache_[k].build(nodes, flying)) pair_cache_effects_[k] = pair_effects;
+      drag_only = drag_only && (run_effects_[k] & ~flight::EffectSet{flight::kWind}) == flight::kDrag;
+      max_rim_speed_m_s = std::max(max_rim_speed_m_s, run_rpm_[k] * 2.0 * kPi / 60.0 * contents_.machine.disc_radius_m);
     }
+    if (!drag_only) continue;
+    const std::span<const tables::LaunchSample> samples(samples_.data() + run_offset_[rows.first_run],
+                                                        run_offset_[rows.first_run + rows.run_count] - run_offset_[rows.first_run]);
+    const LandingGrid::Axes axes = landing_grid_axes(samples, max_rim_speed_m_s, domain_);
+    grids_[rows.material].build(axes, contents_.materials[rows.material].density_kg_m3, settings, flight::Air{});
   }
 }
 
-std::size_t Predictor::landing_cache_bytes() const {
-  if (!landing_cache_enabled_) return 0;
+std::size_t Predictor::landing_grid_bytes() const {
+  if (!landing_grid_enabled_) return 0;
   std::size_t bytes = 0;
-  for (const auto& cache : row_cache_) bytes += cache.bytes();
-  for (const auto& cache : pair_cache_) bytes += cache.bytes();
+  for (const auto& grid : grids_) bytes += grid.bytes();
   return bytes;
 }
 
-const LandingCache* Predictor::landing_cache_for(std::size_t lower_run, std::size_t upper_run, double height_m,
-                                                 flight::EffectSet effects, const flight::Air& air) const {
-  if (!landing_cache_enabled_ || height_m != contents_.machine.disc_height_m) return nullptr;
-  if ((effects & flight::kWind) != 0 &&
-      !(std::hypot(air.wind_m_s.x(), air.wind_m_s.y()) <= LandingCache::kWindRadius_m_s && air.wind_m_s.z() == 0.0)) {
-    return nullptr;
-  }
-  const flight::EffectSet still_air = effects & ~flight::EffectSet{flight::kWind};
-  const bool row = lower_run == upper_run;
-  const LandingCache& cache = row ? row_cache_[lower_run] : pair_cache_[lower_run];
-  const flight::EffectSet cached = row ? row_cache_effects_[lower_run] : pair_cache_effects_[lower_run];
-  if (cache.empty() || still_air != cached) return nullptr;
-  return &cache;
+const LandingGrid* Predictor::landing_grid_for(const MaterialRows& rows, double height_m, flight::EffectSet effects,
+                                               const flight::Air& air) const {
+  const LandingGrid& grid = grids_[rows.material];
+  if (!landing_grid_enabled_ || grid.empty() || (effects & ~flight::EffectSet{flight::kWind}) != flight::kDrag) return nullptr;
+  const bool windy = (effects & flight::kWind) != 0;
+  if (windy && air.wind_m_s.z() != 0.0) return nullptr;
+  if (!domain_.covers(height_m, windy ? air.wind_m_s.x() : 0.0, windy ? air.wind_m_s.y() : 0.0)) return nullptr;
+  return &grid;
 }
 
 PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::memory_resource* memory)
@@ -395,7 +361,7 @@ std::size_t Predictor::disc_samples(PredictorWorkspace& w, std::size_t lower_run
   // The drop point turned by Δ about the disc axis turns the fan of launches by Δ (a disc the same all
   // round, fed continuously, has no phase of its own: test LookupDem.TurningTheFeedTurnsTheLaunchFan).
   // The table's frame is the left disc's, centred on its axis; the right disc is its mirror image, so its
-  // drop point turns by Δ mirrored. Positions, velocities and spins turn alike (the landing cache reads
+  // drop point turns by Δ mirrored. Positions, velocities and spins turn alike (the landing grid reads
   // the turned horizontal launch as any other).
   if (drop_point_turn_rad != 0.0) {
     const double c = std::cos(drop_point_turn_rad), s = std::sin(drop_point_turn_rad);
@@ -428,8 +394,7 @@ std::size_t Predictor::disc_samples(PredictorWorkspace& w, std::size_t lower_run
 
 std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double omega_rad_s, double height_m,
                                     const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
-                                    std::size_t right_offset, double density_kg_m3, const LandingCache* cache,
-                                    double t) const {
+                                    std::size_t right_offset, double density_kg_m3, const LandingGrid* grid) const {
   const auto& machine = contents_.machine;
   const bool two_discs = machine.disc_count == 2;
   const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
@@ -456,8 +421,6 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
   const bool right_flown = discs == DiscFlights::kLeftAndRightFlown || discs == DiscFlights::kRightOnly;
   const std::size_t flights = discs == DiscFlights::kLeftAndRightFlown ? 2 * n : n;
   std::size_t radial_count = 0;
-  double node_weight[LandingCache::kPairNodes];
-  if (cache != nullptr) cache->node_weights(t, node_weight);
   const double wind_x_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.x() : 0.0;
   const double wind_y_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.y() : 0.0;
   // Where the landing of left-disc sample i (or of the right disc's mirror of it, flown) goes: the machine
@@ -486,21 +449,20 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
     w.landing_y_m_[right_offset + i] = landed ? y : nan;
     if (!left_flown) w.landing_weight_[right_offset + i] = w.sample_weight_kg_[i];
   };
-  if (cache != nullptr) {
-    // Sample by sample, both discs at once: a granule's cubics are read from memory once. Only the
-    // horizontal launch is needed (no granule, no spin, no full state).
+  if (grid != nullptr) {
+    // Sample by sample, both discs at once. Only the launch's horizontal motion, height, vertical speed
+    // and diameter are needed (no spin, no full state).
     for (std::size_t i = 0; i < n; ++i) {
       const tables::LaunchSample& s = w.samples_[i];
       const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
+      const double vz_m_s = rim_speed_m_s * s.vz_norm, z_m = s.z_m + height_m;
       double x = 0.0, y = 0.0;
       if (left_flown) {
-        cache->landing(i, node_weight, LandingCache::Launch{s.x_m, s.y_m, vx_m_s, vy_m_s}, wind_x_m_s, wind_y_m_s, x, y);
+        grid->landing(s.diameter_m, s.x_m, s.y_m, z_m, vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, x, y);
         record_left(i, true, x, y);
       }
       if (!right_flown) continue;
-      const double mirror_x_m = -1.0 * s.x_m, mirror_vx_m_s = rim_speed_m_s * (-1.0 * s.vx_norm);
-      cache->landing(i, node_weight, LandingCache::Launch{mirror_x_m, s.y_m, mirror_vx_m_s, vy_m_s}, wind_x_m_s,
-                     wind_y_m_s, x, y);
+      grid->landing(s.diameter_m, -1.0 * s.x_m, s.y_m, z_m, -1.0 * vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, x, y);
       record_right(i, true, x, y);
     }
   } else {
@@ -532,7 +494,7 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
     w.radial_mean_m_ = stats.mean_radius_m;
     w.radial_width_m_ = stats.radial_width_m;
   }
-  return cache != nullptr ? 0 : flights;
+  return grid != nullptr ? 0 : flights;
 }
 
 namespace {
@@ -566,14 +528,14 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
   std::size_t sample_total = 0;  // independent launch samples behind the pattern
   if (!per_disc) {
     const DiscRows& r = disc_rows[0];
-    const LandingCache* cache = landing_cache_for(r.lower_run, r.upper_run, height_m, effects, air);
-    const std::size_t max_flights = cache == nullptr ? limits_.max_flights : 0;
+    const LandingGrid* grid = landing_grid_for(rows, height_m, effects, air);
+    const std::size_t max_flights = grid == nullptr ? limits_.max_flights : 0;
     n = disc_samples(w, r.lower_run, r.upper_run, r.t, left.drop_point_turn_rad, max_flights, fly_right_disc ? 2 : 1);
     const DiscFlights discs = !two_discs        ? DiscFlights::kLeftOnly
                               : fly_right_disc ? DiscFlights::kLeftAndRightFlown
                                                : DiscFlights::kLeftAndMirror;
     flights = static_cast<int>(
-        fly_launches(w, n, omega_of(left.rpm), height_m, air, effects, discs, n, density_kg_m3, cache, r.t));
+        fly_launches(w, n, omega_of(left.rpm), height_m, air, effects, discs, n, density_kg_m3, grid));
     landings = two_discs ? 2 * n : n;
     sample_total = n;
   } else {
@@ -583,8 +545,8 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
     std::size_t disc_count[2] = {0, 0};
     for (int d = 0; d < 2; ++d) {
       const DiscRows& r = disc_rows[d];
-      const LandingCache* cache = landing_cache_for(r.lower_run, r.upper_run, height_m, effects, air);
-      const std::size_t max_flights = cache == nullptr ? limits_.max_flights / 2 : 0;
+      const LandingGrid* grid = landing_grid_for(rows, height_m, effects, air);
+      const std::size_t max_flights = grid == nullptr ? limits_.max_flights / 2 : 0;
       const std::size_t count = disc_samples(w, r.lower_run, r.upper_run, r.t, settings[d].drop_point_turn_rad,
                                              max_flights, 1);
       const std::size_t unthinned = r.lower_run == r.upper_run || pairwise(r.lower_run, r.upper_run)
@@ -595,7 +557,7 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
       if (d == kLeftDisc) n = count;
       flights += static_cast<int>(fly_launches(w, count, omega_of(settings[d].rpm), height_m, air, effects,
                                                d == kLeftDisc ? DiscFlights::kLeftOnly : DiscFlights::kRightOnly,
-                                               n, density_kg_m3, cache, r.t));
+                                               n, density_kg_m3, grid));
       double disc_kg = 0.0;
       const std::span<double> disc_weights = std::span(w.landing_weight_).subspan(d == kLeftDisc ? 0 : n, count);
       for (double weight : disc_weights) disc_kg += weight;

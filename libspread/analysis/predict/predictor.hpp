@@ -9,10 +9,10 @@
 //      by quantile cells computed here at construction (launch_interpolation.hpp,
 //      launch_quantile_cells.hpp, launch_landing_keys.hpp) —, scale velocities by ωR and spins by ω,
 //      place them at the disc height (ground z = 0),
-//   3. fly each granule (all in one flight::fly_many call — SIMD lanes for drag/wind-only flights, the
-//      same landings as flight::fly_to_ground one by one —, default_flight_settings()), or, for a
-//      drag-only table at the stored height in a wind up to LandingCache::kWindRadius_m_s, evaluate its
-//      landing from the landing cache flown at construction (landing_cache.hpp),
+//   3. for a drag-only table within the landing grid's domain (LandingDomain: disc heights and winds a
+//      machine meets), evaluate each granule's landing from its material's landing grid
+//      (landing_grid.hpp); otherwise fly each granule (flight::fly_many — SIMD lanes for drag/wind-only
+//      flights, the same landings as flight::fly_to_ground one by one —, default_flight_settings()),
 //   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
 //      (DESIGN.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
 //      so the right disc's launches are mirrored and flown themselves,
@@ -34,7 +34,7 @@
 
 #include "libspread/physics/flight/flight.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
-#include "libspread/analysis/predict/landing_cache.hpp"
+#include "libspread/analysis/predict/landing_grid.hpp"
 #include "libspread/analysis/predict/launch_quantile_cells.hpp"
 #include "libspread/analysis/predict/sample_influence.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -146,7 +146,7 @@ struct Prediction {
   DiscSetting discs[2];                     // each disc's setting as used (kLeftDisc, kRightDisc)
   double lost_mass_fraction = 0.0;          // outside the trays or not landed
   metrics::TrayLayout trays;
-  int flights = 0;                          // trajectories integrated (0: landings from the cache)
+  int flights = 0;                          // trajectories integrated (0: landings from the landing grid)
   // Monte Carlo uncertainty (docs/metrics.md "Uncertainty"): the standard errors of the estimates above
   // over the table's launch samples, by the delta method (the influence of each sample, linear in the
   // samples: no resampling). NaN where the estimate has no derivative (no width meets the target, or
@@ -198,7 +198,7 @@ struct PredictorLimits {
   // Flights one prediction may integrate (both discs; 0: no bound). Above it the interpolated launch
   // samples are thinned to every k-th (k the smallest that fits), so the time of any request is bounded
   // while its reported uncertainty (sample_count, the standard errors) is that of the samples flown.
-  // Landings from the landing cache are not flights.
+  // Landings from the landing grid are not flights.
   std::size_t max_flights = 0;
 };
 
@@ -266,7 +266,7 @@ class Predictor {
   // Throws tables::TableError(kCorrupt) when a run names a material the file does not describe, and
   // std::invalid_argument for bad limits. Materials without runs are not offered. Rows interpolated by
   // quantile cells are flown once here to find their cells (one flight per sample, default settings), and
-  // a drag-only table's rows and pairs of rows once more into the landing cache (landing_cache.hpp).
+  // and a drag-only table's materials into their landing grids (landing_grid.hpp) over `domain`.
   // The launch samples, the cells and the own workspace are allocated from `memory` (which must outlive
   // the Predictor); the samples are moved out of `contents` into one block.
   explicit Predictor(tables::TableContents contents, PredictorLimits limits = {},
@@ -289,17 +289,19 @@ class Predictor {
   int tray_capacity(double tray_width_m) const;
 
   // Integrator used by predict(); default_flight_settings() unless changed (benchmarks, tests). The landing
-  // cache was flown with the settings at construction: changing them turns it off.
+  // grids were flown with their own settings at construction: changing these turns them off.
   void set_flight_settings(const flight::Settings& settings) {
     settings_ = settings;
-    landing_cache_enabled_ = false;
+    landing_grid_enabled_ = false;
   }
   const flight::Settings& flight_settings() const { return settings_; }
-  // Whether predict() may take landings from the landing cache (landing_cache.hpp) where it covers the
-  // request; off: every granule is flown (benchmarks and tests compare the two).
-  void set_landing_cache_enabled(bool enabled) { landing_cache_enabled_ = enabled; }
-  // Bytes the landing caches hold (0: the table's flight effects are not planar, or the cache is off).
-  std::size_t landing_cache_bytes() const;
+  // Whether predict() may take landings from the landing grids where they cover the request; off: every
+  // granule is flown (benchmarks and tests compare the two).
+  void set_landing_grid_enabled(bool enabled) { landing_grid_enabled_ = enabled; }
+  // Bytes the landing grids hold (0: the table's flight effects are not drag alone, or the grids are off).
+  std::size_t landing_grid_bytes() const;
+  // The disc heights and winds the landing grids cover.
+  const LandingDomain& landing_domain() const { return domain_; }
 
   // Does not allocate. Refused requests are statuses, not exceptions (so a refusal does not allocate
   // either); on a refusal `out` is unchanged. An exception from here means a malformed table record that
@@ -361,12 +363,11 @@ class Predictor {
   // them: pairwise for analytic rows of equal count, otherwise by quantile cells. Returns the count.
   std::size_t interpolate(std::size_t lower_run, std::size_t upper_run, double t,
                           std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const;
-  // Flies each run's row and each pair of neighbouring rows once into a landing cache, where the runs'
-  // flight effects are planar (LandingCache::covers).
-  void build_landing_caches(std::pmr::memory_resource* memory);
-  // The cache that serves this request, or null (fly).
-  const LandingCache* landing_cache_for(std::size_t lower_run, std::size_t upper_run, double height_m,
-                                        flight::EffectSet effects, const flight::Air& air) const;
+  // Flies each drag-only material's landing grid over the domain (landing_grid_axes()).
+  void build_landing_grids(std::pmr::memory_resource* memory);
+  // The grid that serves a request of this material, or null (fly).
+  const LandingGrid* landing_grid_for(const MaterialRows& rows, double height_m, flight::EffectSet effects,
+                                      const flight::Air& air) const;
   // Which discs fly_launches() lands from the samples in the workspace: the left disc alone (one disc, or
   // the left of two at their own settings), the left and its mirror image (still air across), the left
   // and the right flown as its mirror (a lateral wind), or the right disc alone (at its own setting).
@@ -376,8 +377,7 @@ class Predictor {
   // Returns the flights integrated.
   std::size_t fly_launches(PredictorWorkspace& w, std::size_t sample_count, double omega_rad_s, double height_m,
                            const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
-                           std::size_t right_offset, double density_kg_m3, const LandingCache* cache,
-                           double t) const;
+                           std::size_t right_offset, double density_kg_m3, const LandingGrid* grid) const;
   // Steps 1–2 of predict() for one disc: its samples of rows lower_run..upper_run at weight t into the
   // workspace, turned by drop_point_turn_rad, thinned to at most max_flights flights (flights_per_sample
   // per sample; 0: no bound). Returns the count.
@@ -400,11 +400,11 @@ class Predictor {
   std::pmr::vector<std::uint32_t> cell_of_sample_;
   std::pmr::vector<tables::LaunchSample> cell_mean_;
   double lowest_sample_z_m_ = 0.0;    // over all runs: the disc must sit at least -this above ground
-  // Landing caches: row_cache_[run] for a request on that row, pair_cache_[run] for one between run and
-  // run + 1 (empty where not made), with the still-air effects each was flown with.
-  std::vector<LandingCache> row_cache_, pair_cache_;
-  std::vector<flight::EffectSet> row_cache_effects_, pair_cache_effects_;
-  bool landing_cache_enabled_ = true;
+  // Landing grids by material (contents_.materials' index; empty where the material's runs fly more than
+  // drag) and the domain they cover.
+  LandingDomain domain_;
+  std::vector<LandingGrid> grids_;
+  bool landing_grid_enabled_ = true;
   std::optional<PredictorWorkspace> own_workspace_;  // for predict(request, out)
 };
 

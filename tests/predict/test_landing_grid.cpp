@@ -1,0 +1,176 @@
+// Landing grid (libspread/analysis/predict/landing_grid.hpp): exact at its nodes, close to flying every granule
+// elsewhere in its domain (rows, between rows by both interpolations, heights, winds), continuous, and not
+// used where it does not hold.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/landing_grid.hpp"
+#include "libspread/analysis/predict/predictor.hpp"
+#include "tests/predict/synthetic_table.hpp"
+
+namespace spread::predict {
+namespace {
+
+// The synthetic table with runs that record drag as their flight effects (the product's default table).
+tables::TableContents drag_contents() {
+  auto contents = testing::synthetic_contents();
+  for (auto& run : contents.runs) run.stats_json = R"({"flight_effects":"drag"})";
+  return contents;
+}
+
+PredictionRequest request(const char* material, double rpm, double wind_x = 0.0, double wind_y = 0.0) {
+  PredictionRequest r;
+  r.material = material;
+  r.rpm = rpm;
+  r.wind_x_m_s = wind_x;
+  r.wind_y_m_s = wind_y;
+  return r;
+}
+
+double max_landing_distance(const Prediction& a, const Prediction& b) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < a.landing_x_m.size(); ++k) {
+    worst = std::max(worst, std::hypot(a.landing_x_m[k] - b.landing_x_m[k], a.landing_y_m[k] - b.landing_y_m[k]));
+  }
+  return worst;
+}
+
+TEST(LandingGrid, ExactAtItsNodes) {
+  // A small grid flown at the reference tolerance: at its nodes the interpolant is the flown landing (up to
+  // the float storage of its values), in still air and, through the Galilean frame change, in a wind.
+  LandingGrid::Axes axes;
+  axes[LandingGrid::kDiameter] = GridAxis{2e-3, 1e-3, 4};
+  axes[LandingGrid::kVerticalSpeed] = GridAxis{-1.0, 1.5, 4};
+  axes[LandingGrid::kHeight] = GridAxis{0.5, 0.4, 5};
+  axes[LandingGrid::kSpeed] = GridAxis{0.0, 6.0, 6};
+  const double density_kg_m3 = 1800.0;
+  LandingGrid grid;
+  ASSERT_TRUE(grid.build(axes, density_kg_m3, reference_flight_settings(), flight::Air{}));
+  EXPECT_EQ(grid.bytes(), sizeof(float) * LandingGrid::value_count(axes));
+  for (std::uint32_t d = 0; d < 4; d += 3) {
+    for (std::uint32_t v = 0; v < 4; ++v) {
+      for (std::uint32_t h = 0; h < 5; h += 2) {
+        for (std::uint32_t u = 1; u < 6; u += 2) {
+          const double diameter_m = 2e-3 + 1e-3 * d, vz = -1.0 + 1.5 * v, height_m = 0.5 + 0.4 * h, speed = 6.0 * u;
+          // Launched along (3, 4)/5 from (0.2, −0.1); the wind (1, −2) m/s changes the speed relative to the
+          // air, so launch with the air-relative speed of the node.
+          const double wind_x = 1.0, wind_y = -2.0;
+          const double vx = 0.6 * speed + wind_x, vy = 0.8 * speed + wind_y;
+          double x = 0.0, y = 0.0;
+          grid.landing(diameter_m, 0.2, -0.1, height_m, vx, vy, vz, wind_x, wind_y, x, y);
+          flight::State launch;
+          launch.position_m = Vec3(0.2, -0.1, height_m);
+          launch.velocity_m_s = Vec3(vx, vy, vz);
+          flight::Air air;
+          air.wind_m_s = Vec3(wind_x, wind_y, 0.0);
+          const flight::Landing flown = flight::fly_to_ground(flight::Granule{diameter_m, density_kg_m3}, launch, 0.0, air,
+                                                              flight::kDrag | flight::kWind, reference_flight_settings());
+          ASSERT_TRUE(flown.landed);
+          EXPECT_NEAR(x, flown.state.position_m.x(), 1e-4) << d << " " << v << " " << h << " " << u;
+          EXPECT_NEAR(y, flown.state.position_m.y(), 1e-4) << d << " " << v << " " << h << " " << u;
+        }
+      }
+    }
+  }
+  // Through u = 0 by symmetry: a granule dropped with no horizontal speed lands below its launch point.
+  double range_m = 1.0, time_s = 0.0;
+  grid.range_and_time(3e-3, 0.5, 1.0, 0.0, range_m, time_s);
+  EXPECT_NEAR(range_m, 0.0, 1e-6);
+  EXPECT_GT(time_s, 0.3);
+}
+
+// The grid against every granule flown at the tight reference tolerance: rows and between rows, pairwise
+// ("can") and by quantile cells ("urea": rows of different counts), still air and winds up to the
+// domain's, the stored height and others across the domain. The bounds are the measured worst cases with
+// a margin (docs/c-api.md "Landing grid").
+TEST(LandingGrid, GridLandingsMatchFlownOnes) {
+  Predictor gridded(drag_contents());
+  Predictor flown(drag_contents());
+  flown.set_flight_settings(reference_flight_settings());
+  ASSERT_GT(gridded.landing_grid_bytes(), 0u);
+  EXPECT_EQ(flown.landing_grid_bytes(), 0u);
+  struct Case {
+    const char* material;
+    double rpm, wind_x, wind_y, height_m;
+  };
+  const double stored = std::numeric_limits<double>::quiet_NaN();
+  const Case cases[] = {{"can", 600.0, 0.0, 0.0, stored},  {"can", 640.0, 0.0, 0.0, 0.3},  {"can", 640.0, 3.0, 0.0, 1.37},
+                        {"can", 760.0, 0.0, -3.0, 2.0},    {"can", 555.0, 7.0, 7.0, stored}, {"urea", 500.0, 0.0, 0.0, 0.55},
+                        {"urea", 610.0, 0.0, 0.0, stored}, {"urea", 610.0, -10.0, 0.0, 1.1}, {"urea", 690.0, 4.0, 3.0, 1.9}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(c.material) + " @ " + std::to_string(c.rpm) + " rpm, wind " + std::to_string(c.wind_x) +
+                 ", " + std::to_string(c.wind_y) + ", height " + std::to_string(c.height_m));
+    PredictionRequest r = request(c.material, c.rpm, c.wind_x, c.wind_y);
+    r.disc_height_m = c.height_m;
+    Prediction a, b;
+    ASSERT_EQ(gridded.predict(r, a), PredictStatus::kOk);
+    ASSERT_EQ(flown.predict(r, b), PredictStatus::kOk);
+    EXPECT_EQ(a.flights, 0);
+    EXPECT_GT(b.flights, 0);
+    ASSERT_EQ(a.landing_x_m.size(), b.landing_x_m.size());
+    EXPECT_LT(max_landing_distance(a, b), 0.02);
+    EXPECT_NEAR(a.working_width_to_and_fro_m, b.working_width_to_and_fro_m, 0.02);
+    EXPECT_NEAR(a.throw_width_m, b.throw_width_m, 0.02);
+    EXPECT_NEAR(a.mean_radius_m, b.mean_radius_m, 0.005);
+  }
+}
+
+// Inside the domain the answer is continuous: a disc 1 mm higher or a wind 1 mm/s stronger moves no
+// landing by more than a millimetre or so.
+TEST(LandingGrid, NeighbouringRequestsGiveNeighbouringLandings) {
+  Predictor p(drag_contents());
+  for (double height_m : {0.3, 0.8, 1.2345, 1.999}) {
+    PredictionRequest r = request("urea", 610.0, 4.999, 0.0);
+    r.disc_height_m = height_m;
+    Prediction a, b, c;
+    ASSERT_EQ(p.predict(r, a), PredictStatus::kOk);
+    r.disc_height_m = height_m + 0.001;
+    ASSERT_EQ(p.predict(r, b), PredictStatus::kOk);
+    r.wind_x_m_s += 0.001;
+    ASSERT_EQ(p.predict(r, c), PredictStatus::kOk);
+    EXPECT_EQ(b.flights, 0);
+    EXPECT_EQ(c.flights, 0);
+    EXPECT_LT(max_landing_distance(a, b), 0.003) << height_m;
+    EXPECT_LT(max_landing_distance(b, c), 0.003) << height_m;
+  }
+}
+
+TEST(LandingGrid, FliesWhereTheGridDoesNotHold) {
+  Predictor p(drag_contents());
+  const LandingDomain& domain = p.landing_domain();
+  EXPECT_EQ(domain.min_disc_height_m, 0.3);
+  EXPECT_EQ(domain.max_disc_height_m, 2.0);
+  EXPECT_EQ(domain.max_wind_m_s, 10.0);
+  Prediction out;
+  ASSERT_EQ(p.predict(request("can", 640.0), out), PredictStatus::kOk);
+  EXPECT_EQ(out.flights, 0);
+  // A wind beyond the domain.
+  ASSERT_EQ(p.predict(request("can", 640.0, 8.0, 6.1), out), PredictStatus::kOk);
+  EXPECT_GT(out.flights, 0);
+  // A disc above it.
+  PredictionRequest higher = request("can", 640.0);
+  higher.disc_height_m = 2.01;
+  ASSERT_EQ(p.predict(higher, out), PredictStatus::kOk);
+  EXPECT_GT(out.flights, 0);
+  // Effects other than the table's: lift is not planar.
+  PredictionRequest lift = request("can", 640.0);
+  lift.effects = flight::kDrag | flight::kMagnus;
+  ASSERT_EQ(p.predict(lift, out), PredictStatus::kOk);
+  EXPECT_GT(out.flights, 0);
+  // Switched off.
+  p.set_landing_grid_enabled(false);
+  ASSERT_EQ(p.predict(request("can", 640.0), out), PredictStatus::kOk);
+  EXPECT_GT(out.flights, 0);
+  // A table whose runs fly every effect has no grid.
+  Predictor all_effects(testing::synthetic_contents());
+  EXPECT_EQ(all_effects.landing_grid_bytes(), 0u);
+}
+
+}  // namespace
+}  // namespace spread::predict
