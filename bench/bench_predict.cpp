@@ -27,6 +27,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -315,6 +316,83 @@ void BM_PredictEdgeCApiFile(benchmark::State& state) {
   spread_close(tables);
 }
 
+// The landing grid's interpolation error over its whole domain on a real table file (SPREAD_BENCH_TABLE):
+// every 5th launch sample of every row of the material range(0) indexes (sorted by name), at a random
+// disc height and wind across the domain (one in three at the stored height in still air), the grid's
+// landing against the sample flown at the tight reference tolerance. Counters rms_error_m, max_error_m;
+// the time is one grid evaluation.
+void BM_LandingGridError(benchmark::State& state) {
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
+  auto contents = spread::tables::read_table_file(path);
+  if (static_cast<std::size_t>(state.range(0)) >= contents.materials.size()) {
+    state.SkipWithError("no such material");
+    return;
+  }
+  std::sort(contents.materials.begin(), contents.materials.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  const auto& material = contents.materials[static_cast<std::size_t>(state.range(0))];
+  const auto domain = spread::predict::landing_domain_for(contents.machine.disc_height_m);
+  std::vector<spread::tables::LaunchSample> samples;
+  double max_rim_speed_m_s = 0.0;
+  for (const auto& run : contents.runs) {
+    if (run.material != material.name) continue;
+    samples.insert(samples.end(), run.samples.begin(), run.samples.end());
+    max_rim_speed_m_s = std::max(max_rim_speed_m_s, run.rpm * 2.0 * std::numbers::pi / 60.0 * contents.machine.disc_radius_m);
+  }
+  spread::predict::LandingGrid grid;
+  auto settings = spread::predict::default_flight_settings();
+  settings.rel_tol = settings.abs_tol = 1e-7;  // as the Predictor flies its grids
+  if (samples.empty() ||
+      !grid.build(spread::predict::landing_grid_axes(samples, max_rim_speed_m_s, domain), material.density_kg_m3, settings, {})) {
+    state.SkipWithError("no grid");
+    return;
+  }
+  std::mt19937 random(1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double sum_squares = 0.0, worst_m = 0.0;
+  std::size_t count = 0;
+  for (const auto& run : contents.runs) {
+    if (run.material != material.name) continue;
+    const double rim_speed_m_s = run.rpm * 2.0 * std::numbers::pi / 60.0 * contents.machine.disc_radius_m;
+    for (std::size_t i = 0; i < run.samples.size(); i += 5) {
+      const auto& s = run.samples[i];
+      double height_m = domain.min_disc_height_m + unit(random) * (domain.max_disc_height_m - domain.min_disc_height_m);
+      double wind_m_s = unit(random) * domain.max_wind_m_s;
+      const double direction = 2.0 * std::numbers::pi * unit(random);
+      if (i % 3 == 0) {
+        height_m = contents.machine.disc_height_m;
+        wind_m_s = 0.0;
+      }
+      spread::flight::State launch;
+      launch.position_m = spread::Vec3(s.x_m, s.y_m, s.z_m + height_m);
+      launch.velocity_m_s = rim_speed_m_s * spread::Vec3(s.vx_norm, s.vy_norm, s.vz_norm);
+      spread::flight::Air air;
+      air.wind_m_s = spread::Vec3(wind_m_s * std::cos(direction), wind_m_s * std::sin(direction), 0.0);
+      const auto flown = spread::flight::fly_to_ground({s.diameter_m, material.density_kg_m3}, launch, 0.0, air,
+                                                       spread::flight::kDrag | spread::flight::kWind,
+                                                       spread::predict::reference_flight_settings());
+      double x = 0.0, y = 0.0;
+      grid.landing(s.diameter_m, s.x_m, s.y_m, launch.position_m.z(), launch.velocity_m_s.x(), launch.velocity_m_s.y(),
+                   launch.velocity_m_s.z(), air.wind_m_s.x(), air.wind_m_s.y(), x, y);
+      const double error_m = std::hypot(x - flown.state.position_m.x(), y - flown.state.position_m.y());
+      sum_squares += error_m * error_m;
+      worst_m = std::max(worst_m, error_m);
+      ++count;
+    }
+  }
+  const auto& s = samples[samples.size() / 2];
+  for (auto _ : state) {
+    double x = 0.0, y = 0.0;
+    grid.landing(s.diameter_m, s.x_m, s.y_m, 0.85, 20.0 * s.vx_norm, 20.0 * s.vy_norm, 20.0 * s.vz_norm, 1.0, 2.0, x, y);
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(y);
+  }
+  state.SetLabel(material.name);
+  state.counters["rms_error_m"] = std::sqrt(sum_squares / static_cast<double>(count));
+  state.counters["max_error_m"] = worst_m;
+  state.counters["grid_bytes"] = static_cast<double>(grid.bytes());
+}
+
 // The landing grid's cost and error on a real table file (SPREAD_BENCH_TABLE).
 void BM_PredictLandingGrid(benchmark::State& state) {
   const char* path = bench_table(state);
@@ -364,6 +442,7 @@ BENCHMARK(BM_PredictCApiFileDiscs)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictEdgeCApiFile)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LandingGridError)->DenseRange(0, 2)->ArgName("material")->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_PredictLandingGrid)
     ->ArgsProduct({{0, 3, 10}, {0, 1}})
     ->ArgNames({"wind", "grid"})

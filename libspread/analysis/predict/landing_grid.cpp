@@ -106,7 +106,8 @@ bool LandingGrid::build(const Axes& axes, double density_kg_m3, const flight::Se
       const std::size_t v = index % axes[kVerticalSpeed].count;
       const std::size_t d = index / axes[kVerticalSpeed].count;
       granules[c] = flight::Granule{node(kDiameter, d), density_kg_m3};
-      launches[c].position_m = Vec3(0.0, 0.0, node(kHeight, h));
+      const double root_height = node(kHeight, h);
+      launches[c].position_m = Vec3(0.0, 0.0, root_height * root_height);
       launches[c].velocity_m_s = Vec3(node(kSpeed, u), 0.0, node(kVerticalSpeed, v));
       launches[c].spin_rad_s = Vec3::Zero();
     }
@@ -125,7 +126,7 @@ bool LandingGrid::build(const Axes& axes, double density_kg_m3, const flight::Se
 }
 
 bool LandingGrid::covers(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s) const {
-  const double x[kAxisCount] = {diameter_m, vertical_speed_m_s, height_m, speed_m_s};
+  const double x[kAxisCount] = {diameter_m, vertical_speed_m_s, std::sqrt(std::max(height_m, 0.0)), speed_m_s};
   for (std::size_t a = 0; a < kAxisCount; ++a) {
     const double slack = 1e-9 * (axes_[a].last() - axes_[a].first);
     if (!(x[a] >= axes_[a].first - slack && x[a] <= axes_[a].last() + slack)) return false;
@@ -138,7 +139,7 @@ void LandingGrid::range_and_time(double diameter_m, double vertical_speed_m_s, d
   double wd[kDiameterPoints], wv[kVerticalPoints], wh[kGridStencil], wu[kGridStencil];
   const std::ptrdiff_t d0 = grid_stencil(diameter_m, axes_[kDiameter], inverse_step_[kDiameter], 0, wd);
   const std::ptrdiff_t v0 = grid_stencil(vertical_speed_m_s, axes_[kVerticalSpeed], inverse_step_[kVerticalSpeed], 0, wv);
-  const std::ptrdiff_t h0 = grid_stencil(height_m, axes_[kHeight], inverse_step_[kHeight], 0, wh);
+  const std::ptrdiff_t h0 = grid_stencil(std::sqrt(std::max(height_m, 0.0)), axes_[kHeight], inverse_step_[kHeight], 0, wh);
   const std::ptrdiff_t u0 = grid_stencil(speed_m_s, axes_[kSpeed], inverse_step_[kSpeed], -1, wu);
   const std::size_t nu = axes_[kSpeed].count, nh = axes_[kHeight].count, nv = axes_[kVerticalSpeed].count;
   // Σ_dvh w_d w_v w_h Σ_u w_u f = Σ_u w_u (Σ_dvh w_d w_v w_h f): the 64 lines of the stencil (four speeds, R
@@ -217,8 +218,8 @@ LandingGrid::Axes landing_grid_axes(std::span<const tables::LaunchSample> sample
     // vz = ω R · vz_norm for any ω up to the fastest row's: between 0 and the fastest row's value.
     widen(LandingGrid::kVerticalSpeed, 0.0);
     widen(LandingGrid::kVerticalSpeed, max_rim_speed_m_s * s.vz_norm);
-    widen(LandingGrid::kHeight, s.z_m + domain.min_disc_height_m);
-    widen(LandingGrid::kHeight, s.z_m + domain.max_disc_height_m);
+    widen(LandingGrid::kHeight, std::sqrt(std::max(s.z_m + domain.min_disc_height_m, 0.0)));
+    widen(LandingGrid::kHeight, std::sqrt(std::max(s.z_m + domain.max_disc_height_m, 0.0)));
     widen(LandingGrid::kSpeed, max_rim_speed_m_s * std::hypot(double{s.vx_norm}, double{s.vy_norm}) + domain.max_wind_m_s);
   }
   if (samples.empty()) throw std::invalid_argument("landing_grid_axes: no samples");
