@@ -343,7 +343,7 @@ void BM_LandingGridError(benchmark::State& state) {
   auto settings = spread::predict::default_flight_settings();
   settings.rel_tol = settings.abs_tol = 1e-7;  // as the Predictor flies its grids
   if (samples.empty() ||
-      !grid.build(spread::predict::landing_grid_axes(samples, max_rim_speed_m_s, domain), material.density_kg_m3, settings, {})) {
+      !grid.build(spread::predict::landing_grid_axes(samples, max_rim_speed_m_s, domain), material.density_kg_m3, spread::flight::kDrag, settings, {})) {
     state.SkipWithError("no grid");
     return;
   }

@@ -36,7 +36,7 @@ inline constexpr std::uint64_t kWorkspaceTag = 0x5350524541445753u;  // "SPREADW
 inline constexpr std::uint64_t kDeadTag = 0xDEADDEADDEADDEADu;
 
 // Flights one spread_predict may integrate: bounds the time of any legal request (docs/c-api.md
-// "Worst-case time"); requests the landing cache serves fly none.
+// "Worst-case time"); requests the landing grid serves fly none.
 inline constexpr std::size_t kControllerMaxFlights = 768;
 
 inline predict::PredictorLimits controller_limits() {

@@ -80,7 +80,8 @@ constexpr double kCvTargetPercent = 15.0;
 constexpr char kMaterial[] = "golden";
 
 // Allowance for what is not sampling: float32 storage of the launch states (~1e-7 relative, ~1e-6 m
-// on the ground) and the quadrature of the convolution (~1e-15).
+// on the ground), the landing grid's interpolation (measured 4e-5 m on the 10.3 m circle) and the
+// quadrature of the convolution (~1e-15).
 constexpr double kTrayTolerance = 1e-9;
 constexpr double kWidthTolerance_m = 1e-4;
 constexpr double kCvTolerancePercent = 1e-4;
@@ -438,7 +439,9 @@ std::vector<std::string> disagreements(const Reported& got, double radius_m, boo
 
   const Expected e = expected_pattern(radius_m, got.layout, got.kernel_half_width_m);
   if (automatic_kernel) {
-    check(std::abs(got.kernel_half_width_m - e.kernel_half_width_m) <= 1e-6,
+    // The kernel scales the landings' spread (0.5 sd N^-1/5): the landings' tolerance kRadiusTolerance_m
+    // (the landing grid interpolates them) carries over scaled down.
+    check(std::abs(got.kernel_half_width_m - e.kernel_half_width_m) <= 0.1 * kRadiusTolerance_m,
           text("automatic kernel ", got.kernel_half_width_m, " m, closed form ", e.kernel_half_width_m, " m"));
   } else {
     check(got.kernel_half_width_m == 0.0, text("kernel ", got.kernel_half_width_m, " m, requested 0"));

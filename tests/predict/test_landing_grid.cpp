@@ -51,7 +51,7 @@ TEST(LandingGrid, ExactAtItsNodes) {
   axes[LandingGrid::kSpeed] = GridAxis{0.0, 6.0, 6};
   const double density_kg_m3 = 1800.0;
   LandingGrid grid;
-  ASSERT_TRUE(grid.build(axes, density_kg_m3, reference_flight_settings(), flight::Air{}));
+  ASSERT_TRUE(grid.build(axes, density_kg_m3, flight::kDrag, reference_flight_settings(), flight::Air{}));
   EXPECT_EQ(grid.bytes(), sizeof(float) * LandingGrid::value_count(axes));
   for (std::uint32_t d = 0; d < 4; d += 3) {
     for (std::uint32_t v = 0; v < 4; ++v) {
@@ -101,7 +101,7 @@ TEST(LandingGrid, GridLandingsMatchFlownOnes) {
     double rpm, wind_x, wind_y, height_m;
   };
   const double stored = std::numeric_limits<double>::quiet_NaN();
-  const Case cases[] = {{"can", 600.0, 0.0, 0.0, stored},  {"can", 640.0, 0.0, 0.0, 0.3},  {"can", 640.0, 3.0, 0.0, 1.37},
+  const Case cases[] = {{"can", 600.0, 0.0, 0.0, stored},  {"can", 640.0, 0.0, 0.0, 0.2},  {"can", 640.0, 3.0, 0.0, 1.37},
                         {"can", 760.0, 0.0, -3.0, 2.0},    {"can", 555.0, 7.0, 7.0, stored}, {"urea", 500.0, 0.0, 0.0, 0.55},
                         {"urea", 610.0, 0.0, 0.0, stored}, {"urea", 610.0, -10.0, 0.0, 1.1}, {"urea", 690.0, 4.0, 3.0, 1.9}};
   for (const Case& c : cases) {
@@ -128,7 +128,7 @@ TEST(LandingGrid, GridLandingsMatchFlownOnes) {
 // landing by more than a millimetre or so.
 TEST(LandingGrid, NeighbouringRequestsGiveNeighbouringLandings) {
   Predictor p(drag_contents());
-  for (double height_m : {0.3, 0.8, 1.2345, 1.999}) {
+  for (double height_m : {0.2, 0.8, 1.2345, 1.999}) {
     PredictionRequest r = request("urea", 610.0, 4.999, 0.0);
     r.disc_height_m = height_m;
     Prediction a, b, c;
@@ -147,7 +147,7 @@ TEST(LandingGrid, NeighbouringRequestsGiveNeighbouringLandings) {
 TEST(LandingGrid, FliesWhereTheGridDoesNotHold) {
   Predictor p(drag_contents());
   const LandingDomain& domain = p.landing_domain();
-  EXPECT_EQ(domain.min_disc_height_m, 0.3);
+  EXPECT_EQ(domain.min_disc_height_m, 0.2);
   EXPECT_EQ(domain.max_disc_height_m, 2.0);
   EXPECT_EQ(domain.max_wind_m_s, 10.0);
   Prediction out;

@@ -442,7 +442,7 @@ namespace {
 
 // The drop point turned by Δ predicts what a table whose launches were all turned by Δ about the disc axis
 // predicts at the table's drop point: turned here by hand, in polar form, on a row and between rows, in
-// still air and in a crosswind, from the landing cache and flown.
+// still air and in a crosswind, from the landing grid and flown.
 // Each disc at its own setting is that disc of the machine with both discs at that setting: the left
 // disc's landings are those of the alike prediction at the left setting, the right disc's those at the
 // right setting, each disc carries half the mass, and a launch sample of the table that feeds both discs

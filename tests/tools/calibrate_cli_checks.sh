@@ -153,7 +153,7 @@ dem_recover)
   # The calibrated rows are DEM rows that predict reads as any other.
   run predict --tables "$work/dem_calibrated.sqlite" --material "Urea (field)" --rpm 600
   [ $rc -eq 0 ] || fail "predict exit $rc"
-  has "$out.stdout" "landings from the landing cache"
+  has "$out.stdout" "landings from the landing grid"
   pass ;;
 dem_refused)
   # A 450 rpm tray test (launches slowed to 0.6) fitted at 750 rpm: the speed factor runs into its lower

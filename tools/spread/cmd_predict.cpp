@@ -415,7 +415,7 @@ void run(const Options& o, int& exit_code) {
     std::cout << std::fixed << std::setprecision(2) << o.material << " at " << setting_label(o, result) << ", disc "
               << result.disc_height_m << " m above ground, " << result.sample_count << " launch samples, "
               << (result.flights > 0 ? std::to_string(result.flights) + " trajectories"
-                                     : std::string("landings from the landing cache"))
+                                     : std::string("landings from the landing grid"))
               << ", effects " << effects_label(result.effects) << "\n"
               << "  throw width (99 % of mass)   " << result.throw_width_m << " m" << plus_minus(result.throw_width_se_m) << "\n"
               << "  working width at CV <= " << o.cv_target_percent << " %: to-and-fro "

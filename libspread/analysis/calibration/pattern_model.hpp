@@ -26,7 +26,7 @@
 //                                  (horizontal direction and speed kept): the throw's length through its
 //                                  flight time, separately from the speed.
 // plus the drag diameter factor k (diameters of the samples ×k, density ÷k³). The calibrated rows are the
-// transformed DEM samples of every row (calibrated_table.hpp): predict, the C API and the landing cache
+// transformed DEM samples of every row (calibrated_table.hpp): predict, the C API and the landing grid
 // read them as any DEM row.
 //
 // Smoothness — the fit differentiates this model numerically, so it must be a smooth, deterministic

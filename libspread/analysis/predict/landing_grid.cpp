@@ -75,17 +75,21 @@ void check_axes(const LandingGrid::Axes& axes) {
 }
 }  // namespace
 
-void LandingGrid::assign(const Axes& axes, std::span<const float> values) {
+void LandingGrid::assign(const Axes& axes, flight::EffectSet effects, std::span<const float> values) {
   check_axes(axes);
+  if (!holds(effects)) throw std::invalid_argument("LandingGrid::assign: effects other than drag");
+  effects_ = effects;
   if (values.size() != value_count(axes)) throw std::invalid_argument("LandingGrid::assign: value count does not match the axes");
   axes_ = axes;
   for (std::size_t a = 0; a < kAxisCount; ++a) inverse_step_[a] = 1.0 / axes[a].step;
   values_.assign(values.begin(), values.end());
 }
 
-bool LandingGrid::build(const Axes& axes, double density_kg_m3, const flight::Settings& settings,
-                        const flight::Air& air) {
+bool LandingGrid::build(const Axes& axes, double density_kg_m3, flight::EffectSet effects,
+                        const flight::Settings& settings, const flight::Air& air) {
   check_axes(axes);
+  if (!holds(effects)) throw std::invalid_argument("LandingGrid::build: effects other than drag");
+  effects_ = effects;
   axes_ = axes;
   for (std::size_t a = 0; a < kAxisCount; ++a) inverse_step_[a] = 1.0 / axes[a].step;
   const std::size_t nodes = value_count(axes) / 2;
@@ -111,7 +115,7 @@ bool LandingGrid::build(const Axes& axes, double density_kg_m3, const flight::Se
       launches[c].velocity_m_s = Vec3(node(kSpeed, u), 0.0, node(kVerticalSpeed, v));
       launches[c].spin_rad_s = Vec3::Zero();
     }
-    flight::fly_many(std::span(granules).first(count), std::span(launches).first(count), 0.0, still_air, flight::kDrag,
+    flight::fly_many(std::span(granules).first(count), std::span(launches).first(count), 0.0, still_air, effects,
                      settings, std::span(landings).first(count));
     for (std::size_t c = 0; c < count; ++c) {
       if (!landings[c].landed) {
@@ -197,8 +201,8 @@ void LandingGrid::landing(double diameter_m, double x_m, double y_m, double heig
 
 LandingDomain landing_domain_for(double stored_disc_height_m) {
   LandingDomain domain;
-  domain.min_disc_height_m = std::min(domain.min_disc_height_m, stored_disc_height_m);
-  domain.max_disc_height_m = std::max(domain.max_disc_height_m, stored_disc_height_m);
+  domain.min_disc_height_m = std::min(domain.min_disc_height_m, 0.5 * stored_disc_height_m);
+  domain.max_disc_height_m = std::max(domain.max_disc_height_m, 2.0 * stored_disc_height_m);
   return domain;
 }
 

@@ -3,7 +3,8 @@
 // that a prediction anywhere in its domain evaluates an interpolant per granule instead of integrating
 // its flight, from every launch sample (no thinning), at any disc height and wind in the domain.
 //
-// Under gravity and drag alone (no lift, no spin: a table built with "flight_effects":"drag") a granule of
+// Under gravity and drag alone, or gravity alone (no lift, no spin: a table built with
+// "flight_effects":"drag", or with none) a granule of
 // the material's density is fully described by its diameter d, and its flight from a launch at height h
 // with horizontal speed u and vertical speed v_z stays in the vertical plane through the horizontal
 // velocity (the forces all lie in it). So its horizontal range R and flight time T are functions of four
@@ -54,15 +55,21 @@ class LandingGrid {
 
   explicit LandingGrid(std::pmr::memory_resource* memory = std::pmr::get_default_resource());
 
+  // Still-air effects whose flights the grid can hold: drag or nothing.
+  static bool holds(flight::EffectSet still_air_effects) { return (still_air_effects & ~flight::kDrag) == 0; }
+
   // Flies every node: a granule of `density_kg_m3` and the node's diameter, launched from height h with
-  // velocity (u, 0, v_z) in still air under gravity and drag (fly_many, SIMD lanes), and records R and T.
-  // Returns false, leaving the grid empty, when a flight did not land within the settings' limits.
-  bool build(const Axes& axes, double density_kg_m3, const flight::Settings& settings, const flight::Air& air);
+  // velocity (u, 0, v_z) in still air under gravity and `effects` (holds() must be true; fly_many, SIMD
+  // lanes), and records R and T. Returns false, leaving the grid empty, when a flight did not land within
+  // the settings' limits.
+  bool build(const Axes& axes, double density_kg_m3, flight::EffectSet effects, const flight::Settings& settings,
+             const flight::Air& air);
   // Adopts stored values (a table's): values.size() must be value_count(axes).
-  void assign(const Axes& axes, std::span<const float> values);
+  void assign(const Axes& axes, flight::EffectSet effects, std::span<const float> values);
 
   bool empty() const { return values_.empty(); }
   const Axes& axes() const { return axes_; }
+  flight::EffectSet effects() const { return effects_; }  // the still-air effects it was flown with
   std::span<const float> values() const { return values_; }
   std::size_t bytes() const { return sizeof(float) * values_.size(); }
   static std::size_t value_count(const Axes& axes);
@@ -83,6 +90,7 @@ class LandingGrid {
 
  private:
   Axes axes_{};
+  flight::EffectSet effects_ = 0;
   std::array<double, kAxisCount> inverse_step_{};
   // [(((d · N_vz + v) · N_h + h) · N_u + u) · 2 + {0: R, 1: T}]
   std::pmr::vector<float> values_;
@@ -90,13 +98,13 @@ class LandingGrid {
 
 // The conditions a table's landing grids cover: what a controller meets in the field. Requests inside it
 // are answered from the grid, from every launch sample.
-//   - Disc heights above the surface the granules land on, 0.3–2.0 m: mounted and trailed twin-disc
-//     spreaders are set from about half a metre (border spreading, low crops) to well over a metre
-//     (late top-dressing over a standing crop), with a margin both ways; the machine's stored height
-//     widens the range if it lies outside.
+//   - Disc heights above the surface the granules land on, 0.2–2.0 m: mounted and trailed twin-disc
+//     spreaders are set from a few decimetres (border spreading, a low linkage) to well over a metre
+//     (late top-dressing over a standing crop); with a machine's stored height h0 outside that range,
+//     from h0/2 or up to 2 h0.
 //   - Horizontal winds up to 10 m/s (Beaufort 5: spreading granular fertiliser stops well before it).
 struct LandingDomain {
-  double min_disc_height_m = 0.3;
+  double min_disc_height_m = 0.2;
   double max_disc_height_m = 2.0;
   double max_wind_m_s = 10.0;
   bool covers(double disc_height_m, double wind_x_m_s, double wind_y_m_s) const {
@@ -106,11 +114,11 @@ struct LandingDomain {
 };
 LandingDomain landing_domain_for(double stored_disc_height_m);
 
-// Nodes per axis of a material's grid (LandingGrid::Axis order): 250 KB per material. Measured on the
+// Nodes per axis of a material's grid (LandingGrid::Axis order): 320 KB per material. Measured on the
 // product's default table, every 5th launch sample at random disc heights and winds across the domain
-// against the sample flown at the tight reference tolerance (bench_predict BM_LandingGridError): 0.9–2.5
-// mm root mean square, 1.1–1.4 cm at worst by material — about the accuracy of a default flight (1 cm).
-inline constexpr std::array<std::uint32_t, LandingGrid::kAxisCount> kGridNodes = {10, 20, 8, 20};
+// against the sample flown at the tight reference tolerance (bench_predict BM_LandingGridError): 1.1–2.9
+// mm root mean square, 1.1–2.1 cm at worst by material — about the accuracy of a default flight (1 cm).
+inline constexpr std::array<std::uint32_t, LandingGrid::kAxisCount> kGridNodes = {10, 20, 10, 20};
 
 // Axes that cover every launch of a material's samples (normalised, as stored in its rows) at disc speeds
 // up to max_rim_speed_m_s (ω R of its fastest row), launched from any disc height of the domain into any of

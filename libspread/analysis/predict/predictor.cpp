@@ -151,18 +151,20 @@ void Predictor::build_landing_grids(std::pmr::memory_resource* memory) {
   settings.rel_tol = std::min(settings_.rel_tol, kGridTolerance);
   settings.abs_tol = std::min(settings_.abs_tol, kGridTolerance);
   for (const auto& rows : materials_) {
-    // Drag alone (wind is a condition of the day): the only flights the grid's four numbers describe.
-    bool drag_only = true;
+    // Drag alone or nothing (wind is a condition of the day), the same for every row: the only flights
+    // the grid's four numbers describe.
+    const flight::EffectSet effects = run_effects_[rows.first_run] & ~flight::EffectSet{flight::kWind};
+    bool held = LandingGrid::holds(effects);
     double max_rim_speed_m_s = 0.0;
     for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
-      drag_only = drag_only && (run_effects_[k] & ~flight::EffectSet{flight::kWind}) == flight::kDrag;
+      held = held && (run_effects_[k] & ~flight::EffectSet{flight::kWind}) == effects;
       max_rim_speed_m_s = std::max(max_rim_speed_m_s, run_rpm_[k] * 2.0 * kPi / 60.0 * contents_.machine.disc_radius_m);
     }
-    if (!drag_only) continue;
+    if (!held) continue;
     const std::span<const tables::LaunchSample> samples(samples_.data() + run_offset_[rows.first_run],
                                                         run_offset_[rows.first_run + rows.run_count] - run_offset_[rows.first_run]);
     const LandingGrid::Axes axes = landing_grid_axes(samples, max_rim_speed_m_s, domain_);
-    grids_[rows.material].build(axes, contents_.materials[rows.material].density_kg_m3, settings, flight::Air{});
+    grids_[rows.material].build(axes, contents_.materials[rows.material].density_kg_m3, effects, settings, flight::Air{});
   }
 }
 
@@ -176,7 +178,9 @@ std::size_t Predictor::landing_grid_bytes() const {
 const LandingGrid* Predictor::landing_grid_for(const MaterialRows& rows, double height_m, flight::EffectSet effects,
                                                const flight::Air& air) const {
   const LandingGrid& grid = grids_[rows.material];
-  if (!landing_grid_enabled_ || grid.empty() || (effects & ~flight::EffectSet{flight::kWind}) != flight::kDrag) return nullptr;
+  if (!landing_grid_enabled_ || grid.empty() || (effects & ~flight::EffectSet{flight::kWind}) != grid.effects()) {
+    return nullptr;
+  }
   const bool windy = (effects & flight::kWind) != 0;
   if (windy && air.wind_m_s.z() != 0.0) return nullptr;
   if (!domain_.covers(height_m, windy ? air.wind_m_s.x() : 0.0, windy ? air.wind_m_s.y() : 0.0)) return nullptr;

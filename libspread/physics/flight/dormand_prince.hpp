@@ -145,7 +145,9 @@ Landing fly_dormand_prince(const FlightParameters& p, const State& launch, doubl
     }
 
     ++landing.steps;
-    if (y[2] > ground_z_m && y_new[2] <= ground_z_m) {
+    // From a launch on the ground (t = 0, going up: fly_unchecked lands the others at once) the hop may
+    // end inside the first step.
+    if ((y[2] > ground_z_m || t == 0.0) && y_new[2] <= ground_z_m) {
       StateVector<E> y_land;
       const double theta = locate_crossing<E>(k, y, y_new, h, ground_z_m, y_land);
       landing.state = to_state<E>(y_land, p);

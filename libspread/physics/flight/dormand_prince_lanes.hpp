@@ -204,7 +204,7 @@ void fly_dormand_prince_lanes(std::span<const Granule> granules, std::span<const
         continue;
       }
       ++steps[l];
-      if (y[2][l] > ground_z_m && y_new[2][l] <= ground_z_m) {
+      if ((y[2][l] > ground_z_m || t[l] == 0.0) && y_new[2][l] <= ground_z_m) {  // as fly_dormand_prince
         DpStages<E> k;
         k.k1 = gather(k1, l);
         k.k2 = gather(k2, l);

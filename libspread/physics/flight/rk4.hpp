@@ -44,7 +44,7 @@ Landing fly_rk4(const FlightParameters& p, const State& launch, double ground_z_
     flight_rhs<E>(p, y, k1);
     rk4_step<E>(p, y, k1, h, y_next);
     ++landing.steps;
-    if (y[2] > ground_z_m && y_next[2] <= ground_z_m) {
+    if ((y[2] > ground_z_m || t == 0.0) && y_next[2] <= ground_z_m) {  // t = 0: as fly_dormand_prince
       // Shortened final step: find θ with z(RK4 step of θh) = ground. dz/dθ ≈ h v_z at the end point.
       StateVector<E> y_partial = y_next;
       const auto eval = [&](double theta) {
