@@ -10,9 +10,9 @@
 namespace spread::fuzz {
 
 // SPREAD_ERROR_INTERNAL is "a bug: please report" by the header's own words; anything outside the enum
-// (SPREAD_ERROR_BAD_HANDLE is the last code) is a broken status mapping.
+// (SPREAD_ERROR_OUTSIDE_DOMAIN is the last code) is a broken status mapping.
 inline void check_status(const char* harness, spread_status status, const char* call) {
-  if (status == SPREAD_ERROR_INTERNAL || static_cast<int>(status) < 0 || static_cast<int>(status) > SPREAD_ERROR_BAD_HANDLE) {
+  if (status == SPREAD_ERROR_INTERNAL || static_cast<int>(status) < 0 || static_cast<int>(status) > SPREAD_ERROR_OUTSIDE_DOMAIN) {
     fail(harness, std::string(call) + " returned " + spread_status_str(status));
   }
 }

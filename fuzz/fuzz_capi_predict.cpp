@@ -102,6 +102,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   def.bout_width_m = pick(5) ? in.take_raw_double() : in.take<std::uint8_t>() * 0.25;
   def.tray_width_m = pick(6) ? in.take_raw_double() : 0.02 + in.take<std::uint8_t>() * 0.01;
   if (pick(7)) def.struct_size = in.take<std::uint32_t>();
+  // Outside the landing grid's domain: refused, or (opted in) every sample flown.
+  def.fly_outside_domain = in.take<std::uint8_t>() & 1u;
 
   std::size_t bound = 0;
   const spread_status bound_status = spread_transverse_bound(fixture->tables, def.tray_width_m, &bound);

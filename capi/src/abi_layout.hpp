@@ -14,13 +14,15 @@ namespace spread::capi {
 // each struct is the smallest struct_size accepted; a struct_size between two constants is read as the
 // older version (only whole fields are read).
 // spread_prediction_def: 0.1 ended with tray_width_m; 0.2 appended kernel_half_width_m; 0.3 result_size,
-// reserved and drop_point_turn_rad; 0.4 disc_rpm and disc_drop_point_turn_rad.
+// reserved and drop_point_turn_rad; 0.4 disc_rpm and disc_drop_point_turn_rad; 0.5 fly_outside_domain and
+// reserved2.
 inline constexpr std::size_t kPredictionDefV1Size = offsetof(spread_prediction_def, kernel_half_width_m);
 inline constexpr std::size_t kPredictionDefV2Size =
     offsetof(spread_prediction_def, kernel_half_width_m) + sizeof(double);
 inline constexpr std::size_t kPredictionDefV3Size = offsetof(spread_prediction_def, drop_point_turn_rad) + sizeof(double);
 inline constexpr std::size_t kPredictionDefV4Size =
     offsetof(spread_prediction_def, disc_drop_point_turn_rad) + sizeof(double[2]);
+inline constexpr std::size_t kPredictionDefV5Size = offsetof(spread_prediction_def, reserved2) + sizeof(uint32_t);
 // spread_trajectory_def: 0.1 ended with effects. `reserved` filled its trailing padding later; where the
 // ABI had no such padding (4-byte aligned doubles) that made the struct larger, hence two sizes.
 inline constexpr std::size_t kTrajectoryDefV1Size = offsetof(spread_trajectory_def, reserved);
@@ -34,14 +36,14 @@ inline constexpr std::size_t kPredictionV4Size = offsetof(spread_prediction, dis
 
 // Versions are told apart by size alone, so each published size differs from the one before.
 static_assert(kPredictionDefV1Size < kPredictionDefV2Size && kPredictionDefV2Size < kPredictionDefV3Size &&
-              kPredictionDefV3Size < kPredictionDefV4Size);
+              kPredictionDefV3Size < kPredictionDefV4Size && kPredictionDefV4Size < kPredictionDefV5Size);
 static_assert(kTrajectoryDefV1Size < kTrajectoryDefReservedSize);
 static_assert(kPredictionV1Size < kPredictionV2Size && kPredictionV2Size < kPredictionV3Size &&
               kPredictionV3Size < kPredictionV4Size);
 // No published struct ends in padding: a field appended next must lie beyond the sizeof() of this
 // header, or a caller of this header would pass a struct_size that covers its padding as that field.
 // The right-hand sides name each struct's last field: appending one means updating these lines.
-static_assert(sizeof(spread_prediction_def) == kPredictionDefV4Size);
+static_assert(sizeof(spread_prediction_def) == kPredictionDefV5Size);
 static_assert(sizeof(spread_trajectory_def) == kTrajectoryDefReservedSize);
 static_assert(sizeof(spread_prediction) == kPredictionV4Size);
 static_assert(sizeof(spread_band) == offsetof(spread_band, limited_by_layout) + sizeof(int32_t));

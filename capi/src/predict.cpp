@@ -97,7 +97,7 @@ constexpr const char* kDiscRpmField[2] = {"disc_rpm[0]", "disc_rpm[1]"};
 constexpr const char* kDiscTurnField[2] = {"disc_drop_point_turn_rad[0]", "disc_drop_point_turn_rad[1]"};
 
 spread_status refused(spread_status status, const spread::predict::Predictor& predictor,
-                      const spread_prediction_def& def, bool v2) {
+                      const spread_prediction_def& def, const spread::predict::PredictionRequest& request, bool v2) {
   using spread::capi::fail;
   const bool v4 = def.struct_size >= spread::capi::kPredictionDefV4Size;
   switch (status) {
@@ -117,6 +117,26 @@ spread_status refused(spread_status status, const spread::predict::Predictor& pr
       }
       return fail(status, "spread_predict: rpm %g outside the rows of \"%.200s\", [%g, %g]", def.rpm, def.material,
                   min_rpm, max_rpm);
+    }
+    case SPREAD_ERROR_OUTSIDE_DOMAIN: {
+      using Miss = spread::predict::Predictor::DomainMiss;
+      const auto& domain = predictor.landing_domain();
+      const char* const opt_in = "set fly_outside_domain to fly every launch sample instead";
+      switch (predictor.landing_domain_miss(request)) {
+        case Miss::kHeight:
+          return fail(status, "spread_predict: disc_height_m %g outside the landing grid's heights [%g, %g] m (%s)",
+                      std::isnan(def.disc_height_m) ? predictor.machine().disc_height_m : def.disc_height_m,
+                      domain.min_disc_height_m, domain.max_disc_height_m, opt_in);
+        case Miss::kWind:
+          return fail(status, "spread_predict: wind_m_s {%g, %g}, %g m/s, above the landing grid's %g m/s (%s)",
+                      def.wind_m_s[0], def.wind_m_s[1], std::hypot(def.wind_m_s[0], def.wind_m_s[1]),
+                      domain.max_wind_m_s, opt_in);
+        case Miss::kEffects:
+          return fail(status, "spread_predict: effects 0x%x fly more than the table's drag, which the landing grid holds (%s)",
+                      static_cast<unsigned>(def.effects), opt_in);
+        case Miss::kNone: break;
+      }
+      return fail(status, "spread_predict: outside the landing grid's domain (%s)", opt_in);
     }
     case SPREAD_ERROR_UNKNOWN_EFFECT:
       return fail(status, "spread_predict: effects 0x%x has bits outside SPREAD_EFFECT_ALL | SPREAD_EFFECTS_AS_TABLE",
@@ -207,9 +227,10 @@ spread_status predict_with(const spread::predict::Predictor& predictor, spread::
       }
     }
     const bool v4 = v3_def && def->result_size >= spread::capi::kPredictionV4Size;
+    if (def->struct_size >= spread::capi::kPredictionDefV5Size) request.fly_outside_domain = def->fly_outside_domain != 0;
 
     const auto status = run(request, prediction);
-    if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, v2);
+    if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, request, v2);
     copy_result(prediction, v2, v3, v4, *result);
     if (transverse_mass_fraction != nullptr) {
       const auto& trays = prediction.tray_mass_fraction;

@@ -14,6 +14,7 @@ inline spread_status status_of(spread::predict::PredictStatus status) {
     case S::kUnknownEffect: return SPREAD_ERROR_UNKNOWN_EFFECT;
     case S::kUnknownMaterial: return SPREAD_ERROR_UNKNOWN_MATERIAL;
     case S::kRpmOutsideTable: return SPREAD_ERROR_RPM_OUTSIDE_TABLE;
+    case S::kOutsideDomain: return SPREAD_ERROR_OUTSIDE_DOMAIN;
   }
   return SPREAD_ERROR_INTERNAL;
 }

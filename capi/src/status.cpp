@@ -22,6 +22,7 @@ extern "C" const char* spread_status_str(spread_status status) {
     case SPREAD_ERROR_NOT_LANDED: return "SPREAD_ERROR_NOT_LANDED: the granule did not reach the ground";
     case SPREAD_ERROR_INTERNAL: return "SPREAD_ERROR_INTERNAL: internal error";
     case SPREAD_ERROR_BAD_HANDLE: return "SPREAD_ERROR_BAD_HANDLE: not a live handle (closed or freed)";
+    case SPREAD_ERROR_OUTSIDE_DOMAIN: return "SPREAD_ERROR_OUTSIDE_DOMAIN: outside the landing grid's domain";
   }
   return "unknown status";
 }

@@ -193,6 +193,30 @@ extern "C" spread_status spread_default_disc_height(const spread_tables* tables,
   return SPREAD_OK;
 }
 
+extern "C" spread_status spread_landing_domain(const spread_tables* tables, int32_t index, double* out_min_height_m,
+                                               double* out_max_height_m, double* out_max_wind_m_s) {
+  if (const spread_status s = check_handle(tables, "spread_landing_domain"); s != SPREAD_OK) return s;
+  if (out_min_height_m == nullptr || out_max_height_m == nullptr || out_max_wind_m_s == nullptr) {
+    return fail(SPREAD_ERROR_NULL_POINTER, "spread_landing_domain: an output pointer is NULL");
+  }
+  if (!valid_index(tables, index)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_landing_domain: index %d outside [0, %zu)", static_cast<int>(index),
+                tables->predictor.material_count());
+  }
+  const auto material = static_cast<std::size_t>(index);
+  if (!tables->predictor.has_landing_grid(material)) {
+    return fail(SPREAD_ERROR_OUTSIDE_DOMAIN,
+                "spread_landing_domain: \"%.200s\" has no landing grid: its runs fly more than drag, so every "
+                "request flies every launch sample (set fly_outside_domain)",
+                tables->predictor.material(material).name.c_str());
+  }
+  const auto& domain = tables->predictor.landing_domain();
+  *out_min_height_m = domain.min_disc_height_m;
+  *out_max_height_m = domain.max_disc_height_m;
+  *out_max_wind_m_s = domain.max_wind_m_s;
+  return SPREAD_OK;
+}
+
 extern "C" spread_status spread_transverse_bound(const spread_tables* tables, double tray_width_m,
                                                  size_t* out_tray_count) {
   if (const spread_status s = check_handle(tables, "spread_transverse_bound"); s != SPREAD_OK) return s;

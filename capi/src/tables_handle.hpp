@@ -35,13 +35,12 @@ inline constexpr std::uint64_t kTablesTag = 0x5350524541445442u;     // "SPREADT
 inline constexpr std::uint64_t kWorkspaceTag = 0x5350524541445753u;  // "SPREADWS"
 inline constexpr std::uint64_t kDeadTag = 0xDEADDEADDEADDEADu;
 
-// Flights one spread_predict may integrate: bounds the time of any legal request (docs/c-api.md
-// "Worst-case time"); requests the landing grid serves fly none.
-inline constexpr std::size_t kControllerMaxFlights = 768;
-
+// A controller's limits: requests outside the landing grid's domain are refused unless they opt in to
+// flying every launch sample (docs/c-api.md "Landing grid"), so the time of any request that does not
+// opt in is the grid's.
 inline predict::PredictorLimits controller_limits() {
   predict::PredictorLimits limits;
-  limits.max_flights = kControllerMaxFlights;
+  limits.refuse_outside_domain = true;
   return limits;
 }
 

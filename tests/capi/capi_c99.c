@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
   CHECK(traj.reserved == 0u);
   CHECK(sizeof(spread_trajectory_def) == offsetof(spread_trajectory_def, reserved) + sizeof traj.reserved);
   CHECK(sizeof(spread_landing) == offsetof(spread_landing, reserved) + sizeof landing.reserved);
-  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, disc_drop_point_turn_rad) + sizeof def.disc_drop_point_turn_rad);
+  CHECK(sizeof(spread_prediction_def) == offsetof(spread_prediction_def, reserved2) + sizeof def.reserved2);
+  CHECK(def.fly_outside_domain == 0u && def.reserved2 == 0u);
   CHECK(def.drop_point_turn_rad == 0.0);
   CHECK(isnan(def.disc_rpm[0]) && isnan(def.disc_rpm[1]));
   CHECK(isnan(def.disc_drop_point_turn_rad[0]) && isnan(def.disc_drop_point_turn_rad[1]));

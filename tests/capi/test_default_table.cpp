@@ -105,35 +105,46 @@ TEST_F(DefaultTable, EveryRowKnowsItsWorkingWidthWithinHalfAMetre) {
   }
 }
 
-// Requests inside the landing grid's domain (any height 0.2–2 m, winds to 10 m/s) come from every launch
-// sample, none flown; requests outside it fly at most the controller's bound (docs/c-api.md "Worst-case
-// time") and say on how many samples they rest.
-TEST_F(DefaultTable, WorstRequestsFlyAtMostTheBound) {
+// Requests inside the landing grid's domain (spread_landing_domain: heights 0.2–2 m here, winds to
+// 10 m/s) come from every launch sample, none flown; requests outside it are refused, naming what is
+// outside and the covered range, unless they opt in to flying every sample — never a subsample.
+TEST_F(DefaultTable, OutsideTheDomainIsRefusedOrFlownWhole) {
   const char* name = nullptr;
-  double lo = 0.0, hi = 0.0;
+  double lo = 0.0, hi = 0.0, min_height_m = 0.0, max_height_m = 0.0, max_wind_m_s = 0.0;
   ASSERT_EQ(spread_material_name(tables_, 0, &name), SPREAD_OK);
   ASSERT_EQ(spread_material_rpm_range(tables_, 0, &lo, &hi), SPREAD_OK);
-  std::size_t every_sample = 0;
+  ASSERT_EQ(spread_landing_domain(tables_, 0, &min_height_m, &max_height_m, &max_wind_m_s), SPREAD_OK);
+  EXPECT_EQ(min_height_m, 0.2);
+  EXPECT_EQ(max_height_m, 2.0);
+  EXPECT_EQ(max_wind_m_s, 10.0);
+  std::int32_t every_sample = 0;
   for (double height_m : {1.0, 100.0}) {
-    for (double wind_m_s : {0.0, 10.0, 20.0, 100.0}) {
+    for (double wind_m_s : {0.0, 10.0, 20.0}) {
+      SCOPED_TRACE(std::to_string(height_m) + " m, " + std::to_string(wind_m_s) + " m/s");
       spread_prediction_def def = spread_prediction_def_default();
       def.material = name;
       def.rpm = 0.5 * (lo + 0.5 * (lo + hi));  // between two rows: both rows' launches
       def.disc_height_m = height_m;
       def.wind_m_s[0] = wind_m_s;
-      def.tray_width_m = 0.05;
       spread_prediction r{};
-      ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK) << height_m << " m, " << wind_m_s << " m/s";
-      if (height_m <= 2.0 && wind_m_s <= 10.0) {
-        EXPECT_EQ(r.flights, 0) << height_m << " m, " << wind_m_s << " m/s";
+      if (height_m <= max_height_m && wind_m_s <= max_wind_m_s) {
+        ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK);
+        EXPECT_EQ(r.flights, 0);
         if (every_sample == 0) every_sample = r.sample_count;
-        EXPECT_EQ(r.sample_count, every_sample) << height_m << " m, " << wind_m_s << " m/s";
-        EXPECT_GT(r.sample_count, 4000u);
+        EXPECT_EQ(r.sample_count, every_sample);
+        EXPECT_GT(r.sample_count, 4000);
         continue;
       }
-      EXPECT_GT(r.flights, 0);
-      EXPECT_LE(r.flights, 768) << height_m << " m, " << wind_m_s << " m/s";
-      EXPECT_LT(r.sample_count, 4000) << "thinned, and said so";
+      ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_ERROR_OUTSIDE_DOMAIN);
+      const std::string detail = spread_last_error_detail();
+      EXPECT_NE(detail.find(height_m > max_height_m ? "disc_height_m 100 outside the landing grid's heights [0.2, 2] m"
+                                                    : "above the landing grid's 10 m/s"),
+                std::string::npos)
+          << detail;
+      EXPECT_NE(detail.find("fly_outside_domain"), std::string::npos) << detail;
+      def.fly_outside_domain = 1;
+      ASSERT_EQ(spread_predict(tables_, &def, &r, nullptr, 0), SPREAD_OK);
+      EXPECT_EQ(r.sample_count, every_sample);
       EXPECT_EQ(r.flights, (wind_m_s != 0.0 ? 2 : 1) * r.sample_count);
     }
   }

@@ -175,5 +175,50 @@ TEST(LandingGrid, FliesWhereTheGridDoesNotHold) {
   EXPECT_EQ(all_effects.landing_grid_bytes(), 0u);
 }
 
+// A controller's Predictor (refuse_outside_domain) answers inside the grid's domain from every sample and
+// refuses outside it, naming what is outside; opted in, it flies every sample — never a subsample.
+TEST(LandingGrid, OutsideTheDomainIsRefusedOrFlownWhole) {
+  PredictorLimits limits;
+  limits.refuse_outside_domain = true;
+  Predictor controller(drag_contents(), limits);
+  Prediction inside;
+  ASSERT_EQ(controller.predict(request("can", 650.0, 3.0, 0.0), inside), PredictStatus::kOk);
+  EXPECT_EQ(inside.flights, 0);
+  const std::size_t every_sample = inside.sample_count;
+  EXPECT_EQ(every_sample, 256u);
+  struct Case {
+    PredictionRequest request;
+    Predictor::DomainMiss miss;
+  };
+  PredictionRequest high = request("can", 650.0), windy = request("can", 650.0, 7.1, -7.1),
+                    lift = request("can", 650.0);
+  high.disc_height_m = 2.01;
+  lift.effects = flight::kDrag | flight::kMagnus;
+  for (Case c : {Case{high, Predictor::DomainMiss::kHeight}, Case{windy, Predictor::DomainMiss::kWind},
+                 Case{lift, Predictor::DomainMiss::kEffects}}) {
+    SCOPED_TRACE(static_cast<int>(c.miss));
+    EXPECT_EQ(controller.landing_domain_miss(c.request), c.miss);
+    Prediction out = inside;
+    ASSERT_EQ(controller.predict(c.request, out), PredictStatus::kOutsideDomain);
+    EXPECT_EQ(out.working_width_to_and_fro_m, inside.working_width_to_and_fro_m);  // unchanged
+    c.request.fly_outside_domain = true;
+    ASSERT_EQ(controller.predict(c.request, out), PredictStatus::kOk);
+    EXPECT_EQ(out.sample_count, every_sample);
+    const int discs_flown = c.request.wind_x_m_s != 0.0 ? 2 : 1;
+    EXPECT_EQ(out.flights, discs_flown * static_cast<int>(every_sample));
+  }
+  EXPECT_EQ(controller.landing_domain_miss(request("can", 650.0)), Predictor::DomainMiss::kNone);
+  // The library's default flies them whole without being asked; a table without a grid flies every
+  // request whole, refusing nothing.
+  Predictor tool(drag_contents());
+  Prediction out;
+  ASSERT_EQ(tool.predict(high, out), PredictStatus::kOk);
+  EXPECT_EQ(out.flights, static_cast<int>(every_sample));
+  Predictor no_grid(testing::synthetic_contents(), limits);
+  EXPECT_FALSE(no_grid.has_landing_grid(0));
+  ASSERT_EQ(no_grid.predict(high, out), PredictStatus::kOk);
+  EXPECT_EQ(out.flights, static_cast<int>(every_sample));
+}
+
 }  // namespace
 }  // namespace spread::predict

@@ -402,38 +402,6 @@ TEST(Predictor, TrayCapacityBoundsEveryLayout) {
   EXPECT_LE(out.trays.tray_count, p.tray_capacity(0.05));
 }
 
-// PredictorLimits::max_flights bounds the flights of any request by thinning the samples: the result
-// says how many samples it rests on, and its standard errors grow accordingly.
-TEST(Predictor, FlightBoundThinsTheSamplesAndSaysSo) {
-  Predictor unbounded(testing::synthetic_contents());
-  PredictorLimits limits;
-  limits.max_flights = 100;
-  Predictor bounded(testing::synthetic_contents(), limits);
-  limits.max_flights = 256;
-  Predictor exactly_enough(testing::synthetic_contents(), limits);
-  Prediction all, thinned, same;
-  ASSERT_EQ(unbounded.predict(request("can", 650.0), all), PredictStatus::kOk);
-  ASSERT_EQ(bounded.predict(request("can", 650.0), thinned), PredictStatus::kOk);
-  ASSERT_EQ(exactly_enough.predict(request("can", 650.0), same), PredictStatus::kOk);
-  EXPECT_EQ(all.flights, 256);
-  EXPECT_EQ(all.sample_count, 256u);
-  // Every 3rd of 256 samples, from the 2nd: 85 samples, one flight each (the right disc is mirrored).
-  EXPECT_EQ(thinned.sample_count, 85u);
-  EXPECT_EQ(thinned.flights, 85);
-  EXPECT_GT(thinned.throw_width_se_m, all.throw_width_se_m);
-  EXPECT_NEAR(thinned.throw_width_m, all.throw_width_m, 4.0 * thinned.throw_width_se_m);
-  // At the bound nothing changes.
-  EXPECT_EQ(same.sample_count, all.sample_count);
-  EXPECT_EQ(same.working_width_to_and_fro_m, all.working_width_to_and_fro_m);
-  EXPECT_EQ(same.cv_to_and_fro, all.cv_to_and_fro);
-  // A lateral wind flies both discs: two flights per sample within the same bound.
-  PredictionRequest windy = request("can", 650.0);
-  windy.wind_x_m_s = 3.0;
-  ASSERT_EQ(bounded.predict(windy, thinned), PredictStatus::kOk);
-  EXPECT_LE(thinned.flights, 100);
-  EXPECT_EQ(static_cast<std::size_t>(thinned.flights), 2 * thinned.sample_count);
-}
-
 }  // namespace
 }  // namespace spread::predict
 

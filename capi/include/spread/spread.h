@@ -51,10 +51,10 @@
 /* Compile-time version. spread_version() returns the run-time one: compare them to detect a mismatch
  * between the header you compiled with and the library you linked. */
 #define SPREAD_VERSION_MAJOR 0
-#define SPREAD_VERSION_MINOR 4
+#define SPREAD_VERSION_MINOR 5
 #define SPREAD_VERSION_PATCH 0
 #define SPREAD_VERSION_NUMBER (SPREAD_VERSION_MAJOR * 10000 + SPREAD_VERSION_MINOR * 100 + SPREAD_VERSION_PATCH)
-#define SPREAD_VERSION_STRING "0.4.0"
+#define SPREAD_VERSION_STRING "0.5.0"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define SPREAD_API __attribute__((visibility("default")))
@@ -88,8 +88,11 @@ typedef enum spread_status {
   SPREAD_ERROR_OUT_OF_MEMORY = 14,     /* spread_open could not allocate */
   SPREAD_ERROR_NOT_LANDED = 15,        /* a trajectory did not reach the ground within the time limit */
   SPREAD_ERROR_INTERNAL = 16,          /* unexpected failure inside the library (a bug: please report) */
-  SPREAD_ERROR_BAD_HANDLE = 17         /* not a live handle: already closed/freed, or not made by this
+  SPREAD_ERROR_BAD_HANDLE = 17,        /* not a live handle: already closed/freed, or not made by this
                                           library (best-effort detection, see spread_close) */
+  SPREAD_ERROR_OUTSIDE_DOMAIN = 18     /* (appended in 0.5) a request the table's landing grid does not
+                                          cover: a disc height or wind outside spread_landing_domain, or
+                                          effects beyond the table's; see fly_outside_domain */
 } spread_status;
 
 /* Name of a status code, e.g. "SPREAD_ERROR_UNKNOWN_MATERIAL: unknown material". Never NULL; static
@@ -141,6 +144,14 @@ SPREAD_API spread_status spread_material_rpm_range(const spread_tables* tables, 
                                                    double* out_min_rpm, double* out_max_rpm);
 /* Height of the disc above the ground stored with the machine (used when the definition says NaN). */
 SPREAD_API spread_status spread_default_disc_height(const spread_tables* tables, double* out_height_m);
+/* (appended in 0.5) The conditions the table's landing grid answers from every launch sample at the
+ * grid's cost: disc heights [*out_min_height_m, *out_max_height_m] (m) and horizontal winds up to
+ * *out_max_wind_m_s (m/s), with the table's own flight effects. Outside them spread_predict refuses with
+ * SPREAD_ERROR_OUTSIDE_DOMAIN unless the definition sets fly_outside_domain. SPREAD_ERROR_OUTSIDE_DOMAIN
+ * here: the material (index as spread_material_name) has no grid, because its runs fly more than drag;
+ * every request then flies every sample. */
+SPREAD_API spread_status spread_landing_domain(const spread_tables* tables, int32_t index, double* out_min_height_m,
+                                               double* out_max_height_m, double* out_max_wind_m_s);
 
 /* ---------------------------------------------------------------------------------------------------
  * Prediction
@@ -178,6 +189,13 @@ typedef struct spread_prediction_def {
                                   drop_point_turn_rad for that disc; NaN (default) = drop_point_turn_rad.
                                   With both given, drop_point_turn_rad must be 0. A one-disc machine has
                                   only [0]: a value in [1] is refused */
+  /* --- appended in 0.5 --- */
+  uint32_t fly_outside_domain; /* 0 (default): a request outside the landing grid's domain is refused with
+                                  SPREAD_ERROR_OUTSIDE_DOMAIN, so every answered request costs the
+                                  grid's time; 1: it flies every launch sample instead (tens of
+                                  milliseconds, docs/c-api.md "Landing grid"). A definition older than
+                                  0.5 has 0 */
+  uint32_t reserved2;          /* fills the struct to a whole double; 0 from _default(), never read */
 } spread_prediction_def;
 
 /* One band of bout widths whose CV meets the target (appended in 0.3). */
@@ -220,7 +238,7 @@ typedef struct spread_prediction {
   double tray_left_edge_m;            /* left edge of tray 0; tray k is centred at
                                          tray_left_edge_m + (k + 0.5) * tray_width_m */
   int32_t flights;                    /* trajectories integrated for this prediction (0: every landing
-                                         came from the landing cache, docs/c-api.md) */
+                                         came from the landing grid, docs/c-api.md) */
   /* --- appended in 0.2: written only for a definition of at least this version's struct_size ---
    * Monte Carlo standard errors over the table's launch samples (delta method, docs/metrics.md
    * "Uncertainty"); a 95 % interval is about ±2 standard errors. NaN where undefined (no width meets
@@ -275,6 +293,8 @@ static inline spread_prediction_def spread_prediction_def_default(void) {
   def.disc_rpm[1] = NAN;
   def.disc_drop_point_turn_rad[0] = NAN;
   def.disc_drop_point_turn_rad[1] = NAN;
+  def.fly_outside_domain = 0u;
+  def.reserved2 = 0u;
   return def;
 }
 

@@ -201,8 +201,8 @@ void LandingGrid::landing(double diameter_m, double x_m, double y_m, double heig
 
 LandingDomain landing_domain_for(double stored_disc_height_m) {
   LandingDomain domain;
-  domain.min_disc_height_m = std::min(domain.min_disc_height_m, 0.5 * stored_disc_height_m);
-  domain.max_disc_height_m = std::max(domain.max_disc_height_m, 2.0 * stored_disc_height_m);
+  if (stored_disc_height_m < domain.min_disc_height_m) domain.min_disc_height_m = 0.5 * stored_disc_height_m;
+  if (stored_disc_height_m > domain.max_disc_height_m) domain.max_disc_height_m = 2.0 * stored_disc_height_m;
   return domain;
 }
 

@@ -24,6 +24,7 @@ const char* to_string(PredictStatus status) {
     case PredictStatus::kUnknownEffect: return "unknown effect bits";
     case PredictStatus::kUnknownMaterial: return "unknown material";
     case PredictStatus::kRpmOutsideTable: return "rpm outside the table";
+    case PredictStatus::kOutsideDomain: return "outside the landing grid's domain";
   }
   return "unknown status";
 }
@@ -166,6 +167,10 @@ void Predictor::build_landing_grids(std::pmr::memory_resource* memory) {
     const LandingGrid::Axes axes = landing_grid_axes(samples, max_rim_speed_m_s, domain_);
     grids_[rows.material].build(axes, contents_.materials[rows.material].density_kg_m3, effects, settings, flight::Air{});
   }
+}
+
+bool Predictor::has_landing_grid(std::size_t index) const {
+  return landing_grid_enabled_ && !grids_[materials_.at(index).material].empty();
 }
 
 std::size_t Predictor::landing_grid_bytes() const {
@@ -359,8 +364,7 @@ DiscSetting disc_setting(const PredictionRequest& request, int disc) {
 }
 
 std::size_t Predictor::disc_samples(PredictorWorkspace& w, std::size_t lower_run, std::size_t upper_run, double t,
-                                    double drop_point_turn_rad, std::size_t max_flights,
-                                    std::size_t flights_per_sample) const {
+                                    double drop_point_turn_rad) const {
   std::size_t n = interpolate(lower_run, upper_run, t, w.samples_, w.sample_weight_kg_);
   // The drop point turned by Δ about the disc axis turns the fan of launches by Δ (a disc the same all
   // round, fed continuously, has no phase of its own: test LookupDem.TurningTheFeedTurnsTheLaunchFan).
@@ -380,18 +384,6 @@ std::size_t Predictor::disc_samples(PredictorWorkspace& w, std::size_t lower_run
       turn(sample.vx_norm, sample.vy_norm);
       turn(sample.wx_norm, sample.wy_norm);
     }
-  }
-  if (max_flights > 0 && flights_per_sample * n > max_flights) {
-    // The flight bound: every k-th sample (a systematic subsample; each keeps its weight, and the weights
-    // are normalised by the caller), the middle one of each stride so that the first and last samples do
-    // not always count.
-    const std::size_t stride = (flights_per_sample * n + max_flights - 1) / max_flights;
-    std::size_t kept = 0;
-    for (std::size_t i = stride / 2; i < n; i += stride, ++kept) {
-      w.samples_[kept] = w.samples_[i];
-      w.sample_weight_kg_[kept] = w.sample_weight_kg_[i];
-    }
-    n = kept;
   }
   return n;
 }
@@ -533,8 +525,7 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
   if (!per_disc) {
     const DiscRows& r = disc_rows[0];
     const LandingGrid* grid = landing_grid_for(rows, height_m, effects, air);
-    const std::size_t max_flights = grid == nullptr ? limits_.max_flights : 0;
-    n = disc_samples(w, r.lower_run, r.upper_run, r.t, left.drop_point_turn_rad, max_flights, fly_right_disc ? 2 : 1);
+    n = disc_samples(w, r.lower_run, r.upper_run, r.t, left.drop_point_turn_rad);
     const DiscFlights discs = !two_discs        ? DiscFlights::kLeftOnly
                               : fly_right_disc ? DiscFlights::kLeftAndRightFlown
                                                : DiscFlights::kLeftAndMirror;
@@ -545,18 +536,11 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
   } else {
     // One disc after the other through the same sample buffers; each disc's landings carry half of the
     // machine's mass (both discs are fed alike), whatever the count of its samples.
-    bool thinned = false;
     std::size_t disc_count[2] = {0, 0};
     for (int d = 0; d < 2; ++d) {
       const DiscRows& r = disc_rows[d];
       const LandingGrid* grid = landing_grid_for(rows, height_m, effects, air);
-      const std::size_t max_flights = grid == nullptr ? limits_.max_flights / 2 : 0;
-      const std::size_t count = disc_samples(w, r.lower_run, r.upper_run, r.t, settings[d].drop_point_turn_rad,
-                                             max_flights, 1);
-      const std::size_t unthinned = r.lower_run == r.upper_run || pairwise(r.lower_run, r.upper_run)
-                                        ? run_samples(r.lower_run).size()
-                                        : run_samples(r.lower_run).size() + run_samples(r.upper_run).size();
-      thinned = thinned || count != unthinned;
+      const std::size_t count = disc_samples(w, r.lower_run, r.upper_run, r.t, settings[d].drop_point_turn_rad);
       disc_count[d] = count;
       if (d == kLeftDisc) n = count;
       flights += static_cast<int>(fly_launches(w, count, omega_of(settings[d].rpm), height_m, air, effects,
@@ -570,12 +554,8 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
     landings = disc_count[0] + disc_count[1];
     // A launch sample of the table is one sample however many discs it feeds: the discs' blocks by source
     // row (interpolate(): a row alone or rows pairwise is one block of the lower row's samples, quantile
-    // cells the lower row's then the upper row's), a source both discs draw on shared. Thinned samples
-    // are taken as the discs' own.
-    if (thinned) {
-      blocks[block_count++] = SampleBlock{disc_count[0], {0, SampleBlock::kNoLanding}};
-      blocks[block_count++] = SampleBlock{disc_count[1], {SampleBlock::kNoLanding, n}};
-    } else {
+    // cells the lower row's then the upper row's), a source both discs draw on shared.
+    {
       struct RowBlock {
         std::size_t run, count, first_landing;
       };
@@ -651,20 +631,14 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   }
   if (!per_disc) disc_rows[1] = disc_rows[0];
 
-  // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
-  // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
-  flight::EffectSet effects = request.effects & flight::kAllEffects;
-  if ((request.effects & kTableEffects) != 0) {
-    for (const DiscRows& r : disc_rows) effects |= run_effects_[r.lower_run] | run_effects_[r.upper_run];
-    if (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0) effects |= flight::kWind;
-  }
+  flight::EffectSet effects = 0;
   flight::Air air;
-  const bool windy = (effects & flight::kWind) != 0 && (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0);
-  if (windy) {
-    air.wind_m_s = Vec3(request.wind_x_m_s, request.wind_y_m_s, 0.0);
-  } else {
-    effects &= ~flight::EffectSet{flight::kWind};
+  flight_conditions(request, disc_rows, effects, air);
+  if (limits_.refuse_outside_domain && !request.fly_outside_domain &&
+      landing_grid_for(rows, height_m, effects, air) == nullptr && landing_domain_miss(request) != DomainMiss::kNone) {
+    return PredictStatus::kOutsideDomain;
   }
+  const bool windy = (effects & flight::kWind) != 0;
   const bool fly_right_disc = two_discs && (per_disc || (windy && request.wind_x_m_s != 0.0));
 
   // 1–4. Launch samples at each disc's setting, flights, machine frame (a function of its own: its
@@ -672,6 +646,43 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   const Landed landed = land_discs(w, rows, disc_rows, settings, per_disc, height_m, air, effects, fly_right_disc);
   measure(request, landed, per_disc, fly_right_disc, effects, height_m, settings, out, w);
   return PredictStatus::kOk;
+}
+
+void Predictor::flight_conditions(const PredictionRequest& request, const DiscRows (&disc_rows)[2],
+                                  flight::EffectSet& effects, flight::Air& air) const {
+  // Wind: a zero wind is no wind (the still-air right-hand side is cheaper). Only a lateral component
+  // breaks the left/right mirror symmetry; wind along y is symmetric under x → −x.
+  effects = request.effects & flight::kAllEffects;
+  if ((request.effects & kTableEffects) != 0) {
+    for (const DiscRows& r : disc_rows) effects |= run_effects_[r.lower_run] | run_effects_[r.upper_run];
+    if (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0) effects |= flight::kWind;
+  }
+  air = flight::Air{};
+  const bool windy = (effects & flight::kWind) != 0 && (request.wind_x_m_s != 0.0 || request.wind_y_m_s != 0.0);
+  if (windy) {
+    air.wind_m_s = Vec3(request.wind_x_m_s, request.wind_y_m_s, 0.0);
+  } else {
+    effects &= ~flight::EffectSet{flight::kWind};
+  }
+}
+
+Predictor::DomainMiss Predictor::landing_domain_miss(const PredictionRequest& request) const {
+  const auto material_index = find_material(request.material);
+  if (!material_index) return DomainMiss::kNone;
+  const MaterialRows& rows = materials_[*material_index];
+  const LandingGrid& grid = grids_[rows.material];
+  if (!landing_grid_enabled_ || grid.empty()) return DomainMiss::kNone;
+  // A grid's material flies the same still-air effects in every row (build_landing_grids), so the first
+  // row stands for any the request falls between.
+  const DiscRows first_row[2] = {{rows.first_run, rows.first_run, 0.0}, {rows.first_run, rows.first_run, 0.0}};
+  flight::EffectSet effects = 0;
+  flight::Air air;
+  flight_conditions(request, first_row, effects, air);
+  if ((effects & ~flight::EffectSet{flight::kWind}) != grid.effects()) return DomainMiss::kEffects;
+  const double height_m = std::isnan(request.disc_height_m) ? contents_.machine.disc_height_m : request.disc_height_m;
+  if (!(height_m >= domain_.min_disc_height_m && height_m <= domain_.max_disc_height_m)) return DomainMiss::kHeight;
+  if (!domain_.covers(height_m, air.wind_m_s.x(), air.wind_m_s.y())) return DomainMiss::kWind;
+  return DomainMiss::kNone;
 }
 
 void Predictor::measure(const PredictionRequest& request, const Landed& landed, bool per_disc, bool fly_right_disc,

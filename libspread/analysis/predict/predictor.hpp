@@ -54,6 +54,8 @@ enum class PredictStatus : std::uint8_t {
   kUnknownEffect,      // bits outside flight::kAllEffects | kTableEffects
   kUnknownMaterial,
   kRpmOutsideTable,    // rpm (or a disc's own rpm) outside the material's rows
+  kOutsideDomain,      // PredictorLimits::refuse_outside_domain and a request the landing grid does not
+                       // cover (landing_domain_miss) without fly_outside_domain
 };
 const char* to_string(PredictStatus status);
 
@@ -88,6 +90,10 @@ struct PredictionRequest {
                                     std::numeric_limits<double>::quiet_NaN()};
   std::array<double, 2> disc_drop_point_turn_rad = {std::numeric_limits<double>::quiet_NaN(),
                                                     std::numeric_limits<double>::quiet_NaN()};
+  // Opt-in for a Predictor that refuses requests outside its landing grid's domain
+  // (PredictorLimits::refuse_outside_domain): fly every launch sample instead, at the cost of one flight
+  // per sample and disc (tens of milliseconds; docs/c-api.md "Landing grid").
+  bool fly_outside_domain = false;
   // False: no standard errors (all NaN) — for a search that compares many settings, at about half the
   // cost. The headline rule then takes a band as established when its lowest CV meets the target, with
   // no confidence test.
@@ -195,11 +201,11 @@ struct PredictorLimits {
   double max_wind_m_s = 100.0;        // each wind component, absolute value
   double max_cv_target = 10.0;        // fraction (1000 %)
   double max_kernel_half_width_m = 10.0;  // m
-  // Flights one prediction may integrate (both discs; 0: no bound). Above it the interpolated launch
-  // samples are thinned to every k-th (k the smallest that fits), so the time of any request is bounded
-  // while its reported uncertainty (sample_count, the standard errors) is that of the samples flown.
-  // Landings from the landing grid are not flights.
-  std::size_t max_flights = 0;
+  // Requests outside the landing grid's domain (another height or wind than it covers, effects beyond the
+  // table's drag) are refused with kOutsideDomain unless they opt in (fly_outside_domain): a controller's
+  // time is then bounded by the grid's cost. False: they fly every launch sample (tools, studies).
+  // Tables without a landing grid (runs that fly more than drag) fly every request.
+  bool refuse_outside_domain = false;
 };
 
 class Predictor;
@@ -302,6 +308,12 @@ class Predictor {
   std::size_t landing_grid_bytes() const;
   // The disc heights and winds the landing grids cover.
   const LandingDomain& landing_domain() const { return domain_; }
+  // Whether material `index` (as material()) has a landing grid: its runs fly drag alone or nothing.
+  bool has_landing_grid(std::size_t index) const;
+  // Why the landing grid does not serve a valid request (kNone: it does, or the material has no grid and
+  // every request flies): what the refusal's message names.
+  enum class DomainMiss : std::uint8_t { kNone, kHeight, kWind, kEffects };
+  DomainMiss landing_domain_miss(const PredictionRequest& request) const;
 
   // Does not allocate. Refused requests are statuses, not exceptions (so a refusal does not allocate
   // either); on a refusal `out` is unchanged. An exception from here means a malformed table record that
@@ -379,10 +391,12 @@ class Predictor {
                            const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
                            std::size_t right_offset, double density_kg_m3, const LandingGrid* grid) const;
   // Steps 1–2 of predict() for one disc: its samples of rows lower_run..upper_run at weight t into the
-  // workspace, turned by drop_point_turn_rad, thinned to at most max_flights flights (flights_per_sample
-  // per sample; 0: no bound). Returns the count.
+  // workspace, turned by drop_point_turn_rad. Returns the count.
   std::size_t disc_samples(PredictorWorkspace& w, std::size_t lower_run, std::size_t upper_run, double t,
-                           double drop_point_turn_rad, std::size_t max_flights, std::size_t flights_per_sample) const;
+                           double drop_point_turn_rad) const;
+  // The effects and air a request flies with (the table's effects resolved, a zero wind no wind).
+  void flight_conditions(const PredictionRequest& request, const DiscRows (&disc_rows)[2], flight::EffectSet& effects,
+                         flight::Air& air) const;
 
   tables::TableContents contents_;  // without the samples (in samples_)
   PredictorLimits limits_;
