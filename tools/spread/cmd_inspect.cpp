@@ -6,6 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "libspread/analysis/predict/landing_grid.hpp"
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
@@ -106,6 +107,10 @@ void print_text(const spread::tables::TableContents& c, const std::string& path)
             << "machine " << m.name << ": R " << m.disc_radius_m << " m, height " << m.disc_height_m << " m, "
             << m.disc_count << " disc(s) " << m.disc_spacing_m << " m apart, " << m.vane_count << " vanes, cone "
             << m.cone_angle_rad << " rad, rotation sense " << (m.rotation_sense > 0 ? "+1" : "-1") << "\n";
+  // What predictions answer from the landing grid (predict refuses beyond it, --fly-outside-domain flies).
+  const auto domain = spread::predict::landing_domain_for(m.disc_height_m);
+  std::cout << "landing grid: disc heights " << domain.min_disc_height_m << "-" << domain.max_disc_height_m
+            << " m, winds up to " << domain.max_wind_m_s << " m/s, for materials whose runs fly drag alone\n";
   for (const auto& mat : c.materials) {
     std::cout << "material \"" << mat.name << "\": " << mat.density_kg_m3 << " kg/m3, d " << mat.diameter_mean_m
               << " m (sd " << mat.diameter_sd_m << "), mu_wall " << mat.friction_wall << "\n";

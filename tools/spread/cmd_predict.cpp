@@ -39,6 +39,7 @@ struct Options : spread::cli::PredictionArgs {
   double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
   int repeat = 0;
   bool compensate_wind = false;
+  bool fly_outside_domain = false;
   bool json = false;
   spread::cli::ReportArgs report;
 };
@@ -87,6 +88,19 @@ std::string explain(spread_status status, const Options& o, spread_tables* table
     case SPREAD_ERROR_OUT_OF_RANGE:
       return "out of range: --height must be >= 0, --cv-target > 0, --width >= 0, --tray-width in [0.05, 100] m (" +
              std::string(spread_last_error_detail()) + ")";
+    case SPREAD_ERROR_OUTSIDE_DOMAIN: {
+      // The C API names the quantity and the covered range; its opt-in is this command's flag.
+      std::string detail = spread_last_error_detail();
+      const std::size_t opt_in = detail.find(" (set fly_outside_domain");
+      if (opt_in != std::string::npos) detail.erase(opt_in);
+      if (detail.rfind("spread_predict: ", 0) == 0) detail.erase(0, 16);
+      // The definition's field names as this command's options.
+      for (const auto& [field, option] : {std::pair<std::string, std::string>{"disc_height_m ", "--height "},
+                                          {"wind_m_s ", "--wind "}, {"effects ", "--effects "}}) {
+        if (detail.rfind(field, 0) == 0) detail.replace(0, field.size(), option);
+      }
+      return detail + "; --fly-outside-domain flies every launch sample instead (tens of ms)";
+    }
     default: return spread_status_str(status);
   }
 }
@@ -291,6 +305,7 @@ void run(const Options& o, int& exit_code) {
   def.effects = parse_effects(o.effects);
   def.kernel_half_width_m = o.kernel_half_width_m;
   def.drop_point_turn_rad = spread::cli::drop_point_turn_rad(o);
+  def.fly_outside_domain = o.fly_outside_domain ? 1u : 0u;
   spread::cli::check_disc_settings(o);
   for (int d = 0; d < 2; ++d) {
     def.disc_rpm[d] = o.disc_rpm[d];
@@ -495,6 +510,9 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
   sub->add_flag("--compensate-wind", options.compensate_wind,
                 "in the --wind, set each disc apart (speed and drop point) for the lowest CV at --width (C API "
                 "spread_compensate_wind); the prediction shown is at that setting");
+  sub->add_flag("--fly-outside-domain", options.fly_outside_domain,
+                "a disc height, wind or effect outside the table's landing grid (spread inspect): fly every launch "
+                "sample (tens of ms) instead of refusing");
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);

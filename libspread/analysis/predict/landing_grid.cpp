@@ -122,8 +122,8 @@ bool LandingGrid::build(const Axes& axes, double density_kg_m3, flight::EffectSe
         values_.clear();
         return false;
       }
-      values_[2 * (first + c)] = static_cast<float>(landings[c].state.position_m.x());
-      values_[2 * (first + c) + 1] = static_cast<float>(landings[c].flight_time_s);
+      values_[first + c] = static_cast<float>(landings[c].state.position_m.x());
+      values_[nodes + first + c] = static_cast<float>(landings[c].flight_time_s);
     }
   }
   return true;
@@ -138,53 +138,64 @@ bool LandingGrid::covers(double diameter_m, double vertical_speed_m_s, double he
   return true;
 }
 
-void LandingGrid::range_and_time(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s,
-                                 double& range_m, double& time_s) const {
+template <bool kWithTime>
+void LandingGrid::interpolate(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s,
+                              double& range_m, double& time_s) const {
   double wd[kDiameterPoints], wv[kVerticalPoints], wh[kGridStencil], wu[kGridStencil];
   const std::ptrdiff_t d0 = grid_stencil(diameter_m, axes_[kDiameter], inverse_step_[kDiameter], 0, wd);
   const std::ptrdiff_t v0 = grid_stencil(vertical_speed_m_s, axes_[kVerticalSpeed], inverse_step_[kVerticalSpeed], 0, wv);
   const std::ptrdiff_t h0 = grid_stencil(std::sqrt(std::max(height_m, 0.0)), axes_[kHeight], inverse_step_[kHeight], 0, wh);
   const std::ptrdiff_t u0 = grid_stencil(speed_m_s, axes_[kSpeed], inverse_step_[kSpeed], -1, wu);
   const std::size_t nu = axes_[kSpeed].count, nh = axes_[kHeight].count, nv = axes_[kVerticalSpeed].count;
-  // Σ_dvh w_d w_v w_h Σ_u w_u f = Σ_u w_u (Σ_dvh w_d w_v w_h f): the 64 lines of the stencil (four speeds, R
-  // and T side by side: 8 floats each) are summed first with their weights, then the speeds.
+  const std::size_t time_offset = values_.size() / 2;  // the T values follow the R values
+  // Σ_dvh w_d w_v w_h Σ_u w_u f = Σ_u w_u (Σ_dvh w_d w_v w_h f): the 64 lines of the stencil (four speeds,
+  // one SSE register each) are summed first with their weights, then the speeds. One accumulator per
+  // height node, named so that they stay in registers: the sums of different heights do not wait for each
+  // other (an addition's latency, not the loads, bounds a single chain).
   const std::size_t line_u = u0 < 0 ? 0 : static_cast<std::size_t>(u0);
-  // One accumulator pair per height node (speed nodes 0–1 and 2–3 of the stencil, (R, T) each), named
-  // so that they stay in registers: the sums of different heights do not wait for each other (an
-  // addition's latency, not the loads, bounds a single chain).
-  Float4 low0 = {}, low1 = {}, low2 = {}, low3 = {}, high0 = {}, high1 = {}, high2 = {}, high3 = {};
-  const std::size_t height_stride = 2 * nu;
+  Float4 r0 = {}, r1 = {}, r2 = {}, r3 = {}, t0 = {}, t1 = {}, t2 = {}, t3 = {};
   for (std::size_t a = 0; a < kDiameterPoints; ++a) {
     for (std::size_t b = 0; b < kVerticalPoints; ++b) {
-      const float* line = &values_[2 * (nu * nh * ((static_cast<std::size_t>(d0) + a) * nv + static_cast<std::size_t>(v0) + b) +
-                                        nu * static_cast<std::size_t>(h0) + line_u)];
+      const float* line = &values_[nu * nh * ((static_cast<std::size_t>(d0) + a) * nv + static_cast<std::size_t>(v0) + b) +
+                                   nu * static_cast<std::size_t>(h0) + line_u];
       const float w = static_cast<float>(wd[a] * wv[b]);
-      const auto add = [w](Float4& low, Float4& high, const float* values) {
-        Float4 first, second;
-        std::memcpy(&first, values, sizeof first);
-        std::memcpy(&second, values + 4, sizeof second);
-        low += w * first;
-        high += w * second;
+      const auto add = [w](Float4& sum, const float* values) {
+        Float4 v;
+        std::memcpy(&v, values, sizeof v);
+        sum += w * v;
       };
-      add(low0, high0, line);
-      add(low1, high1, line + height_stride);
-      add(low2, high2, line + 2 * height_stride);
-      add(low3, high3, line + 3 * height_stride);
+      add(r0, line);
+      add(r1, line + nu);
+      add(r2, line + 2 * nu);
+      add(r3, line + 3 * nu);
+      if constexpr (kWithTime) {
+        add(t0, line + time_offset);
+        add(t1, line + time_offset + nu);
+        add(t2, line + time_offset + 2 * nu);
+        add(t3, line + time_offset + 3 * nu);
+      }
     }
   }
   const auto weight = [&](std::size_t c) { return static_cast<float>(wh[c]); };
-  const Float4 low_sum = weight(0) * low0 + weight(1) * low1 + weight(2) * low2 + weight(3) * low3;
-  const Float4 high_sum = weight(0) * high0 + weight(1) * high1 + weight(2) * high2 + weight(3) * high3;
-  float sum[8] = {low_sum[0], low_sum[1], low_sum[2], low_sum[3], high_sum[0], high_sum[1], high_sum[2], high_sum[3]};
-  if (u0 < 0) {
-    // The stencil starts at speed node −1, node 1 mirrored (R(−u) = −R(u), T(−u) = T(u)): the lines were
-    // read from node 0, so shift them one node up and put the mirror of node 1 first.
-    for (std::size_t k = 7; k >= 2; --k) sum[k] = sum[k - 2];
-    sum[0] = -sum[4];
-    sum[1] = sum[5];
-  }
-  range_m = wu[0] * sum[0] + wu[1] * sum[2] + wu[2] * sum[4] + wu[3] * sum[6];
-  time_s = wu[0] * sum[1] + wu[1] * sum[3] + wu[2] * sum[5] + wu[3] * sum[7];
+  // The stencil's four speeds; from speed node −1 (node 1 mirrored: R(−u) = −R(u), T(−u) = T(u)) the
+  // lines were read from node 0, so they shift one node up.
+  const auto speeds = [&](const Float4& sum, double mirror_sign, double& out) {
+    double f[kGridStencil] = {sum[0], sum[1], sum[2], sum[3]};
+    if (u0 < 0) {
+      f[3] = f[2];
+      f[2] = f[1];
+      f[1] = f[0];
+      f[0] = mirror_sign * f[2];
+    }
+    out = wu[0] * f[0] + wu[1] * f[1] + wu[2] * f[2] + wu[3] * f[3];
+  };
+  speeds(weight(0) * r0 + weight(1) * r1 + weight(2) * r2 + weight(3) * r3, -1.0, range_m);
+  if constexpr (kWithTime) speeds(weight(0) * t0 + weight(1) * t1 + weight(2) * t2 + weight(3) * t3, 1.0, time_s);
+}
+
+void LandingGrid::range_and_time(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s,
+                                 double& range_m, double& time_s) const {
+  interpolate<true>(diameter_m, vertical_speed_m_s, height_m, speed_m_s, range_m, time_s);
 }
 
 void LandingGrid::landing(double diameter_m, double x_m, double y_m, double height_m, double vx_m_s, double vy_m_s,
@@ -193,7 +204,12 @@ void LandingGrid::landing(double diameter_m, double x_m, double y_m, double heig
   const double rx = vx_m_s - wind_x_m_s, ry = vy_m_s - wind_y_m_s;
   const double u = std::sqrt(rx * rx + ry * ry);
   double range_m = 0.0, time_s = 0.0;
-  range_and_time(diameter_m, vz_m_s, height_m, u, range_m, time_s);
+  // In still air the flight time is not needed: half the values read.
+  if (wind_x_m_s == 0.0 && wind_y_m_s == 0.0) {
+    interpolate<false>(diameter_m, vz_m_s, height_m, u, range_m, time_s);
+  } else {
+    interpolate<true>(diameter_m, vz_m_s, height_m, u, range_m, time_s);
+  }
   const double along = u > 0.0 ? range_m / u : 0.0;  // the range along the unit vector (rx, ry)/u
   landing_x_m = x_m + along * rx + wind_x_m_s * time_s;
   landing_y_m = y_m + along * ry + wind_y_m_s * time_s;

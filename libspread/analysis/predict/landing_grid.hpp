@@ -22,8 +22,9 @@
 // two neighbouring stencils agree at their shared nodes). Its error against flying each granule is
 // measured (tests/predict/test_landing_grid.cpp, bench_predict counter max_landing_error_m).
 //
-// The values are floats (1e-6 relative: 0.04 mm on a 40 m range), R and T side by side, the speed axis
-// innermost so that a stencil's four speeds are one 32-byte read. Evaluation does not allocate.
+// The values are floats (1e-6 relative: 0.04 mm on a 40 m range), all R then all T (still air needs no
+// T), the speed axis innermost so that a stencil's four speeds are one 16-byte read. Evaluation does not
+// allocate.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -89,10 +90,14 @@ class LandingGrid {
                double vz_m_s, double wind_x_m_s, double wind_y_m_s, double& landing_x_m, double& landing_y_m) const;
 
  private:
+  template <bool kWithTime>
+  void interpolate(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s, double& range_m,
+                   double& time_s) const;
+
   Axes axes_{};
   flight::EffectSet effects_ = 0;
   std::array<double, kAxisCount> inverse_step_{};
-  // [(((d · N_vz + v) · N_h + h) · N_u + u) · 2 + {0: R, 1: T}]
+  // R at [((d · N_vz + v) · N_h + h) · N_u + u], then T at the same index plus the node count.
   std::pmr::vector<float> values_;
 };
 
