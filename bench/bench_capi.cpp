@@ -1,11 +1,14 @@
 // Worst-case time of the C API's entry points over their legal inputs (docs/c-api.md "Worst-case time"),
 // and the cost of a thread's state (handle or workspace).
 //
-// BM_PredictWorstCase/<tray_cm>/<height_m>/<wind_m_s>: spread_predict on a real table file given in
+// BM_PredictWorstCase/<tray_cm>/<height_dm>/<wind_m_s>: spread_predict on a real table file given in
 // SPREAD_BENCH_TABLE (e.g. `lookup_builder scenes/default.toml --output X.sqlite`) at 560 rpm (between
-// two rows: both rows fly), with the narrowest legal trays (0.05 m), a high disc (50 m: long flights,
-// landings spread far) and a strong lateral wind (20 m/s: the right disc flies too and the pattern is
-// skewed across the whole tray range). height 0 = the machine's stored height.
+// two rows: both rows' launches), over the edges of the landing grid's domain: the narrowest legal trays
+// (0.05 m) and 0.5 m, the disc at the stored height (0), 0.2 m and 2 m, still air and a lateral wind of
+// 5 and 10 m/s (the right disc lands too and the pattern is skewed). Every request is answered from the
+// grid (flights = 0).
+// BM_PredictOutsideDomain/<height_m>/<wind_m_s>: a request outside the domain that opts in to flying every
+// launch sample (fly_outside_domain), at 0.5 m trays: what the opt-in costs.
 // BM_TrajectoryWorstCase/<case>: spread_trajectory on the inputs that take longest: 0 = dust (1 µm,
 // 1 kg/m³: the drag relaxation time is ~3 ns, so the explicit integrator's step is bounded by stability
 // and the flight never lands), 1 = a 3 mm granule from 1000 m (the longest legal fall), 2 = a 3 mm
@@ -51,7 +54,7 @@ void BM_PredictWorstCase(benchmark::State& state) {
   def.material = material;
   def.rpm = 560.0 >= min_rpm && 560.0 <= max_rpm ? 560.0 : 0.5 * (min_rpm + max_rpm);
   def.tray_width_m = 0.01 * static_cast<double>(state.range(0));
-  if (state.range(1) > 0) def.disc_height_m = static_cast<double>(state.range(1));
+  if (state.range(1) > 0) def.disc_height_m = 0.1 * static_cast<double>(state.range(1));
   def.wind_m_s[0] = static_cast<double>(state.range(2));
   spread_prediction result{};
   if (!spread::bench::time_spread_predict(state, tables, def, result)) {
@@ -64,8 +67,44 @@ void BM_PredictWorstCase(benchmark::State& state) {
   spread_close(tables);
 }
 BENCHMARK(BM_PredictWorstCase)
-    ->ArgsProduct({{5, 50}, {0, 50, 100}, {0, 20, 100}})
-    ->ArgNames({"tray_cm", "height_m", "wind_m_s"})
+    ->ArgsProduct({{5, 50}, {0, 2, 20}, {0, 5, 10}})
+    ->ArgNames({"tray_cm", "height_dm", "wind_m_s"})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_PredictOutsideDomain(benchmark::State& state) {
+  const char* path = table_path();
+  if (path == nullptr) {
+    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
+    return;
+  }
+  spread_tables* tables = nullptr;
+  if (spread_open(path, &tables) != SPREAD_OK) {
+    state.SkipWithError("spread_open failed");
+    return;
+  }
+  const char* material = nullptr;
+  double min_rpm = 0.0, max_rpm = 0.0;
+  spread_material_name(tables, 0, &material);
+  spread_material_rpm_range(tables, 0, &min_rpm, &max_rpm);
+  spread_prediction_def def = spread_prediction_def_default();
+  def.material = material;
+  def.rpm = 560.0 >= min_rpm && 560.0 <= max_rpm ? 560.0 : 0.5 * (min_rpm + max_rpm);
+  def.disc_height_m = static_cast<double>(state.range(0));
+  def.wind_m_s[0] = static_cast<double>(state.range(1));
+  def.fly_outside_domain = 1;
+  spread_prediction result{};
+  if (!spread::bench::time_spread_predict(state, tables, def, result)) {
+    spread_close(tables);
+    return;
+  }
+  state.counters["flights"] = result.flights;
+  state.counters["samples"] = result.sample_count;
+  spread_close(tables);
+}
+BENCHMARK(BM_PredictOutsideDomain)
+    ->Args({3, 0})
+    ->Args({50, 20})
+    ->ArgNames({"height_m", "wind_m_s"})
     ->Unit(benchmark::kMillisecond);
 
 void BM_TrajectoryWorstCase(benchmark::State& state) {

@@ -12,12 +12,12 @@
 // crosswind (which flies the right disc too): BM_PredictCApiDrag/<samples per row>/<wind m/s>/<dem>.
 // dem = 0: analytic rows (pairwise interpolation: one flight per sample and disc). dem = 1: the same
 // launches marked as DEM rows, so the prediction interpolates by quantile cells as it does on a real DEM
-// table: every granule of both rows flies (n_a + n_b samples per disc).
+// table: every granule of both rows lands (n_a + n_b samples per disc).
 // BM_PredictCApiFile: a real table file given in SPREAD_BENCH_TABLE (e.g. made by
 // `lookup_builder scenes/default.toml --output X.sqlite`), skipped without it. On a drag-only table in
-// the machine's conditions (stored height, wind <= 5 m/s) the landings come from the landing cache
-// (flights = 0). BM_PredictLandingCache/<wind m/s>/<cache>: the same file through the Predictor with the
-// cache on (1) and off (0: every granule flown), at 560 rpm, with max_landing_error_m against every
+// the landing grid's domain the landings come from the landing grid (flights = 0).
+// BM_PredictLandingGrid/<wind m/s>/<grid>: the same file through the Predictor with the
+// grid on (1) and off (0: every granule flown), at 560 rpm, with max_landing_error_m against every
 // granule flown at the tight reference tolerance.
 // Run: build-<dir>/bench/bench_predict [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
