@@ -97,7 +97,7 @@ constexpr const char* kDiscRpmField[2] = {"disc_rpm[0]", "disc_rpm[1]"};
 constexpr const char* kDiscTurnField[2] = {"disc_drop_point_turn_rad[0]", "disc_drop_point_turn_rad[1]"};
 
 spread_status refused(spread_status status, const spread::predict::Predictor& predictor,
-                      const spread_prediction_def& def, const spread::predict::PredictionRequest& request, bool v2) {
+                      const spread_prediction_def& def, const spread::predict::PredictionRequest& request) {
   using spread::capi::fail;
   const bool v4 = def.struct_size >= spread::capi::kPredictionDefV4Size;
   switch (status) {
@@ -141,49 +141,49 @@ spread_status refused(spread_status status, const spread::predict::Predictor& pr
     case SPREAD_ERROR_UNKNOWN_EFFECT:
       return fail(status, "spread_predict: effects 0x%x has bits outside SPREAD_EFFECT_ALL | SPREAD_EFFECTS_AS_TABLE",
                   static_cast<unsigned>(def.effects));
-    default:
-      if (v4) {
-        // The per-disc fields' own refusals, named (spread::predict::Predictor::validate has the same rules).
-        const bool one_disc = predictor.machine().disc_count < 2;
-        for (std::size_t d = 0; d < 2; ++d) {
-          const double turn_rad = def.disc_drop_point_turn_rad[d];
-          if (std::isinf(def.disc_rpm[d])) {
-            return fail(status, "spread_predict: the %s disc's speed %s is %g", kDiscName[d], kDiscRpmField[d],
-                        def.disc_rpm[d]);
-          }
-          if (std::isinf(turn_rad) || std::abs(turn_rad) > std::numbers::pi) {
-            return fail(status, "spread_predict: the %s disc's drop point %s %g outside [-pi, pi]", kDiscName[d],
-                        kDiscTurnField[d], turn_rad);
-          }
-          if (d == 1 && one_disc && (!std::isnan(def.disc_rpm[d]) || !std::isnan(turn_rad))) {
-            return fail(status, "spread_predict: %s %g, %s %g: the machine has one disc (only [0] may be set)",
-                        kDiscRpmField[d], def.disc_rpm[d], kDiscTurnField[d], turn_rad);
-          }
-        }
-        const std::size_t discs = one_disc ? 1 : 2;
-        const auto all_given = [&](const double (&values)[2]) {
-          for (std::size_t d = 0; d < discs; ++d) {
-            if (std::isnan(values[d])) return false;
-          }
-          return true;
-        };
-        if (all_given(def.disc_rpm) && def.rpm != 0.0) {
-          return fail(status, "spread_predict: rpm %g given while every disc has its own disc_rpm (set rpm to 0)", def.rpm);
-        }
-        if (all_given(def.disc_drop_point_turn_rad) && def.drop_point_turn_rad != 0.0) {
-          return fail(status,
-                      "spread_predict: drop_point_turn_rad %g given while every disc has its own "
-                      "disc_drop_point_turn_rad (set drop_point_turn_rad to 0)",
-                      def.drop_point_turn_rad);
-        }
+    default: {
+      // The one field at fault, named as the definition names it, with its value and its range
+      // (spread::predict::Predictor::request_problem: the library's rules, not repeated here).
+      using Field = spread::predict::RequestField;
+      const spread::predict::RequestProblem problem = predictor.request_problem(request);
+      struct Name {
+        const char* field;
+        const char* unit;
+        double scale;  // library units to the definition's (cv_target is a fraction, cv_target_percent percent)
+        int disc;      // a disc's own field: kLeftDisc, kRightDisc; -1 the both-discs ones
+      };
+      Name name{"a field", "", 1.0, -1};
+      switch (problem.field) {
+        case Field::kRpm: name = {"rpm", "rpm", 1.0, -1}; break;
+        case Field::kDiscHeight: name = {"disc_height_m", "m", 1.0, -1}; break;
+        case Field::kWindX: name = {"wind_m_s[0]", "m/s", 1.0, -1}; break;
+        case Field::kWindY: name = {"wind_m_s[1]", "m/s", 1.0, -1}; break;
+        case Field::kCvTarget: name = {"cv_target_percent", "percent", 100.0, -1}; break;
+        case Field::kBoutWidth: name = {"bout_width_m", "m", 1.0, -1}; break;
+        case Field::kTrayWidth: name = {"tray_width_m", "m", 1.0, -1}; break;
+        case Field::kKernelHalfWidth: name = {"kernel_half_width_m", "m", 1.0, -1}; break;
+        case Field::kDropPointTurn: name = {"drop_point_turn_rad", "rad", 1.0, -1}; break;
+        case Field::kLeftDiscRpm: name = {kDiscRpmField[0], "rpm", 1.0, 0}; break;
+        case Field::kRightDiscRpm: name = {kDiscRpmField[1], "rpm", 1.0, 1}; break;
+        case Field::kLeftDiscDropPointTurn: name = {kDiscTurnField[0], "rad", 1.0, 0}; break;
+        case Field::kRightDiscDropPointTurn: name = {kDiscTurnField[1], "rad", 1.0, 1}; break;
+        case Field::kEffects:
+        case Field::kNone: break;
       }
-      return fail(status,
-                  "spread_predict: %s: rpm %g, disc_height_m %g, wind_m_s {%g, %g}, cv_target_percent %g, "
-                  "bout_width_m %g, tray_width_m %g, kernel_half_width_m %g, drop_point_turn_rad %g "
-                  "(bounds: docs/c-api.md)",
-                  spread_status_str(status), def.rpm, def.disc_height_m, def.wind_m_s[0], def.wind_m_s[1],
-                  def.cv_target_percent, def.bout_width_m, def.tray_width_m, v2 ? def.kernel_half_width_m : NAN,
-                  def.struct_size >= spread::capi::kPredictionDefV3Size ? def.drop_point_turn_rad : 0.0);
+      const double value = name.scale * problem.value;
+      if (name.disc >= 0 && *problem.rule == '\0') {
+        const bool speed = problem.field == Field::kLeftDiscRpm || problem.field == Field::kRightDiscRpm;
+        return fail(status, "spread_predict: the %s disc's %s %s %g outside [%g, %g] %s", kDiscName[name.disc],
+                    speed ? "speed" : "drop point", name.field, value, name.scale * problem.lower,
+                    name.scale * problem.upper, name.unit);
+      }
+      if (*problem.rule != '\0' && problem.lower == problem.upper) {
+        return fail(status, "spread_predict: %s %g %s", name.field, value, problem.rule);
+      }
+      if (status == SPREAD_ERROR_NOT_FINITE) return fail(status, "spread_predict: %s is %g", name.field, value);
+      return fail(status, "spread_predict: %s %g outside %s%g, %g] %s", name.field, value,
+                  *problem.rule != '\0' ? "(" : "[", name.scale * problem.lower, name.scale * problem.upper, name.unit);
+    }
   }
 }
 
@@ -230,7 +230,7 @@ spread_status predict_with(const spread::predict::Predictor& predictor, spread::
     if (def->struct_size >= spread::capi::kPredictionDefV5Size) request.fly_outside_domain = def->fly_outside_domain != 0;
 
     const auto status = run(request, prediction);
-    if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, request, v2);
+    if (status != spread::predict::PredictStatus::kOk) return refused(status_of(status), predictor, *def, request);
     copy_result(prediction, v2, v3, v4, *result);
     if (transverse_mass_fraction != nullptr) {
       const auto& trays = prediction.tray_mass_fraction;

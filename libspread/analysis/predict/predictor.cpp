@@ -311,29 +311,57 @@ int Predictor::tray_capacity(double tray_width_m) const {
   return metrics::tray_layout_covering(limits_.max_half_extent_m, tray_width_m).tray_count;
 }
 
-PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) const {
+PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m, RequestProblem* problem) const {
+  RequestProblem found;
+  // Records the first problem (the field, its value and its range) and returns its status.
+  const auto refuse = [&](PredictStatus status, RequestField field, double value, double lower, double upper,
+                          const char* rule = "") {
+    found = RequestProblem{status, field, value, lower, upper, rule};
+    if (problem != nullptr) *problem = found;
+    return status;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
   height_m = std::isnan(r.disc_height_m) ? contents_.machine.disc_height_m : r.disc_height_m;
-  for (double v : {r.rpm, height_m, r.wind_x_m_s, r.wind_y_m_s, r.cv_target, r.bout_width_m, r.tray_width_m,
-                   r.drop_point_turn_rad}) {
-    if (!std::isfinite(v)) return PredictStatus::kNotFinite;
+  const std::pair<RequestField, double> finite_fields[] = {
+      {RequestField::kRpm, r.rpm},           {RequestField::kDiscHeight, height_m},   {RequestField::kWindX, r.wind_x_m_s},
+      {RequestField::kWindY, r.wind_y_m_s},  {RequestField::kCvTarget, r.cv_target}, {RequestField::kBoutWidth, r.bout_width_m},
+      {RequestField::kTrayWidth, r.tray_width_m}, {RequestField::kDropPointTurn, r.drop_point_turn_rad}};
+  for (const auto& [field, v] : finite_fields) {
+    if (!std::isfinite(v)) return refuse(PredictStatus::kNotFinite, field, v, -inf, inf);
   }
   // Every field's domain, before any is used (docs/c-api.md, PredictorLimits).
-  if (height_m < 0.0 || height_m > limits_.max_disc_height_m || height_m + lowest_sample_z_m_ < 0.0) {
-    return PredictStatus::kOutOfRange;
+  const double lowest_height_m = std::max(0.0, -lowest_sample_z_m_);
+  if (height_m < lowest_height_m || height_m > limits_.max_disc_height_m) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kDiscHeight, height_m, lowest_height_m,
+                  limits_.max_disc_height_m);
   }
-  if (std::abs(r.wind_x_m_s) > limits_.max_wind_m_s || std::abs(r.wind_y_m_s) > limits_.max_wind_m_s) {
-    return PredictStatus::kOutOfRange;
+  if (std::abs(r.wind_x_m_s) > limits_.max_wind_m_s) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kWindX, r.wind_x_m_s, -limits_.max_wind_m_s, limits_.max_wind_m_s);
   }
-  if (!(r.cv_target > 0.0) || r.cv_target > limits_.max_cv_target) return PredictStatus::kOutOfRange;
-  if (r.bout_width_m < 0.0 || r.bout_width_m > limits_.max_bout_width_m) return PredictStatus::kOutOfRange;
-  if (std::abs(r.drop_point_turn_rad) > kPi) return PredictStatus::kOutOfRange;
+  if (std::abs(r.wind_y_m_s) > limits_.max_wind_m_s) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kWindY, r.wind_y_m_s, -limits_.max_wind_m_s, limits_.max_wind_m_s);
+  }
+  if (!(r.cv_target > 0.0) || r.cv_target > limits_.max_cv_target) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kCvTarget, r.cv_target, 0.0, limits_.max_cv_target,
+                  "above");
+  }
+  if (r.bout_width_m < 0.0 || r.bout_width_m > limits_.max_bout_width_m) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kBoutWidth, r.bout_width_m, 0.0, limits_.max_bout_width_m);
+  }
+  if (std::abs(r.drop_point_turn_rad) > kPi) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kDropPointTurn, r.drop_point_turn_rad, -kPi, kPi);
+  }
   // Each disc's own setting: NaN is "as both discs"; an infinity is not finite.
+  const RequestField disc_rpm_field[2] = {RequestField::kLeftDiscRpm, RequestField::kRightDiscRpm};
+  const RequestField disc_turn_field[2] = {RequestField::kLeftDiscDropPointTurn, RequestField::kRightDiscDropPointTurn};
   for (std::size_t d = 0; d < 2; ++d) {
     const double rpm = r.disc_rpm[d], turn_rad = r.disc_drop_point_turn_rad[d];
-    if (std::isinf(rpm) || std::isinf(turn_rad)) return PredictStatus::kNotFinite;
-    if (std::abs(turn_rad) > kPi) return PredictStatus::kOutOfRange;
+    if (std::isinf(rpm)) return refuse(PredictStatus::kNotFinite, disc_rpm_field[d], rpm, -inf, inf);
+    if (std::isinf(turn_rad)) return refuse(PredictStatus::kNotFinite, disc_turn_field[d], turn_rad, -inf, inf);
+    if (std::abs(turn_rad) > kPi) return refuse(PredictStatus::kOutOfRange, disc_turn_field[d], turn_rad, -kPi, kPi);
     if (d == kRightDisc && contents_.machine.disc_count < 2 && (!std::isnan(rpm) || !std::isnan(turn_rad))) {
-      return PredictStatus::kOutOfRange;
+      return refuse(PredictStatus::kOutOfRange, std::isnan(rpm) ? disc_turn_field[d] : disc_rpm_field[d],
+                    std::isnan(rpm) ? turn_rad : rpm, 0.0, 0.0, "given on a one-disc machine (only [0], the left disc, may be set)");
     }
   }
   const std::size_t discs = contents_.machine.disc_count < 2 ? 1 : 2;
@@ -344,17 +372,38 @@ PredictStatus Predictor::validate(const PredictionRequest& r, double& height_m) 
     return true;
   };
   // A both-discs value that no disc would use is refused, not dropped.
-  if (all_given(r.disc_rpm) && r.rpm != 0.0) return PredictStatus::kOutOfRange;
-  if (all_given(r.disc_drop_point_turn_rad) && r.drop_point_turn_rad != 0.0) return PredictStatus::kOutOfRange;
-  if (tray_capacity(r.tray_width_m) == 0) return PredictStatus::kOutOfRange;
+  if (all_given(r.disc_rpm) && r.rpm != 0.0) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kRpm, r.rpm, 0.0, 0.0,
+                  "given while every disc has its own speed (set it to 0)");
+  }
+  if (all_given(r.disc_drop_point_turn_rad) && r.drop_point_turn_rad != 0.0) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kDropPointTurn, r.drop_point_turn_rad, 0.0, 0.0,
+                  "given while every disc has its own drop point (set it to 0)");
+  }
+  if (tray_capacity(r.tray_width_m) == 0) {
+    return refuse(PredictStatus::kOutOfRange, RequestField::kTrayWidth, r.tray_width_m, limits_.min_tray_width_m,
+                  limits_.max_half_extent_m);
+  }
   if (!std::isnan(r.kernel_half_width_m)) {
-    if (!std::isfinite(r.kernel_half_width_m)) return PredictStatus::kNotFinite;
+    if (!std::isfinite(r.kernel_half_width_m)) {
+      return refuse(PredictStatus::kNotFinite, RequestField::kKernelHalfWidth, r.kernel_half_width_m, -inf, inf);
+    }
     if (r.kernel_half_width_m < 0.0 || r.kernel_half_width_m > limits_.max_kernel_half_width_m) {
-      return PredictStatus::kOutOfRange;
+      return refuse(PredictStatus::kOutOfRange, RequestField::kKernelHalfWidth, r.kernel_half_width_m, 0.0,
+                    limits_.max_kernel_half_width_m);
     }
   }
-  if ((r.effects & ~(flight::kAllEffects | kTableEffects)) != 0) return PredictStatus::kUnknownEffect;
+  if ((r.effects & ~(flight::kAllEffects | kTableEffects)) != 0) {
+    return refuse(PredictStatus::kUnknownEffect, RequestField::kEffects, static_cast<double>(r.effects), 0.0, 0.0);
+  }
   return PredictStatus::kOk;
+}
+
+RequestProblem Predictor::request_problem(const PredictionRequest& request) const {
+  RequestProblem problem;
+  double height_m = 0.0;
+  validate(request, height_m, &problem);
+  return problem;
 }
 
 DiscSetting disc_setting(const PredictionRequest& request, int disc) {

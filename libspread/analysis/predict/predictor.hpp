@@ -59,6 +59,22 @@ enum class PredictStatus : std::uint8_t {
 };
 const char* to_string(PredictStatus status);
 
+// The request field a refusal is about (Predictor::request_problem), as PredictionRequest names them.
+enum class RequestField : std::uint8_t {
+  kNone, kRpm, kDiscHeight, kWindX, kWindY, kCvTarget, kBoutWidth, kTrayWidth, kKernelHalfWidth, kDropPointTurn,
+  kLeftDiscRpm, kRightDiscRpm, kLeftDiscDropPointTurn, kRightDiscDropPointTurn, kEffects
+};
+// The first field of a request that validation refuses: its value and the range it must lie in (the
+// field's own units; cv_target a fraction), or, with lower == upper, the rule it breaks as a phrase that
+// follows the value ("given while every disc has its own speed (set it to 0)"); rule "above" marks a
+// range open below.
+struct RequestProblem {
+  PredictStatus status = PredictStatus::kOk;
+  RequestField field = RequestField::kNone;
+  double value = 0.0, lower = 0.0, upper = 0.0;
+  const char* rule = "";
+};
+
 inline constexpr flight::EffectSet kTableEffects = 1u << 31;
 
 struct PredictionRequest {
@@ -310,6 +326,9 @@ class Predictor {
   const LandingDomain& landing_domain() const { return domain_; }
   // Whether material `index` (as material()) has a landing grid: its runs fly drag alone or nothing.
   bool has_landing_grid(std::size_t index) const;
+  // What validation refuses in a request (status kOk: nothing; the material, rpm rows and landing domain
+  // are checked by predict() after it): the first field at fault, for the refusal's message.
+  RequestProblem request_problem(const PredictionRequest& request) const;
   // Why the landing grid does not serve a valid request (kNone: it does, or the material has no grid and
   // every request flies): what the refusal's message names.
   enum class DomainMiss : std::uint8_t { kNone, kHeight, kWind, kEffects };
@@ -342,7 +361,7 @@ class Predictor {
     std::size_t run_count = 0;
   };
 
-  PredictStatus validate(const PredictionRequest& request, double& height_m) const;
+  PredictStatus validate(const PredictionRequest& request, double& height_m, RequestProblem* problem = nullptr) const;
   // Where a disc's launch samples come from: the rows around its speed and the upper row's weight t.
   struct DiscRows {
     std::size_t lower_run = 0, upper_run = 0;
