@@ -35,35 +35,43 @@ const char* table_path() {
   return (path != nullptr && *path != '\0') ? path : nullptr;
 }
 
-void BM_PredictWorstCase(benchmark::State& state) {
+// The table in SPREAD_BENCH_TABLE opened, and a definition for its first material at 560 rpm (between two
+// rows of the default sweep; the middle of its range otherwise). Null, with the benchmark skipped, when
+// there is no table.
+spread_tables* open_bench_table(benchmark::State& state, spread_prediction_def& def) {
   const char* path = table_path();
   if (path == nullptr) {
     state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
-    return;
+    return nullptr;
   }
   spread_tables* tables = nullptr;
   if (spread_open(path, &tables) != SPREAD_OK) {
     state.SkipWithError("spread_open failed");
-    return;
+    return nullptr;
   }
   const char* material = nullptr;
   double min_rpm = 0.0, max_rpm = 0.0;
   spread_material_name(tables, 0, &material);
   spread_material_rpm_range(tables, 0, &min_rpm, &max_rpm);
-  spread_prediction_def def = spread_prediction_def_default();
+  def = spread_prediction_def_default();
   def.material = material;
   def.rpm = 560.0 >= min_rpm && 560.0 <= max_rpm ? 560.0 : 0.5 * (min_rpm + max_rpm);
+  return tables;
+}
+
+void BM_PredictWorstCase(benchmark::State& state) {
+  spread_prediction_def def;
+  spread_tables* tables = open_bench_table(state, def);
+  if (tables == nullptr) return;
   def.tray_width_m = 0.01 * static_cast<double>(state.range(0));
   if (state.range(1) > 0) def.disc_height_m = 0.1 * static_cast<double>(state.range(1));
   def.wind_m_s[0] = static_cast<double>(state.range(2));
   spread_prediction result{};
-  if (!spread::bench::time_spread_predict(state, tables, def, result)) {
-    spread_close(tables);
-    return;
+  if (spread::bench::time_spread_predict(state, tables, def, result)) {
+    state.counters["trays"] = result.tray_count;
+    state.counters["flights"] = result.flights;
+    state.counters["working_width_m"] = result.working_width_to_and_fro_m;
   }
-  state.counters["trays"] = result.tray_count;
-  state.counters["flights"] = result.flights;
-  state.counters["working_width_m"] = result.working_width_to_and_fro_m;
   spread_close(tables);
 }
 BENCHMARK(BM_PredictWorstCase)
@@ -72,33 +80,17 @@ BENCHMARK(BM_PredictWorstCase)
     ->Unit(benchmark::kMillisecond);
 
 void BM_PredictOutsideDomain(benchmark::State& state) {
-  const char* path = table_path();
-  if (path == nullptr) {
-    state.SkipWithError("set SPREAD_BENCH_TABLE to a table file (lookup_builder scenes/default.toml --output X)");
-    return;
-  }
-  spread_tables* tables = nullptr;
-  if (spread_open(path, &tables) != SPREAD_OK) {
-    state.SkipWithError("spread_open failed");
-    return;
-  }
-  const char* material = nullptr;
-  double min_rpm = 0.0, max_rpm = 0.0;
-  spread_material_name(tables, 0, &material);
-  spread_material_rpm_range(tables, 0, &min_rpm, &max_rpm);
-  spread_prediction_def def = spread_prediction_def_default();
-  def.material = material;
-  def.rpm = 560.0 >= min_rpm && 560.0 <= max_rpm ? 560.0 : 0.5 * (min_rpm + max_rpm);
+  spread_prediction_def def;
+  spread_tables* tables = open_bench_table(state, def);
+  if (tables == nullptr) return;
   def.disc_height_m = static_cast<double>(state.range(0));
   def.wind_m_s[0] = static_cast<double>(state.range(1));
   def.fly_outside_domain = 1;
   spread_prediction result{};
-  if (!spread::bench::time_spread_predict(state, tables, def, result)) {
-    spread_close(tables);
-    return;
+  if (spread::bench::time_spread_predict(state, tables, def, result)) {
+    state.counters["flights"] = result.flights;
+    state.counters["samples"] = result.sample_count;
   }
-  state.counters["flights"] = result.flights;
-  state.counters["samples"] = result.sample_count;
   spread_close(tables);
 }
 BENCHMARK(BM_PredictOutsideDomain)

@@ -604,43 +604,41 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
     // A launch sample of the table is one sample however many discs it feeds: the discs' blocks by source
     // row (interpolate(): a row alone or rows pairwise is one block of the lower row's samples, quantile
     // cells the lower row's then the upper row's), a source both discs draw on shared.
-    {
-      struct RowBlock {
-        std::size_t run, count, first_landing;
-      };
-      // Rows that interpolate pairwise draw the same granules (the analytic builder's sample k is one
-      // granule in every row): such a chain of rows is one source, named by its first row.
-      const auto source_of = [&](std::size_t run) {
-        while (run > rows.first_run && pairwise(run - 1, run)) --run;
-        return run;
-      };
-      RowBlock row_blocks[2][2];
-      std::size_t row_block_count[2] = {0, 0};
-      for (int d = 0; d < 2; ++d) {
-        const DiscRows& r = disc_rows[d];
-        const std::size_t first = d == kLeftDisc ? 0 : n;
-        const std::size_t lower_count = run_samples(r.lower_run).size();
-        row_blocks[d][row_block_count[d]++] = {source_of(r.lower_run), lower_count, first};
-        if (r.lower_run != r.upper_run && !pairwise(r.lower_run, r.upper_run)) {
-          row_blocks[d][row_block_count[d]++] = {source_of(r.upper_run), run_samples(r.upper_run).size(),
-                                                 first + lower_count};
-        }
+    struct RowBlock {
+      std::size_t run, count, first_landing;
+    };
+    // Rows that interpolate pairwise draw the same granules (the analytic builder's sample k is one
+    // granule in every row): such a chain of rows is one source, named by its first row.
+    const auto source_of = [&](std::size_t run) {
+      while (run > rows.first_run && pairwise(run - 1, run)) --run;
+      return run;
+    };
+    RowBlock row_blocks[2][2];
+    std::size_t row_block_count[2] = {0, 0};
+    for (int d = 0; d < 2; ++d) {
+      const DiscRows& r = disc_rows[d];
+      const std::size_t first = d == kLeftDisc ? 0 : n;
+      const std::size_t lower_count = run_samples(r.lower_run).size();
+      row_blocks[d][row_block_count[d]++] = {source_of(r.lower_run), lower_count, first};
+      if (r.lower_run != r.upper_run && !pairwise(r.lower_run, r.upper_run)) {
+        row_blocks[d][row_block_count[d]++] = {source_of(r.upper_run), run_samples(r.upper_run).size(),
+                                               first + lower_count};
       }
-      bool right_shared[2] = {false, false};
-      for (std::size_t i = 0; i < row_block_count[0]; ++i) {
-        SampleBlock block{row_blocks[0][i].count, {row_blocks[0][i].first_landing, SampleBlock::kNoLanding}};
-        for (std::size_t j = 0; j < row_block_count[1]; ++j) {
-          if (row_blocks[1][j].run == row_blocks[0][i].run && row_blocks[1][j].count == row_blocks[0][i].count) {
-            block.first_landing[kRightDisc] = row_blocks[1][j].first_landing;
-            right_shared[j] = true;
-          }
-        }
-        blocks[block_count++] = block;
-      }
+    }
+    bool right_shared[2] = {false, false};
+    for (std::size_t i = 0; i < row_block_count[0]; ++i) {
+      SampleBlock block{row_blocks[0][i].count, {row_blocks[0][i].first_landing, SampleBlock::kNoLanding}};
       for (std::size_t j = 0; j < row_block_count[1]; ++j) {
-        if (!right_shared[j]) {
-          blocks[block_count++] = SampleBlock{row_blocks[1][j].count, {SampleBlock::kNoLanding, row_blocks[1][j].first_landing}};
+        if (row_blocks[1][j].run == row_blocks[0][i].run && row_blocks[1][j].count == row_blocks[0][i].count) {
+          block.first_landing[kRightDisc] = row_blocks[1][j].first_landing;
+          right_shared[j] = true;
         }
+      }
+      blocks[block_count++] = block;
+    }
+    for (std::size_t j = 0; j < row_block_count[1]; ++j) {
+      if (!right_shared[j]) {
+        blocks[block_count++] = SampleBlock{row_blocks[1][j].count, {SampleBlock::kNoLanding, row_blocks[1][j].first_landing}};
       }
     }
     for (std::size_t b = 0; b < block_count; ++b) sample_total += blocks[b].count;
