@@ -75,16 +75,6 @@ void check_axes(const LandingGrid::Axes& axes) {
 }
 }  // namespace
 
-void LandingGrid::assign(const Axes& axes, flight::EffectSet effects, std::span<const float> values) {
-  check_axes(axes);
-  if (!holds(effects)) throw std::invalid_argument("LandingGrid::assign: effects other than drag");
-  effects_ = effects;
-  if (values.size() != value_count(axes)) throw std::invalid_argument("LandingGrid::assign: value count does not match the axes");
-  axes_ = axes;
-  for (std::size_t a = 0; a < kAxisCount; ++a) inverse_step_[a] = 1.0 / axes[a].step;
-  values_.assign(values.begin(), values.end());
-}
-
 bool LandingGrid::build(const Axes& axes, double density_kg_m3, flight::EffectSet effects,
                         const flight::Settings& settings, const flight::Air& air) {
   check_axes(axes);
@@ -125,15 +115,6 @@ bool LandingGrid::build(const Axes& axes, double density_kg_m3, flight::EffectSe
       values_[first + c] = static_cast<float>(landings[c].state.position_m.x());
       values_[nodes + first + c] = static_cast<float>(landings[c].flight_time_s);
     }
-  }
-  return true;
-}
-
-bool LandingGrid::covers(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s) const {
-  const double x[kAxisCount] = {diameter_m, vertical_speed_m_s, std::sqrt(std::max(height_m, 0.0)), speed_m_s};
-  for (std::size_t a = 0; a < kAxisCount; ++a) {
-    const double slack = 1e-9 * (axes_[a].last() - axes_[a].first);
-    if (!(x[a] >= axes_[a].first - slack && x[a] <= axes_[a].last() + slack)) return false;
   }
   return true;
 }

@@ -37,7 +37,7 @@
 
 namespace spread::predict {
 
-// One equally spaced axis: nodes first_m + k · step for k = 0 .. count − 1 (units of the quantity).
+// One equally spaced axis: nodes first + k · step for k = 0 .. count − 1 (units of the quantity).
 struct GridAxis {
   double first = 0.0;
   double step = 1.0;
@@ -65,8 +65,6 @@ class LandingGrid {
   // the settings' limits.
   bool build(const Axes& axes, double density_kg_m3, flight::EffectSet effects, const flight::Settings& settings,
              const flight::Air& air);
-  // Adopts stored values (a table's): values.size() must be value_count(axes).
-  void assign(const Axes& axes, flight::EffectSet effects, std::span<const float> values);
 
   bool empty() const { return values_.empty(); }
   const Axes& axes() const { return axes_; }
@@ -74,10 +72,6 @@ class LandingGrid {
   std::span<const float> values() const { return values_; }
   std::size_t bytes() const { return sizeof(float) * values_.size(); }
   static std::size_t value_count(const Axes& axes);
-
-  // Whether (d, v_z, h) lie within the grid's axes and u within [0, axes[kSpeed].last()] (to a relative
-  // 1e-9 of each axis: the interpolant extends smoothly that far).
-  bool covers(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s) const;
 
   // R (m) and T (s) of a launch with horizontal speed speed_m_s >= 0. Arguments slightly outside the axes
   // extrapolate the edge stencil.
@@ -121,8 +115,8 @@ LandingDomain landing_domain_for(double stored_disc_height_m);
 
 // Nodes per axis of a material's grid (LandingGrid::Axis order): 320 KB per material. Measured on the
 // product's default table, every 5th launch sample at random disc heights and winds across the domain
-// against the sample flown at the tight reference tolerance (bench_predict BM_LandingGridError): 1.1–2.9
-// mm root mean square, 1.1–2.1 cm at worst by material — about the accuracy of a default flight (1 cm).
+// against the sample flown at the tight reference tolerance (bench_predict BM_LandingGridError): 1.1–2.8
+// mm root mean square, 1.1–1.4 cm at worst by material — about the accuracy of a default flight (1 cm).
 inline constexpr std::array<std::uint32_t, LandingGrid::kAxisCount> kGridNodes = {10, 20, 10, 20};
 
 // Axes that cover every launch of a material's samples (normalised, as stored in its rows) at disc speeds

@@ -288,7 +288,8 @@ class Predictor {
   // Throws tables::TableError(kCorrupt) when a run names a material the file does not describe, and
   // std::invalid_argument for bad limits. Materials without runs are not offered. Rows interpolated by
   // quantile cells are flown once here to find their cells (one flight per sample, default settings), and
-  // and a drag-only table's materials into their landing grids (landing_grid.hpp) over `domain`.
+  // a drag-only table's materials into their landing grids (landing_grid.hpp) over the domain of the
+  // machine's stored height (landing_domain_for).
   // The launch samples, the cells and the own workspace are allocated from `memory` (which must outlive
   // the Predictor); the samples are moved out of `contents` into one block.
   explicit Predictor(tables::TableContents contents, PredictorLimits limits = {},
