@@ -171,6 +171,7 @@ spread_status refused(spread_status status, const spread::predict::Predictor& pr
         case Field::kNone: break;
       }
       const double value = name.scale * problem.value;
+      if (status == SPREAD_ERROR_NOT_FINITE) return fail(status, "spread_predict: %s is %g", name.field, value);
       if (name.disc >= 0 && *problem.rule == '\0') {
         const bool speed = problem.field == Field::kLeftDiscRpm || problem.field == Field::kRightDiscRpm;
         return fail(status, "spread_predict: the %s disc's %s %s %g outside [%g, %g] %s", kDiscName[name.disc],
@@ -180,7 +181,6 @@ spread_status refused(spread_status status, const spread::predict::Predictor& pr
       if (*problem.rule != '\0' && problem.lower == problem.upper) {
         return fail(status, "spread_predict: %s %g %s", name.field, value, problem.rule);
       }
-      if (status == SPREAD_ERROR_NOT_FINITE) return fail(status, "spread_predict: %s is %g", name.field, value);
       return fail(status, "spread_predict: %s %g outside %s%g, %g] %s", name.field, value,
                   *problem.rule != '\0' ? "(" : "[", name.scale * problem.lower, name.scale * problem.upper, name.unit);
     }

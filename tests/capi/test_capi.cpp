@@ -236,19 +236,22 @@ TEST_F(Capi, OutOfRangeDetailNamesOnlyTheOffendingField) {
   kernel.kernel_half_width_m = 11.0;
   turn.drop_point_turn_rad = 4.0;
   infinite.bout_width_m = INFINITY;
+  spread_prediction_def infinite_disc = def();
+  infinite_disc.disc_rpm[1] = INFINITY;
   for (const Bad& b : {Bad{height, SPREAD_ERROR_OUT_OF_RANGE, "disc_height_m -0.5 outside [0, 100] m"},
                        Bad{cv, SPREAD_ERROR_OUT_OF_RANGE, "cv_target_percent 0 outside (0, 1000] percent"},
                        Bad{tray, SPREAD_ERROR_OUT_OF_RANGE, "tray_width_m 0.01 outside [0.05, 100] m"},
                        Bad{wind, SPREAD_ERROR_OUT_OF_RANGE, "wind_m_s[1] -100.5 outside [-100, 100] m/s"},
                        Bad{kernel, SPREAD_ERROR_OUT_OF_RANGE, "kernel_half_width_m 11 outside [0, 10] m"},
                        Bad{turn, SPREAD_ERROR_OUT_OF_RANGE, "drop_point_turn_rad 4 outside [-3.14159, 3.14159] rad"},
-                       Bad{infinite, SPREAD_ERROR_NOT_FINITE, "bout_width_m is inf"}}) {
+                       Bad{infinite, SPREAD_ERROR_NOT_FINITE, "bout_width_m is inf"},
+                       Bad{infinite_disc, SPREAD_ERROR_NOT_FINITE, "disc_rpm[1] is inf"}}) {
     EXPECT_EQ(predict(b.def), b.status) << b.detail;
     const std::string detail = spread_last_error_detail();
     EXPECT_NE(detail.find(b.detail), std::string::npos) << detail;
     std::size_t fields = 0;
     for (const char* field : {"disc_height_m", "cv_target_percent", "tray_width_m", "wind_m_s", "kernel_half_width_m",
-                              "drop_point_turn_rad", "bout_width_m", "rpm"}) {
+                              "drop_point_turn_rad", "bout_width_m", "rpm ", "disc_rpm"}) {
       if (detail.find(field) != std::string::npos) ++fields;
     }
     EXPECT_EQ(fields, 1u) << detail;
