@@ -18,6 +18,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "libspread/analysis/predict/predictor.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 #include "libspread/io/tables/table_writer.hpp"
 #include "libspread/io/tables/writer_lock.hpp"
 #include "lookup_builder/progress.hpp"
@@ -159,6 +161,24 @@ void sync_path(const std::string& path, int flags) {
   ::close(fd);
 }
 
+// The predictor's landing grids and quantile cells (libspread/io/tables/landing_data.hpp) of every
+// material whose stored landing data is missing or stale, derived from the file's rows as a reader would
+// derive them and stored beside them, so that opening the table reads them instead of flying them. True
+// when anything was written.
+bool store_landing_data(tables::TableWriter& writer) {
+  tables::TableContents contents;
+  try {
+    contents = tables::read_table_file(writer.path());
+  } catch (const tables::TableError& e) {
+    if (e.kind() == tables::TableErrorKind::kEmpty) return false;  // no runs: nothing to derive
+    throw;
+  }
+  const predict::Predictor predictor(std::move(contents));
+  const std::vector<tables::LandingData> derived = predictor.derived_landing_data();
+  for (const tables::LandingData& landing : derived) writer.write_landing_data(landing);
+  return !derived.empty();
+}
+
 }  // namespace
 
 struct SweepWriter::Impl {
@@ -269,7 +289,10 @@ BuildSummary SweepWriter::finish() {
   tables::TableWriter& writer = *impl_->writer;
   // The scene that completed this file; a failed build keeps the previous value (its finished runs are
   // kept all the same).
-  if (impl_->pending_done == pending_.size()) writer.write_meta("machine_scene_hash", impl_->scene_hash);
+  if (impl_->pending_done == pending_.size()) {
+    writer.write_meta("machine_scene_hash", impl_->scene_hash);
+    if (store_landing_data(writer)) impl_->changed = true;
+  }
   const std::string& path = impl_->summary.output_path;
   if (!impl_->changed) {
     // Nothing to do: the table stays byte-identical and the staging copy goes.

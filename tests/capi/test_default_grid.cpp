@@ -81,4 +81,47 @@ TEST(DefaultGrid, NoWidthOrCvMovesByMoreThanItsInterval) {
 }
 
 }  // namespace
+// lookup_builder stores each material's landing grid and quantile cells in the table (landing_data), and
+// a Predictor reads them instead of flying them: what it reads is byte for byte what a Predictor derives
+// from the same rows, and it predicts bit for bit the same.
+TEST(DefaultGrid, StoredLandingDataIsWhatAReaderDerives) {
+  if (!std::filesystem::exists(SPREAD_DEFAULT_TABLE)) {
+    GTEST_SKIP() << SPREAD_DEFAULT_TABLE << " missing: run through ctest (fixture capi.fixture.default_scene)";
+  }
+  tables::TableContents contents = tables::read_table_file(SPREAD_DEFAULT_TABLE);
+  const std::vector<tables::LandingData> stored = contents.landing_data;
+  ASSERT_EQ(stored.size(), 3u) << "one row of landing data per material";
+  tables::TableContents bare = contents;
+  bare.landing_data.clear();
+  Predictor read(std::move(contents));
+  Predictor derived(std::move(bare));
+  for (std::size_t m = 0; m < read.material_count(); ++m) {
+    EXPECT_TRUE(read.landing_data_from_table(m)) << read.material(m).name;
+    EXPECT_FALSE(derived.landing_data_from_table(m));
+  }
+  EXPECT_TRUE(read.derived_landing_data().empty());
+  const std::vector<tables::LandingData> again = derived.derived_landing_data();
+  ASSERT_EQ(again.size(), stored.size());
+  for (std::size_t m = 0; m < stored.size(); ++m) {
+    EXPECT_EQ(again[m].material, stored[m].material);
+    EXPECT_EQ(again[m].model, stored[m].model);
+    EXPECT_TRUE(again[m].data == stored[m].data) << stored[m].material;
+  }
+  for (const char* material : {"Urea", "DAP"}) {
+    PredictionRequest r;
+    r.material = material;
+    r.rpm = 560.0;  // between the 450 and 600 rpm rows: quantile cells
+    r.wind_x_m_s = 3.0;
+    Prediction a, b;
+    ASSERT_EQ(read.predict(r, a), PredictStatus::kOk);
+    ASSERT_EQ(derived.predict(r, b), PredictStatus::kOk);
+    EXPECT_EQ(a.working_width_to_and_fro_m, b.working_width_to_and_fro_m) << material;
+    EXPECT_EQ(a.throw_width_m, b.throw_width_m) << material;
+    ASSERT_EQ(a.tray_mass_fraction.size(), b.tray_mass_fraction.size());
+    for (std::size_t t = 0; t < a.tray_mass_fraction.size(); ++t) {
+      ASSERT_EQ(a.tray_mass_fraction[t], b.tray_mass_fraction[t]) << material << " tray " << t;
+    }
+  }
+}
+
 }  // namespace spread::predict

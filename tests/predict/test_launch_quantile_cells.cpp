@@ -28,7 +28,7 @@ std::vector<std::size_t> scrambled(std::size_t n) {
 
 struct Celled {
   std::vector<tables::LaunchSample> samples;
-  std::vector<std::uint32_t> cell;
+  std::vector<CellIndex> cell;
   std::vector<tables::LaunchSample> mean;
   CelledRow view() const { return CelledRow{samples, cell, mean}; }
 };
@@ -88,16 +88,18 @@ TEST(QuantileCells, PrimaryGroupsThenSecondaryCellsOfEqualMass) {
     primary[k] = static_cast<double>(k % 10);
     secondary[k] = -static_cast<double>(k);
   }
-  std::vector<std::uint32_t> order(n), cell(n);
+  std::vector<std::uint32_t> order(n);
+  std::vector<CellIndex> cell(n);
   assign_quantile_cells(primary, secondary, mass, QuantileCellCounts{10, 2}, order, cell);
   for (std::size_t k = 0; k < n; ++k) {
     EXPECT_EQ(cell[k], (k % 10) * 2 + (k / 10 >= 5 ? 0u : 1u)) << k;
   }
   // Masses count, not samples: one heavy sample (9 of 18 kg) fills the first half alone.
   const std::vector<double> key{0.0, 1.0, 2.0, 3.0}, heavy{9.0, 3.0, 3.0, 3.0};
-  std::vector<std::uint32_t> order4(4), cell4(4);
+  std::vector<std::uint32_t> order4(4);
+  std::vector<CellIndex> cell4(4);
   assign_quantile_cells(key, key, heavy, QuantileCellCounts{2, 1}, order4, cell4);
-  EXPECT_EQ(cell4, (std::vector<std::uint32_t>{0, 1, 1, 1}));
+  EXPECT_EQ(cell4, (std::vector<CellIndex>{0, 1, 1, 1}));
 }
 
 TEST(QuantileCells, CountsFollowTheSmallestRow) {
@@ -117,7 +119,7 @@ TEST(QuantileCells, MeansAreMassWeighted) {
   s[0].vx_norm = 1.0f, s[0].wz_norm = 4.0f, s[0].mass_kg = 1.0f;
   s[1].vx_norm = 3.0f, s[1].wz_norm = 0.0f, s[1].mass_kg = 3.0f;
   s[2].vx_norm = 7.0f, s[2].mass_kg = 2.0f;
-  const std::vector<std::uint32_t> cell{0, 0, 2};
+  const std::vector<CellIndex> cell{0, 0, 2};
   std::vector<tables::LaunchSample> mean(3);
   quantile_cell_means(s, cell, mean);
   EXPECT_FLOAT_EQ(mean[0].vx_norm, 2.5f);
@@ -128,7 +130,8 @@ TEST(QuantileCells, MeansAreMassWeighted) {
 }
 
 TEST(QuantileCells, BadInputIsRefusedNamingTheProblem) {
-  std::vector<std::uint32_t> order(2), cell(2);
+  std::vector<std::uint32_t> order(2);
+  std::vector<CellIndex> cell(2);
   auto message = [&](std::vector<double> k, std::vector<double> m, QuantileCellCounts counts) {
     try {
       assign_quantile_cells(k, k, m, counts, order, cell);

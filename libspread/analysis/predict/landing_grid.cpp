@@ -119,6 +119,31 @@ bool LandingGrid::build(const Axes& axes, double density_kg_m3, flight::EffectSe
   return true;
 }
 
+namespace {
+constexpr std::uint32_t kMaxRestoredNodes = 4096;  // per axis, far above kGridNodes
+}  // namespace
+
+bool LandingGrid::restore(const Axes& axes, flight::EffectSet effects, std::span<const float> values) {
+  values_.clear();
+  try {
+    check_axes(axes);
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  for (const GridAxis& axis : axes) {
+    if (axis.count > kMaxRestoredNodes) return false;  // value_count must not overflow
+  }
+  if (!holds(effects) || values.size() != value_count(axes)) return false;
+  for (float value : values) {
+    if (!std::isfinite(value)) return false;
+  }
+  effects_ = effects;
+  axes_ = axes;
+  for (std::size_t a = 0; a < kAxisCount; ++a) inverse_step_[a] = 1.0 / axes[a].step;
+  values_.assign(values.begin(), values.end());
+  return true;
+}
+
 template <bool kWithTime>
 void LandingGrid::interpolate(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s,
                               double& range_m, double& time_s) const {

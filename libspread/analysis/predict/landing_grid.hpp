@@ -66,6 +66,11 @@ class LandingGrid {
   bool build(const Axes& axes, double density_kg_m3, flight::EffectSet effects, const flight::Settings& settings,
              const flight::Air& air);
 
+  // Takes values flown earlier by build() with these axes and effects (a table's stored landing data).
+  // False, leaving the grid empty, when the count is not value_count(axes), a value is not finite, or the
+  // axes or effects are ones build() refuses.
+  bool restore(const Axes& axes, flight::EffectSet effects, std::span<const float> values);
+
   bool empty() const { return values_.empty(); }
   const Axes& axes() const { return axes_; }
   flight::EffectSet effects() const { return effects_; }  // the still-air effects it was flown with

@@ -72,7 +72,7 @@ void check_celled(const CelledRow& row, std::size_t cells, const char* which) {
     throw std::invalid_argument(std::string("interpolate_by_quantile_cells: ") + which +
                                 " row is empty or its cells do not match it or the other row's");
   }
-  for (std::uint32_t c : row.cell_of_sample) {
+  for (CellIndex c : row.cell_of_sample) {
     if (c >= cells) {
       throw std::invalid_argument(std::string("interpolate_by_quantile_cells: ") + which +
                                   " row has a cell index out of range");
@@ -116,7 +116,7 @@ std::size_t interpolate_by_quantile_cells(const CelledRow& lower, const CelledRo
   // One row's granules, each moved from its cell's mean in that row to the interpolated cell mean.
   auto place = [&](const CelledRow& row, std::size_t first, double row_weight) {
     for (std::size_t k = 0; k < row.samples.size(); ++k) {
-      const std::uint32_t c = row.cell_of_sample[k];
+      const CellIndex c = row.cell_of_sample[k];
       const tables::LaunchSample& a = lower.cell_mean[c];
       const tables::LaunchSample& b = upper.cell_mean[c];
       const tables::LaunchSample& s = row.samples[k];

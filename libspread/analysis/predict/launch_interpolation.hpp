@@ -26,6 +26,7 @@
 #include <optional>
 #include <span>
 
+#include "libspread/analysis/predict/launch_quantile_cells.hpp"
 #include "libspread/io/tables/table_format.hpp"
 
 namespace spread::predict {
@@ -53,7 +54,7 @@ std::size_t interpolate_launch_samples(std::span<const tables::LaunchSample> low
 // counts (cell_mean.size() equal).
 struct CelledRow {
   std::span<const tables::LaunchSample> samples;
-  std::span<const std::uint32_t> cell_of_sample;
+  std::span<const CellIndex> cell_of_sample;
   std::span<const tables::LaunchSample> cell_mean;
 };
 

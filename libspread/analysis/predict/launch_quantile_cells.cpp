@@ -43,7 +43,7 @@ void cut_by_mass(std::span<const std::uint32_t> order, std::span<const double> m
 
 void assign_quantile_cells(std::span<const double> primary_key, std::span<const double> secondary_key,
                            std::span<const double> mass_kg, QuantileCellCounts counts,
-                           std::span<std::uint32_t> order, std::span<std::uint32_t> cell_of_sample) {
+                           std::span<std::uint32_t> order, std::span<CellIndex> cell_of_sample) {
   const std::size_t n = mass_kg.size();
   if (n == 0) throw std::invalid_argument("assign_quantile_cells: empty row");
   if (primary_key.size() != n || secondary_key.size() != n || order.size() != n || cell_of_sample.size() != n) {
@@ -52,8 +52,8 @@ void assign_quantile_cells(std::span<const double> primary_key, std::span<const 
   if (n > std::numeric_limits<std::uint32_t>::max()) {
     throw std::invalid_argument("assign_quantile_cells: more than 2^32 - 1 samples in one row");
   }
-  if (counts.primary < 1 || counts.secondary < 1) {
-    throw std::invalid_argument("assign_quantile_cells: cell counts must be >= 1");
+  if (counts.primary < 1 || counts.secondary < 1 || counts.primary > 256 || counts.cells() > 256) {
+    throw std::invalid_argument("assign_quantile_cells: cell counts must be >= 1 and at most 256 cells (CellIndex)");
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(primary_key[i]) || !std::isfinite(secondary_key[i])) {
@@ -77,7 +77,7 @@ void assign_quantile_cells(std::span<const double> primary_key, std::span<const 
     const std::span<std::uint32_t> members = order.subspan(group_begin, end - group_begin);
     std::sort(members.begin(), members.end(), by(secondary_key));
     cut_by_mass(members, mass_kg, counts.secondary, [&](std::size_t r, int cell) {
-      cell_of_sample[members[r]] = static_cast<std::uint32_t>(group * counts.secondary + cell);
+      cell_of_sample[members[r]] = static_cast<CellIndex>(group * counts.secondary + cell);
     });
   };
   cut_by_mass(order, mass_kg, counts.primary, [&](std::size_t r, int g) {
@@ -90,7 +90,7 @@ void assign_quantile_cells(std::span<const double> primary_key, std::span<const 
   finish_group(n);
 }
 
-void quantile_cell_means(std::span<const tables::LaunchSample> samples, std::span<const std::uint32_t> cell_of_sample,
+void quantile_cell_means(std::span<const tables::LaunchSample> samples, std::span<const CellIndex> cell_of_sample,
                          std::span<tables::LaunchSample> cell_mean) {
   if (cell_of_sample.size() != samples.size()) {
     throw std::invalid_argument("quantile_cell_means: cell_of_sample differs in size from the row");

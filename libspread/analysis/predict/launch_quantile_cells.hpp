@@ -18,6 +18,9 @@
 
 namespace spread::predict {
 
+// A sample's cell: at most 16 × 4 = 64 cells (quantile_cells_for), so one byte holds it.
+using CellIndex = std::uint8_t;
+
 struct QuantileCellCounts {
   int primary = 1;    // groups along the primary key
   int secondary = 1;  // cells per group along the secondary key
@@ -37,12 +40,12 @@ QuantileCellCounts quantile_cells_for(std::size_t smallest_row_count);
 // the sample index).
 void assign_quantile_cells(std::span<const double> primary_key, std::span<const double> secondary_key,
                            std::span<const double> mass_kg, QuantileCellCounts counts,
-                           std::span<std::uint32_t> order_scratch, std::span<std::uint32_t> cell_of_sample);
+                           std::span<std::uint32_t> order_scratch, std::span<CellIndex> cell_of_sample);
 
 // Mass-weighted mean launch state of every cell, written as a LaunchSample: position, velocity and spin
 // fields are the means, mass_kg is the cell's total mass (0: empty cell, other fields 0), the other
 // fields 0. cell_mean.size() == number of cells; cell_of_sample as assign_quantile_cells wrote it.
-void quantile_cell_means(std::span<const tables::LaunchSample> samples, std::span<const std::uint32_t> cell_of_sample,
+void quantile_cell_means(std::span<const tables::LaunchSample> samples, std::span<const CellIndex> cell_of_sample,
                          std::span<tables::LaunchSample> cell_mean);
 
 }  // namespace spread::predict

@@ -327,6 +327,12 @@ class Predictor {
   const LandingDomain& landing_domain() const { return domain_; }
   // Whether material `index` (as material()) has a landing grid: its runs fly drag alone or nothing.
   bool has_landing_grid(std::size_t index) const;
+  // Whether material `index`'s landing grid and quantile cells were read from the table's landing data
+  // (TableContents::landing_data, current and of this build's model) instead of derived here.
+  bool landing_data_from_table(std::size_t index) const { return landing_data_from_table_.at(index); }
+  // The landing data of every material derived here (not read from the table), as a table stores it
+  // (landing_data_codec.hpp): what a table writer adds so that the next Predictor of the file reads it.
+  std::vector<tables::LandingData> derived_landing_data() const;
   // What validation refuses in a request (status kOk: nothing; the material, rpm rows and landing domain
   // are checked by predict() after it): the first field at fault, for the refusal's message.
   RequestProblem request_problem(const PredictionRequest& request) const;
@@ -395,8 +401,17 @@ class Predictor {
   // them: pairwise for analytic rows of equal count, otherwise by quantile cells. Returns the count.
   std::size_t interpolate(std::size_t lower_run, std::size_t upper_run, double t,
                           std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const;
-  // Flies each drag-only material's landing grid over the domain (landing_grid_axes()).
-  void build_landing_grids(std::pmr::memory_resource* memory);
+  // The still-air effects of the material's landing grid and the fastest rim speed of its rows: false
+  // when its rows do not all fly drag alone (or nothing), and it has no grid.
+  bool grid_effects(const MaterialRows& rows, flight::EffectSet& effects, double& max_rim_speed_m_s) const;
+  LandingGrid::Axes grid_axes(const MaterialRows& rows, double max_rim_speed_m_s) const;
+  flight::Settings grid_flight_settings() const;
+  // Flies a drag-only material's landing grid over the domain (landing_grid_axes()).
+  void build_landing_grid(const MaterialRows& rows);
+  // The material's grid and cells from its stored landing data; TableError kCorrupt when the data does
+  // not fit the rows (a writer of the same model tag wrote something else).
+  void restore_landing_data(const MaterialRows& rows, std::span<const std::uint8_t> data);
+  tables::LandingData encode_landing_data(const MaterialRows& rows) const;
   // The grid that serves a request of this material, or null (fly).
   const LandingGrid* landing_grid_for(const MaterialRows& rows, double height_m, flight::EffectSet effects,
                                       const flight::Air& air) const;
@@ -431,13 +446,14 @@ class Predictor {
   // interpolated pairwise).
   std::vector<std::size_t> run_offset_, cell_offset_;
   std::pmr::vector<tables::LaunchSample> samples_;
-  std::pmr::vector<std::uint32_t> cell_of_sample_;
+  std::pmr::vector<CellIndex> cell_of_sample_;
   std::pmr::vector<tables::LaunchSample> cell_mean_;
   double lowest_sample_z_m_ = 0.0;    // over all runs: the disc must sit at least -this above ground
   // Landing grids by material (contents_.materials' index; empty where the material's runs fly more than
   // drag) and the domain they cover.
   LandingDomain domain_;
   std::vector<LandingGrid> grids_;
+  std::vector<bool> landing_data_from_table_;  // by materials_ index
   bool landing_grid_enabled_ = true;
   std::optional<PredictorWorkspace> own_workspace_;  // for predict(request, out)
 };

@@ -11,16 +11,26 @@ namespace {
 
 constexpr std::uint64_t kReflectedPoly = 0xC96C5795D7870F42ull;
 
-constexpr std::array<std::uint64_t, 256> make_table() {
-  std::array<std::uint64_t, 256> table{};
+// Slicing by 8 (Kounavis and Berry, "A systematic approach to building high performance software-based
+// CRC generators", 2005): kTables[k][b] is the CRC state after byte b followed by k zero bytes, so eight
+// input bytes fold into the state with eight independent lookups instead of a chain of eight.
+using Tables = std::array<std::array<std::uint64_t, 256>, 8>;
+constexpr Tables make_tables() {
+  Tables tables{};
   for (std::uint64_t i = 0; i < 256; ++i) {
     std::uint64_t crc = i;
     for (int bit = 0; bit < 8; ++bit) crc = (crc & 1u) != 0 ? (crc >> 1) ^ kReflectedPoly : crc >> 1;
-    table[i] = crc;
+    tables[0][i] = crc;
   }
-  return table;
+  for (std::size_t k = 1; k < 8; ++k) {
+    for (std::size_t i = 0; i < 256; ++i) {
+      const std::uint64_t previous = tables[k - 1][i];
+      tables[k][i] = (previous >> 8) ^ tables[0][previous & 0xFFu];
+    }
+  }
+  return tables;
 }
-constexpr std::array<std::uint64_t, 256> kTable = make_table();
+constexpr Tables kTables = make_tables();
 
 // Little-endian bytes of a 64-bit word, whatever the host order.
 std::array<std::uint8_t, 8> little_endian(std::uint64_t word) {
@@ -34,7 +44,15 @@ std::array<std::uint8_t, 8> little_endian(std::uint64_t word) {
 void Crc64::raw(const void* data, std::size_t size) {
   const auto* p = static_cast<const std::uint8_t*>(data);
   std::uint64_t crc = state_;
-  for (std::size_t i = 0; i < size; ++i) crc = kTable[(crc ^ p[i]) & 0xFFu] ^ (crc >> 8);
+  for (; size >= 8; size -= 8, p += 8) {
+    std::uint64_t word = 0;
+    for (int i = 0; i < 8; ++i) word |= static_cast<std::uint64_t>(p[i]) << (8 * i);  // little-endian load
+    crc ^= word;
+    crc = kTables[7][crc & 0xFFu] ^ kTables[6][(crc >> 8) & 0xFFu] ^ kTables[5][(crc >> 16) & 0xFFu] ^
+          kTables[4][(crc >> 24) & 0xFFu] ^ kTables[3][(crc >> 32) & 0xFFu] ^ kTables[2][(crc >> 40) & 0xFFu] ^
+          kTables[1][(crc >> 48) & 0xFFu] ^ kTables[0][crc >> 56];
+  }
+  for (; size > 0; --size, ++p) crc = kTables[0][(crc ^ *p) & 0xFFu] ^ (crc >> 8);
   state_ = crc;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/io/tables/landing_data.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
 #include "libspread/io/tables/runs_manifest.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
@@ -54,7 +55,9 @@ std::vector<std::string> columns_of(sqlite3* db, const char* table) {
   return out;
 }
 
-constexpr const char* kTables[] = {"machine", "materials", "runs", "meta"};
+// Every file has the first four; landing_data only once a writer stored some (landing_data.hpp).
+constexpr const char* kTables[] = {"machine", "materials", "runs", "meta", detail::kLandingDataTable};
+constexpr std::size_t kRequiredTables = 4;
 
 // The columns each table must have: those of the schema this build writes (table_schema.hpp), read once
 // from an in-memory database made with it, so the check follows the schema without a list of its own.
@@ -63,7 +66,8 @@ const std::vector<std::vector<std::string>>& schema_columns() {
     std::vector<std::vector<std::string>> out;
     sqlite3* db = nullptr;
     if (sqlite3_open_v2(":memory:", &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) == SQLITE_OK &&
-        sqlite3_exec(db, detail::kSchemaSql, nullptr, nullptr, nullptr) == SQLITE_OK) {
+        sqlite3_exec(db, detail::kSchemaSql, nullptr, nullptr, nullptr) == SQLITE_OK &&
+        sqlite3_exec(db, detail::kLandingDataSql, nullptr, nullptr, nullptr) == SQLITE_OK) {
       for (const char* table : kTables) out.push_back(columns_of(db, table));
     }
     sqlite3_close(db);
@@ -80,7 +84,10 @@ void require_tables(Connection& db) {
     const char* table = kTables[t];
     Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
     query.bind(1, std::string(table));
-    if (!query.step()) raise(TableErrorKind::kCorrupt, db.path(), std::string("table `") + table + "` is missing");
+    if (!query.step()) {
+      if (t >= kRequiredTables) continue;
+      raise(TableErrorKind::kCorrupt, db.path(), std::string("table `") + table + "` is missing");
+    }
     if (t >= expected.size()) continue;
     const std::vector<std::string> present = columns_of(db.handle(), table);
     for (const std::string& column : expected[t]) {
@@ -182,6 +189,7 @@ TableContents read_table_file(const std::string& path) {
       if (!problem.empty()) raise(TableErrorKind::kCorrupt, path, problem);
     }
   }
+  contents.landing_data = detail::read_landing_data(db);
   if (contents.runs.empty()) raise(TableErrorKind::kEmpty, path, "no runs (the table has no launch data)");
   for (const Run& run : contents.runs) {
     bool known = false;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/io/tables/landing_data.hpp"
 #include "libspread/io/tables/table_format.hpp"
 
 namespace spread::tables {
@@ -13,6 +14,8 @@ struct TableContents {
   Machine machine;
   std::vector<Material> materials;   // sorted by name
   std::vector<Run> runs;             // sorted by (material, rpm)
+  // Landing data still current for the rows above (landing_data.hpp), by material; stale rows left out.
+  std::vector<LandingData> landing_data;
 };
 
 TableContents read_table_file(const std::string& path);

@@ -216,7 +216,10 @@ void TableWriter::copy_from(const std::string& source) {
 void TableWriter::clear() {
   Connection& db = *impl_->connection;
   Transaction transaction(db);
-  for (const char* table : {"runs", "materials", "machine", "meta"}) db.exec(std::string("DELETE FROM ") + table);
+  db.exec(detail::kLandingDataSql);
+  for (const char* table : {"runs", "materials", "machine", "meta", detail::kLandingDataTable}) {
+    db.exec(std::string("DELETE FROM ") + table);
+  }
   transaction.commit();
 }
 
@@ -287,6 +290,13 @@ void TableWriter::write_run(const Run& run, bool replace) {
   insert.bind(19, run_checksum(run, blob, kSampleLayout, static_cast<std::int64_t>(kSampleBytes)));
   insert.step();
   write_meta(detail::kRunsManifestKey, detail::runs_manifest(db));  // in the run's transaction
+  transaction.commit();
+}
+
+void TableWriter::write_landing_data(const LandingData& landing) {
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);
+  detail::write_landing_data(db, landing);
   transaction.commit();
 }
 

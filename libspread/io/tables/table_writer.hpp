@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/io/tables/landing_data.hpp"
 #include "libspread/io/tables/table_format.hpp"
 #include "libspread/io/tables/writer_lock.hpp"  // TableBusyError: another process holds the writer lock
 
@@ -70,6 +71,10 @@ class TableWriter {
   // mass <= 0, rpm <= 0, ...; the message names the sample and field), or whose material has not been
   // written.
   void write_run(const Run& run, bool replace = false);
+
+  // Inserts or replaces the material's landing data (landing_data.hpp), keyed by the rows the file holds
+  // now: write it after the runs it was derived from. One transaction.
+  void write_landing_data(const LandingData& landing);
 
  private:
   struct Impl;
