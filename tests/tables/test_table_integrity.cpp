@@ -128,38 +128,33 @@ TEST(RunsManifest, ADeletedOrAddedRunOrADroppedColumnIsADamagedFileNamed) {
   EXPECT_NE(problem.find("run B @ 600 rpm is in `runs` but not in the table's list of runs"), std::string::npos) << problem;
 }
 
-// Landing data is read only while it was derived from the rows as they are: rewriting a run of the
-// material makes it stale (left out, for the predictor to derive afresh) without touching another
-// material's; a changed byte of it is a damaged row, named; a damaged schema too.
-TEST(LandingData, ReadWhileItsRowsAreUnchangedAndChecked) {
+// Landing data comes back as written (whether it is current for the rows is its reader's judgement); a
+// changed byte of it is a damaged row, named; a damaged schema too.
+TEST(LandingData, ReadAsWrittenAndChecked) {
   TempPath file("landing.sqlite");
   write_sample_table(file.path());
   const std::vector<std::uint8_t> bytes = {1, 2, 3, 4, 5};
   {
     TableWriter writer(file.path());
-    writer.write_landing_data({"A", "model 1", bytes});
-    writer.write_landing_data({"B", "model 1", bytes});
+    writer.write_landing_data({"A", "model 1", "key a", bytes});
+    writer.write_landing_data({"B", "model 1", "key b", bytes});
+    writer.write_landing_data({"B", "model 1", "key b2", bytes});  // replaces B's
   }
-  TableContents contents = read_table_file(file.path());
+  const TableContents contents = read_table_file(file.path());
   ASSERT_EQ(contents.landing_data.size(), 2u);
   EXPECT_EQ(contents.landing_data[0].material, "A");
   EXPECT_EQ(contents.landing_data[0].model, "model 1");
+  EXPECT_EQ(contents.landing_data[0].source_key, "key a");
   EXPECT_EQ(contents.landing_data[0].data, bytes);
-  {
-    TableWriter writer(file.path());
-    writer.write_run(spread::testing::sample_run("A", 600.0, 33), /*replace=*/true);
-  }
-  contents = read_table_file(file.path());
-  ASSERT_EQ(contents.landing_data.size(), 1u);
-  EXPECT_EQ(contents.landing_data[0].material, "B");
+  EXPECT_EQ(contents.landing_data[1].source_key, "key b2");
 
   const struct {
     const char* sql;
     const char* named;
   } cases[] = {
       {"UPDATE landing_data SET data = x'0102030400' WHERE material = 'B'", "landing data B: checksum mismatch"},
-      {"UPDATE landing_data SET model = 'model 2' WHERE material = 'B'", "landing data B: checksum mismatch"},
-      {"ALTER TABLE landing_data DROP COLUMN source_key", "table `landing_data` has no column `source_key`"},
+      {"UPDATE landing_data SET source_key = 'key b' WHERE material = 'B'", "landing data B: checksum mismatch"},
+      {"ALTER TABLE landing_data DROP COLUMN model", "table `landing_data` has no column `model`"},
   };
   for (const auto& c : cases) {
     TempPath damaged("landing-damaged.sqlite");

@@ -204,7 +204,8 @@ ThrowExtent throw_extent(std::span<const double> tray_mass_kg, const TrayLayout&
 
 // Seed Eqs. 51–52 in the limit of small ground cells: R̄ = Σ m_i r_i / Σ m_i and
 // ξ = Σ m_i |r_i − R̄| / Σ m_i, r measured from `centre` (the disc centre) in the ground plane.
-// (Eq. 52 prints r̄; it is the R̄ of Eq. 51.) No landings or zero total mass → {0, 0}.
+// (Eq. 52 prints r̄; it is the R̄ of Eq. 51.) Landings with a NaN coordinate (not landed) are left out.
+// No landings or zero total mass → {0, 0}.
 struct RadialStats {
   double mean_radius_m = 0.0;   // R̄, Eq. 51
   double radial_width_m = 0.0;  // ξ, Eq. 52

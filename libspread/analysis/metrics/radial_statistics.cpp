@@ -21,6 +21,7 @@ RadialStats radial_statistics(std::span<const double> x_m, std::span<const doubl
   double total_kg = 0.0;
   double moment_kg_m = 0.0;
   for (std::size_t i = 0; i < x_m.size(); ++i) {
+    if (std::isnan(x_m[i]) || std::isnan(y_m[i])) continue;  // not landed
     total_kg += mass_kg[i];
     moment_kg_m += mass_kg[i] * distance_m(x_m[i] - centre_x_m, y_m[i] - centre_y_m);
   }
@@ -29,6 +30,7 @@ RadialStats radial_statistics(std::span<const double> x_m, std::span<const doubl
   stats.mean_radius_m = moment_kg_m / total_kg;
   double spread_kg_m = 0.0;
   for (std::size_t i = 0; i < x_m.size(); ++i) {
+    if (std::isnan(x_m[i]) || std::isnan(y_m[i])) continue;
     const double r_m = distance_m(x_m[i] - centre_x_m, y_m[i] - centre_y_m);
     spread_kg_m += mass_kg[i] * std::abs(r_m - stats.mean_radius_m);
   }

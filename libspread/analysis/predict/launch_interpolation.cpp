@@ -102,31 +102,43 @@ tables::LaunchSample moved(const tables::LaunchSample& s, const tables::LaunchSa
 
 }  // namespace
 
-std::size_t interpolate_by_quantile_cells(const CelledRow& lower, const CelledRow& upper, double upper_weight,
-                                          std::span<tables::LaunchSample> out_samples,
-                                          std::span<double> out_weight_kg) {
+void check_celled_rows(const CelledRow& lower, const CelledRow& upper) {
   const std::size_t cells = lower.cell_mean.size();
   check_celled(lower, cells, "lower");
   check_celled(upper, cells, "upper");
-  const std::size_t na = lower.samples.size(), nb = upper.samples.size();
-  if (out_samples.size() < na + nb || out_weight_kg.size() < na + nb) {
+}
+
+void interpolate_by_quantile_cells(const CelledRow& lower, const CelledRow& upper, double upper_weight,
+                                   std::size_t first, std::span<tables::LaunchSample> out_samples,
+                                   std::span<double> out_weight_kg) {
+  const std::size_t na = lower.samples.size();
+  const double t = upper_weight;
+  // Each granule of the lower row, then of the upper row, moved from its cell's mean in its row to the
+  // interpolated cell mean.
+  for (std::size_t o = 0; o < out_samples.size(); ++o) {
+    const std::size_t index = first + o;
+    const bool from_lower = index < na;
+    const CelledRow& row = from_lower ? lower : upper;
+    const std::size_t k = from_lower ? index : index - na;
+    const CellIndex c = row.cell_of_sample[k];
+    const tables::LaunchSample& a = lower.cell_mean[c];
+    const tables::LaunchSample& b = upper.cell_mean[c];
+    const tables::LaunchSample& s = row.samples[k];
+    out_samples[o] = a.mass_kg > 0.0f && b.mass_kg > 0.0f ? moved(s, row.cell_mean[c], lerp(a, b, t)) : s;
+    out_weight_kg[o] = (from_lower ? 1.0 - t : t) * static_cast<double>(s.mass_kg);
+  }
+}
+
+std::size_t interpolate_by_quantile_cells(const CelledRow& lower, const CelledRow& upper, double upper_weight,
+                                          std::span<tables::LaunchSample> out_samples,
+                                          std::span<double> out_weight_kg) {
+  check_celled_rows(lower, upper);
+  const std::size_t count = lower.samples.size() + upper.samples.size();
+  if (out_samples.size() < count || out_weight_kg.size() < count) {
     throw std::length_error("interpolate_by_quantile_cells: output spans smaller than n_lower + n_upper");
   }
-  const double t = upper_weight;
-  // One row's granules, each moved from its cell's mean in that row to the interpolated cell mean.
-  auto place = [&](const CelledRow& row, std::size_t first, double row_weight) {
-    for (std::size_t k = 0; k < row.samples.size(); ++k) {
-      const CellIndex c = row.cell_of_sample[k];
-      const tables::LaunchSample& a = lower.cell_mean[c];
-      const tables::LaunchSample& b = upper.cell_mean[c];
-      const tables::LaunchSample& s = row.samples[k];
-      out_samples[first + k] = a.mass_kg > 0.0f && b.mass_kg > 0.0f ? moved(s, row.cell_mean[c], lerp(a, b, t)) : s;
-      out_weight_kg[first + k] = row_weight * static_cast<double>(s.mass_kg);
-    }
-  };
-  place(lower, 0, 1.0 - t);
-  place(upper, na, t);
-  return na + nb;
+  interpolate_by_quantile_cells(lower, upper, upper_weight, 0, out_samples.first(count), out_weight_kg.first(count));
+  return count;
 }
 
 }  // namespace spread::predict

@@ -66,4 +66,13 @@ std::size_t interpolate_by_quantile_cells(const CelledRow& lower, const CelledRo
                                           std::span<tables::LaunchSample> out_samples,
                                           std::span<double> out_weight_kg);
 
+// What interpolate_by_quantile_cells writes at [first, first + out_samples.size()) (first + size <= lower
+// + upper samples), into the front of the outputs, without checking the rows (check_celled_rows, once):
+// a caller that lands the samples a chunk at a time needs no buffer for all of them.
+void interpolate_by_quantile_cells(const CelledRow& lower, const CelledRow& upper, double upper_weight,
+                                   std::size_t first, std::span<tables::LaunchSample> out_samples,
+                                   std::span<double> out_weight_kg);
+// std::invalid_argument as interpolate_by_quantile_cells when the rows' cells do not match.
+void check_celled_rows(const CelledRow& lower, const CelledRow& upper);
+
 }  // namespace spread::predict

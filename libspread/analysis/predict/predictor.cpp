@@ -14,6 +14,7 @@
 #include "libspread/analysis/predict/launch_landing_keys.hpp"
 #include "libspread/analysis/predict/launch_quantile_cells.hpp"
 #include "libspread/analysis/predict/sample_influence.hpp"
+#include "libspread/io/tables/row_checksum.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 
 namespace spread::predict {
@@ -130,8 +131,10 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   for (std::size_t r = 0; r < materials_.size(); ++r) {
     const MaterialRows& rows = materials_[r];
     const std::string& name = contents_.materials[rows.material].name;
-    const auto stored = std::find_if(contents_.landing_data.begin(), contents_.landing_data.end(),
-                                     [&](const tables::LandingData& d) { return d.material == name && d.model == model; });
+    const std::string key = landing_source_key(rows);
+    const auto stored = std::find_if(contents_.landing_data.begin(), contents_.landing_data.end(), [&](const tables::LandingData& d) {
+      return d.material == name && d.model == model && d.source_key == key;
+    });
     if (stored != contents_.landing_data.end()) {
       restore_landing_data(rows, stored->data);
       landing_data_from_table_[r] = true;
@@ -145,17 +148,27 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   own_workspace_.emplace(*this, memory);
 }
 
-std::size_t Predictor::interpolate(std::size_t lower_run, std::size_t upper_run, double t,
-                                   std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const {
+std::size_t Predictor::interpolated_count(std::size_t lower_run, std::size_t upper_run) const {
+  if (lower_run == upper_run || pairwise(lower_run, upper_run)) return run_samples(lower_run).size();
+  return run_samples(lower_run).size() + run_samples(upper_run).size();
+}
+
+void Predictor::interpolate(std::size_t lower_run, std::size_t upper_run, double t, std::size_t first,
+                            std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const {
+  const std::size_t count = samples.size();
   if (lower_run == upper_run || pairwise(lower_run, upper_run)) {
-    return interpolate_launch_samples(run_samples(lower_run), run_samples(upper_run), lower_run == upper_run ? 0.0 : t,
-                                      samples, weight_kg);
+    interpolate_launch_samples(run_samples(lower_run).subspan(first, count),
+                               run_samples(upper_run).subspan(lower_run == upper_run ? 0 : first,
+                                                              lower_run == upper_run ? 0 : count),
+                               lower_run == upper_run ? 0.0 : t, samples, weight_kg);
+    return;
   }
   const auto celled = [&](std::size_t run) {
     return CelledRow{run_samples(run), std::span(cell_of_sample_).subspan(run_offset_[run], run_samples(run).size()),
                      std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
   };
-  return interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), t, samples, weight_kg);
+  // The cells were checked against their rows at construction (assign_cells, restore_landing_data).
+  interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), t, first, samples, weight_kg);
 }
 
 namespace {
@@ -198,6 +211,26 @@ void Predictor::build_landing_grid(const MaterialRows& rows) {
                               effects, grid_flight_settings(), flight::Air{});
 }
 
+std::string Predictor::landing_source_key(const MaterialRows& rows) const {
+  // Everything the grid and the cells are derived from besides the model: the machine (radius, height,
+  // the domain), the material (density), and per row its rpm, source (pairwise or by cells), flight
+  // effects and launch samples (their bytes in this host's order: a host of the other byte order derives
+  // afresh).
+  static_assert(sizeof(tables::LaunchSample) == 4 * tables::kSampleFloats, "LaunchSample without padding");
+  tables::Crc64 crc;
+  crc.text(tables::machine_checksum(contents_.machine));
+  crc.text(tables::material_checksum(contents_.materials[rows.material]));
+  for (std::size_t k = rows.first_run; k < rows.first_run + rows.run_count; ++k) {
+    const std::span<const tables::LaunchSample> samples = run_samples(k);
+    crc.real(run_rpm_[k]);
+    crc.text(contents_.runs[k].source);
+    crc.integer(static_cast<std::int64_t>(run_effects_[k]));
+    crc.integer(static_cast<std::int64_t>(samples.size()));
+    crc.bytes({reinterpret_cast<const std::uint8_t*>(samples.data()), samples.size_bytes()});
+  }
+  return crc.hex();
+}
+
 tables::LandingData Predictor::encode_landing_data(const MaterialRows& rows) const {
   LandingDataWriter out;
   const LandingGrid& grid = grids_[rows.material];
@@ -223,7 +256,8 @@ tables::LandingData Predictor::encode_landing_data(const MaterialRows& rows) con
     out.bytes(tables::encode_samples(std::span(cell_mean_).subspan(cell_offset_[k], cells)));
   }
   return tables::LandingData{contents_.materials[rows.material].name,
-                             landing_data_model(domain_, grid_flight_settings(), default_flight_settings()), out.take()};
+                             landing_data_model(domain_, grid_flight_settings(), default_flight_settings()),
+                             landing_source_key(rows), out.take()};
 }
 
 void Predictor::restore_landing_data(const MaterialRows& rows, std::span<const std::uint8_t> data) {
@@ -315,9 +349,6 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
       landing_x_m_(memory),
       landing_y_m_(memory),
       landing_weight_(memory),
-      radial_x_m_(memory),
-      radial_y_m_(memory),
-      radial_weight_(memory),
       tray_mass_(memory),
       gradients_(memory),
       gradient_scratch_(memory),
@@ -325,8 +356,8 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   const std::size_t pair = predictor.largest_pair();
   const PredictorLimits& limits = predictor.limits();
   sample_capacity_ = pair;
-  samples_.resize(pair);
-  sample_weight_kg_.resize(pair);
+  samples_.resize(kFlightChunk);
+  sample_weight_kg_.resize(kFlightChunk);
   // Two discs, each flown (lateral wind) or mirrored: at most two landings per sample.
   landing_x_m_.resize(2 * pair);
   landing_y_m_.resize(2 * pair);
@@ -334,9 +365,6 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   granules_.resize(kFlightChunk);
   launches_.resize(kFlightChunk);
   landings_.resize(kFlightChunk);
-  radial_x_m_.resize(pair);
-  radial_y_m_.resize(pair);
-  radial_weight_.resize(pair);
   const int widest = predictor.tray_capacity(limits.min_tray_width_m);
   tray_capacity_ = static_cast<std::size_t>(widest);
   tray_mass_.resize(tray_capacity_);
@@ -351,8 +379,7 @@ std::size_t PredictorWorkspace::bytes() const {
   return samples_.size() * sizeof(tables::LaunchSample) + granules_.size() * sizeof(flight::Granule) +
          launches_.size() * sizeof(flight::State) + landings_.size() * sizeof(flight::Landing) +
          sizeof(double) * (sample_weight_kg_.size() + landing_x_m_.size() + landing_y_m_.size() +
-                           landing_weight_.size() + radial_x_m_.size() + radial_y_m_.size() +
-                           radial_weight_.size() + tray_mass_.size() + gradients_.size() +
+                           landing_weight_.size() + tray_mass_.size() + gradients_.size() +
                            gradient_scratch_.size() + metrics_scratch_.size());
 }
 
@@ -526,9 +553,10 @@ DiscSetting disc_setting(const PredictionRequest& request, int disc) {
   return {std::isnan(rpm) ? request.rpm : rpm, std::isnan(turn_rad) ? request.drop_point_turn_rad : turn_rad};
 }
 
-std::size_t Predictor::disc_samples(PredictorWorkspace& w, std::size_t lower_run, std::size_t upper_run, double t,
-                                    double drop_point_turn_rad) const {
-  std::size_t n = interpolate(lower_run, upper_run, t, w.samples_, w.sample_weight_kg_);
+void Predictor::disc_samples(PredictorWorkspace& w, const DiscRows& rows, double drop_point_turn_rad, std::size_t first,
+                             std::size_t count) const {
+  interpolate(rows.lower_run, rows.upper_run, rows.t, first, std::span(w.samples_).first(count),
+              std::span(w.sample_weight_kg_).first(count));
   // The drop point turned by Δ about the disc axis turns the fan of launches by Δ (a disc the same all
   // round, fed continuously, has no phase of its own: test LookupDem.TurningTheFeedTurnsTheLaunchFan).
   // The table's frame is the left disc's, centred on its axis; the right disc is its mirror image, so its
@@ -541,24 +569,25 @@ std::size_t Predictor::disc_samples(PredictorWorkspace& w, std::size_t lower_run
       x = static_cast<float>(c * x0 - s * y0);
       y = static_cast<float>(s * x0 + c * y0);
     };
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
       tables::LaunchSample& sample = w.samples_[i];
       turn(sample.x_m, sample.y_m);
       turn(sample.vx_norm, sample.vy_norm);
       turn(sample.wx_norm, sample.wy_norm);
     }
   }
-  return n;
 }
 
-std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double omega_rad_s, double height_m,
-                                    const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
-                                    std::size_t right_offset, double density_kg_m3, const LandingGrid* grid) const {
+std::size_t Predictor::fly_launches(PredictorWorkspace& w, const DiscRows& rows, double drop_point_turn_rad,
+                                    double omega_rad_s, double height_m, const flight::Air& air,
+                                    flight::EffectSet effects, DiscFlights discs, std::size_t right_offset,
+                                    double density_kg_m3, const LandingGrid* grid) const {
   const auto& machine = contents_.machine;
   const bool two_discs = machine.disc_count == 2;
   const double half_spacing_m = two_discs ? 0.5 * machine.disc_spacing_m : 0.0;
   const double rim_speed_m_s = omega_rad_s * machine.disc_radius_m;
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::size_t n = interpolated_count(rows.lower_run, rows.upper_run);
 
   // mirror = +1: the left disc as stored; −1: its mirror image x → −x, the right disc. Spin is an axial
   // vector: under the reflection its x component keeps its sign and y, z change sign.
@@ -571,31 +600,17 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
     launch.velocity_m_s = rim_speed_m_s * Vec3(mirror * s.vx_norm, s.vy_norm, s.vz_norm);
     launch.spin_rad_s = omega_rad_s * Vec3(s.wx_norm, mirror * s.wy_norm, mirror * s.wz_norm);
   };
-  // Flight f < n is left-disc sample f; n <= f < 2n (right disc flown with the left) is the right disc's
-  // mirror of sample f − n; with the right disc alone flight f is its mirror of sample f. They are flown
-  // kFlightChunk at a time: flight::fly_many flies several at once in SIMD lanes where the effects allow
-  // and gives fly_to_ground's landings bit for bit, so the chunking changes no result, and the launch and
-  // landing buffers stay small (a workspace per thread: docs/c-api.md).
   const bool left_flown = discs != DiscFlights::kRightOnly;
   const bool right_flown = discs == DiscFlights::kLeftAndRightFlown || discs == DiscFlights::kRightOnly;
-  const std::size_t flights = discs == DiscFlights::kLeftAndRightFlown ? 2 * n : n;
-  std::size_t radial_count = 0;
   const double wind_x_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.x() : 0.0;
   const double wind_y_m_s = (effects & flight::kWind) != 0 ? air.wind_m_s.y() : 0.0;
   // Where the landing of left-disc sample i (or of the right disc's mirror of it, flown) goes: the machine
-  // frame, R̄ and ξ of the left disc, and the mirrored right disc when it is not flown.
-  const auto record_left = [&](std::size_t i, bool landed, double x, double y) {
-    const double weight = w.sample_weight_kg_[i];
+  // frame, and the mirrored right disc when it is not flown.
+  const auto record_left = [&](std::size_t i, double weight, bool landed, double x, double y) {
     if (!landed) x = y = nan;
     w.landing_x_m_[i] = x - half_spacing_m;
     w.landing_y_m_[i] = y;
     w.landing_weight_[i] = weight;
-    if (landed) {
-      w.radial_x_m_[radial_count] = x;
-      w.radial_y_m_[radial_count] = y;
-      w.radial_weight_[radial_count] = weight;
-      ++radial_count;
-    }
     if (discs == DiscFlights::kLeftOnly) return;
     if (discs == DiscFlights::kLeftAndMirror) {  // the right disc is the left one's mirror image
       w.landing_x_m_[right_offset + i] = half_spacing_m - x;
@@ -603,57 +618,70 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, std::size_t n, double
     }
     w.landing_weight_[right_offset + i] = weight;
   };
-  const auto record_right = [&](std::size_t i, bool landed, double x, double y) {
+  const auto record_right = [&](std::size_t i, double weight, bool landed, double x, double y) {
     w.landing_x_m_[right_offset + i] = landed ? x + half_spacing_m : nan;
     w.landing_y_m_[right_offset + i] = landed ? y : nan;
-    if (!left_flown) w.landing_weight_[right_offset + i] = w.sample_weight_kg_[i];
+    if (!left_flown) w.landing_weight_[right_offset + i] = weight;
   };
-  if (grid != nullptr) {
-    // Sample by sample, both discs at once. Only the launch's horizontal motion, height, vertical speed
-    // and diameter are needed (no spin, no full state).
-    for (std::size_t i = 0; i < n; ++i) {
-      const tables::LaunchSample& s = w.samples_[i];
-      const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
-      const double vz_m_s = rim_speed_m_s * s.vz_norm, z_m = s.z_m + height_m;
-      double x = 0.0, y = 0.0;
-      if (left_flown) {
-        grid->landing(s.diameter_m, s.x_m, s.y_m, z_m, vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, x, y);
-        record_left(i, true, x, y);
-      }
-      if (!right_flown) continue;
-      grid->landing(s.diameter_m, -1.0 * s.x_m, s.y_m, z_m, -1.0 * vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, x, y);
-      record_right(i, true, x, y);
-    }
-  } else {
-    const std::size_t first_right = left_flown ? n : 0;  // flights from here on are the right disc's
-    for (std::size_t first = 0; first < flights; first += kFlightChunk) {
-      const std::size_t count = std::min(kFlightChunk, flights - first);
+  // The samples are interpolated a chunk at a time into the workspace (kFlightChunk flights: half as many
+  // samples when both discs are flown), so no buffer holds them all. flight::fly_many flies several at once
+  // in SIMD lanes where the effects allow and gives fly_to_ground's landings bit for bit, so the chunking
+  // changes no result (a workspace per thread stays small: docs/c-api.md).
+  const std::size_t chunk = left_flown && right_flown ? kFlightChunk / 2 : kFlightChunk;
+  std::size_t flights = 0;
+  for (std::size_t first = 0; first < n; first += chunk) {
+    const std::size_t count = std::min(chunk, n - first);
+    disc_samples(w, rows, drop_point_turn_rad, first, count);
+    if (grid != nullptr) {
+      // Sample by sample, both discs at once. Only the launch's horizontal motion, height, vertical speed
+      // and diameter are needed (no spin, no full state).
       for (std::size_t c = 0; c < count; ++c) {
-        const std::size_t f = first + c;
-        launch_of(w.samples_[f < first_right ? f : f - first_right], f < first_right ? 1.0 : -1.0, c);
-      }
-      flight::fly_many(std::span(w.granules_).first(count), std::span(w.launches_).first(count), 0.0, air, effects,
-                       settings_, std::span(w.landings_).first(count));
-      for (std::size_t c = 0; c < count; ++c) {
-        const std::size_t f = first + c;
-        const flight::Landing& landing = w.landings_[c];
-        const double x = landing.state.position_m.x(), y = landing.state.position_m.y();
-        if (f >= first_right) {
-          record_right(f - first_right, landing.landed, x, y);
-        } else {
-          record_left(f, landing.landed, x, y);
+        const tables::LaunchSample& s = w.samples_[c];
+        const double weight = w.sample_weight_kg_[c];
+        const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
+        const double vz_m_s = rim_speed_m_s * s.vz_norm, z_m = s.z_m + height_m;
+        double x = 0.0, y = 0.0;
+        if (left_flown) {
+          grid->landing(s.diameter_m, s.x_m, s.y_m, z_m, vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, x, y);
+          record_left(first + c, weight, true, x, y);
         }
+        if (!right_flown) continue;
+        grid->landing(s.diameter_m, -1.0 * s.x_m, s.y_m, z_m, -1.0 * vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s,
+                      x, y);
+        record_right(first + c, weight, true, x, y);
+      }
+      continue;
+    }
+    // Slots [0, count): the left disc's flights; then the right disc's mirror of each sample, when flown.
+    const std::size_t right_slot = left_flown ? count : 0;
+    for (std::size_t c = 0; c < count; ++c) {
+      if (left_flown) launch_of(w.samples_[c], 1.0, c);
+      if (right_flown) launch_of(w.samples_[c], -1.0, right_slot + c);
+    }
+    const std::size_t slots = right_flown ? right_slot + count : count;
+    flight::fly_many(std::span(w.granules_).first(slots), std::span(w.launches_).first(slots), 0.0, air, effects,
+                     settings_, std::span(w.landings_).first(slots));
+    flights += slots;
+    for (std::size_t c = 0; c < count; ++c) {
+      const double weight = w.sample_weight_kg_[c];
+      if (left_flown) {
+        const flight::Landing& landing = w.landings_[c];
+        record_left(first + c, weight, landing.landed, landing.state.position_m.x(), landing.state.position_m.y());
+      }
+      if (right_flown) {
+        const flight::Landing& landing = w.landings_[right_slot + c];
+        record_right(first + c, weight, landing.landed, landing.state.position_m.x(), landing.state.position_m.y());
       }
     }
   }
   if (left_flown) {
-    const auto stats = metrics::radial_statistics(std::span(w.radial_x_m_).first(radial_count),
-                                                  std::span(w.radial_y_m_).first(radial_count),
-                                                  std::span(w.radial_weight_).first(radial_count));
+    // R̄ and ξ of the left disc about its centre, from its landings in the machine frame.
+    const auto stats = metrics::radial_statistics(std::span(w.landing_x_m_).first(n), std::span(w.landing_y_m_).first(n),
+                                                  std::span(w.landing_weight_).first(n), -half_spacing_m, 0.0);
     w.radial_mean_m_ = stats.mean_radius_m;
     w.radial_width_m_ = stats.radial_width_m;
   }
-  return grid != nullptr ? 0 : flights;
+  return flights;
 }
 
 namespace {
@@ -688,12 +716,12 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
   if (!per_disc) {
     const DiscRows& r = disc_rows[0];
     const LandingGrid* grid = landing_grid_for(rows, height_m, effects, air);
-    n = disc_samples(w, r.lower_run, r.upper_run, r.t, left.drop_point_turn_rad);
+    n = interpolated_count(r.lower_run, r.upper_run);
     const DiscFlights discs = !two_discs        ? DiscFlights::kLeftOnly
                               : fly_right_disc ? DiscFlights::kLeftAndRightFlown
                                                : DiscFlights::kLeftAndMirror;
-    flights = static_cast<int>(
-        fly_launches(w, n, omega_of(left.rpm), height_m, air, effects, discs, n, density_kg_m3, grid));
+    flights = static_cast<int>(fly_launches(w, r, left.drop_point_turn_rad, omega_of(left.rpm), height_m, air, effects,
+                                            discs, n, density_kg_m3, grid));
     landings = two_discs ? 2 * n : n;
     sample_total = n;
   } else {
@@ -703,12 +731,13 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
     for (int d = 0; d < 2; ++d) {
       const DiscRows& r = disc_rows[d];
       const LandingGrid* grid = landing_grid_for(rows, height_m, effects, air);
-      const std::size_t count = disc_samples(w, r.lower_run, r.upper_run, r.t, settings[d].drop_point_turn_rad);
+      const std::size_t count = interpolated_count(r.lower_run, r.upper_run);
       disc_count[d] = count;
       if (d == kLeftDisc) n = count;
-      flights += static_cast<int>(fly_launches(w, count, omega_of(settings[d].rpm), height_m, air, effects,
-                                               d == kLeftDisc ? DiscFlights::kLeftOnly : DiscFlights::kRightOnly,
-                                               n, density_kg_m3, grid));
+      flights += static_cast<int>(fly_launches(w, r, settings[d].drop_point_turn_rad, omega_of(settings[d].rpm), height_m,
+                                               air, effects,
+                                               d == kLeftDisc ? DiscFlights::kLeftOnly : DiscFlights::kRightOnly, n,
+                                               density_kg_m3, grid));
       double disc_kg = 0.0;
       const std::span<double> disc_weights = std::span(w.landing_weight_).subspan(d == kLeftDisc ? 0 : n, count);
       for (double weight : disc_weights) disc_kg += weight;

@@ -226,8 +226,9 @@ struct PredictorLimits {
 
 class Predictor;
 
-// Flights per flight::fly_many call in predict(): the workspace holds launches and landings for this
-// many, not for every flight (2 × 8,102 on the default table would be 3 MB per workspace).
+// Flights per flight::fly_many call in predict(): the workspace holds launch samples, launches and
+// landings for this many, not for every flight (the samples of the default table's largest pair of rows
+// alone would be 0.5 MB per workspace).
 inline constexpr std::size_t kFlightChunk = 256;
 
 // Everything one predict() call writes: launch samples at the requested rpm, flights, landings, trays,
@@ -244,14 +245,14 @@ class PredictorWorkspace {
   friend class Predictor;
   std::size_t sample_capacity_ = 0;  // launch samples of the largest pair of rows it was sized for
   std::size_t tray_capacity_ = 0;
+  // One chunk of launch samples at the request's setting and their weights (kg), and of flights
+  // (kFlightChunk): the left disc's, then the right disc's when flown.
   std::pmr::vector<tables::LaunchSample> samples_;
   std::pmr::vector<double> sample_weight_kg_;
-  // One chunk of flights (kFlightChunk): left disc samples, then the right disc's when flown.
   std::pmr::vector<flight::Granule> granules_;
   std::pmr::vector<flight::State> launches_;
   std::pmr::vector<flight::Landing> landings_;
   std::pmr::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
-  std::pmr::vector<double> radial_x_m_, radial_y_m_, radial_weight_;     // left disc, landed only
   std::pmr::vector<double> tray_mass_;
   // Per tray, for the standard errors: one pass's gradients side by side (SampleInfluence::kMaxGradients),
   // and one more for the width gradients' second CV.
@@ -328,7 +329,8 @@ class Predictor {
   // Whether material `index` (as material()) has a landing grid: its runs fly drag alone or nothing.
   bool has_landing_grid(std::size_t index) const;
   // Whether material `index`'s landing grid and quantile cells were read from the table's landing data
-  // (TableContents::landing_data, current and of this build's model) instead of derived here.
+  // (TableContents::landing_data of this build's model, derived from these very rows: contents changed
+  // after reading derive afresh) instead of derived here.
   bool landing_data_from_table(std::size_t index) const { return landing_data_from_table_.at(index); }
   // The landing data of every material derived here (not read from the table), as a table stores it
   // (landing_data_codec.hpp): what a table writer adds so that the next Predictor of the file reads it.
@@ -398,9 +400,11 @@ class Predictor {
   // Flies the runs that need cells once (landing keys) and fills their cells and cell means.
   void assign_cells(const MaterialRows& rows);
   // Launch samples of the rows lower..upper at weight t (lower == upper: that row), as predict() uses
-  // them: pairwise for analytic rows of equal count, otherwise by quantile cells. Returns the count.
-  std::size_t interpolate(std::size_t lower_run, std::size_t upper_run, double t,
-                          std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const;
+  // them: pairwise for analytic rows of equal count, otherwise by quantile cells (the lower row's, then the
+  // upper row's). interpolated_count: how many; interpolate: those at [first, first + samples.size()).
+  std::size_t interpolated_count(std::size_t lower_run, std::size_t upper_run) const;
+  void interpolate(std::size_t lower_run, std::size_t upper_run, double t, std::size_t first,
+                   std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const;
   // The still-air effects of the material's landing grid and the fastest rim speed of its rows: false
   // when its rows do not all fly drag alone (or nothing), and it has no grid.
   bool grid_effects(const MaterialRows& rows, flight::EffectSet& effects, double& max_rim_speed_m_s) const;
@@ -412,6 +416,8 @@ class Predictor {
   // not fit the rows (a writer of the same model tag wrote something else).
   void restore_landing_data(const MaterialRows& rows, std::span<const std::uint8_t> data);
   tables::LandingData encode_landing_data(const MaterialRows& rows) const;
+  // Digest of what the material's landing data is derived from (tables::LandingData::source_key).
+  std::string landing_source_key(const MaterialRows& rows) const;
   // The grid that serves a request of this material, or null (fly).
   const LandingGrid* landing_grid_for(const MaterialRows& rows, double height_m, flight::EffectSet effects,
                                       const flight::Air& air) const;
@@ -419,16 +425,16 @@ class Predictor {
   // the left of two at their own settings), the left and its mirror image (still air across), the left
   // and the right flown as its mirror (a lateral wind), or the right disc alone (at its own setting).
   enum class DiscFlights : std::uint8_t { kLeftOnly, kLeftAndMirror, kLeftAndRightFlown, kRightOnly };
-  // Lands the workspace's first sample_count samples: left-disc landing i at i, right-disc landing i at
-  // right_offset + i (machine frame, with each landing's weight); R̄ and ξ when the left disc is landed.
-  // Returns the flights integrated.
-  std::size_t fly_launches(PredictorWorkspace& w, std::size_t sample_count, double omega_rad_s, double height_m,
-                           const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
+  // Lands one disc's launch samples (the rows and weight of `rows`, turned by drop_point_turn_rad;
+  // interpolated_count of them): left-disc landing i at i, right-disc landing i at right_offset + i (machine
+  // frame, with each landing's weight); R̄ and ξ when the left disc is landed. Returns the flights integrated.
+  std::size_t fly_launches(PredictorWorkspace& w, const DiscRows& rows, double drop_point_turn_rad, double omega_rad_s,
+                           double height_m, const flight::Air& air, flight::EffectSet effects, DiscFlights discs,
                            std::size_t right_offset, double density_kg_m3, const LandingGrid* grid) const;
-  // Steps 1–2 of predict() for one disc: its samples of rows lower_run..upper_run at weight t into the
-  // workspace, turned by drop_point_turn_rad. Returns the count.
-  std::size_t disc_samples(PredictorWorkspace& w, std::size_t lower_run, std::size_t upper_run, double t,
-                           double drop_point_turn_rad) const;
+  // Steps 1–2 of predict() for one disc: its samples [first, first + count) into the front of the
+  // workspace's sample buffer (count <= kFlightChunk), turned by drop_point_turn_rad.
+  void disc_samples(PredictorWorkspace& w, const DiscRows& rows, double drop_point_turn_rad, std::size_t first,
+                    std::size_t count) const;
   // The effects and air a request flies with (the table's effects resolved, a zero wind no wind).
   void flight_conditions(const PredictionRequest& request, const DiscRows (&disc_rows)[2], flight::EffectSet& effects,
                          flight::Air& air) const;

@@ -8,13 +8,12 @@ namespace spread::tables::detail {
 
 namespace {
 
-std::string row_checksum(const std::string& material, const std::string& model, const std::string& source_key,
-                         std::span<const std::uint8_t> data) {
+std::string row_checksum(const LandingData& landing) {
   Crc64 crc;
-  crc.text(material);
-  crc.text(model);
-  crc.text(source_key);
-  crc.blob(data);
+  crc.text(landing.material);
+  crc.text(landing.model);
+  crc.text(landing.source_key);
+  crc.blob(landing.data);
   return crc.hex();
 }
 
@@ -26,26 +25,6 @@ bool has_landing_table(Connection& db) {
 
 }  // namespace
 
-std::string landing_source_key(Connection& db, const std::string& material) {
-  Crc64 crc;
-  {
-    Statement machine(db, "SELECT checksum FROM machine WHERE id = 1");
-    crc.text(machine.step() ? machine.column_text(0) : std::string());
-  }
-  {
-    Statement row(db, "SELECT checksum FROM materials WHERE name = ?");
-    row.bind(1, material);
-    crc.text(row.step() ? row.column_text(0) : std::string());
-  }
-  Statement runs(db, "SELECT rpm, checksum FROM runs WHERE material = ? ORDER BY rpm");
-  runs.bind(1, material);
-  while (runs.step()) {
-    crc.real(runs.column_double(0));
-    crc.text(runs.column_text(1));
-  }
-  return crc.hex();
-}
-
 std::vector<LandingData> read_landing_data(Connection& db) {
   std::vector<LandingData> out;
   if (!has_landing_table(db)) return out;
@@ -54,11 +33,9 @@ std::vector<LandingData> read_landing_data(Connection& db) {
     LandingData landing;
     landing.material = query.column_text(0);
     landing.model = query.column_text(1);
-    const std::string source_key = query.column_text(2);
+    landing.source_key = query.column_text(2);
     landing.data = query.column_blob(3);
-    verify_checksum(db, "landing data " + landing.material, query.column_text(4),
-                    row_checksum(landing.material, landing.model, source_key, landing.data));
-    if (source_key != landing_source_key(db, landing.material)) continue;  // stale: derived from other rows
+    verify_checksum(db, "landing data " + landing.material, query.column_text(4), row_checksum(landing));
     out.push_back(std::move(landing));
   }
   return out;
@@ -66,15 +43,14 @@ std::vector<LandingData> read_landing_data(Connection& db) {
 
 void write_landing_data(Connection& db, const LandingData& landing) {
   db.exec(kLandingDataSql);
-  const std::string source_key = landing_source_key(db, landing.material);
   Statement upsert(db,
                    "INSERT OR REPLACE INTO landing_data (material, model, source_key, data, checksum) "
                    "VALUES (?, ?, ?, ?, ?)");
   upsert.bind(1, landing.material);
   upsert.bind(2, landing.model);
-  upsert.bind(3, source_key);
+  upsert.bind(3, landing.source_key);
   upsert.bind_blob(4, landing.data);
-  upsert.bind(5, row_checksum(landing.material, landing.model, source_key, landing.data));
+  upsert.bind(5, row_checksum(landing));
   upsert.step();
 }
 

@@ -14,7 +14,8 @@ struct TableContents {
   Machine machine;
   std::vector<Material> materials;   // sorted by name
   std::vector<Run> runs;             // sorted by (material, rpm)
-  // Landing data still current for the rows above (landing_data.hpp), by material; stale rows left out.
+  // Landing data stored with the rows (landing_data.hpp), by material: the reader of it judges whether it
+  // is current for them.
   std::vector<LandingData> landing_data;
 };
 

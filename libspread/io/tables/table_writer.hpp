@@ -72,8 +72,7 @@ class TableWriter {
   // written.
   void write_run(const Run& run, bool replace = false);
 
-  // Inserts or replaces the material's landing data (landing_data.hpp), keyed by the rows the file holds
-  // now: write it after the runs it was derived from. One transaction.
+  // Inserts or replaces the material's landing data (landing_data.hpp). One transaction.
   void write_landing_data(const LandingData& landing);
 
  private:
