@@ -37,10 +37,15 @@ inline constexpr std::uint64_t kDeadTag = 0xDEADDEADDEADDEADu;
 
 // A controller's limits: requests outside the landing grid's domain are refused unless they opt in to
 // flying every launch sample (docs/c-api.md "Landing grid"), so the time of any request that does not
-// opt in is the grid's.
+// opt in is the grid's. Trays at least 0.1 m wide: a fifth of the 0.5 m tray of ISO 5690 tray tests and
+// finer than the kernel that smooths a table's few thousand launches (0.2–0.5 m half width on the
+// default table), so narrower trays resolve nothing more — and the widest layout (2,000 trays over the
+// ±100 m extent) bounds each handle's tray buffers and the kernel and standard-error passes.
+inline constexpr double kControllerMinTrayWidth_m = 0.1;
 inline predict::PredictorLimits controller_limits() {
   predict::PredictorLimits limits;
   limits.refuse_outside_domain = true;
+  limits.min_tray_width_m = kControllerMinTrayWidth_m;
   return limits;
 }
 

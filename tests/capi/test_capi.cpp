@@ -240,7 +240,7 @@ TEST_F(Capi, OutOfRangeDetailNamesOnlyTheOffendingField) {
   infinite_disc.disc_rpm[1] = INFINITY;
   for (const Bad& b : {Bad{height, SPREAD_ERROR_OUT_OF_RANGE, "disc_height_m -0.5 outside [0, 100] m"},
                        Bad{cv, SPREAD_ERROR_OUT_OF_RANGE, "cv_target_percent 0 outside (0, 1000] percent"},
-                       Bad{tray, SPREAD_ERROR_OUT_OF_RANGE, "tray_width_m 0.01 outside [0.05, 100] m"},
+                       Bad{tray, SPREAD_ERROR_OUT_OF_RANGE, "tray_width_m 0.01 outside [0.1, 100] m"},
                        Bad{wind, SPREAD_ERROR_OUT_OF_RANGE, "wind_m_s[1] -100.5 outside [-100, 100] m/s"},
                        Bad{kernel, SPREAD_ERROR_OUT_OF_RANGE, "kernel_half_width_m 11 outside [0, 10] m"},
                        Bad{turn, SPREAD_ERROR_OUT_OF_RANGE, "drop_point_turn_rad 4 outside [-3.14159, 3.14159] rad"},

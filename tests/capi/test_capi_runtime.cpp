@@ -43,11 +43,11 @@ std::vector<spread_prediction_def> requests() {
     d.rpm = 520.0 + 50.0 * k;
     defs.push_back(d);
   }
-  defs[1].tray_width_m = 0.05;
+  defs[1].tray_width_m = 0.1;
   defs[1].disc_height_m = 50.0;
   defs[1].wind_m_s[0] = 20.0;
   defs[2].bout_width_m = 1000.0;
-  defs[2].tray_width_m = 0.05;
+  defs[2].tray_width_m = 0.1;
   defs[3].wind_m_s[0] = -3.0;
   defs[3].cv_target_percent = 5.0;
   return defs;

@@ -86,7 +86,7 @@ std::string explain(spread_status status, const Options& o, spread_tables* table
       return out.str();
     case SPREAD_ERROR_NOT_FINITE: return "an argument is not finite (NaN or Inf) in --rpm/--height/--wind/--cv-target/--width/--tray-width";
     case SPREAD_ERROR_OUT_OF_RANGE:
-      return "out of range: --height must be >= 0, --cv-target > 0, --width >= 0, --tray-width in [0.05, 100] m (" +
+      return "out of range: --height must be >= 0, --cv-target > 0, --width >= 0, --tray-width in [0.1, 100] m (" +
              std::string(spread_last_error_detail()) + ")";
     case SPREAD_ERROR_OUTSIDE_DOMAIN: {
       // The C API names the quantity and the covered range; its opt-in is this command's flag.

@@ -168,7 +168,7 @@ typedef struct spread_prediction_def {
   uint32_t effects;            /* SPREAD_EFFECT_* bits, or SPREAD_EFFECTS_AS_TABLE (the default) */
   double bout_width_m;         /* bout width at which cv_percent is evaluated, m, 0..1000;
                                   0 = at the to-and-fro effective working width */
-  double tray_width_m;         /* width of the collecting trays, m, > 0 (default 0.5, ISO 5690) */
+  double tray_width_m;         /* width of the collecting trays, m, 0.1..100 (default 0.5, ISO 5690) */
   /* --- appended in 0.2 --- */
   double kernel_half_width_m;  /* half-width of the kernel each landing's mass is spread over, m, 0..10;
                                   NaN (default) = automatic (docs/metrics.md), 0 = point masses */

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cstdio>
+#include <cstring>
 
 namespace spread::predict {
 
@@ -64,6 +65,11 @@ bool LandingDataReader::f64(double& value) {
 }
 bool LandingDataReader::f32s(std::span<float> values) {
   if ((bytes_.size() - offset_) / 4 < values.size()) return false;
+  if constexpr (std::endian::native == std::endian::little) {  // the stored order: one copy
+    std::memcpy(values.data(), bytes_.data() + offset_, values.size_bytes());
+    offset_ += values.size_bytes();
+    return true;
+  }
   for (float& value : values) {
     value = std::bit_cast<float>(static_cast<std::uint32_t>(load_le(bytes_.data() + offset_, 4)));
     offset_ += 4;

@@ -229,7 +229,7 @@ class Predictor;
 // Flights per flight::fly_many call in predict(): the workspace holds launch samples, launches and
 // landings for this many, not for every flight (the samples of the default table's largest pair of rows
 // alone would be 0.5 MB per workspace).
-inline constexpr std::size_t kFlightChunk = 256;
+inline constexpr std::size_t kFlightChunk = 128;
 
 // Everything one predict() call writes: launch samples at the requested rpm, flights, landings, trays,
 // gradients and the metrics' scratch. Sized for one Predictor; one per thread that predicts.

@@ -46,7 +46,11 @@ void Crc64::raw(const void* data, std::size_t size) {
   std::uint64_t crc = state_;
   for (; size >= 8; size -= 8, p += 8) {
     std::uint64_t word = 0;
-    for (int i = 0; i < 8; ++i) word |= static_cast<std::uint64_t>(p[i]) << (8 * i);  // little-endian load
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(&word, p, 8);  // one load
+    } else {
+      for (int i = 0; i < 8; ++i) word |= static_cast<std::uint64_t>(p[i]) << (8 * i);
+    }
     crc ^= word;
     crc = kTables[7][crc & 0xFFu] ^ kTables[6][(crc >> 8) & 0xFFu] ^ kTables[5][(crc >> 16) & 0xFFu] ^
           kTables[4][(crc >> 24) & 0xFFu] ^ kTables[3][(crc >> 32) & 0xFFu] ^ kTables[2][(crc >> 40) & 0xFFu] ^
