@@ -19,6 +19,7 @@
 #include "lookup_builder/run_source.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "tests/support/temp_path.hpp"
+#include "tests/tables/table_fixtures.hpp"
 
 extern char** environ;
 
@@ -94,6 +95,26 @@ TEST(LookupBuilder, RerunSkipsFinishedRunsAndRebuildRedoesThem) {
   options.rebuild = true;
   EXPECT_EQ(build_tables(more, options).runs_written, 6);
   EXPECT_EQ(tables::read_table_file(file.path()).runs.size(), static_cast<std::size_t>(runs + 3));
+}
+
+// Every build stores each material's landing data (the predictor's grid and cells) beside the rows; a
+// table without it (written before it existed) gets it on the next run, and is then left as it is.
+TEST(LookupBuilder, LandingDataIsStoredAndAddedToATableWithout) {
+  const scene::Scene scene = default_scene({"sweep.samples_per_run=32"});
+  TempPath file("landing");
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(scene, options);
+  ASSERT_EQ(tables::read_table_file(file.path()).landing_data.size(), 3u);
+  spread::testing::raw_exec(file.path(), "DROP TABLE landing_data; VACUUM");
+  ASSERT_TRUE(tables::read_table_file(file.path()).landing_data.empty());
+  EXPECT_EQ(build_tables(scene, options).runs_written, 0);
+  const tables::TableContents added = tables::read_table_file(file.path());
+  ASSERT_EQ(added.landing_data.size(), 3u);
+  for (const tables::LandingData& landing : added.landing_data) EXPECT_FALSE(landing.data.empty()) << landing.material;
+  const std::vector<char> built = spread::testing::file_bytes(file.path());
+  build_tables(scene, options);
+  EXPECT_EQ(spread::testing::file_bytes(file.path()), built) << "a rerun with nothing to do changed the file";
 }
 
 TEST(LookupBuilder, DemSweepKeysAreValidatedByName) {
