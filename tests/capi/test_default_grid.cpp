@@ -116,6 +116,25 @@ TEST(DefaultGrid, StoredLandingDataIsWhatAReaderDerives) {
   for (std::size_t m = 0; m < after_edit.material_count(); ++m) {
     EXPECT_EQ(after_edit.landing_data_from_table(m), after_edit.material(m).name != "Urea") << after_edit.material(m).name;
   }
+  // Data of another model (another build's grid or flight settings) is derived afresh too.
+  tables::TableContents other_model = tables::read_table_file(SPREAD_DEFAULT_TABLE);
+  for (tables::LandingData& landing : other_model.landing_data) {
+    if (landing.material == "DAP") landing.model += " (another build)";
+  }
+  const Predictor after_model(std::move(other_model));
+  for (std::size_t m = 0; m < after_model.material_count(); ++m) {
+    EXPECT_EQ(after_model.landing_data_from_table(m), after_model.material(m).name != "DAP") << after_model.material(m).name;
+  }
+  // Data of this model and these rows that does not fit them (here: cut short) is a damaged table, named.
+  tables::TableContents cut = tables::read_table_file(SPREAD_DEFAULT_TABLE);
+  cut.landing_data[0].data.resize(cut.landing_data[0].data.size() - 4);
+  try {
+    const Predictor refused(std::move(cut));
+    ADD_FAILURE() << "landing data cut short was accepted";
+  } catch (const tables::TableError& e) {
+    EXPECT_EQ(e.kind(), tables::TableErrorKind::kCorrupt);
+    EXPECT_NE(std::string(e.what()).find("landing data of " + stored[0].material), std::string::npos) << e.what();
+  }
   for (const char* material : {"Urea", "DAP"}) {
     PredictionRequest r;
     r.material = material;

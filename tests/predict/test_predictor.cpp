@@ -12,6 +12,7 @@
 #include "libspread/analysis/predict/flight_defaults.hpp"
 #include "libspread/analysis/predict/predictor.hpp"
 #include "libspread/analysis/predict/sample_influence.hpp"
+#include "libspread/analysis/metrics/wide_kernel.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::predict {
@@ -270,6 +271,39 @@ TEST(Predictor, BoutWidthAndHeightAreHonoured) {
   Prediction low;
   ASSERT_EQ(p.predict(request("can", 600.0), low), PredictStatus::kOk);
   EXPECT_GT(high.mean_radius_m, low.mean_radius_m);  // higher disc, longer flights
+}
+
+// A kernel many trays wide gives the standard errors of the tray-by-tray dot products from each
+// gradient's prefix sums (wide_kernel.hpp), within the rounding the header states.
+TEST(SampleInfluence, AWideKernelsStandardErrorsAreTrayByTraysWithinRounding) {
+  metrics::TrayLayout trays;
+  trays.tray_width_m = 0.1;
+  trays.tray_count = 300;  // [-15, 15] m
+  std::vector<double> x, w;
+  for (int i = 0; i < 2000; ++i) {
+    x.push_back(-17.0 + 34.0 * std::fmod(0.618033988749895 * i, 1.0));
+    w.push_back(1.0 / 2000.0);
+  }
+  x[17] = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> a(300), b(300);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    a[k] = std::sin(0.05 * static_cast<double>(k));
+    b[k] = 1e-4 * static_cast<double>(k * k) - 2.0;
+  }
+  std::vector<double> scratch(metrics::wide_kernel_sums_size(trays));
+  for (double h : {0.8, 3.0}) {
+    const SampleInfluence by_tray{x, w, 1000, 2, trays, h};
+    const SampleInfluence by_sums{x, w, 1000, 2, trays, h, {}, scratch};
+    const std::span<const double> gradients[2] = {a, b};
+    double se_tray[2], se_sums[2];
+    by_tray.standard_errors(gradients, se_tray);
+    by_sums.standard_errors(gradients, se_sums);
+    for (int g = 0; g < 2; ++g) {
+      EXPECT_GT(se_tray[g], 0.0);
+      EXPECT_NEAR(se_sums[g], se_tray[g], 1e-9 * se_tray[g]) << "h " << h << " gradient " << g;
+    }
+    EXPECT_NEAR(by_sums.standard_error(a), se_tray[0], 1e-9 * se_tray[0]);
+  }
 }
 
 // The one-pass standard errors are the one-by-one standard errors, bit for bit; an empty gradient is NaN.

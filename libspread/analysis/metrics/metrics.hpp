@@ -54,6 +54,11 @@ double accumulate_transverse(std::span<const double> x_m, std::span<const double
 double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
                                     const TrayLayout& trays, double kernel_half_width_m,
                                     std::span<double> tray_mass_kg);
+// The same, and a kernel of at least kWideKernelTrays tray widths (wide_kernel.hpp) binned at a cost
+// independent of its width when `scratch` holds wide_kernel_scratch_size(trays) values.
+double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
+                                    const TrayLayout& trays, double kernel_half_width_m,
+                                    std::span<double> tray_mass_kg, std::span<double> scratch);
 // The kernel's CDF at u = (x' − x)/h: 0 below −1, 1 above 1. Inline: the kernel binning and the standard
 // errors call it once per tray a landing's kernel touches.
 inline double epanechnikov_cdf(double u) {

@@ -7,6 +7,7 @@
 #include "libspread/analysis/metrics/input_checks.hpp"
 #include "libspread/analysis/metrics/machine_frame.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/metrics/wide_kernel.hpp"
 
 namespace spread::metrics {
 
@@ -63,6 +64,18 @@ namespace spread::metrics {
 
 double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
                                     const TrayLayout& trays, double kernel_half_width_m,
+                                    std::span<double> tray_mass_kg, std::span<double> scratch) {
+  if (std::isfinite(kernel_half_width_m) && wide_kernel(kernel_half_width_m, trays) &&
+      scratch.size() >= wide_kernel_scratch_size(trays)) {
+    detail::require_same_size(x_m.size(), mass_kg.size(), "accumulate_transverse_kernel", "x_m", "mass_kg");
+    detail::require_tray_span(tray_mass_kg.size(), trays, "accumulate_transverse_kernel", "tray_mass_kg");
+    return accumulate_wide_kernel(x_m, mass_kg, trays, kernel_half_width_m, tray_mass_kg, scratch);
+  }
+  return accumulate_transverse_kernel(x_m, mass_kg, trays, kernel_half_width_m, tray_mass_kg);
+}
+
+double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
+                                    const TrayLayout& trays, double kernel_half_width_m,
                                     std::span<double> tray_mass_kg) {
   detail::require_same_size(x_m.size(), mass_kg.size(), "accumulate_transverse_kernel", "x_m", "mass_kg");
   detail::require_tray_span(tray_mass_kg.size(), trays, "accumulate_transverse_kernel", "tray_mass_kg");
@@ -88,9 +101,9 @@ double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const
     lost_kg += m * (epanechnikov_cdf((left_edge_m - x) * inv_h) + 1.0 - epanechnikov_cdf((right_edge_m - x) * inv_h));
     const long first = std::max(0L, static_cast<long>(std::floor((x - kernel_half_width_m - left_edge_m) / w)));
     const long end = std::min(last, static_cast<long>(std::floor((x + kernel_half_width_m - left_edge_m) / w)));
-    double below = epanechnikov_cdf((left_edge_m + first * w - x) * inv_h);
+    double below = epanechnikov_cdf((left_edge_m + static_cast<double>(first) * w - x) * inv_h);
     for (long k = first; k <= end; ++k) {
-      const double above = epanechnikov_cdf((left_edge_m + (k + 1) * w - x) * inv_h);
+      const double above = epanechnikov_cdf((left_edge_m + static_cast<double>(k + 1) * w - x) * inv_h);
       tray_mass_kg[static_cast<std::size_t>(k)] += m * (above - below);
       below = above;
     }

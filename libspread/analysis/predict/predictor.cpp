@@ -14,6 +14,7 @@
 #include "libspread/analysis/predict/launch_landing_keys.hpp"
 #include "libspread/analysis/predict/launch_quantile_cells.hpp"
 #include "libspread/analysis/predict/sample_influence.hpp"
+#include "libspread/analysis/metrics/wide_kernel.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 
@@ -372,7 +373,10 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   gradient_scratch_.resize(tray_capacity_);
   // The widest bout a request may ask for, in the narrowest trays, plus its cut edge tray.
   const auto widest_bout = static_cast<std::size_t>(std::ceil(limits.max_bout_width_m / limits.min_tray_width_m)) + 2;
-  metrics_scratch_.resize(std::max({metrics::working_widths_scratch_size(widest), widest_bout, tray_capacity_ + 2}));
+  // Also a wide kernel's difference arrays (wide_kernel.hpp), which working_widths' FFT scratch exceeds.
+  const metrics::TrayLayout widest_layout{limits.min_tray_width_m, widest};
+  metrics_scratch_.resize(std::max({metrics::working_widths_scratch_size(widest), widest_bout, tray_capacity_ + 2,
+                                    metrics::wide_kernel_scratch_size(widest_layout)}));
 }
 
 std::size_t PredictorWorkspace::bytes() const {
@@ -862,7 +866,7 @@ Predictor::DomainMiss Predictor::landing_domain_miss(const PredictionRequest& re
   const MaterialRows& rows = materials_[*material_index];
   const LandingGrid& grid = grids_[rows.material];
   if (!landing_grid_enabled_ || grid.empty()) return DomainMiss::kNone;
-  // A grid's material flies the same still-air effects in every row (build_landing_grids), so the first
+  // A grid's material flies the same still-air effects in every row (grid_effects), so the first
   // row stands for any the request falls between.
   const DiscRows first_row[2] = {{rows.first_run, rows.first_run, 0.0}, {rows.first_run, rows.first_run, 0.0}};
   flight::EffectSet effects = 0;
@@ -934,10 +938,11 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
   const bool mirrored = two_discs && !fly_right_disc && kernel_m > 0.0;
   double lost = 0.0;
   if (mirrored) {
-    lost = 2.0 * metrics::accumulate_transverse_kernel(xs.first(n), weights.first(n), trays, kernel_m, tray_mass);
+    lost = 2.0 * metrics::accumulate_transverse_kernel(xs.first(n), weights.first(n), trays, kernel_m, tray_mass,
+                                                       w.metrics_scratch_);
     fold_mirror(tray_mass);
   } else {
-    lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass);
+    lost = metrics::accumulate_transverse_kernel(xs, weights, trays, kernel_m, tray_mass, w.metrics_scratch_);
   }
 
   // Written into `out` in place (every request check is behind us): a Prediction with its bands is over
@@ -1030,9 +1035,12 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
   }
   // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
   // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
+  // The metrics' scratch is free while a pass runs (the gradients are made before it): a wide kernel's
+  // prefix sums go there.
   const SampleInfluence influence{xs,     weights, sample_total, two_discs ? 2u : 1u, trays, kernel_m,
-                                  std::span<const SampleBlock>(w.sample_blocks_.data(), w.sample_block_count_)};
-  const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m};
+                                  std::span<const SampleBlock>(w.sample_blocks_.data(), w.sample_block_count_),
+                                  metrics_scratch};
+  const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m, {}, metrics_scratch};
   const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
   const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
   // Without standard errors (a search comparing settings) the passes are skipped: about half the cost.

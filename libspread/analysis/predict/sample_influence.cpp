@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "libspread/analysis/metrics/wide_kernel.hpp"
+
 namespace spread::predict {
 namespace {
 
@@ -148,7 +150,16 @@ double influence_standard_error(const SampleInfluence& in, PerLanding per_landin
 
 }  // namespace
 
+bool SampleInfluence::wide() const {
+  return metrics::wide_kernel(kernel_half_width_m, trays) && scratch.size() >= metrics::wide_kernel_sums_size(trays);
+}
+
 double SampleInfluence::standard_error(std::span<const double> gradient) const {
+  if (wide()) {
+    metrics::wide_kernel_sums(gradient, trays, scratch);
+    return influence_standard_error(
+        *this, [&](double x) { return metrics::wide_kernel_dot(x, kernel_half_width_m, trays, scratch); });
+  }
   return influence_standard_error(*this, [&](double x) { return kernel_dot(x, gradient, trays, kernel_half_width_m); });
 }
 
@@ -168,6 +179,10 @@ void SampleInfluence::standard_errors(std::span<const std::span<const double>> g
   }
   const std::size_t n = sample_count;
   if (n < 2 || count == 0) return;
+  if (wide()) {
+    for (std::size_t g = 0; g < count; ++g) out[slot[g]] = standard_error(used[g]);
+    return;
+  }
   // influence_standard_error, per gradient, with the same operations in the same order.
   double sum[kMaxGradients] = {}, sum_squares[kMaxGradients] = {};
   double z[kMaxGradients], dots[kMaxGradients];

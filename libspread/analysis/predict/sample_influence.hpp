@@ -37,12 +37,17 @@ struct SampleInfluence {
   // When not empty, the samples instead (sample_count = the sum of the counts, landings_per_sample unused):
   // the blocks in order, each sample owning the landings its block names.
   std::span<const SampleBlock> blocks = {};
+  // For a kernel of at least metrics::kWideKernelTrays tray widths: room for one gradient's prefix sums
+  // (metrics::wide_kernel_sums_size), and each landing's dot product costs the same whatever the kernel's
+  // width (wide_kernel.hpp), one gradient after the other. Empty: tray by tray.
+  std::span<double> scratch = {};
 
   // Standard error of a statistic whose derivative with respect to tray k's mass is gradient[k].
   double standard_error(std::span<const double> gradient) const;
   // The same for up to kMaxGradients statistics at once: out[g] = standard_error(gradients[g]), bit for
   // bit, in one pass over the landings — each landing's kernel shares K_k(x_l) are computed once and
-  // dotted with every gradient (the shares are most of the cost). An empty gradient gives NaN.
+  // dotted with every gradient (the shares are most of the cost); a wide kernel with scratch, a pass per
+  // gradient. An empty gradient gives NaN.
   static constexpr std::size_t kMaxGradients = 8;
   void standard_errors(std::span<const std::span<const double>> gradients, std::span<double> out) const;
   // Standard error of the throw width (the extent between the (1∓f)/2 mass quantiles `extent`): the
@@ -51,6 +56,9 @@ struct SampleInfluence {
   // x_q's own tray pro rata: its mass is taken as uniform across the tray).
   double throw_width_standard_error(std::span<const double> tray_mass, const metrics::ThrowExtent& extent,
                                     double mass_fraction) const;
+
+ private:
+  bool wide() const;  // the width-independent dot products apply
 };
 
 // Weighted standard deviation (m) of the finite lateral landing positions.
