@@ -86,7 +86,9 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
     if (j == 0) {
       first_edge = cumulative;
     } else {
-      tray_mass_kg[static_cast<std::size_t>(j - 1)] += cumulative - previous;
+      // A tray's mass is an increase of the cumulative mass; where no kernel covers it, rounding of the
+      // large coefficients may leave −1e-17 instead of 0 (found by the capi_predict fuzzer).
+      tray_mass_kg[static_cast<std::size_t>(j - 1)] += std::max(0.0, cumulative - previous);
     }
     previous = cumulative;
   }
