@@ -17,8 +17,8 @@
 // Rounding: the coefficients grow like (distance from the middle / h)³ while F stays in [0, 1], so the
 // result differs from the tray-by-tray sum by about 1e-16 (x/h)³ of the mass — 1e-11 for a landing 20 m
 // out under a 0.8 m kernel (a tray's mass is never negative: a rounding below zero is taken as zero).
-// Only kernels of at least kWideKernelTrays tray widths take this path; the
-// usual kernels (a few trays) keep the tray-by-tray sum, bit for bit.
+// Only kernels of at least kWideKernelTrays tray widths take this path; the usual kernels (a few trays)
+// keep the tray-by-tray sum, bit for bit.
 #include <cstddef>
 #include <span>
 

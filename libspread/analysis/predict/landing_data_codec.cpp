@@ -43,10 +43,6 @@ void LandingDataWriter::f32s(std::span<const float> values) {
   bytes_.reserve(bytes_.size() + 4 * values.size());
   for (float value : values) append_le(bytes_, std::bit_cast<std::uint32_t>(value), 4);
 }
-void LandingDataWriter::u32s(std::span<const std::uint32_t> values) {
-  bytes_.reserve(bytes_.size() + 4 * values.size());
-  for (std::uint32_t value : values) append_le(bytes_, value, 4);
-}
 void LandingDataWriter::bytes(std::span<const std::uint8_t> values) {
   bytes_.insert(bytes_.end(), values.begin(), values.end());
 }
@@ -72,14 +68,6 @@ bool LandingDataReader::f32s(std::span<float> values) {
   }
   for (float& value : values) {
     value = std::bit_cast<float>(static_cast<std::uint32_t>(load_le(bytes_.data() + offset_, 4)));
-    offset_ += 4;
-  }
-  return true;
-}
-bool LandingDataReader::u32s(std::span<std::uint32_t> values) {
-  if ((bytes_.size() - offset_) / 4 < values.size()) return false;
-  for (std::uint32_t& value : values) {
-    value = static_cast<std::uint32_t>(load_le(bytes_.data() + offset_, 4));
     offset_ += 4;
   }
   return true;

@@ -32,7 +32,6 @@ class LandingDataWriter {
   void u32(std::uint32_t value);
   void f64(double value);
   void f32s(std::span<const float> values);
-  void u32s(std::span<const std::uint32_t> values);
   void bytes(std::span<const std::uint8_t> values);
   std::vector<std::uint8_t> take() { return std::move(bytes_); }
 
@@ -48,7 +47,6 @@ class LandingDataReader {
   bool u32(std::uint32_t& value);
   bool f64(double& value);
   bool f32s(std::span<float> values);
-  bool u32s(std::span<std::uint32_t> values);
   // The next `count` bytes as a view (false past the end).
   bool bytes(std::size_t count, std::span<const std::uint8_t>& values);
   bool at_end() const { return offset_ == bytes_.size(); }

@@ -8,15 +8,6 @@ namespace spread::tables::detail {
 
 namespace {
 
-std::string row_checksum(const LandingData& landing) {
-  Crc64 crc;
-  crc.text(landing.material);
-  crc.text(landing.model);
-  crc.text(landing.source_key);
-  crc.blob(landing.data);
-  return crc.hex();
-}
-
 bool has_landing_table(Connection& db) {
   Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
   query.bind(1, std::string(kLandingDataTable));
@@ -35,7 +26,7 @@ std::vector<LandingData> read_landing_data(Connection& db) {
     landing.model = query.column_text(1);
     landing.source_key = query.column_text(2);
     landing.data = query.column_blob(3);
-    verify_checksum(db, "landing data " + landing.material, query.column_text(4), row_checksum(landing));
+    verify_checksum(db, "landing data " + landing.material, query.column_text(4), landing_data_checksum(landing));
     out.push_back(std::move(landing));
   }
   return out;
@@ -50,7 +41,7 @@ void write_landing_data(Connection& db, const LandingData& landing) {
   upsert.bind(2, landing.model);
   upsert.bind(3, landing.source_key);
   upsert.bind_blob(4, landing.data);
-  upsert.bind(5, row_checksum(landing));
+  upsert.bind(5, landing_data_checksum(landing));
   upsert.step();
 }
 

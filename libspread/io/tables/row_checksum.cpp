@@ -139,4 +139,13 @@ std::string run_checksum(const Run& run, std::span<const std::uint8_t> samples_b
   return crc.hex();
 }
 
+std::string landing_data_checksum(const LandingData& landing) {
+  Crc64 crc;
+  crc.text(landing.material);
+  crc.text(landing.model);
+  crc.text(landing.source_key);
+  crc.blob(landing.data);
+  return crc.hex();
+}
+
 }  // namespace spread::tables

@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "libspread/io/tables/landing_data.hpp"
 #include "libspread/io/tables/table_format.hpp"
 
 namespace spread::tables {
@@ -44,5 +45,6 @@ std::string material_checksum(const Material& material);
 // the stored layout columns.
 std::string run_checksum(const Run& run, std::span<const std::uint8_t> samples_blob, std::string_view record_layout,
                          std::int64_t record_bytes);
+std::string landing_data_checksum(const LandingData& landing);
 
 }  // namespace spread::tables
