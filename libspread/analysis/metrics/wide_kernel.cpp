@@ -16,14 +16,28 @@ struct EdgeCubic {
   long first, last;
 };
 
+// floor and ceil of a position clamped to [−2, T + 2] edges, without the libm calls baseline x86-64 makes
+// of std::floor and std::ceil: a kernel's edges beyond the layout only decide "wholly left or right".
+long floor_edge(double position, long edges) {
+  position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
+  const long truncated = static_cast<long>(position);
+  return static_cast<double>(truncated) > position ? truncated - 1 : truncated;
+}
+long ceil_edge(double position, long edges) {
+  position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
+  const long truncated = static_cast<long>(position);
+  return static_cast<double>(truncated) < position ? truncated + 1 : truncated;
+}
+
 EdgeCubic edge_cubic(double x, double h, const TrayLayout& trays, long centre) {
   const double w = trays.tray_width_m;
   const double left_m = trays.left_edge_m();
+  const long edges = trays.tray_count;
   EdgeCubic e{};
   // Edges strictly inside (x − h, x + h); at u = ±1 the cubic and the constants agree, so an edge on the
   // boundary may go either way.
-  e.first = static_cast<long>(std::floor((x - h - left_m) / w)) + 1;
-  e.last = static_cast<long>(std::ceil((x + h - left_m) / w)) - 1;
+  e.first = floor_edge((x - h - left_m) / w, edges) + 1;
+  e.last = ceil_edge((x + h - left_m) / w, edges) - 1;
   const double alpha = (left_m + static_cast<double>(centre) * w - x) / h;
   const double beta = w / h;
   e.p[0] = 0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha);
@@ -43,7 +57,9 @@ void require_scratch(std::size_t have, std::size_t need, const char* what) {
 }  // namespace
 
 std::size_t wide_kernel_scratch_size(const TrayLayout& trays) { return 5 * (static_cast<std::size_t>(trays.tray_count) + 2); }
-std::size_t wide_kernel_sums_size(const TrayLayout& trays) { return 4 * (static_cast<std::size_t>(trays.tray_count) + 2); }
+std::size_t wide_kernel_sums_size(const TrayLayout& trays, std::size_t gradient_count) {
+  return 4 * gradient_count * (static_cast<std::size_t>(trays.tray_count) + 2);
+}
 
 double accumulate_wide_kernel(std::span<const double> x_m, std::span<const double> mass_kg, const TrayLayout& trays,
                               double kernel_half_width_m, std::span<double> tray_mass_kg, std::span<double> scratch) {
@@ -96,40 +112,87 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
   return lost_kg + first_edge + (finite_kg - previous);
 }
 
-void wide_kernel_sums(std::span<const double> gradient, const TrayLayout& trays, std::span<double> sums) {
-  require_scratch(sums.size(), wide_kernel_sums_size(trays), "wide_kernel_sums");
+void wide_kernel_sums(std::span<const std::span<const double>> gradients, const TrayLayout& trays,
+                      std::span<double> sums) {
+  const std::size_t count = gradients.size();
+  require_scratch(sums.size(), wide_kernel_sums_size(trays, count), "wide_kernel_sums");
   const long edges = trays.tray_count;
   const long centre = edges / 2;
-  const std::size_t stride = static_cast<std::size_t>(edges) + 2;
-  double s[4] = {0.0, 0.0, 0.0, 0.0};
-  for (long j = 0; j <= edges + 1; ++j) {
-    for (int r = 0; r < 4; ++r) sums[static_cast<std::size_t>(r) * stride + static_cast<std::size_t>(j)] = s[r];
-    if (j > edges) break;
-    const double before = j > 0 ? gradient[static_cast<std::size_t>(j - 1)] : 0.0;
-    const double here = j < edges ? gradient[static_cast<std::size_t>(j)] : 0.0;
-    const double dj = before - here;
-    const double t = static_cast<double>(j - centre);
-    s[0] += dj;
-    s[1] += dj * t;
-    s[2] += dj * t * t;
-    s[3] += dj * t * t * t;
+  // S_r(j) of gradient g at [(j · 4 + r) · count + g]: a landing's dot products read two runs of 4 · count
+  // values.
+  for (std::size_t g = 0; g < count; ++g) {
+    const std::span<const double> gradient = gradients[g];
+    if (gradient.size() != static_cast<std::size_t>(edges)) {
+      throw std::invalid_argument("wide_kernel_sums: gradient " + std::to_string(g) + " has " +
+                                  std::to_string(gradient.size()) + " values for " + std::to_string(edges) + " trays");
+    }
+    double s[4] = {0.0, 0.0, 0.0, 0.0};
+    for (long j = 0; j <= edges + 1; ++j) {
+      for (int r = 0; r < 4; ++r) sums[(static_cast<std::size_t>(j) * 4 + static_cast<std::size_t>(r)) * count + g] = s[r];
+      if (j > edges) break;
+      const double before = j > 0 ? gradient[static_cast<std::size_t>(j - 1)] : 0.0;
+      const double here = j < edges ? gradient[static_cast<std::size_t>(j)] : 0.0;
+      const double dj = before - here;
+      const double t = static_cast<double>(j - centre);
+      s[0] += dj;
+      s[1] += dj * t;
+      s[2] += dj * t * t;
+      s[3] += dj * t * t * t;
+    }
   }
 }
 
-double wide_kernel_dot(double x, double kernel_half_width_m, const TrayLayout& trays, std::span<const double> sums) {
-  if (!std::isfinite(x)) return 0.0;
-  const long edges = trays.tray_count;
-  const EdgeCubic e = edge_cubic(x, kernel_half_width_m, trays, edges / 2);
+WideKernelDots::WideKernelDots(double kernel_half_width_m, const TrayLayout& trays, std::span<const double> sums,
+                               std::size_t gradient_count)
+    : sums_(sums),
+      count_(gradient_count),
+      edges_(trays.tray_count),
+      centre_(trays.tray_count / 2),
+      left_m_(trays.left_edge_m()),
+      inverse_width_(1.0 / trays.tray_width_m),
+      half_width_trays_(kernel_half_width_m / trays.tray_width_m),
+      beta_(trays.tray_width_m / kernel_half_width_m) {
+  require_scratch(sums.size(), wide_kernel_sums_size(trays, gradient_count), "WideKernelDots");
+}
+
+template <std::size_t kCount>
+void WideKernelDots::dots(double x, double* out) const {
+  const std::size_t count = kCount != 0 ? kCount : count_;
+  for (std::size_t g = 0; g < count; ++g) out[g] = 0.0;
+  if (!std::isfinite(x)) return;
+  // edge_cubic with the divisions taken once per pass: u = (x − L)/w in trays, α = (e_c − x)/h = (c − u) β.
+  const double u = (x - left_m_) * inverse_width_;
+  const long first = floor_edge(u - half_width_trays_, edges_) + 1;
+  const long last = ceil_edge(u + half_width_trays_, edges_) - 1;
   // Wholly left of the layout (F = 1 everywhere: Σ d_j = g_{−1} − g_T = 0) or wholly right (F = 0).
-  if (e.last < 0 || e.first > edges) return 0.0;
-  const long a = std::max(e.first, 0L), b = std::min(e.last, edges);
-  const std::size_t stride = static_cast<std::size_t>(edges) + 2;
-  const auto s = [&](int r, long j) { return sums[static_cast<std::size_t>(r) * stride + static_cast<std::size_t>(j)]; };
-  double dot = s(0, edges + 1) - s(0, b + 1);  // edges right of the kernel, F = 1
-  if (a <= b) {
-    for (int r = 0; r < 4; ++r) dot += e.p[r] * (s(r, b + 1) - s(r, a));
+  if (last < 0 || first > edges_) return;
+  const long a = std::max(first, 0L), b = std::min(last, edges_);
+  const double* at_a = &sums_[static_cast<std::size_t>(a) * 4 * count];
+  const double* past_b = &sums_[static_cast<std::size_t>(b + 1) * 4 * count];
+  const double* past_end = &sums_[static_cast<std::size_t>(edges_ + 1) * 4 * count];
+  for (std::size_t g = 0; g < count; ++g) out[g] = past_end[g] - past_b[g];  // edges right of the kernel, F = 1
+  if (a > b) return;
+  const double alpha = (static_cast<double>(centre_) - u) * beta_;
+  const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta_ * (1.0 - alpha * alpha),
+                       -0.75 * alpha * beta_ * beta_, -0.25 * beta_ * beta_ * beta_};
+  for (std::size_t r = 0; r < 4; ++r) {
+    for (std::size_t g = 0; g < count; ++g) out[g] += p[r] * (past_b[r * count + g] - at_a[r * count + g]);
   }
-  return dot;
+}
+
+void WideKernelDots::operator()(double x, double* out) const {
+  // The usual counts with the loops unrolled at compile time.
+  switch (count_) {
+    case 1: return dots<1>(x, out);
+    case 2: return dots<2>(x, out);
+    case 3: return dots<3>(x, out);
+    case 4: return dots<4>(x, out);
+    case 5: return dots<5>(x, out);
+    case 6: return dots<6>(x, out);
+    case 7: return dots<7>(x, out);
+    case 8: return dots<8>(x, out);
+    default: return dots<0>(x, out);
+  }
 }
 
 }  // namespace spread::metrics

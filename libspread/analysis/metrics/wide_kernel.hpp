@@ -17,8 +17,10 @@
 // Rounding: the coefficients grow like (distance from the middle / h)³ while F stays in [0, 1], so the
 // result differs from the tray-by-tray sum by about 1e-16 (x/h)³ of the mass — 1e-11 for a landing 20 m
 // out under a 0.8 m kernel (a tray's mass is never negative: a rounding below zero is taken as zero).
-// Only kernels of at least kWideKernelTrays tray widths take this path; the usual kernels (a few trays)
-// keep the tray-by-tray sum, bit for bit.
+// The binning is taken only for kernels of at least kWideKernelTrays tray widths: the usual kernels (a few
+// trays) keep the tray-by-tray sum, bit for bit. The dot products are taken for every kernel (the
+// standard errors, which a rounding of 1e-11 does not move): several gradients at once, each landing's
+// cubic computed once for all of them.
 #include <cstddef>
 #include <span>
 
@@ -34,17 +36,33 @@ inline bool wide_kernel(double kernel_half_width_m, const TrayLayout& trays) {
 // Scratch values the binning needs (five difference arrays over the edges); the dot products need
 // wide_kernel_sums_size.
 std::size_t wide_kernel_scratch_size(const TrayLayout& trays);
-std::size_t wide_kernel_sums_size(const TrayLayout& trays);
+std::size_t wide_kernel_sums_size(const TrayLayout& trays, std::size_t gradient_count = 1);
 
 // accumulate_transverse_kernel's result (tray masses added to tray_mass_kg, the lost mass returned) by
 // difference arrays; scratch.size() >= wide_kernel_scratch_size(trays). Does not allocate.
 double accumulate_wide_kernel(std::span<const double> x_m, std::span<const double> mass_kg, const TrayLayout& trays,
                               double kernel_half_width_m, std::span<double> tray_mass_kg, std::span<double> scratch);
 
-// The prefix sums S_0..S_3 of a gradient over the trays (gradient.size() == tray_count) into `sums`
-// (wide_kernel_sums_size values), for wide_kernel_dot.
-void wide_kernel_sums(std::span<const double> gradient, const TrayLayout& trays, std::span<double> sums);
-// Σ_k gradient[k] K_k(x) from the gradient's sums; 0 for a non-finite x.
-double wide_kernel_dot(double x, double kernel_half_width_m, const TrayLayout& trays, std::span<const double> sums);
+// The prefix sums S_0..S_3 of each gradient over the trays (each gradient.size() == tray_count) into `sums`
+// (wide_kernel_sums_size(trays, gradients.size()) values), for wide_kernel_dots.
+void wide_kernel_sums(std::span<const std::span<const double>> gradients, const TrayLayout& trays,
+                      std::span<double> sums);
+// dots[g] = Σ_k gradient_g[k] K_k(x) for the gradient_count gradients whose sums (wide_kernel_sums) it
+// reads; all 0 for a non-finite x. Each dot is summed in the same order whatever the count, so it is the
+// same bit for bit. Set up once per pass (the divisions), then called per landing.
+class WideKernelDots {
+ public:
+  WideKernelDots(double kernel_half_width_m, const TrayLayout& trays, std::span<const double> sums,
+                 std::size_t gradient_count);
+  void operator()(double x, double* dots) const;
+
+ private:
+  template <std::size_t kCount>
+  void dots(double x, double* out) const;
+  std::span<const double> sums_;
+  std::size_t count_;
+  long edges_, centre_;
+  double left_m_, inverse_width_, half_width_trays_, beta_;
+};
 
 }  // namespace spread::metrics

@@ -1033,6 +1033,8 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
       }
     }
   }
+  p.throw_width_se_m = nan;
+  if (p.throw_width_m > 0.0) tasks[task_count++] = {&p.throw_width_se_m, metrics::Overlap::kToAndFro, 0, nullptr, true};
   // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
   // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
   // The metrics' scratch is free while a pass runs (the gradients are made before it): a wide kernel's
@@ -1051,7 +1053,12 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
     for (std::size_t g = 0; g < count; ++g) {
       const SeTask& task = tasks[first + g];
       const std::span<double> grad = gradient(g);
-      if (task.width_band == nullptr) {
+      if (task.throw_width) {
+        if (!throw_width_gradient(tray_mass, trays, extent, 0.99, grad)) {
+          pass_gradients[g] = {};  // no density at a quantile: NaN
+          continue;
+        }
+      } else if (task.width_band == nullptr) {
         metrics::cv_gradient(tray_mass, trays, task.trays, task.overlap, grad, metrics_scratch);
       } else {
         const metrics::WidthBand& in = *task.width_band;
@@ -1120,9 +1127,6 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
     p.bout_width_m = 0.0;
     p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;
   }
-  p.throw_width_se_m = p.throw_width_m > 0.0 && request.standard_errors
-                           ? influence.throw_width_standard_error(tray_mass, extent, 0.99)
-                           : nan;
   p.mean_radius_m = w.radial_mean_m_;
   p.radial_width_m = w.radial_width_m_;
   p.tray_mass_fraction = tray_mass;

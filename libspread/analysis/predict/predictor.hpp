@@ -262,19 +262,20 @@ class PredictorWorkspace {
   std::pmr::vector<double> metrics_scratch_;
   // predict()'s bookkeeping of the bands and their standard errors (kept here, not on the caller's stack):
   // one standard error to compute — of the CV at `trays` trays, or (width_band set) of that band's upper
-  // end —, and per band the racetrack CV at a to-and-fro band's bout.
+  // end, or (throw_width) of the throw width —, and per band the racetrack CV at a to-and-fro band's bout.
   struct SeTask {
     double* out;
     metrics::Overlap overlap;
     int trays;
     const metrics::WidthBand* width_band;
+    bool throw_width = false;
   };
   struct BandExtra {
     const metrics::WidthBand* band = nullptr;
     double racetrack_cv = std::numeric_limits<double>::quiet_NaN();
     double racetrack_cv_se = std::numeric_limits<double>::quiet_NaN();
   };
-  std::array<SeTask, 2 + 2 * kMaxBands * 4> se_tasks_{};
+  std::array<SeTask, 3 + 2 * kMaxBands * 4> se_tasks_{};
   // The discs' launch samples by source (SampleInfluence), when each disc has its own setting.
   std::array<SampleBlock, kMaxSampleBlocks> sample_blocks_{};
   std::size_t sample_block_count_ = 0;

@@ -37,29 +37,32 @@ struct SampleInfluence {
   // When not empty, the samples instead (sample_count = the sum of the counts, landings_per_sample unused):
   // the blocks in order, each sample owning the landings its block names.
   std::span<const SampleBlock> blocks = {};
-  // For a kernel of at least metrics::kWideKernelTrays tray widths: room for one gradient's prefix sums
-  // (metrics::wide_kernel_sums_size), and each landing's dot product costs the same whatever the kernel's
-  // width (wide_kernel.hpp), one gradient after the other. Empty: tray by tray.
+  // With a kernel (h > 0): room for the prefix sums of the gradients (metrics::wide_kernel_sums_size per
+  // gradient), so that each landing's dot products cost the same whatever the kernel's width
+  // (wide_kernel.hpp), as many gradients in a pass as the scratch holds. Empty, or point masses: tray by
+  // tray.
   std::span<double> scratch = {};
 
   // Standard error of a statistic whose derivative with respect to tray k's mass is gradient[k].
   double standard_error(std::span<const double> gradient) const;
   // The same for up to kMaxGradients statistics at once: out[g] = standard_error(gradients[g]), bit for
-  // bit, in one pass over the landings — each landing's kernel shares K_k(x_l) are computed once and
-  // dotted with every gradient (the shares are most of the cost); a wide kernel with scratch, a pass per
-  // gradient. An empty gradient gives NaN.
-  static constexpr std::size_t kMaxGradients = 8;
+  // bit, in as few passes over the landings as the scratch allows — each landing's kernel is placed once
+  // per pass and dotted with every gradient of the pass. An empty gradient gives NaN.
+  static constexpr std::size_t kMaxGradients = 9;
   void standard_errors(std::span<const std::span<const double>> gradients, std::span<double> out) const;
-  // Standard error of the throw width (the extent between the (1∓f)/2 mass quantiles `extent`): the
-  // influence of a sample on a quantile x_q is (q − F_s(x_q)) / f(x_q), f the tray density there and
-  // F_s(x_q) the sample's share of the trays left of x_q as throw_extent reads them (whole trays, plus
-  // x_q's own tray pro rata: its mass is taken as uniform across the tray).
-  double throw_width_standard_error(std::span<const double> tray_mass, const metrics::ThrowExtent& extent,
-                                    double mass_fraction) const;
 
  private:
-  bool wide() const;  // the width-independent dot products apply
+  std::size_t gradients_per_pass() const;
 };
+
+// The gradient of the throw width (the extent between the (1∓f)/2 mass quantiles `extent`, as
+// metrics::throw_extent reads them off the trays) with respect to the tray masses, for
+// SampleInfluence::standard_error: the influence of a sample on a quantile x_q is (q − F_s(x_q)) /
+// f(x_q), f the tray density there and F_s(x_q) the sample's share of the trays left of x_q (whole
+// trays, plus x_q's own tray pro rata). False, the gradient untouched, when the trays hold no mass or a
+// quantile's tray is empty (no density to divide by). gradient.size() == trays.tray_count.
+bool throw_width_gradient(std::span<const double> tray_mass, const metrics::TrayLayout& trays,
+                          const metrics::ThrowExtent& extent, double mass_fraction, std::span<double> gradient);
 
 // Weighted standard deviation (m) of the finite lateral landing positions.
 double lateral_sd_m(std::span<const double> x_m, std::span<const double> weight);
