@@ -99,8 +99,9 @@ double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const
     }
     // Mass beyond the layout's outer edges is lost, the rest goes to the trays the kernel covers.
     lost_kg += m * (epanechnikov_cdf((left_edge_m - x) * inv_h) + 1.0 - epanechnikov_cdf((right_edge_m - x) * inv_h));
-    const long first = std::max(0L, static_cast<long>(std::floor((x - kernel_half_width_m - left_edge_m) / w)));
-    const long end = std::min(last, static_cast<long>(std::floor((x + kernel_half_width_m - left_edge_m) / w)));
+    // The floors without a libm call (WideKernelDots::floor_edge: positions clamped around the layout).
+    const long first = std::max(0L, WideKernelDots::floor_edge((x - kernel_half_width_m - left_edge_m) / w, last + 1));
+    const long end = std::min(last, WideKernelDots::floor_edge((x + kernel_half_width_m - left_edge_m) / w, last + 1));
     double below = epanechnikov_cdf((left_edge_m + static_cast<double>(first) * w - x) * inv_h);
     for (long k = first; k <= end; ++k) {
       const double above = epanechnikov_cdf((left_edge_m + static_cast<double>(k + 1) * w - x) * inv_h);

@@ -16,18 +16,8 @@ struct EdgeCubic {
   long first, last;
 };
 
-// floor and ceil of a position clamped to [−2, T + 2] edges, without the libm calls baseline x86-64 makes
-// of std::floor and std::ceil: a kernel's edges beyond the layout only decide "wholly left or right".
-long floor_edge(double position, long edges) {
-  position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
-  const long truncated = static_cast<long>(position);
-  return static_cast<double>(truncated) > position ? truncated - 1 : truncated;
-}
-long ceil_edge(double position, long edges) {
-  position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
-  const long truncated = static_cast<long>(position);
-  return static_cast<double>(truncated) < position ? truncated + 1 : truncated;
-}
+long floor_edge(double position, long edges) { return WideKernelDots::floor_edge(position, edges); }
+long ceil_edge(double position, long edges) { return WideKernelDots::ceil_edge(position, edges); }
 
 EdgeCubic edge_cubic(double x, double h, const TrayLayout& trays, long centre) {
   const double w = trays.tray_width_m;
@@ -155,41 +145,11 @@ WideKernelDots::WideKernelDots(double kernel_half_width_m, const TrayLayout& tra
   require_scratch(sums.size(), wide_kernel_sums_size(trays, gradient_count), "WideKernelDots");
 }
 
-template <std::size_t kCount>
-void WideKernelDots::dots(double x, double* out) const {
-  const std::size_t count = kCount != 0 ? kCount : count_;
-  for (std::size_t g = 0; g < count; ++g) out[g] = 0.0;
-  if (!std::isfinite(x)) return;
-  // edge_cubic with the divisions taken once per pass: u = (x − L)/w in trays, α = (e_c − x)/h = (c − u) β.
-  const double u = (x - left_m_) * inverse_width_;
-  const long first = floor_edge(u - half_width_trays_, edges_) + 1;
-  const long last = ceil_edge(u + half_width_trays_, edges_) - 1;
-  // Wholly left of the layout (F = 1 everywhere: Σ d_j = g_{−1} − g_T = 0) or wholly right (F = 0).
-  if (last < 0 || first > edges_) return;
-  const long a = std::max(first, 0L), b = std::min(last, edges_);
-  const double* at_a = &sums_[static_cast<std::size_t>(a) * 4 * count];
-  const double* past_b = &sums_[static_cast<std::size_t>(b + 1) * 4 * count];
-  const double* past_end = &sums_[static_cast<std::size_t>(edges_ + 1) * 4 * count];
-  for (std::size_t g = 0; g < count; ++g) out[g] = past_end[g] - past_b[g];  // edges right of the kernel, F = 1
-  if (a > b) return;
-  const double alpha = (static_cast<double>(centre_) - u) * beta_;
-  const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta_ * (1.0 - alpha * alpha),
-                       -0.75 * alpha * beta_ * beta_, -0.25 * beta_ * beta_ * beta_};
-  for (std::size_t r = 0; r < 4; ++r) {
-    for (std::size_t g = 0; g < count; ++g) out[g] += p[r] * (past_b[r * count + g] - at_a[r * count + g]);
-  }
-}
-
 void WideKernelDots::operator()(double x, double* out) const {
-  // The usual counts with the loops unrolled at compile time.
   switch (count_) {
     case 1: return dots<1>(x, out);
     case 2: return dots<2>(x, out);
-    case 3: return dots<3>(x, out);
     case 4: return dots<4>(x, out);
-    case 5: return dots<5>(x, out);
-    case 6: return dots<6>(x, out);
-    case 7: return dots<7>(x, out);
     case 8: return dots<8>(x, out);
     default: return dots<0>(x, out);
   }

@@ -21,7 +21,10 @@
 // trays) keep the tray-by-tray sum, bit for bit. The dot products are taken for every kernel (the
 // standard errors, which a rounding of 1e-11 does not move): several gradients at once, each landing's
 // cubic computed once for all of them.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <span>
 
 #include "libspread/analysis/metrics/metrics.hpp"
@@ -55,14 +58,77 @@ class WideKernelDots {
   WideKernelDots(double kernel_half_width_m, const TrayLayout& trays, std::span<const double> sums,
                  std::size_t gradient_count);
   void operator()(double x, double* dots) const;
-
- private:
+  // The same with the count known at compile time (kCount == gradient_count; 0: read at run time), the
+  // gradients two at a time in SSE registers.
   template <std::size_t kCount>
   void dots(double x, double* out) const;
+
+  // floor and ceil of a position in trays clamped to [−2, T + 2], without the libm calls baseline x86-64
+  // makes of std::floor and std::ceil: a kernel's edges beyond the layout only decide "wholly left or
+  // right".
+  static long floor_edge(double position, long edges) {
+    position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
+    const long truncated = static_cast<long>(position);
+    return static_cast<double>(truncated) > position ? truncated - 1 : truncated;
+  }
+  static long ceil_edge(double position, long edges) {
+    position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
+    const long truncated = static_cast<long>(position);
+    return static_cast<double>(truncated) < position ? truncated + 1 : truncated;
+  }
+
+ private:
   std::span<const double> sums_;
   std::size_t count_;
   long edges_, centre_;
   double left_m_, inverse_width_, half_width_trays_, beta_;
 };
+
+template <std::size_t kCount>
+void WideKernelDots::dots(double x, double* out) const {
+  typedef double Double2 __attribute__((vector_size(16)));
+  const std::size_t count = kCount != 0 ? kCount : count_;
+  for (std::size_t g = 0; g < count; ++g) out[g] = 0.0;
+  if (!std::isfinite(x)) return;
+  // The edges inside the kernel (wide_kernel.cpp's edge_cubic with the divisions taken once per pass):
+  // u = (x − L)/w in trays, α = (e_c − x)/h = (c − u) β.
+  const double u = (x - left_m_) * inverse_width_;
+  const long first = floor_edge(u - half_width_trays_, edges_) + 1;
+  const long last = ceil_edge(u + half_width_trays_, edges_) - 1;
+  // Wholly left of the layout (F = 1 everywhere: Σ d_j = g_{−1} − g_T = 0) or wholly right (F = 0).
+  if (last < 0 || first > edges_) return;
+  const long a = std::max(first, 0L), b = std::min(last, edges_);
+  const double* at_a = &sums_[static_cast<std::size_t>(a) * 4 * count];
+  const double* past_b = &sums_[static_cast<std::size_t>(b + 1) * 4 * count];
+  const double* past_end = &sums_[static_cast<std::size_t>(edges_ + 1) * 4 * count];
+  const bool inside = a <= b;
+  const double alpha = (static_cast<double>(centre_) - u) * beta_;
+  const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta_ * (1.0 - alpha * alpha),
+                       -0.75 * alpha * beta_ * beta_, -0.25 * beta_ * beta_ * beta_};
+  // Per gradient: the edges right of the kernel (F = 1), then the cubic's terms over its edges, in the
+  // same order two at a time and one at a time.
+  std::size_t g = 0;
+  for (; g + 2 <= count; g += 2) {
+    Double2 end, right, left, sum;
+    std::memcpy(&end, past_end + g, sizeof end);
+    std::memcpy(&right, past_b + g, sizeof right);
+    sum = end - right;
+    if (inside) {
+      for (std::size_t r = 0; r < 4; ++r) {
+        std::memcpy(&right, past_b + r * count + g, sizeof right);
+        std::memcpy(&left, at_a + r * count + g, sizeof left);
+        sum += p[r] * (right - left);
+      }
+    }
+    std::memcpy(out + g, &sum, sizeof sum);
+  }
+  for (; g < count; ++g) {
+    double sum = past_end[g] - past_b[g];
+    if (inside) {
+      for (std::size_t r = 0; r < 4; ++r) sum += p[r] * (past_b[r * count + g] - at_a[r * count + g]);
+    }
+    out[g] = sum;
+  }
+}
 
 }  // namespace spread::metrics

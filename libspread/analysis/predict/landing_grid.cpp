@@ -16,6 +16,7 @@ constexpr std::size_t kGridStencil = 4;        // cubic Lagrange: four nodes per
 constexpr std::size_t kDiameterPoints = kGridStencil, kVerticalPoints = kGridStencil;
 // Four floats in one SSE register (GCC/Clang vector extension; any x86-64 or AArch64 has it).
 typedef float Float4 __attribute__((vector_size(16)));
+typedef int Int4 __attribute__((vector_size(16)));
 
 // Cubic Lagrange weights of the nodes −1, 0, 1, 2 at fraction f of the interval [0, 1] (f outside it
 // extrapolates the same cubic).
@@ -50,9 +51,140 @@ inline std::ptrdiff_t grid_stencil(double x, const GridAxis& axis, double invers
   }
 }
 
+// The stencil's 16 lines (diameter × vertical speed), each four heights of four speeds, R and T
+// interleaved per speed (R0 T0 R1 T1 R2 T2 R3 T3: 8 floats, one 32-byte read), summed with their weights:
+// sums = Σ_h wh[h] Σ_line w[line] · values(line, h), in that order, lane by lane. For one or two landings
+// of the same diameter, vertical speed and height (a sample's two discs in a wind), which share the
+// weights and differ only in the speeds read (first[l]).
+struct StencilLines {
+  const float* first[2];      // line 0 at height 0 of each landing
+  std::size_t diameter_step;  // floats between diameter nodes, vertical-speed nodes and height nodes
+  std::size_t vertical_step;
+  std::size_t height_step;
+  float weight[16];  // w_d · w_v, line 4a + b
+  float height_weight[4];
+};
+
+// In SSE registers, two per height (R0 T0 R1 T1 | R2 T2 R3 T3); still air (no T) takes the four R out of
+// the two halves (one shuffle) and sums those alone. One accumulator per height, named so that they stay
+// in registers: the sums of different heights do not wait for each other (an addition's latency, not the
+// loads, bounds a single chain).
+template <bool kWithTime>
+void sum_stencil_lines(const StencilLines& in, std::size_t landing, float (&sums)[8]) {
+  Float4 a0 = {}, a1 = {}, a2 = {}, a3 = {}, b0 = {}, b1 = {}, b2 = {}, b3 = {};
+  for (std::size_t a = 0; a < kDiameterPoints; ++a) {
+    for (std::size_t b = 0; b < kVerticalPoints; ++b) {
+      const float* line = in.first[landing] + a * in.diameter_step + b * in.vertical_step;
+      const float w = in.weight[4 * a + b];
+      const auto add = [w](Float4& low, Float4& high, const float* values) {
+        Float4 v0, v1;
+        std::memcpy(&v0, values, sizeof v0);
+        std::memcpy(&v1, values + 4, sizeof v1);
+        if constexpr (kWithTime) {
+          low += w * v0;
+          high += w * v1;
+        } else {
+          low += w * __builtin_shuffle(v0, v1, Int4{0, 2, 4, 6});
+        }
+      };
+      add(a0, b0, line);
+      add(a1, b1, line + in.height_step);
+      add(a2, b2, line + 2 * in.height_step);
+      add(a3, b3, line + 3 * in.height_step);
+    }
+  }
+  const float* wh = in.height_weight;
+  const Float4 low = wh[0] * a0 + wh[1] * a1 + wh[2] * a2 + wh[3] * a3;
+  if constexpr (kWithTime) {
+    const Float4 high = wh[0] * b0 + wh[1] * b1 + wh[2] * b2 + wh[3] * b3;
+    std::memcpy(sums, &low, sizeof low);
+    std::memcpy(sums + 4, &high, sizeof high);
+  } else {
+    for (int k = 0; k < 4; ++k) sums[2 * k] = low[k];  // the R lanes
+  }
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+#define SPREAD_GRID_AVX 1
+// The same sums with one AVX register per height (all eight lanes at once; still air sums T too and
+// leaves it), both landings in one loop. Each lane takes the same multiplications and additions in the
+// same order as in SSE, and no fused multiply-add (the target is "avx", not "fma"), so the two give the
+// same bits.
+typedef float Float8 __attribute__((vector_size(32)));
+__attribute__((target("avx"), always_inline)) inline void add_line_avx(Float8& sum, float w, const float* values) {
+  Float8 v;
+  std::memcpy(&v, values, sizeof v);
+  sum += w * v;
+}
+__attribute__((target("avx"), always_inline)) inline void store_heights_avx(const float* wh, Float8 s0, Float8 s1,
+                                                                            Float8 s2, Float8 s3, float* sums) {
+  const Float8 sum = wh[0] * s0 + wh[1] * s1 + wh[2] * s2 + wh[3] * s3;
+  std::memcpy(sums, &sum, sizeof sum);
+}
+// The accumulators are named (not an array), so that they stay in registers.
+__attribute__((target("avx"))) void sum_stencil_lines_avx(const StencilLines& in, float (&sums)[2][8]) {
+  Float8 s0 = {}, s1 = {}, s2 = {}, s3 = {};
+  const std::size_t step = in.height_step;
+  for (std::size_t a = 0; a < kDiameterPoints; ++a) {
+    for (std::size_t b = 0; b < kVerticalPoints; ++b) {
+      const float* line = in.first[0] + a * in.diameter_step + b * in.vertical_step;
+      const float w = in.weight[4 * a + b];
+      add_line_avx(s0, w, line);
+      add_line_avx(s1, w, line + step);
+      add_line_avx(s2, w, line + 2 * step);
+      add_line_avx(s3, w, line + 3 * step);
+    }
+  }
+  store_heights_avx(in.height_weight, s0, s1, s2, s3, sums[0]);
+}
+__attribute__((target("avx"))) void sum_stencil_line_pairs_avx(const StencilLines& in, float (&sums)[2][8]) {
+  Float8 s0 = {}, s1 = {}, s2 = {}, s3 = {}, t0 = {}, t1 = {}, t2 = {}, t3 = {};
+  const std::size_t step = in.height_step;
+  for (std::size_t a = 0; a < kDiameterPoints; ++a) {
+    for (std::size_t b = 0; b < kVerticalPoints; ++b) {
+      const std::size_t offset = a * in.diameter_step + b * in.vertical_step;
+      const float* line = in.first[0] + offset;
+      const float* other = in.first[1] + offset;
+      const float w = in.weight[4 * a + b];
+      add_line_avx(s0, w, line);
+      add_line_avx(s1, w, line + step);
+      add_line_avx(s2, w, line + 2 * step);
+      add_line_avx(s3, w, line + 3 * step);
+      add_line_avx(t0, w, other);
+      add_line_avx(t1, w, other + step);
+      add_line_avx(t2, w, other + 2 * step);
+      add_line_avx(t3, w, other + 3 * step);
+    }
+  }
+  store_heights_avx(in.height_weight, s0, s1, s2, s3, sums[0]);
+  store_heights_avx(in.height_weight, t0, t1, t2, t3, sums[1]);
+}
+
+bool cpu_has_avx() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx") != 0;
+}
+#endif
+
 }  // namespace
 
-LandingGrid::LandingGrid(std::pmr::memory_resource* memory) : values_(memory) {}
+LandingGrid::LandingGrid(std::pmr::memory_resource* memory) : values_(memory) {
+#ifdef SPREAD_GRID_AVX
+  static const bool avx = cpu_has_avx();
+  avx_ = avx;
+#endif
+}
+
+bool LandingGrid::set_avx(bool enabled) {
+#ifdef SPREAD_GRID_AVX
+  static const bool avx = cpu_has_avx();
+  avx_ = enabled && avx;
+#else
+  avx_ = false;
+  (void)enabled;
+#endif
+  return avx_;
+}
 
 std::size_t LandingGrid::value_count(const Axes& axes) {
   std::size_t count = 2;
@@ -112,8 +244,8 @@ bool LandingGrid::build(const Axes& axes, double density_kg_m3, flight::EffectSe
         values_.clear();
         return false;
       }
-      values_[first + c] = static_cast<float>(landings[c].state.position_m.x());
-      values_[nodes + first + c] = static_cast<float>(landings[c].flight_time_s);
+      values_[2 * (first + c)] = static_cast<float>(landings[c].state.position_m.x());
+      values_[2 * (first + c) + 1] = static_cast<float>(landings[c].flight_time_s);
     }
   }
   return true;
@@ -140,68 +272,88 @@ bool LandingGrid::restore(const Axes& axes, flight::EffectSet effects, std::span
   effects_ = effects;
   axes_ = axes;
   for (std::size_t a = 0; a < kAxisCount; ++a) inverse_step_[a] = 1.0 / axes[a].step;
-  values_.assign(values.begin(), values.end());
+  // Stored as all R then all T (values()); held interleaved per node.
+  const std::size_t nodes = values.size() / 2;
+  values_.resize(values.size());
+  for (std::size_t i = 0; i < nodes; ++i) {
+    values_[2 * i] = values[i];
+    values_[2 * i + 1] = values[nodes + i];
+  }
   return true;
 }
 
+std::vector<float> LandingGrid::values() const {
+  const std::size_t nodes = values_.size() / 2;
+  std::vector<float> out(values_.size());
+  for (std::size_t i = 0; i < nodes; ++i) {
+    out[i] = values_[2 * i];
+    out[nodes + i] = values_[2 * i + 1];
+  }
+  return out;
+}
+
 template <bool kWithTime>
-void LandingGrid::interpolate(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s,
-                              double& range_m, double& time_s) const {
-  double wd[kDiameterPoints], wv[kVerticalPoints], wh[kGridStencil], wu[kGridStencil];
+void LandingGrid::interpolate(double diameter_m, double vertical_speed_m_s, double height_m,
+                              std::span<const double> speeds_m_s, double* range_m, double* time_s) const {
+  double wd[kDiameterPoints], wv[kVerticalPoints], wh[kGridStencil];
   const std::ptrdiff_t d0 = grid_stencil(diameter_m, axes_[kDiameter], inverse_step_[kDiameter], 0, wd);
   const std::ptrdiff_t v0 = grid_stencil(vertical_speed_m_s, axes_[kVerticalSpeed], inverse_step_[kVerticalSpeed], 0, wv);
   const std::ptrdiff_t h0 = grid_stencil(std::sqrt(std::max(height_m, 0.0)), axes_[kHeight], inverse_step_[kHeight], 0, wh);
-  const std::ptrdiff_t u0 = grid_stencil(speed_m_s, axes_[kSpeed], inverse_step_[kSpeed], -1, wu);
   const std::size_t nu = axes_[kSpeed].count, nh = axes_[kHeight].count, nv = axes_[kVerticalSpeed].count;
-  const std::size_t time_offset = values_.size() / 2;  // the T values follow the R values
-  // Σ_dvh w_d w_v w_h Σ_u w_u f = Σ_u w_u (Σ_dvh w_d w_v w_h f): the 64 lines of the stencil (four speeds,
-  // one SSE register each) are summed first with their weights, then the speeds. One accumulator per
-  // height node, named so that they stay in registers: the sums of different heights do not wait for each
-  // other (an addition's latency, not the loads, bounds a single chain).
-  const std::size_t line_u = u0 < 0 ? 0 : static_cast<std::size_t>(u0);
-  Float4 r0 = {}, r1 = {}, r2 = {}, r3 = {}, t0 = {}, t1 = {}, t2 = {}, t3 = {};
-  for (std::size_t a = 0; a < kDiameterPoints; ++a) {
-    for (std::size_t b = 0; b < kVerticalPoints; ++b) {
-      const float* line = &values_[nu * nh * ((static_cast<std::size_t>(d0) + a) * nv + static_cast<std::size_t>(v0) + b) +
-                                   nu * static_cast<std::size_t>(h0) + line_u];
-      const float w = static_cast<float>(wd[a] * wv[b]);
-      const auto add = [w](Float4& sum, const float* values) {
-        Float4 v;
-        std::memcpy(&v, values, sizeof v);
-        sum += w * v;
-      };
-      add(r0, line);
-      add(r1, line + nu);
-      add(r2, line + 2 * nu);
-      add(r3, line + 3 * nu);
-      if constexpr (kWithTime) {
-        add(t0, line + time_offset);
-        add(t1, line + time_offset + nu);
-        add(t2, line + time_offset + 2 * nu);
-        add(t3, line + time_offset + 3 * nu);
-      }
-    }
+  // Σ_dvh w_d w_v w_h Σ_u w_u f = Σ_u w_u (Σ_dvh w_d w_v w_h f): the 64 lines of the stencil (four speeds
+  // of R and T each) are summed first with their weights, then the speeds.
+  const std::size_t count = speeds_m_s.size();
+  StencilLines lines;
+  double wu[2][kGridStencil];
+  std::ptrdiff_t u0[2];
+  const std::size_t base = nu * nh * (static_cast<std::size_t>(d0) * nv + static_cast<std::size_t>(v0)) +
+                           nu * static_cast<std::size_t>(h0);
+  for (std::size_t l = 0; l < count; ++l) {
+    u0[l] = grid_stencil(speeds_m_s[l], axes_[kSpeed], inverse_step_[kSpeed], -1, wu[l]);
+    const std::size_t line_u = u0[l] < 0 ? 0 : static_cast<std::size_t>(u0[l]);
+    lines.first[l] = &values_[2 * (base + line_u)];
   }
-  const auto weight = [&](std::size_t c) { return static_cast<float>(wh[c]); };
-  // The stencil's four speeds; from speed node −1 (node 1 mirrored: R(−u) = −R(u), T(−u) = T(u)) the
-  // lines were read from node 0, so they shift one node up.
-  const auto speeds = [&](const Float4& sum, double mirror_sign, double& out) {
-    double f[kGridStencil] = {sum[0], sum[1], sum[2], sum[3]};
-    if (u0 < 0) {
-      f[3] = f[2];
-      f[2] = f[1];
-      f[1] = f[0];
-      f[0] = mirror_sign * f[2];
-    }
-    out = wu[0] * f[0] + wu[1] * f[1] + wu[2] * f[2] + wu[3] * f[3];
-  };
-  speeds(weight(0) * r0 + weight(1) * r1 + weight(2) * r2 + weight(3) * r3, -1.0, range_m);
-  if constexpr (kWithTime) speeds(weight(0) * t0 + weight(1) * t1 + weight(2) * t2 + weight(3) * t3, 1.0, time_s);
+  lines.diameter_step = 2 * nu * nh * nv;
+  lines.vertical_step = 2 * nu * nh;
+  lines.height_step = 2 * nu;
+  for (std::size_t a = 0; a < kDiameterPoints; ++a) {
+    for (std::size_t b = 0; b < kVerticalPoints; ++b) lines.weight[4 * a + b] = static_cast<float>(wd[a] * wv[b]);
+  }
+  for (std::size_t c = 0; c < kGridStencil; ++c) lines.height_weight[c] = static_cast<float>(wh[c]);
+  float sums[2][8];
+#ifdef SPREAD_GRID_AVX
+  if (avx_ && count == 2) {
+    sum_stencil_line_pairs_avx(lines, sums);
+  } else if (avx_) {
+    sum_stencil_lines_avx(lines, sums);
+  } else {
+    for (std::size_t l = 0; l < count; ++l) sum_stencil_lines<kWithTime>(lines, l, sums[l]);
+  }
+#else
+  for (std::size_t l = 0; l < count; ++l) sum_stencil_lines<kWithTime>(lines, l, sums[l]);
+#endif
+  for (std::size_t l = 0; l < count; ++l) {
+    // The stencil's four speeds (lane 2k: R, 2k + 1: T); from speed node −1 (node 1 mirrored: R(−u) =
+    // −R(u), T(−u) = T(u)) the lines were read from node 0, so they shift one node up.
+    const auto speeds = [&](int lane, double mirror_sign) {
+      const float* sum = sums[l];
+      double f[kGridStencil] = {sum[lane], sum[lane + 2], sum[lane + 4], sum[lane + 6]};
+      if (u0[l] < 0) {
+        f[3] = f[2];
+        f[2] = f[1];
+        f[1] = f[0];
+        f[0] = mirror_sign * f[2];
+      }
+      return wu[l][0] * f[0] + wu[l][1] * f[1] + wu[l][2] * f[2] + wu[l][3] * f[3];
+    };
+    range_m[l] = speeds(0, -1.0);
+    if constexpr (kWithTime) time_s[l] = speeds(1, 1.0);
+  }
 }
 
 void LandingGrid::range_and_time(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s,
                                  double& range_m, double& time_s) const {
-  interpolate<true>(diameter_m, vertical_speed_m_s, height_m, speed_m_s, range_m, time_s);
+  interpolate<true>(diameter_m, vertical_speed_m_s, height_m, std::span(&speed_m_s, 1), &range_m, &time_s);
 }
 
 void LandingGrid::landing(double diameter_m, double x_m, double y_m, double height_m, double vx_m_s, double vy_m_s,
@@ -212,13 +364,30 @@ void LandingGrid::landing(double diameter_m, double x_m, double y_m, double heig
   double range_m = 0.0, time_s = 0.0;
   // In still air the flight time is not needed: half the values read.
   if (wind_x_m_s == 0.0 && wind_y_m_s == 0.0) {
-    interpolate<false>(diameter_m, vz_m_s, height_m, u, range_m, time_s);
+    interpolate<false>(diameter_m, vz_m_s, height_m, std::span(&u, 1), &range_m, &time_s);
   } else {
-    interpolate<true>(diameter_m, vz_m_s, height_m, u, range_m, time_s);
+    interpolate<true>(diameter_m, vz_m_s, height_m, std::span(&u, 1), &range_m, &time_s);
   }
   const double along = u > 0.0 ? range_m / u : 0.0;  // the range along the unit vector (rx, ry)/u
   landing_x_m = x_m + along * rx + wind_x_m_s * time_s;
   landing_y_m = y_m + along * ry + wind_y_m_s * time_s;
+}
+
+void LandingGrid::mirrored_landings(double diameter_m, double x_m, double y_m, double height_m, double vx_m_s,
+                                    double vy_m_s, double vz_m_s, double wind_x_m_s, double wind_y_m_s,
+                                    double (&landing_x_m)[2], double (&landing_y_m)[2]) const {
+  // The launch as given (mirror +1) and mirrored x → −x (−1), relative to the air.
+  const double rx[2] = {vx_m_s - wind_x_m_s, -1.0 * vx_m_s - wind_x_m_s};
+  const double ry = vy_m_s - wind_y_m_s;
+  const double u[2] = {std::sqrt(rx[0] * rx[0] + ry * ry), std::sqrt(rx[1] * rx[1] + ry * ry)};
+  double range_m[2] = {0.0, 0.0}, time_s[2] = {0.0, 0.0};
+  interpolate<true>(diameter_m, vz_m_s, height_m, std::span(u), range_m, time_s);
+  const double sx[2] = {x_m, -1.0 * x_m};
+  for (int l = 0; l < 2; ++l) {
+    const double along = u[l] > 0.0 ? range_m[l] / u[l] : 0.0;
+    landing_x_m[l] = sx[l] + along * rx[l] + wind_x_m_s * time_s[l];
+    landing_y_m[l] = y_m + along * ry + wind_y_m_s * time_s[l];
+  }
 }
 
 LandingDomain landing_domain_for(double stored_disc_height_m) {

@@ -22,9 +22,9 @@
 // two neighbouring stencils agree at their shared nodes). Its error against flying each granule is
 // measured (tests/predict/test_landing_grid.cpp, bench_predict counter max_landing_error_m).
 //
-// The values are floats (1e-6 relative: 0.04 mm on a 40 m range), all R then all T (still air needs no
-// T), the speed axis innermost so that a stencil's four speeds are one 16-byte read. Evaluation does not
-// allocate.
+// The values are floats (1e-6 relative: 0.04 mm on a 40 m range), R and T side by side per node, the
+// speed axis innermost so that a stencil line's four speeds of both are one 32-byte read (one AVX
+// register, or two SSE ones). Evaluation does not allocate.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -74,9 +74,13 @@ class LandingGrid {
   bool empty() const { return values_.empty(); }
   const Axes& axes() const { return axes_; }
   flight::EffectSet effects() const { return effects_; }  // the still-air effects it was flown with
-  std::span<const float> values() const { return values_; }
+  // The values as build() flew them and restore() takes them: all R, then all T.
+  std::vector<float> values() const;
   std::size_t bytes() const { return sizeof(float) * values_.size(); }
   static std::size_t value_count(const Axes& axes);
+  // Sums the stencil in AVX registers (on x86 processors that have AVX, chosen at construction) or in SSE
+  // ones: the same bits either way. Returns whether AVX is now used.
+  bool set_avx(bool enabled);
 
   // R (m) and T (s) of a launch with horizontal speed speed_m_s >= 0. Arguments slightly outside the axes
   // extrapolate the edge stencil.
@@ -87,17 +91,27 @@ class LandingGrid {
   // (vx_m_s, vy_m_s) and vertical speed vz_m_s, in the horizontal wind (wind_x_m_s, wind_y_m_s).
   void landing(double diameter_m, double x_m, double y_m, double height_m, double vx_m_s, double vy_m_s,
                double vz_m_s, double wind_x_m_s, double wind_y_m_s, double& landing_x_m, double& landing_y_m) const;
+  // landing() of the launch as given ([0]) and of its mirror image x → −x ([1]: position x_m and velocity
+  // vx_m_s negated; a sample's right disc), both in the wind, bit for bit as two calls of landing() in a
+  // wind would give them: the two share the stencil's diameter, vertical speed and height.
+  void mirrored_landings(double diameter_m, double x_m, double y_m, double height_m, double vx_m_s, double vy_m_s,
+                         double vz_m_s, double wind_x_m_s, double wind_y_m_s, double (&landing_x_m)[2],
+                         double (&landing_y_m)[2]) const;
 
  private:
+  // R (and T) of one or two horizontal speeds (speeds_m_s.size() <= 2) at the same diameter, vertical
+  // speed and height.
   template <bool kWithTime>
-  void interpolate(double diameter_m, double vertical_speed_m_s, double height_m, double speed_m_s, double& range_m,
-                   double& time_s) const;
+  void interpolate(double diameter_m, double vertical_speed_m_s, double height_m, std::span<const double> speeds_m_s,
+                   double* range_m, double* time_s) const;
 
   Axes axes_{};
   flight::EffectSet effects_ = 0;
   std::array<double, kAxisCount> inverse_step_{};
-  // R at [((d · N_vz + v) · N_h + h) · N_u + u], then T at the same index plus the node count.
+  // R at 2 · [((d · N_vz + v) · N_h + h) · N_u + u], T right after it: a stencil line's four speeds of
+  // both are one 32-byte read.
   std::pmr::vector<float> values_;
+  bool avx_ = false;
 };
 
 // The conditions a table's landing grids cover: what a controller meets in the field. Requests inside it

@@ -645,6 +645,14 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, const DiscRows& rows,
         const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
         const double vz_m_s = rim_speed_m_s * s.vz_norm, z_m = s.z_m + height_m;
         double x = 0.0, y = 0.0;
+        if (left_flown && right_flown) {
+          double xs[2], ys[2];
+          grid->mirrored_landings(s.diameter_m, s.x_m, s.y_m, z_m, vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, xs,
+                                  ys);
+          record_left(first + c, weight, true, xs[0], ys[0]);
+          record_right(first + c, weight, true, xs[1], ys[1]);
+          continue;
+        }
         if (left_flown) {
           grid->landing(s.diameter_m, s.x_m, s.y_m, z_m, vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, x, y);
           record_left(first + c, weight, true, x, y);

@@ -76,8 +76,9 @@ void for_each_sample(const SampleInfluence& in, Visit visit, Done done) {
 
 // The standard errors of `count` statistics in one pass over the landings: dots(x, d) writes each
 // statistic's Σ_k g_k K_k(x) into d[0..count).
-template <typename Dots>
-void influence_pass(const SampleInfluence& in, std::size_t count, Dots dots, double* out) {
+template <std::size_t kCount = 0, typename Dots>
+void influence_pass(const SampleInfluence& in, std::size_t count_at_run_time, Dots dots, double* out) {
+  const std::size_t count = kCount != 0 ? kCount : count_at_run_time;
   const std::size_t n = in.sample_count;
   double sum[SampleInfluence::kMaxGradients] = {}, sum_squares[SampleInfluence::kMaxGradients] = {};
   double z[SampleInfluence::kMaxGradients] = {}, d[SampleInfluence::kMaxGradients];
@@ -140,7 +141,19 @@ void SampleInfluence::standard_errors(std::span<const std::span<const double>> g
       const std::span<const std::span<const double>> group(used + first, batch);
       metrics::wide_kernel_sums(group, trays, scratch);
       const metrics::WideKernelDots dots(kernel_half_width_m, trays, scratch, batch);
-      influence_pass(*this, batch, dots, se + first);
+      const auto pass = [&]<std::size_t kCount>() {
+        influence_pass<kCount>(
+            *this, batch, [&dots](double x, double* d) { dots.template dots<kCount>(x, d); }, se + first);
+      };
+      // The counts a prediction's passes usually have, with their loops unrolled at compile time.
+      switch (batch) {
+        case 1: pass.template operator()<1>(); break;
+        case 2: pass.template operator()<2>(); break;
+        case 4: pass.template operator()<4>(); break;
+        case 6: pass.template operator()<6>(); break;
+        case 8: pass.template operator()<8>(); break;
+        default: pass.template operator()<0>(); break;
+      }
     }
   } else {
     const std::span<const std::span<const double>> active(used, count);
