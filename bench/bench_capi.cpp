@@ -72,6 +72,7 @@ void BM_PredictWorstCase(benchmark::State& state) {
     state.counters["trays"] = result.tray_count;
     state.counters["flights"] = result.flights;
     state.counters["working_width_m"] = result.working_width_to_and_fro_m;
+    state.counters["kernel_m"] = result.kernel_half_width_m;
   }
   spread_close(tables);
 }

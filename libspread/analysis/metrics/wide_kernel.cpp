@@ -8,34 +8,8 @@
 namespace spread::metrics {
 namespace {
 
-// A landing's kernel on the layout's edges 0..T: F = 0 left of edge `first`, the cubic p on edges
-// first..last, 1 right of `last` (first > last: no edge inside the kernel; last < 0: the kernel lies
-// wholly left of the layout, first > T: wholly right).
-struct EdgeCubic {
-  double p[4];
-  long first, last;
-};
-
 long floor_edge(double position, long edges) { return WideKernelDots::floor_edge(position, edges); }
 long ceil_edge(double position, long edges) { return WideKernelDots::ceil_edge(position, edges); }
-
-EdgeCubic edge_cubic(double x, double h, const TrayLayout& trays, long centre) {
-  const double w = trays.tray_width_m;
-  const double left_m = trays.left_edge_m();
-  const long edges = trays.tray_count;
-  EdgeCubic e{};
-  // Edges strictly inside (x − h, x + h); at u = ±1 the cubic and the constants agree, so an edge on the
-  // boundary may go either way.
-  e.first = floor_edge((x - h - left_m) / w, edges) + 1;
-  e.last = ceil_edge((x + h - left_m) / w, edges) - 1;
-  const double alpha = (left_m + static_cast<double>(centre) * w - x) / h;
-  const double beta = w / h;
-  e.p[0] = 0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha);
-  e.p[1] = 0.75 * beta * (1.0 - alpha * alpha);
-  e.p[2] = -0.75 * alpha * beta * beta;
-  e.p[3] = -0.25 * beta * beta * beta;
-  return e;
-}
 
 void require_scratch(std::size_t have, std::size_t need, const char* what) {
   if (have < need) {
@@ -55,11 +29,21 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
                               double kernel_half_width_m, std::span<double> tray_mass_kg, std::span<double> scratch) {
   require_scratch(scratch.size(), wide_kernel_scratch_size(trays), "accumulate_wide_kernel");
   const long edges = trays.tray_count;  // edges 0..T
-  const long centre = edges / 2;
+  const double left_m = trays.left_edge_m();
+  const double inverse_width = 1.0 / trays.tray_width_m;
+  const double half_width_trays = kernel_half_width_m * inverse_width;
+  const double beta = trays.tray_width_m / kernel_half_width_m;
+  // The edges in blocks of `block` edges, each block's cubics in t = j − c_B about its own middle edge c_B:
+  // |t| stays within block/2, so the coefficients stay small (rounding ~1e-16 (block β / 2)³ of a landing's
+  // mass) wherever the landing is, and a kernel (at most 2h/w + 1 edges) spans at most two blocks.
+  long block = 64;
+  while (static_cast<double>(block) < 2.0 * half_width_trays + 4.0) block *= 2;
+  // Difference arrays per edge j: the four coefficients and the constant 1 right of a kernel, at
+  // [5 j, 5 j + 5). A coefficient added at an edge holds to the end of its block (where the sweep restarts)
+  // unless taken off before.
   const std::size_t stride = static_cast<std::size_t>(edges) + 2;
   std::fill(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(5 * stride), 0.0);
-  // Difference arrays: coefficient r at [r · stride, …), the constant 1 right of a kernel at [4 · stride, …).
-  const auto d = [&](int array, long edge) -> double& { return scratch[static_cast<std::size_t>(array) * stride + static_cast<std::size_t>(edge)]; };
+  const auto d = [&](long edge) { return &scratch[5 * static_cast<std::size_t>(edge)]; };
   double lost_kg = 0.0, finite_kg = 0.0;
   for (std::size_t i = 0; i < x_m.size(); ++i) {
     const double x = x_m[i], m = mass_kg[i];
@@ -68,32 +52,45 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
       continue;
     }
     finite_kg += m;
-    const EdgeCubic e = edge_cubic(x, kernel_half_width_m, trays, centre);
-    if (e.last < 0) {  // wholly left of the layout: F = 1 on every edge
-      d(4, 0) += m;
+    // Edges strictly inside (x − h, x + h), in trays from the left edge; at u = ±1 the cubic and the
+    // constants agree, so an edge on the boundary may go either way.
+    const double u = (x - left_m) * inverse_width;
+    const long first = floor_edge(u - half_width_trays, edges) + 1;
+    const long last = ceil_edge(u + half_width_trays, edges) - 1;
+    if (last < 0) {  // wholly left of the layout: F = 1 on every edge
+      d(0)[4] += m;
       continue;
     }
-    if (e.first > edges) continue;  // wholly right: F = 0 on every edge
-    const long a = std::max(e.first, 0L), b = std::min(e.last, edges);
-    if (a <= b) {
-      for (int r = 0; r < 4; ++r) {
-        d(r, a) += m * e.p[r];
-        d(r, b + 1) -= m * e.p[r];
+    if (first > edges) continue;  // wholly right: F = 0 on every edge
+    const long a = std::max(first, 0L), b = std::min(last, edges);
+    for (long start = a - a % block; start <= b; start += block) {
+      const long from = std::max(a, start), to = std::min(b, start + block - 1);
+      // F at edge j = α + β t with t = j − c_B: α = (e_{c_B} − x)/h = (c_B − u) β.
+      const double alpha = (static_cast<double>(start + block / 2) - u) * beta;
+      const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta * (1.0 - alpha * alpha),
+                           -0.75 * alpha * beta * beta, -0.25 * beta * beta * beta};
+      double* begin = d(from);
+      for (int r = 0; r < 4; ++r) begin[r] += m * p[r];
+      if (to + 1 < start + block) {
+        double* end = d(to + 1);
+        for (int r = 0; r < 4; ++r) end[r] -= m * p[r];
       }
     }
-    if (b + 1 <= edges) d(4, b + 1) += m;
+    if (b + 1 <= edges) d(b + 1)[4] += m;
   }
   double run[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
   double previous = 0.0, first_edge = 0.0;
   for (long j = 0; j <= edges; ++j) {
-    for (int r = 0; r < 5; ++r) run[r] += d(r, j);
-    const double t = static_cast<double>(j - centre);
+    if (j % block == 0) run[0] = run[1] = run[2] = run[3] = 0.0;  // a new block, its own cubics
+    const double* here = d(j);
+    for (int r = 0; r < 5; ++r) run[r] += here[r];
+    const double t = static_cast<double>(j % block - block / 2);
     const double cumulative = run[4] + ((run[3] * t + run[2]) * t + run[1]) * t + run[0];
     if (j == 0) {
       first_edge = cumulative;
     } else {
-      // A tray's mass is an increase of the cumulative mass; where no kernel covers it, rounding of the
-      // large coefficients may leave −1e-17 instead of 0 (found by the capi_predict fuzzer).
+      // A tray's mass is an increase of the cumulative mass; where no kernel covers it, rounding may leave
+      // −1e-17 instead of 0 (found by the capi_predict fuzzer).
       tray_mass_kg[static_cast<std::size_t>(j - 1)] += std::max(0.0, cumulative - previous);
     }
     previous = cumulative;

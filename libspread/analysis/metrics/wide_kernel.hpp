@@ -2,25 +2,27 @@
 // The Epanechnikov kernel (accumulate_transverse_kernel) over many trays at a cost independent of its
 // width. Tray k's share of a landing's kernel is F(u_{k+1}) − F(u_k), u_j = (e_j − x)/h at the layout's
 // edges e_j = L + j w, F the kernel's CDF: 0 for u ≤ −1, 1 for u ≥ 1 and the cubic (2 + 3u − u³)/4
-// between. On the edges inside the kernel F is one cubic in the edge index j, so in t = j − c (c the
-// layout's middle edge)
+// between. On the edges inside the kernel F is one cubic in the edge index j, so in t = j − c (c an edge
+// of reference)
 //   F = p0 + p1 t + p2 t² + p3 t³,  α = (e_c − x)/h, β = w/h,
 //   p0 = (2 + 3α − α³)/4,  p1 = 3β(1 − α²)/4,  p2 = −3αβ²/4,  p3 = −β³/4.
 // Binning: the cumulative mass at each edge, C_j = Σ_i m_i F_i(j), is a sum of such cubics over the
 // landings whose kernel holds edge j plus the masses of those wholly left of it; adding each landing's
 // coefficients to difference arrays at the first and past the last edge it covers and one sweep over the
-// edges gives every C_j — O(landings + trays) instead of O(landings × trays per kernel).
+// edges gives every C_j — O(landings + trays) instead of O(landings × trays per kernel). The edges are
+// taken in blocks of 64 or more, each with its own reference edge (its middle), so that |t| and α stay
+// small: the result differs from the tray-by-tray sum by about 1e-16 (block β / 2)³ of a landing's mass,
+// below 1e-12 of it for any kernel of two trays or more (a tray's mass is never negative: a rounding below
+// zero is taken as zero).
 // Dot products (the standard errors' Σ_k g_k K_k(x)): by parts, Σ_k g_k (F_{k+1} − F_k) = Σ_j d_j F_j
-// with d_j = g_{j−1} − g_j (g_{−1} = g_T = 0), and with prefix sums S_r(j) = Σ_{j' < j} d_{j'} t_{j'}^r the
-// kernel's part is Σ_r p_r (S_r(b + 1) − S_r(a)) over its edges a..b, plus S_0(T + 1) − S_0(b + 1) for the
-// edges right of it (F = 1): O(1) per landing.
-// Rounding: the coefficients grow like (distance from the middle / h)³ while F stays in [0, 1], so the
-// result differs from the tray-by-tray sum by about 1e-16 (x/h)³ of the mass — 1e-11 for a landing 20 m
-// out under a 0.8 m kernel (a tray's mass is never negative: a rounding below zero is taken as zero).
-// The binning is taken only for kernels of at least kWideKernelTrays tray widths: the usual kernels (a few
-// trays) keep the tray-by-tray sum, bit for bit. The dot products are taken for every kernel (the
-// standard errors, which a rounding of 1e-11 does not move): several gradients at once, each landing's
-// cubic computed once for all of them.
+// with d_j = g_{j−1} − g_j (g_{−1} = g_T = 0), and with prefix sums S_r(j) = Σ_{j' < j} d_{j'} t_{j'}^r (c
+// the layout's middle edge) the kernel's part is Σ_r p_r (S_r(b + 1) − S_r(a)) over its edges a..b, plus
+// S_0(T + 1) − S_0(b + 1) for the edges right of it (F = 1): O(1) per landing. Here the coefficients grow
+// like (distance from the middle / h)³ while F stays in [0, 1], so a dot differs from the tray-by-tray sum
+// by about 1e-16 (x/h)³ of the gradient's size — 1e-11 for a landing 20 m out under a 0.8 m kernel, which
+// does not move a standard error. They are taken for every kernel: several gradients at once, each
+// landing's cubic computed once for all of them.
+// Kernels narrower than kWideKernelTrays tray widths keep the tray-by-tray binning (a few trays each).
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -31,8 +33,8 @@
 
 namespace spread::metrics {
 
-// Half-widths of at least this many trays take the width-independent path (where it is the cheaper).
-inline constexpr double kWideKernelTrays = 8.0;
+// Half-widths of at least this many trays are binned by difference arrays (where that is the cheaper).
+inline constexpr double kWideKernelTrays = 2.0;
 inline bool wide_kernel(double kernel_half_width_m, const TrayLayout& trays) {
   return kernel_half_width_m >= kWideKernelTrays * trays.tray_width_m && trays.tray_count > 0;
 }
