@@ -172,3 +172,32 @@ TEST(TransverseKernel, TraysTwoAtATimeAreTheBitsOfEachAlone) {
     for (int k = 0; k < 120; ++k) EXPECT_EQ(binned[static_cast<std::size_t>(k)], alone[static_cast<std::size_t>(k)]) << "h " << h << " tray " << k;
   }
 }
+
+// The standard errors' dot products from prefix sums, in AVX registers or SSE ones, for counts of
+// gradients that fill four lanes, two and one: the same bits.
+TEST(WideKernel, DotsInAvxAndSseAreTheSameBits) {
+  sm::TrayLayout trays;
+  trays.tray_width_m = 0.1;
+  trays.tray_count = 200;
+  for (std::size_t count : {1u, 2u, 7u}) {
+    std::vector<std::vector<double>> gradients(count, std::vector<double>(200));
+    std::vector<std::span<const double>> spans;
+    for (std::size_t g = 0; g < count; ++g) {
+      for (std::size_t k = 0; k < 200; ++k) gradients[g][k] = std::sin(0.07 * static_cast<double>(k * (g + 1)) + 0.3);
+      spans.emplace_back(gradients[g]);
+    }
+    std::vector<double> sums(sm::wide_kernel_sums_size(trays, count));
+    sm::wide_kernel_sums(spans, trays, sums);
+    sm::WideKernelDots sse(0.37, trays, sums, count), avx(0.37, trays, sums, count);
+    sse.set_avx(false);
+    const bool has_avx = avx.set_avx(true);
+    std::vector<double> a(count), b(count);
+    for (int i = 0; i < 500; ++i) {
+      const double x = -11.0 + 22.0 * std::fmod(0.618033988749895 * i, 1.0);
+      sse(x, a.data());
+      avx(x, b.data());
+      ASSERT_EQ(a, b) << "x " << x << " count " << count;
+    }
+    if (!has_avx) GTEST_SKIP() << "no AVX here";
+  }
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -103,29 +104,34 @@ void wide_kernel_sums(std::span<const std::span<const double>> gradients, const 
                       std::span<double> sums) {
   const std::size_t count = gradients.size();
   require_scratch(sums.size(), wide_kernel_sums_size(trays, count), "wide_kernel_sums");
+  for (std::size_t g = 0; g < count; ++g) wide_kernel_sums_of(gradients[g], trays, sums, count, g);
+}
+
+void wide_kernel_sums_of(std::span<const double> gradient, const TrayLayout& trays, std::span<double> sums,
+                         std::size_t gradient_count, std::size_t slot) {
+  require_scratch(sums.size(), wide_kernel_sums_size(trays, gradient_count), "wide_kernel_sums_of");
   const long edges = trays.tray_count;
   const long centre = edges / 2;
+  const std::size_t count = gradient_count, g = slot;
+  if (slot >= count || gradient.size() != static_cast<std::size_t>(edges)) {
+    throw std::invalid_argument("wide_kernel_sums_of: gradient " + std::to_string(slot) + " of " +
+                                std::to_string(count) + " has " + std::to_string(gradient.size()) + " values for " +
+                                std::to_string(edges) + " trays");
+  }
   // S_r(j) of gradient g at [(j · 4 + r) · count + g]: a landing's dot products read two runs of 4 · count
   // values.
-  for (std::size_t g = 0; g < count; ++g) {
-    const std::span<const double> gradient = gradients[g];
-    if (gradient.size() != static_cast<std::size_t>(edges)) {
-      throw std::invalid_argument("wide_kernel_sums: gradient " + std::to_string(g) + " has " +
-                                  std::to_string(gradient.size()) + " values for " + std::to_string(edges) + " trays");
-    }
-    double s[4] = {0.0, 0.0, 0.0, 0.0};
-    for (long j = 0; j <= edges + 1; ++j) {
-      for (int r = 0; r < 4; ++r) sums[(static_cast<std::size_t>(j) * 4 + static_cast<std::size_t>(r)) * count + g] = s[r];
-      if (j > edges) break;
-      const double before = j > 0 ? gradient[static_cast<std::size_t>(j - 1)] : 0.0;
-      const double here = j < edges ? gradient[static_cast<std::size_t>(j)] : 0.0;
-      const double dj = before - here;
-      const double t = static_cast<double>(j - centre);
-      s[0] += dj;
-      s[1] += dj * t;
-      s[2] += dj * t * t;
-      s[3] += dj * t * t * t;
-    }
+  double s[4] = {0.0, 0.0, 0.0, 0.0};
+  for (long j = 0; j <= edges + 1; ++j) {
+    for (int r = 0; r < 4; ++r) sums[(static_cast<std::size_t>(j) * 4 + static_cast<std::size_t>(r)) * count + g] = s[r];
+    if (j > edges) break;
+    const double before = j > 0 ? gradient[static_cast<std::size_t>(j - 1)] : 0.0;
+    const double here = j < edges ? gradient[static_cast<std::size_t>(j)] : 0.0;
+    const double dj = before - here;
+    const double t = static_cast<double>(j - centre);
+    s[0] += dj;
+    s[1] += dj * t;
+    s[2] += dj * t * t;
+    s[3] += dj * t * t * t;
   }
 }
 
@@ -140,7 +146,53 @@ WideKernelDots::WideKernelDots(double kernel_half_width_m, const TrayLayout& tra
       half_width_trays_(kernel_half_width_m / trays.tray_width_m),
       beta_(trays.tray_width_m / kernel_half_width_m) {
   require_scratch(sums.size(), wide_kernel_sums_size(trays, gradient_count), "WideKernelDots");
+#if defined(__x86_64__) || defined(__i386__)
+  set_avx(true);
+#endif
 }
+
+bool WideKernelDots::set_avx(bool enabled) {
+#if defined(__x86_64__) || defined(__i386__)
+  static const bool avx = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx") != 0;
+  }();
+  avx_ = enabled && avx;
+#else
+  (void)enabled;
+#endif
+  return avx_;
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+__attribute__((target("avx"))) void WideKernelDots::combine_avx(std::size_t count, const double (&p)[4], bool inside,
+                                                                const double* at_a, const double* past_b,
+                                                                const double* past_end, double* out) {
+  typedef double Double4 __attribute__((vector_size(32)));
+  std::size_t g = 0;
+  for (; g + 4 <= count; g += 4) {
+    Double4 end, right, left, sum;
+    std::memcpy(&end, past_end + g, sizeof end);
+    std::memcpy(&right, past_b + g, sizeof right);
+    sum = end - right;
+    if (inside) {
+      for (std::size_t r = 0; r < 4; ++r) {
+        std::memcpy(&right, past_b + r * count + g, sizeof right);
+        std::memcpy(&left, at_a + r * count + g, sizeof left);
+        sum += p[r] * (right - left);
+      }
+    }
+    std::memcpy(out + g, &sum, sizeof sum);
+  }
+  for (; g < count; ++g) {
+    double sum = past_end[g] - past_b[g];
+    if (inside) {
+      for (std::size_t r = 0; r < 4; ++r) sum += p[r] * (past_b[r * count + g] - at_a[r * count + g]);
+    }
+    out[g] = sum;
+  }
+}
+#endif
 
 void WideKernelDots::operator()(double x, double* out) const {
   switch (count_) {

@@ -52,6 +52,9 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
 // (wide_kernel_sums_size(trays, gradients.size()) values), for wide_kernel_dots.
 void wide_kernel_sums(std::span<const std::span<const double>> gradients, const TrayLayout& trays,
                       std::span<double> sums);
+// The same for one gradient, the slot-th of gradient_count whose sums `sums` holds.
+void wide_kernel_sums_of(std::span<const double> gradient, const TrayLayout& trays, std::span<double> sums,
+                         std::size_t gradient_count, std::size_t slot);
 // dots[g] = Σ_k gradient_g[k] K_k(x) for the gradient_count gradients whose sums (wide_kernel_sums) it
 // reads; all 0 for a non-finite x. Each dot is summed in the same order whatever the count, so it is the
 // same bit for bit. Set up once per pass (the divisions), then called per landing.
@@ -60,6 +63,9 @@ class WideKernelDots {
   WideKernelDots(double kernel_half_width_m, const TrayLayout& trays, std::span<const double> sums,
                  std::size_t gradient_count);
   void operator()(double x, double* dots) const;
+  // Sums in AVX registers where the processor has them (the default) or in SSE ones: the same bits.
+  // Returns whether AVX is now used.
+  bool set_avx(bool enabled);
   // The same with the count known at compile time (kCount == gradient_count; 0: read at run time), the
   // gradients two at a time in SSE registers.
   template <std::size_t kCount>
@@ -80,6 +86,12 @@ class WideKernelDots {
   }
 
  private:
+  // The gradients' part of dots() four at a time in AVX registers (on x86 processors that have AVX): each
+  // lane takes the same multiplications and additions in the same order, without fused multiply-adds, so
+  // the same bits as in SSE.
+  static void combine_avx(std::size_t count, const double (&p)[4], bool inside, const double* at_a,
+                          const double* past_b, const double* past_end, double* out);
+  bool avx_ = false;
   std::span<const double> sums_;
   std::size_t count_;
   long edges_, centre_;
@@ -107,6 +119,12 @@ void WideKernelDots::dots(double x, double* out) const {
   const double alpha = (static_cast<double>(centre_) - u) * beta_;
   const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta_ * (1.0 - alpha * alpha),
                        -0.75 * alpha * beta_ * beta_, -0.25 * beta_ * beta_ * beta_};
+#if defined(__x86_64__) || defined(__i386__)
+  if (avx_) {
+    combine_avx(count, p, inside, at_a, past_b, past_end, out);
+    return;
+  }
+#endif
   // Per gradient: the edges right of the kernel (F = 1), then the cubic's terms over its edges, in the
   // same order two at a time and one at a time.
   std::size_t g = 0;

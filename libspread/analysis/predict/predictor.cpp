@@ -369,14 +369,20 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   const int widest = predictor.tray_capacity(limits.min_tray_width_m);
   tray_capacity_ = static_cast<std::size_t>(widest);
   tray_mass_.resize(tray_capacity_);
-  gradients_.resize(SampleInfluence::kMaxGradients * tray_capacity_);
+  gradients_.resize(tray_capacity_);
   gradient_scratch_.resize(tray_capacity_);
-  // The widest bout a request may ask for, in the narrowest trays, plus its cut edge tray.
+  // The widest bout a request may ask for, in the narrowest trays, plus its cut edge tray: cv_gradient's
+  // scratch, at the metrics scratch's end.
   const auto widest_bout = static_cast<std::size_t>(std::ceil(limits.max_bout_width_m / limits.min_tray_width_m)) + 2;
-  // Also a wide kernel's difference arrays (wide_kernel.hpp), which working_widths' FFT scratch exceeds.
+  cv_scratch_size_ = widest_bout;
+  // Also a wide kernel's difference arrays (wide_kernel.hpp), which working_widths' FFT scratch exceeds;
+  // and during the standard errors' passes (InfluencePass) the prefix sums of their gradients before
+  // cv_gradient's tail: SampleInfluence::kMaxGradients gradients of up to ~800 trays in one pass (a wider
+  // layout takes more), in the room a buffer of each gradient would take otherwise.
   const metrics::TrayLayout widest_layout{limits.min_tray_width_m, widest};
   metrics_scratch_.resize(std::max({metrics::working_widths_scratch_size(widest), widest_bout, tray_capacity_ + 2,
-                                    metrics::wide_kernel_scratch_size(widest_layout)}));
+                                    metrics::wide_kernel_scratch_size(widest_layout)}) +
+                          (SampleInfluence::kMaxGradients - 1) * tray_capacity_);
 }
 
 std::size_t PredictorWorkspace::bytes() const {
@@ -1045,43 +1051,51 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
   if (p.throw_width_m > 0.0) tasks[task_count++] = {&p.throw_width_se_m, metrics::Overlap::kToAndFro, 0, nullptr, true};
   // With the right disc mirrored a sample's two landings x and −x contribute Σ_k g_k K_k(x) + Σ_k g_k
   // K_k(−x) = Σ_k (g_k + g_{T−1−k}) K_k(x): the folded gradient at the left landing alone, half the pass.
-  // The metrics' scratch is free while a pass runs (the gradients are made before it): a wide kernel's
-  // prefix sums go there.
+  // Each gradient is made in the workspace's one gradient buffer and handed to the pass, which keeps what
+  // it needs of it (its prefix sums) in the metrics' scratch — all but the tail that cv_gradient uses,
+  // which is free at those moments (the binning and the working widths are done).
+  const std::span<double> cv_scratch = metrics_scratch.last(w.cv_scratch_size_);
+  const std::span<double> pass_scratch = metrics_scratch.first(metrics_scratch.size() - w.cv_scratch_size_);
   const SampleInfluence influence{xs,     weights, sample_total, two_discs ? 2u : 1u, trays, kernel_m,
                                   std::span<const SampleBlock>(w.sample_blocks_.data(), w.sample_block_count_),
-                                  metrics_scratch};
-  const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m, {}, metrics_scratch};
-  const auto gradient = [&](std::size_t slot) { return std::span(w.gradients_).subspan(slot * tray_count, tray_count); };
+                                  pass_scratch};
+  const SampleInfluence left_influence{xs.first(n), weights.first(n), n, 1u, trays, kernel_m, {}, pass_scratch};
+  const SampleInfluence& pass_influence = mirrored ? left_influence : influence;
+  const std::span<double> grad = std::span(w.gradients_).first(tray_count);
   const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
   // Without standard errors (a search comparing settings) the passes are skipped: about half the cost.
   if (!request.standard_errors) task_count = 0;
-  for (std::size_t first = 0; first < task_count; first += SampleInfluence::kMaxGradients) {
-    const std::size_t count = std::min(task_count - first, SampleInfluence::kMaxGradients);
-    std::span<const double> pass_gradients[SampleInfluence::kMaxGradients];
+  const std::size_t per_pass = InfluencePass::capacity(pass_influence);
+  if (task_count > 0 && per_pass == 0) {
+    throw std::logic_error("Predictor: the workspace's scratch holds no gradient of " + std::to_string(tray_count) +
+                           " trays");
+  }
+  for (std::size_t first = 0; first < task_count; first += per_pass) {
+    const std::size_t count = std::min(task_count - first, per_pass);
+    InfluencePass pass(pass_influence, count);
     for (std::size_t g = 0; g < count; ++g) {
       const SeTask& task = tasks[first + g];
-      const std::span<double> grad = gradient(g);
       if (task.throw_width) {
         if (!throw_width_gradient(tray_mass, trays, extent, 0.99, grad)) {
-          pass_gradients[g] = {};  // no density at a quantile: NaN
+          pass.set_gradient(g, {});  // no density at a quantile: NaN
           continue;
         }
       } else if (task.width_band == nullptr) {
-        metrics::cv_gradient(tray_mass, trays, task.trays, task.overlap, grad, metrics_scratch);
+        metrics::cv_gradient(tray_mass, trays, task.trays, task.overlap, grad, cv_scratch);
       } else {
         const metrics::WidthBand& in = *task.width_band;
         const double span = in.cv_above - in.cv_below;
         const double d_below = -trays.tray_width_m * (in.cv_above - request.cv_target) / (span * span);
         const double d_above = -trays.tray_width_m * (request.cv_target - in.cv_below) / (span * span);
-        metrics::cv_gradient(tray_mass, trays, in.trays_below, task.overlap, grad, metrics_scratch);
-        metrics::cv_gradient(tray_mass, trays, in.trays_below + 1, task.overlap, scratch, metrics_scratch);
+        metrics::cv_gradient(tray_mass, trays, in.trays_below, task.overlap, grad, cv_scratch);
+        metrics::cv_gradient(tray_mass, trays, in.trays_below + 1, task.overlap, scratch, cv_scratch);
         for (std::size_t k = 0; k < tray_count; ++k) grad[k] = d_below * grad[k] + d_above * scratch[k];
       }
       if (mirrored) fold_mirror(grad);
-      pass_gradients[g] = grad;
+      pass.set_gradient(g, grad);
     }
     double pass_se[SampleInfluence::kMaxGradients];
-    (mirrored ? left_influence : influence).standard_errors(std::span(pass_gradients, count), pass_se);
+    pass.standard_errors(std::span(pass_se, count));
     for (std::size_t g = 0; g < count; ++g) *tasks[first + g].out = pass_se[g];
   }
 

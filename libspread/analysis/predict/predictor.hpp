@@ -256,10 +256,11 @@ class PredictorWorkspace {
   std::pmr::vector<double> tray_mass_;
   // Per tray, for the standard errors: one pass's gradients side by side (SampleInfluence::kMaxGradients),
   // and one more for the width gradients' second CV.
-  std::pmr::vector<double> gradients_, gradient_scratch_;
+  std::pmr::vector<double> gradients_, gradient_scratch_;  // one gradient each (tray_capacity_)
   // metrics::working_widths' scratch, also the bout buffer of cv_at_trays / cv_gradient (up to the widest
   // requested bout at the narrowest trays), so that no bout is built on the stack.
   std::pmr::vector<double> metrics_scratch_;
+  std::size_t cv_scratch_size_ = 0;  // the metrics scratch's tail that cv_gradient uses during the passes
   // predict()'s bookkeeping of the bands and their standard errors (kept here, not on the caller's stack):
   // one standard error to compute — of the CV at `trays` trays, or (width_band set) of that band's upper
   // end, or (throw_width) of the throw width —, and per band the racetrack CV at a to-and-fro band's bout.

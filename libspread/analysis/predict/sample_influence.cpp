@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "libspread/analysis/metrics/wide_kernel.hpp"
 
@@ -105,9 +107,89 @@ void influence_pass(const SampleInfluence& in, std::size_t count_at_run_time, Do
 
 }  // namespace
 
-std::size_t SampleInfluence::gradients_per_pass() const {
-  if (!(kernel_half_width_m > 0.0) || trays.tray_count <= 0) return kMaxGradients;
-  return std::min(kMaxGradients, scratch.size() / metrics::wide_kernel_sums_size(trays, 1));
+std::size_t InfluencePass::capacity(const SampleInfluence& influence) {
+  if (influence.trays.tray_count <= 0) return 0;
+  const std::size_t per_gradient = influence.kernel_half_width_m > 0.0
+                                       ? metrics::wide_kernel_sums_size(influence.trays, 1)
+                                       : static_cast<std::size_t>(influence.trays.tray_count);
+  return std::min(SampleInfluence::kMaxGradients, influence.scratch.size() / per_gradient);
+}
+
+InfluencePass::InfluencePass(const SampleInfluence& influence, std::size_t count)
+    : influence_(influence), count_(count) {
+  if (count == 0 || count > capacity(influence)) {
+    throw std::invalid_argument("InfluencePass: " + std::to_string(count) + " gradients, the scratch holds " +
+                                std::to_string(capacity(influence)));
+  }
+}
+
+void InfluencePass::set_gradient(std::size_t slot, std::span<const double> gradient) {
+  const SampleInfluence& in = influence_;
+  const std::size_t trays = static_cast<std::size_t>(in.trays.tray_count);
+  if (slot >= count_ || (!gradient.empty() && gradient.size() != trays)) {
+    throw std::invalid_argument("InfluencePass::set_gradient: slot " + std::to_string(slot) + " of " +
+                                std::to_string(count_) + ", " + std::to_string(gradient.size()) + " values for " +
+                                std::to_string(trays) + " trays");
+  }
+  set_[slot] = true;
+  used_[slot] = !gradient.empty();
+  if (in.kernel_half_width_m > 0.0) {
+    if (gradient.empty()) {
+      for (std::size_t j = 0; j < 4 * (trays + 2); ++j) in.scratch[j * count_ + slot] = 0.0;
+    } else {
+      metrics::wide_kernel_sums_of(gradient, in.trays, in.scratch, count_, slot);
+    }
+    return;
+  }
+  // Point masses: tray k's values of the pass's gradients side by side at [k · count, (k + 1) · count).
+  for (std::size_t k = 0; k < trays; ++k) in.scratch[k * count_ + slot] = gradient.empty() ? 0.0 : gradient[k];
+}
+
+void InfluencePass::standard_errors(std::span<double> out) const {
+  const SampleInfluence& in = influence_;
+  for (std::size_t g = 0; g < count_; ++g) {
+    if (!set_[g]) throw std::logic_error("InfluencePass::standard_errors: gradient " + std::to_string(g) + " not set");
+    out[g] = std::numeric_limits<double>::quiet_NaN();
+  }
+  if (in.sample_count < 2) return;
+  double se[SampleInfluence::kMaxGradients];
+  const std::size_t count = count_;
+  if (in.kernel_half_width_m > 0.0) {
+    const metrics::WideKernelDots dots(in.kernel_half_width_m, in.trays, in.scratch, count);
+    const auto pass = [&]<std::size_t kCount>() {
+      influence_pass<kCount>(
+          in, count, [&dots](double x, double* d) { dots.template dots<kCount>(x, d); }, se);
+    };
+    // The counts a prediction's passes usually have, with their loops unrolled at compile time.
+    switch (count) {
+      case 1: pass.template operator()<1>(); break;
+      case 2: pass.template operator()<2>(); break;
+      case 4: pass.template operator()<4>(); break;
+      case 6: pass.template operator()<6>(); break;
+      case 8: pass.template operator()<8>(); break;
+      case 9: pass.template operator()<9>(); break;
+      default: pass.template operator()<0>(); break;
+    }
+  } else {
+    // A point mass lies in one tray (the half-open [e_k, e_k+1)): its dots are that tray's row.
+    const double left_m = in.trays.left_edge_m(), w = in.trays.tray_width_m;
+    const double tray_count = static_cast<double>(in.trays.tray_count);
+    influence_pass(
+        in, count,
+        [&](double x, double* d) {
+          const double position = (x - left_m) / w;
+          if (!(position >= 0.0 && position < tray_count)) {
+            for (std::size_t g = 0; g < count; ++g) d[g] = 0.0;
+            return;
+          }
+          const double* row = &in.scratch[static_cast<std::size_t>(position) * count];
+          for (std::size_t g = 0; g < count; ++g) d[g] = row[g];
+        },
+        se);
+  }
+  for (std::size_t g = 0; g < count; ++g) {
+    if (used_[g]) out[g] = se[g];
+  }
 }
 
 double SampleInfluence::standard_error(std::span<const double> gradient) const {
@@ -132,30 +214,16 @@ void SampleInfluence::standard_errors(std::span<const std::span<const double>> g
   }
   if (sample_count < 2 || count == 0) return;
   double se[kMaxGradients];
-  const std::size_t per_pass = gradients_per_pass();
-  if (kernel_half_width_m > 0.0 && per_pass > 0) {
-    // Each pass's gradients' prefix sums in the scratch; a landing's dots cost the same whatever the
-    // kernel's width (wide_kernel.hpp).
+  const std::size_t per_pass = InfluencePass::capacity(*this);
+  if (per_pass > 0) {
     for (std::size_t first = 0; first < count; first += per_pass) {
       const std::size_t batch = std::min(per_pass, count - first);
-      const std::span<const std::span<const double>> group(used + first, batch);
-      metrics::wide_kernel_sums(group, trays, scratch);
-      const metrics::WideKernelDots dots(kernel_half_width_m, trays, scratch, batch);
-      const auto pass = [&]<std::size_t kCount>() {
-        influence_pass<kCount>(
-            *this, batch, [&dots](double x, double* d) { dots.template dots<kCount>(x, d); }, se + first);
-      };
-      // The counts a prediction's passes usually have, with their loops unrolled at compile time.
-      switch (batch) {
-        case 1: pass.template operator()<1>(); break;
-        case 2: pass.template operator()<2>(); break;
-        case 4: pass.template operator()<4>(); break;
-        case 6: pass.template operator()<6>(); break;
-        case 8: pass.template operator()<8>(); break;
-        default: pass.template operator()<0>(); break;
-      }
+      InfluencePass pass(*this, batch);
+      for (std::size_t g = 0; g < batch; ++g) pass.set_gradient(g, used[first + g]);
+      pass.standard_errors(std::span(se + first, batch));
     }
   } else {
+    // No scratch: tray by tray from the gradients themselves.
     const std::span<const std::span<const double>> active(used, count);
     influence_pass(
         *this, count, [&](double x, double* d) { kernel_dots(x, active, trays, kernel_half_width_m, d); }, se);

@@ -37,10 +37,10 @@ struct SampleInfluence {
   // When not empty, the samples instead (sample_count = the sum of the counts, landings_per_sample unused):
   // the blocks in order, each sample owning the landings its block names.
   std::span<const SampleBlock> blocks = {};
-  // With a kernel (h > 0): room for the prefix sums of the gradients (metrics::wide_kernel_sums_size per
-  // gradient), so that each landing's dot products cost the same whatever the kernel's width
-  // (wide_kernel.hpp), as many gradients in a pass as the scratch holds. Empty, or point masses: tray by
-  // tray.
+  // Room for a pass's gradients (InfluencePass): with a kernel (h > 0) their prefix sums
+  // (metrics::wide_kernel_sums_size per gradient), so that each landing's dot products cost the same
+  // whatever the kernel's width (wide_kernel.hpp); with point masses their values. As many gradients in a
+  // pass as the scratch holds. Empty: tray by tray from the gradients themselves.
   std::span<double> scratch = {};
 
   // Standard error of a statistic whose derivative with respect to tray k's mass is gradient[k].
@@ -51,8 +51,29 @@ struct SampleInfluence {
   static constexpr std::size_t kMaxGradients = 9;
   void standard_errors(std::span<const std::span<const double>> gradients, std::span<double> out) const;
 
+};
+
+// One pass over the landings giving the standard errors of up to capacity() statistics, their gradients
+// given one at a time and kept in the influence's scratch — with a kernel their prefix sums
+// (wide_kernel.hpp), with point masses their values tray by tray —, so that the caller needs room for one
+// gradient only. Does not allocate.
+class InfluencePass {
+ public:
+  // Gradients one pass takes in this influence's scratch: at most SampleInfluence::kMaxGradients, 0 when
+  // the scratch cannot hold one.
+  static std::size_t capacity(const SampleInfluence& influence);
+  // count <= capacity(influence); every slot is then set once.
+  InfluencePass(const SampleInfluence& influence, std::size_t count);
+  // The gradient of statistic `slot` (< count), one value per tray; an empty one gives NaN.
+  void set_gradient(std::size_t slot, std::span<const double> gradient);
+  // out[g] for g < count: what SampleInfluence::standard_error gives, bit for bit.
+  void standard_errors(std::span<double> out) const;
+
  private:
-  std::size_t gradients_per_pass() const;
+  const SampleInfluence& influence_;
+  std::size_t count_;
+  bool set_[SampleInfluence::kMaxGradients] = {};
+  bool used_[SampleInfluence::kMaxGradients] = {};
 };
 
 // The gradient of the throw width (the extent between the (1∓f)/2 mass quantiles `extent`, as
