@@ -98,8 +98,10 @@ double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const
       lost_kg += m;
       continue;
     }
-    // Mass beyond the layout's outer edges is lost, the rest goes to the trays the kernel covers.
-    lost_kg += m * (epanechnikov_cdf((left_edge_m - x) * inv_h) + 1.0 - epanechnikov_cdf((right_edge_m - x) * inv_h));
+    // Mass beyond the layout's outer edges is lost, the rest goes to the trays the kernel covers (a kernel
+    // inside the layout loses m (0 + 1 − 1) = 0: not computed).
+    const double u_left = (left_edge_m - x) * inv_h, u_right = (right_edge_m - x) * inv_h;
+    if (u_left > -1.0 || u_right < 1.0) lost_kg += m * (epanechnikov_cdf(u_left) + 1.0 - epanechnikov_cdf(u_right));
     // The floors without a libm call (WideKernelDots::floor_edge: positions clamped around the layout).
     const long first = std::max(0L, WideKernelDots::floor_edge((x - kernel_half_width_m - left_edge_m) / w, last + 1));
     const long end = std::min(last, WideKernelDots::floor_edge((x + kernel_half_width_m - left_edge_m) / w, last + 1));
@@ -116,10 +118,11 @@ double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const
       u = u > 1.0 ? Double2{1.0, 1.0} : u;
       const Double2 above = 0.5 + 0.25 * u * (3.0 - u * u);
       const Double2 left = {below, above[0]};
-      Double2 tray;
-      std::memcpy(&tray, &tray_mass_kg[static_cast<std::size_t>(k)], sizeof tray);
-      tray += m * (above - left);
-      std::memcpy(&tray_mass_kg[static_cast<std::size_t>(k)], &tray, sizeof tray);
+      const Double2 share = m * (above - left);
+      // Tray by tray: the next landing often adds to a tray pair shifted by one, and a 16-byte load
+      // overlapping half of an earlier 16-byte store waits for the store to drain.
+      tray_mass_kg[static_cast<std::size_t>(k)] += share[0];
+      tray_mass_kg[static_cast<std::size_t>(k) + 1] += share[1];
       below = above[1];
     }
     for (; k <= end; ++k) {
