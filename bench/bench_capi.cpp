@@ -1,12 +1,14 @@
 // Worst-case time of the C API's entry points over their legal inputs (docs/c-api.md "Worst-case time"),
 // and the cost of a thread's state (handle or workspace).
 //
-// BM_PredictWorstCase/<tray_cm>/<height_dm>/<wind_m_s>/<kernel_dm>: spread_predict on a real table file
+// BM_PredictWorstCase/<tray_cm>/<height_dm>/<wind_m_s>/<kernel_dm>/<discs>: spread_predict on a real table file
 // given in SPREAD_BENCH_TABLE (e.g. `lookup_builder scenes/default.toml --output X.sqlite`) at 560 rpm
 // (between two rows: both rows' launches), over the edges of the legal domain: the narrowest legal trays
 // (0.1 m) and 0.5 m, the disc at the stored height (0), 0.2 m and 2 m, still air and a lateral wind of
 // 5 and 10 m/s (the right disc lands too and the pattern is skewed), the automatic kernel (0) and the
-// widest legal one (10 m). Every request is answered from the grid (flights = 0).
+// widest legal one (10 m), both discs alike (0) or each at its own setting (1: the right disc 90 rpm
+// faster, on rows of its own, its drop point turned 10°). Every request is answered from the grid
+// (flights = 0).
 // BM_PredictOutsideDomain/<height_m>/<wind_m_s>: a request outside the domain that opts in to flying every
 // launch sample (fly_outside_domain), at 0.5 m trays: what the opt-in costs.
 // BM_TrajectoryWorstCase/<case>: spread_trajectory on the inputs that take longest: 0 = dust (1 µm,
@@ -67,6 +69,11 @@ void BM_PredictWorstCase(benchmark::State& state) {
   if (state.range(1) > 0) def.disc_height_m = 0.1 * static_cast<double>(state.range(1));
   def.wind_m_s[0] = static_cast<double>(state.range(2));
   if (state.range(3) > 0) def.kernel_half_width_m = 0.1 * static_cast<double>(state.range(3));
+  if (state.range(4) != 0) {
+    // Each disc at its own setting: the right disc faster, on rows of its own, its drop point turned.
+    def.disc_rpm[1] = def.rpm + 90.0;
+    def.disc_drop_point_turn_rad[1] = 10.0 * 3.14159265358979323846 / 180.0;
+  }
   spread_prediction result{};
   if (spread::bench::time_spread_predict(state, tables, def, result)) {
     state.counters["trays"] = result.tray_count;
@@ -77,8 +84,8 @@ void BM_PredictWorstCase(benchmark::State& state) {
   spread_close(tables);
 }
 BENCHMARK(BM_PredictWorstCase)
-    ->ArgsProduct({{10, 50}, {0, 2, 20}, {0, 5, 10}, {0, 100}})
-    ->ArgNames({"tray_cm", "height_dm", "wind_m_s", "kernel_dm"})
+    ->ArgsProduct({{10, 50}, {0, 2, 20}, {0, 5, 10}, {0, 100}, {0, 1}})
+    ->ArgNames({"tray_cm", "height_dm", "wind_m_s", "kernel_dm", "discs"})
     ->Unit(benchmark::kMillisecond);
 
 void BM_PredictOutsideDomain(benchmark::State& state) {

@@ -37,8 +37,9 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
   // The edges in blocks of `block` edges, each block's cubics in t = j − c_B about its own middle edge c_B:
   // |t| stays within block/2, so the coefficients stay small (rounding ~1e-16 (block β / 2)³ of a landing's
   // mass) wherever the landing is, and a kernel (at most 2h/w + 1 edges) spans at most two blocks.
-  long block = 64;
-  while (static_cast<double>(block) < 2.0 * half_width_trays + 4.0) block *= 2;
+  int block_bits = 6;  // a power of two: the block of an edge is a shift, not a division
+  while (static_cast<double>(1L << block_bits) < 2.0 * half_width_trays + 4.0) ++block_bits;
+  const long block = 1L << block_bits, half_block = block / 2;
   // Difference arrays per edge j: the four coefficients and the constant 1 right of a kernel, at
   // [5 j, 5 j + 5). A coefficient added at an edge holds to the end of its block (where the sweep restarts)
   // unless taken off before.
@@ -64,10 +65,10 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
     }
     if (first > edges) continue;  // wholly right: F = 0 on every edge
     const long a = std::max(first, 0L), b = std::min(last, edges);
-    for (long start = a - a % block; start <= b; start += block) {
+    for (long start = (a >> block_bits) << block_bits; start <= b; start += block) {
       const long from = std::max(a, start), to = std::min(b, start + block - 1);
       // F at edge j = α + β t with t = j − c_B: α = (e_{c_B} − x)/h = (c_B − u) β.
-      const double alpha = (static_cast<double>(start + block / 2) - u) * beta;
+      const double alpha = (static_cast<double>(start + half_block) - u) * beta;
       const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta * (1.0 - alpha * alpha),
                            -0.75 * alpha * beta * beta, -0.25 * beta * beta * beta};
       double* begin = d(from);
@@ -82,10 +83,11 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
   double run[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
   double previous = 0.0, first_edge = 0.0;
   for (long j = 0; j <= edges; ++j) {
-    if (j % block == 0) run[0] = run[1] = run[2] = run[3] = 0.0;  // a new block, its own cubics
+    const long in_block = j & (block - 1);
+    if (in_block == 0) run[0] = run[1] = run[2] = run[3] = 0.0;  // a new block, its own cubics
     const double* here = d(j);
     for (int r = 0; r < 5; ++r) run[r] += here[r];
-    const double t = static_cast<double>(j % block - block / 2);
+    const double t = static_cast<double>(in_block - half_block);
     const double cumulative = run[4] + ((run[3] * t + run[2]) * t + run[1]) * t + run[0];
     if (j == 0) {
       first_edge = cumulative;
