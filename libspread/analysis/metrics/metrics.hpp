@@ -55,7 +55,8 @@ double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const
                                     const TrayLayout& trays, double kernel_half_width_m,
                                     std::span<double> tray_mass_kg);
 // The same, and a kernel of at least kWideKernelTrays tray widths (wide_kernel.hpp) binned at a cost
-// independent of its width when `scratch` holds wide_kernel_scratch_size(trays) values.
+// independent of its width when `scratch` holds wide_kernel_scratch_size(trays) values (within 1e-12 of
+// the tray-by-tray sum).
 double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
                                     const TrayLayout& trays, double kernel_half_width_m,
                                     std::span<double> tray_mass_kg, std::span<double> scratch);
