@@ -171,28 +171,7 @@ __attribute__((target("avx"))) void WideKernelDots::combine_avx(std::size_t coun
                                                                 const double* at_a, const double* past_b,
                                                                 const double* past_end, double* out) {
   typedef double Double4 __attribute__((vector_size(32)));
-  std::size_t g = 0;
-  for (; g + 4 <= count; g += 4) {
-    Double4 end, right, left, sum;
-    std::memcpy(&end, past_end + g, sizeof end);
-    std::memcpy(&right, past_b + g, sizeof right);
-    sum = end - right;
-    if (inside) {
-      for (std::size_t r = 0; r < 4; ++r) {
-        std::memcpy(&right, past_b + r * count + g, sizeof right);
-        std::memcpy(&left, at_a + r * count + g, sizeof left);
-        sum += p[r] * (right - left);
-      }
-    }
-    std::memcpy(out + g, &sum, sizeof sum);
-  }
-  for (; g < count; ++g) {
-    double sum = past_end[g] - past_b[g];
-    if (inside) {
-      for (std::size_t r = 0; r < 4; ++r) sum += p[r] * (past_b[r * count + g] - at_a[r * count + g]);
-    }
-    out[g] = sum;
-  }
+  combine_wide_kernel_dots<Double4>(count, p, inside, at_a, past_b, past_end, out);
 }
 #endif
 

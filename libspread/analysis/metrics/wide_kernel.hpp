@@ -58,6 +58,39 @@ void wide_kernel_sums_of(std::span<const double> gradient, const TrayLayout& tra
 // dots[g] = Σ_k gradient_g[k] K_k(x) for the gradient_count gradients whose sums (wide_kernel_sums) it
 // reads; all 0 for a non-finite x. Each dot is summed in the same order whatever the count, so it is the
 // same bit for bit. Set up once per pass (the divisions), then called per landing.
+// The gradients' part of WideKernelDots::dots, `Lanes` (a vector of doubles) at a time: per gradient the
+// edges right of the kernel (F = 1), then the cubic's terms over its edges, in the same order whatever the
+// width of Lanes, so the same bits.
+template <typename Lanes>
+__attribute__((always_inline)) inline void combine_wide_kernel_dots(std::size_t count, const double (&p)[4],
+                                                                   bool inside, const double* at_a,
+                                                                   const double* past_b, const double* past_end,
+                                                                   double* out) {
+  constexpr std::size_t kWidth = sizeof(Lanes) / sizeof(double);
+  std::size_t g = 0;
+  for (; g + kWidth <= count; g += kWidth) {
+    Lanes end, right, left, sum;
+    std::memcpy(&end, past_end + g, sizeof end);
+    std::memcpy(&right, past_b + g, sizeof right);
+    sum = end - right;
+    if (inside) {
+      for (std::size_t r = 0; r < 4; ++r) {
+        std::memcpy(&right, past_b + r * count + g, sizeof right);
+        std::memcpy(&left, at_a + r * count + g, sizeof left);
+        sum += p[r] * (right - left);
+      }
+    }
+    std::memcpy(out + g, &sum, sizeof sum);
+  }
+  for (; g < count; ++g) {
+    double sum = past_end[g] - past_b[g];
+    if (inside) {
+      for (std::size_t r = 0; r < 4; ++r) sum += p[r] * (past_b[r * count + g] - at_a[r * count + g]);
+    }
+    out[g] = sum;
+  }
+}
+
 class WideKernelDots {
  public:
   WideKernelDots(double kernel_half_width_m, const TrayLayout& trays, std::span<const double> sums,
@@ -125,30 +158,7 @@ void WideKernelDots::dots(double x, double* out) const {
     return;
   }
 #endif
-  // Per gradient: the edges right of the kernel (F = 1), then the cubic's terms over its edges, in the
-  // same order two at a time and one at a time.
-  std::size_t g = 0;
-  for (; g + 2 <= count; g += 2) {
-    Double2 end, right, left, sum;
-    std::memcpy(&end, past_end + g, sizeof end);
-    std::memcpy(&right, past_b + g, sizeof right);
-    sum = end - right;
-    if (inside) {
-      for (std::size_t r = 0; r < 4; ++r) {
-        std::memcpy(&right, past_b + r * count + g, sizeof right);
-        std::memcpy(&left, at_a + r * count + g, sizeof left);
-        sum += p[r] * (right - left);
-      }
-    }
-    std::memcpy(out + g, &sum, sizeof sum);
-  }
-  for (; g < count; ++g) {
-    double sum = past_end[g] - past_b[g];
-    if (inside) {
-      for (std::size_t r = 0; r < 4; ++r) sum += p[r] * (past_b[r * count + g] - at_a[r * count + g]);
-    }
-    out[g] = sum;
-  }
+  combine_wide_kernel_dots<Double2>(count, p, inside, at_a, past_b, past_end, out);
 }
 
 }  // namespace spread::metrics
