@@ -16,7 +16,6 @@ constexpr std::size_t kGridStencil = 4;        // cubic Lagrange: four nodes per
 constexpr std::size_t kDiameterPoints = kGridStencil, kVerticalPoints = kGridStencil;
 // Four floats in one SSE register (GCC/Clang vector extension; any x86-64 or AArch64 has it).
 typedef float Float4 __attribute__((vector_size(16)));
-typedef int Int4 __attribute__((vector_size(16)));
 
 // Cubic Lagrange weights of the nodes −1, 0, 1, 2 at fraction f of the interval [0, 1] (f outside it
 // extrapolates the same cubic).
@@ -84,7 +83,7 @@ void sum_stencil_lines(const StencilLines& in, std::size_t landing, float (&sums
           low += w * v0;
           high += w * v1;
         } else {
-          low += w * __builtin_shuffle(v0, v1, Int4{0, 2, 4, 6});
+          low += w * __builtin_shufflevector(v0, v1, 0, 2, 4, 6);
         }
       };
       add(a0, b0, line);
