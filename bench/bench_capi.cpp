@@ -9,6 +9,8 @@
 // widest legal one (10 m), both discs alike (0) or each at its own setting (1: the right disc 90 rpm
 // faster, on rows of its own, its drop point turned 10°). Every request is answered from the grid
 // (flights = 0).
+// BM_PredictDomainWorst: the same sweep, every request timed alone in each iteration; prints the slowest
+// (label) and its least time (counter worst_ms).
 // BM_PredictOutsideDomain/<height_m>/<wind_m_s>: a request outside the domain that opts in to flying every
 // launch sample (fly_outside_domain), at 0.5 m trays: what the opt-in costs.
 // BM_TrajectoryWorstCase/<case>: spread_trajectory on the inputs that take longest: 0 = dust (1 µm,
@@ -23,6 +25,8 @@
 
 #include <malloc.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -61,19 +65,29 @@ spread_tables* open_bench_table(benchmark::State& state, spread_prediction_def& 
   return tables;
 }
 
+// The request at one of the domain's edges: trays tray_cm wide, the disc at height_dm (0: the stored
+// height), a lateral wind, the kernel's half width (0: automatic) and the discs alike (discs = 0) or each
+// at its own setting (1: the right disc 90 rpm faster, on rows of its own, its drop point turned 10°).
+spread_prediction_def edge_request(spread_prediction_def def, long tray_cm, long height_dm, long wind_m_s,
+                                   long kernel_dm, long discs) {
+  def.tray_width_m = 0.01 * static_cast<double>(tray_cm);
+  if (height_dm > 0) def.disc_height_m = 0.1 * static_cast<double>(height_dm);
+  def.wind_m_s[0] = static_cast<double>(wind_m_s);
+  if (kernel_dm > 0) def.kernel_half_width_m = 0.1 * static_cast<double>(kernel_dm);
+  if (discs != 0) {
+    def.disc_rpm[1] = def.rpm + 90.0;
+    def.disc_drop_point_turn_rad[1] = 10.0 * 3.14159265358979323846 / 180.0;
+  }
+  return def;
+}
+const std::vector<long> kEdgeTrays_cm = {10, 50}, kEdgeHeights_dm = {0, 2, 20}, kEdgeWinds_m_s = {0, 5, 10},
+                        kEdgeKernels_dm = {0, 100}, kEdgeDiscs = {0, 1};
+
 void BM_PredictWorstCase(benchmark::State& state) {
   spread_prediction_def def;
   spread_tables* tables = open_bench_table(state, def);
   if (tables == nullptr) return;
-  def.tray_width_m = 0.01 * static_cast<double>(state.range(0));
-  if (state.range(1) > 0) def.disc_height_m = 0.1 * static_cast<double>(state.range(1));
-  def.wind_m_s[0] = static_cast<double>(state.range(2));
-  if (state.range(3) > 0) def.kernel_half_width_m = 0.1 * static_cast<double>(state.range(3));
-  if (state.range(4) != 0) {
-    // Each disc at its own setting: the right disc faster, on rows of its own, its drop point turned.
-    def.disc_rpm[1] = def.rpm + 90.0;
-    def.disc_drop_point_turn_rad[1] = 10.0 * 3.14159265358979323846 / 180.0;
-  }
+  def = edge_request(def, state.range(0), state.range(1), state.range(2), state.range(3), state.range(4));
   spread_prediction result{};
   if (spread::bench::time_spread_predict(state, tables, def, result)) {
     state.counters["trays"] = result.tray_count;
@@ -84,9 +98,63 @@ void BM_PredictWorstCase(benchmark::State& state) {
   spread_close(tables);
 }
 BENCHMARK(BM_PredictWorstCase)
-    ->ArgsProduct({{10, 50}, {0, 2, 20}, {0, 5, 10}, {0, 100}, {0, 1}})
+    ->ArgsProduct({kEdgeTrays_cm, kEdgeHeights_dm, kEdgeWinds_m_s, kEdgeKernels_dm, kEdgeDiscs})
     ->ArgNames({"tray_cm", "height_dm", "wind_m_s", "kernel_dm", "discs"})
     ->Unit(benchmark::kMillisecond);
+
+// Every request of BM_PredictWorstCase's sweep, each timed alone (steady clock) in every iteration: the
+// label names the slowest, counter worst_ms its least time over the iterations (the least is the one
+// the VM's noise leaves alone), median_ms the middle request's. The time is the whole sweep's.
+void BM_PredictDomainWorst(benchmark::State& state) {
+  spread_prediction_def base;
+  spread_tables* tables = open_bench_table(state, base);
+  if (tables == nullptr) return;
+  std::vector<spread_prediction_def> requests;
+  std::vector<std::string> names;
+  for (long tray : kEdgeTrays_cm) {
+    for (long height : kEdgeHeights_dm) {
+      for (long wind : kEdgeWinds_m_s) {
+        for (long kernel : kEdgeKernels_dm) {
+          for (long discs : kEdgeDiscs) {
+            requests.push_back(edge_request(base, tray, height, wind, kernel, discs));
+            names.push_back("tray_cm:" + std::to_string(tray) + "/height_dm:" + std::to_string(height) +
+                            "/wind_m_s:" + std::to_string(wind) + "/kernel_dm:" + std::to_string(kernel) +
+                            "/discs:" + std::to_string(discs));
+          }
+        }
+      }
+    }
+  }
+  size_t capacity = 0;
+  spread_transverse_bound(tables, 0.01 * static_cast<double>(kEdgeTrays_cm.front()), &capacity);
+  std::vector<double> trays(capacity);
+  spread_prediction result{};
+  for (const spread_prediction_def& def : requests) {
+    if (spread_predict(tables, &def, &result, trays.data(), trays.size()) != SPREAD_OK) {
+      state.SkipWithError("spread_predict failed");
+      spread_close(tables);
+      return;
+    }
+  }
+  std::vector<double> least_ms(requests.size(), 1e300);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < requests.size(); ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      spread_predict(tables, &requests[i], &result, trays.data(), trays.size());
+      const auto end = std::chrono::steady_clock::now();
+      least_ms[i] = std::min(least_ms[i], std::chrono::duration<double, std::milli>(end - start).count());
+    }
+  }
+  const auto worst = std::max_element(least_ms.begin(), least_ms.end());
+  std::vector<double> sorted = least_ms;
+  std::sort(sorted.begin(), sorted.end());
+  state.counters["worst_ms"] = *worst;
+  state.counters["median_ms"] = sorted[sorted.size() / 2];
+  state.counters["requests"] = static_cast<double>(requests.size());
+  state.SetLabel("worst: " + names[static_cast<std::size_t>(worst - least_ms.begin())]);
+  spread_close(tables);
+}
+BENCHMARK(BM_PredictDomainWorst)->Iterations(10)->Unit(benchmark::kMillisecond);
 
 void BM_PredictOutsideDomain(benchmark::State& state) {
   spread_prediction_def def;
