@@ -254,11 +254,12 @@ class PredictorWorkspace {
   std::pmr::vector<flight::Landing> landings_;
   std::pmr::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
   std::pmr::vector<double> tray_mass_;
-  // Per tray, for the standard errors: one pass's gradients side by side (SampleInfluence::kMaxGradients),
-  // and one more for the width gradients' second CV.
-  std::pmr::vector<double> gradients_, gradient_scratch_;  // one gradient each (tray_capacity_)
+  // Per tray, for the standard errors: the gradient being made for a pass (InfluencePass keeps its prefix
+  // sums), and one more for the width gradients' second CV.
+  std::pmr::vector<double> gradients_, gradient_scratch_;
   // metrics::working_widths' scratch, also the bout buffer of cv_at_trays / cv_gradient (up to the widest
-  // requested bout at the narrowest trays), so that no bout is built on the stack.
+  // requested bout at the narrowest trays, its last cv_scratch_size_ values), so that no bout is built on
+  // the stack, and during the standard errors' passes the gradients' prefix sums (before that tail).
   std::pmr::vector<double> metrics_scratch_;
   std::size_t cv_scratch_size_ = 0;  // the metrics scratch's tail that cv_gradient uses during the passes
   // predict()'s bookkeeping of the bands and their standard errors (kept here, not on the caller's stack):

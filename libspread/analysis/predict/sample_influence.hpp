@@ -50,7 +50,6 @@ struct SampleInfluence {
   // per pass and dotted with every gradient of the pass. An empty gradient gives NaN.
   static constexpr std::size_t kMaxGradients = 9;
   void standard_errors(std::span<const std::span<const double>> gradients, std::span<double> out) const;
-
 };
 
 // One pass over the landings giving the standard errors of up to capacity() statistics, their gradients
