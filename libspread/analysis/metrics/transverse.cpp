@@ -1,7 +1,6 @@
 // Tray layout and the transverse distribution (DESIGN.md §3: the pattern summed along the driving
 // direction into 0.5 m trays, ISO 5690 / EN 13739).
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -102,9 +101,9 @@ double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const
     // inside the layout loses m (0 + 1 − 1) = 0: not computed).
     const double u_left = (left_edge_m - x) * inv_h, u_right = (right_edge_m - x) * inv_h;
     if (u_left > -1.0 || u_right < 1.0) lost_kg += m * (epanechnikov_cdf(u_left) + 1.0 - epanechnikov_cdf(u_right));
-    // The floors without a libm call (WideKernelDots::floor_edge: positions clamped around the layout).
-    const long first = std::max(0L, WideKernelDots::floor_edge((x - kernel_half_width_m - left_edge_m) / w, last + 1));
-    const long end = std::min(last, WideKernelDots::floor_edge((x + kernel_half_width_m - left_edge_m) / w, last + 1));
+    // The floors without a libm call (kernel_edge_floor: positions clamped around the layout).
+    const long first = std::max(0L, kernel_edge_floor((x - kernel_half_width_m - left_edge_m) / w, last + 1));
+    const long end = std::min(last, kernel_edge_floor((x + kernel_half_width_m - left_edge_m) / w, last + 1));
     double below = epanechnikov_cdf((left_edge_m + static_cast<double>(first) * w - x) * inv_h);
     // Two trays at a time in SSE registers: the CDF at their right edges, each tray's share the difference
     // from its left edge's. The CDF is taken on u clamped to [−1, 1] (which gives exactly 0 and 1 there),

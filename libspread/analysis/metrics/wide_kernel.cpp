@@ -2,15 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
+#include "libspread/core/cpu_features.hpp"
+
 namespace spread::metrics {
 namespace {
-
-long floor_edge(double position, long edges) { return WideKernelDots::floor_edge(position, edges); }
-long ceil_edge(double position, long edges) { return WideKernelDots::ceil_edge(position, edges); }
 
 void require_scratch(std::size_t have, std::size_t need, const char* what) {
   if (have < need) {
@@ -57,8 +55,8 @@ double accumulate_wide_kernel(std::span<const double> x_m, std::span<const doubl
     // Edges strictly inside (x − h, x + h), in trays from the left edge; at u = ±1 the cubic and the
     // constants agree, so an edge on the boundary may go either way.
     const double u = (x - left_m) * inverse_width;
-    const long first = floor_edge(u - half_width_trays, edges) + 1;
-    const long last = ceil_edge(u + half_width_trays, edges) - 1;
+    const long first = kernel_edge_floor(u - half_width_trays, edges) + 1;
+    const long last = kernel_edge_ceil(u + half_width_trays, edges) - 1;
     if (last < 0) {  // wholly left of the layout: F = 1 on every edge
       d(0)[4] += m;
       continue;
@@ -148,21 +146,11 @@ WideKernelDots::WideKernelDots(double kernel_half_width_m, const TrayLayout& tra
       half_width_trays_(kernel_half_width_m / trays.tray_width_m),
       beta_(trays.tray_width_m / kernel_half_width_m) {
   require_scratch(sums.size(), wide_kernel_sums_size(trays, gradient_count), "WideKernelDots");
-#if defined(__x86_64__) || defined(__i386__)
   set_avx(true);
-#endif
 }
 
 bool WideKernelDots::set_avx(bool enabled) {
-#if defined(__x86_64__) || defined(__i386__)
-  static const bool avx = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx") != 0;
-  }();
-  avx_ = enabled && avx;
-#else
-  (void)enabled;
-#endif
+  avx_ = enabled && cpu_has_avx();
   return avx_;
 }
 
@@ -175,14 +163,6 @@ __attribute__((target("avx"))) void WideKernelDots::combine_avx(std::size_t coun
 }
 #endif
 
-void WideKernelDots::operator()(double x, double* out) const {
-  switch (count_) {
-    case 1: return dots<1>(x, out);
-    case 2: return dots<2>(x, out);
-    case 4: return dots<4>(x, out);
-    case 8: return dots<8>(x, out);
-    default: return dots<0>(x, out);
-  }
-}
+void WideKernelDots::operator()(double x, double* out) const { dots<0>(x, out); }
 
 }  // namespace spread::metrics

@@ -58,6 +58,20 @@ void wide_kernel_sums_of(std::span<const double> gradient, const TrayLayout& tra
 // dots[g] = Σ_k gradient_g[k] K_k(x) for the gradient_count gradients whose sums (wide_kernel_sums) it
 // reads; all 0 for a non-finite x. Each dot is summed in the same order whatever the count, so it is the
 // same bit for bit. Set up once per pass (the divisions), then called per landing.
+// floor and ceil of a position in trays clamped to [−2, T + 2] (T = `edges`), without the libm calls
+// baseline x86-64 makes of std::floor and std::ceil: a kernel's edges beyond the layout only decide
+// "wholly left or right".
+inline long kernel_edge_floor(double position, long edges) {
+  position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
+  const long truncated = static_cast<long>(position);
+  return static_cast<double>(truncated) > position ? truncated - 1 : truncated;
+}
+inline long kernel_edge_ceil(double position, long edges) {
+  position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
+  const long truncated = static_cast<long>(position);
+  return static_cast<double>(truncated) < position ? truncated + 1 : truncated;
+}
+
 // The gradients' part of WideKernelDots::dots, `Lanes` (a vector of doubles) at a time: per gradient the
 // edges right of the kernel (F = 1), then the cubic's terms over its edges, in the same order whatever the
 // width of Lanes, so the same bits.
@@ -104,19 +118,6 @@ class WideKernelDots {
   template <std::size_t kCount>
   void dots(double x, double* out) const;
 
-  // floor and ceil of a position in trays clamped to [−2, T + 2], without the libm calls baseline x86-64
-  // makes of std::floor and std::ceil: a kernel's edges beyond the layout only decide "wholly left or
-  // right".
-  static long floor_edge(double position, long edges) {
-    position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
-    const long truncated = static_cast<long>(position);
-    return static_cast<double>(truncated) > position ? truncated - 1 : truncated;
-  }
-  static long ceil_edge(double position, long edges) {
-    position = std::clamp(position, -2.0, static_cast<double>(edges) + 2.0);
-    const long truncated = static_cast<long>(position);
-    return static_cast<double>(truncated) < position ? truncated + 1 : truncated;
-  }
 
  private:
   // The gradients' part of dots() four at a time in AVX registers (on x86 processors that have AVX): each
@@ -140,8 +141,8 @@ void WideKernelDots::dots(double x, double* out) const {
   // The edges inside the kernel (wide_kernel.cpp's edge_cubic with the divisions taken once per pass):
   // u = (x − L)/w in trays, α = (e_c − x)/h = (c − u) β.
   const double u = (x - left_m_) * inverse_width_;
-  const long first = floor_edge(u - half_width_trays_, edges_) + 1;
-  const long last = ceil_edge(u + half_width_trays_, edges_) - 1;
+  const long first = kernel_edge_floor(u - half_width_trays_, edges_) + 1;
+  const long last = kernel_edge_ceil(u + half_width_trays_, edges_) - 1;
   // Wholly left of the layout (F = 1 everywhere: Σ d_j = g_{−1} − g_T = 0) or wholly right (F = 0).
   if (last < 0 || first > edges_) return;
   const long a = std::max(first, 0L), b = std::min(last, edges_);

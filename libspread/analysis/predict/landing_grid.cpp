@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "libspread/core/cpu_features.hpp"
+
 namespace spread::predict {
 
 namespace {
@@ -158,30 +160,14 @@ __attribute__((target("avx"))) void sum_stencil_line_pairs_avx(const StencilLine
   store_heights_avx(in.height_weight, s0, s1, s2, s3, sums[0]);
   store_heights_avx(in.height_weight, t0, t1, t2, t3, sums[1]);
 }
-
-bool cpu_has_avx() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx") != 0;
-}
 #endif
 
 }  // namespace
 
-LandingGrid::LandingGrid(std::pmr::memory_resource* memory) : values_(memory) {
-#ifdef SPREAD_GRID_AVX
-  static const bool avx = cpu_has_avx();
-  avx_ = avx;
-#endif
-}
+LandingGrid::LandingGrid(std::pmr::memory_resource* memory) : values_(memory) { set_avx(true); }
 
 bool LandingGrid::set_avx(bool enabled) {
-#ifdef SPREAD_GRID_AVX
-  static const bool avx = cpu_has_avx();
-  avx_ = enabled && avx;
-#else
-  avx_ = false;
-  (void)enabled;
-#endif
+  avx_ = enabled && cpu_has_avx();
   return avx_;
 }
 
