@@ -31,6 +31,15 @@ using namespace spread::firmware;
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop.store(true); }
 
+constexpr double kDegreesPerRadian = 57.29577951308232;
+
+// Section 1 first: '1' on, '0' off.
+std::string bits(std::uint16_t mask, std::int32_t count) {
+  std::string out;
+  for (std::int32_t i = 0; i < count; ++i) out += ((mask >> i) & 1u) != 0 ? '1' : '0';
+  return out;
+}
+
 // Prints one status line a second for a person watching the terminal.
 class StatusPrinter final : public LoopIo {
  public:
@@ -39,11 +48,16 @@ class StatusPrinter final : public LoopIo {
     if (last_ && s.time - *last_ < std::chrono::seconds(1)) return;
     last_ = s.time;
     std::printf("t=%8.2f s  mode=%s  rpm=%7.1f->%7.1f  rate=%6.1f kg/ha  W=%5.2f m  v=%5.2f m/s  Q=%6.3f kg/s  "
-                "throw=%5.2f m  eff=%5.2f±%.2f m  CV=%5.1f±%.1f %%  faults=0x%05X\n",
+                "throw=%5.2f m  eff=%5.2f±%.2f m  CV=%5.1f±%.1f %%  sections=%s/%s  discs=%.1f/%.1f rpm "
+                "turn=%.1f/%.1f deg flow=%.2f/%.2f%s  faults=0x%05X\n",
                 to_seconds(s.time - start_), s.mode == Mode::kAutomatic ? "auto" : "manual", s.rpm_actual,
                 s.rpm_target, s.rate_setpoint_kg_ha, s.width_setpoint_m, s.ground_speed_m_s, s.mass_flow_kg_s,
                 s.throw_width_m, s.effective_width_m, 1.96 * s.effective_width_se_m, s.cv_percent,
-                1.96 * s.cv_se_percent, s.fault_codes);
+                1.96 * s.cv_se_percent, bits(s.section_mask, s.section_count).c_str(),
+                bits(s.section_actual_mask, s.section_count).c_str(), s.disc_rpm_actual[0], s.disc_rpm_actual[1],
+                s.disc_drop_point_turn_rad[0] * kDegreesPerRadian, s.disc_drop_point_turn_rad[1] * kDegreesPerRadian,
+                s.disc_flow_fraction[0], s.disc_flow_fraction[1], s.sides_pending != 0 ? " (planning)" : "",
+                s.fault_codes);
     std::fflush(stdout);
   }
   void start_at(Nanoseconds t) { start_ = t; }
@@ -150,6 +164,13 @@ int main(int argc, char** argv) {
   app.add_option("--disc-time-constant", parameters.disc_time_constant_s, "disc drive first-order lag [s]")
       ->capture_default_str();
   app.add_option("--sections", parameters.section_count, "sections installed (1..16)")->capture_default_str();
+  app.add_option("--discs", parameters.disc_count, "spinning discs, 1 or 2 (two: section control through the discs)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+  std::string material;
+  app.add_option("--material", material,
+                 "material in the hopper until an LCM command names one (a CAN-only machine: as chosen at its "
+                 "terminal); needs --tables");
   app.add_option("--max-width", parameters.width_max_m, "maximum working width [m] (DDI 70)")->capture_default_str();
   app.add_option("--command-timeout", command_timeout_s, "close metering after this long without input [s] (0: off)")
       ->check(CLI::NonNegativeNumber)
@@ -173,9 +194,12 @@ int main(int argc, char** argv) {
 
   try {
     std::unique_ptr<SpreadPredictor> predictor;
+    // Section control through the discs searches on a thread of its own with its own C API handle.
+    std::unique_ptr<SpreadPredictor> planner_predictor;
     if (!tables_path.empty()) {
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
       predictor = std::make_unique<CapiSpreadPredictor>(tables_path, cv_target_percent);
+      planner_predictor = std::make_unique<CapiSpreadPredictor>(tables_path, cv_target_percent);
 #else
       std::cerr << "firmware_sim: error: built without the C API (target spreadc): --tables is unavailable\n";
       return 2;
@@ -194,7 +218,18 @@ int main(int argc, char** argv) {
       clock = std::make_unique<SteadyClock>();
     }
 
-    Ecu ecu(*clock, parameters, predictor.get());
+    // A replay plans inline on its simulated clock: the same log gives the same answers.
+    std::unique_ptr<SectionPlanner> planner;
+    if (planner_predictor) {
+      planner = std::make_unique<SectionPlanner>(
+          *planner_predictor, parameters.section_max_beyond_percent,
+          replay_log ? SectionPlanner::Threading::kInline : SectionPlanner::Threading::kWorker);
+    }
+    Ecu ecu(*clock, parameters, predictor.get(), planner.get());
+    if (!material.empty()) {
+      if (!predictor) throw std::invalid_argument("--material " + material + " needs --tables");
+      if (ecu.set_material(material)) throw std::invalid_argument("--material " + material + ": not in the tables");
+    }
     if (replay_log) {
       for (std::size_t i = 0; i < replay_log->errors.size(); ++i) ecu.record_fault(Fault::kReplayParseError);
     }

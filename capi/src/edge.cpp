@@ -1,6 +1,6 @@
-// spread_predict_edge: the C definitions → the field's PredictionRequest, the edge-side disc's
-// EdgeSetting (and the other disc's drop point) and an EdgeRequest → predict::edge_profile → the C result
-// and the rate per tray.
+// spread_predict_edge and spread_find_edge_setting: the C definitions → the field's PredictionRequest,
+// the edge-side disc's EdgeSetting (and the other disc's drop point) and an EdgeRequest →
+// predict::edge_profile or predict::find_edge_setting → the C result and the rate per tray.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -19,13 +19,13 @@ using spread::capi::fail;
 namespace pr = spread::predict;
 
 // The edge definition's domain, each field named (edge_spreading.hpp's rules).
-spread_status check_edge(const spread_edge_def& e, double bout_width_m) {
+spread_status check_edge(const char* function, const spread_edge_def& e, double bout_width_m) {
   if (e.kind != SPREAD_EDGE_BORDER && e.kind != SPREAD_EDGE_FIELD) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: edge->kind %u is neither SPREAD_EDGE_BORDER nor SPREAD_EDGE_FIELD",
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: edge->kind %u is neither SPREAD_EDGE_BORDER nor SPREAD_EDGE_FIELD", function,
                 static_cast<unsigned>(e.kind));
   }
   if (e.side != 0 && e.side != 1) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: edge->side %d is neither 0 (left) nor 1 (right)",
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: edge->side %d is neither 0 (left) nor 1 (right)", function,
                 static_cast<int>(e.side));
   }
   const struct {
@@ -39,15 +39,95 @@ spread_status check_edge(const spread_edge_def& e, double bout_width_m) {
                 {"min_edge_rate_percent", e.min_edge_rate_percent, 0.0, 100.0, true}};
   for (const auto& r : ranges) {
     if (!std::isfinite(r.value)) {
-      return fail(SPREAD_ERROR_NOT_FINITE, "spread_predict_edge: edge->%s is %g", r.name, r.value);
+      return fail(SPREAD_ERROR_NOT_FINITE, "%s: edge->%s is %g", function, r.name, r.value);
     }
     const bool above_low = r.low_open ? r.value > r.low : r.value >= r.low;
     // gap_m: below half the bout width (the edge line must lie beyond the tramline).
     const bool below_high = r.name == std::string_view("gap_m") ? r.value < r.high : r.value <= r.high;
     if (!above_low || !below_high) {
-      return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: edge->%s %g outside %s%g, %g%s", r.name, r.value,
+      return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: edge->%s %g outside %s%g, %g%s", function, r.name, r.value,
                   r.low_open ? "(" : "[", r.low, r.high, r.name == std::string_view("gap_m") ? ")" : "]");
     }
+  }
+  return SPREAD_OK;
+}
+
+// The checks both functions share: the handle, the definitions' versions and domains, a two-disc machine
+// and a bout width.
+spread_status check_common(const char* function, spread_tables* tables, const spread_prediction_def* def,
+                           const spread_edge_def* edge, const void* result) {
+  if (tables == nullptr || def == nullptr || edge == nullptr || result == nullptr) {
+    return fail(SPREAD_ERROR_NULL_POINTER, "%s: tables, def, edge or result is NULL", function);
+  }
+  if (!spread::capi::live(tables)) {
+    return fail(SPREAD_ERROR_BAD_HANDLE, "%s: not a live spread_tables handle (closed?)", function);
+  }
+  if (def->struct_size < spread::capi::kPredictionDefV4Size || edge->struct_size < sizeof(spread_edge_def)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: def->struct_size %u or edge->struct_size %u older than 0.4 (%zu, %zu)",
+                function, static_cast<unsigned>(def->struct_size), static_cast<unsigned>(edge->struct_size),
+                spread::capi::kPredictionDefV4Size, sizeof(spread_edge_def));
+  }
+  if (def->material == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: def->material is NULL", function);
+  if (tables->predictor.machine().disc_count < 2) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: the machine has one disc (no edge-side disc to set apart)", function);
+  }
+  if (!(def->bout_width_m > 0.0)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "%s: def->bout_width_m %g: the bout width (the last tramline lies half of it from the field edge) "
+                "must be > 0",
+                function, def->bout_width_m);
+  }
+  return check_edge(function, *edge, def->bout_width_m);
+}
+
+// The field: both discs at rpm and drop_point_turn_rad.
+pr::PredictionRequest field_request(const spread_prediction_def& def) {
+  pr::PredictionRequest field;
+  field.material = std::string_view(def.material, std::strlen(def.material));
+  field.rpm = def.rpm;
+  field.drop_point_turn_rad = def.drop_point_turn_rad;
+  field.disc_height_m = def.disc_height_m;
+  field.wind_x_m_s = def.wind_m_s[0];
+  field.wind_y_m_s = def.wind_m_s[1];
+  field.cv_target = def.cv_target_percent / 100.0;
+  field.effects = def.effects;
+  field.bout_width_m = def.bout_width_m;
+  field.tray_width_m = def.tray_width_m;
+  field.kernel_half_width_m = def.kernel_half_width_m;
+  return field;
+}
+
+pr::EdgeRequest edge_request(const spread_edge_def& edge) {
+  pr::EdgeRequest request;
+  request.kind = edge.kind == SPREAD_EDGE_BORDER ? pr::EdgeKind::kBorder : pr::EdgeKind::kEdge;
+  request.side = edge.side;
+  request.gap_m = edge.gap_m;
+  request.max_beyond_fraction = edge.max_beyond_percent / 100.0;
+  request.rate_tolerance = edge.tolerance_percent / 100.0;
+  request.min_edge_rate = edge.min_edge_rate_percent / 100.0;
+  return request;
+}
+
+// The profile into the C result and the rate buffer (percent).
+spread_status write_profile(const char* function, const pr::EdgeProfile& profile, spread_edge_result* result,
+                            double* rate_percent, size_t rate_capacity) {
+  if (rate_percent != nullptr && rate_capacity < profile.rate.size()) {
+    return fail(SPREAD_ERROR_BUFFER_TOO_SMALL, "%s: rate buffer of %zu values, the profile has %zu trays", function,
+                rate_capacity, profile.rate.size());
+  }
+  result->edge_line_m = profile.edge_line_m;
+  result->mass_beyond_percent = 100.0 * profile.mass_beyond_fraction;
+  result->max_rate_inside_percent = 100.0 * profile.max_rate_inside;
+  result->rate_at_edge_percent = 100.0 * profile.rate_at_edge;
+  result->over_limit_percent = 100.0 * profile.over_limit;
+  result->under_limit_percent = 100.0 * profile.under_limit;
+  result->missing_inside_m = profile.missing_inside_m;
+  result->meets = profile.meets ? 1 : 0;
+  result->tray_count = profile.trays.tray_count;
+  result->tray_width_m = profile.trays.tray_width_m;
+  result->tray_left_edge_m = profile.trays.left_edge_m();
+  if (rate_percent != nullptr) {
+    std::transform(profile.rate.begin(), profile.rate.end(), rate_percent, [](double r) { return 100.0 * r; });
   }
   return SPREAD_OK;
 }
@@ -57,30 +137,8 @@ spread_status check_edge(const spread_edge_def& e, double bout_width_m) {
 extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread_prediction_def* def,
                                              const spread_edge_def* edge, spread_edge_result* result,
                                              double* rate_percent, size_t rate_capacity) {
-  if (tables == nullptr || def == nullptr || edge == nullptr || result == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "spread_predict_edge: tables, def, edge or result is NULL");
-  }
-  if (!spread::capi::live(tables)) {
-    return fail(SPREAD_ERROR_BAD_HANDLE, "spread_predict_edge: not a live spread_tables handle (closed?)");
-  }
-  if (def->struct_size < spread::capi::kPredictionDefV4Size || edge->struct_size < sizeof(spread_edge_def)) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE,
-                "spread_predict_edge: def->struct_size %u or edge->struct_size %u older than 0.4 (%zu, %zu)",
-                static_cast<unsigned>(def->struct_size), static_cast<unsigned>(edge->struct_size),
-                spread::capi::kPredictionDefV4Size, sizeof(spread_edge_def));
-  }
-  if (def->material == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_predict_edge: def->material is NULL");
-  pr::Predictor& predictor = tables->predictor;
-  if (predictor.machine().disc_count < 2) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_predict_edge: the machine has one disc (no edge-side disc to set apart)");
-  }
-  if (!(def->bout_width_m > 0.0)) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE,
-                "spread_predict_edge: def->bout_width_m %g: the bout width (the last tramline lies half of it from "
-                "the field edge) must be > 0",
-                def->bout_width_m);
-  }
-  if (const spread_status s = check_edge(*edge, def->bout_width_m); s != SPREAD_OK) return s;
+  constexpr const char* kFunction = "spread_predict_edge";
+  if (const spread_status s = check_common(kFunction, tables, def, edge, result); s != SPREAD_OK) return s;
   const int side = edge->side, other = 1 - side;
   if (!std::isnan(def->disc_rpm[other])) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE,
@@ -89,34 +147,16 @@ extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread
                 other, def->disc_rpm[other]);
   }
   try {
-    // The field: both discs at rpm and drop_point_turn_rad.
-    pr::PredictionRequest field;
-    field.material = std::string_view(def->material, std::strlen(def->material));
-    field.rpm = def->rpm;
-    field.drop_point_turn_rad = def->drop_point_turn_rad;
-    field.disc_height_m = def->disc_height_m;
-    field.wind_x_m_s = def->wind_m_s[0];
-    field.wind_y_m_s = def->wind_m_s[1];
-    field.cv_target = def->cv_target_percent / 100.0;
-    field.effects = def->effects;
-    field.bout_width_m = def->bout_width_m;
-    field.tray_width_m = def->tray_width_m;
-    field.kernel_half_width_m = def->kernel_half_width_m;
+    const pr::PredictionRequest field = field_request(*def);
     pr::EdgeSetting setting;
     setting.disc.rpm = std::isnan(def->disc_rpm[side]) ? def->rpm : def->disc_rpm[side];
     setting.disc.drop_point_turn_rad =
         std::isnan(def->disc_drop_point_turn_rad[side]) ? def->drop_point_turn_rad : def->disc_drop_point_turn_rad[side];
     setting.flow_fraction = edge->flow_fraction;
     setting.field_side_drop_point_turn_rad = def->disc_drop_point_turn_rad[other];  // NaN: the field's
-    pr::EdgeRequest request;
-    request.kind = edge->kind == SPREAD_EDGE_BORDER ? pr::EdgeKind::kBorder : pr::EdgeKind::kEdge;
-    request.side = side;
-    request.gap_m = edge->gap_m;
-    request.max_beyond_fraction = edge->max_beyond_percent / 100.0;
-    request.rate_tolerance = edge->tolerance_percent / 100.0;
-    request.min_edge_rate = edge->min_edge_rate_percent / 100.0;
     pr::EdgeProfile profile(&tables->memory);
-    const pr::PredictStatus status = pr::edge_profile(predictor, field, request, setting, profile, &tables->memory);
+    const pr::PredictStatus status =
+        pr::edge_profile(tables->predictor, field, edge_request(*edge), setting, profile, &tables->memory);
     if (status != pr::PredictStatus::kOk) {
       return fail(spread::capi::status_of(status),
                   "spread_predict_edge: %s: the field's rpm %g, drop_point_turn_rad %g, the edge-side disc's "
@@ -124,28 +164,50 @@ extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread
                   spread_status_str(spread::capi::status_of(status)), def->rpm, def->drop_point_turn_rad,
                   setting.disc.rpm, setting.disc.drop_point_turn_rad, def->disc_drop_point_turn_rad[other]);
     }
-    result->edge_line_m = profile.edge_line_m;
-    result->mass_beyond_percent = 100.0 * profile.mass_beyond_fraction;
-    result->max_rate_inside_percent = 100.0 * profile.max_rate_inside;
-    result->rate_at_edge_percent = 100.0 * profile.rate_at_edge;
-    result->over_limit_percent = 100.0 * profile.over_limit;
-    result->under_limit_percent = 100.0 * profile.under_limit;
-    result->missing_inside_m = profile.missing_inside_m;
-    result->meets = profile.meets ? 1 : 0;
-    result->tray_count = profile.trays.tray_count;
-    result->tray_width_m = profile.trays.tray_width_m;
-    result->tray_left_edge_m = profile.trays.left_edge_m();
-    if (rate_percent != nullptr) {
-      if (rate_capacity < profile.rate.size()) {
-        return fail(SPREAD_ERROR_BUFFER_TOO_SMALL, "spread_predict_edge: rate buffer of %zu values, the profile has %zu trays",
-                    rate_capacity, profile.rate.size());
-      }
-      std::transform(profile.rate.begin(), profile.rate.end(), rate_percent, [](double r) { return 100.0 * r; });
-    }
-    return SPREAD_OK;
+    return write_profile(kFunction, profile, result, rate_percent, rate_capacity);
   } catch (const std::bad_alloc&) {
     return fail(SPREAD_ERROR_OUT_OF_MEMORY, "spread_predict_edge: out of memory");
   } catch (const std::exception& e) {
     return fail(SPREAD_ERROR_INTERNAL, "spread_predict_edge: %.400s", e.what());
+  }
+}
+
+extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const spread_prediction_def* def,
+                                                  const spread_edge_def* edge, spread_edge_setting* setting,
+                                                  spread_edge_result* result, double* rate_percent,
+                                                  size_t rate_capacity) {
+  constexpr const char* kFunction = "spread_find_edge_setting";
+  if (setting == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: setting is NULL", kFunction);
+  if (const spread_status s = check_common(kFunction, tables, def, edge, result); s != SPREAD_OK) return s;
+  // The search sets each disc apart itself: a value given here would be dropped.
+  for (int disc = 0; disc < 2; ++disc) {
+    if (!std::isnan(def->disc_rpm[disc]) || !std::isnan(def->disc_drop_point_turn_rad[disc])) {
+      return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                  "%s: disc_rpm[%d] %g or disc_drop_point_turn_rad[%d] %g set: the search chooses each disc's "
+                  "setting on the last pass (give the field's in rpm and drop_point_turn_rad)",
+                  kFunction, disc, def->disc_rpm[disc], disc, def->disc_drop_point_turn_rad[disc]);
+    }
+  }
+  try {
+    const pr::PredictionRequest field = field_request(*def);
+    const pr::EdgeResult found = pr::find_edge_setting(tables->predictor, field, edge_request(*edge), &tables->memory);
+    if (found.status != pr::PredictStatus::kOk) {
+      return fail(spread::capi::status_of(found.status), "%s: %s: the field's rpm %g, drop_point_turn_rad %g (bounds: docs/c-api.md)",
+                  kFunction, spread_status_str(spread::capi::status_of(found.status)), def->rpm, def->drop_point_turn_rad);
+    }
+    if (const spread_status s = write_profile(kFunction, found.profile, result, rate_percent, rate_capacity); s != SPREAD_OK) {
+      return s;
+    }
+    setting->disc_rpm = found.setting.disc.rpm;
+    setting->disc_drop_point_turn_rad = found.setting.disc.drop_point_turn_rad;
+    setting->flow_fraction = found.setting.flow_fraction;
+    setting->field_side_drop_point_turn_rad = found.setting.field_side_drop_point_turn_rad;
+    setting->predictions = found.predictions;
+    setting->reserved = 0;
+    return SPREAD_OK;
+  } catch (const std::bad_alloc&) {
+    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "%s: out of memory", kFunction);
+  } catch (const std::exception& e) {
+    return fail(SPREAD_ERROR_INTERNAL, "%s: %.400s", kFunction, e.what());
   }
 }

@@ -327,7 +327,9 @@ std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, con
     case Ddi::kActualWorkState: return s.work_state_actual ? 1 : 0;
     case Ddi::kSetpointWorkState: return s.work_state_setpoint ? 1 : 0;
     case Ddi::kActualCondensedWorkState1_16: {
-      const auto open = static_cast<std::uint16_t>(s.work_state_actual ? s.section_mask : 0u);
+      // What the discs actually spread, which can differ from the set-point (section control through the
+      // discs, ecu_status.hpp): ISO 11783-10's actual state tells the TC.
+      const auto open = static_cast<std::uint16_t>(s.work_state_actual ? s.section_actual_mask : 0u);
       return condensed_work_state(open, s.section_count);
     }
     case Ddi::kSetpointCondensedWorkState1_16: return condensed_work_state(s.section_mask, s.section_count);

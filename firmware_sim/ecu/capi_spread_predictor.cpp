@@ -1,5 +1,6 @@
 #include "firmware_sim/ecu/capi_spread_predictor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -76,6 +77,67 @@ PredictionOutcome CapiSpreadPredictor::predict(std::string_view material, double
   if (status == SPREAD_ERROR_RPM_OUTSIDE_TABLE) return PredictionOutcome::kOutOfRange;
   last_error_ = spread_status_str(status);  // static string: assignment within capacity after the first
   return PredictionOutcome::kFailed;
+}
+
+PredictionOutcome CapiSpreadPredictor::narrow_side(std::string_view material, double rpm, double bout_width_m,
+                                                   int side, double edge_line_m, double max_beyond_percent,
+                                                   std::span<const SideStrip> strips,
+                                                   std::span<double> strip_rate_percent, SideNarrowing& out) {
+  const int i = find(material);
+  if (i < 0) return PredictionOutcome::kUnknownMaterial;
+  if (strip_rate_percent.size() < strips.size()) return PredictionOutcome::kFailed;
+  if (!(edge_line_m > 0.0 && edge_line_m < 0.5 * bout_width_m)) return PredictionOutcome::kOutOfRange;
+  spread_prediction_def def = spread_prediction_def_default();
+  def.material = names_[static_cast<std::size_t>(i)].c_str();
+  def.rpm = rpm;
+  def.cv_target_percent = cv_target_percent_;
+  def.bout_width_m = bout_width_m;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.kind = SPREAD_EDGE_BORDER;
+  edge.side = side;
+  edge.gap_m = 0.5 * bout_width_m - edge_line_m;
+  edge.max_beyond_percent = max_beyond_percent;
+  spread_edge_setting setting{};
+  spread_edge_result result{};
+  // The profile's tray count is known only from a first answer: ask without the buffer, then with it.
+  spread_status status = spread_find_edge_setting(tables_, &def, &edge, &setting, &result, nullptr, 0);
+  if (status == SPREAD_OK) {
+    // The same request again would search again: read the profile at the setting found instead.
+    profile_rate_percent_.resize(static_cast<std::size_t>(result.tray_count));
+    spread_prediction_def at = def;
+    at.disc_rpm[side] = setting.disc_rpm;
+    at.disc_drop_point_turn_rad[side] = setting.disc_drop_point_turn_rad;
+    at.disc_drop_point_turn_rad[1 - side] = setting.field_side_drop_point_turn_rad;
+    spread_edge_def with_flow = edge;
+    with_flow.flow_fraction = setting.flow_fraction;
+    status = spread_predict_edge(tables_, &at, &with_flow, &result, profile_rate_percent_.data(),
+                                 profile_rate_percent_.size());
+  }
+  if (status == SPREAD_ERROR_RPM_OUTSIDE_TABLE) return PredictionOutcome::kOutOfRange;
+  if (status != SPREAD_OK) {
+    last_error_ = spread_status_str(status);
+    // A one-disc machine has no side to narrow.
+    return status == SPREAD_ERROR_OUT_OF_RANGE ? PredictionOutcome::kUnsupported : PredictionOutcome::kFailed;
+  }
+  out.rpm = setting.disc_rpm;
+  out.drop_point_turn_rad = setting.disc_drop_point_turn_rad;
+  out.flow_fraction = setting.flow_fraction;
+  out.other_drop_point_turn_rad = setting.field_side_drop_point_turn_rad;
+  out.mass_beyond_percent = result.mass_beyond_percent;
+  out.meets = result.meets != 0;
+  // Tray k covers [left + k w, left + (k+1) w] in x from the tramline towards the edge; each strip's mean
+  // is the overlap-weighted average of the trays it covers.
+  for (std::size_t s = 0; s < strips.size(); ++s) {
+    double sum = 0.0;
+    for (int k = 0; k < result.tray_count; ++k) {
+      const double lo = result.tray_left_edge_m + k * result.tray_width_m, hi = lo + result.tray_width_m;
+      const double overlap = std::min(hi, strips[s].to_m) - std::max(lo, strips[s].from_m);
+      if (overlap > 0.0) sum += overlap * profile_rate_percent_[static_cast<std::size_t>(k)];
+    }
+    const double length = strips[s].to_m - strips[s].from_m;
+    strip_rate_percent[s] = length > 0.0 ? sum / length : 0.0;
+  }
+  return PredictionOutcome::kOk;
 }
 
 }  // namespace spread::firmware

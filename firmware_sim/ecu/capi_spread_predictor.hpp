@@ -27,6 +27,10 @@ class CapiSpreadPredictor final : public SpreadPredictor {
   RpmRange rpm_range(std::string_view material) const override;
   PredictionOutcome predict(std::string_view material, double rpm, double bout_width_m,
                             SpreadPrediction& out) override;
+  // Through spread_find_edge_setting (border kind); the profile's trays averaged over each strip.
+  PredictionOutcome narrow_side(std::string_view material, double rpm, double bout_width_m, int side,
+                                double edge_line_m, double max_beyond_percent, std::span<const SideStrip> strips,
+                                std::span<double> strip_rate_percent, SideNarrowing& out) override;
 
   const std::vector<std::string>& materials() const { return names_; }
   // Text of the last C API error (empty when none).
@@ -40,6 +44,7 @@ class CapiSpreadPredictor final : public SpreadPredictor {
   std::vector<std::string> names_;
   std::vector<RpmRange> ranges_;
   std::string last_error_;
+  std::vector<double> profile_rate_percent_;  // narrow_side's tray rates (sized on first use)
 };
 
 }  // namespace spread::firmware

@@ -19,13 +19,14 @@ const EcuParameters& validated(const EcuParameters& p) {
 
 }  // namespace
 
-Ecu::Ecu(const Clock& clock, const EcuParameters& parameters, SpreadPredictor* predictor)
+Ecu::Ecu(const Clock& clock, const EcuParameters& parameters, SpreadPredictor* predictor, SectionPlanner* planner)
     : clock_(clock),
       parameters_(validated(parameters)),
       predictor_(predictor),
+      planner_(planner),
       solver_(parameters.solver),
       faults_(parameters.fault_hold),
-      disc_(parameters.disc_time_constant_s),
+      discs_{DiscSpeedModel(parameters.disc_time_constant_s), DiscSpeedModel(parameters.disc_time_constant_s)},
       section_count_(parameters.section_count) {
   material_.reserve(kMaxMaterialNameLength);  // later assignments never allocate
   // Sections start open and the master switch closed, as on a machine just switched on: the work
@@ -203,6 +204,19 @@ Rejection Ecu::set_section_mask(std::uint32_t mask) {
   return std::nullopt;
 }
 
+Rejection Ecu::set_material(std::string_view material) {
+  if (auto bad = check_material(material, mode_)) return reject(*bad);
+  if (material != material_) {
+    prediction_pending_ = true;
+    if (mode_ == Mode::kAutomatic) {
+      solve_pending_ = true;
+      width_margin_m_ = parameters_.solver.width_margin_m;
+    }
+  }
+  material_.assign(material);
+  return std::nullopt;
+}
+
 Rejection Ecu::set_ground_speed(double speed_m_s, TravelDirection direction, Nanoseconds valid_for) {
   if (auto bad = check_range(speed_m_s, 0.0, parameters_.speed_max_m_s)) return reject(*bad);
   ground_speed_m_s_ = speed_m_s;
@@ -256,7 +270,7 @@ void Ecu::solve_rpm_for_width() {
 void Ecu::predict_pattern() {
   prediction_valid_ = false;
   if (predictor_ == nullptr || material_.empty()) return;
-  const double rpm = disc_.rpm();
+  const double rpm = field_rpm_actual();
   predicted_at_rpm_ = rpm;
   predicted_settled_ = std::abs(rpm - rpm_target_) < parameters_.reprediction_rpm_step;
   prediction_pending_ = false;
@@ -296,9 +310,101 @@ void Ecu::check_achieved_width() {
   }
 }
 
-bool Ecu::disc_at_speed() const {
-  if (!(rpm_target_ >= parameters_.spreading_rpm_min) || !(rpm_target_ > 0.0)) return false;
-  return std::abs(disc_.rpm() - rpm_target_) <= parameters_.disc_speed_tolerance * rpm_target_;
+bool Ecu::disc_at_speed(int disc) const {
+  const double target = sides_[static_cast<std::size_t>(disc)].rpm_target;
+  if (!(target >= parameters_.spreading_rpm_min) || !(target > 0.0)) return false;
+  return std::abs(discs_[static_cast<std::size_t>(disc)].rpm() - target) <= parameters_.disc_speed_tolerance * target;
+}
+
+// The speed of a disc at the field's setting (the status pattern is the field's), or the field's target
+// while both discs run settings of their own.
+double Ecu::field_rpm_actual() const {
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    const SideKind kind = sides_[static_cast<std::size_t>(d)].kind;
+    if (kind == SideKind::kField || kind == SideKind::kPending) return discs_[static_cast<std::size_t>(d)].rpm();
+  }
+  return rpm_target_;
+}
+
+void Ecu::plan_sides() {
+  const std::uint32_t mask = section_mask_ & installed_mask();
+  for (SideState& side : sides_) side = SideState{SideKind::kField, rpm_target_, 0.0, 1.0, 0u};
+  middle_bit_ = 0;
+  if (parameters_.disc_count == 1) {
+    // One disc throws the whole width: it cannot leave a side out, so every section spreads while any is on.
+    sides_[kLeftDisc].sections = mask != 0 ? installed_mask() : 0u;
+    sides_[kRightDisc] = SideState{SideKind::kOff, 0.0, 0.0, 0.0, 0u};
+    return;
+  }
+  const SideGeometry g = side_geometry(width_setpoint_m_, section_count_);
+  const int n = section_count_, h = g.side_sections;
+  const bool odd = n % 2 == 1;
+  const bool middle_on = odd && ((mask >> h) & 1u) != 0;
+  // Section 1 is the leftmost as the driver sees it: the left side's j-th section from the centre is
+  // h − 1 − j, the right side's n − h + j.
+  const auto index = [&](int side, int j) { return side == kLeftDisc ? h - 1 - j : n - h + j; };
+  SidePlanKey key;
+  const std::size_t length = std::min(material_.size(), kMaxPlanMaterialLength);
+  std::copy_n(material_.data(), length, key.material.begin());
+  key.rpm = rpm_target_;
+  key.bout_width_m = width_setpoint_m_;
+  key.section_count = n;
+  const bool can_plan = planner_ != nullptr && !material_.empty() && width_setpoint_m_ > 0.0 && rpm_target_ > 0.0;
+  if (can_plan && (!prepared_ || !(*prepared_ == key))) {
+    planner_->prepare(key);
+    prepared_ = key;
+  }
+  std::array<std::optional<SidePlan>, 2> plans;
+  for (const int side : {kLeftDisc, kRightDisc}) {
+    SideState& state = sides_[static_cast<std::size_t>(side)];
+    int outer = 0;  // the side's sections out to the outermost one on
+    for (int j = 0; j < h; ++j) {
+      if (((mask >> index(side, j)) & 1u) != 0) outer = j + 1;
+    }
+    const auto on_through = [&](int count) {
+      for (int j = 0; j < count; ++j) state.sections |= std::uint32_t{1} << index(side, j);
+    };
+    if (outer == h) {  // out to the bout's edge: the field's setting; sections off inside it cannot be skipped
+      on_through(h);
+      continue;
+    }
+    if (outer == 0 && !middle_on) {
+      state = SideState{SideKind::kOff, rpm_target_, 0.0, 0.0, 0u};
+      continue;
+    }
+    key.side = side;
+    key.sections_on = outer;
+    if (can_plan) plans[static_cast<std::size_t>(side)] = planner_->lookup(key);
+    const std::optional<SidePlan>& plan = plans[static_cast<std::size_t>(side)];
+    if (!can_plan || (plan && !plan->known)) {  // cannot be narrowed: the whole side keeps spreading
+      on_through(h);
+      continue;
+    }
+    if (!plan) {
+      state.kind = SideKind::kPending;
+      on_through(h);
+      continue;
+    }
+    state = SideState{SideKind::kNarrowed, plan->narrowing.rpm, plan->narrowing.drop_point_turn_rad,
+                      plan->narrowing.flow_fraction, 0u};
+    on_through(outer);
+    for (int j = outer; j < h; ++j) {
+      if (plan->beyond_rate_percent[static_cast<std::size_t>(j - outer)] >= parameters_.section_on_rate_percent) {
+        state.sections |= std::uint32_t{1} << index(side, j);
+      }
+    }
+  }
+  // The other disc's drop point on this pass, where the search turned it and that disc runs the field's setting.
+  for (const int side : {kLeftDisc, kRightDisc}) {
+    const std::optional<SidePlan>& plan = plans[static_cast<std::size_t>(side)];
+    SideState& other = sides_[static_cast<std::size_t>(1 - side)];
+    if (sides_[static_cast<std::size_t>(side)].kind == SideKind::kNarrowed && other.kind == SideKind::kField &&
+        std::isfinite(plan->narrowing.other_drop_point_turn_rad)) {
+      other.drop_point_turn_rad = plan->narrowing.other_drop_point_turn_rad;
+    }
+  }
+  // The section on the centre line is spread by whichever disc throws.
+  if (odd && mask != 0) middle_bit_ = std::uint32_t{1} << h;
 }
 
 void Ecu::supervise_controllers(Nanoseconds now) {
@@ -333,25 +439,54 @@ void Ecu::step(double dt_s) {
   supervise_controllers(now);
   if (mode_ == Mode::kAutomatic && solve_pending_ && predictor_ != nullptr) solve_rpm_for_width();
   if (mode_ == Mode::kManual) rpm_target_ = rpm_setpoint_manual_;
-  disc_.step(rpm_target_, dt_s);
+  plan_sides();
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    discs_[static_cast<std::size_t>(d)].step(sides_[static_cast<std::size_t>(d)].rpm_target, dt_s);
+  }
 
   const bool speed_valid = speed_never_expires_ || (speed_valid_until_.has_value() && now <= *speed_valid_until_);
   const bool reverse = speed_valid && direction_ == TravelDirection::kReverse;
   speed_in_use_m_s_ = speed_valid ? ground_speed_m_s_ : 0.0;
   const std::uint32_t active = section_mask_ & installed_mask();
-  const double width_on_m = width_setpoint_m_ * std::popcount(active) / static_cast<double>(section_count_);
   // What the operator asks for: the master switch, an open section of non-zero width and a rate.
-  const bool requested = work_state_setpoint_ && active != 0 && width_on_m > 0.0 && rate_setpoint_kg_ha_ > 0.0;
+  const bool requested =
+      work_state_setpoint_ && active != 0 && width_setpoint_m_ > 0.0 && rate_setpoint_kg_ha_ > 0.0;
+  // Each disc meters its half of the bout's flow times its own share (a one-disc machine: all of it), and
+  // only while it runs at its own target: one disc changing speed for a narrowed side does not stop the
+  // other one spreading.
+  bool any_flow = false, any_at_speed = false;
+  double flow_share = 0.0;
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    const auto i = static_cast<std::size_t>(d);
+    disc_metering_[i] = false;
+    if (!(sides_[i].flow_fraction > 0.0)) continue;
+    any_flow = true;
+    if (!disc_at_speed(d)) continue;
+    any_at_speed = disc_metering_[i] = true;
+    flow_share += sides_[i].flow_fraction;
+  }
+  flow_share /= parameters_.disc_count;
   const bool moving_forward = speed_valid && !reverse && speed_in_use_m_s_ > 0.0;
-  const bool disc_ok = disc_at_speed();
-  metering_open_ = requested && moving_forward && disc_ok && has_bus_address_;
-  mass_flow_kg_s_ = metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_on_m, speed_in_use_m_s_) : 0.0;
+  metering_open_ = requested && moving_forward && any_at_speed && has_bus_address_;
+  if (!metering_open_) disc_metering_ = {false, false};
+  section_actual_mask_ = middle_bit_ != 0 && metering_open_ ? middle_bit_ : 0u;
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    if (disc_metering_[static_cast<std::size_t>(d)]) section_actual_mask_ |= sides_[static_cast<std::size_t>(d)].sections;
+  }
+  mass_flow_kg_s_ =
+      metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_setpoint_m_ * flow_share, speed_in_use_m_s_) : 0.0;
   faults_.set_state(Fault::kSpeedUnavailable, work_state_setpoint_ && !speed_valid, now);
   faults_.set_state(Fault::kDrivingReverse, work_state_setpoint_ && reverse, now);
-  faults_.set_state(Fault::kDiscNotAtSpeed, requested && moving_forward && !disc_ok, now);
+  // A disc that should throw fertiliser and is not at its speed: its flow stays closed.
+  bool every_flowing_disc_at_speed = any_flow;
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    const auto i = static_cast<std::size_t>(d);
+    if (sides_[i].flow_fraction > 0.0 && !disc_at_speed(d)) every_flowing_disc_at_speed = false;
+  }
+  faults_.set_state(Fault::kDiscNotAtSpeed, requested && moving_forward && !every_flowing_disc_at_speed, now);
 
-  const bool settled_now = std::abs(disc_.rpm() - rpm_target_) < parameters_.reprediction_rpm_step;
-  if (prediction_pending_ || std::abs(disc_.rpm() - predicted_at_rpm_) >= parameters_.reprediction_rpm_step ||
+  const bool settled_now = std::abs(field_rpm_actual() - rpm_target_) < parameters_.reprediction_rpm_step;
+  if (prediction_pending_ || std::abs(field_rpm_actual() - predicted_at_rpm_) >= parameters_.reprediction_rpm_step ||
       (settled_now && !predicted_settled_)) {
     predict_pattern();
     check_achieved_width();
@@ -363,14 +498,14 @@ EcuStatus Ecu::status() const {
   s.time = clock_.now();
   s.steps = steps_;
   s.mode = mode_;
-  s.rpm_actual = disc_.rpm();
+  s.rpm_actual = field_rpm_actual();
   s.rpm_target = mode_ == Mode::kManual ? rpm_setpoint_manual_ : rpm_target_;
   s.rate_setpoint_kg_ha = rate_setpoint_kg_ha_;
   s.rate_actual_kg_ha = metering_open_ ? rate_setpoint_kg_ha_ : 0.0;
   s.width_setpoint_m = width_setpoint_m_;
-  const std::uint32_t active = section_mask_ & installed_mask();
-  s.width_actual_m =
-      metering_open_ ? width_setpoint_m_ * std::popcount(active) / static_cast<double>(section_count_) : 0.0;
+  s.width_actual_m = metering_open_ ? width_setpoint_m_ * std::popcount(section_actual_mask_) /
+                                           static_cast<double>(section_count_)
+                                     : 0.0;
   s.ground_speed_m_s = speed_in_use_m_s_;
   s.mass_flow_kg_s = mass_flow_kg_s_;
   s.throw_width_m = prediction_valid_ ? prediction_.throw_width_m : kNaN;
@@ -384,6 +519,15 @@ EcuStatus Ecu::status() const {
   s.work_state_actual = metering_open_;
   s.section_count = section_count_;
   s.section_mask = static_cast<std::uint16_t>(section_mask_);
+  s.section_actual_mask = static_cast<std::uint16_t>(section_actual_mask_);
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    const auto i = static_cast<std::size_t>(d);
+    s.disc_rpm_actual[i] = discs_[i].rpm();
+    s.disc_rpm_target[i] = sides_[i].rpm_target;
+    s.disc_drop_point_turn_rad[i] = sides_[i].drop_point_turn_rad;
+    s.disc_flow_fraction[i] = disc_metering_[i] ? sides_[i].flow_fraction : 0.0;
+    if (sides_[i].kind == SideKind::kPending) s.sides_pending |= static_cast<std::uint8_t>(1u << d);
+  }
   s.material = material_;
   s.last_command_sequence = has_sequence_ ? last_sequence_ : -1;
   s.fault_codes = faults_.active_mask(s.time);

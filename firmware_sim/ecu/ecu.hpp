@@ -2,6 +2,7 @@
 // The simulated spreader ECU without any I/O: set-points in (validated, counted when bad), one loop
 // step at a time (disc dynamics, automatic rpm solving, metering, pattern prediction), a status out.
 // Transports (LCM, CAN) translate their messages into these calls and nothing else.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "firmware_sim/ecu/ecu_status.hpp"
 #include "firmware_sim/ecu/fault.hpp"
 #include "firmware_sim/ecu/rpm_for_width_solver.hpp"
+#include "firmware_sim/ecu/section_planner.hpp"
 #include "firmware_sim/ecu/spread_predictor.hpp"
 
 namespace spread::firmware {
@@ -25,10 +27,12 @@ inline constexpr std::size_t kMaxMaterialNameLength = 63;  // bytes
 
 class Ecu {
  public:
-  // `clock` and `predictor` (may be null: no tables, no automatic mode) must outlive the ECU. With a
-  // predictor, the constructor samples each material's width curve (the automatic mode's search space):
-  // materials x (range / curve_rpm_step) predictions, done once here rather than in the loop.
-  Ecu(const Clock& clock, const EcuParameters& parameters, SpreadPredictor* predictor = nullptr);
+  // `clock`, `predictor` (may be null: no tables, no automatic mode) and `planner` (may be null: no
+  // section control through the discs) must outlive the ECU. With a predictor, the constructor samples
+  // each material's width curve (the automatic mode's search space): materials x (range /
+  // curve_rpm_step) predictions, done once here rather than in the loop.
+  Ecu(const Clock& clock, const EcuParameters& parameters, SpreadPredictor* predictor = nullptr,
+      SectionPlanner* planner = nullptr);
 
   // A whole command: applied entirely or not at all.
   Rejection apply_command(const EcuCommand& command);
@@ -40,6 +44,8 @@ class Ecu {
   // The task controller switches the work state; it is then supervised (note_task_controller_alive).
   Rejection set_work_state(bool on);
   Rejection set_section_mask(std::uint32_t mask);  // bit i = section i+1; only installed sections
+  // The material in the hopper when no LCM command names it (a CAN-only machine: chosen at the terminal).
+  Rejection set_material(std::string_view material);
 
   // A measured ground speed, valid for `valid_for` (the source's own timeout) unless renewed.
   Rejection set_ground_speed(double speed_m_s, TravelDirection direction, Nanoseconds valid_for);
@@ -77,20 +83,38 @@ class Ecu {
   Rejection check_material(std::string_view material, Mode mode) const;
   Rejection check_sequence(std::int64_t sequence);
   void supervise_controllers(Nanoseconds now);
-  bool disc_at_speed() const;
+  bool disc_at_speed(int disc) const;  // within tolerance of its own target, itself fast enough to spread
   void solve_rpm_for_width();
   void predict_pattern();
   void check_achieved_width();
   std::uint32_t installed_mask() const;
   const WidthCurve* curve_for(std::string_view material) const;
+  void plan_sides();
+  double field_rpm_actual() const;
+
+  // What one disc does on this pass (section control through the discs, section_planner.hpp).
+  enum class SideKind : std::uint8_t {
+    kField,      // the field's setting: all its sections out to the bout's edge (or it cannot be narrowed)
+    kOff,        // every section of its side off: no flow
+    kNarrowed,   // its own setting from the planner, thrown no further than the last section on
+    kPending,    // a narrowing asked for and not yet planned: the field's setting meanwhile
+  };
+  struct SideState {
+    SideKind kind = SideKind::kField;
+    double rpm_target = 0.0;           // [r/min]
+    double drop_point_turn_rad = 0.0;  // from the table's drop point [rad]
+    double flow_fraction = 1.0;        // of the field's flow to this disc [-]
+    std::uint32_t sections = 0;        // the sections this disc spreads while it meters (bit i = section i+1)
+  };
 
   const Clock& clock_;
   EcuParameters parameters_;
   SpreadPredictor* predictor_;
+  SectionPlanner* planner_;
   RpmForWidthSolver solver_;
   std::vector<WidthCurve> curves_;  // one per predictor material, sampled at construction
   FaultLog faults_;
-  DiscSpeedModel disc_;
+  std::array<DiscSpeedModel, 2> discs_;  // kLeftDisc, kRightDisc (a one-disc machine uses the left)
 
   // Commanded state.
   Mode mode_ = Mode::kManual;
@@ -119,6 +143,11 @@ class Ecu {
   bool speed_never_expires_ = false;  // a command's speed with the command timeout off
 
   // Derived state, updated by step().
+  std::array<SideState, 2> sides_{};
+  std::uint32_t middle_bit_ = 0;           // odd count: the section on the centre line, spread by either disc
+  std::array<bool, 2> disc_metering_{};    // each disc receiving fertiliser now
+  std::uint32_t section_actual_mask_ = 0;  // sections actually spread now (ecu_status.hpp)
+  std::optional<SidePlanKey> prepared_;    // the field setting whose narrowings were last prepared
   double rpm_target_ = 0.0;
   bool solve_pending_ = false;
   bool width_reachable_ = true;

@@ -26,6 +26,13 @@ void validate(const EcuParameters& p) {
   require(positive_finite(p.speed_max_m_s), "speed_max_m_s", "must be > 0 m/s");
   require(p.section_count >= 1 && p.section_count <= kMaxSections, "section_count",
           "must be 1.." + std::to_string(kMaxSections) + ", got " + std::to_string(p.section_count));
+  require(p.disc_count == 1 || p.disc_count == 2, "disc_count", "must be 1 or 2, got " + std::to_string(p.disc_count));
+  require(std::isfinite(p.section_max_beyond_percent) && p.section_max_beyond_percent > 0.0 &&
+              p.section_max_beyond_percent <= 100.0,
+          "section_max_beyond_percent", "must lie in (0, 100] %");
+  require(std::isfinite(p.section_on_rate_percent) && p.section_on_rate_percent > 0.0 &&
+              p.section_on_rate_percent <= 100.0,
+          "section_on_rate_percent", "must lie in (0, 100] %");
   require(p.fault_hold >= Nanoseconds::zero(), "fault_hold", "must be >= 0");
   require(p.command_timeout >= Nanoseconds::zero(), "command_timeout", "must be >= 0 (0 = off)");
   require(p.task_controller_timeout > Nanoseconds::zero(), "task_controller_timeout", "must be > 0");

@@ -19,6 +19,15 @@ struct EcuParameters {
   double width_max_m = 54.0;           // maximum working width of the machine (DDI 70) [m]
   double speed_max_m_s = 20.0;         // highest accepted ground speed [m/s] (72 km/h)
   int section_count = 8;               // sections installed, 1..16 (a command may use fewer, never more)
+  // Spinning discs, 1 or 2. With two, the sections left of the centre line are the left disc's and
+  // those right of it the right disc's (with an odd count the middle one is both's); switching a side's
+  // outer sections off narrows that disc's throw (section_planner.hpp), all of them closes its flow.
+  int disc_count = 2;
+  // Section control through the discs: the border threshold a narrowed side is searched with (of the
+  // pass's mass beyond the last section on, as docs/field-calibration.md "Border and edge spreading"),
+  // and the mean rate, of the field's, at which a section beyond it still counts as spread.
+  double section_max_beyond_percent = 0.1;  // [%]
+  double section_on_rate_percent = 10.0;    // [%]
   Nanoseconds fault_hold = std::chrono::seconds(2);       // event faults stay visible this long
   // The LCM controller that switched the work state on must repeat its command within this time, or the
   // ECU switches the work state off (0 = off). A speed in a command is valid for the same time.

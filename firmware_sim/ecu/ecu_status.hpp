@@ -32,7 +32,19 @@ struct EcuStatus {
   bool work_state_setpoint = false;    // master switch as commanded
   bool work_state_actual = false;      // actually spreading (master on, a section on, metering open)
   std::int32_t section_count = 0;
-  std::uint16_t section_mask = 0;      // bit i = section i+1 on
+  std::uint16_t section_mask = 0;      // bit i = section i+1 on, as commanded
+  // Sections actually spread now (0 while metering is closed): the set-point, unless the discs cannot
+  // narrow a side that far (yet) — a narrowing still being planned, no tables to plan it with, or a strip
+  // beyond the edge line still receiving at least EcuParameters::section_on_rate_percent of the field's
+  // rate — or a disc is still changing speed (its flow waits). Inner sections off between sections on
+  // cannot be skipped by a spinning disc and stay on.
+  std::uint16_t section_actual_mask = 0;
+  // Each disc (kLeftDisc, kRightDisc as the driver sees them; a one-disc machine: the left only).
+  std::array<double, 2> disc_rpm_actual{};           // [r/min]
+  std::array<double, 2> disc_rpm_target{};           // [r/min]
+  std::array<double, 2> disc_drop_point_turn_rad{};  // from the table's drop point [rad]
+  std::array<double, 2> disc_flow_fraction{};        // of the field's flow to that disc [-] (0: closed)
+  std::uint8_t sides_pending = 0;      // bit d: disc d's narrowing is still being planned
   std::string_view material;           // valid until the next command
   std::int64_t last_command_sequence = -1;
   std::uint32_t fault_codes = 0;       // active faults, bit = Fault value

@@ -3,6 +3,7 @@
 // table file in the product, an analytic stand-in in unit tests).
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <string_view>
 
 namespace spread::firmware {
@@ -22,7 +23,28 @@ struct SpreadPrediction {
   double cv_se_percent = std::numeric_limits<double>::quiet_NaN();         // [percentage points]
 };
 
-enum class PredictionOutcome { kOk, kUnknownMaterial, kOutOfRange, kFailed };
+// kUnsupported: the predictor cannot answer this kind of question (one disc, or no search behind it).
+enum class PredictionOutcome { kOk, kUnknownMaterial, kOutOfRange, kFailed, kUnsupported };
+
+inline constexpr int kLeftDisc = 0, kRightDisc = 1;  // as the driver sees them
+
+// One side's spread narrowed to an edge line, as the border search of docs/field-calibration.md "Border
+// and edge spreading" finds it: the disc on that side at its own speed, drop point and share of the flow,
+// and the other disc's drop point on this pass (NaN: unchanged).
+struct SideNarrowing {
+  double rpm = 0.0;                  // the side's disc [r/min]
+  double drop_point_turn_rad = 0.0;  // the side's disc, turned from the table's drop point [rad]
+  double flow_fraction = 1.0;        // the side's disc's flow, of the field's [-] (0: off)
+  double other_drop_point_turn_rad = std::numeric_limits<double>::quiet_NaN();  // [rad]; NaN: the field's
+  double mass_beyond_percent = 0.0;  // of this pass's mass, beyond the edge line [%]
+  bool meets = false;                // the border's thresholds hold at this setting
+};
+
+// A strip of one side: distances from the machine's centre line outward on that side [m].
+struct SideStrip {
+  double from_m = 0.0;
+  double to_m = 0.0;
+};
 
 struct RpmRange {
   double min_rpm = 0.0;  // [r/min]
@@ -44,6 +66,19 @@ class SpreadPredictor {
   // `bout_width_m` [m] and the effective width at the predictor's CV target. Must not allocate.
   virtual PredictionOutcome predict(std::string_view material, double rpm, double bout_width_m,
                                     SpreadPrediction& out) = 0;
+  // Narrows side `side` (kLeftDisc, kRightDisc) of the pattern of `material` at `rpm` on bouts of
+  // `bout_width_m` to an edge line `edge_line_m` from the centre (0 < edge line < bout / 2): the setting
+  // that puts at most `max_beyond_percent` of the pass's mass beyond it with the least fertiliser missing
+  // inside, or the closest. `strip_rate_percent[i]` receives the mean rate this pass plus the passes
+  // before it give strip `strips[i]`, percent of the field's rate. Seconds of work: never in the loop.
+  virtual PredictionOutcome narrow_side(std::string_view material, double rpm, double bout_width_m, int side,
+                                        double edge_line_m, double max_beyond_percent,
+                                        std::span<const SideStrip> strips, std::span<double> strip_rate_percent,
+                                        SideNarrowing& out) {
+    (void)material, (void)rpm, (void)bout_width_m, (void)side, (void)edge_line_m, (void)max_beyond_percent;
+    (void)strips, (void)strip_rate_percent, (void)out;
+    return PredictionOutcome::kUnsupported;
+  }
 };
 
 }  // namespace spread::firmware

@@ -45,6 +45,7 @@ LcmEcuLink::LcmEcuLink(lcm::LCM& lcm, Ecu& ecu, LcmChannels channels, std::strin
   status_.num_fault_counts = static_cast<std::int8_t>(kFaultCount);
   status_.fault_counts.assign(kFaultCount, 0);
   status_.section_on.reserve(kMaxSections);
+  status_.section_actual_on.reserve(kMaxSections);
   status_.material.reserve(64);
   heartbeat_.node = node_name_;
   encode_buffer_.resize(4096);
@@ -111,6 +112,17 @@ void LcmEcuLink::fill_status(const EcuStatus& s) {
   status_.num_sections = static_cast<std::int8_t>(s.section_count);
   status_.section_on.resize(static_cast<std::size_t>(s.section_count));  // within reserved capacity
   for (std::size_t i = 0; i < status_.section_on.size(); ++i) status_.section_on[i] = ((s.section_mask >> i) & 1u) != 0;
+  status_.section_actual_on.resize(static_cast<std::size_t>(s.section_count));
+  for (std::size_t i = 0; i < status_.section_actual_on.size(); ++i) {
+    status_.section_actual_on[i] = ((s.section_actual_mask >> i) & 1u) != 0;
+  }
+  for (std::size_t d = 0; d < 2; ++d) {
+    status_.disc_rpm_actual[d] = s.disc_rpm_actual[d];
+    status_.disc_rpm_target[d] = s.disc_rpm_target[d];
+    status_.disc_drop_point_turn_rad[d] = s.disc_drop_point_turn_rad[d];
+    status_.disc_flow_fraction[d] = s.disc_flow_fraction[d];
+  }
+  status_.sides_pending = static_cast<std::int8_t>(s.sides_pending);
   status_.fault_codes = static_cast<std::int32_t>(s.fault_codes);
   status_.rejected_undecodable = count_of(s, Fault::kLcmUndecodable);
   status_.rejected_wrong_fingerprint = count_of(s, Fault::kLcmWrongFingerprint);

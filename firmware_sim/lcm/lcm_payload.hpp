@@ -72,6 +72,12 @@ struct LcmLayout<spread::status_t> {  // status_t.lcm
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // their standard errors
       {LcmField::kFixed, 1}, {LcmField::kFixed, 1}, {LcmField::kFixed, 1},  // width_reachable, work states
       {LcmField::kCount, 1}, {LcmField::kArray, 1},                         // num_sections, section_on
+      {LcmField::kArray, 1},                                                // section_actual_on
+      {LcmField::kFixed, 8}, {LcmField::kFixed, 8},                         // disc_rpm_actual[2]
+      {LcmField::kFixed, 8}, {LcmField::kFixed, 8},                         // disc_rpm_target[2]
+      {LcmField::kFixed, 8}, {LcmField::kFixed, 8},                         // disc_drop_point_turn_rad[2]
+      {LcmField::kFixed, 8}, {LcmField::kFixed, 8},                         // disc_flow_fraction[2]
+      {LcmField::kFixed, 1},                                                // sides_pending
       {LcmField::kFixed, 4},                                                // fault_codes
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // rejected_*
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // rejected_stale, can_*

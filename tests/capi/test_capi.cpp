@@ -617,6 +617,64 @@ TEST_F(Capi, PredictEdgeGivesTheLastBoutsProfile) {
   EXPECT_EQ(spread_predict_edge(tables_, &normal, &edge, &result, rate.data(), 3), SPREAD_ERROR_BUFFER_TOO_SMALL);
 }
 
+// spread_find_edge_setting: the library's search through the C API — the same setting and profile as
+// predict::find_edge_setting, a setting spread_predict_edge confirms — and definitions it would silently
+// override are refused.
+TEST_F(Capi, FindEdgeSettingIsTheLibrarysSearch) {
+  spread::predict::Predictor predictor(spread::tables::read_table_file(path_));
+  spread::predict::PredictionRequest field;
+  field.material = "can";
+  field.rpm = 650.0;
+  field.bout_width_m = 18.0;
+  spread::predict::EdgeRequest request;
+  request.gap_m = 3.0;
+  const spread::predict::EdgeResult expected = spread::predict::find_edge_setting(predictor, field, request);
+
+  spread_prediction_def d = def("can", 650.0);
+  d.bout_width_m = 18.0;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.gap_m = 3.0;
+  spread_edge_setting setting{};
+  spread_edge_result result{};
+  std::vector<double> rate(2000);
+  ASSERT_EQ(spread_find_edge_setting(tables_, &d, &edge, &setting, &result, rate.data(), rate.size()), SPREAD_OK)
+      << spread_last_error_detail();
+  EXPECT_EQ(setting.disc_rpm, expected.setting.disc.rpm);
+  EXPECT_EQ(setting.disc_drop_point_turn_rad, expected.setting.disc.drop_point_turn_rad);
+  EXPECT_EQ(setting.flow_fraction, expected.setting.flow_fraction);
+  EXPECT_EQ(std::isnan(setting.field_side_drop_point_turn_rad), std::isnan(expected.setting.field_side_drop_point_turn_rad));
+  EXPECT_EQ(setting.predictions, expected.predictions);
+  EXPECT_GT(setting.predictions, 100);
+  EXPECT_EQ(result.meets, expected.profile.meets ? 1 : 0);
+  EXPECT_EQ(result.edge_line_m, 6.0);
+  ASSERT_EQ(static_cast<std::size_t>(result.tray_count), expected.profile.rate.size());
+  for (int k = 0; k < result.tray_count; ++k) EXPECT_DOUBLE_EQ(rate[k], 100.0 * expected.profile.rate[k]);
+
+  // The setting found, given to spread_predict_edge, gives the same profile.
+  spread_prediction_def at = d;
+  at.disc_rpm[1] = setting.disc_rpm;
+  at.disc_drop_point_turn_rad[1] = setting.disc_drop_point_turn_rad;
+  at.disc_drop_point_turn_rad[0] = setting.field_side_drop_point_turn_rad;
+  spread_edge_def with_flow = edge;
+  with_flow.flow_fraction = setting.flow_fraction;
+  spread_edge_result confirmed{};
+  ASSERT_EQ(spread_predict_edge(tables_, &at, &with_flow, &confirmed, nullptr, 0), SPREAD_OK) << spread_last_error_detail();
+  EXPECT_DOUBLE_EQ(confirmed.mass_beyond_percent, result.mass_beyond_percent);
+
+  // A disc's own setting in the definition would be overridden by the search: refused, naming it.
+  spread_prediction_def own = d;
+  own.disc_drop_point_turn_rad[0] = 0.2;
+  EXPECT_EQ(spread_find_edge_setting(tables_, &own, &edge, &setting, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("disc_drop_point_turn_rad[0] 0.2"), std::string::npos)
+      << spread_last_error_detail();
+  EXPECT_EQ(spread_find_edge_setting(tables_, &d, &edge, nullptr, &result, nullptr, 0), SPREAD_ERROR_NULL_POINTER);
+  spread_edge_def gap = edge;
+  gap.gap_m = 9.0;
+  EXPECT_EQ(spread_find_edge_setting(tables_, &d, &gap, &setting, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("spread_find_edge_setting: edge->gap_m 9"), std::string::npos)
+      << spread_last_error_detail();
+}
+
 TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {
   spread_trajectory_def t = spread_trajectory_def_default();
   EXPECT_EQ(t.reserved, 0u);

@@ -355,11 +355,26 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   EXPECT_EQ(single_answer(70).value, 54000);
   EXPECT_NEAR(ecu_.status().mass_flow_kg_s, 200.0 * 24.0 * 12.0 / 36000.0, 1e-3);
 
-  // Close sections 7 and 8 (state 00), leave the rest (11 = unchanged).
+  // Close sections 7 and 8 (state 00), leave the rest (11 = unchanged). Without tables the right disc
+  // cannot be narrowed: it keeps throwing out to the bout's edge, and the actual state says so.
   send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 290, static_cast<std::int32_t>(0xFFFF0FFFu));
   EXPECT_EQ(pdack_errors(290), kPdackNoError);
+  EXPECT_TRUE(run(1).empty());
+  send_pd(ProcessDataCommand::kRequestValue, 290, 0);
+  EXPECT_EQ(static_cast<std::uint32_t>(single_answer(290).value), 0xFFFF0555u);
+  send_pd(ProcessDataCommand::kRequestValue, 161, 0);
+  EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF5555u);
   send_pd(ProcessDataCommand::kRequestValue, 67, 0);
-  EXPECT_EQ(single_answer(67).value, 18000);
+  EXPECT_EQ(single_answer(67).value, 24000);
+  // Sections 5-8 off: the right disc's flow closes, half the machine spreads.
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 290, static_cast<std::int32_t>(0xFFFF00FFu));
+  EXPECT_EQ(pdack_errors(290), kPdackNoError);
+  EXPECT_TRUE(run(1).empty());
+  send_pd(ProcessDataCommand::kRequestValue, 161, 0);
+  EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF0055u);
+  send_pd(ProcessDataCommand::kRequestValue, 67, 0);
+  EXPECT_EQ(single_answer(67).value, 12000);
+  EXPECT_NEAR(ecu_.status().mass_flow_kg_s, 0.5 * 200.0 * 24.0 * 12.0 / 36000.0, 1e-3);
   // The one fault: metering waited while the disc spun up.
   EXPECT_EQ(ecu_.faults().count(Fault::kDiscNotAtSpeed), 1u);
   EXPECT_EQ(ecu_.faults().total(), 1u);

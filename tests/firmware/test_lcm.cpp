@@ -192,6 +192,7 @@ spread::status_t sample_status(const std::string& material, int sections, int fa
   s.material = material;
   s.num_sections = static_cast<std::int8_t>(sections);
   s.section_on.assign(static_cast<std::size_t>(sections), true);
+  s.section_actual_on.assign(static_cast<std::size_t>(sections), true);
   s.num_fault_counts = static_cast<std::int8_t>(fault_counts);
   s.fault_counts.assign(static_cast<std::size_t>(fault_counts), 7);
   return s;

@@ -58,6 +58,9 @@ struct TcSessionOptions {
   double width_m = -1.0;               // DDI 66 when >= 0 [m]
   double rpm = -1.0;                   // DDI 389 when >= 0 [r/min]
   std::string sections;                // DDI 290 pattern, section 1 first ("11110000"); "" = not sent
+  // Section switches later in the session: "SECONDS:PATTERN", sent that long after the pool's activation
+  // (a headland or a wedge reached); "" = none.
+  std::vector<std::string> sections_later;
   std::string work_state;              // DDI 289: "on", "off" or "" (not sent)
   double request_interval_s = 1.0;     // actual values (7, 141, 161, 390) are requested this often [s]
   int measure_ms = 0;                  // > 0: ask the ECU to report them itself (measurement commands:

@@ -21,10 +21,17 @@ std::string format_fault_codes(std::int32_t fault_codes) {
 std::string format_status(const spread::status_t& s) {
   std::string sections;
   for (const bool on : s.section_on) sections += on ? '1' : '0';
-  char line[512];
+  std::string actual;
+  for (const bool on : s.section_actual_on) actual += on ? '1' : '0';
+  char discs[160];
+  std::snprintf(discs, sizeof(discs), "discs=%.1f/%.1f rpm turn=%.1f/%.1f deg flow=%.2f/%.2f%s",
+                s.disc_rpm_actual[0], s.disc_rpm_actual[1], s.disc_drop_point_turn_rad[0] * 57.29577951308232,
+                s.disc_drop_point_turn_rad[1] * 57.29577951308232, s.disc_flow_fraction[0], s.disc_flow_fraction[1],
+                s.sides_pending != 0 ? " (planning)" : "");
+  char line[768];
   std::snprintf(line, sizeof(line),
                 "status #%lld seq=%lld %s material='%s' rpm=%.1f->%.1f rate=%.1f/%.1f kg/ha W=%.2f/%.2f m "
-                "v=%.2f m/s Q=%.3f kg/s throw=%.2f m eff=%.2f±%.2f m CV=%.1f±%.1f %% %s sections=%s "
+                "v=%.2f m/s Q=%.3f kg/s throw=%.2f m eff=%.2f±%.2f m CV=%.1f±%.1f %% %s sections=%s actual=%s %s "
                 "rejected(undecodable=%lld fingerprint=%lld invalid=%lld stale=%lld can_malformed=%lld "
                 "can_pd=%lld) faults=%s",
                 static_cast<long long>(s.step), static_cast<long long>(s.last_command_sequence),
@@ -32,7 +39,7 @@ std::string format_status(const spread::status_t& s) {
                 s.rate_actual_kg_ha, s.rate_setpoint_kg_ha, s.width_actual_m, s.width_setpoint_m, s.ground_speed_m_s,
                 s.mass_flow_kg_s, s.throw_width_m, s.effective_width_m, 1.96 * s.effective_width_se_m, s.cv_percent,
                 1.96 * s.cv_se_percent,
-                s.width_reachable ? "reachable" : "OUT-OF-REACH", sections.c_str(),
+                s.width_reachable ? "reachable" : "OUT-OF-REACH", sections.c_str(), actual.c_str(), discs,
                 static_cast<long long>(s.rejected_undecodable), static_cast<long long>(s.rejected_wrong_fingerprint),
                 static_cast<long long>(s.rejected_invalid), static_cast<long long>(s.rejected_stale),
                 static_cast<long long>(s.can_malformed_frames), static_cast<long long>(s.can_rejected_process_data),

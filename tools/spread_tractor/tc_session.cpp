@@ -4,9 +4,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "firmware_sim/can/ddi.hpp"
 #include "firmware_sim/can/frame_description.hpp"
@@ -76,6 +79,26 @@ int run_tc_session(const TcSessionOptions& o) {
     }
     set_points.push_back({290, *value});
   }
+  struct LaterSections {
+    Nanoseconds after;
+    std::int32_t value;
+    std::string pattern;
+  };
+  std::vector<LaterSections> later;
+  for (const std::string& text : o.sections_later) {
+    const std::size_t colon = text.find(':');
+    char* end = nullptr;
+    const double seconds = colon == std::string::npos ? -1.0 : std::strtod(text.c_str(), &end);
+    const auto value = colon == std::string::npos ? std::nullopt : condensed_work_state_from_pattern(text.substr(colon + 1));
+    if (colon == std::string::npos || end != text.c_str() + colon || !(seconds >= 0.0) || !std::isfinite(seconds) || !value) {
+      std::cerr << "spread-tractor: error: --sections-later '" << text
+                << "' is not SECONDS:PATTERN (seconds >= 0 after activation, a pattern of 1 to 16 characters 0/1)\n";
+      return kExitUsage;
+    }
+    later.push_back({firmware::from_seconds(seconds), *value, text.substr(colon + 1)});
+  }
+  std::size_t next_later = 0;
+  Nanoseconds activated_at{};
   // The master work state last: the ECU opens with the other set-points already in place.
   if (!o.work_state.empty()) set_points.push_back({289, o.work_state == "on" ? 1 : 0});
 
@@ -159,6 +182,8 @@ int run_tc_session(const TcSessionOptions& o) {
     if (active && !was_active) {
       // Set-points go out on every activation: a client that reconnected starts from its defaults.
       ever_active = true;
+      activated_at = now;
+      next_later = 0;
       std::printf("tc: client 0x%02X active at %.3f s, %zu section(s)\n", *tc.client_address(), since_start(now),
                   tc.section_elements().size());
       std::fflush(stdout);
@@ -189,6 +214,15 @@ int run_tc_session(const TcSessionOptions& o) {
       next_request = now + request_interval;
     }
     was_active = active;
+    while (active && next_later < later.size() && now - activated_at >= later[next_later].after) {
+      const LaterSections& l = later[next_later++];
+      const std::string error = tc.set_value(290, l.value);
+      std::cout << "tc: " << std::fixed;
+      std::cout.precision(3);
+      std::cout << since_start(now) << " s  set DDI 290 " << ddi_name(290) << " = " << format_ddi_value(290, l.value)
+                << (error.empty() ? "" : " not sent: " + error) << std::endl;
+      std::cout.unsetf(std::ios::floatfield);
+    }
     if (active && now >= next_request) {
       for (const std::uint16_t ddi : polled) (void)tc.request_value(ddi);
       next_request += request_interval;

@@ -51,10 +51,10 @@
 /* Compile-time version. spread_version() returns the run-time one: compare them to detect a mismatch
  * between the header you compiled with and the library you linked. */
 #define SPREAD_VERSION_MAJOR 0
-#define SPREAD_VERSION_MINOR 5
+#define SPREAD_VERSION_MINOR 6
 #define SPREAD_VERSION_PATCH 0
 #define SPREAD_VERSION_NUMBER (SPREAD_VERSION_MAJOR * 10000 + SPREAD_VERSION_MINOR * 100 + SPREAD_VERSION_PATCH)
-#define SPREAD_VERSION_STRING "0.5.0"
+#define SPREAD_VERSION_STRING "0.6.0"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define SPREAD_API __attribute__((visibility("default")))
@@ -390,10 +390,36 @@ typedef struct spread_edge_result {
  * in spread_last_error_detail), a one-disc machine or a 0.3 definition. Allocates its working arrays
  * (the profile's trays and one disc's landings) through the handle's allocator; two predictions without
  * standard errors and the profile (docs/c-api.md "Border and edge" gives the cost). Not re-entrant on
- * one handle. The search for a setting that meets the thresholds: `spread border` (the tools). */
+ * one handle. The search for a setting that meets the thresholds: spread_find_edge_setting. */
 SPREAD_API spread_status spread_predict_edge(spread_tables* tables, const spread_prediction_def* def,
                                              const spread_edge_def* edge, spread_edge_result* result,
                                              double* rate_percent, size_t rate_capacity);
+
+/* (appended in 0.6) The last pass's setting a search found: the edge-side disc's own, and the other
+ * disc's drop point on that pass. Caller-owned. */
+typedef struct spread_edge_setting {
+  double disc_rpm;                       /* the edge-side disc's speed, r/min */
+  double disc_drop_point_turn_rad;       /* the edge-side disc's drop-point turn, rad (as in the def) */
+  double flow_fraction;                  /* the edge-side disc's flow, of the field's, [0, 1.2] (0: off) */
+  double field_side_drop_point_turn_rad; /* the other disc's drop point on this pass, rad; NaN: the field's */
+  int32_t predictions;                   /* predictions the search made */
+  int32_t reserved;                      /* 0 */
+} spread_edge_setting;
+
+/* (appended in 0.6) The setting of the last pass that meets the edge's thresholds with the least
+ * fertiliser missing (border) or misplaced (field edge) — or, when none searched meets them, the closest
+ * (result->meets 0): the search of docs/field-calibration.md "Border and edge spreading" over the
+ * edge-side disc's speed, drop point and flow and the other disc's drop point. def: the field's setting as
+ * for spread_predict_edge, with every disc_rpm and disc_drop_point_turn_rad NaN (the search sets them);
+ * edge: as for spread_predict_edge, its flow_fraction unused (searched). *setting receives the setting,
+ * *result and `rate` (may be NULL) the profile at it. The errors of spread_predict_edge. Hundreds of
+ * predictions (docs/c-api.md "Border and edge" gives the cost): a call for a headland or a section
+ * change, not for every control cycle. Allocates through the handle's allocator; not re-entrant on one
+ * handle. */
+SPREAD_API spread_status spread_find_edge_setting(spread_tables* tables, const spread_prediction_def* def,
+                                                  const spread_edge_def* edge, spread_edge_setting* setting,
+                                                  spread_edge_result* result, double* rate_percent,
+                                                  size_t rate_capacity);
 
 /* ---------------------------------------------------------------------------------------------------
  * Single trajectory (no table needed)

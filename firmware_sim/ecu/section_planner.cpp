@@ -1,0 +1,151 @@
+#include "firmware_sim/ecu/section_planner.hpp"
+
+#include <algorithm>
+#include <string_view>
+
+namespace spread::firmware {
+
+SideGeometry side_geometry(double bout_width_m, int section_count) {
+  SideGeometry g;
+  g.side_sections = section_count / 2;
+  g.section_width_m = section_count > 0 ? bout_width_m / section_count : 0.0;
+  g.inner_m = section_count % 2 == 1 ? 0.5 * g.section_width_m : 0.0;
+  return g;
+}
+
+SectionPlanner::SectionPlanner(SpreadPredictor& predictor, double max_beyond_percent, Threading threading)
+    : predictor_(predictor), max_beyond_percent_(max_beyond_percent), threading_(threading) {
+  if (threading_ == Threading::kWorker) worker_ = std::thread([this] { work(); });
+}
+
+SectionPlanner::~SectionPlanner() {
+  {
+    const std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
+
+SidePlan SectionPlanner::search(const SidePlanKey& key) {
+  SidePlan plan;
+  const SideGeometry g = side_geometry(key.bout_width_m, key.section_count);
+  std::array<SideStrip, kMaxSideSections> strips{};
+  const int beyond = g.side_sections - key.sections_on;
+  for (int j = 0; j < beyond; ++j) {
+    strips[static_cast<std::size_t>(j)] = {g.edge_line_m(key.sections_on + j), g.edge_line_m(key.sections_on + j + 1)};
+  }
+  const std::string_view material(key.material.data());
+  const PredictionOutcome outcome = predictor_.narrow_side(
+      material, key.rpm, key.bout_width_m, key.side, g.edge_line_m(key.sections_on), max_beyond_percent_,
+      std::span<const SideStrip>(strips.data(), static_cast<std::size_t>(beyond)),
+      std::span<double>(plan.beyond_rate_percent.data(), static_cast<std::size_t>(beyond)), plan.narrowing);
+  plan.known = outcome == PredictionOutcome::kOk;
+  return plan;
+}
+
+const SectionPlanner::Entry* SectionPlanner::find(const SidePlanKey& key) const {
+  for (std::size_t i = 0; i < cache_count_; ++i) {
+    if (cache_[i].key == key) return &cache_[i];
+  }
+  return nullptr;
+}
+
+void SectionPlanner::store(const SidePlanKey& key, const SidePlan& plan) {
+  if (find(key) != nullptr) return;
+  std::size_t slot = cache_count_;
+  if (cache_count_ < kCacheSize) {
+    ++cache_count_;
+  } else {
+    slot = static_cast<std::size_t>(
+        std::min_element(cache_.begin(), cache_.end(), [](const Entry& a, const Entry& b) { return a.used < b.used; }) -
+        cache_.begin());
+  }
+  cache_[slot] = Entry{key, plan, ++clock_};
+}
+
+bool SectionPlanner::queued(const SidePlanKey& key) const {
+  return std::find(queue_.begin(), queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_), key) !=
+         queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_);
+}
+
+void SectionPlanner::enqueue(const SidePlanKey& key, bool first) {
+  if (find(key) != nullptr) return;
+  auto begin = queue_.begin(), end = queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_);
+  if (const auto at = std::find(begin, end, key); at != end) {
+    if (first) std::rotate(begin, at, at + 1);  // asked for now: to the front
+    return;
+  }
+  if (queue_count_ == kQueueCapacity) {
+    if (!first) return;  // full of prepared keys: this one is prepared again when it is asked for
+    --queue_count_;      // drop the last prepared key for the one asked for now
+    end = queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_);
+  }
+  if (first) {
+    std::move_backward(begin, end, end + 1);
+    queue_[0] = key;
+  } else {
+    queue_[queue_count_] = key;
+  }
+  ++queue_count_;
+}
+
+std::optional<SidePlan> SectionPlanner::lookup(const SidePlanKey& key) {
+  {
+    const std::lock_guard lock(mutex_);
+    for (std::size_t i = 0; i < cache_count_; ++i) {
+      if (cache_[i].key == key) {
+        cache_[i].used = ++clock_;
+        return cache_[i].plan;
+      }
+    }
+    if (threading_ == Threading::kWorker) {
+      enqueue(key, true);
+      wake_.notify_one();
+      return std::nullopt;
+    }
+  }
+  const SidePlan plan = search(key);
+  const std::lock_guard lock(mutex_);
+  ++searches_;
+  store(key, plan);
+  return plan;
+}
+
+void SectionPlanner::prepare(const SidePlanKey& field) {
+  if (threading_ == Threading::kInline) return;  // inline plans are made when asked for
+  const SideGeometry g = side_geometry(field.bout_width_m, field.section_count);
+  const std::lock_guard lock(mutex_);
+  for (int sections_on = g.inner_m > 0.0 ? 0 : 1; sections_on < g.side_sections; ++sections_on) {
+    for (const int side : {kLeftDisc, kRightDisc}) {
+      SidePlanKey key = field;
+      key.side = side;
+      key.sections_on = sections_on;
+      enqueue(key, false);
+    }
+  }
+  wake_.notify_one();
+}
+
+std::int64_t SectionPlanner::searches() const {
+  const std::lock_guard lock(mutex_);
+  return searches_;
+}
+
+void SectionPlanner::work() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [this] { return stop_ || queue_count_ > 0; });
+    if (stop_) return;
+    const SidePlanKey key = queue_[0];
+    std::move(queue_.begin() + 1, queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_), queue_.begin());
+    --queue_count_;
+    lock.unlock();
+    const SidePlan plan = search(key);  // the long part, outside the lock
+    lock.lock();
+    ++searches_;
+    store(key, plan);
+  }
+}
+
+}  // namespace spread::firmware

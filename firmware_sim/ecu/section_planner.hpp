@@ -1,0 +1,111 @@
+#pragma once
+// Section control through the discs: when a task controller switches a side's outer sections off, that
+// side's disc must stop throwing beyond the last section left on — the border search of
+// docs/field-calibration.md "Border and edge spreading" with the edge line at that section's outer end
+// (the strip beyond it is spread already: a headland, a wedge, an earlier pass). A search costs hundreds
+// of predictions (about a second here), far beyond the 50 ms loop step, so the planner answers from a
+// cache and searches on a worker thread of its own, with its own predictor (a C API handle is not shared
+// between threads): the loop never waits. Until a plan is known the ECU keeps that side at the field's
+// setting and reports its sections as still on (ecu.hpp).
+//
+// When the field's setting changes, the ECU asks for every narrowing of both sides at once (prepare), so
+// that a section switched off later is usually answered from the cache.
+#include <array>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string_view>
+#include <thread>
+
+#include "firmware_sim/ecu/ecu_parameters.hpp"
+#include "firmware_sim/ecu/spread_predictor.hpp"
+
+namespace spread::firmware {
+
+inline constexpr std::size_t kMaxPlanMaterialLength = 63;  // bytes, as the ECU's material names
+inline constexpr int kMaxSideSections = kMaxSections / 2;  // sections on one side of the centre line
+
+// One side narrowed under one field setting. Plain values (no allocation), compared exactly.
+struct SidePlanKey {
+  std::array<char, kMaxPlanMaterialLength + 1> material{};  // NUL-terminated
+  double rpm = 0.0;            // the field's disc speed [r/min]
+  double bout_width_m = 0.0;   // [m]
+  std::int32_t section_count = 0;
+  std::int32_t side = kRightDisc;
+  // Of the side's own sections, those on, counted from the centre line outward: 1 up to the side's count
+  // less one; with an odd count also 0 (only the section on the centre line on, edge line at its end).
+  std::int32_t sections_on = 0;
+
+  bool operator==(const SidePlanKey&) const = default;
+};
+
+// The side's own sections (a middle one excluded) and where the edge line of a key lies.
+struct SideGeometry {
+  int side_sections = 0;      // sections on one side
+  double section_width_m = 0.0;
+  double inner_m = 0.0;       // the side's first section starts this far from the centre line (half a
+                              // section when one straddles it)
+  double edge_line_m(int sections_on) const { return inner_m + sections_on * section_width_m; }
+};
+SideGeometry side_geometry(double bout_width_m, int section_count);
+
+struct SidePlan {
+  SideNarrowing narrowing;
+  // Mean rate of each side section beyond the edge line on this pass, percent of the field's; index j =
+  // the side's (sections_on + j)-th section from the centre.
+  std::array<double, kMaxSideSections> beyond_rate_percent{};
+  bool known = false;  // false: the search failed or the predictor cannot narrow (then the side stays)
+};
+
+class SectionPlanner {
+ public:
+  enum class Threading { kWorker, kInline };
+  // `predictor` is used by the planner alone (on its worker thread with kWorker) and must outlive it.
+  // kInline plans inside lookup(): deterministic, for tests and replays where the loop may wait.
+  SectionPlanner(SpreadPredictor& predictor, double max_beyond_percent, Threading threading = Threading::kWorker);
+  ~SectionPlanner();
+  SectionPlanner(const SectionPlanner&) = delete;
+  SectionPlanner& operator=(const SectionPlanner&) = delete;
+
+  // The plan for `key` when known; otherwise nullopt, and the key is searched next. Allocation-free
+  // (the queue keeps its capacity), never blocks on a search with kWorker.
+  std::optional<SidePlan> lookup(const SidePlanKey& key);
+  // Every narrowing of both sides under this field setting (`key`'s side and sections_on ignored), queued
+  // behind the keys the loop asked for.
+  void prepare(const SidePlanKey& field);
+  // Searches done so far (cost indicator, tests).
+  std::int64_t searches() const;
+
+ private:
+  static constexpr std::size_t kCacheSize = 64;
+  static constexpr std::size_t kQueueCapacity = 4 * kMaxSections;
+  struct Entry {
+    SidePlanKey key;
+    SidePlan plan;
+    std::uint64_t used = 0;  // lookup counter at last use (least recently used is replaced)
+  };
+
+  SidePlan search(const SidePlanKey& key);
+  void store(const SidePlanKey& key, const SidePlan& plan);  // under mutex_
+  const Entry* find(const SidePlanKey& key) const;            // under mutex_
+  bool queued(const SidePlanKey& key) const;                  // under mutex_
+  void enqueue(const SidePlanKey& key, bool first);           // under mutex_
+  void work();
+
+  SpreadPredictor& predictor_;
+  double max_beyond_percent_;
+  Threading threading_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::array<Entry, kCacheSize> cache_{};
+  std::size_t cache_count_ = 0;
+  std::uint64_t clock_ = 0;
+  std::array<SidePlanKey, kQueueCapacity> queue_{};  // [0, queue_count_): next first
+  std::size_t queue_count_ = 0;
+  std::int64_t searches_ = 0;
+  bool stop_ = false;
+  std::thread worker_;
+};
+
+}  // namespace spread::firmware

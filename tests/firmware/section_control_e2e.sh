@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Section control through the discs, end to end on spread-canbus: the ECU (firmware_sim with the main
+# job's DEM table, Urea in the hopper) driven by spread-tractor's task controller. The TC spreads 12 m
+# at 600 r/min with all 8 sections on, then, 6 s after activation, switches sections 7 and 8 off (the
+# right side's outer 3 m). The ECU must narrow the right side through its disc — its own speed, drop
+# point and flow, found by the border search on the ECU's planning thread — while the left disc keeps
+# the field's speed, and report the sections it actually spreads (DDI 161) as 1-6.
+# Passes only on the final "section control e2e: ok" line.
+# Usage: section_control_e2e.sh SPREAD_CANBUS FIRMWARE_SIM SPREAD_TRACTOR TABLE
+set -eu
+canbus=$1
+firmware_sim=$2
+tractor=$3
+table=$4
+. "$(dirname "$0")/canbus_fixture.sh"
+start_canbus "$canbus" section-e2e 40
+"$firmware_sim" --no-lcm --can "unix:$bus" --tables "$table" --material Urea --print-status --duration 16 \
+  >"$dir/ecu.log" 2>&1 &
+pids+=($!)
+status=0
+"$tractor" tc --iface "unix:$bus" --speed 3 --rate 250 --width 12 --rpm 600 --sections 11111111 --work-state on \
+  --sections-later 6:11111100 --request-interval 0.5 --duration 15 --connect-timeout 10 --quiet-values \
+  --log "$dir/as_applied.csv" >"$dir/tc.out" 2>&1 || status=$?
+cat "$dir/tc.out"
+echo "--- ECU status (once a second)"
+grep '^t=' "$dir/ecu.log" | sed 's/  throw=.*CV=[^%]*%//' || true
+[ "$status" -eq 0 ] || { echo "FAIL: spread-tractor tc exited with $status"; exit 1; }
+grep -q "set DDI 290 set-point condensed work state 1-16 = sections 11111100--------" "$dir/tc.out" ||
+  { echo "FAIL: the TC did not switch sections 7 and 8 off"; exit 1; }
+# The as-applied log: DDI 161 all on before the switch, 1-6 after it.
+grep -q ',0x80,1,161,"actual condensed work state 1-16",[-0-9]*,"sections 11111111--------"$' "$dir/as_applied.csv" ||
+  { echo "FAIL: the ECU never reported all sections on"; exit 1; }
+grep -q ',0x80,1,161,"actual condensed work state 1-16",[-0-9]*,"sections 11111100--------"$' "$dir/as_applied.csv" ||
+  { echo "FAIL: the ECU never reported sections 1-6 as actually spread"; exit 1; }
+# The ECU's own view once narrowed: the left disc at the field's 600 r/min and full flow, the right at a
+# setting of its own (another speed or drop point, a reduced flow).
+narrowed=$(grep '^t=' "$dir/ecu.log" | grep 'sections=11111100/11111100' | tail -n 1)
+[ -n "$narrowed" ] || { echo "FAIL: the ECU never spread sections 1-6 with 7-8 commanded off"; exit 1; }
+discs=$(sed -E 's/.*discs=([0-9.]+)\/([0-9.]+) rpm turn=([-0-9.]+)\/([-0-9.]+) deg flow=([0-9.]+)\/([0-9.]+).*/\1 \2 \3 \4 \5 \6/' <<<"$narrowed")
+read -r left_rpm right_rpm left_turn right_turn left_flow right_flow <<<"$discs"
+echo "narrowed: left disc $left_rpm rpm, turned $left_turn deg, flow $left_flow; right disc $right_rpm rpm, turned $right_turn deg, flow $right_flow"
+awk -v l="$left_rpm" -v lf="$left_flow" 'BEGIN { exit !(l > 590 && l < 610 && lf == 1.0) }' ||
+  { echo "FAIL: the left disc left the field's setting"; exit 1; }
+awk -v r="$right_rpm" -v t="$right_turn" -v f="$right_flow" 'BEGIN { exit !(f < 1.0 && (r < 590 || r > 610 || t != 0)) }' ||
+  { echo "FAIL: the right disc was not narrowed through its own setting"; exit 1; }
+echo "section control e2e: ok"
