@@ -3,6 +3,7 @@
 // through ctest, or by hand after building the file: test_firmware --gtest_filter=AutomaticModeCapi.*
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 
@@ -132,6 +133,56 @@ TEST_F(AutomaticModeCapi, ReachableMeansTheSettledPatternDelivers) {
     }
   }
   EXPECT_GT(reachable, 0);
+}
+
+// Section control through the discs on the main job's table, planned inline (deterministic): with the
+// right side's outer section off, the right disc takes the border search's setting for an edge line at
+// the end of section 7, the left disc keeps the field's speed, the metered flow follows the discs'
+// shares, and the sections reported spread are 1-7 plus section 8 only if the narrowed pattern still
+// gives its strip the section-on share of the field's rate.
+TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
+  EcuParameters p;
+  p.command_timeout = 0s;
+  CapiSpreadPredictor planning(SPREAD_FIRMWARE_TEST_TABLES, 15.0);
+  SectionPlanner planner(planning, p.section_max_beyond_percent, SectionPlanner::Threading::kInline);
+  ManualClock clock;
+  Ecu ecu(clock, p, predictor_.get(), &planner);
+  EcuCommand c = automatic(1, 12.0);
+  c.mode = static_cast<std::int32_t>(Mode::kManual);
+  c.rpm_setpoint = 600.0;
+  c.section_on[7] = false;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  FixedRateLoop loop(clock, 20.0);
+  NoIo io;
+  loop.run(ecu, io, 10s);
+  const EcuStatus s = ecu.status();
+  EXPECT_EQ(planner.searches(), 1) << "one narrowing, planned once and then answered from the cache";
+
+  // The same search through the C API by hand: the edge line at 12/2 - 1.5 m on the right.
+  SideNarrowing expected;
+  const std::array<SideStrip, 1> strip{SideStrip{4.5, 6.0}};
+  std::array<double, 1> rate{};
+  ASSERT_EQ(planning.narrow_side(material_, 600.0, 12.0, kRightDisc, 4.5, p.section_max_beyond_percent, strip, rate,
+                                 expected),
+            PredictionOutcome::kOk);
+  EXPECT_EQ(s.disc_rpm_target[kRightDisc], expected.rpm);
+  EXPECT_EQ(s.disc_drop_point_turn_rad[kRightDisc], expected.drop_point_turn_rad);
+  EXPECT_NEAR(s.disc_rpm_actual[kRightDisc], expected.rpm, 0.5);
+  EXPECT_EQ(s.disc_rpm_target[kLeftDisc], 600.0);
+  EXPECT_NEAR(s.disc_rpm_actual[kLeftDisc], 600.0, 0.5);
+  EXPECT_EQ(s.disc_drop_point_turn_rad[kLeftDisc],
+            std::isnan(expected.other_drop_point_turn_rad) ? 0.0 : expected.other_drop_point_turn_rad);
+  EXPECT_EQ(s.disc_flow_fraction[kLeftDisc], 1.0);
+  EXPECT_EQ(s.disc_flow_fraction[kRightDisc], expected.flow_fraction);
+  EXPECT_TRUE(expected.flow_fraction < 1.0 || expected.rpm != 600.0 || expected.drop_point_turn_rad != 0.0)
+      << "the right disc is set apart from the field";
+  const double field_flow_kg_s = 200.0 * 12.0 * 3.0 / 10000.0;  // kg/ha × m × m/s → kg/s
+  EXPECT_NEAR(s.mass_flow_kg_s, field_flow_kg_s * (1.0 + expected.flow_fraction) / 2.0, 1e-9);
+  EXPECT_EQ(s.section_mask, 0x7F);
+  EXPECT_EQ(s.section_actual_mask, rate[0] >= p.section_on_rate_percent ? 0xFF : 0x7F)
+      << "section 8's strip gets " << rate[0] << " % of the field's rate";
+  EXPECT_EQ(s.sides_pending, 0);
+  EXPECT_EQ(s.fault_codes, 0u) << "faults 0x" << std::hex << s.fault_codes;
 }
 
 TEST_F(AutomaticModeCapi, ReportsAWidthOutOfReach) {

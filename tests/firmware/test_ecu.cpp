@@ -2,6 +2,7 @@
 // mode against an analytic predictor, and the fixed-rate loop on a manual clock.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -97,6 +98,38 @@ TEST(Ecu, SectionsOffScaleTheFlow) {
   ecu.step(0.05);
   EXPECT_EQ(ecu.status().mass_flow_kg_s, 0.0);
   EXPECT_FALSE(ecu.status().work_state_actual);
+}
+
+// Two discs, no tables to narrow a side with: a side with every section off closes its disc's flow; a
+// side with only some off keeps throwing out to the bout's edge, and the actual state says so; sections
+// off between sections on cannot be skipped. One disc: any section on spreads them all.
+TEST(Ecu, SectionsActuallySpreadFollowTheDiscs) {
+  struct Case {
+    const char* what;
+    int discs;
+    std::uint32_t mask;
+    std::uint16_t actual;
+    double flow_share;  // of the whole machine's flow
+  };
+  for (const Case& c : {Case{"right side off", 2, 0x0F, 0x0F, 0.5}, Case{"left side off", 2, 0xF0, 0xF0, 0.5},
+                        Case{"outer right off, no tables", 2, 0x3F, 0xFF, 1.0},
+                        Case{"inner left off", 2, 0xF3, 0xFF, 1.0}, Case{"all on", 2, 0xFF, 0xFF, 1.0},
+                        Case{"one disc, half off", 1, 0x0F, 0xFF, 1.0}}) {
+    ManualClock clock;
+    EcuParameters p;
+    p.command_timeout = 0s;
+    p.disc_count = c.discs;
+    Ecu ecu(clock, p);
+    EcuCommand command = manual_command(1);
+    for (int i = 0; i < 8; ++i) command.section_on[static_cast<std::size_t>(i)] = ((c.mask >> i) & 1u) != 0;
+    ASSERT_FALSE(ecu.apply_command(command).has_value());
+    run_for(ecu, clock, 5s);
+    const EcuStatus s = ecu.status();
+    EXPECT_EQ(s.section_mask, c.mask) << c.what;
+    EXPECT_EQ(s.section_actual_mask, c.actual) << c.what;
+    EXPECT_NEAR(s.mass_flow_kg_s, 1.6 * c.flow_share, 1e-9) << c.what;
+    EXPECT_NEAR(s.width_actual_m, 24.0 * std::popcount(c.actual) / 8.0, 1e-12) << c.what;
+  }
 }
 
 // Every rejected command: counted under its own fault, bit shown, state unchanged.
