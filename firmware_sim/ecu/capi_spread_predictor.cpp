@@ -79,24 +79,26 @@ PredictionOutcome CapiSpreadPredictor::predict(std::string_view material, double
   return PredictionOutcome::kFailed;
 }
 
-PredictionOutcome CapiSpreadPredictor::narrow_side(std::string_view material, double rpm, double bout_width_m,
-                                                   int side, double edge_line_m, double max_beyond_percent,
-                                                   std::span<const SideStrip> strips,
+PredictionOutcome CapiSpreadPredictor::narrow_side(const NarrowingRequest& request, std::span<const SideStrip> strips,
                                                    std::span<double> strip_rate_percent, SideNarrowing& out) {
-  const int i = find(material);
+  const int i = find(request.material);
   if (i < 0) return PredictionOutcome::kUnknownMaterial;
   if (strip_rate_percent.size() < strips.size()) return PredictionOutcome::kFailed;
-  if (!(edge_line_m > 0.0 && edge_line_m < 0.5 * bout_width_m)) return PredictionOutcome::kOutOfRange;
+  const double half_m = 0.5 * request.bout_width_m;
+  if (!(request.edge_line_m > 0.0 && request.edge_line_m <= half_m)) return PredictionOutcome::kOutOfRange;
+  const int side = request.side;
   spread_prediction_def def = spread_prediction_def_default();
   def.material = names_[static_cast<std::size_t>(i)].c_str();
-  def.rpm = rpm;
+  def.rpm = request.rpm;
   def.cv_target_percent = cv_target_percent_;
-  def.bout_width_m = bout_width_m;
+  def.bout_width_m = request.bout_width_m;
+  def.wind_m_s[0] = request.wind_x_m_s;
+  def.wind_m_s[1] = request.wind_y_m_s;
   spread_edge_def edge = spread_edge_def_default();
-  edge.kind = SPREAD_EDGE_BORDER;
+  edge.kind = request.field_edge ? SPREAD_EDGE_FIELD : SPREAD_EDGE_BORDER;
   edge.side = side;
-  edge.gap_m = 0.5 * bout_width_m - edge_line_m;
-  edge.max_beyond_percent = max_beyond_percent;
+  edge.gap_m = half_m - request.edge_line_m;
+  edge.max_beyond_percent = request.max_beyond_percent;
   spread_edge_setting setting{};
   spread_edge_result result{};
   // The profile's tray count is known only from a first answer: ask without the buffer, then with it.
@@ -136,6 +138,36 @@ PredictionOutcome CapiSpreadPredictor::narrow_side(std::string_view material, do
     }
     const double length = strips[s].to_m - strips[s].from_m;
     strip_rate_percent[s] = length > 0.0 ? sum / length : 0.0;
+  }
+  return PredictionOutcome::kOk;
+}
+
+PredictionOutcome CapiSpreadPredictor::compensate_wind(std::string_view material, double rpm, double bout_width_m,
+                                                       double wind_x_m_s, double wind_y_m_s,
+                                                       std::array<SideNarrowing, 2>& out) {
+  const int i = find(material);
+  if (i < 0) return PredictionOutcome::kUnknownMaterial;
+  spread_prediction_def def = spread_prediction_def_default();
+  def.material = names_[static_cast<std::size_t>(i)].c_str();
+  def.rpm = rpm;
+  def.cv_target_percent = cv_target_percent_;
+  def.bout_width_m = bout_width_m;
+  def.wind_m_s[0] = wind_x_m_s;
+  def.wind_m_s[1] = wind_y_m_s;
+  spread_prediction result{};
+  const spread_status status = spread_compensate_wind(tables_, &def, &result, nullptr, 0);
+  if (status == SPREAD_ERROR_UNKNOWN_MATERIAL) return PredictionOutcome::kUnknownMaterial;
+  if (status == SPREAD_ERROR_RPM_OUTSIDE_TABLE) return PredictionOutcome::kOutOfRange;
+  if (status != SPREAD_OK) {
+    last_error_ = spread_status_str(status);
+    return status == SPREAD_ERROR_OUT_OF_RANGE ? PredictionOutcome::kUnsupported : PredictionOutcome::kFailed;
+  }
+  for (std::size_t d = 0; d < 2; ++d) {
+    out[d] = SideNarrowing{};
+    out[d].rpm = result.disc_rpm[d];
+    out[d].drop_point_turn_rad = result.disc_drop_point_turn_rad[d];
+    out[d].flow_fraction = 1.0;
+    out[d].meets = result.cv_percent <= cv_target_percent_;
   }
   return PredictionOutcome::kOk;
 }

@@ -27,10 +27,12 @@ class CapiSpreadPredictor final : public SpreadPredictor {
   RpmRange rpm_range(std::string_view material) const override;
   PredictionOutcome predict(std::string_view material, double rpm, double bout_width_m,
                             SpreadPrediction& out) override;
-  // Through spread_find_edge_setting (border kind); the profile's trays averaged over each strip.
-  PredictionOutcome narrow_side(std::string_view material, double rpm, double bout_width_m, int side,
-                                double edge_line_m, double max_beyond_percent, std::span<const SideStrip> strips,
+  // Through spread_find_edge_setting; the profile's trays averaged over each strip.
+  PredictionOutcome narrow_side(const NarrowingRequest& request, std::span<const SideStrip> strips,
                                 std::span<double> strip_rate_percent, SideNarrowing& out) override;
+  // Through spread_compensate_wind.
+  PredictionOutcome compensate_wind(std::string_view material, double rpm, double bout_width_m, double wind_x_m_s,
+                                    double wind_y_m_s, std::array<SideNarrowing, 2>& out) override;
 
   const std::vector<std::string>& materials() const { return names_; }
   // Text of the last C API error (empty when none).

@@ -122,6 +122,20 @@ Rejection Ecu::apply_command(const EcuCommand& c) {
   // Automatic mode solves for a width: zero width has no disc speed.
   if (mode == Mode::kAutomatic && !(c.width_setpoint_m > 0.0)) return reject(Fault::kSetpointOutOfRange);
   if (auto bad = check_material(c.material, mode)) return reject(*bad);
+  if (c.border_mode < static_cast<std::int32_t>(BorderMode::kOff) ||
+      c.border_mode > static_cast<std::int32_t>(BorderMode::kRightFieldEdge)) {
+    return reject(Fault::kUnknownMode);
+  }
+  if (auto bad = check_range(c.border_gap_m, 0.0, 0.5 * parameters_.width_max_m)) return reject(*bad);
+  if (c.border_mode != static_cast<std::int32_t>(BorderMode::kOff) && parameters_.disc_count < 2) {
+    return reject(Fault::kSetpointOutOfRange);
+  }
+  for (const double v : {c.wind_x_m_s, c.wind_y_m_s}) {
+    if (auto bad = check_range(v, -parameters_.wind_max_m_s, parameters_.wind_max_m_s)) return reject(*bad);
+  }
+  if (c.wind_compensation && (predictor_ == nullptr || planner_ == nullptr || parameters_.disc_count < 2)) {
+    return reject(Fault::kAutomaticUnavailable);
+  }
 
   const Nanoseconds now = clock_.now();
   const bool material_changed = c.material != material_;
@@ -136,6 +150,11 @@ Rejection Ecu::apply_command(const EcuCommand& c) {
   width_setpoint_m_ = c.width_setpoint_m;
   rpm_setpoint_manual_ = c.rpm_setpoint;
   material_.assign(c.material);
+  border_mode_ = static_cast<BorderMode>(c.border_mode);
+  border_gap_m_ = c.border_gap_m;
+  wind_compensation_ = c.wind_compensation;
+  wind_x_m_s_ = c.wind_x_m_s;
+  wind_y_m_s_ = c.wind_y_m_s;
   section_count_ = c.section_count;
   section_mask_ = 0;
   for (int i = 0; i < c.section_count; ++i) {
@@ -214,6 +233,37 @@ Rejection Ecu::set_material(std::string_view material) {
     }
   }
   material_.assign(material);
+  return std::nullopt;
+}
+
+Rejection Ecu::set_border(std::int32_t mode, double gap_m) {
+  if (mode < static_cast<std::int32_t>(BorderMode::kOff) || mode > static_cast<std::int32_t>(BorderMode::kRightFieldEdge)) {
+    return reject(Fault::kUnknownMode);
+  }
+  // The edge line lies inside the bout: the gap stays below half the widest bout the machine has.
+  if (auto bad = check_range(gap_m, 0.0, 0.5 * parameters_.width_max_m)) return reject(*bad);
+  if (mode != static_cast<std::int32_t>(BorderMode::kOff) && parameters_.disc_count < 2) {
+    return reject(Fault::kSetpointOutOfRange);  // one disc: no side to set apart
+  }
+  border_mode_ = static_cast<BorderMode>(mode);
+  border_gap_m_ = gap_m;
+  return std::nullopt;
+}
+
+Rejection Ecu::set_wind_compensation(bool on) {
+  if (on && (predictor_ == nullptr || planner_ == nullptr || parameters_.disc_count < 2)) {
+    return reject(Fault::kAutomaticUnavailable);  // nothing to compensate with
+  }
+  wind_compensation_ = on;
+  return std::nullopt;
+}
+
+Rejection Ecu::set_wind(double wind_x_m_s, double wind_y_m_s) {
+  for (const double v : {wind_x_m_s, wind_y_m_s}) {
+    if (auto bad = check_range(v, -parameters_.wind_max_m_s, parameters_.wind_max_m_s)) return reject(*bad);
+  }
+  wind_x_m_s_ = wind_x_m_s;
+  wind_y_m_s_ = wind_y_m_s;
   return std::nullopt;
 }
 
@@ -330,6 +380,9 @@ void Ecu::plan_sides() {
   const std::uint32_t mask = section_mask_ & installed_mask();
   for (SideState& side : sides_) side = SideState{SideKind::kField, rpm_target_, 0.0, 1.0, 0u};
   middle_bit_ = 0;
+  pending_ = 0;
+  wind_compensated_ = false;
+  border_applied_ = false;
   if (parameters_.disc_count == 1) {
     // One disc throws the whole width: it cannot leave a side out, so every section spreads while any is on.
     sides_[kLeftDisc].sections = mask != 0 ? installed_mask() : 0u;
@@ -349,14 +402,54 @@ void Ecu::plan_sides() {
   key.rpm = rpm_target_;
   key.bout_width_m = width_setpoint_m_;
   key.section_count = n;
+  // Every plan is made in the measured wind, to a tenth of a metre per second (a reading that wanders
+  // within it asks for nothing new).
+  key.wind_x_m_s = std::round(wind_x_m_s_ * 10.0) / 10.0;
+  key.wind_y_m_s = std::round(wind_y_m_s_ * 10.0) / 10.0;
   const bool can_plan = planner_ != nullptr && !material_.empty() && width_setpoint_m_ > 0.0 && rpm_target_ > 0.0;
   if (can_plan && (!prepared_ || !(*prepared_ == key))) {
     planner_->prepare(key);
     prepared_ = key;
   }
+
+  // The field's setting of each disc: the speed set-point, or, with wind compensation, the discs set apart
+  // for the wind. While a new wind's plan is searched the last one made for this field setting stays.
+  std::array<SideState, 2> field{};
+  for (SideState& f : field) f = SideState{SideKind::kField, rpm_target_, 0.0, 1.0, 0u};
+  if (wind_compensation_ && can_plan) {
+    SidePlanKey wind = key;
+    wind.kind = PlanKind::kWind;
+    wind.side = 0;
+    const std::optional<SidePlan> plan = planner_->lookup(wind);
+    if (!plan) pending_ |= kWindPending;
+    SidePlanKey field_only = wind;  // the last wind plan still fits when only the wind moved
+    if (plan && plan->known) {
+      last_wind_plan_ = plan->wind_discs;
+      last_wind_key_ = wind;
+    }
+    if (last_wind_key_) {
+      SidePlanKey last_field = *last_wind_key_;
+      last_field.wind_x_m_s = field_only.wind_x_m_s;
+      last_field.wind_y_m_s = field_only.wind_y_m_s;
+      if (last_field == field_only && (!plan || plan->known)) {
+        for (std::size_t d = 0; d < 2; ++d) {
+          field[d].rpm_target = last_wind_plan_[d].rpm;
+          field[d].drop_point_turn_rad = last_wind_plan_[d].drop_point_turn_rad;
+        }
+        wind_compensated_ = true;
+      }
+    }
+  }
+
+  const int border_side = border_mode_ == BorderMode::kLeftBorder || border_mode_ == BorderMode::kLeftFieldEdge
+                              ? kLeftDisc
+                          : border_mode_ == BorderMode::kRightBorder || border_mode_ == BorderMode::kRightFieldEdge
+                              ? kRightDisc
+                              : -1;
   std::array<std::optional<SidePlan>, 2> plans;
   for (const int side : {kLeftDisc, kRightDisc}) {
     SideState& state = sides_[static_cast<std::size_t>(side)];
+    state = field[static_cast<std::size_t>(side)];
     int outer = 0;  // the side's sections out to the outermost one on
     for (int j = 0; j < h; ++j) {
       if (((mask >> index(side, j)) & 1u) != 0) outer = j + 1;
@@ -364,16 +457,29 @@ void Ecu::plan_sides() {
     const auto on_through = [&](int count) {
       for (int j = 0; j < count; ++j) state.sections |= std::uint32_t{1} << index(side, j);
     };
-    if (outer == h) {  // out to the bout's edge: the field's setting; sections off inside it cannot be skipped
+    if (outer == 0 && !middle_on) {
+      state = SideState{SideKind::kOff, state.rpm_target, state.drop_point_turn_rad, 0.0, 0u};
+      continue;
+    }
+    // The narrowest edge this side must keep: its last section on, or the border's line inside it.
+    const double section_line_m = outer == h ? 0.5 * width_setpoint_m_ : g.edge_line_m(outer);
+    const bool border_here = side == border_side && 0.5 * width_setpoint_m_ - border_gap_m_ < section_line_m + 1e-9;
+    if (outer == h && !border_here) {  // out to the bout's edge; sections off inside it cannot be skipped
       on_through(h);
       continue;
     }
-    if (outer == 0 && !middle_on) {
-      state = SideState{SideKind::kOff, rpm_target_, 0.0, 0.0, 0u};
-      continue;
-    }
     key.side = side;
-    key.sections_on = outer;
+    if (border_here) {
+      key.kind = border_mode_ == BorderMode::kLeftFieldEdge || border_mode_ == BorderMode::kRightFieldEdge
+                     ? PlanKind::kFieldEdge
+                     : PlanKind::kBorder;
+      key.sections_on = 0;
+      key.gap_m = border_gap_m_;
+    } else {
+      key.kind = PlanKind::kSections;
+      key.sections_on = outer;
+      key.gap_m = 0.0;
+    }
     if (can_plan) plans[static_cast<std::size_t>(side)] = planner_->lookup(key);
     const std::optional<SidePlan>& plan = plans[static_cast<std::size_t>(side)];
     if (!can_plan || (plan && !plan->known)) {  // cannot be narrowed: the whole side keeps spreading
@@ -382,11 +488,17 @@ void Ecu::plan_sides() {
     }
     if (!plan) {
       state.kind = SideKind::kPending;
+      pending_ |= static_cast<std::uint8_t>(1u << side);
       on_through(h);
       continue;
     }
     state = SideState{SideKind::kNarrowed, plan->narrowing.rpm, plan->narrowing.drop_point_turn_rad,
                       plan->narrowing.flow_fraction, 0u};
+    if (border_here) {
+      border_applied_ = true;
+      on_through(outer);  // a border pass keeps its sections: it narrows the throw beyond the bout's edge
+      continue;
+    }
     on_through(outer);
     for (int j = outer; j < h; ++j) {
       if (plan->beyond_rate_percent[static_cast<std::size_t>(j - outer)] >= parameters_.section_on_rate_percent) {
@@ -394,7 +506,8 @@ void Ecu::plan_sides() {
       }
     }
   }
-  // The other disc's drop point on this pass, where the search turned it and that disc runs the field's setting.
+  // The other disc's drop point on this pass, where the search turned it and that disc runs the field's
+  // setting (a disc narrowed itself keeps its own).
   for (const int side : {kLeftDisc, kRightDisc}) {
     const std::optional<SidePlan>& plan = plans[static_cast<std::size_t>(side)];
     SideState& other = sides_[static_cast<std::size_t>(1 - side)];
@@ -526,8 +639,15 @@ EcuStatus Ecu::status() const {
     s.disc_rpm_target[i] = sides_[i].rpm_target;
     s.disc_drop_point_turn_rad[i] = sides_[i].drop_point_turn_rad;
     s.disc_flow_fraction[i] = disc_metering_[i] ? sides_[i].flow_fraction : 0.0;
-    if (sides_[i].kind == SideKind::kPending) s.sides_pending |= static_cast<std::uint8_t>(1u << d);
   }
+  s.sides_pending = pending_;
+  s.border_mode = border_mode_;
+  s.border_gap_m = border_gap_m_;
+  s.border_applied = border_applied_;
+  s.wind_compensation = wind_compensation_;
+  s.wind_compensated = wind_compensated_;
+  s.wind_x_m_s = wind_x_m_s_;
+  s.wind_y_m_s = wind_y_m_s_;
   s.material = material_;
   s.last_command_sequence = has_sequence_ ? last_sequence_ : -1;
   s.fault_codes = faults_.active_mask(s.time);

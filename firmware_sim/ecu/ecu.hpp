@@ -44,6 +44,13 @@ class Ecu {
   // The task controller switches the work state; it is then supervised (note_task_controller_alive).
   Rejection set_work_state(bool on);
   Rejection set_section_mask(std::uint32_t mask);  // bit i = section i+1; only installed sections
+  // Border or field-edge spreading on one side (BorderMode, raw: validated), the edge line `gap_m` [m]
+  // inside the bout's edge (0: at it; water: 1 m with a border spreading device, 3 m without).
+  Rejection set_border(std::int32_t mode, double gap_m);
+  // Wind compensation: each disc set apart for the measured wind (needs the tables and the planner).
+  Rejection set_wind_compensation(bool on);
+  // The measured wind: across the travel, to the right, and along it, forward [m/s].
+  Rejection set_wind(double wind_x_m_s, double wind_y_m_s);
   // The material in the hopper when no LCM command names it (a CAN-only machine: chosen at the terminal).
   Rejection set_material(std::string_view material);
 
@@ -122,6 +129,11 @@ class Ecu {
   double width_setpoint_m_ = 0.0;
   double rpm_setpoint_manual_ = 0.0;
   std::string material_;
+  BorderMode border_mode_ = BorderMode::kOff;
+  double border_gap_m_ = 0.0;     // [m]
+  bool wind_compensation_ = false;
+  double wind_x_m_s_ = 0.0;       // measured wind across the travel, to the right [m/s]
+  double wind_y_m_s_ = 0.0;       // along the travel, forward [m/s]
   std::int32_t section_count_;
   std::uint32_t section_mask_ = 0;  // set to all installed sections by the constructor
   bool work_state_setpoint_ = false;
@@ -144,6 +156,12 @@ class Ecu {
 
   // Derived state, updated by step().
   std::array<SideState, 2> sides_{};
+  static constexpr std::uint8_t kWindPending = 4;  // pending_: bit 0 left, 1 right, 2 the wind's plan
+  std::uint8_t pending_ = 0;
+  bool wind_compensated_ = false;  // the discs run a wind plan
+  bool border_applied_ = false;    // the border side runs its border plan
+  std::array<SideNarrowing, 2> last_wind_plan_{};
+  std::optional<SidePlanKey> last_wind_key_;
   std::uint32_t middle_bit_ = 0;           // odd count: the section on the centre line, spread by either disc
   std::array<bool, 2> disc_metering_{};    // each disc receiving fertiliser now
   std::uint32_t section_actual_mask_ = 0;  // sections actually spread now (ecu_status.hpp)

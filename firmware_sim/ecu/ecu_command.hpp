@@ -14,6 +14,17 @@ enum class Mode : std::int8_t { kManual = 0, kAutomatic = 1 };
 // Direction of travel as a speed source reports it (ISO 11783-7 machine direction).
 enum class TravelDirection : std::int8_t { kForward = 0, kReverse = 1, kUnknown = 2 };
 
+// Border and edge spreading on the last pass along a field edge (docs/field-calibration.md "Border and
+// edge spreading"): a border (road, path, water: nothing over the edge line) or another field (full rate
+// to the line), on the driver's left or right.
+enum class BorderMode : std::int8_t {
+  kOff = 0,
+  kLeftBorder = 1,
+  kRightBorder = 2,
+  kLeftFieldEdge = 3,
+  kRightFieldEdge = 4,
+};
+
 struct EcuCommand {
   std::int64_t sequence = 0;          // strictly increasing per sender
   std::int32_t mode = 0;              // 0 manual, 1 automatic (raw: validated by the ECU)
@@ -27,6 +38,11 @@ struct EcuCommand {
   std::string_view material;          // material name as in the tables
   std::int32_t section_count = 0;     // sections in use, 1..16
   std::array<bool, kMaxSections> section_on{};  // first section_count entries are meaningful
+  std::int32_t border_mode = 0;       // BorderMode (raw: validated by the ECU)
+  double border_gap_m = 0.0;          // the edge line this far inside the bout's edge [m]
+  bool wind_compensation = false;     // set the discs apart for the wind
+  double wind_x_m_s = 0.0;            // measured wind across the travel, to the right [m/s]
+  double wind_y_m_s = 0.0;            // along the travel, forward [m/s]
 };
 
 }  // namespace spread::firmware

@@ -24,6 +24,7 @@ void validate(const EcuParameters& p) {
   require(positive_finite(p.rate_max_kg_ha), "rate_max_kg_ha", "must be > 0 kg/ha");
   require(positive_finite(p.width_max_m), "width_max_m", "must be > 0 m");
   require(positive_finite(p.speed_max_m_s), "speed_max_m_s", "must be > 0 m/s");
+  require(positive_finite(p.wind_max_m_s), "wind_max_m_s", "must be > 0 m/s");
   require(p.section_count >= 1 && p.section_count <= kMaxSections, "section_count",
           "must be 1.." + std::to_string(kMaxSections) + ", got " + std::to_string(p.section_count));
   require(p.disc_count == 1 || p.disc_count == 2, "disc_count", "must be 1 or 2, got " + std::to_string(p.disc_count));

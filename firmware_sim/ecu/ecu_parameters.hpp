@@ -18,6 +18,7 @@ struct EcuParameters {
   double rate_max_kg_ha = 3000.0;      // highest accepted application rate set-point [kg/ha]
   double width_max_m = 54.0;           // maximum working width of the machine (DDI 70) [m]
   double speed_max_m_s = 20.0;         // highest accepted ground speed [m/s] (72 km/h)
+  double wind_max_m_s = 30.0;          // highest accepted wind component [m/s]
   int section_count = 8;               // sections installed, 1..16 (a command may use fewer, never more)
   // Spinning discs, 1 or 2. With two, the sections left of the centre line are the left disc's and
   // those right of it the right disc's (with an odd count the middle one is both's); switching a side's

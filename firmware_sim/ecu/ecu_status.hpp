@@ -44,7 +44,14 @@ struct EcuStatus {
   std::array<double, 2> disc_rpm_target{};           // [r/min]
   std::array<double, 2> disc_drop_point_turn_rad{};  // from the table's drop point [rad]
   std::array<double, 2> disc_flow_fraction{};        // of the field's flow to that disc [-] (0: closed)
-  std::uint8_t sides_pending = 0;      // bit d: disc d's narrowing is still being planned
+  std::uint8_t sides_pending = 0;      // plans still searched: bit d disc d's side, bit 2 the wind's
+  BorderMode border_mode = BorderMode::kOff;
+  double border_gap_m = 0.0;           // [m]
+  bool border_applied = false;         // the border side runs its border setting
+  bool wind_compensation = false;      // asked for
+  bool wind_compensated = false;       // the discs run a setting made for the wind
+  double wind_x_m_s = 0.0;             // measured wind across the travel, to the right [m/s]
+  double wind_y_m_s = 0.0;             // along the travel, forward [m/s]
   std::string_view material;           // valid until the next command
   std::int64_t last_command_sequence = -1;
   std::uint32_t fault_codes = 0;       // active faults, bit = Fault value

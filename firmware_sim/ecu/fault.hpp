@@ -22,7 +22,7 @@ enum class Fault : std::uint8_t {
   kUnknownMaterial = 7,       // material not present in the loaded tables (or empty / too long)
   kUnknownMode = 8,           // mode value other than manual (0) or automatic (1)
   kStaleSequence = 9,         // command sequence number repeated or older than the last accepted one
-  kAutomaticUnavailable = 10, // automatic mode requested without spread tables loaded
+  kAutomaticUnavailable = 10, // automatic mode or wind compensation requested without spread tables loaded
   kWidthOutOfReach = 11,      // state: the set-point working width cannot be reached at the CV target
   kCommandTimeout = 12,       // state: the LCM controller owning the work state fell silent; work state off
   kLoopOverrun = 13,          // a loop step finished after the next tick was due

@@ -29,17 +29,37 @@ SectionPlanner::~SectionPlanner() {
 
 SidePlan SectionPlanner::search(const SidePlanKey& key) {
   SidePlan plan;
-  const SideGeometry g = side_geometry(key.bout_width_m, key.section_count);
-  std::array<SideStrip, kMaxSideSections> strips{};
-  const int beyond = g.side_sections - key.sections_on;
-  for (int j = 0; j < beyond; ++j) {
-    strips[static_cast<std::size_t>(j)] = {g.edge_line_m(key.sections_on + j), g.edge_line_m(key.sections_on + j + 1)};
-  }
   const std::string_view material(key.material.data());
-  const PredictionOutcome outcome = predictor_.narrow_side(
-      material, key.rpm, key.bout_width_m, key.side, g.edge_line_m(key.sections_on), max_beyond_percent_,
-      std::span<const SideStrip>(strips.data(), static_cast<std::size_t>(beyond)),
-      std::span<double>(plan.beyond_rate_percent.data(), static_cast<std::size_t>(beyond)), plan.narrowing);
+  if (key.kind == PlanKind::kWind) {
+    plan.known = predictor_.compensate_wind(material, key.rpm, key.bout_width_m, key.wind_x_m_s, key.wind_y_m_s,
+                                            plan.wind_discs) == PredictionOutcome::kOk;
+    return plan;
+  }
+  NarrowingRequest request;
+  request.material = material;
+  request.rpm = key.rpm;
+  request.bout_width_m = key.bout_width_m;
+  request.side = key.side;
+  request.field_edge = key.kind == PlanKind::kFieldEdge;
+  request.max_beyond_percent = max_beyond_percent_;
+  request.wind_x_m_s = key.wind_x_m_s;
+  request.wind_y_m_s = key.wind_y_m_s;
+  std::array<SideStrip, kMaxSideSections> strips{};
+  int beyond = 0;
+  if (key.kind == PlanKind::kSections) {
+    const SideGeometry g = side_geometry(key.bout_width_m, key.section_count);
+    beyond = g.side_sections - key.sections_on;
+    for (int j = 0; j < beyond; ++j) {
+      strips[static_cast<std::size_t>(j)] = {g.edge_line_m(key.sections_on + j), g.edge_line_m(key.sections_on + j + 1)};
+    }
+    request.edge_line_m = g.edge_line_m(key.sections_on);
+  } else {
+    request.edge_line_m = 0.5 * key.bout_width_m - key.gap_m;
+  }
+  const PredictionOutcome outcome =
+      predictor_.narrow_side(request, std::span<const SideStrip>(strips.data(), static_cast<std::size_t>(beyond)),
+                             std::span<double>(plan.beyond_rate_percent.data(), static_cast<std::size_t>(beyond)),
+                             plan.narrowing);
   plan.known = outcome == PredictionOutcome::kOk;
   return plan;
 }
@@ -119,6 +139,7 @@ void SectionPlanner::prepare(const SidePlanKey& field) {
   for (int sections_on = g.inner_m > 0.0 ? 0 : 1; sections_on < g.side_sections; ++sections_on) {
     for (const int side : {kLeftDisc, kRightDisc}) {
       SidePlanKey key = field;
+      key.kind = PlanKind::kSections;
       key.side = side;
       key.sections_on = sections_on;
       enqueue(key, false);

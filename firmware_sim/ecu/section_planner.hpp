@@ -1,15 +1,18 @@
 #pragma once
-// Section control through the discs: when a task controller switches a side's outer sections off, that
-// side's disc must stop throwing beyond the last section left on — the border search of
-// docs/field-calibration.md "Border and edge spreading" with the edge line at that section's outer end
-// (the strip beyond it is spread already: a headland, a wedge, an earlier pass). A search costs hundreds
-// of predictions (about a second here), far beyond the 50 ms loop step, so the planner answers from a
-// cache and searches on a worker thread of its own, with its own predictor (a C API handle is not shared
-// between threads): the loop never waits. Until a plan is known the ECU keeps that side at the field's
-// setting and reports its sections as still on (ecu.hpp).
+// The discs' own settings the ECU cannot work out inside its 50 ms loop step:
+// - section control through the discs: when a task controller switches a side's outer sections off, that
+//   side's disc must stop throwing beyond the last section left on — the border search of
+//   docs/field-calibration.md "Border and edge spreading" with the edge line at that section's outer end
+//   (the strip beyond it is spread already: a headland, a wedge, an earlier pass);
+// - border and field-edge spreading: the same search with the edge line the border mode names;
+// - wind compensation: each disc's speed and drop point in the measured wind (spread_compensate_wind).
+// A border search costs hundreds of predictions (about a second here), wind compensation about fifty, so
+// the planner answers from a cache and searches on a worker thread of its own, with its own predictor (a
+// C API handle is not shared between threads): the loop never waits. Until a plan is known the ECU keeps
+// that disc as it was and says so (ecu.hpp).
 //
-// When the field's setting changes, the ECU asks for every narrowing of both sides at once (prepare), so
-// that a section switched off later is usually answered from the cache.
+// When the field's setting changes, the ECU asks for every section narrowing of both sides at once
+// (prepare), so that a section switched off later is usually answered from the cache.
 #include <array>
 #include <condition_variable>
 #include <cstdint>
@@ -26,16 +29,27 @@ namespace spread::firmware {
 inline constexpr std::size_t kMaxPlanMaterialLength = 63;  // bytes, as the ECU's material names
 inline constexpr int kMaxSideSections = kMaxSections / 2;  // sections on one side of the centre line
 
-// One side narrowed under one field setting. Plain values (no allocation), compared exactly.
+enum class PlanKind : std::int32_t {
+  kSections,   // a side narrowed to its last section on (border thresholds)
+  kBorder,     // a side at a border: nothing beyond gap_m inside the bout's edge
+  kFieldEdge,  // a side next to another field: full rate out to gap_m inside the bout's edge
+  kWind,       // both discs compensating the wind
+};
+
+// One plan under one field setting. Plain values (no allocation), compared exactly.
 struct SidePlanKey {
   std::array<char, kMaxPlanMaterialLength + 1> material{};  // NUL-terminated
   double rpm = 0.0;            // the field's disc speed [r/min]
   double bout_width_m = 0.0;   // [m]
   std::int32_t section_count = 0;
-  std::int32_t side = kRightDisc;
-  // Of the side's own sections, those on, counted from the centre line outward: 1 up to the side's count
-  // less one; with an odd count also 0 (only the section on the centre line on, edge line at its end).
+  PlanKind kind = PlanKind::kSections;
+  std::int32_t side = kRightDisc;  // kLeftDisc, kRightDisc (kWind: unused)
+  // kSections: of the side's own sections, those on, counted from the centre line outward: 1 up to the
+  // side's count less one; with an odd count also 0 (only the section on the centre line on).
   std::int32_t sections_on = 0;
+  double gap_m = 0.0;          // kBorder, kFieldEdge: the edge line this far inside the bout's edge [m]
+  double wind_x_m_s = 0.0;     // the wind every plan is made in [m/s]
+  double wind_y_m_s = 0.0;
 
   bool operator==(const SidePlanKey&) const = default;
 };
@@ -51,7 +65,8 @@ struct SideGeometry {
 SideGeometry side_geometry(double bout_width_m, int section_count);
 
 struct SidePlan {
-  SideNarrowing narrowing;
+  SideNarrowing narrowing;                  // the side's disc (kWind: unused)
+  std::array<SideNarrowing, 2> wind_discs;  // kWind: each disc
   // Mean rate of each side section beyond the edge line on this pass, percent of the field's; index j =
   // the side's (sections_on + j)-th section from the centre.
   std::array<double, kMaxSideSections> beyond_rate_percent{};
@@ -71,8 +86,8 @@ class SectionPlanner {
   // The plan for `key` when known; otherwise nullopt, and the key is searched next. Allocation-free
   // (the queue keeps its capacity), never blocks on a search with kWorker.
   std::optional<SidePlan> lookup(const SidePlanKey& key);
-  // Every narrowing of both sides under this field setting (`key`'s side and sections_on ignored), queued
-  // behind the keys the loop asked for.
+  // Every section narrowing of both sides under this field setting (`key`'s kind, side and sections_on
+  // ignored), queued behind the keys the loop asked for.
   void prepare(const SidePlanKey& field);
   // Searches done so far (cost indicator, tests).
   std::int64_t searches() const;

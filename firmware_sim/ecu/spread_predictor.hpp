@@ -1,6 +1,7 @@
 #pragma once
 // What the ECU needs from a spread prediction, independent of where it comes from (the C API over a
 // table file in the product, an analytic stand-in in unit tests).
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -40,6 +41,22 @@ struct SideNarrowing {
   bool meets = false;                // the border's thresholds hold at this setting
 };
 
+// What to narrow: one side of the pattern of `material` at `rpm` (both discs alike) on bouts of
+// `bout_width_m`, to an edge line `edge_line_m` from the centre line (0 < edge line <= bout / 2).
+struct NarrowingRequest {
+  std::string_view material;
+  double rpm = 0.0;             // the field's disc speed [r/min]
+  double bout_width_m = 0.0;    // [m]
+  int side = kRightDisc;        // kLeftDisc, kRightDisc
+  double edge_line_m = 0.0;     // [m]
+  // false: a border (a road, water, a strip spread already): at most max_beyond_percent of the pass's
+  // mass beyond the line. true: next to another field: the rate at the line at least 80 % of the field's.
+  bool field_edge = false;
+  double max_beyond_percent = 0.1;  // [%]
+  double wind_x_m_s = 0.0;          // wind across the travel, to the right [m/s]
+  double wind_y_m_s = 0.0;          // wind along the travel, forward [m/s]
+};
+
 // A strip of one side: distances from the machine's centre line outward on that side [m].
 struct SideStrip {
   double from_m = 0.0;
@@ -66,17 +83,21 @@ class SpreadPredictor {
   // `bout_width_m` [m] and the effective width at the predictor's CV target. Must not allocate.
   virtual PredictionOutcome predict(std::string_view material, double rpm, double bout_width_m,
                                     SpreadPrediction& out) = 0;
-  // Narrows side `side` (kLeftDisc, kRightDisc) of the pattern of `material` at `rpm` on bouts of
-  // `bout_width_m` to an edge line `edge_line_m` from the centre (0 < edge line < bout / 2): the setting
-  // that puts at most `max_beyond_percent` of the pass's mass beyond it with the least fertiliser missing
-  // inside, or the closest. `strip_rate_percent[i]` receives the mean rate this pass plus the passes
-  // before it give strip `strips[i]`, percent of the field's rate. Seconds of work: never in the loop.
-  virtual PredictionOutcome narrow_side(std::string_view material, double rpm, double bout_width_m, int side,
-                                        double edge_line_m, double max_beyond_percent,
-                                        std::span<const SideStrip> strips, std::span<double> strip_rate_percent,
-                                        SideNarrowing& out) {
-    (void)material, (void)rpm, (void)bout_width_m, (void)side, (void)edge_line_m, (void)max_beyond_percent;
-    (void)strips, (void)strip_rate_percent, (void)out;
+  // The setting that narrows `request`'s side to its edge line, with the least fertiliser missing (or
+  // misplaced, at a field edge) inside, or the closest when none meets the thresholds.
+  // `strip_rate_percent[i]` receives the mean rate this pass plus the passes before it give strip
+  // `strips[i]`, percent of the field's rate. Seconds of work: never in the loop.
+  virtual PredictionOutcome narrow_side(const NarrowingRequest& request, std::span<const SideStrip> strips,
+                                        std::span<double> strip_rate_percent, SideNarrowing& out) {
+    (void)request, (void)strips, (void)strip_rate_percent, (void)out;
+    return PredictionOutcome::kUnsupported;
+  }
+  // Wind compensation: each disc's speed and drop point (flow 1; `meets`: the CV at the bout width within
+  // the target) that bring the to-and-fro pattern at `rpm` back towards the CV target in the wind.
+  // Tens of milliseconds: never in the loop.
+  virtual PredictionOutcome compensate_wind(std::string_view material, double rpm, double bout_width_m,
+                                            double wind_x_m_s, double wind_y_m_s, std::array<SideNarrowing, 2>& out) {
+    (void)material, (void)rpm, (void)bout_width_m, (void)wind_x_m_s, (void)wind_y_m_s, (void)out;
     return PredictionOutcome::kUnsupported;
   }
 };

@@ -162,9 +162,14 @@ TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
   SideNarrowing expected;
   const std::array<SideStrip, 1> strip{SideStrip{4.5, 6.0}};
   std::array<double, 1> rate{};
-  ASSERT_EQ(planning.narrow_side(material_, 600.0, 12.0, kRightDisc, 4.5, p.section_max_beyond_percent, strip, rate,
-                                 expected),
-            PredictionOutcome::kOk);
+  NarrowingRequest request;
+  request.material = material_;
+  request.rpm = 600.0;
+  request.bout_width_m = 12.0;
+  request.side = kRightDisc;
+  request.edge_line_m = 4.5;
+  request.max_beyond_percent = p.section_max_beyond_percent;
+  ASSERT_EQ(planning.narrow_side(request, strip, rate, expected), PredictionOutcome::kOk);
   EXPECT_EQ(s.disc_rpm_target[kRightDisc], expected.rpm);
   EXPECT_EQ(s.disc_drop_point_turn_rad[kRightDisc], expected.drop_point_turn_rad);
   EXPECT_NEAR(s.disc_rpm_actual[kRightDisc], expected.rpm, 0.5);
