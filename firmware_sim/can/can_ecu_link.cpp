@@ -30,6 +30,8 @@ std::int32_t to_int32(double value) {
 std::uint8_t pdack_bits_for(Fault fault) {
   switch (fault) {
     case Fault::kSetpointOutOfRange: return kPdackValueOutOfRange;
+    // A function this device cannot run now (wind compensation without its tables): outside its range.
+    case Fault::kAutomaticUnavailable: return kPdackValueOutOfRange;
     case Fault::kNotANumber: return kPdackValueNotConform;
     case Fault::kCanNotSettable: return kPdackNotSettable;
     case Fault::kCanUnknownDdi: return kPdackDdiNotSupported;
@@ -334,6 +336,11 @@ std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, con
     }
     case Ddi::kSetpointCondensedWorkState1_16: return condensed_work_state(s.section_mask, s.section_count);
     case Ddi::kSetpointRevolutions: return to_int32(s.rpm_target * kRevolutionsScale);
+    case Ddi::kSetpointBorderMode: return static_cast<std::int32_t>(s.border_mode);
+    case Ddi::kSetpointBorderGap: return to_int32(s.border_gap_m * 1000.0);
+    case Ddi::kSetpointWindCompensation: return s.wind_compensation ? 1 : 0;
+    case Ddi::kSetpointWindAcross: return to_int32(s.wind_x_m_s * 1000.0);
+    case Ddi::kSetpointWindAlong: return to_int32(s.wind_y_m_s * 1000.0);
     case Ddi::kActualRevolutions: return to_int32(s.rpm_actual * kRevolutionsScale);
     case Ddi::kActualSpeed: return to_int32(s.ground_speed_m_s * 1000.0);
     case Ddi::kSectionControlState: return section_control_state_;
@@ -385,6 +392,31 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
         return kPdackValueOutOfRange;
       }
       section_control_state_ = m.value;
+      break;
+    case Ddi::kSetpointBorderMode:
+      if (m.value < 0 || m.value > 4) {
+        ecu_.record_fault(Fault::kSetpointOutOfRange);
+        return kPdackValueOutOfRange;
+      }
+      rejection = ecu_.set_border(m.value, ecu_.status().border_gap_m);
+      break;
+    case Ddi::kSetpointBorderGap: {
+      const EcuStatus s = ecu_.status();
+      rejection = ecu_.set_border(static_cast<std::int32_t>(s.border_mode), m.value / 1000.0);
+      break;
+    }
+    case Ddi::kSetpointWindCompensation:
+      if (m.value != 0 && m.value != 1) {
+        ecu_.record_fault(Fault::kSetpointOutOfRange);
+        return kPdackValueOutOfRange;
+      }
+      rejection = ecu_.set_wind_compensation(m.value == 1);
+      break;
+    case Ddi::kSetpointWindAcross:
+      rejection = ecu_.set_wind(m.value / 1000.0, ecu_.status().wind_y_m_s);
+      break;
+    case Ddi::kSetpointWindAlong:
+      rejection = ecu_.set_wind(ecu_.status().wind_x_m_s, m.value / 1000.0);
       break;
     case Ddi::kActualMassPerArea:
     case Ddi::kActualWorkingWidth:

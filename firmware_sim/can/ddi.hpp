@@ -18,6 +18,14 @@ enum class Ddi : std::uint16_t {
   kSetpointRevolutions = 389,        // [r/min * 1e-4] (value = rpm * 10000), settable in manual mode
   kActualRevolutions = 390,          // [r/min * 1e-4]
   kActualSpeed = 397,                // [mm/s]
+  // Manufacturer-proprietary DDIs (ISO 11783-11 leaves 57344-65534 to manufacturers): the data
+  // dictionary has none for border spreading or a spreader's wind compensation. All settable, on the
+  // discs' element; docs/can-integration.md "Border spreading and wind" lists them.
+  kSetpointBorderMode = 57344,        // 0 off, 1 left border, 2 right border, 3 left field edge, 4 right field edge
+  kSetpointBorderGap = 57345,         // [mm] the edge line this far inside the bout's edge
+  kSetpointWindCompensation = 57346,  // 0 off, 1 on
+  kSetpointWindAcross = 57347,        // [mm/s] measured wind across the travel, to the right
+  kSetpointWindAlong = 57348,         // [mm/s] measured wind along the travel, forward
 };
 
 inline constexpr double kRevolutionsScale = 1e4;  // counts per r/min for DDI 389/390

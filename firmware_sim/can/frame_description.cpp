@@ -68,6 +68,11 @@ std::string ddi_name(std::uint16_t ddi) {
     case Ddi::kActualRevolutions: return "actual revolutions";
     case Ddi::kActualSpeed: return "actual speed";
     case Ddi::kSectionControlState: return "section control state";
+    case Ddi::kSetpointBorderMode: return "set-point border spreading (proprietary)";
+    case Ddi::kSetpointBorderGap: return "set-point border gap (proprietary)";
+    case Ddi::kSetpointWindCompensation: return "set-point wind compensation (proprietary)";
+    case Ddi::kSetpointWindAcross: return "measured wind across (proprietary)";
+    case Ddi::kSetpointWindAlong: return "measured wind along (proprietary)";
   }
   return "unknown DDI";
 }
@@ -94,6 +99,15 @@ std::string format_ddi_value(std::uint16_t ddi, std::int32_t raw) {
     case Ddi::kActualRevolutions: return printf_string("%.4f r/min", raw / kRevolutionsScale);
     case Ddi::kActualSpeed: return std::to_string(raw) + " mm/s";
     case Ddi::kSectionControlState: return raw == 1 ? "automatic" : raw == 0 ? "manual" : std::to_string(raw);
+    case Ddi::kSetpointBorderMode: {
+      static constexpr const char* kModes[] = {"off", "left border", "right border", "left field edge",
+                                               "right field edge"};
+      return raw >= 0 && raw <= 4 ? kModes[raw] : std::to_string(raw);
+    }
+    case Ddi::kSetpointBorderGap: return std::to_string(raw) + " mm";
+    case Ddi::kSetpointWindCompensation: return raw == 1 ? "on" : raw == 0 ? "off" : std::to_string(raw);
+    case Ddi::kSetpointWindAcross:
+    case Ddi::kSetpointWindAlong: return std::to_string(raw) + " mm/s";
   }
   return std::to_string(raw);
 }

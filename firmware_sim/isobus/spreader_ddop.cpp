@@ -44,6 +44,12 @@ enum : std::uint16_t {
   kDpdActualRate = 41,
   kDpdSetpointRpm = 50,
   kDpdActualRpm = 51,
+  kDpdBorderMode = 52,
+  kDpdBorderGap = 53,
+  kDpdWindCompensation = 54,
+  kDpdWindAcross = 55,
+  kDpdWindAlong = 56,
+  kDvpWind = 14,
   kDptConnectorX = 60,
   kDptConnectorY = 61,
   kDptConnectorType = 62,
@@ -90,6 +96,11 @@ std::optional<std::uint16_t> element_for_ddi(std::uint16_t value) {
       return kBinElement;
     case Ddi::kSetpointRevolutions:
     case Ddi::kActualRevolutions:
+    case Ddi::kSetpointBorderMode:
+    case Ddi::kSetpointBorderGap:
+    case Ddi::kSetpointWindCompensation:
+    case Ddi::kSetpointWindAcross:
+    case Ddi::kSetpointWindAlong:
       return kDiscElement;
   }
   return std::nullopt;
@@ -116,13 +127,13 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   device.working_set_master_name = d.name;
   device.serial_number = d.serial_number;
   // The structure label changes with the layout, so a TC holding an older pool of this machine reloads it:
-  // sections, width and the layout revision (2: elements by parent ID, connector, DDI 160) in the 7 bytes
-  // every TC version compares; the boom's X offset, the one other value the pool carries, in the
-  // version-4 extended structure label.
+  // sections, width and the layout revision (3: elements by parent ID, connector, DDI 160, the border and
+  // wind DDIs) in the 7 bytes every TC version compares; the boom's X offset, the one other value the
+  // pool carries, in the version-4 extended structure label.
   const auto width_cm = static_cast<std::uint32_t>(std::lround(d.working_width_m * 100.0));
   device.structure_label = {'L', 'S', 'P', static_cast<std::uint8_t>(d.section_count),
                             static_cast<std::uint8_t>(width_cm & 0xFFu), static_cast<std::uint8_t>(width_cm >> 8),
-                            0x02};
+                            0x03};
   const auto offset_mm = static_cast<std::uint32_t>(millimetres(d.boom_offset_x_m));
   device.extended_structure_label = {'L',
                                      'S',
@@ -144,7 +155,8 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   o.emplace_back(DeviceElement{kDetBin, ElementType::kBin, "Hopper", kBinElement, kDetDevice,
                                {kDpdSetpointRate, kDpdActualRate}});
   o.emplace_back(DeviceElement{kDetDisc, ElementType::kFunction, "Discs", kDiscElement, kDetDevice,
-                               {kDpdSetpointRpm, kDpdActualRpm}});
+                               {kDpdSetpointRpm, kDpdActualRpm, kDpdBorderMode, kDpdBorderGap, kDpdWindCompensation,
+                                kDpdWindAcross, kDpdWindAlong}});
   o.emplace_back(DeviceElement{kDetConnector, ElementType::kConnector, "Hitch", kConnectorElement, kDetDevice,
                                {kDptConnectorX, kDptConnectorY, kDptConnectorType}});
 
@@ -153,6 +165,7 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   o.emplace_back(DeviceValuePresentation{kDvpMetre, 0, 0.001f, 2, "m"});     // mm -> m
   o.emplace_back(DeviceValuePresentation{kDvpRpm, 0, 1e-4f, 1, "r/min"});    // r/min * 1e-4 -> r/min
   o.emplace_back(DeviceValuePresentation{kDvpSpeed, 0, 0.0036f, 1, "km/h"});  // mm/s -> km/h
+  o.emplace_back(DeviceValuePresentation{kDvpWind, 0, 0.001f, 1, "m/s"});     // mm/s -> m/s
 
   o.emplace_back(DeviceProcessData{kDpdActualWorkState, ddi(Ddi::kActualWorkState), kPropertyDefaultSet,
                                    kMeasured, "Work state", kNullObjectId});
@@ -189,6 +202,17 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
                                    "Disc speed set-point", kDvpRpm});
   o.emplace_back(DeviceProcessData{kDpdActualRpm, ddi(Ddi::kActualRevolutions), kPropertyDefaultSet, kMeasured,
                                    "Disc speed", kDvpRpm});
+  // Border spreading and wind compensation: manufacturer-proprietary DDIs (ddi.hpp).
+  o.emplace_back(DeviceProcessData{kDpdBorderMode, ddi(Ddi::kSetpointBorderMode), kSetpoint, kTriggerOnChange,
+                                   "Border spreading", kNullObjectId});
+  o.emplace_back(DeviceProcessData{kDpdBorderGap, ddi(Ddi::kSetpointBorderGap), kSetpoint, kTriggerOnChange,
+                                   "Border gap", kDvpMetre});
+  o.emplace_back(DeviceProcessData{kDpdWindCompensation, ddi(Ddi::kSetpointWindCompensation), kSetpoint,
+                                   kTriggerOnChange, "Wind compensation", kNullObjectId});
+  o.emplace_back(DeviceProcessData{kDpdWindAcross, ddi(Ddi::kSetpointWindAcross), kSetpoint, kTriggerOnChange,
+                                   "Wind across", kDvpWind});
+  o.emplace_back(DeviceProcessData{kDpdWindAlong, ddi(Ddi::kSetpointWindAlong), kSetpoint, kTriggerOnChange,
+                                   "Wind along", kDvpWind});
 
   const double section_width_m = d.working_width_m / d.section_count;
   for (int i = 0; i < d.section_count; ++i) {

@@ -34,6 +34,11 @@ EcuCommand to_ecu_command(const spread::command_t& m) {
   const std::size_t n = std::min<std::size_t>({m.section_on.size(), static_cast<std::size_t>(kMaxSections),
                                                static_cast<std::size_t>(std::max<int>(m.num_sections, 0))});
   for (std::size_t i = 0; i < n; ++i) c.section_on[i] = m.section_on[i];
+  c.border_mode = m.border_mode;
+  c.border_gap_m = m.border_gap_m;
+  c.wind_compensation = m.wind_compensation;
+  c.wind_x_m_s = m.wind_m_s[0];
+  c.wind_y_m_s = m.wind_m_s[1];
   return c;
 }
 
@@ -123,6 +128,9 @@ void LcmEcuLink::fill_status(const EcuStatus& s) {
     status_.disc_flow_fraction[d] = s.disc_flow_fraction[d];
   }
   status_.sides_pending = static_cast<std::int8_t>(s.sides_pending);
+  status_.border_mode = static_cast<std::int8_t>(s.border_mode);
+  status_.border_applied = s.border_applied;
+  status_.wind_compensated = s.wind_compensated;
   status_.fault_codes = static_cast<std::int32_t>(s.fault_codes);
   status_.rejected_undecodable = count_of(s, Fault::kLcmUndecodable);
   status_.rejected_wrong_fingerprint = count_of(s, Fault::kLcmWrongFingerprint);

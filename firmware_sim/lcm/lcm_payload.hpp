@@ -56,6 +56,8 @@ struct LcmLayout<spread::command_t> {  // command_t.lcm
       {LcmField::kString, 0},                                                 // material
       {LcmField::kFixed, 8},  {LcmField::kFixed, 1},                          // rpm_setpoint, work_state
       {LcmField::kCount, 1},  {LcmField::kArray, 1},                          // num_sections, section_on
+      {LcmField::kFixed, 1},  {LcmField::kFixed, 8},                          // border_mode, border_gap_m
+      {LcmField::kFixed, 1},  {LcmField::kFixed, 8},  {LcmField::kFixed, 8},  // wind_compensation, wind_m_s[2]
   };
 };
 
@@ -78,6 +80,7 @@ struct LcmLayout<spread::status_t> {  // status_t.lcm
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8},                         // disc_drop_point_turn_rad[2]
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8},                         // disc_flow_fraction[2]
       {LcmField::kFixed, 1},                                                // sides_pending
+      {LcmField::kFixed, 1}, {LcmField::kFixed, 1}, {LcmField::kFixed, 1},  // border_mode, applied, wind
       {LcmField::kFixed, 4},                                                // fault_codes
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // rejected_*
       {LcmField::kFixed, 8}, {LcmField::kFixed, 8}, {LcmField::kFixed, 8},  // rejected_stale, can_*

@@ -190,6 +190,66 @@ TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
   EXPECT_EQ(s.fault_codes, 0u) << "faults 0x" << std::hex << s.fault_codes;
 }
 
+// Border spreading and wind compensation as ECU modes on the main job's table, planned inline: the
+// border side's disc takes the border search's setting for the edge line `gap` inside the bout's edge,
+// its sections stay on; with wind compensation each disc takes spread_compensate_wind's setting.
+TEST_F(AutomaticModeCapi, BorderAndWindModesSetTheDiscsApart) {
+  EcuParameters p;
+  p.command_timeout = 0s;
+  // Compensating for a CV target of 10 % on 11 m bouts (docs/c-api.md "Wind compensation").
+  CapiSpreadPredictor planning(SPREAD_FIRMWARE_TEST_TABLES, 10.0);
+  SectionPlanner planner(planning, p.section_max_beyond_percent, SectionPlanner::Threading::kInline);
+  ManualClock clock;
+  Ecu ecu(clock, p, predictor_.get(), &planner);
+  EcuCommand c = automatic(1, 12.0);
+  c.mode = static_cast<std::int32_t>(Mode::kManual);
+  c.rpm_setpoint = 600.0;
+  c.border_mode = static_cast<std::int32_t>(BorderMode::kLeftBorder);
+  c.border_gap_m = 1.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  FixedRateLoop loop(clock, 20.0);
+  NoIo io;
+  loop.run(ecu, io, 8s);
+  EcuStatus s = ecu.status();
+  NarrowingRequest request;
+  request.material = material_;
+  request.rpm = 600.0;
+  request.bout_width_m = 12.0;
+  request.side = kLeftDisc;
+  request.edge_line_m = 5.0;
+  request.max_beyond_percent = p.section_max_beyond_percent;
+  SideNarrowing border;
+  ASSERT_EQ(planning.narrow_side(request, {}, {}, border), PredictionOutcome::kOk);
+  EXPECT_TRUE(s.border_applied);
+  EXPECT_EQ(s.disc_rpm_target[kLeftDisc], border.rpm);
+  EXPECT_EQ(s.disc_drop_point_turn_rad[kLeftDisc], border.drop_point_turn_rad);
+  EXPECT_EQ(s.disc_flow_fraction[kLeftDisc], border.flow_fraction);
+  EXPECT_EQ(s.disc_rpm_target[kRightDisc], 600.0);
+  EXPECT_EQ(s.section_actual_mask, 0xFF) << "a border pass keeps its sections";
+
+  // Wind compensation in a 3 m/s crosswind, no border.
+  c = automatic(2, 11.0);
+  c.mode = static_cast<std::int32_t>(Mode::kManual);
+  c.rpm_setpoint = 600.0;
+  c.wind_compensation = true;
+  c.wind_x_m_s = 3.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  loop.run(ecu, io, 8s);
+  s = ecu.status();
+  std::array<SideNarrowing, 2> wind{};
+  ASSERT_EQ(planning.compensate_wind(material_, 600.0, 11.0, 3.0, 0.0, wind), PredictionOutcome::kOk);
+  EXPECT_TRUE(s.wind_compensated);
+  EXPECT_FALSE(s.border_applied);
+  for (const int d : {kLeftDisc, kRightDisc}) {
+    EXPECT_EQ(s.disc_rpm_target[static_cast<std::size_t>(d)], wind[static_cast<std::size_t>(d)].rpm);
+    EXPECT_EQ(s.disc_drop_point_turn_rad[static_cast<std::size_t>(d)],
+              wind[static_cast<std::size_t>(d)].drop_point_turn_rad);
+    EXPECT_NEAR(s.disc_rpm_actual[static_cast<std::size_t>(d)], wind[static_cast<std::size_t>(d)].rpm, 0.5);
+  }
+  EXPECT_NE(wind[kLeftDisc].rpm, wind[kRightDisc].rpm) << "a crosswind sets the discs apart";
+  EXPECT_TRUE(s.work_state_actual);
+}
+
 TEST_F(AutomaticModeCapi, ReportsAWidthOutOfReach) {
   EcuParameters p;
   p.command_timeout = 0s;

@@ -380,6 +380,37 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   EXPECT_EQ(ecu_.faults().total(), 1u);
 }
 
+// Border spreading and wind compensation over ISOBUS: the manufacturer-proprietary DDIs of ddi.hpp are
+// set by the TC and read back; a value out of their range, or wind compensation on an ECU without its
+// tables, is refused with PDACK "outside the operational range" and changes nothing.
+TEST_F(VirtualBus, BorderAndWindModesAreSetThroughProprietaryDdis) {
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 57344, 2);  // right border
+  EXPECT_EQ(pdack_errors(57344), kPdackNoError);
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 57345, 3000);  // 3 m inside the bout's edge
+  EXPECT_EQ(pdack_errors(57345), kPdackNoError);
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 57347, -2500);  // wind from the right, 2.5 m/s
+  EXPECT_EQ(pdack_errors(57347), kPdackNoError);
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 57348, 400);
+  EXPECT_EQ(pdack_errors(57348), kPdackNoError);
+  EXPECT_EQ(request(57344), 2);
+  EXPECT_EQ(request(57345), 3000);
+  EXPECT_EQ(request(57347), -2500);
+  EXPECT_EQ(request(57348), 400);
+  EXPECT_EQ(ecu_.status().border_mode, BorderMode::kRightBorder);
+  EXPECT_DOUBLE_EQ(ecu_.status().border_gap_m, 3.0);
+  EXPECT_DOUBLE_EQ(ecu_.status().wind_x_m_s, -2.5);
+
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 57344, 5);  // no such mode
+  EXPECT_EQ(pdack_errors(57344), kPdackValueOutOfRange);
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 57346, 1);  // no tables here to compensate with
+  EXPECT_EQ(pdack_errors(57346), kPdackValueOutOfRange);
+  send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 57347, 31000);  // beyond the 30 m/s accepted
+  EXPECT_EQ(pdack_errors(57347), kPdackValueOutOfRange);
+  EXPECT_EQ(request(57344), 2);
+  EXPECT_EQ(request(57346), 0);
+  EXPECT_EQ(request(57347), -2500);
+}
+
 // --- Fail-safe rules over the bus: each of these spread, or kept spreading, before the rules. ---
 
 TEST_F(VirtualBus, DiscAtZeroRpmNeverMeters) {

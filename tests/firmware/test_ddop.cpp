@@ -115,12 +115,12 @@ TEST(Ddop, SpreaderPoolDescribesDeviceBoomBinDiscAndEachSection) {
     const auto element = element_for_ddi(p.ddi);
     ASSERT_TRUE(element.has_value()) << "DDI " << p.ddi;
     EXPECT_EQ(parent_element.at(p.id), *element) << "DDI " << p.ddi;
-    const bool setpoint =
-        p.ddi == 6 || p.ddi == 66 || p.ddi == 160 || p.ddi == 289 || p.ddi == 290 || p.ddi == 389;
+    const bool setpoint = p.ddi == 6 || p.ddi == 66 || p.ddi == 160 || p.ddi == 289 || p.ddi == 290 ||
+                          p.ddi == 389 || (p.ddi >= 57344 && p.ddi <= 57348);  // the proprietary modes
     EXPECT_EQ((p.properties & kPropertySettable) != 0, setpoint) << "DDI " << p.ddi;
     EXPECT_NE(p.triggers, 0) << "DDI " << p.ddi;
   }
-  for (const int d : {6, 7, 66, 67, 70, 141, 160, 161, 289, 290, 389, 390, 397}) {
+  for (const int d : {6, 7, 66, 67, 70, 141, 160, 161, 289, 290, 389, 390, 397, 57344, 57345, 57346, 57347, 57348}) {
     EXPECT_EQ(seen[static_cast<std::uint16_t>(d)], 1) << "DDI " << d;
   }
   EXPECT_FALSE(element_for_ddi(999).has_value());

@@ -138,14 +138,15 @@ TEST(DdopStandardReader, VersionFourPoolHasTheExtendedLabelAndAnElementTreeByPar
     ++count[o.tag];
     EXPECT_TRUE(by_id.emplace(o.id, &o).second) << "object ID " << o.id << " twice";
   }
-  // 1 device; device, boom, hopper, discs, connector and 8 sections; 13 process data; 3 boom offsets,
-  // 3 connector properties and 3 per section; 4 presentations.
+  // 1 device; device, boom, hopper, discs, connector and 8 sections; 13 standard process data and 5
+  // proprietary ones (border and wind); 3 boom offsets, 3 connector properties and 3 per section; 5
+  // presentations.
   EXPECT_EQ(count["DVC"], 1);
   EXPECT_EQ(count["DET"], 13);
-  EXPECT_EQ(count["DPD"], 13);
+  EXPECT_EQ(count["DPD"], 18);
   EXPECT_EQ(count["DPT"], 30);
-  EXPECT_EQ(count["DVP"], 4);
-  EXPECT_EQ(objects.size(), 61u);
+  EXPECT_EQ(count["DVP"], 5);
+  EXPECT_EQ(objects.size(), 67u);
 
   // Version 4: the device object carries its extended structure label (length byte 7, then 'LSP' and the
   // boom's X offset, -1000 mm).
@@ -211,7 +212,7 @@ TEST(DdopStandardReader, VersionThreePoolHasNoExtendedLabel) {
   const std::vector<std::uint8_t> v3 = spreader_pool(3);
   EXPECT_EQ(v4.size(), v3.size() + 8) << "the length byte and the 7-byte extended label";
   const std::vector<StdObject> objects = decode(v3, 3);
-  EXPECT_EQ(objects.size(), 61u);
+  EXPECT_EQ(objects.size(), 67u);
   EXPECT_FALSE(objects.front().has_extended_label);
   // A version-4 reader of the version-3 bytes takes the next object's tag for a length: it must not come
   // out as the same pool (the two layouts really differ).

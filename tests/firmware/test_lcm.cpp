@@ -103,8 +103,49 @@ TEST_F(Memq, SectionsFromTheCommand) {
   c.section_on[7] = false;
   ASSERT_TRUE(tractor_.send(c));
   ticks(100);  // the disc reaches its speed: metering opens
-  EXPECT_NEAR(status().width_actual_m, 18.0, 1e-12);
+  // No tables: the right disc cannot be narrowed to section 6, so sections 7 and 8 are still spread.
+  EXPECT_NEAR(status().width_actual_m, 24.0, 1e-12);
   EXPECT_FALSE(status().section_on[7]);
+  EXPECT_TRUE(status().section_actual_on[7]);
+  // The right side off entirely: its disc's flow closes.
+  c = manual_command(2);
+  for (int i = 4; i < 8; ++i) c.section_on[static_cast<std::size_t>(i)] = false;
+  ASSERT_TRUE(tractor_.send(c));
+  ticks(2);
+  EXPECT_NEAR(status().width_actual_m, 12.0, 1e-12);
+  EXPECT_FALSE(status().section_actual_on[4]);
+  EXPECT_EQ(status().disc_flow_fraction[0], 1.0);
+  EXPECT_EQ(status().disc_flow_fraction[1], 0.0);
+  EXPECT_NEAR(status().mass_flow_kg_s, 0.8, 1e-9);
+}
+
+// The border and wind fields reach the ECU and come back in the status; wind compensation without tables
+// is refused as a whole command.
+TEST_F(Memq, BorderAndWindFromTheCommand) {
+  spread::command_t c = manual_command(1);
+  c.border_mode = spread::command_t::FIELD_EDGE_LEFT;
+  c.border_gap_m = 1.0;
+  c.wind_m_s[0] = 2.0;
+  c.wind_m_s[1] = -1.0;
+  ASSERT_TRUE(tractor_.send(c));
+  ticks(2);
+  EXPECT_EQ(status().border_mode, +spread::command_t::FIELD_EDGE_LEFT);
+  EXPECT_FALSE(status().border_applied) << "no tables: nothing to plan the border with";
+  EXPECT_EQ(ecu_.status().border_gap_m, 1.0);
+  EXPECT_EQ(ecu_.status().wind_x_m_s, 2.0);
+  EXPECT_EQ(ecu_.status().wind_y_m_s, -1.0);
+  c = manual_command(2);
+  c.wind_compensation = true;
+  ASSERT_TRUE(tractor_.send(c));
+  ticks(2);
+  EXPECT_EQ(status().last_command_sequence, 1) << "refused whole";
+  EXPECT_FALSE(status().wind_compensated);
+  c = manual_command(3);
+  c.border_mode = 9;
+  ASSERT_TRUE(tractor_.send(c));
+  ticks(2);
+  EXPECT_EQ(status().last_command_sequence, 1);
+  EXPECT_EQ(status().border_mode, +spread::command_t::FIELD_EDGE_LEFT);
 }
 
 TEST_F(Memq, WrongFingerprintIsCounted) {

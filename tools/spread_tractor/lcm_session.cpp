@@ -32,6 +32,15 @@ spread::command_t build_command(const LcmSessionOptions& o, std::int64_t sequenc
   for (const int off : o.sections_off) {
     if (off >= 1 && off <= o.sections) c.section_on[static_cast<std::size_t>(off - 1)] = false;
   }
+  c.border_mode = o.border == "left"          ? spread::command_t::BORDER_LEFT
+                  : o.border == "right"       ? spread::command_t::BORDER_RIGHT
+                  : o.border == "field-left"  ? spread::command_t::FIELD_EDGE_LEFT
+                  : o.border == "field-right" ? spread::command_t::FIELD_EDGE_RIGHT
+                                              : spread::command_t::BORDER_OFF;
+  c.border_gap_m = o.border_gap_m;
+  c.wind_compensation = o.wind_compensation;
+  c.wind_m_s[0] = o.wind_m_s.size() > 0 ? o.wind_m_s[0] : 0.0;
+  c.wind_m_s[1] = o.wind_m_s.size() > 1 ? o.wind_m_s[1] : 0.0;
   return c;
 }
 

@@ -40,6 +40,17 @@ int main(int argc, char** argv) {
   auto* rpm = lcm->add_option("--rpm", lcm_options.rpm, "disc speed set-point, manual mode [r/min]");
   auto* sections = lcm->add_option("--sections", lcm_options.sections, "sections in use (1..16)")->capture_default_str();
   auto* off = lcm->add_option("--off", lcm_options.sections_off, "sections to close, 1-based (e.g. --off 7 8)");
+  auto* border = lcm->add_option("--border", lcm_options.border,
+                                 "border spreading on one side: off, left, right (a road, water: nothing over the "
+                                 "edge line), field-left, field-right (another field: full rate to it)")
+                     ->check(CLI::IsMember({"off", "left", "right", "field-left", "field-right"}));
+  auto* gap = lcm->add_option("--border-gap", lcm_options.border_gap_m,
+                              "the edge line this far inside the bout's edge [m] (water: 1 with a border device, 3 without)");
+  auto* compensate = lcm->add_flag("--wind-compensation", lcm_options.wind_compensation,
+                                   "set each disc apart for the measured wind (the ECU needs its tables)");
+  auto* wind = lcm->add_option("--wind", lcm_options.wind_m_s, "measured wind: across (to the right), along (forward) [m/s]")
+                   ->expected(2)
+                   ->delimiter(',');
   auto* work = lcm->add_option("--work-state", lcm_options.work_state,
                                "master switch: on or off (the ECU applies a change, not a repeat)")
                    ->check(CLI::IsMember({"on", "off"}))
@@ -123,7 +134,9 @@ int main(int argc, char** argv) {
   try {
     if (lcm->parsed()) {
       lcm_options.send = rate->count() + width->count() + speed->count() + material->count() + rpm->count() +
-                             sections->count() + off->count() + work->count() > 0 ||
+                             sections->count() + off->count() + work->count() + border->count() + gap->count() +
+                                     compensate->count() + wind->count() >
+                                 0 ||
                          lcm_options.mode != "manual";
       if (lcm_options.once && !lcm_options.send) {
         std::cerr << "spread-tractor: error: --once needs set-points to send (e.g. --rate 200 --width 24)\n";

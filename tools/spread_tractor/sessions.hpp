@@ -26,6 +26,10 @@ struct LcmSessionOptions {
   int sections = 8;
   std::vector<int> sections_off;   // 1-based section numbers to close
   std::string work_state = "on";  // master switch asked for: on or off
+  std::string border = "off";      // off | left | right | field-left | field-right
+  double border_gap_m = 0.0;       // [m]
+  bool wind_compensation = false;
+  std::vector<double> wind_m_s;    // across (to the right), along (forward) [m/s]; empty: still air
   double send_hz = 5.0;            // command repetition [Hz]
   double duration_s = 0.0;         // 0: until Ctrl-C (or --once)
   bool once = false;               // send one command, print the status that reflects it, exit

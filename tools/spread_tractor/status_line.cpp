@@ -28,6 +28,10 @@ std::string format_status(const spread::status_t& s) {
                 s.disc_rpm_actual[0], s.disc_rpm_actual[1], s.disc_drop_point_turn_rad[0] * 57.29577951308232,
                 s.disc_drop_point_turn_rad[1] * 57.29577951308232, s.disc_flow_fraction[0], s.disc_flow_fraction[1],
                 s.sides_pending != 0 ? " (planning)" : "");
+  static constexpr const char* kBorders[] = {"off", "left", "right", "field-left", "field-right"};
+  const char* border = s.border_mode >= 0 && s.border_mode <= 4 ? kBorders[s.border_mode] : "?";
+  std::string modes = std::string(" border=") + border + (s.border_mode != 0 && s.border_applied ? " (applied)" : "") +
+                      (s.wind_compensated ? " wind-compensated" : "");
   char line[768];
   std::snprintf(line, sizeof(line),
                 "status #%lld seq=%lld %s material='%s' rpm=%.1f->%.1f rate=%.1f/%.1f kg/ha W=%.2f/%.2f m "
@@ -39,7 +43,7 @@ std::string format_status(const spread::status_t& s) {
                 s.rate_actual_kg_ha, s.rate_setpoint_kg_ha, s.width_actual_m, s.width_setpoint_m, s.ground_speed_m_s,
                 s.mass_flow_kg_s, s.throw_width_m, s.effective_width_m, 1.96 * s.effective_width_se_m, s.cv_percent,
                 1.96 * s.cv_se_percent,
-                s.width_reachable ? "reachable" : "OUT-OF-REACH", sections.c_str(), actual.c_str(), discs,
+                s.width_reachable ? "reachable" : "OUT-OF-REACH", sections.c_str(), actual.c_str(), (discs + modes).c_str(),
                 static_cast<long long>(s.rejected_undecodable), static_cast<long long>(s.rejected_wrong_fingerprint),
                 static_cast<long long>(s.rejected_invalid), static_cast<long long>(s.rejected_stale),
                 static_cast<long long>(s.can_malformed_frames), static_cast<long long>(s.can_rejected_process_data),
