@@ -33,6 +33,17 @@ extern "C" void on_signal(int) { g_stop.store(true); }
 
 constexpr double kDegreesPerRadian = 57.29577951308232;
 
+const char* border_text(BorderMode mode, bool applied) {
+  switch (mode) {
+    case BorderMode::kOff: return "";
+    case BorderMode::kLeftBorder: return applied ? "  border=left (applied)" : "  border=left";
+    case BorderMode::kRightBorder: return applied ? "  border=right (applied)" : "  border=right";
+    case BorderMode::kLeftFieldEdge: return applied ? "  border=field-left (applied)" : "  border=field-left";
+    case BorderMode::kRightFieldEdge: return applied ? "  border=field-right (applied)" : "  border=field-right";
+  }
+  return "";
+}
+
 // Section 1 first: '1' on, '0' off.
 std::string bits(std::uint16_t mask, std::int32_t count) {
   std::string out;
@@ -49,7 +60,7 @@ class StatusPrinter final : public LoopIo {
     last_ = s.time;
     std::printf("t=%8.2f s  mode=%s  rpm=%7.1f->%7.1f  rate=%6.1f kg/ha  W=%5.2f m  v=%5.2f m/s  Q=%6.3f kg/s  "
                 "throw=%5.2f m  eff=%5.2f±%.2f m  CV=%5.1f±%.1f %%  sections=%s/%s  discs=%.1f/%.1f rpm "
-                "turn=%.1f/%.1f deg flow=%.2f/%.2f%s  faults=0x%05X\n",
+                "turn=%.1f/%.1f deg flow=%.2f/%.2f%s%s%s  faults=0x%05X\n",
                 to_seconds(s.time - start_), s.mode == Mode::kAutomatic ? "auto" : "manual", s.rpm_actual,
                 s.rpm_target, s.rate_setpoint_kg_ha, s.width_setpoint_m, s.ground_speed_m_s, s.mass_flow_kg_s,
                 s.throw_width_m, s.effective_width_m, 1.96 * s.effective_width_se_m, s.cv_percent,
@@ -57,6 +68,7 @@ class StatusPrinter final : public LoopIo {
                 bits(s.section_actual_mask, s.section_count).c_str(), s.disc_rpm_actual[0], s.disc_rpm_actual[1],
                 s.disc_drop_point_turn_rad[0] * kDegreesPerRadian, s.disc_drop_point_turn_rad[1] * kDegreesPerRadian,
                 s.disc_flow_fraction[0], s.disc_flow_fraction[1], s.sides_pending != 0 ? " (planning)" : "",
+                border_text(s.border_mode, s.border_applied), s.wind_compensated ? "  wind-compensated" : "",
                 s.fault_codes);
     std::fflush(stdout);
   }

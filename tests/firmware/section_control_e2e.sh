@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Section control through the discs, end to end on spread-canbus: the ECU (firmware_sim with the main
-# job's DEM table, Urea in the hopper) driven by spread-tractor's task controller. The TC spreads 12 m
-# at 600 r/min with all 8 sections on, then, 6 s after activation, switches sections 7 and 8 off (the
-# right side's outer 3 m). The ECU must narrow the right side through its disc — its own speed, drop
-# point and flow, found by the border search on the ECU's planning thread — while the left disc keeps
-# the field's speed, and report the sections it actually spreads (DDI 161) as 1-6.
+# Section control through the discs and border spreading, end to end on spread-canbus: the ECU
+# (firmware_sim with the main job's DEM table, Urea in the hopper) driven by spread-tractor's task
+# controller. The TC spreads 12 m at 600 r/min with all 8 sections on and a border on the left (the
+# proprietary DDI 57344 = 1: nothing over the bout's left edge), then, 6 s after activation, switches
+# sections 7 and 8 off (the right side's outer 3 m). The ECU must set the left disc apart for the border
+# while the right one keeps the field's speed, then narrow the right side through its own disc — speed,
+# drop point and flow, found by the border search on the ECU's planning thread — and report the sections
+# it actually spreads (DDI 161): all 8, then 1-6.
 # Passes only on the final "section control e2e: ok" line.
 # Usage: section_control_e2e.sh SPREAD_CANBUS FIRMWARE_SIM SPREAD_TRACTOR TABLE
 set -eu
@@ -19,7 +21,7 @@ start_canbus "$canbus" section-e2e 40
 pids+=($!)
 status=0
 "$tractor" tc --iface "unix:$bus" --speed 3 --rate 250 --width 12 --rpm 600 --sections 11111111 --work-state on \
-  --sections-later 6:11111100 --request-interval 0.5 --duration 15 --connect-timeout 10 --quiet-values \
+  --set 57344=1 --sections-later 6:11111100 --request-interval 0.5 --duration 15 --connect-timeout 10 --quiet-values \
   --log "$dir/as_applied.csv" >"$dir/tc.out" 2>&1 || status=$?
 cat "$dir/tc.out"
 echo "--- ECU status (once a second)"
@@ -32,15 +34,26 @@ grep -q ',0x80,1,161,"actual condensed work state 1-16",[-0-9]*,"sections 111111
   { echo "FAIL: the ECU never reported all sections on"; exit 1; }
 grep -q ',0x80,1,161,"actual condensed work state 1-16",[-0-9]*,"sections 11111100--------"$' "$dir/as_applied.csv" ||
   { echo "FAIL: the ECU never reported sections 1-6 as actually spread"; exit 1; }
-# The ECU's own view once narrowed: the left disc at the field's 600 r/min and full flow, the right at a
-# setting of its own (another speed or drop point, a reduced flow).
+grep -q "set DDI 57344 set-point border spreading (proprietary) = left border" "$dir/tc.out" ||
+  { echo "FAIL: the TC did not set the left border"; exit 1; }
+# The ECU's own view: "discs=L/R rpm turn=L/R deg flow=L/R".
+discs_of() {
+  sed -E 's/.*discs=([0-9.]+)\/([0-9.]+) rpm turn=([-0-9.]+)\/([-0-9.]+) deg flow=([0-9.]+)\/([0-9.]+).*/\1 \2 \3 \4 \5 \6/' <<<"$1"
+}
+# Before the switch: the left disc set apart for the border, the right at the field's 600 r/min, full flow.
+bordered=$(grep '^t=' "$dir/ecu.log" | grep 'sections=11111111/11111111' | grep 'border=left (applied)' | tail -n 1)
+[ -n "$bordered" ] || { echo "FAIL: the ECU never spread all sections with the left border applied"; exit 1; }
+read -r left_rpm right_rpm left_turn right_turn left_flow right_flow <<<"$(discs_of "$bordered")"
+echo "border: left disc $left_rpm rpm, turned $left_turn deg, flow $left_flow; right disc $right_rpm rpm, turned $right_turn deg, flow $right_flow"
+awk -v r="$right_rpm" -v f="$right_flow" 'BEGIN { exit !(r > 590 && r < 610 && f == 1.0) }' ||
+  { echo "FAIL: the right disc left the field's setting for a border on the left"; exit 1; }
+awk -v r="$left_rpm" -v t="$left_turn" -v f="$left_flow" 'BEGIN { exit !(f != 1.0 || r < 590 || r > 610 || t != 0) }' ||
+  { echo "FAIL: the left disc was not set apart for the border"; exit 1; }
+# After it: the right side narrowed through its own setting, sections 1-6 spread.
 narrowed=$(grep '^t=' "$dir/ecu.log" | grep 'sections=11111100/11111100' | tail -n 1)
 [ -n "$narrowed" ] || { echo "FAIL: the ECU never spread sections 1-6 with 7-8 commanded off"; exit 1; }
-discs=$(sed -E 's/.*discs=([0-9.]+)\/([0-9.]+) rpm turn=([-0-9.]+)\/([-0-9.]+) deg flow=([0-9.]+)\/([0-9.]+).*/\1 \2 \3 \4 \5 \6/' <<<"$narrowed")
-read -r left_rpm right_rpm left_turn right_turn left_flow right_flow <<<"$discs"
+read -r left_rpm right_rpm left_turn right_turn left_flow right_flow <<<"$(discs_of "$narrowed")"
 echo "narrowed: left disc $left_rpm rpm, turned $left_turn deg, flow $left_flow; right disc $right_rpm rpm, turned $right_turn deg, flow $right_flow"
-awk -v l="$left_rpm" -v lf="$left_flow" 'BEGIN { exit !(l > 590 && l < 610 && lf == 1.0) }' ||
-  { echo "FAIL: the left disc left the field's setting"; exit 1; }
 awk -v r="$right_rpm" -v t="$right_turn" -v f="$right_flow" 'BEGIN { exit !(f < 1.0 && (r < 590 || r > 610 || t != 0)) }' ||
   { echo "FAIL: the right disc was not narrowed through its own setting"; exit 1; }
 echo "section control e2e: ok"

@@ -101,6 +101,8 @@ int main(int argc, char** argv) {
   tc->add_option("--rpm", tc_options.rpm, "disc speed set-point, DDI 389 [r/min]")->check(CLI::NonNegativeNumber);
   tc->add_option("--sections", tc_options.sections,
                  "section pattern, section 1 first, 1 on 0 off (e.g. 11110000): condensed work state DDI 290");
+  tc->add_option("--set", tc_options.extra_set_points,
+                 "DDI=VALUE: one more set-value on activation, raw (repeatable; e.g. --set 57344=1 for a left border)");
   tc->add_option("--sections-later", tc_options.sections_later,
                  "SECONDS:PATTERN: switch the sections to PATTERN (DDI 290) that long after activation (repeatable)");
   tc->add_option("--work-state", tc_options.work_state, "master work state set-point, DDI 289")

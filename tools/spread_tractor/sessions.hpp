@@ -65,6 +65,9 @@ struct TcSessionOptions {
   // Section switches later in the session: "SECONDS:PATTERN", sent that long after the pool's activation
   // (a headland or a wedge reached); "" = none.
   std::vector<std::string> sections_later;
+  // Further set-values on activation, "DDI=VALUE" (raw process-data value), sent before the work state:
+  // e.g. the proprietary border and wind DDIs (docs/can-integration.md).
+  std::vector<std::string> extra_set_points;
   std::string work_state;              // DDI 289: "on", "off" or "" (not sent)
   double request_interval_s = 1.0;     // actual values (7, 141, 161, 390) are requested this often [s]
   int measure_ms = 0;                  // > 0: ask the ECU to report them itself (measurement commands:

@@ -79,6 +79,20 @@ int run_tc_session(const TcSessionOptions& o) {
     }
     set_points.push_back({290, *value});
   }
+  for (const std::string& text : o.extra_set_points) {
+    const std::size_t equals = text.find('=');
+    char* ddi_end = nullptr;
+    char* value_end = nullptr;
+    const long ddi = equals == std::string::npos ? -1 : std::strtol(text.c_str(), &ddi_end, 10);
+    const long long value = equals == std::string::npos ? 0 : std::strtoll(text.c_str() + equals + 1, &value_end, 10);
+    if (equals == std::string::npos || ddi_end != text.c_str() + equals || ddi < 0 || ddi > 0xFFFF ||
+        value_end == text.c_str() + equals + 1 || *value_end != '\0' || value < std::numeric_limits<std::int32_t>::min() ||
+        value > std::numeric_limits<std::int32_t>::max()) {
+      std::cerr << "spread-tractor: error: --set '" << text << "' is not DDI=VALUE (DDI 0..65535, a 32-bit integer)\n";
+      return kExitUsage;
+    }
+    set_points.push_back({static_cast<std::uint16_t>(ddi), static_cast<std::int32_t>(value)});
+  }
   struct LaterSections {
     Nanoseconds after;
     std::int32_t value;
