@@ -316,6 +316,38 @@ void BM_PredictEdgeCApiFile(benchmark::State& state) {
   spread_close(tables);
 }
 
+// spread_find_edge_setting on a real table file (SPREAD_BENCH_TABLE): the border search for Urea at 600
+// rpm on 12 m bouts, the edge line on the right at 4.5 m (range(0) = 0) or at the bout's edge (1) — what
+// the ECU plans when section 8 of 8 is switched off, or for a right border. Counters: the setting found
+// and the predictions it took.
+void BM_FindEdgeSettingCApiFile(benchmark::State& state) {
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
+  spread_tables* tables = nullptr;
+  if (spread_open(path, &tables) != SPREAD_OK) {
+    state.SkipWithError("spread_open failed");
+    return;
+  }
+  spread_prediction_def def = capi_request();
+  def.rpm = 600.0;
+  def.bout_width_m = 12.0;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.gap_m = state.range(0) == 0 ? 1.5 : 0.0;
+  spread_edge_setting setting{};
+  spread_edge_result result{};
+  for (auto _ : state) {
+    const spread_status status = spread_find_edge_setting(tables, &def, &edge, &setting, &result, nullptr, 0);
+    if (status != SPREAD_OK) state.SkipWithError(spread_last_error_detail());
+    benchmark::DoNotOptimize(status);
+  }
+  state.counters["rpm"] = setting.disc_rpm;
+  state.counters["turn_deg"] = setting.disc_drop_point_turn_rad * 180.0 / std::numbers::pi;
+  state.counters["flow"] = setting.flow_fraction;
+  state.counters["predictions"] = setting.predictions;
+  state.counters["meets"] = result.meets;
+  spread_close(tables);
+}
+
 // The landing grid's interpolation error over its whole domain on a real table file (SPREAD_BENCH_TABLE):
 // every 5th launch sample of every row of the material range(0) indexes (sorted by name), at a random
 // disc height and wind across the domain (one in three at the stored height in still air), the grid's
@@ -442,6 +474,7 @@ BENCHMARK(BM_PredictCApiFileDiscs)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictEdgeCApiFile)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FindEdgeSettingCApiFile)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_LandingGridError)->DenseRange(0, 2)->ArgName("material")->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_PredictLandingGrid)
     ->ArgsProduct({{0, 3, 10}, {0, 1}})
