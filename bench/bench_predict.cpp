@@ -261,16 +261,23 @@ void BM_PredictCApiFileDiscs(benchmark::State& state) {
   predict_file(state, path, def);
 }
 
-// spread_compensate_wind on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 11 m bout against
-// CV <= 10 % (the bundled machine's stated setting), range(0) = lateral wind (m/s). Counter cv_percent: the CV at the setting found.
-void BM_CompensateWindCApiFile(benchmark::State& state) {
+// The C API handle of the benchmark's table file (SPREAD_BENCH_TABLE), or null with the benchmark skipped.
+spread_tables* open_bench_table(benchmark::State& state) {
   const char* path = bench_table(state);
-  if (path == nullptr) return;
+  if (path == nullptr) return nullptr;
   spread_tables* tables = nullptr;
   if (spread_open(path, &tables) != SPREAD_OK) {
     state.SkipWithError("spread_open failed");
-    return;
+    return nullptr;
   }
+  return tables;
+}
+
+// spread_compensate_wind on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 11 m bout against
+// CV <= 10 % (the bundled machine's stated setting), range(0) = lateral wind (m/s). Counter cv_percent: the CV at the setting found.
+void BM_CompensateWindCApiFile(benchmark::State& state) {
+  spread_tables* tables = open_bench_table(state);
+  if (tables == nullptr) return;
   spread_prediction_def def = capi_request();
   def.rpm = 600.0;
   def.bout_width_m = 11.0;  // the bundled machine's stated setting (scenes/default.toml)
@@ -291,13 +298,8 @@ void BM_CompensateWindCApiFile(benchmark::State& state) {
 // spreading with the right disc at 462.5 rpm, -5 degrees, 58 % of its flow and the left disc's drop point
 // turned -90 degrees (the setting `spread border` finds there on the main job's table).
 void BM_PredictEdgeCApiFile(benchmark::State& state) {
-  const char* path = bench_table(state);
-  if (path == nullptr) return;
-  spread_tables* tables = nullptr;
-  if (spread_open(path, &tables) != SPREAD_OK) {
-    state.SkipWithError("spread_open failed");
-    return;
-  }
+  spread_tables* tables = open_bench_table(state);
+  if (tables == nullptr) return;
   spread_prediction_def def = capi_request();
   def.rpm = 600.0;
   def.bout_width_m = 11.0;
@@ -321,13 +323,8 @@ void BM_PredictEdgeCApiFile(benchmark::State& state) {
 // the ECU plans when section 8 of 8 is switched off, or for a right border. Counters: the setting found
 // and the predictions it took.
 void BM_FindEdgeSettingCApiFile(benchmark::State& state) {
-  const char* path = bench_table(state);
-  if (path == nullptr) return;
-  spread_tables* tables = nullptr;
-  if (spread_open(path, &tables) != SPREAD_OK) {
-    state.SkipWithError("spread_open failed");
-    return;
-  }
+  spread_tables* tables = open_bench_table(state);
+  if (tables == nullptr) return;
   spread_prediction_def def = capi_request();
   def.rpm = 600.0;
   def.bout_width_m = 12.0;

@@ -48,6 +48,33 @@ class AutomaticModeCapi : public ::testing::Test {
     return c;
   }
 
+  // Manual mode at `rpm` on bouts of `width_m`, every section on.
+  EcuCommand manual(std::int64_t sequence, double width_m, double rpm) const {
+    EcuCommand c = automatic(sequence, width_m);
+    c.mode = static_cast<std::int32_t>(Mode::kManual);
+    c.rpm_setpoint = rpm;
+    return c;
+  }
+
+  // An ECU on the table with a planner that plans inline (deterministic) over a C API handle of its own,
+  // that handle's CV target `planning_cv_percent`.
+  struct PlannedEcu {
+    PlannedEcu(SpreadPredictor& predictor, const EcuParameters& p, double planning_cv_percent)
+        : planning(SPREAD_FIRMWARE_TEST_TABLES, planning_cv_percent),
+          planner(planning, p.section_max_beyond_percent, SectionPlanner::Threading::kInline),
+          ecu(clock, p, &predictor, &planner),
+          loop(clock, 20.0) {}
+    void run(Nanoseconds duration) {
+      NoIo io;
+      loop.run(ecu, io, duration);
+    }
+    CapiSpreadPredictor planning;
+    SectionPlanner planner;
+    ManualClock clock;
+    Ecu ecu;
+    FixedRateLoop loop;
+  };
+
   double first_band_width_at(double rpm) {
     SpreadPrediction p;
     EXPECT_EQ(predictor_->predict(material_, rpm, 24.0, p), PredictionOutcome::kOk);
@@ -143,20 +170,14 @@ TEST_F(AutomaticModeCapi, ReachableMeansTheSettledPatternDelivers) {
 TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
   EcuParameters p;
   p.command_timeout = 0s;
-  CapiSpreadPredictor planning(SPREAD_FIRMWARE_TEST_TABLES, 15.0);
-  SectionPlanner planner(planning, p.section_max_beyond_percent, SectionPlanner::Threading::kInline);
-  ManualClock clock;
-  Ecu ecu(clock, p, predictor_.get(), &planner);
-  EcuCommand c = automatic(1, 12.0);
-  c.mode = static_cast<std::int32_t>(Mode::kManual);
-  c.rpm_setpoint = 600.0;
+  PlannedEcu machine(*predictor_, p, 15.0);
+  EcuCommand c = manual(1, 12.0, 600.0);
   c.section_on[7] = false;
-  ASSERT_FALSE(ecu.apply_command(c).has_value());
-  FixedRateLoop loop(clock, 20.0);
-  NoIo io;
-  loop.run(ecu, io, 10s);
-  const EcuStatus s = ecu.status();
-  EXPECT_EQ(planner.searches(), 1) << "one narrowing, planned once and then answered from the cache";
+  ASSERT_FALSE(machine.ecu.apply_command(c).has_value());
+  machine.run(10s);
+  const EcuStatus s = machine.ecu.status();
+  EXPECT_EQ(machine.planner.searches(), 1) << "one narrowing, planned once and then answered from the cache";
+  CapiSpreadPredictor& planning = machine.planning;
 
   // The same search through the C API by hand: the edge line at 12/2 - 1.5 m on the right.
   SideNarrowing expected;
@@ -197,20 +218,14 @@ TEST_F(AutomaticModeCapi, BorderAndWindModesSetTheDiscsApart) {
   EcuParameters p;
   p.command_timeout = 0s;
   // Compensating for a CV target of 10 % on 11 m bouts (docs/c-api.md "Wind compensation").
-  CapiSpreadPredictor planning(SPREAD_FIRMWARE_TEST_TABLES, 10.0);
-  SectionPlanner planner(planning, p.section_max_beyond_percent, SectionPlanner::Threading::kInline);
-  ManualClock clock;
-  Ecu ecu(clock, p, predictor_.get(), &planner);
-  EcuCommand c = automatic(1, 12.0);
-  c.mode = static_cast<std::int32_t>(Mode::kManual);
-  c.rpm_setpoint = 600.0;
+  PlannedEcu machine(*predictor_, p, 10.0);
+  CapiSpreadPredictor& planning = machine.planning;
+  EcuCommand c = manual(1, 12.0, 600.0);
   c.border_mode = static_cast<std::int32_t>(BorderMode::kLeftBorder);
   c.border_gap_m = 1.0;
-  ASSERT_FALSE(ecu.apply_command(c).has_value());
-  FixedRateLoop loop(clock, 20.0);
-  NoIo io;
-  loop.run(ecu, io, 8s);
-  EcuStatus s = ecu.status();
+  ASSERT_FALSE(machine.ecu.apply_command(c).has_value());
+  machine.run(8s);
+  EcuStatus s = machine.ecu.status();
   NarrowingRequest request;
   request.material = material_;
   request.rpm = 600.0;
@@ -228,14 +243,12 @@ TEST_F(AutomaticModeCapi, BorderAndWindModesSetTheDiscsApart) {
   EXPECT_EQ(s.section_actual_mask, 0xFF) << "a border pass keeps its sections";
 
   // Wind compensation in a 3 m/s crosswind, no border.
-  c = automatic(2, 11.0);
-  c.mode = static_cast<std::int32_t>(Mode::kManual);
-  c.rpm_setpoint = 600.0;
+  c = manual(2, 11.0, 600.0);
   c.wind_compensation = true;
   c.wind_x_m_s = 3.0;
-  ASSERT_FALSE(ecu.apply_command(c).has_value());
-  loop.run(ecu, io, 8s);
-  s = ecu.status();
+  ASSERT_FALSE(machine.ecu.apply_command(c).has_value());
+  machine.run(8s);
+  s = machine.ecu.status();
   std::array<SideNarrowing, 2> wind{};
   ASSERT_EQ(planning.compensate_wind(material_, 600.0, 11.0, 3.0, 0.0, wind), PredictionOutcome::kOk);
   EXPECT_TRUE(s.wind_compensated);
