@@ -6,10 +6,10 @@
 //   (the strip beyond it is spread already: a headland, a wedge, an earlier pass);
 // - border and field-edge spreading: the same search with the edge line the border mode names;
 // - wind compensation: each disc's speed and drop point in the measured wind (spread_compensate_wind).
-// A border search costs hundreds of predictions (about half a second on the main job's table), wind compensation about fifty, so
-// the planner answers from a cache and searches on a worker thread of its own, with its own predictor (a
-// C API handle is not shared between threads): the loop never waits. Until a plan is known the ECU keeps
-// that disc as it was and says so (ecu.hpp).
+// A border search costs hundreds of predictions (about half a second on the main job's table), wind
+// compensation about fifty, so the planner answers from a cache and searches on a worker thread of its
+// own, with its own predictor (a C API handle is not shared between threads): the loop never waits.
+// Until a plan is known the ECU keeps that disc as it was and says so (ecu.hpp).
 //
 // When the field's setting changes, the ECU asks for every section narrowing of both sides at once
 // (prepare), so that a section switched off later is usually answered from the cache.
