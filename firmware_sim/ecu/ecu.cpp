@@ -494,14 +494,11 @@ void Ecu::plan_sides() {
     }
     state = SideState{SideKind::kNarrowed, plan->narrowing.rpm, plan->narrowing.drop_point_turn_rad,
                       plan->narrowing.flow_fraction, 0u};
-    if (border_here) {
-      border_applied_ = true;
-      on_through(outer);  // a border pass keeps its sections: it narrows the throw beyond the bout's edge
-      continue;
-    }
-    on_through(outer);
-    for (int j = outer; j < h; ++j) {
-      if (plan->beyond_rate_percent[static_cast<std::size_t>(j - outer)] >= parameters_.section_on_rate_percent) {
+    border_applied_ = border_applied_ || border_here;
+    // Spread is what the narrowed pass puts there: each of the side's sections whose strip still gets the
+    // section-on share of the field's rate, inside the edge line or beyond it (both discs' throw counted).
+    for (int j = 0; j < h; ++j) {
+      if (plan->section_rate_percent[static_cast<std::size_t>(j)] >= parameters_.section_on_rate_percent) {
         state.sections |= std::uint32_t{1} << index(side, j);
       }
     }
@@ -584,7 +581,12 @@ void Ecu::step(double dt_s) {
   if (!metering_open_) disc_metering_ = {false, false};
   section_actual_mask_ = middle_bit_ != 0 && metering_open_ ? middle_bit_ : 0u;
   for (int d = 0; d < parameters_.disc_count; ++d) {
-    if (disc_metering_[static_cast<std::size_t>(d)]) section_actual_mask_ |= sides_[static_cast<std::size_t>(d)].sections;
+    const auto i = static_cast<std::size_t>(d);
+    // A side whose disc the search turned off is spread by the other disc's throw alone (its rates say
+    // how far): it counts while that disc meters.
+    const bool thrown_by_other = sides_[i].kind == SideKind::kNarrowed && !(sides_[i].flow_fraction > 0.0) &&
+                                 parameters_.disc_count == 2 && disc_metering_[1 - i];
+    if (disc_metering_[i] || thrown_by_other) section_actual_mask_ |= sides_[i].sections;
   }
   mass_flow_kg_s_ =
       metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_setpoint_m_ * flow_share, speed_in_use_m_s_) : 0.0;

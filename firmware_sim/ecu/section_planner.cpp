@@ -1,6 +1,7 @@
 #include "firmware_sim/ecu/section_planner.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <string_view>
 
 namespace spread::firmware {
@@ -28,6 +29,16 @@ SectionPlanner::~SectionPlanner() {
 }
 
 SidePlan SectionPlanner::search(const SidePlanKey& key) {
+  // A search that fails in any way (out of memory included) leaves the plan unknown: the ECU keeps the
+  // field's setting for that side and reports its sections spread, never a dead planning thread.
+  try {
+    return search_unguarded(key);
+  } catch (const std::exception&) {
+    return SidePlan{};
+  }
+}
+
+SidePlan SectionPlanner::search_unguarded(const SidePlanKey& key) {
   SidePlan plan;
   const std::string_view material(key.material.data());
   if (key.kind == PlanKind::kWind) {
@@ -44,22 +55,19 @@ SidePlan SectionPlanner::search(const SidePlanKey& key) {
   request.max_beyond_percent = max_beyond_percent_;
   request.wind_x_m_s = key.wind_x_m_s;
   request.wind_y_m_s = key.wind_y_m_s;
+  // Every section of the side is rated: which of them the narrowed pass still spreads, inside the edge
+  // line and beyond it.
+  const SideGeometry g = side_geometry(key.bout_width_m, key.section_count);
+  const auto count = static_cast<std::size_t>(std::clamp(g.side_sections, 0, kMaxSideSections));
   std::array<SideStrip, kMaxSideSections> strips{};
-  int beyond = 0;
-  if (key.kind == PlanKind::kSections) {
-    const SideGeometry g = side_geometry(key.bout_width_m, key.section_count);
-    beyond = g.side_sections - key.sections_on;
-    for (int j = 0; j < beyond; ++j) {
-      strips[static_cast<std::size_t>(j)] = {g.edge_line_m(key.sections_on + j), g.edge_line_m(key.sections_on + j + 1)};
-    }
-    request.edge_line_m = g.edge_line_m(key.sections_on);
-  } else {
-    request.edge_line_m = 0.5 * key.bout_width_m - key.gap_m;
+  for (std::size_t j = 0; j < count; ++j) {
+    strips[j] = {g.edge_line_m(static_cast<int>(j)), g.edge_line_m(static_cast<int>(j) + 1)};
   }
+  request.edge_line_m = key.kind == PlanKind::kSections ? g.edge_line_m(key.sections_on)
+                                                        : 0.5 * key.bout_width_m - key.gap_m;
   const PredictionOutcome outcome =
-      predictor_.narrow_side(request, std::span<const SideStrip>(strips.data(), static_cast<std::size_t>(beyond)),
-                             std::span<double>(plan.beyond_rate_percent.data(), static_cast<std::size_t>(beyond)),
-                             plan.narrowing);
+      predictor_.narrow_side(request, std::span<const SideStrip>(strips.data(), count),
+                             std::span<double>(plan.section_rate_percent.data(), count), plan.narrowing);
   plan.known = outcome == PredictionOutcome::kOk;
   return plan;
 }

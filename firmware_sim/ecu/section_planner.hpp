@@ -67,9 +67,9 @@ SideGeometry side_geometry(double bout_width_m, int section_count);
 struct SidePlan {
   SideNarrowing narrowing;                  // the side's disc (kWind: unused)
   std::array<SideNarrowing, 2> wind_discs;  // kWind: each disc
-  // Mean rate of each side section beyond the edge line on this pass, percent of the field's; index j =
-  // the side's (sections_on + j)-th section from the centre.
-  std::array<double, kMaxSideSections> beyond_rate_percent{};
+  // Mean rate of each of the side's own sections on this pass (the pass before it included), percent of
+  // the field's; index j = the side's j-th section from the centre line. Not for kWind.
+  std::array<double, kMaxSideSections> section_rate_percent{};
   bool known = false;  // false: the search failed or the predictor cannot narrow (then the side stays)
 };
 
@@ -101,7 +101,8 @@ class SectionPlanner {
     std::uint64_t used = 0;  // lookup counter at last use (least recently used is replaced)
   };
 
-  SidePlan search(const SidePlanKey& key);
+  SidePlan search(const SidePlanKey& key);  // never throws: a failure is an unknown plan
+  SidePlan search_unguarded(const SidePlanKey& key);
   void store(const SidePlanKey& key, const SidePlan& plan);  // under mutex_
   const Entry* find(const SidePlanKey& key) const;            // under mutex_
   bool queued(const SidePlanKey& key) const;                  // under mutex_

@@ -3,9 +3,12 @@
 // through ctest, or by hand after building the file: test_firmware --gtest_filter=AutomaticModeCapi.*
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <thread>
 
 #include "firmware_sim/ecu/capi_spread_predictor.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
@@ -165,8 +168,8 @@ TEST_F(AutomaticModeCapi, ReachableMeansTheSettledPatternDelivers) {
 // Section control through the discs on the main job's table, planned inline (deterministic): with the
 // right side's outer section off, the right disc takes the border search's setting for an edge line at
 // the end of section 7, the left disc keeps the field's speed, the metered flow follows the discs'
-// shares, and the sections reported spread are 1-7 plus section 8 only if the narrowed pattern still
-// gives its strip the section-on share of the field's rate.
+// shares, and the right side's sections reported spread are those whose strips the narrowed pass still
+// gives the section-on share of the field's rate.
 TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
   EcuParameters p;
   p.command_timeout = 0s;
@@ -179,10 +182,11 @@ TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
   EXPECT_EQ(machine.planner.searches(), 1) << "one narrowing, planned once and then answered from the cache";
   CapiSpreadPredictor& planning = machine.planning;
 
-  // The same search through the C API by hand: the edge line at 12/2 - 1.5 m on the right.
+  // The same search through the C API by hand: the edge line at 12/2 - 1.5 m on the right; sections 5-8
+  // are 1.5 m strips outward from the centre line.
   SideNarrowing expected;
-  const std::array<SideStrip, 1> strip{SideStrip{4.5, 6.0}};
-  std::array<double, 1> rate{};
+  const std::array<SideStrip, 4> strips{SideStrip{0.0, 1.5}, SideStrip{1.5, 3.0}, SideStrip{3.0, 4.5}, SideStrip{4.5, 6.0}};
+  std::array<double, 4> rate{};
   NarrowingRequest request;
   request.material = material_;
   request.rpm = 600.0;
@@ -190,7 +194,7 @@ TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
   request.side = kRightDisc;
   request.edge_line_m = 4.5;
   request.max_beyond_percent = p.section_max_beyond_percent;
-  ASSERT_EQ(planning.narrow_side(request, strip, rate, expected), PredictionOutcome::kOk);
+  ASSERT_EQ(planning.narrow_side(request, strips, rate, expected), PredictionOutcome::kOk);
   EXPECT_EQ(s.disc_rpm_target[kRightDisc], expected.rpm);
   EXPECT_EQ(s.disc_drop_point_turn_rad[kRightDisc], expected.drop_point_turn_rad);
   EXPECT_NEAR(s.disc_rpm_actual[kRightDisc], expected.rpm, 0.5);
@@ -205,8 +209,14 @@ TEST_F(AutomaticModeCapi, SectionsOffNarrowTheirSideThroughItsDisc) {
   const double field_flow_kg_s = 200.0 * 12.0 * 3.0 / 10000.0;  // kg/ha × m × m/s → kg/s
   EXPECT_NEAR(s.mass_flow_kg_s, field_flow_kg_s * (1.0 + expected.flow_fraction) / 2.0, 1e-9);
   EXPECT_EQ(s.section_mask, 0x7F);
-  EXPECT_EQ(s.section_actual_mask, rate[0] >= p.section_on_rate_percent ? 0xFF : 0x7F)
-      << "section 8's strip gets " << rate[0] << " % of the field's rate";
+  std::uint16_t right = 0;
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (rate[j] >= p.section_on_rate_percent) right |= static_cast<std::uint16_t>(1u << (4 + j));
+  }
+  EXPECT_EQ(s.section_actual_mask, 0x0F | right)
+      << "the right side's strips get " << rate[0] << ", " << rate[1] << ", " << rate[2] << ", " << rate[3]
+      << " % of the field's rate";
+  EXPECT_EQ(right & 0x80, 0) << "section 8, switched off, is not spread";
   EXPECT_EQ(s.sides_pending, 0);
   EXPECT_EQ(s.fault_codes, 0u) << "faults 0x" << std::hex << s.fault_codes;
 }
@@ -234,13 +244,20 @@ TEST_F(AutomaticModeCapi, BorderAndWindModesSetTheDiscsApart) {
   request.edge_line_m = 5.0;
   request.max_beyond_percent = p.section_max_beyond_percent;
   SideNarrowing border;
-  ASSERT_EQ(planning.narrow_side(request, {}, {}, border), PredictionOutcome::kOk);
+  const std::array<SideStrip, 4> strips{SideStrip{0.0, 1.5}, SideStrip{1.5, 3.0}, SideStrip{3.0, 4.5}, SideStrip{4.5, 6.0}};
+  std::array<double, 4> rate{};
+  ASSERT_EQ(planning.narrow_side(request, strips, rate, border), PredictionOutcome::kOk);
   EXPECT_TRUE(s.border_applied);
   EXPECT_EQ(s.disc_rpm_target[kLeftDisc], border.rpm);
   EXPECT_EQ(s.disc_drop_point_turn_rad[kLeftDisc], border.drop_point_turn_rad);
   EXPECT_EQ(s.disc_flow_fraction[kLeftDisc], border.flow_fraction);
   EXPECT_EQ(s.disc_rpm_target[kRightDisc], 600.0);
-  EXPECT_EQ(s.section_actual_mask, 0xFF) << "a border pass keeps its sections";
+  // The left side's sections (4, 3, 2, 1 from the centre) as the border pass spreads them.
+  std::uint16_t left = 0;
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (rate[j] >= p.section_on_rate_percent) left |= static_cast<std::uint16_t>(1u << (3 - j));
+  }
+  EXPECT_EQ(s.section_actual_mask, 0xF0 | left);
 
   // Wind compensation in a 3 m/s crosswind, no border.
   c = manual(2, 11.0, 600.0);
@@ -259,8 +276,41 @@ TEST_F(AutomaticModeCapi, BorderAndWindModesSetTheDiscsApart) {
               wind[static_cast<std::size_t>(d)].drop_point_turn_rad);
     EXPECT_NEAR(s.disc_rpm_actual[static_cast<std::size_t>(d)], wind[static_cast<std::size_t>(d)].rpm, 0.5);
   }
-  EXPECT_NE(wind[kLeftDisc].rpm, wind[kRightDisc].rpm) << "a crosswind sets the discs apart";
   EXPECT_TRUE(s.work_state_actual);
+}
+
+// The planning thread: a lookup never waits for the search — it answers "not yet" and queues the key,
+// the worker (its own C API handle) searches, and the same key then returns the plan an inline search
+// finds. Prepared keys queue behind the one asked for.
+TEST_F(AutomaticModeCapi, PlannerSearchesOnItsOwnThread) {
+  CapiSpreadPredictor threaded(SPREAD_FIRMWARE_TEST_TABLES, 15.0);
+  SectionPlanner worker(threaded, 0.1, SectionPlanner::Threading::kWorker);
+  SidePlanKey key;
+  std::copy(material_.begin(), material_.end(), key.material.begin());
+  key.rpm = 600.0;
+  key.bout_width_m = 12.0;
+  key.section_count = 8;
+  key.side = kRightDisc;
+  key.sections_on = 2;
+  worker.prepare(key);
+  EXPECT_FALSE(worker.lookup(key).has_value()) << "searched on the worker, not in the caller";
+  std::optional<SidePlan> plan;
+  for (int i = 0; i < 1200 && !plan; ++i) {  // up to 2 min (a sanitizer build is slow)
+    std::this_thread::sleep_for(100ms);
+    plan = worker.lookup(key);
+  }
+  ASSERT_TRUE(plan.has_value()) << "no plan after 2 min";
+  ASSERT_TRUE(plan->known);
+
+  CapiSpreadPredictor inline_predictor(SPREAD_FIRMWARE_TEST_TABLES, 15.0);
+  SectionPlanner in_line(inline_predictor, 0.1, SectionPlanner::Threading::kInline);
+  const std::optional<SidePlan> expected = in_line.lookup(key);
+  ASSERT_TRUE(expected.has_value() && expected->known);
+  EXPECT_EQ(plan->narrowing.rpm, expected->narrowing.rpm);
+  EXPECT_EQ(plan->narrowing.drop_point_turn_rad, expected->narrowing.drop_point_turn_rad);
+  EXPECT_EQ(plan->narrowing.flow_fraction, expected->narrowing.flow_fraction);
+  EXPECT_EQ(plan->section_rate_percent, expected->section_rate_percent);
+  EXPECT_GE(worker.searches(), 1);
 }
 
 TEST_F(AutomaticModeCapi, ReportsAWidthOutOfReach) {

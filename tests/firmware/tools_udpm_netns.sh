@@ -40,6 +40,9 @@ ecu=$!
 trap 'kill $ecu 2>/dev/null || true' EXIT
 "$tractor" lcm --lcm-url "$url" --channel-prefix TOOLS_ --once --rate 200 --width 24 --speed 3.333 \
   --rpm 700 --material urea --off 8 | tee /dev/stderr | grep -q "sections=11111110"
+# The border mode over LCM: taken and reported (no tables here to set a disc apart with: not applied).
+"$tractor" lcm --lcm-url "$url" --channel-prefix TOOLS_ --once --rate 200 --width 24 --speed 3.333 \
+  --rpm 700 --material urea --border right --border-gap 1 | tee /dev/stderr | grep -q " border=right "
 set +e
 "$tractor" lcm --lcm-url "$url" --channel-prefix TOOLS_ --once --rate 200 --width 24 --speed 3.333 \
   --rpm 9000 --material urea --timeout 1
