@@ -564,14 +564,12 @@ void Ecu::step(double dt_s) {
   // Each disc meters its half of the bout's flow times its own share (a one-disc machine: all of it), and
   // only while it runs at its own target: one disc changing speed for a narrowed side does not stop the
   // other one spreading.
-  bool any_flow = false, any_at_speed = false;
+  bool any_at_speed = false;
   double flow_share = 0.0;
   for (int d = 0; d < parameters_.disc_count; ++d) {
     const auto i = static_cast<std::size_t>(d);
     disc_metering_[i] = false;
-    if (!(sides_[i].flow_fraction > 0.0)) continue;
-    any_flow = true;
-    if (!disc_at_speed(d)) continue;
+    if (!(sides_[i].flow_fraction > 0.0) || !disc_at_speed(d)) continue;
     any_at_speed = disc_metering_[i] = true;
     flow_share += sides_[i].flow_fraction;
   }
@@ -593,7 +591,7 @@ void Ecu::step(double dt_s) {
   faults_.set_state(Fault::kSpeedUnavailable, work_state_setpoint_ && !speed_valid, now);
   faults_.set_state(Fault::kDrivingReverse, work_state_setpoint_ && reverse, now);
   // A disc that should throw fertiliser and is not at its speed: its flow stays closed.
-  bool every_flowing_disc_at_speed = any_flow;
+  bool every_flowing_disc_at_speed = true;
   for (int d = 0; d < parameters_.disc_count; ++d) {
     const auto i = static_cast<std::size_t>(d);
     if (sides_[i].flow_fraction > 0.0 && !disc_at_speed(d)) every_flowing_disc_at_speed = false;
