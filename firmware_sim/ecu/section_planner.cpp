@@ -92,13 +92,8 @@ void SectionPlanner::store(const SidePlanKey& key, const SidePlan& plan) {
   cache_[slot] = Entry{key, plan, ++clock_};
 }
 
-bool SectionPlanner::queued(const SidePlanKey& key) const {
-  return std::find(queue_.begin(), queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_), key) !=
-         queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_);
-}
-
 void SectionPlanner::enqueue(const SidePlanKey& key, bool first) {
-  if (find(key) != nullptr) return;
+  if (find(key) != nullptr || (searching_ && *searching_ == key)) return;
   auto begin = queue_.begin(), end = queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_);
   if (const auto at = std::find(begin, end, key); at != end) {
     if (first) std::rotate(begin, at, at + 1);  // asked for now: to the front
@@ -169,11 +164,13 @@ void SectionPlanner::work() {
     const SidePlanKey key = queue_[0];
     std::move(queue_.begin() + 1, queue_.begin() + static_cast<std::ptrdiff_t>(queue_count_), queue_.begin());
     --queue_count_;
+    searching_ = key;
     lock.unlock();
     const SidePlan plan = search(key);  // the long part, outside the lock
     lock.lock();
     ++searches_;
     store(key, plan);
+    searching_.reset();
   }
 }
 

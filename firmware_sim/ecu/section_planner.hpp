@@ -105,7 +105,6 @@ class SectionPlanner {
   SidePlan search_unguarded(const SidePlanKey& key);
   void store(const SidePlanKey& key, const SidePlan& plan);  // under mutex_
   const Entry* find(const SidePlanKey& key) const;            // under mutex_
-  bool queued(const SidePlanKey& key) const;                  // under mutex_
   void enqueue(const SidePlanKey& key, bool first);           // under mutex_
   void work();
 
@@ -119,6 +118,7 @@ class SectionPlanner {
   std::uint64_t clock_ = 0;
   std::array<SidePlanKey, kQueueCapacity> queue_{};  // [0, queue_count_): next first
   std::size_t queue_count_ = 0;
+  std::optional<SidePlanKey> searching_;  // the key the worker is searching now (not queued again)
   std::int64_t searches_ = 0;
   bool stop_ = false;
   std::thread worker_;
