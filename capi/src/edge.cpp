@@ -188,6 +188,11 @@ extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const s
                   kFunction, disc, def->disc_rpm[disc], disc, def->disc_drop_point_turn_rad[disc]);
     }
   }
+  if (edge->flow_fraction != 1.0) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "%s: edge->flow_fraction %g set: the search chooses the edge-side disc's flow (leave it at 1)",
+                kFunction, edge->flow_fraction);
+  }
   try {
     const pr::PredictionRequest field = field_request(*def);
     const pr::EdgeResult found = pr::find_edge_setting(tables->predictor, field, edge_request(*edge), &tables->memory);

@@ -668,6 +668,11 @@ TEST_F(Capi, FindEdgeSettingIsTheLibrarysSearch) {
   EXPECT_NE(std::string(spread_last_error_detail()).find("disc_drop_point_turn_rad[0] 0.2"), std::string::npos)
       << spread_last_error_detail();
   EXPECT_EQ(spread_find_edge_setting(tables_, &d, &edge, nullptr, &result, nullptr, 0), SPREAD_ERROR_NULL_POINTER);
+  spread_edge_def flow = edge;
+  flow.flow_fraction = 0.5;  // the search sets the flow: a value here would be dropped
+  EXPECT_EQ(spread_find_edge_setting(tables_, &d, &flow, &setting, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("edge->flow_fraction 0.5"), std::string::npos)
+      << spread_last_error_detail();
   spread_edge_def gap = edge;
   gap.gap_m = 9.0;
   EXPECT_EQ(spread_find_edge_setting(tables_, &d, &gap, &setting, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);

@@ -411,7 +411,7 @@ typedef struct spread_edge_setting {
  * (result->meets 0): the search of docs/field-calibration.md "Border and edge spreading" over the
  * edge-side disc's speed, drop point and flow and the other disc's drop point. def: the field's setting as
  * for spread_predict_edge, with every disc_rpm and disc_drop_point_turn_rad NaN (the search sets them);
- * edge: as for spread_predict_edge, its flow_fraction unused (searched). *setting receives the setting,
+ * edge: as for spread_predict_edge, its flow_fraction 1 (the default: the search sets the flow). *setting receives the setting,
  * *result and `rate` (may be NULL) the profile at it. The errors of spread_predict_edge. Hundreds of
  * predictions (docs/c-api.md "Border and edge" gives the cost): a call for a headland or a section
  * change, not for every control cycle. Allocates through the handle's allocator; not re-entrant on one
