@@ -26,7 +26,7 @@ struct EcuParameters {
   int disc_count = 2;
   // Section control through the discs: the border threshold a narrowed side is searched with (of the
   // pass's mass beyond the last section on, as docs/field-calibration.md "Border and edge spreading"),
-  // and the mean rate, of the field's, at which a section beyond it still counts as spread.
+  // and the mean rate, of the field's, at which each of a narrowed side's sections counts as spread.
   double section_max_beyond_percent = 0.1;  // [%]
   double section_on_rate_percent = 10.0;    // [%]
   Nanoseconds fault_hold = std::chrono::seconds(2);       // event faults stay visible this long
