@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,69 @@ TEST(LandingGrid, AvxSseAndPairedLandingsAreTheSameBits) {
   }
   EXPECT_EQ(compared, 2000);
   if (!avx) GTEST_SKIP() << "no AVX here: the SSE sums were compared with themselves";
+}
+
+// A chunk of samples landed a block at a time (stencils set up side by side in SIMD lanes) gives, bit for
+// bit, what landing() and mirrored_landings() give one sample at a time — as stored, mirrored and both,
+// in still air and a wind, with AVX and without, over a count that fills neither a block nor its lanes.
+TEST(LandingGrid, BlockLandingsAreTheOneAtATimeBits) {
+  LandingGrid::Axes axes;
+  axes[LandingGrid::kDiameter] = GridAxis{2e-3, 1e-3, 5};
+  axes[LandingGrid::kVerticalSpeed] = GridAxis{-1.0, 1.5, 5};
+  axes[LandingGrid::kHeight] = GridAxis{0.7, 0.2, 6};
+  axes[LandingGrid::kSpeed] = GridAxis{0.0, 6.0, 7};
+  LandingGrid grid;
+  ASSERT_TRUE(grid.build(axes, 1800.0, flight::kDrag, default_flight_settings(), flight::Air{}));
+  std::uint64_t state = 0x2545f4914f6cdd1dULL;
+  const auto uniform = [&state](double lo, double hi) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<float>(lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1p-53);
+  };
+  std::vector<tables::LaunchSample> samples(2 * LandingGrid::kBlock + 13);
+  for (tables::LaunchSample& s : samples) {
+    s = tables::LaunchSample{};
+    s.x_m = uniform(-0.5, 0.5);
+    s.y_m = uniform(-0.5, 0.5);
+    s.z_m = uniform(-0.1, 0.6);
+    s.vx_norm = uniform(-1.0, 1.0);
+    s.vy_norm = uniform(-1.0, 1.0);
+    s.vz_norm = uniform(-0.05, 0.2);
+    s.diameter_m = uniform(1.5e-3, 6.5e-3);
+  }
+  samples[5].vx_norm = samples[5].vy_norm = 0.0f;  // no horizontal speed: the speed axis's node −1
+  const double rim_speed_m_s = 24.0, disc_height_m = 0.9;
+  auto block = std::make_unique<LandingGrid::StencilBlock>();
+  const std::size_t n = samples.size();
+  std::vector<double> xs(2 * n), ys(2 * n);
+  int compared = 0;
+  for (const bool avx : {true, false}) {
+    grid.set_avx(avx);
+    for (const double wind_x : {0.0, 3.0, -7.0}) {
+      const double wind_y = wind_x == 0.0 ? 0.0 : 1.5;
+      for (const auto sides : {LandingGrid::Sides::kAsStored, LandingGrid::Sides::kMirrored, LandingGrid::Sides::kBoth}) {
+        grid.sample_landings(samples, rim_speed_m_s, disc_height_m, wind_x, wind_y, sides, *block, xs, ys);
+        for (std::size_t i = 0; i < n; ++i) {
+          const tables::LaunchSample& s = samples[i];
+          const double vx = rim_speed_m_s * s.vx_norm, vy = rim_speed_m_s * s.vy_norm, vz = rim_speed_m_s * s.vz_norm;
+          const double z = s.z_m + disc_height_m;
+          double x[2], y[2];
+          if (sides == LandingGrid::Sides::kBoth) {
+            grid.mirrored_landings(s.diameter_m, s.x_m, s.y_m, z, vx, vy, vz, wind_x, wind_y, x, y);
+            ASSERT_EQ(xs[n + i], x[1]) << i;
+            ASSERT_EQ(ys[n + i], y[1]) << i;
+          } else if (sides == LandingGrid::Sides::kAsStored) {
+            grid.landing(s.diameter_m, s.x_m, s.y_m, z, vx, vy, vz, wind_x, wind_y, x[0], y[0]);
+          } else {
+            grid.landing(s.diameter_m, -1.0 * s.x_m, s.y_m, z, -1.0 * vx, vy, vz, wind_x, wind_y, x[0], y[0]);
+          }
+          ASSERT_EQ(xs[i], x[0]) << i;
+          ASSERT_EQ(ys[i], y[0]) << i;
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 2 * 3 * 3 * static_cast<int>(n));
 }
 
 // The grid against every granule flown at the tight reference tolerance: rows and between rows, pairwise

@@ -62,8 +62,13 @@ struct StencilLines {
   std::size_t diameter_step;  // floats between diameter nodes, vertical-speed nodes and height nodes
   std::size_t vertical_step;
   std::size_t height_step;
-  float weight[16];  // w_d · w_v, line 4a + b
-  float height_weight[4];
+  // w_d · w_v of line 4a + b at weight[(4a + b) · weight_stride], the heights' at height_weight[c ·
+  // weight_stride] (a block's weights are stored lane by lane: LandingGrid::StencilBlock).
+  const float* weight;
+  const float* height_weight;
+  std::size_t weight_stride;
+  float line_weight(std::size_t line) const { return weight[line * weight_stride]; }
+  float height(std::size_t c) const { return height_weight[c * weight_stride]; }
 };
 
 // In SSE registers, two per height (R0 T0 R1 T1 | R2 T2 R3 T3); still air (no T) takes the four R out of
@@ -76,7 +81,7 @@ void sum_stencil_lines(const StencilLines& in, std::size_t landing, float (&sums
   for (std::size_t a = 0; a < kDiameterPoints; ++a) {
     for (std::size_t b = 0; b < kVerticalPoints; ++b) {
       const float* line = in.first[landing] + a * in.diameter_step + b * in.vertical_step;
-      const float w = in.weight[4 * a + b];
+      const float w = in.line_weight(4 * a + b);
       const auto add = [w](Float4& low, Float4& high, const float* values) {
         Float4 v0, v1;
         std::memcpy(&v0, values, sizeof v0);
@@ -94,7 +99,7 @@ void sum_stencil_lines(const StencilLines& in, std::size_t landing, float (&sums
       add(a3, b3, line + 3 * in.height_step);
     }
   }
-  const float* wh = in.height_weight;
+  const float wh[4] = {in.height(0), in.height(1), in.height(2), in.height(3)};
   const Float4 low = wh[0] * a0 + wh[1] * a1 + wh[2] * a2 + wh[3] * a3;
   if constexpr (kWithTime) {
     const Float4 high = wh[0] * b0 + wh[1] * b1 + wh[2] * b2 + wh[3] * b3;
@@ -117,9 +122,10 @@ __attribute__((target("avx"), always_inline)) inline void add_line_avx(Float8& s
   std::memcpy(&v, values, sizeof v);
   sum += w * v;
 }
-__attribute__((target("avx"), always_inline)) inline void store_heights_avx(const float* wh, Float8 s0, Float8 s1,
-                                                                            Float8 s2, Float8 s3, float* sums) {
-  const Float8 sum = wh[0] * s0 + wh[1] * s1 + wh[2] * s2 + wh[3] * s3;
+__attribute__((target("avx"), always_inline)) inline void store_heights_avx(const StencilLines& in, Float8 s0,
+                                                                            Float8 s1, Float8 s2, Float8 s3,
+                                                                            float* sums) {
+  const Float8 sum = in.height(0) * s0 + in.height(1) * s1 + in.height(2) * s2 + in.height(3) * s3;
   std::memcpy(sums, &sum, sizeof sum);
 }
 // The accumulators are named (not an array), so that they stay in registers.
@@ -129,14 +135,14 @@ __attribute__((target("avx"))) void sum_stencil_lines_avx(const StencilLines& in
   for (std::size_t a = 0; a < kDiameterPoints; ++a) {
     for (std::size_t b = 0; b < kVerticalPoints; ++b) {
       const float* line = in.first[0] + a * in.diameter_step + b * in.vertical_step;
-      const float w = in.weight[4 * a + b];
+      const float w = in.line_weight(4 * a + b);
       add_line_avx(s0, w, line);
       add_line_avx(s1, w, line + step);
       add_line_avx(s2, w, line + 2 * step);
       add_line_avx(s3, w, line + 3 * step);
     }
   }
-  store_heights_avx(in.height_weight, s0, s1, s2, s3, sums[0]);
+  store_heights_avx(in, s0, s1, s2, s3, sums[0]);
 }
 __attribute__((target("avx"))) void sum_stencil_line_pairs_avx(const StencilLines& in, float (&sums)[2][8]) {
   Float8 s0 = {}, s1 = {}, s2 = {}, s3 = {}, t0 = {}, t1 = {}, t2 = {}, t3 = {};
@@ -146,7 +152,7 @@ __attribute__((target("avx"))) void sum_stencil_line_pairs_avx(const StencilLine
       const std::size_t offset = a * in.diameter_step + b * in.vertical_step;
       const float* line = in.first[0] + offset;
       const float* other = in.first[1] + offset;
-      const float w = in.weight[4 * a + b];
+      const float w = in.line_weight(4 * a + b);
       add_line_avx(s0, w, line);
       add_line_avx(s1, w, line + step);
       add_line_avx(s2, w, line + 2 * step);
@@ -157,10 +163,23 @@ __attribute__((target("avx"))) void sum_stencil_line_pairs_avx(const StencilLine
       add_line_avx(t3, w, other + 3 * step);
     }
   }
-  store_heights_avx(in.height_weight, s0, s1, s2, s3, sums[0]);
-  store_heights_avx(in.height_weight, t0, t1, t2, t3, sums[1]);
+  store_heights_avx(in, s0, s1, s2, s3, sums[0]);
+  store_heights_avx(in, t0, t1, t2, t3, sums[1]);
 }
 #endif
+
+// The stencil's four speeds (lane 2k: R, 2k + 1: T) summed with their weights. From speed node −1 (node 1
+// mirrored: R(−u) = −R(u), T(−u) = T(u)) the lines were read from node 0, so they shift one node up.
+inline double speed_sum(const float* sum, int lane, bool from_below_zero, double w0, double w1, double w2, double w3) {
+  double f[kGridStencil] = {sum[lane], sum[lane + 2], sum[lane + 4], sum[lane + 6]};
+  if (from_below_zero) {
+    f[3] = f[2];
+    f[2] = f[1];
+    f[1] = f[0];
+    f[0] = (lane == 0 ? -1.0 : 1.0) * f[2];
+  }
+  return w0 * f[0] + w1 * f[1] + w2 * f[2] + w3 * f[3];
+}
 
 }  // namespace
 
@@ -301,10 +320,14 @@ void LandingGrid::interpolate(double diameter_m, double vertical_speed_m_s, doub
   lines.diameter_step = 2 * nu * nh * nv;
   lines.vertical_step = 2 * nu * nh;
   lines.height_step = 2 * nu;
+  float line_weight[16], height_weight[kGridStencil];
   for (std::size_t a = 0; a < kDiameterPoints; ++a) {
-    for (std::size_t b = 0; b < kVerticalPoints; ++b) lines.weight[4 * a + b] = static_cast<float>(wd[a] * wv[b]);
+    for (std::size_t b = 0; b < kVerticalPoints; ++b) line_weight[4 * a + b] = static_cast<float>(wd[a] * wv[b]);
   }
-  for (std::size_t c = 0; c < kGridStencil; ++c) lines.height_weight[c] = static_cast<float>(wh[c]);
+  for (std::size_t c = 0; c < kGridStencil; ++c) height_weight[c] = static_cast<float>(wh[c]);
+  lines.weight = line_weight;
+  lines.height_weight = height_weight;
+  lines.weight_stride = 1;
   float sums[2][8];
 #ifdef SPREAD_GRID_AVX
   if (avx_ && count == 2) {
@@ -318,21 +341,8 @@ void LandingGrid::interpolate(double diameter_m, double vertical_speed_m_s, doub
   for (std::size_t l = 0; l < count; ++l) sum_stencil_lines<kWithTime>(lines, l, sums[l]);
 #endif
   for (std::size_t l = 0; l < count; ++l) {
-    // The stencil's four speeds (lane 2k: R, 2k + 1: T); from speed node −1 (node 1 mirrored: R(−u) =
-    // −R(u), T(−u) = T(u)) the lines were read from node 0, so they shift one node up.
-    const auto speeds = [&](int lane, double mirror_sign) {
-      const float* sum = sums[l];
-      double f[kGridStencil] = {sum[lane], sum[lane + 2], sum[lane + 4], sum[lane + 6]};
-      if (u0[l] < 0) {
-        f[3] = f[2];
-        f[2] = f[1];
-        f[1] = f[0];
-        f[0] = mirror_sign * f[2];
-      }
-      return wu[l][0] * f[0] + wu[l][1] * f[1] + wu[l][2] * f[2] + wu[l][3] * f[3];
-    };
-    range_m[l] = speeds(0, -1.0);
-    if constexpr (kWithTime) time_s[l] = speeds(1, 1.0);
+    range_m[l] = speed_sum(sums[l], 0, u0[l] < 0, wu[l][0], wu[l][1], wu[l][2], wu[l][3]);
+    if constexpr (kWithTime) time_s[l] = speed_sum(sums[l], 1, u0[l] < 0, wu[l][0], wu[l][1], wu[l][2], wu[l][3]);
   }
 }
 
@@ -372,6 +382,208 @@ void LandingGrid::mirrored_landings(double diameter_m, double x_m, double y_m, d
     const double along = u[l] > 0.0 ? range_m[l] / u[l] : 0.0;
     landing_x_m[l] = sx[l] + along * rx[l] + wind_x_m_s * time_s[l];
     landing_y_m[l] = y_m + along * ry + wind_y_m_s * time_s[l];
+  }
+}
+
+namespace {
+
+// Four doubles side by side (GCC/Clang vector extension: one AVX register, or two SSE ones).
+typedef double Double4 __attribute__((vector_size(32)));
+typedef float Float4x __attribute__((vector_size(16)));
+typedef std::int32_t Int4 __attribute__((vector_size(16)));
+
+
+// grid_stencil<4> of four values, lane by lane the same operations: std::clamp(v, lo, hi) is v < lo ? lo :
+// hi < v ? hi : v, and the conversion to an integer truncates in both.
+__attribute__((always_inline)) inline void stencil_lanes(const Double4& x, const GridAxis& axis, double inverse_step,
+                                                         std::int32_t lowest, Int4& first, Double4 (&w)[4]) {
+  Double4 position = (x - axis.first) * inverse_step;
+  const Double4 lo = Double4{} - 2.0, hi = Double4{} + (static_cast<double>(axis.count) + 1.0);
+  position = position < lo ? lo : (hi < position ? hi : position);
+  const Int4 lowest_lanes = Int4{} + lowest, highest_lanes = Int4{} + static_cast<std::int32_t>(axis.count - 4);
+  Int4 k = __builtin_convertvector(position, Int4) - 1;
+  k = k < lowest_lanes ? lowest_lanes : (highest_lanes < k ? highest_lanes : k);
+  first = k;
+  const Double4 f = position - __builtin_convertvector(k + 1, Double4);
+  const Double4 fm1 = f - 1.0, fm2 = f - 2.0, fp1 = f + 1.0;
+  w[0] = -f * fm1 * fm2 * (1.0 / 6.0);
+  w[1] = fp1 * fm1 * fm2 * 0.5;
+  w[2] = -fp1 * f * fm2 * 0.5;
+  w[3] = fp1 * f * fm1 * (1.0 / 6.0);
+}
+
+__attribute__((always_inline)) inline void sqrt_lanes(Double4& x) {
+  for (int k = 0; k < 4; ++k) x[k] = std::sqrt(x[k]);  // correctly rounded, as one at a time
+}
+
+// What sample_landings' set-up of a block needs of the request.
+struct BlockRequest {
+  const tables::LaunchSample* samples;
+  std::size_t count;  // <= LandingGrid::kBlock
+  double rim_speed_m_s, disc_height_m, wind_x_m_s, wind_y_m_s;
+  bool sides[2];  // as stored, mirrored
+};
+
+// The set-up of a block, four samples at a time: what interpolate() and landing() compute per landing
+// before reading the grid (a lane past the block's end repeats its last sample).
+__attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, const LandingGrid::Axes& axes,
+                                                        const std::array<double, LandingGrid::kAxisCount>& inverse,
+                                                        LandingGrid::StencilBlock& b) {
+  using Grid = LandingGrid;
+  for (std::size_t i = 0; i < r.count; i += 4) {
+    const tables::LaunchSample* s[4];
+    for (std::size_t k = 0; k < 4; ++k) s[k] = &r.samples[std::min(i + k, r.count - 1)];
+    Double4 vx, vy, vz, z, diameter;
+    for (std::size_t k = 0; k < 4; ++k) {
+      vx[k] = s[k]->vx_norm;
+      vy[k] = s[k]->vy_norm;
+      vz[k] = s[k]->vz_norm;
+      z[k] = s[k]->z_m;
+      diameter[k] = s[k]->diameter_m;
+    }
+    vx = r.rim_speed_m_s * vx;
+    vy = r.rim_speed_m_s * vy;
+    vz = r.rim_speed_m_s * vz;
+    z = z + r.disc_height_m;
+    const Double4 ry = vy - r.wind_y_m_s;
+    std::memcpy(&b.relative_y[i], &ry, sizeof ry);
+    for (int side = 0; side < 2; ++side) {
+      if (!r.sides[side]) continue;
+      const Double4 rx = (side == 0 ? vx : -1.0 * vx) - r.wind_x_m_s;
+      Double4 u = rx * rx + ry * ry;
+      sqrt_lanes(u);
+      Int4 first;
+      Double4 wu[4];
+      stencil_lanes(u, axes[Grid::kSpeed], inverse[Grid::kSpeed], -1, first, wu);
+      std::memcpy(&b.relative_x[side][i], &rx, sizeof rx);
+      std::memcpy(&b.speed[side][i], &u, sizeof u);
+      std::memcpy(&b.speed_first[side][i], &first, sizeof first);
+      for (int c = 0; c < 4; ++c) std::memcpy(&b.speed_weight[side][c][i], &wu[c], sizeof wu[c]);
+    }
+    Int4 d0, v0, h0;
+    Double4 wd[4], wv[4], wh[4];
+    stencil_lanes(diameter, axes[Grid::kDiameter], inverse[Grid::kDiameter], 0, d0, wd);
+    stencil_lanes(vz, axes[Grid::kVerticalSpeed], inverse[Grid::kVerticalSpeed], 0, v0, wv);
+    const Double4 zero{};
+    Double4 root_height = z < zero ? zero : z;
+    sqrt_lanes(root_height);
+    stencil_lanes(root_height, axes[Grid::kHeight], inverse[Grid::kHeight], 0, h0, wh);
+    std::memcpy(&b.diameter_first[i], &d0, sizeof d0);
+    std::memcpy(&b.vertical_first[i], &v0, sizeof v0);
+    std::memcpy(&b.height_first[i], &h0, sizeof h0);
+    for (int a = 0; a < 4; ++a) {
+      for (int c = 0; c < 4; ++c) {
+        const Float4x w = __builtin_convertvector(wd[a] * wv[c], Float4x);
+        std::memcpy(&b.line_weight[4 * a + c][i], &w, sizeof w);
+      }
+      const Float4x w = __builtin_convertvector(wh[a], Float4x);
+      std::memcpy(&b.height_weight[a][i], &w, sizeof w);
+    }
+  }
+}
+
+void set_up_block_portable(const BlockRequest& r, const LandingGrid::Axes& axes,
+                           const std::array<double, LandingGrid::kAxisCount>& inverse, LandingGrid::StencilBlock& b) {
+  set_up_block(r, axes, inverse, b);
+}
+#ifdef SPREAD_GRID_AVX
+__attribute__((target("avx"))) void set_up_block_avx(const BlockRequest& r, const LandingGrid::Axes& axes,
+                                                     const std::array<double, LandingGrid::kAxisCount>& inverse,
+                                                     LandingGrid::StencilBlock& b) {
+  set_up_block(r, axes, inverse, b);
+}
+#endif
+
+}  // namespace
+
+void LandingGrid::sample_landings(std::span<const tables::LaunchSample> samples, double rim_speed_m_s,
+                                  double disc_height_m, double wind_x_m_s, double wind_y_m_s, Sides sides,
+                                  StencilBlock& scratch, std::span<double> landing_x_m,
+                                  std::span<double> landing_y_m) const {
+  const std::size_t count = samples.size();
+  const std::size_t outputs = sides == Sides::kBoth ? 2 * count : count;
+  if (landing_x_m.size() < outputs || landing_y_m.size() < outputs) {
+    throw std::length_error("LandingGrid::sample_landings: the landing buffers hold fewer than the landings");
+  }
+  const bool still = wind_x_m_s == 0.0 && wind_y_m_s == 0.0;
+  // As landing() and mirrored_landings(): the flight time only in a wind, or for both sides at once.
+  const bool with_time = !still || sides == Sides::kBoth;
+  BlockRequest request{nullptr, 0, rim_speed_m_s, disc_height_m, wind_x_m_s, wind_y_m_s,
+                       {sides != Sides::kMirrored, sides != Sides::kAsStored}};
+  const std::size_t nu = axes_[kSpeed].count, nh = axes_[kHeight].count, nv = axes_[kVerticalSpeed].count;
+  StencilLines lines;
+  lines.diameter_step = 2 * nu * nh * nv;
+  lines.vertical_step = 2 * nu * nh;
+  lines.height_step = 2 * nu;
+  lines.weight_stride = kBlock;
+  StencilBlock& b = scratch;
+  for (std::size_t first = 0; first < count; first += kBlock) {
+    request.samples = samples.data() + first;
+    request.count = std::min(kBlock, count - first);
+#ifdef SPREAD_GRID_AVX
+    if (avx_) {
+      set_up_block_avx(request, axes_, inverse_step_, b);
+    } else {
+      set_up_block_portable(request, axes_, inverse_step_, b);
+    }
+#else
+    set_up_block_portable(request, axes_, inverse_step_, b);
+#endif
+    for (std::size_t i = 0; i < request.count; ++i) {
+      const std::size_t base = nu * nh * (static_cast<std::size_t>(b.diameter_first[i]) * nv +
+                                          static_cast<std::size_t>(b.vertical_first[i])) +
+                               nu * static_cast<std::size_t>(b.height_first[i]);
+      int side_of[2];
+      std::size_t landings = 0;
+      for (int side = 0; side < 2; ++side) {
+        if (!request.sides[side]) continue;
+        const std::int32_t u0 = b.speed_first[side][i];
+        lines.first[landings] = &values_[2 * (base + static_cast<std::size_t>(u0 < 0 ? 0 : u0))];
+        side_of[landings++] = side;
+      }
+      lines.weight = &b.line_weight[0][i];
+      lines.height_weight = &b.height_weight[0][i];
+      float sums[2][8];
+#ifdef SPREAD_GRID_AVX
+      if (avx_ && landings == 2) {
+        sum_stencil_line_pairs_avx(lines, sums);
+      } else if (avx_) {
+        sum_stencil_lines_avx(lines, sums);
+      } else {
+        for (std::size_t l = 0; l < landings; ++l) {
+          if (with_time) {
+            sum_stencil_lines<true>(lines, l, sums[l]);
+          } else {
+            sum_stencil_lines<false>(lines, l, sums[l]);
+          }
+        }
+      }
+#else
+      for (std::size_t l = 0; l < landings; ++l) {
+        if (with_time) {
+          sum_stencil_lines<true>(lines, l, sums[l]);
+        } else {
+          sum_stencil_lines<false>(lines, l, sums[l]);
+        }
+      }
+#endif
+      const tables::LaunchSample& sample = samples[first + i];
+      for (std::size_t l = 0; l < landings; ++l) {
+        const int side = side_of[l];
+        const bool below_zero = b.speed_first[side][i] < 0;
+        const double w0 = b.speed_weight[side][0][i], w1 = b.speed_weight[side][1][i];
+        const double w2 = b.speed_weight[side][2][i], w3 = b.speed_weight[side][3][i];
+        const double range_m = speed_sum(sums[l], 0, below_zero, w0, w1, w2, w3);
+        const double time_s = with_time ? speed_sum(sums[l], 1, below_zero, w0, w1, w2, w3) : 0.0;
+        // landing(): the range along the unit vector (rx, ry)/u, carried by the wind for the flight time.
+        const double u = b.speed[side][i], rx = b.relative_x[side][i], ry = b.relative_y[i];
+        const double along = u > 0.0 ? range_m / u : 0.0;
+        const double x_m = side == 0 ? double{sample.x_m} : -1.0 * sample.x_m;
+        const std::size_t out = side == 1 && sides == Sides::kBoth ? count + first + i : first + i;
+        landing_x_m[out] = x_m + along * rx + wind_x_m_s * time_s;
+        landing_y_m[out] = sample.y_m + along * ry + wind_y_m_s * time_s;
+      }
+    }
   }
 }
 

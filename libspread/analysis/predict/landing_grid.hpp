@@ -98,6 +98,33 @@ class LandingGrid {
                          double vz_m_s, double wind_x_m_s, double wind_y_m_s, double (&landing_x_m)[2],
                          double (&landing_y_m)[2]) const;
 
+  // Which landings of a launch sample sample_landings() gives: the launch as stored (the left disc), its
+  // mirror image x → −x (the right disc), or both.
+  enum class Sides { kAsStored, kMirrored, kBoth };
+  // The stencils of a block of samples, set up side by side (sample_landings' scratch; a prediction's
+  // workspace holds one, so that none is on the caller's stack).
+  static constexpr std::size_t kBlock = 32;
+  struct StencilBlock {
+    alignas(32) double relative_x[2][kBlock];  // launch velocity relative to the air, m/s, per side
+    alignas(32) double relative_y[kBlock];
+    alignas(32) double speed[2][kBlock];  // its magnitude u′
+    alignas(32) double speed_weight[2][4][kBlock];
+    alignas(32) float line_weight[16][kBlock];  // w_d · w_v, line 4a + b
+    alignas(32) float height_weight[4][kBlock];
+    alignas(32) std::int32_t diameter_first[kBlock], vertical_first[kBlock], height_first[kBlock];
+    alignas(32) std::int32_t speed_first[2][kBlock];
+  };
+  // The landings of launch samples (normalised, as a table's rows store them) launched at rim speed ω R
+  // from `disc_height_m` in the horizontal wind: for sample i, position (x, y, z + disc_height_m) and
+  // velocity rim_speed_m_s · (vx, vy, vz)_norm, landing() of it (kAsStored: into [i]), of its mirror image
+  // (kMirrored: into [i]), or mirrored_landings() of it (kBoth: as stored into [i], mirrored into
+  // [count + i]) — bit for bit. The stencils' indices and weights of a block of samples are computed side
+  // by side in SIMD lanes (AVX where the processor has it: the same operations lane by lane), which one
+  // landing at a time computes one lane at a time; they took half of a landing's time.
+  void sample_landings(std::span<const tables::LaunchSample> samples, double rim_speed_m_s, double disc_height_m,
+                       double wind_x_m_s, double wind_y_m_s, Sides sides, StencilBlock& scratch,
+                       std::span<double> landing_x_m, std::span<double> landing_y_m) const;
+
  private:
   // R (and T) of one or two horizontal speeds (speeds_m_s.size() <= 2) at the same diameter, vertical
   // speed and height.

@@ -353,7 +353,10 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
       tray_mass_(memory),
       gradients_(memory),
       gradient_scratch_(memory),
-      metrics_scratch_(memory) {
+      metrics_scratch_(memory),
+      chunk_landing_x_m_(memory),
+      chunk_landing_y_m_(memory),
+      stencil_block_(memory) {
   const std::size_t pair = predictor.largest_pair();
   const PredictorLimits& limits = predictor.limits();
   sample_capacity_ = pair;
@@ -366,6 +369,9 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   granules_.resize(kFlightChunk);
   launches_.resize(kFlightChunk);
   landings_.resize(kFlightChunk);
+  chunk_landing_x_m_.resize(2 * kFlightChunk);
+  chunk_landing_y_m_.resize(2 * kFlightChunk);
+  stencil_block_.resize(1);
   const int widest = predictor.tray_capacity(limits.min_tray_width_m);
   tray_capacity_ = static_cast<std::size_t>(widest);
   tray_mass_.resize(tray_capacity_);
@@ -390,7 +396,9 @@ std::size_t PredictorWorkspace::bytes() const {
          launches_.size() * sizeof(flight::State) + landings_.size() * sizeof(flight::Landing) +
          sizeof(double) * (sample_weight_kg_.size() + landing_x_m_.size() + landing_y_m_.size() +
                            landing_weight_.size() + tray_mass_.size() + gradients_.size() +
-                           gradient_scratch_.size() + metrics_scratch_.size());
+                           gradient_scratch_.size() + metrics_scratch_.size() + chunk_landing_x_m_.size() +
+                           chunk_landing_y_m_.size()) +
+         sizeof(LandingGrid::StencilBlock) * stencil_block_.size();
 }
 
 bool Predictor::pairwise(std::size_t run_a, std::size_t run_b) const {
@@ -643,30 +651,29 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, const DiscRows& rows,
     const std::size_t count = std::min(chunk, n - first);
     disc_samples(w, rows, drop_point_turn_rad, first, count);
     if (grid != nullptr) {
-      // Sample by sample, both discs at once. Only the launch's horizontal motion, height, vertical speed
-      // and diameter are needed (no spin, no full state).
+      // A block of samples at a time, both discs at once where both are landed (a sample's two landings
+      // share the stencil's diameter, vertical speed and height). Only the launch's horizontal motion,
+      // height, vertical speed and diameter are needed (no spin, no full state).
+      const std::span<const tables::LaunchSample> chunk_samples = std::span(w.samples_).first(count);
+      const std::span<double> xs = std::span(w.chunk_landing_x_m_), ys = std::span(w.chunk_landing_y_m_);
+      if (left_flown && right_flown) {
+        grid->sample_landings(chunk_samples, rim_speed_m_s, height_m, wind_x_m_s, wind_y_m_s,
+                              LandingGrid::Sides::kBoth, w.stencil_block_[0], xs, ys);
+        for (std::size_t c = 0; c < count; ++c) {
+          record_left(first + c, w.sample_weight_kg_[c], true, xs[c], ys[c]);
+          record_right(first + c, w.sample_weight_kg_[c], true, xs[count + c], ys[count + c]);
+        }
+        continue;
+      }
+      grid->sample_landings(chunk_samples, rim_speed_m_s, height_m, wind_x_m_s, wind_y_m_s,
+                            left_flown ? LandingGrid::Sides::kAsStored : LandingGrid::Sides::kMirrored,
+                            w.stencil_block_[0], xs, ys);
       for (std::size_t c = 0; c < count; ++c) {
-        const tables::LaunchSample& s = w.samples_[c];
-        const double weight = w.sample_weight_kg_[c];
-        const double vx_m_s = rim_speed_m_s * s.vx_norm, vy_m_s = rim_speed_m_s * s.vy_norm;
-        const double vz_m_s = rim_speed_m_s * s.vz_norm, z_m = s.z_m + height_m;
-        double x = 0.0, y = 0.0;
-        if (left_flown && right_flown) {
-          double xs[2], ys[2];
-          grid->mirrored_landings(s.diameter_m, s.x_m, s.y_m, z_m, vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, xs,
-                                  ys);
-          record_left(first + c, weight, true, xs[0], ys[0]);
-          record_right(first + c, weight, true, xs[1], ys[1]);
-          continue;
-        }
         if (left_flown) {
-          grid->landing(s.diameter_m, s.x_m, s.y_m, z_m, vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s, x, y);
-          record_left(first + c, weight, true, x, y);
+          record_left(first + c, w.sample_weight_kg_[c], true, xs[c], ys[c]);
+        } else {
+          record_right(first + c, w.sample_weight_kg_[c], true, xs[c], ys[c]);
         }
-        if (!right_flown) continue;
-        grid->landing(s.diameter_m, -1.0 * s.x_m, s.y_m, z_m, -1.0 * vx_m_s, vy_m_s, vz_m_s, wind_x_m_s, wind_y_m_s,
-                      x, y);
-        record_right(first + c, weight, true, x, y);
       }
       continue;
     }

@@ -262,6 +262,9 @@ class PredictorWorkspace {
   // the stack, and during the standard errors' passes the gradients' prefix sums (before that tail).
   std::pmr::vector<double> metrics_scratch_;
   std::size_t cv_scratch_size_ = 0;  // the metrics scratch's tail that cv_gradient uses during the passes
+  // The landing grid's landings of one chunk (both discs: 2 kFlightChunk) and its stencils' set-up.
+  std::pmr::vector<double> chunk_landing_x_m_, chunk_landing_y_m_;
+  std::pmr::vector<LandingGrid::StencilBlock> stencil_block_;
   // predict()'s bookkeeping of the bands and their standard errors (kept here, not on the caller's stack):
   // one standard error to compute — of the CV at `trays` trays, or (width_band set) of that band's upper
   // end, or (throw_width) of the throw width —, and per band the racetrack CV at a to-and-fro band's bout.
