@@ -9,6 +9,10 @@
 
 #include "libspread/core/cpu_features.hpp"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <emmintrin.h>
+#endif
+
 namespace spread::predict {
 
 namespace {
@@ -395,12 +399,22 @@ typedef std::int32_t Int4 __attribute__((vector_size(16)));
 
 // grid_stencil<4> of four values, lane by lane the same operations: std::clamp(v, lo, hi) is v < lo ? lo :
 // hi < v ? hi : v, and the conversion to an integer truncates in both.
-__attribute__((always_inline)) inline void stencil_lanes(const Double4& x, const GridAxis& axis, double inverse_step,
-                                                         std::int32_t lowest, Int4& first, Double4 (&w)[4]) {
-  Double4 position = (x - axis.first) * inverse_step;
-  const Double4 lo = Double4{} - 2.0, hi = Double4{} + (static_cast<double>(axis.count) + 1.0);
+// An axis as the lanes read it (grid_stencil's constants, computed once per call).
+struct AxisLanes {
+  double first, inverse_step, top;  // top: count + 1, the highest position
+  std::int32_t lowest, highest;     // the stencil's first node: lowest .. count − 4
+};
+AxisLanes axis_lanes(const GridAxis& axis, double inverse_step, std::int32_t lowest) {
+  return {axis.first, inverse_step, static_cast<double>(axis.count) + 1.0, lowest,
+          static_cast<std::int32_t>(axis.count - kGridStencil)};
+}
+
+__attribute__((always_inline)) inline void stencil_lanes(const Double4& x, const AxisLanes& axis, Int4& first,
+                                                         Double4 (&w)[4]) {
+  Double4 position = (x - axis.first) * axis.inverse_step;
+  const Double4 lo = Double4{} - 2.0, hi = Double4{} + axis.top;
   position = position < lo ? lo : (hi < position ? hi : position);
-  const Int4 lowest_lanes = Int4{} + lowest, highest_lanes = Int4{} + static_cast<std::int32_t>(axis.count - 4);
+  const Int4 lowest_lanes = Int4{} + axis.lowest, highest_lanes = Int4{} + axis.highest;
   Int4 k = __builtin_convertvector(position, Int4) - 1;
   k = k < lowest_lanes ? lowest_lanes : (highest_lanes < k ? highest_lanes : k);
   first = k;
@@ -412,8 +426,17 @@ __attribute__((always_inline)) inline void stencil_lanes(const Double4& x, const
   w[3] = fp1 * f * fm1 * (1.0 / 6.0);
 }
 
+// Correctly rounded square roots, the same bits as std::sqrt one at a time, without its check for a
+// negative argument (libm's errno; the arguments are >= 0): SSE2's, two lanes at a time (AVX's encoding
+// of the same instruction where the caller is compiled for AVX).
 __attribute__((always_inline)) inline void sqrt_lanes(Double4& x) {
-  for (int k = 0; k < 4; ++k) x[k] = std::sqrt(x[k]);  // correctly rounded, as one at a time
+#if defined(__x86_64__) || defined(__i386__)
+  const __m128d low = _mm_sqrt_pd(_mm_set_pd(x[1], x[0]));
+  const __m128d high = _mm_sqrt_pd(_mm_set_pd(x[3], x[2]));
+  x = Double4{low[0], low[1], high[0], high[1]};
+#else
+  for (int k = 0; k < 4; ++k) x[k] = std::sqrt(x[k]);
+#endif
 }
 
 // What sample_landings' set-up of a block needs of the request.
@@ -422,13 +445,12 @@ struct BlockRequest {
   std::size_t count;  // <= LandingGrid::kBlock
   double rim_speed_m_s, disc_height_m, wind_x_m_s, wind_y_m_s;
   bool sides[2];  // as stored, mirrored
+  AxisLanes axes[LandingGrid::kAxisCount];
 };
 
 // The set-up of a block, four samples at a time: what interpolate() and landing() compute per landing
 // before reading the grid (a lane past the block's end repeats its last sample).
-__attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, const LandingGrid::Axes& axes,
-                                                        const std::array<double, LandingGrid::kAxisCount>& inverse,
-                                                        LandingGrid::StencilBlock& b) {
+__attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, LandingGrid::StencilBlock& b) {
   using Grid = LandingGrid;
   for (std::size_t i = 0; i < r.count; i += 4) {
     const tables::LaunchSample* s[4];
@@ -454,7 +476,7 @@ __attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, c
       sqrt_lanes(u);
       Int4 first;
       Double4 wu[4];
-      stencil_lanes(u, axes[Grid::kSpeed], inverse[Grid::kSpeed], -1, first, wu);
+      stencil_lanes(u, r.axes[Grid::kSpeed], first, wu);
       std::memcpy(&b.relative_x[side][i], &rx, sizeof rx);
       std::memcpy(&b.speed[side][i], &u, sizeof u);
       std::memcpy(&b.speed_first[side][i], &first, sizeof first);
@@ -462,12 +484,12 @@ __attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, c
     }
     Int4 d0, v0, h0;
     Double4 wd[4], wv[4], wh[4];
-    stencil_lanes(diameter, axes[Grid::kDiameter], inverse[Grid::kDiameter], 0, d0, wd);
-    stencil_lanes(vz, axes[Grid::kVerticalSpeed], inverse[Grid::kVerticalSpeed], 0, v0, wv);
+    stencil_lanes(diameter, r.axes[Grid::kDiameter], d0, wd);
+    stencil_lanes(vz, r.axes[Grid::kVerticalSpeed], v0, wv);
     const Double4 zero{};
     Double4 root_height = z < zero ? zero : z;
     sqrt_lanes(root_height);
-    stencil_lanes(root_height, axes[Grid::kHeight], inverse[Grid::kHeight], 0, h0, wh);
+    stencil_lanes(root_height, r.axes[Grid::kHeight], h0, wh);
     std::memcpy(&b.diameter_first[i], &d0, sizeof d0);
     std::memcpy(&b.vertical_first[i], &v0, sizeof v0);
     std::memcpy(&b.height_first[i], &h0, sizeof h0);
@@ -482,15 +504,10 @@ __attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, c
   }
 }
 
-void set_up_block_portable(const BlockRequest& r, const LandingGrid::Axes& axes,
-                           const std::array<double, LandingGrid::kAxisCount>& inverse, LandingGrid::StencilBlock& b) {
-  set_up_block(r, axes, inverse, b);
-}
+void set_up_block_portable(const BlockRequest& r, LandingGrid::StencilBlock& b) { set_up_block(r, b); }
 #ifdef SPREAD_GRID_AVX
-__attribute__((target("avx"))) void set_up_block_avx(const BlockRequest& r, const LandingGrid::Axes& axes,
-                                                     const std::array<double, LandingGrid::kAxisCount>& inverse,
-                                                     LandingGrid::StencilBlock& b) {
-  set_up_block(r, axes, inverse, b);
+__attribute__((target("avx"))) void set_up_block_avx(const BlockRequest& r, LandingGrid::StencilBlock& b) {
+  set_up_block(r, b);
 }
 #endif
 
@@ -509,7 +526,10 @@ void LandingGrid::sample_landings(std::span<const tables::LaunchSample> samples,
   // As landing() and mirrored_landings(): the flight time only in a wind, or for both sides at once.
   const bool with_time = !still || sides == Sides::kBoth;
   BlockRequest request{nullptr, 0, rim_speed_m_s, disc_height_m, wind_x_m_s, wind_y_m_s,
-                       {sides != Sides::kMirrored, sides != Sides::kAsStored}};
+                       {sides != Sides::kMirrored, sides != Sides::kAsStored}, {}};
+  for (std::size_t a = 0; a < kAxisCount; ++a) {
+    request.axes[a] = axis_lanes(axes_[a], inverse_step_[a], a == kSpeed ? -1 : 0);  // through u = 0 by symmetry
+  }
   const std::size_t nu = axes_[kSpeed].count, nh = axes_[kHeight].count, nv = axes_[kVerticalSpeed].count;
   StencilLines lines;
   lines.diameter_step = 2 * nu * nh * nv;
@@ -522,12 +542,12 @@ void LandingGrid::sample_landings(std::span<const tables::LaunchSample> samples,
     request.count = std::min(kBlock, count - first);
 #ifdef SPREAD_GRID_AVX
     if (avx_) {
-      set_up_block_avx(request, axes_, inverse_step_, b);
+      set_up_block_avx(request, b);
     } else {
-      set_up_block_portable(request, axes_, inverse_step_, b);
+      set_up_block_portable(request, b);
     }
 #else
-    set_up_block_portable(request, axes_, inverse_step_, b);
+    set_up_block_portable(request, b);
 #endif
     for (std::size_t i = 0; i < request.count; ++i) {
       const std::size_t base = nu * nh * (static_cast<std::size_t>(b.diameter_first[i]) * nv +
