@@ -108,9 +108,21 @@ void check_celled_rows(const CelledRow& lower, const CelledRow& upper) {
   check_celled(upper, cells, "upper");
 }
 
+void quantile_cell_targets(const CelledRow& lower, const CelledRow& upper, double upper_weight,
+                           std::span<tables::LaunchSample> cell_target) {
+  for (std::size_t c = 0; c < cell_target.size(); ++c) {
+    const tables::LaunchSample& a = lower.cell_mean[c];
+    const tables::LaunchSample& b = upper.cell_mean[c];
+    const bool moves = a.mass_kg > 0.0f && b.mass_kg > 0.0f;
+    cell_target[c] = moves ? lerp(a, b, upper_weight) : tables::LaunchSample{};
+    cell_target[c].mass_kg = moves ? 1.0f : 0.0f;
+  }
+}
+
 void interpolate_by_quantile_cells(const CelledRow& lower, const CelledRow& upper, double upper_weight,
                                    std::size_t first, std::span<tables::LaunchSample> out_samples,
-                                   std::span<double> out_weight_kg) {
+                                   std::span<double> out_weight_kg,
+                                   std::span<const tables::LaunchSample> cell_target) {
   const std::size_t na = lower.samples.size();
   const double t = upper_weight;
   // Each granule of the lower row, then of the upper row, moved from its cell's mean in its row to the
@@ -121,10 +133,14 @@ void interpolate_by_quantile_cells(const CelledRow& lower, const CelledRow& uppe
     const CelledRow& row = from_lower ? lower : upper;
     const std::size_t k = from_lower ? index : index - na;
     const CellIndex c = row.cell_of_sample[k];
-    const tables::LaunchSample& a = lower.cell_mean[c];
-    const tables::LaunchSample& b = upper.cell_mean[c];
     const tables::LaunchSample& s = row.samples[k];
-    out_samples[o] = a.mass_kg > 0.0f && b.mass_kg > 0.0f ? moved(s, row.cell_mean[c], lerp(a, b, t)) : s;
+    if (!cell_target.empty()) {
+      out_samples[o] = cell_target[c].mass_kg > 0.0f ? moved(s, row.cell_mean[c], cell_target[c]) : s;
+    } else {
+      const tables::LaunchSample& a = lower.cell_mean[c];
+      const tables::LaunchSample& b = upper.cell_mean[c];
+      out_samples[o] = a.mass_kg > 0.0f && b.mass_kg > 0.0f ? moved(s, row.cell_mean[c], lerp(a, b, t)) : s;
+    }
     out_weight_kg[o] = (from_lower ? 1.0 - t : t) * static_cast<double>(s.mass_kg);
   }
 }

@@ -68,10 +68,17 @@ std::size_t interpolate_by_quantile_cells(const CelledRow& lower, const CelledRo
 
 // What interpolate_by_quantile_cells writes at [first, first + out_samples.size()) (first + size <= lower
 // + upper samples), into the front of the outputs, without checking the rows (check_celled_rows, once):
-// a caller that lands the samples a chunk at a time needs no buffer for all of them.
+// a caller that lands the samples a chunk at a time needs no buffer for all of them. `cell_target`, when
+// not empty, holds quantile_cell_targets() of these rows at this weight (computed once, not per sample).
 void interpolate_by_quantile_cells(const CelledRow& lower, const CelledRow& upper, double upper_weight,
                                    std::size_t first, std::span<tables::LaunchSample> out_samples,
-                                   std::span<double> out_weight_kg);
+                                   std::span<double> out_weight_kg,
+                                   std::span<const tables::LaunchSample> cell_target = {});
+// Where each cell's granules move to at weight upper_weight: the cell means interpolated, (1 − t)·m_c(lower)
+// + t·m_c(upper), into cell_target[c] (cell_target.size() == the cells), its mass_kg 1 where the cell moves
+// its granules and 0 where it is empty in either row (its granules stay).
+void quantile_cell_targets(const CelledRow& lower, const CelledRow& upper, double upper_weight,
+                           std::span<tables::LaunchSample> cell_target);
 // std::invalid_argument as interpolate_by_quantile_cells when the rows' cells do not match.
 void check_celled_rows(const CelledRow& lower, const CelledRow& upper);
 

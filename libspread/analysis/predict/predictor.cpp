@@ -154,8 +154,28 @@ std::size_t Predictor::interpolated_count(std::size_t lower_run, std::size_t upp
   return run_samples(lower_run).size() + run_samples(upper_run).size();
 }
 
+CelledRow Predictor::celled(std::size_t run) const {
+  return CelledRow{run_samples(run), std::span(cell_of_sample_).subspan(run_offset_[run], run_samples(run).size()),
+                   std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
+}
+
+std::size_t Predictor::most_cells() const {
+  std::size_t most = 0;
+  for (std::size_t k = 0; k + 1 < cell_offset_.size(); ++k) most = std::max(most, cell_offset_[k + 1] - cell_offset_[k]);
+  return most;
+}
+
+std::span<const tables::LaunchSample> Predictor::cell_targets(PredictorWorkspace& w, std::size_t lower_run,
+                                                              std::size_t upper_run, double t) const {
+  if (lower_run == upper_run || pairwise(lower_run, upper_run)) return {};
+  const std::span<tables::LaunchSample> targets = std::span(w.cell_target_).first(cell_offset_[lower_run + 1] - cell_offset_[lower_run]);
+  quantile_cell_targets(celled(lower_run), celled(upper_run), t, targets);
+  return targets;
+}
+
 void Predictor::interpolate(std::size_t lower_run, std::size_t upper_run, double t, std::size_t first,
-                            std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const {
+                            std::span<tables::LaunchSample> samples, std::span<double> weight_kg,
+                            std::span<const tables::LaunchSample> cell_target) const {
   const std::size_t count = samples.size();
   if (lower_run == upper_run || pairwise(lower_run, upper_run)) {
     interpolate_launch_samples(run_samples(lower_run).subspan(first, count),
@@ -164,12 +184,8 @@ void Predictor::interpolate(std::size_t lower_run, std::size_t upper_run, double
                                lower_run == upper_run ? 0.0 : t, samples, weight_kg);
     return;
   }
-  const auto celled = [&](std::size_t run) {
-    return CelledRow{run_samples(run), std::span(cell_of_sample_).subspan(run_offset_[run], run_samples(run).size()),
-                     std::span(cell_mean_).subspan(cell_offset_[run], cell_offset_[run + 1] - cell_offset_[run])};
-  };
   // The cells were checked against their rows at construction (assign_cells, restore_landing_data).
-  interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), t, first, samples, weight_kg);
+  interpolate_by_quantile_cells(celled(lower_run), celled(upper_run), t, first, samples, weight_kg, cell_target);
 }
 
 namespace {
@@ -356,7 +372,8 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
       metrics_scratch_(memory),
       chunk_landing_x_m_(memory),
       chunk_landing_y_m_(memory),
-      stencil_block_(memory) {
+      stencil_block_(memory),
+      cell_target_(memory) {
   const std::size_t pair = predictor.largest_pair();
   const PredictorLimits& limits = predictor.limits();
   sample_capacity_ = pair;
@@ -372,6 +389,7 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   chunk_landing_x_m_.resize(2 * kFlightChunk);
   chunk_landing_y_m_.resize(2 * kFlightChunk);
   stencil_block_.resize(1);
+  cell_target_.resize(predictor.most_cells());
   const int widest = predictor.tray_capacity(limits.min_tray_width_m);
   tray_capacity_ = static_cast<std::size_t>(widest);
   tray_mass_.resize(tray_capacity_);
@@ -398,7 +416,8 @@ std::size_t PredictorWorkspace::bytes() const {
                            landing_weight_.size() + tray_mass_.size() + gradients_.size() +
                            gradient_scratch_.size() + metrics_scratch_.size() + chunk_landing_x_m_.size() +
                            chunk_landing_y_m_.size()) +
-         sizeof(LandingGrid::StencilBlock) * stencil_block_.size();
+         sizeof(LandingGrid::StencilBlock) * stencil_block_.size() +
+         sizeof(tables::LaunchSample) * cell_target_.size();
 }
 
 bool Predictor::pairwise(std::size_t run_a, std::size_t run_b) const {
@@ -572,9 +591,9 @@ DiscSetting disc_setting(const PredictionRequest& request, int disc) {
 }
 
 void Predictor::disc_samples(PredictorWorkspace& w, const DiscRows& rows, double drop_point_turn_rad, std::size_t first,
-                             std::size_t count) const {
+                             std::size_t count, std::span<const tables::LaunchSample> cell_target) const {
   interpolate(rows.lower_run, rows.upper_run, rows.t, first, std::span(w.samples_).first(count),
-              std::span(w.sample_weight_kg_).first(count));
+              std::span(w.sample_weight_kg_).first(count), cell_target);
   // The drop point turned by Δ about the disc axis turns the fan of launches by Δ (a disc the same all
   // round, fed continuously, has no phase of its own: test LookupDem.TurningTheFeedTurnsTheLaunchFan).
   // The table's frame is the left disc's, centred on its axis; the right disc is its mirror image, so its
@@ -647,9 +666,10 @@ std::size_t Predictor::fly_launches(PredictorWorkspace& w, const DiscRows& rows,
   // changes no result (a workspace per thread stays small: docs/c-api.md).
   const std::size_t chunk = left_flown && right_flown ? kFlightChunk / 2 : kFlightChunk;
   std::size_t flights = 0;
+  const std::span<const tables::LaunchSample> cell_target = cell_targets(w, rows.lower_run, rows.upper_run, rows.t);
   for (std::size_t first = 0; first < n; first += chunk) {
     const std::size_t count = std::min(chunk, n - first);
-    disc_samples(w, rows, drop_point_turn_rad, first, count);
+    disc_samples(w, rows, drop_point_turn_rad, first, count, cell_target);
     if (grid != nullptr) {
       // A block of samples at a time, both discs at once where both are landed (a sample's two landings
       // share the stencil's diameter, vertical speed and height). Only the launch's horizontal motion,

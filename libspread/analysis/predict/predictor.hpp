@@ -35,6 +35,7 @@
 #include "libspread/physics/flight/flight.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
 #include "libspread/analysis/predict/landing_grid.hpp"
+#include "libspread/analysis/predict/launch_interpolation.hpp"
 #include "libspread/analysis/predict/launch_quantile_cells.hpp"
 #include "libspread/analysis/predict/sample_influence.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -265,6 +266,7 @@ class PredictorWorkspace {
   // The landing grid's landings of one chunk (both discs: 2 kFlightChunk) and its stencils' set-up.
   std::pmr::vector<double> chunk_landing_x_m_, chunk_landing_y_m_;
   std::pmr::vector<LandingGrid::StencilBlock> stencil_block_;
+  std::pmr::vector<tables::LaunchSample> cell_target_;  // Predictor::cell_targets
   // predict()'s bookkeeping of the bands and their standard errors (kept here, not on the caller's stack):
   // one standard error to compute — of the CV at `trays` trays, or (width_band set) of that band's upper
   // end, or (throw_width) of the throw width —, and per band the racetrack CV at a to-and-fro band's bout.
@@ -364,6 +366,8 @@ class Predictor {
 
   // Launch samples of the largest pair of neighbouring rows (what a workspace is sized for).
   std::size_t largest_pair() const { return largest_pair_; }
+  // The most quantile cells of any run (a workspace holds where they move their granules).
+  std::size_t most_cells() const;
   // Launch samples of run k (runs sorted by material and rpm, as TableContents::runs).
   std::span<const tables::LaunchSample> run_samples(std::size_t run) const {
     return std::span(samples_).subspan(run_offset_[run], run_offset_[run + 1] - run_offset_[run]);
@@ -409,8 +413,15 @@ class Predictor {
   // them: pairwise for analytic rows of equal count, otherwise by quantile cells (the lower row's, then the
   // upper row's). interpolated_count: how many; interpolate: those at [first, first + samples.size()).
   std::size_t interpolated_count(std::size_t lower_run, std::size_t upper_run) const;
+  // cell_target: cell_targets() of these rows at t (empty for rows without cells).
   void interpolate(std::size_t lower_run, std::size_t upper_run, double t, std::size_t first,
-                   std::span<tables::LaunchSample> samples, std::span<double> weight_kg) const;
+                   std::span<tables::LaunchSample> samples, std::span<double> weight_kg,
+                   std::span<const tables::LaunchSample> cell_target) const;
+  // Where the cells of rows lower..upper move their granules at t (quantile_cell_targets), into the
+  // workspace; empty when the rows are not interpolated by cells.
+  std::span<const tables::LaunchSample> cell_targets(PredictorWorkspace& w, std::size_t lower_run,
+                                                     std::size_t upper_run, double t) const;
+  CelledRow celled(std::size_t run) const;
   // The still-air effects of the material's landing grid and the fastest rim speed of its rows: false
   // when its rows do not all fly drag alone (or nothing), and it has no grid.
   bool grid_effects(const MaterialRows& rows, flight::EffectSet& effects, double& max_rim_speed_m_s) const;
@@ -440,7 +451,7 @@ class Predictor {
   // Steps 1–2 of predict() for one disc: its samples [first, first + count) into the front of the
   // workspace's sample buffer (count <= kFlightChunk), turned by drop_point_turn_rad.
   void disc_samples(PredictorWorkspace& w, const DiscRows& rows, double drop_point_turn_rad, std::size_t first,
-                    std::size_t count) const;
+                    std::size_t count, std::span<const tables::LaunchSample> cell_target) const;
   // The effects and air a request flies with (the table's effects resolved, a zero wind no wind).
   void flight_conditions(const PredictionRequest& request, const DiscRows (&disc_rows)[2], flight::EffectSet& effects,
                          flight::Air& air) const;
