@@ -117,6 +117,12 @@ class WideKernelDots {
   // gradients two at a time in SSE registers.
   template <std::size_t kCount>
   void dots(double x, double* out) const;
+  // dots() with the gradients `Lanes` (a vector of doubles) at a time, inlined into the caller: a caller
+  // compiled for AVX passes four doubles and avx = false (its own registers are AVX's), other callers two
+  // and avx_ (then AVX through a call where the processor has it).
+  template <std::size_t kCount, typename Lanes>
+  void dots_in(double x, double* out, bool avx) const;
+  bool avx() const { return avx_; }
 
 
  private:
@@ -132,9 +138,8 @@ class WideKernelDots {
   double left_m_, inverse_width_, half_width_trays_, beta_;
 };
 
-template <std::size_t kCount>
-void WideKernelDots::dots(double x, double* out) const {
-  typedef double Double2 __attribute__((vector_size(16)));
+template <std::size_t kCount, typename Lanes>
+__attribute__((always_inline)) inline void WideKernelDots::dots_in(double x, double* out, bool avx) const {
   const std::size_t count = kCount != 0 ? kCount : count_;
   for (std::size_t g = 0; g < count; ++g) out[g] = 0.0;
   if (!std::isfinite(x)) return;
@@ -154,12 +159,18 @@ void WideKernelDots::dots(double x, double* out) const {
   const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta_ * (1.0 - alpha * alpha),
                        -0.75 * alpha * beta_ * beta_, -0.25 * beta_ * beta_ * beta_};
 #if defined(__x86_64__) || defined(__i386__)
-  if (avx_) {
+  if (avx) {
     combine_avx(count, p, inside, at_a, past_b, past_end, out);
     return;
   }
 #endif
-  combine_wide_kernel_dots<Double2>(count, p, inside, at_a, past_b, past_end, out);
+  combine_wide_kernel_dots<Lanes>(count, p, inside, at_a, past_b, past_end, out);
+}
+
+template <std::size_t kCount>
+void WideKernelDots::dots(double x, double* out) const {
+  typedef double Double2 __attribute__((vector_size(16)));
+  dots_in<kCount, Double2>(x, out, avx_);
 }
 
 }  // namespace spread::metrics

@@ -57,7 +57,7 @@ void kernel_dots(double x, std::span<const std::span<const double>> gradients, c
 // Calls visit(s, landing) for every landing of sample s, sample by sample in order (s = 0 … n − 1), and
 // done(s) after each sample's landings.
 template <typename Visit, typename Done>
-void for_each_sample(const SampleInfluence& in, Visit visit, Done done) {
+__attribute__((always_inline)) inline void for_each_sample(const SampleInfluence& in, Visit visit, Done done) {
   const std::size_t n = in.sample_count;
   if (in.blocks.empty()) {
     for (std::size_t s = 0; s < n; ++s) {
@@ -79,18 +79,18 @@ void for_each_sample(const SampleInfluence& in, Visit visit, Done done) {
 // The standard errors of `count` statistics in one pass over the landings: dots(x, d) writes each
 // statistic's Σ_k g_k K_k(x) into d[0..count).
 template <std::size_t kCount = 0, typename Dots>
-void influence_pass(const SampleInfluence& in, std::size_t count_at_run_time, Dots dots, double* out) {
+__attribute__((always_inline)) inline void influence_pass(const SampleInfluence& in, std::size_t count_at_run_time, Dots dots, double* out) {
   const std::size_t count = kCount != 0 ? kCount : count_at_run_time;
   const std::size_t n = in.sample_count;
   double sum[SampleInfluence::kMaxGradients] = {}, sum_squares[SampleInfluence::kMaxGradients] = {};
   double z[SampleInfluence::kMaxGradients] = {}, d[SampleInfluence::kMaxGradients];
   for_each_sample(
       in,
-      [&](std::size_t l) {
+      [&](std::size_t l) __attribute__((always_inline)) {
         dots(in.x_m[l], d);
         for (std::size_t g = 0; g < count; ++g) z[g] += in.weight[l] * d[g];
       },
-      [&] {
+      [&]() __attribute__((always_inline)) {
         for (std::size_t g = 0; g < count; ++g) {
           z[g] *= static_cast<double>(n);
           sum[g] += z[g];
@@ -104,6 +104,27 @@ void influence_pass(const SampleInfluence& in, std::size_t count_at_run_time, Do
     out[g] = std::sqrt(variance_of_z / static_cast<double>(n));
   }
 }
+
+// The pass over a wide kernel's dots: here through dots() (AVX sums by a call per landing where the
+// processor has them), or compiled for AVX with the sums inlined (the same operations, so the same bits).
+template <std::size_t kCount>
+void wide_kernel_pass(const SampleInfluence& in, std::size_t count, const metrics::WideKernelDots& dots,
+                      double* se) {
+  influence_pass<kCount>(
+      in, count, [&dots](double x, double* d) __attribute__((always_inline)) { dots.template dots<kCount>(x, d); },
+      se);
+}
+#if defined(__x86_64__) || defined(__i386__)
+template <std::size_t kCount>
+__attribute__((target("avx"))) void wide_kernel_pass_avx(const SampleInfluence& in, std::size_t count,
+                                                          const metrics::WideKernelDots& dots, double* se) {
+  typedef double FourDoubles __attribute__((vector_size(32)));
+  influence_pass<kCount>(
+      in, count,
+      [&dots](double x, double* d) __attribute__((always_inline)) { dots.template dots_in<kCount, FourDoubles>(x, d, false); },
+      se);
+}
+#endif
 
 }  // namespace
 
@@ -157,8 +178,13 @@ void InfluencePass::standard_errors(std::span<double> out) const {
   if (in.kernel_half_width_m > 0.0) {
     const metrics::WideKernelDots dots(in.kernel_half_width_m, in.trays, in.scratch, count);
     const auto pass = [&]<std::size_t kCount>() {
-      influence_pass<kCount>(
-          in, count, [&dots](double x, double* d) { dots.template dots<kCount>(x, d); }, se);
+#if defined(__x86_64__) || defined(__i386__)
+      if (dots.avx()) {
+        wide_kernel_pass_avx<kCount>(in, count, dots, se);
+        return;
+      }
+#endif
+      wide_kernel_pass<kCount>(in, count, dots, se);
     };
     // The counts a prediction's passes usually have, with their loops unrolled at compile time.
     switch (count) {
