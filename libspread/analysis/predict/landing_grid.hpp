@@ -105,14 +105,14 @@ class LandingGrid {
   // workspace holds one, so that none is on the caller's stack).
   static constexpr std::size_t kBlock = 32;
   struct StencilBlock {
-    alignas(32) double relative_x[2][kBlock];  // launch velocity relative to the air, m/s, per side
-    alignas(32) double relative_y[kBlock];
-    alignas(32) double speed[2][kBlock];  // its magnitude u′
-    alignas(32) double speed_weight[2][4][kBlock];
-    alignas(32) float line_weight[16][kBlock];  // w_d · w_v, line 4a + b
-    alignas(32) float height_weight[4][kBlock];
-    alignas(32) std::int32_t diameter_first[kBlock], vertical_first[kBlock], height_first[kBlock];
-    alignas(32) std::int32_t speed_first[2][kBlock];
+    double relative_x[2][kBlock];  // launch velocity relative to the air, m/s, per side
+    double relative_y[kBlock];
+    double speed[2][kBlock];  // its magnitude u′
+    double speed_weight[2][4][kBlock];
+    float line_weight[16][kBlock];  // w_d · w_v, line 4a + b
+    float height_weight[4][kBlock];
+    std::int32_t diameter_first[kBlock], vertical_first[kBlock], height_first[kBlock];
+    std::int32_t speed_first[2][kBlock];
   };
   // The landings of launch samples (normalised, as a table's rows store them) launched at rim speed ω R
   // from `disc_height_m` in the horizontal wind: for sample i, position (x, y, z + disc_height_m) and
