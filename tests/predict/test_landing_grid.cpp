@@ -88,17 +88,22 @@ TEST(LandingGrid, ExactAtItsNodes) {
   EXPECT_GT(time_s, 0.3);
 }
 
-// The stencil summed in AVX registers or in SSE ones gives the same bits, and a sample's two discs in one
-// call give what two calls give: over random launches across a small grid (and past its edges), still
-// air and winds, speeds through 0. Stored and restored, the values are the same.
-TEST(LandingGrid, AvxSseAndPairedLandingsAreTheSameBits) {
+// A small grid of 1800 kg/m³ granules flown at the default tolerance (drag), for the bit-for-bit tests.
+bool build_small_grid(LandingGrid& grid) {
   LandingGrid::Axes axes;
   axes[LandingGrid::kDiameter] = GridAxis{2e-3, 1e-3, 5};
   axes[LandingGrid::kVerticalSpeed] = GridAxis{-1.0, 1.5, 5};
   axes[LandingGrid::kHeight] = GridAxis{0.7, 0.2, 6};
   axes[LandingGrid::kSpeed] = GridAxis{0.0, 6.0, 7};
+  return grid.build(axes, 1800.0, flight::kDrag, default_flight_settings(), flight::Air{});
+}
+
+// The stencil summed in AVX registers or in SSE ones gives the same bits, and a sample's two discs in one
+// call give what two calls give: over random launches across a small grid (and past its edges), still
+// air and winds, speeds through 0. Stored and restored, the values are the same.
+TEST(LandingGrid, AvxSseAndPairedLandingsAreTheSameBits) {
   LandingGrid grid;
-  ASSERT_TRUE(grid.build(axes, 1800.0, flight::kDrag, default_flight_settings(), flight::Air{}));
+  ASSERT_TRUE(build_small_grid(grid));
   LandingGrid restored;
   ASSERT_TRUE(restored.restore(grid.axes(), grid.effects(), grid.values()));
   EXPECT_EQ(restored.values(), grid.values());
@@ -138,13 +143,8 @@ TEST(LandingGrid, AvxSseAndPairedLandingsAreTheSameBits) {
 // bit, what landing() and mirrored_landings() give one sample at a time — as stored, mirrored and both,
 // in still air and a wind, with AVX and without, over a count that fills neither a block nor its lanes.
 TEST(LandingGrid, BlockLandingsAreTheOneAtATimeBits) {
-  LandingGrid::Axes axes;
-  axes[LandingGrid::kDiameter] = GridAxis{2e-3, 1e-3, 5};
-  axes[LandingGrid::kVerticalSpeed] = GridAxis{-1.0, 1.5, 5};
-  axes[LandingGrid::kHeight] = GridAxis{0.7, 0.2, 6};
-  axes[LandingGrid::kSpeed] = GridAxis{0.0, 6.0, 7};
   LandingGrid grid;
-  ASSERT_TRUE(grid.build(axes, 1800.0, flight::kDrag, default_flight_settings(), flight::Air{}));
+  ASSERT_TRUE(build_small_grid(grid));
   std::uint64_t state = 0x2545f4914f6cdd1dULL;
   const auto uniform = [&state](double lo, double hi) {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;

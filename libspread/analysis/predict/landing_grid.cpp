@@ -172,6 +172,23 @@ __attribute__((target("avx"))) void sum_stencil_line_pairs_avx(const StencilLine
 }
 #endif
 
+// The stencil's sums of `landings` (1 or 2) landings of one diameter, vertical speed and height, in AVX
+// registers (avx) or SSE ones.
+template <bool kWithTime>
+void sum_stencil(const StencilLines& lines, std::size_t landings, bool avx, float (&sums)[2][8]) {
+#ifdef SPREAD_GRID_AVX
+  if (avx) {
+    if (landings == 2) {
+      sum_stencil_line_pairs_avx(lines, sums);
+    } else {
+      sum_stencil_lines_avx(lines, sums);
+    }
+    return;
+  }
+#endif
+  for (std::size_t l = 0; l < landings; ++l) sum_stencil_lines<kWithTime>(lines, l, sums[l]);
+}
+
 // The stencil's four speeds (lane 2k: R, 2k + 1: T) summed with their weights. From speed node −1 (node 1
 // mirrored: R(−u) = −R(u), T(−u) = T(u)) the lines were read from node 0, so they shift one node up.
 inline double speed_sum(const float* sum, int lane, bool from_below_zero, double w0, double w1, double w2, double w3) {
@@ -333,17 +350,7 @@ void LandingGrid::interpolate(double diameter_m, double vertical_speed_m_s, doub
   lines.height_weight = height_weight;
   lines.weight_stride = 1;
   float sums[2][8];
-#ifdef SPREAD_GRID_AVX
-  if (avx_ && count == 2) {
-    sum_stencil_line_pairs_avx(lines, sums);
-  } else if (avx_) {
-    sum_stencil_lines_avx(lines, sums);
-  } else {
-    for (std::size_t l = 0; l < count; ++l) sum_stencil_lines<kWithTime>(lines, l, sums[l]);
-  }
-#else
-  for (std::size_t l = 0; l < count; ++l) sum_stencil_lines<kWithTime>(lines, l, sums[l]);
-#endif
+  sum_stencil<kWithTime>(lines, count, avx_, sums);
   for (std::size_t l = 0; l < count; ++l) {
     range_m[l] = speed_sum(sums[l], 0, u0[l] < 0, wu[l][0], wu[l][1], wu[l][2], wu[l][3]);
     if constexpr (kWithTime) time_s[l] = speed_sum(sums[l], 1, u0[l] < 0, wu[l][0], wu[l][1], wu[l][2], wu[l][3]);
@@ -564,29 +571,11 @@ void LandingGrid::sample_landings(std::span<const tables::LaunchSample> samples,
       lines.weight = &b.line_weight[0][i];
       lines.height_weight = &b.height_weight[0][i];
       float sums[2][8];
-#ifdef SPREAD_GRID_AVX
-      if (avx_ && landings == 2) {
-        sum_stencil_line_pairs_avx(lines, sums);
-      } else if (avx_) {
-        sum_stencil_lines_avx(lines, sums);
+      if (with_time) {
+        sum_stencil<true>(lines, landings, avx_, sums);
       } else {
-        for (std::size_t l = 0; l < landings; ++l) {
-          if (with_time) {
-            sum_stencil_lines<true>(lines, l, sums[l]);
-          } else {
-            sum_stencil_lines<false>(lines, l, sums[l]);
-          }
-        }
+        sum_stencil<false>(lines, landings, avx_, sums);
       }
-#else
-      for (std::size_t l = 0; l < landings; ++l) {
-        if (with_time) {
-          sum_stencil_lines<true>(lines, l, sums[l]);
-        } else {
-          sum_stencil_lines<false>(lines, l, sums[l]);
-        }
-      }
-#endif
       const tables::LaunchSample& sample = samples[first + i];
       for (std::size_t l = 0; l < landings; ++l) {
         const int side = side_of[l];
