@@ -29,6 +29,8 @@ expect scene_value 2 "spread simulate: error: $src/scenes/default.toml: machine.
 # Options (spread::Error kind argument, thrown by the commands themselves)
 expect option_drum 2 "spread drum: error: --sweep-froude: 'abc' is not a number" \
   drum "$src/scenes/drum.toml" --sweep-froude 0.1,abc
+expect option_drum_inf 2 "spread drum: error: --sweep-froude: 'inf' is not a number" \
+  drum "$src/scenes/drum.toml" --sweep-froude 0.1,inf
 expect option_verify 2 "spread verify: error: unknown case 'nonsense'" verify nonsense
 expect option_wind 2 "spread predict: error: --wind" predict --tables "$table" --material Urea --rpm 600 --wind 3
 # A good input whose output cannot be written (kind io): exit 1, and the text report is still printed.

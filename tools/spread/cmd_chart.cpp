@@ -21,6 +21,7 @@
 #include "libspread/analysis/calibration/tray_analysis.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/analysis/predict/setting_chart.hpp"
+#include "libspread/core/strict_number.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
@@ -56,17 +57,11 @@ std::vector<double> parse_widths(const std::string& text) {
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    double w = std::numeric_limits<double>::quiet_NaN();
-    try {
-      w = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !std::isfinite(w) || !(w > 0.0)) {
+    const std::optional<double> w = parse_finite_number(item);
+    if (!w || !(*w > 0.0)) {
       throw BadInput("--widths: '" + item + "' is not a width in metres > 0 (e.g. --widths 12,15,18)");
     }
-    widths.push_back(w);
+    widths.push_back(*w);
   }
   if (widths.empty()) throw BadInput("--widths: give at least one width in metres");
   return widths;

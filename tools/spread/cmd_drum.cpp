@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/core/strict_number.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/drum_command.hpp"
 
@@ -63,15 +64,11 @@ int run_drum_command(const std::string& scene_path, const std::vector<std::strin
   if (!sweep.empty()) {
     std::stringstream ss(sweep);
     for (std::string item; std::getline(ss, item, ',');) {
-      std::size_t used = 0;
-      try {
-        froudes.push_back(std::stod(item, &used));
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != item.size()) {
+      const std::optional<double> froude = parse_finite_number(item);
+      if (!froude) {
         throw spread::Error(spread::ErrorKind::kArgument, "--sweep-froude", "--sweep-froude: '" + item + "' is not a number");
       }
+      froudes.push_back(*froude);
       if (!(froudes.back() > 0.0)) {
         throw spread::Error(spread::ErrorKind::kArgument, "--sweep-froude", "--sweep-froude: values must be > 0");
       }

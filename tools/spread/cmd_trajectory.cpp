@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "libspread/core/strict_number.hpp"
 #include "libspread/physics/flight/flight.hpp"
 #include "tools/spread/command_registry.hpp"
 
@@ -40,22 +41,11 @@ struct TrajectoryOptions {
 // "X,Y,Z" → exactly `count` finite numbers; throws std::invalid_argument naming the option.
 std::vector<double> parse_components(const std::string& option, const std::string& text, std::size_t count) {
   std::vector<double> values;
-  std::stringstream stream(text);
-  for (std::string cell; std::getline(stream, cell, ',');) {
-    std::size_t used = 0;
-    double value = 0.0;
-    try {
-      value = std::stod(cell, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    while (used < cell.size() && cell[used] == ' ') ++used;
-    if (used == 0 || used != cell.size() || !std::isfinite(value)) {
-      throw std::invalid_argument(option + ": \"" + cell + "\" is not a finite number (in \"" + text + "\")");
-    }
-    values.push_back(value);
+  std::string_view bad;
+  if (!parse_number_list(text, values, bad)) {
+    throw std::invalid_argument(option + ": \"" + std::string(bad) + "\" is not a finite number (in \"" + text + "\")");
   }
-  if (values.size() != count || (!text.empty() && text.back() == ',')) {
+  if (values.size() != count) {
     throw std::invalid_argument(option + ": expected " + std::to_string(count) +
                                 " comma-separated numbers, got \"" + text + "\"");
   }

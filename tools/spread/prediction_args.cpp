@@ -1,5 +1,6 @@
 #include "tools/spread/prediction_args.hpp"
 
+#include "libspread/core/strict_number.hpp"
 #include "tools/spread/number_format.hpp"
 
 #include <cmath>
@@ -76,13 +77,12 @@ double drop_point_turn_rad(const PredictionArgs& args) {
 }
 
 WindXY parse_wind(const std::string& text) {
-  std::istringstream in(text);
-  WindXY wind;
-  char comma = 0;
-  if (!(in >> wind.x_m_s >> comma >> wind.y_m_s) || comma != ',' || !(in >> std::ws).eof()) {
+  std::vector<double> components;
+  std::string_view bad;
+  if (!parse_number_list(text, components, bad) || components.size() != 2) {
     throw BadInput("--wind '" + text + "': expected VX,VY in m/s, e.g. --wind 2,-1");
   }
-  return wind;
+  return WindXY{components[0], components[1]};
 }
 
 predict::PredictionRequest prediction_request(const PredictionArgs& args) {

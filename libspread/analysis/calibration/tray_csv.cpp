@@ -10,6 +10,7 @@
 #include <set>
 
 #include "libspread/analysis/calibration/text_excerpt.hpp"
+#include "libspread/core/strict_number.hpp"
 
 namespace spread::calibration {
 namespace {
@@ -360,20 +361,14 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
           cell.find(',') == cell.rfind(',')) {
         cell[cell.find(',')] = '.';
       }
-      std::size_t used = 0;
-      double value = 0.0;
-      try {
-        value = std::stod(cell, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (cell.empty() || used != cell.size() || !std::isfinite(value)) {
+      const std::optional<double> value = parse_finite_number(cell);
+      if (!value) {
         const bool comma = separator == ',' && cell.find(',') != std::string::npos;
         throw TrayCsvError(source, line_number,
                            excerpt(what) + ": '" + excerpt(cells[column]) + "' is not a number" +
                                (comma ? " (decimal commas only in files separated by ';' or tab)" : ""));
       }
-      return value;
+      return *value;
     };
     const double position = number(position_column, "position_m");
     if (!(std::abs(position) <= options.farthest_tray_m)) {
