@@ -120,7 +120,7 @@ class LandingGrid {
   // (kMirrored: into [i]), or mirrored_landings() of it (kBoth: as stored into [i], mirrored into
   // [count + i]) — bit for bit. The stencils' indices and weights of a block of samples are computed side
   // by side in SIMD lanes (AVX where the processor has it: the same operations lane by lane), which one
-  // landing at a time computes one lane at a time; they took half of a landing's time.
+  // landing at a time computes one lane at a time (measured there: more time than the grid's sums).
   void sample_landings(std::span<const tables::LaunchSample> samples, double rim_speed_m_s, double disc_height_m,
                        double wind_x_m_s, double wind_y_m_s, Sides sides, StencilBlock& scratch,
                        std::span<double> landing_x_m, std::span<double> landing_y_m) const;

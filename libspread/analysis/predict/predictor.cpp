@@ -386,8 +386,8 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   granules_.resize(kFlightChunk);
   launches_.resize(kFlightChunk);
   landings_.resize(kFlightChunk);
-  chunk_landing_x_m_.resize(2 * kFlightChunk);
-  chunk_landing_y_m_.resize(2 * kFlightChunk);
+  chunk_landing_x_m_.resize(kFlightChunk);
+  chunk_landing_y_m_.resize(kFlightChunk);
   stencil_block_.resize(1);
   cell_target_.resize(predictor.most_cells());
   const int widest = predictor.tray_capacity(limits.min_tray_width_m);

@@ -263,7 +263,8 @@ class PredictorWorkspace {
   // the stack, and during the standard errors' passes the gradients' prefix sums (before that tail).
   std::pmr::vector<double> metrics_scratch_;
   std::size_t cv_scratch_size_ = 0;  // the metrics scratch's tail that cv_gradient uses during the passes
-  // The landing grid's landings of one chunk (both discs: 2 kFlightChunk) and its stencils' set-up.
+  // The landing grid's landings of one chunk (kFlightChunk: both discs land half a chunk of samples each)
+  // and its stencils' set-up.
   std::pmr::vector<double> chunk_landing_x_m_, chunk_landing_y_m_;
   std::pmr::vector<LandingGrid::StencilBlock> stencil_block_;
   std::pmr::vector<tables::LaunchSample> cell_target_;  // Predictor::cell_targets
