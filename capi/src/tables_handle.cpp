@@ -85,11 +85,9 @@ extern "C" spread_status spread_open_with_allocator(const char* path, const spre
   void* storage = nullptr;
   try {
     spread::capi::detail::fault_point();
-    auto contents = spread::tables::read_table_file(path);
-    if (contents.runs.empty()) return fail(SPREAD_ERROR_FILE_EMPTY, "%s: no runs", path);  // the reader says so already
     storage = a.alloc(a.user, sizeof(spread_tables), alignof(spread_tables));
     if (storage == nullptr) throw std::bad_alloc();
-    *out_tables = new (storage) spread_tables(std::move(contents), a);
+    *out_tables = new (storage) spread_tables(path, a);  // a file without runs is TableError kEmpty
     return SPREAD_OK;
   } catch (const spread::tables::TableError& e) {
     if (storage != nullptr) a.free(a.user, storage, sizeof(spread_tables));

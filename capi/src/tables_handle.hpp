@@ -52,8 +52,10 @@ inline predict::PredictorLimits controller_limits() {
 }  // namespace spread::capi
 
 struct spread_tables {
-  spread_tables(spread::tables::TableContents contents, const spread_allocator& allocator)
-      : memory(allocator), predictor(std::move(contents), spread::capi::controller_limits(), &memory) {}
+  // The file is read with the samples going straight into a block from the caller's allocator.
+  spread_tables(const char* path, const spread_allocator& allocator)
+      : memory(allocator),
+        predictor(spread::tables::read_table_file(path, &memory), spread::capi::controller_limits(), &memory) {}
   std::uint64_t tag = spread::capi::kTablesTag;  // first member: read before anything else
   spread::capi::CallerMemory memory;  // before the predictor: it outlives the predictor's buffers
   spread::predict::Predictor predictor;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory_resource>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "libspread/analysis/predict/sample_influence.hpp"
 #include "libspread/analysis/metrics/wide_kernel.hpp"
 #include "tests/predict/synthetic_table.hpp"
+#include "tests/support/temp_path.hpp"
 
 namespace spread::predict {
 namespace {
@@ -351,6 +353,46 @@ TEST(Predictor, IsDeterministic) {
   ASSERT_EQ(b.predict(request("urea", 611.0), pb), PredictStatus::kOk);
   EXPECT_EQ(copy(pa.tray_mass_fraction), copy(pb.tray_mass_fraction));
   EXPECT_EQ(pa.working_width_racetrack_m, pb.working_width_racetrack_m);
+}
+
+// The samples read into one block from the predictor's memory (as the C API opens a table) predict the
+// same bits as the samples read run by run, in still air and in a crosswind, by pairs and by cells.
+TEST(Predictor, PooledSamplesPredictTheSameBits) {
+  spread::testing::TempPath file("pooled");
+  testing::write_synthetic_table(file.path());
+  std::pmr::unsynchronized_pool_resource memory;
+  Predictor pooled(tables::read_table_file(file.path(), &memory), PredictorLimits{}, &memory);
+  Predictor plain(tables::read_table_file(file.path()));
+  for (const char* material : {"can", "urea"}) {
+    for (double wind_m_s : {0.0, 3.0}) {
+      PredictionRequest r = request(material, 611.0);
+      r.wind_x_m_s = wind_m_s;  // across the driving direction
+      Prediction a, b;
+      ASSERT_EQ(pooled.predict(r, a), PredictStatus::kOk) << material;
+      ASSERT_EQ(plain.predict(r, b), PredictStatus::kOk) << material;
+      EXPECT_EQ(copy(a.tray_mass_fraction), copy(b.tray_mass_fraction)) << material << " " << wind_m_s;
+      EXPECT_EQ(a.working_width_racetrack_m, b.working_width_racetrack_m);
+    }
+  }
+}
+
+// Pooled contents that do not match their runs, or hold an impossible sample, are refused as plain ones.
+TEST(Predictor, PooledContentsAreCheckedAsPlainOnes) {
+  spread::testing::TempPath file("pooled_bad");
+  testing::write_synthetic_table(file.path());
+  std::pmr::unsynchronized_pool_resource memory;
+  tables::TableContents short_offsets = tables::read_table_file(file.path(), &memory);
+  short_offsets.pooled_offset.pop_back();
+  EXPECT_THROW(Predictor(std::move(short_offsets), PredictorLimits{}, &memory), std::invalid_argument);
+  tables::TableContents nan_sample = tables::read_table_file(file.path(), &memory);
+  nan_sample.pooled_samples.at(nan_sample.pooled_offset.at(1) + 3).vx_norm = std::numeric_limits<float>::quiet_NaN();
+  try {
+    Predictor p(std::move(nan_sample), PredictorLimits{}, &memory);
+    ADD_FAILURE() << "a NaN pooled sample accepted";
+  } catch (const tables::TableError& e) {
+    EXPECT_EQ(e.kind(), tables::TableErrorKind::kCorrupt);
+    EXPECT_NE(std::string(e.what()).find("sample 3 vx_norm"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Predictor, SingleDiscFliesOneDisc) {

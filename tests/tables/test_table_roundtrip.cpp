@@ -3,6 +3,7 @@
 
 #include <bit>
 #include <cstring>
+#include <memory_resource>
 
 #include "libspread/io/tables/sample_codec.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -79,6 +80,48 @@ TEST(TableRoundTrip, EverythingWrittenIsReadBack) {
   EXPECT_EQ(run.created_utc, expected.created_utc);
   EXPECT_EQ(run.stats_json, expected.stats_json);
   EXPECT_EQ(run.convergence_json, expected.convergence_json);
+}
+
+// Counts what a reader asks of a memory resource.
+class CountingMemory final : public std::pmr::memory_resource {
+ public:
+  int allocations = 0;
+  std::size_t bytes = 0;
+
+ private:
+  void* do_allocate(std::size_t size, std::size_t alignment) override {
+    ++allocations;
+    bytes += size;
+    return std::pmr::new_delete_resource()->allocate(size, alignment);
+  }
+  void do_deallocate(void* p, std::size_t size, std::size_t alignment) override {
+    std::pmr::new_delete_resource()->deallocate(p, size, alignment);
+  }
+  bool do_is_equal(const std::pmr::memory_resource& other) const noexcept override { return this == &other; }
+};
+
+// Read with a sample memory, every run's samples lie in one block from it, run after run, bit for bit the
+// samples read run by run; the block is reserved once from the declared counts.
+TEST(TableRoundTrip, PooledSamplesAreTheRunsInOneBlock) {
+  TempPath file("pooled");
+  spread::testing::write_sample_table(file.path(), 100);
+  const TableContents plain = read_table_file(file.path());
+  CountingMemory memory;
+  const TableContents pooled = read_table_file(file.path(), &memory);
+  ASSERT_EQ(pooled.runs.size(), plain.runs.size());
+  ASSERT_EQ(pooled.pooled_offset.size(), plain.runs.size() + 1);
+  EXPECT_EQ(pooled.pooled_offset.front(), 0u);
+  EXPECT_EQ(pooled.pooled_offset.back(), pooled.pooled_samples.size());
+  for (std::size_t k = 0; k < plain.runs.size(); ++k) {
+    EXPECT_TRUE(pooled.runs[k].samples.empty());
+    const std::size_t begin = pooled.pooled_offset[k];
+    ASSERT_EQ(pooled.pooled_offset[k + 1] - begin, plain.runs[k].samples.size()) << k;
+    for (std::size_t i = 0; i < plain.runs[k].samples.size(); ++i) {
+      ASSERT_TRUE(same_bits(pooled.pooled_samples[begin + i], plain.runs[k].samples[i])) << k << " " << i;
+    }
+  }
+  EXPECT_EQ(memory.allocations, 1);
+  EXPECT_EQ(memory.bytes, pooled.pooled_samples.size() * sizeof(LaunchSample));
 }
 
 TEST(TableWriter, SecondWriteOfARunNeedsReplace) {

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <memory>
-#include <new>
 #include <cmath>
+#include <new>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -58,14 +59,25 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   for (const auto& m : contents_.materials) {
     if (problem.empty()) problem = tables::material_problem(m);
   }
-  for (const auto& run : contents_.runs) {
-    if (problem.empty()) {
-      problem = tables::run_values_problem(run);
-      if (!problem.empty()) problem = "run " + run.material + ": " + problem;
-    }
+  auto& runs = contents_.runs;
+  const bool pooled = !contents_.pooled_offset.empty();
+  if (pooled && (contents_.pooled_offset.size() != runs.size() + 1 ||
+                 contents_.pooled_offset.back() != contents_.pooled_samples.size() ||
+                 !std::is_sorted(contents_.pooled_offset.begin(), contents_.pooled_offset.end()))) {
+    throw std::invalid_argument("Predictor: the pooled samples' offsets do not match the runs");
+  }
+  // Run k's samples, wherever the contents keep them.
+  const auto samples_of = [&](std::size_t k) -> std::span<const tables::LaunchSample> {
+    if (!pooled) return runs[k].samples;
+    return std::span(contents_.pooled_samples)
+        .subspan(contents_.pooled_offset[k], contents_.pooled_offset[k + 1] - contents_.pooled_offset[k]);
+  };
+  for (std::size_t k = 0; k < runs.size() && problem.empty(); ++k) {
+    problem = tables::run_record_problem(runs[k]);
+    if (problem.empty()) problem = tables::samples_problem(samples_of(k));
+    if (!problem.empty()) problem = "run " + runs[k].material + ": " + problem;
   }
   if (!problem.empty()) throw tables::TableError(tables::TableErrorKind::kCorrupt, "Predictor: " + problem);
-  auto& runs = contents_.runs;
   run_rpm_.reserve(runs.size());
   std::size_t largest_pair = 0;  // samples of the widest interpolation (by quantile cells: n_a + n_b)
   std::size_t i = 0;
@@ -84,9 +96,9 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
         throw tables::TableError(tables::TableErrorKind::kCorrupt,
                                  "runs of material '" + runs[i].material + "' not in ascending rpm order");
       }
-      const std::size_t next = k + 1 < j ? runs[k + 1].samples.size() : 0;
-      largest_pair = std::max(largest_pair, runs[k].samples.size() + next);
-      for (const auto& s : runs[k].samples) lowest_sample_z_m_ = std::min(lowest_sample_z_m_, double{s.z_m});
+      const std::size_t next = k + 1 < j ? samples_of(k + 1).size() : 0;
+      largest_pair = std::max(largest_pair, samples_of(k).size() + next);
+      for (const auto& s : samples_of(k)) lowest_sample_z_m_ = std::min(lowest_sample_z_m_, double{s.z_m});
     }
     i = j;
   }
@@ -106,12 +118,20 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   }
   largest_pair_ = largest_pair;
   run_offset_.assign(runs.size() + 1, 0);
-  for (std::size_t k = 0; k < runs.size(); ++k) run_offset_[k + 1] = run_offset_[k] + runs[k].samples.size();
-  // The samples move into one block from `memory`; the runs keep their other records.
-  samples_.reserve(run_offset_.back());
-  for (auto& run : contents_.runs) {
-    samples_.insert(samples_.end(), run.samples.begin(), run.samples.end());
-    std::vector<tables::LaunchSample>().swap(run.samples);
+  for (std::size_t k = 0; k < runs.size(); ++k) run_offset_[k + 1] = run_offset_[k] + samples_of(k).size();
+  // The samples in one block from `memory`; the runs keep their other records. Pooled ones from the same
+  // memory are that block already (a move); others are copied in.
+  if (pooled) {
+    samples_ = std::move(contents_.pooled_samples);
+    contents_.pooled_samples.clear();
+    contents_.pooled_samples.shrink_to_fit();
+    contents_.pooled_offset.clear();
+  } else {
+    samples_.reserve(run_offset_.back());
+    for (auto& run : contents_.runs) {
+      samples_.insert(samples_.end(), run.samples.begin(), run.samples.end());
+      std::vector<tables::LaunchSample>().swap(run.samples);
+    }
   }
   cell_of_sample_.assign(run_offset_.back(), 0);
   cell_offset_.assign(runs.size() + 1, 0);

@@ -115,13 +115,13 @@ std::string material_checksum(const Material& m) {
   return crc.hex();
 }
 
-std::string run_checksum(const Run& run, std::span<const std::uint8_t> samples_blob, std::string_view record_layout,
-                         std::int64_t record_bytes) {
+std::string run_checksum(const Run& run, std::int64_t sample_count, std::span<const std::uint8_t> samples_blob,
+                         std::string_view record_layout, std::int64_t record_bytes) {
   Crc64 crc;
   crc.text(run.material);
   crc.real(run.rpm);
   crc.text(run.source);
-  crc.integer(static_cast<std::int64_t>(run.samples.size()));
+  crc.integer(sample_count);
   crc.text(record_layout);
   crc.integer(record_bytes);
   crc.blob(samples_blob);

@@ -41,10 +41,10 @@ std::string stored_convergence_json(const Run& run);
 
 std::string machine_checksum(const Machine& machine);
 std::string material_checksum(const Material& material);
-// `samples_blob` is the stored BLOB (encode_samples of run.samples); `record_layout` and `record_bytes`
-// the stored layout columns.
-std::string run_checksum(const Run& run, std::span<const std::uint8_t> samples_blob, std::string_view record_layout,
-                         std::int64_t record_bytes);
+// `samples_blob` is the stored BLOB (encode_samples of the run's samples, sample_count of them, whether
+// they are in run.samples or pooled); `record_layout` and `record_bytes` the stored layout columns.
+std::string run_checksum(const Run& run, std::int64_t sample_count, std::span<const std::uint8_t> samples_blob,
+                         std::string_view record_layout, std::int64_t record_bytes);
 std::string landing_data_checksum(const LandingData& landing);
 
 }  // namespace spread::tables

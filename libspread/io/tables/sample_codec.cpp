@@ -2,6 +2,8 @@
 
 #include <array>
 #include <bit>
+#include <cstddef>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -33,23 +35,36 @@ std::vector<std::uint8_t> encode_samples(std::span<const LaunchSample> samples) 
   return bytes;
 }
 
-std::vector<LaunchSample> decode_samples(std::span<const std::uint8_t> bytes) {
-  if (bytes.size() % kSampleBytes != 0) {
-    throw std::invalid_argument("decode_samples: byte count is not a multiple of the record size");
+void decode_samples_into(std::span<const std::uint8_t> bytes, std::span<LaunchSample> out) {
+  if (bytes.size() % kSampleBytes != 0 || out.size() != bytes.size() / kSampleBytes) {
+    throw std::invalid_argument("decode_samples: byte count is not the record size times the sample count");
   }
-  std::vector<LaunchSample> samples;
-  samples.reserve(bytes.size() / kSampleBytes);
+  // On a little-endian host with LaunchSample's fields in the layout's order and no padding, the file's
+  // bytes are the samples' bytes; elsewhere each float is put together from its four bytes.
+  if constexpr (std::endian::native == std::endian::little && sizeof(LaunchSample) == kSampleBytes &&
+                offsetof(LaunchSample, mass_kg) == kSampleBytes - 4 && offsetof(LaunchSample, x_m) == 0) {
+    if (!bytes.empty()) std::memcpy(out.data(), bytes.data(), bytes.size());
+    return;
+  }
   std::array<float, kSampleFloats> fields{};
-  for (std::size_t offset = 0; offset < bytes.size(); offset += kSampleBytes) {
+  for (std::size_t k = 0; k < out.size(); ++k) {
     for (std::size_t i = 0; i < fields.size(); ++i) {
-      const std::uint8_t* b = bytes.data() + offset + 4 * i;
+      const std::uint8_t* b = bytes.data() + k * kSampleBytes + 4 * i;
       const std::uint32_t bits = static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
                                  (static_cast<std::uint32_t>(b[2]) << 16) |
                                  (static_cast<std::uint32_t>(b[3]) << 24);
       fields[i] = std::bit_cast<float>(bits);
     }
-    samples.push_back(from_fields(fields));
+    out[k] = from_fields(fields);
   }
+}
+
+std::vector<LaunchSample> decode_samples(std::span<const std::uint8_t> bytes) {
+  if (bytes.size() % kSampleBytes != 0) {
+    throw std::invalid_argument("decode_samples: byte count is not a multiple of the record size");
+  }
+  std::vector<LaunchSample> samples(bytes.size() / kSampleBytes);
+  decode_samples_into(bytes, samples);
   return samples;
 }
 

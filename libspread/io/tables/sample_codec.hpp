@@ -18,4 +18,8 @@ std::vector<std::uint8_t> encode_samples(std::span<const LaunchSample> samples);
 // bytes.size() must be a multiple of kSampleBytes (the reader checks the size before calling).
 std::vector<LaunchSample> decode_samples(std::span<const std::uint8_t> bytes);
 
+// The same into caller storage of bytes.size() / kSampleBytes samples: the reader decodes a run straight
+// into the block that keeps it, with no vector in between.
+void decode_samples_into(std::span<const std::uint8_t> bytes, std::span<LaunchSample> out);
+
 }  // namespace spread::tables

@@ -133,6 +133,12 @@ std::vector<std::uint8_t> Statement::column_blob(int column) const {
   if (data == nullptr || size <= 0) return {};
   return std::vector<std::uint8_t>(data, data + size);
 }
+std::span<const std::uint8_t> Statement::column_blob_view(int column) const {
+  const auto* data = static_cast<const std::uint8_t*>(sqlite3_column_blob(stmt_, column));
+  const int size = sqlite3_column_bytes(stmt_, column);  // after the pointer: sqlite3_column_bytes' own advice
+  if (data == nullptr || size <= 0) return {};
+  return {data, static_cast<std::size_t>(size)};
+}
 bool Statement::column_is_null(int column) const { return sqlite3_column_type(stmt_, column) == SQLITE_NULL; }
 
 }  // namespace spread::tables::detail

@@ -57,6 +57,8 @@ class Statement {
   std::int64_t column_int(int column) const;
   std::string column_text(int column) const;
   std::vector<std::uint8_t> column_blob(int column) const;
+  // The BLOB where SQLite holds it: valid until the next step() or the statement's end.
+  std::span<const std::uint8_t> column_blob_view(int column) const;
   bool column_is_null(int column) const;
 
  private:

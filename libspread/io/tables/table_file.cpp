@@ -50,6 +50,7 @@ TableFileInfo inspect_table_file(const std::string& path, bool allow_missing) {
   const ssize_t got = ::read(fd, header, sizeof header);
   ::close(fd);
   info.empty = st.st_size == 0;
+  info.bytes = static_cast<std::int64_t>(st.st_size);
   if (got == static_cast<ssize_t>(sizeof header)) {
     info.sqlite = std::memcmp(header, "SQLite format 3", 16) == 0;
     info.wal = info.sqlite && header[18] == 2 && header[19] == 2;

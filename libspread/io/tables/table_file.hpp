@@ -10,6 +10,7 @@ namespace spread::tables::detail {
 struct TableFileInfo {
   bool exists = false;          // false: no such file (only when allow_missing)
   bool empty = false;           // a zero-byte regular file
+  std::int64_t bytes = 0;       // its size when inspected
   bool sqlite = false;          // starts with "SQLite format 3\0"
   bool wal = false;             // the header says WAL mode (bytes 18 and 19 are 2; sqlite.org/fileformat2.html)
   bool wal_has_content = false; // a non-empty PATH-wal beside it

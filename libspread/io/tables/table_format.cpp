@@ -66,12 +66,22 @@ std::string material_problem(const Material& m) {
 }
 
 std::string run_values_problem(const Run& run) {
+  std::string problem = run_record_problem(run);
+  return problem.empty() ? samples_problem(run.samples) : problem;
+}
+
+std::string run_record_problem(const Run& run) {
   using L = PlausibleLimits;
   for (const std::string& p : {range_problem("rpm", run.rpm, 0.0, true, L::kMaxRpm, false),
                         non_negative("dt_contact_s", run.dt_contact_s),
                         non_negative("dt_flight_s", run.dt_flight_s)}) {
     if (!p.empty()) return p;
   }
+  return {};
+}
+
+std::string samples_problem(std::span<const LaunchSample> samples) {
+  using L = PlausibleLimits;
   static constexpr const char* kNames[kSampleFloats] = {"x_m", "y_m", "z_m", "t_s", "vx_norm", "vy_norm",
                                                         "vz_norm", "wx_norm", "wy_norm", "wz_norm",
                                                         "diameter_m", "mass_kg"};
@@ -80,8 +90,8 @@ std::string run_values_problem(const Run& run) {
       L::kMaxSamplePosition_m, L::kMaxSamplePosition_m, L::kMaxSamplePosition_m, L::kMaxSampleTime_s,
       L::kMaxVelocityPerRimSpeed, L::kMaxVelocityPerRimSpeed, L::kMaxVelocityPerRimSpeed,
       L::kMaxSpinPerDiscSpeed, L::kMaxSpinPerDiscSpeed, L::kMaxSpinPerDiscSpeed, kInf, kInf};
-  for (std::size_t i = 0; i < run.samples.size(); ++i) {
-    const LaunchSample& s = run.samples[i];
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const LaunchSample& s = samples[i];
     const float values[kSampleFloats] = {s.x_m, s.y_m, s.z_m, s.t_s, s.vx_norm, s.vy_norm, s.vz_norm,
                                          s.wx_norm, s.wy_norm, s.wz_norm, s.diameter_m, s.mass_kg};
     for (int f = 0; f < 10; ++f) {

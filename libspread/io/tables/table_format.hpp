@@ -4,6 +4,7 @@
 // docs/table-format.md describes the schema for people writing their own readers.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -123,7 +124,9 @@ struct PlausibleLimits {
 
 std::string machine_problem(const Machine& machine);
 std::string material_problem(const Material& material);
-std::string run_values_problem(const Run& run);
+std::string run_values_problem(const Run& run);  // run_record_problem, then samples_problem of run.samples
+std::string run_record_problem(const Run& run);  // the run's own numbers (rpm, time steps)
+std::string samples_problem(std::span<const LaunchSample> samples);
 
 // The flight effects a run was built with: the string value of "flight_effects" in its stats_json (a
 // comma list of flight effect names, "" for none), or nothing when the run does not record them (files

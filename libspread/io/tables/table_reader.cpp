@@ -98,7 +98,19 @@ void require_tables(Connection& db) {
   }
 }
 
-std::vector<Run> read_runs(Connection& db) {
+// The runs' sample count as the file declares it, bounded by what its size can hold: the pool's one
+// reservation, so a damaged count cannot ask for more memory than the file's bytes could fill.
+std::size_t declared_sample_count(Connection& db, std::int64_t file_bytes) {
+  Statement total(db, "SELECT SUM(sample_count) FROM runs WHERE sample_count > 0");
+  if (!total.step() || total.column_is_null(0)) return 0;
+  const std::int64_t declared = total.column_int(0);
+  const std::int64_t most = file_bytes / static_cast<std::int64_t>(kSampleBytes);
+  return static_cast<std::size_t>(std::clamp<std::int64_t>(declared, 0, most));
+}
+
+// pool: nullptr, each run's samples in its own vector; otherwise appended to `pool`, with `offsets` the
+// start of each run's and, at the end, the total.
+std::vector<Run> read_runs(Connection& db, std::pmr::vector<LaunchSample>* pool, std::vector<std::size_t>* offsets) {
   Statement query(db,
                   "SELECT material, rpm, source, sample_count, record_layout, record_bytes, samples, scene_hash, "
                   "scene_text, effects, dt_contact_s, dt_flight_s, particle_count, software_version, created_utc, "
@@ -112,7 +124,7 @@ std::vector<Run> read_runs(Connection& db) {
     const std::int64_t sample_count = query.column_int(3);
     const std::string layout = query.column_text(4);
     const std::int64_t record_bytes = query.column_int(5);
-    const std::vector<std::uint8_t> blob = query.column_blob(6);
+    const std::span<const std::uint8_t> blob = query.column_blob_view(6);
     const std::string which = "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: ";
     if (layout != kSampleLayout) {
       raise(TableErrorKind::kCorrupt, db.path(), which + "record layout \"" + layout + "\" differs from \"" +
@@ -127,7 +139,17 @@ std::vector<Run> read_runs(Connection& db) {
             which + "sample BLOB has " + std::to_string(blob.size()) + " bytes, expected sample_count " +
                 std::to_string(sample_count) + " x " + std::to_string(kSampleBytes));
     }
-    run.samples = decode_samples(blob);
+    std::span<const LaunchSample> samples;
+    if (pool != nullptr) {
+      offsets->push_back(pool->size());
+      pool->resize(pool->size() + static_cast<std::size_t>(sample_count));
+      const std::span<LaunchSample> into = std::span(*pool).last(static_cast<std::size_t>(sample_count));
+      decode_samples_into(blob, into);
+      samples = into;
+    } else {
+      run.samples = decode_samples(blob);
+      samples = run.samples;
+    }
     run.scene_hash = query.column_text(7);
     run.scene_text = query.column_text(8);
     run.effects = query.column_text(9);
@@ -139,18 +161,20 @@ std::vector<Run> read_runs(Connection& db) {
     run.stats_json = query.column_text(15);
     run.convergence_json = query.column_text(16);
     run.inputs_hash = query.column_text(17);
-    const std::string problem = run_values_problem(run);
+    std::string problem = run_record_problem(run);
+    if (problem.empty()) problem = samples_problem(samples);
     if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), which + "impossible value: " + problem);
     verify_checksum(db, which.substr(0, which.size() - 2), query.column_text(18),
-                    run_checksum(run, blob, layout, record_bytes));
+                    run_checksum(run, sample_count, blob, layout, record_bytes));
     runs.push_back(std::move(run));
   }
+  if (pool != nullptr) offsets->push_back(pool->size());
   return runs;
 }
 
 }  // namespace
 
-TableContents read_table_file(const std::string& path) {
+TableContents read_table_file(const std::string& path, std::pmr::memory_resource* sample_memory) {
   const detail::TableFileInfo file = detail::inspect_table_file(path, /*allow_missing=*/false);
   if (file.empty) raise(TableErrorKind::kNotOurs, path, "empty file (0 bytes), not a table file");
   if (file.wal && file.wal_has_content) {
@@ -175,12 +199,19 @@ TableContents read_table_file(const std::string& path) {
               std::to_string(kFormatVersion));
   }
   require_tables(db);
-  TableContents contents;
+  // The pool's memory given at construction: a vector's allocator does not follow an assignment.
+  TableContents contents{.pooled_samples = std::pmr::vector<LaunchSample>(
+                             sample_memory != nullptr ? sample_memory : std::pmr::get_default_resource())};
   const std::optional<Machine> machine = detail::read_machine_row(db);
   if (!machine) raise(TableErrorKind::kCorrupt, path, "the `machine` row is missing");
   contents.machine = *machine;
   contents.materials = detail::read_material_rows(db);
-  contents.runs = read_runs(db);
+  if (sample_memory != nullptr) {
+    contents.pooled_samples.reserve(declared_sample_count(db, file.bytes));
+    contents.runs = read_runs(db, &contents.pooled_samples, &contents.pooled_offset);
+  } else {
+    contents.runs = read_runs(db, nullptr, nullptr);
+  }
   {
     // Runs deleted or added outside the writer (tables written before the list existed carry none).
     Statement manifest(db, std::string("SELECT value FROM meta WHERE key = '") + detail::kRunsManifestKey + "'");

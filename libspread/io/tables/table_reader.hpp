@@ -2,6 +2,8 @@
 // Reads a whole launch-table file into memory. Opens read-only (SQLITE_OPEN_READONLY), checks
 // application_id, user_version and PRAGMA quick_check, and validates every record; every failure is a
 // TableError whose kind() names the class of problem (missing, not ours, corrupt, wrong version, empty).
+#include <cstddef>
+#include <memory_resource>
 #include <string>
 #include <vector>
 
@@ -17,8 +19,15 @@ struct TableContents {
   // Landing data stored with the rows (landing_data.hpp), by material: the reader of it judges whether it
   // is current for them.
   std::vector<LandingData> landing_data;
+  // Read with a sample memory: every run's samples one after the other in one block from that memory,
+  // run k's at [pooled_offset[k], pooled_offset[k + 1]), and each Run::samples left empty. A predictor
+  // keeps the block as it is; the samples are written once, straight from SQLite's bytes.
+  std::pmr::vector<LaunchSample> pooled_samples;
+  std::vector<std::size_t> pooled_offset;
 };
 
-TableContents read_table_file(const std::string& path);
+// sample_memory: nullptr, every Run::samples its own vector; otherwise the samples pooled in one block
+// from it (TableContents::pooled_samples).
+TableContents read_table_file(const std::string& path, std::pmr::memory_resource* sample_memory = nullptr);
 
 }  // namespace spread::tables

@@ -287,7 +287,8 @@ void TableWriter::write_run(const Run& run, bool replace) {
   insert.bind(16, run.created_utc);
   insert.bind(17, stored_stats_json(run));
   insert.bind(18, stored_convergence_json(run));
-  insert.bind(19, run_checksum(run, blob, kSampleLayout, static_cast<std::int64_t>(kSampleBytes)));
+  insert.bind(19, run_checksum(run, static_cast<std::int64_t>(run.samples.size()), blob, kSampleLayout,
+                               static_cast<std::int64_t>(kSampleBytes)));
   insert.step();
   write_meta(detail::kRunsManifestKey, detail::runs_manifest(db));  // in the run's transaction
   transaction.commit();
