@@ -346,6 +346,37 @@ TEST(SampleInfluence, StandardErrorsInOnePassEqualOneByOne) {
   }
 }
 
+// Several gradients in one pass over a wide kernel's sums (4 and 8 of them: every running value in
+// registers; 9: through arrays) give each gradient's standard error bit for bit as a pass of its own.
+TEST(SampleInfluence, AWideKernelsPassOfManyGradientsIsEachAloneBitForBit) {
+  metrics::TrayLayout trays;
+  trays.tray_width_m = 0.25;
+  trays.tray_count = 120;  // [-15, 15] m
+  std::vector<double> x, w;
+  for (int i = 0; i < 1200; ++i) {
+    x.push_back(-17.0 + 34.0 * std::fmod(0.618033988749895 * i, 1.0));
+    w.push_back(1.0 / 1200.0);
+  }
+  x[17] = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::vector<double>> gradient(SampleInfluence::kMaxGradients, std::vector<double>(120));
+  for (std::size_t g = 0; g < gradient.size(); ++g) {
+    for (std::size_t k = 0; k < 120; ++k) gradient[g][k] = std::sin(0.05 * static_cast<double>(k * (g + 1)) + 0.3 * static_cast<double>(g));
+  }
+  std::vector<double> scratch(metrics::wide_kernel_sums_size(trays, SampleInfluence::kMaxGradients));
+  for (double h : {0.3, 1.7}) {
+    const SampleInfluence influence{x, w, 600, 2, trays, h, {}, scratch};
+    for (std::size_t count : {4u, 8u, 9u}) {
+      std::vector<std::span<const double>> gradients(gradient.begin(), gradient.begin() + static_cast<long>(count));
+      std::vector<double> se(count);
+      influence.standard_errors(gradients, se);
+      for (std::size_t g = 0; g < count; ++g) {
+        EXPECT_GT(se[g], 0.0);
+        EXPECT_EQ(se[g], influence.standard_error(gradient[g])) << "h " << h << ", " << count << " gradients, " << g;
+      }
+    }
+  }
+}
+
 TEST(Predictor, IsDeterministic) {
   Predictor a(testing::synthetic_contents()), b(testing::synthetic_contents());
   Prediction pa, pb;

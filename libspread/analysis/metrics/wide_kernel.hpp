@@ -123,6 +123,18 @@ class WideKernelDots {
   template <std::size_t kCount, typename Lanes>
   void dots_in(double x, double* out, bool avx) const;
   bool avx() const { return avx_; }
+  // What dots() reads for a landing at x: its cubic's coefficients p and where its edges a..b lie in the
+  // sums (at_a: edge a's, past_b: edge b + 1's, past_end: past the last edge's; `inside`: a <= b). False
+  // when every dot is 0 (x not finite, or its kernel wholly off the layout). For passes that combine the
+  // sums themselves (combine_wide_kernel_dots' order of operations).
+  struct Reach {
+    double p[4];
+    const double* at_a;
+    const double* past_b;
+    const double* past_end;
+    bool inside;
+  };
+  bool reach(double x, Reach& out) const;
 
 
  private:
@@ -138,33 +150,41 @@ class WideKernelDots {
   double left_m_, inverse_width_, half_width_trays_, beta_;
 };
 
-template <std::size_t kCount, typename Lanes>
-__attribute__((always_inline)) inline void WideKernelDots::dots_in(double x, double* out, bool avx) const {
-  const std::size_t count = kCount != 0 ? kCount : count_;
-  for (std::size_t g = 0; g < count; ++g) out[g] = 0.0;
-  if (!std::isfinite(x)) return;
+__attribute__((always_inline)) inline bool WideKernelDots::reach(double x, Reach& out) const {
+  if (!std::isfinite(x)) return false;
   // The edges inside the kernel (wide_kernel.cpp's edge_cubic with the divisions taken once per pass):
   // u = (x − L)/w in trays, α = (e_c − x)/h = (c − u) β.
   const double u = (x - left_m_) * inverse_width_;
   const long first = kernel_edge_floor(u - half_width_trays_, edges_) + 1;
   const long last = kernel_edge_ceil(u + half_width_trays_, edges_) - 1;
   // Wholly left of the layout (F = 1 everywhere: Σ d_j = g_{−1} − g_T = 0) or wholly right (F = 0).
-  if (last < 0 || first > edges_) return;
+  if (last < 0 || first > edges_) return false;
   const long a = std::max(first, 0L), b = std::min(last, edges_);
-  const double* at_a = &sums_[static_cast<std::size_t>(a) * 4 * count];
-  const double* past_b = &sums_[static_cast<std::size_t>(b + 1) * 4 * count];
-  const double* past_end = &sums_[static_cast<std::size_t>(edges_ + 1) * 4 * count];
-  const bool inside = a <= b;
+  out.at_a = &sums_[static_cast<std::size_t>(a) * 4 * count_];
+  out.past_b = &sums_[static_cast<std::size_t>(b + 1) * 4 * count_];
+  out.past_end = &sums_[static_cast<std::size_t>(edges_ + 1) * 4 * count_];
+  out.inside = a <= b;
   const double alpha = (static_cast<double>(centre_) - u) * beta_;
-  const double p[4] = {0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha), 0.75 * beta_ * (1.0 - alpha * alpha),
-                       -0.75 * alpha * beta_ * beta_, -0.25 * beta_ * beta_ * beta_};
+  out.p[0] = 0.25 * (2.0 + 3.0 * alpha - alpha * alpha * alpha);
+  out.p[1] = 0.75 * beta_ * (1.0 - alpha * alpha);
+  out.p[2] = -0.75 * alpha * beta_ * beta_;
+  out.p[3] = -0.25 * beta_ * beta_ * beta_;
+  return true;
+}
+
+template <std::size_t kCount, typename Lanes>
+__attribute__((always_inline)) inline void WideKernelDots::dots_in(double x, double* out, bool avx) const {
+  const std::size_t count = kCount != 0 ? kCount : count_;
+  for (std::size_t g = 0; g < count; ++g) out[g] = 0.0;
+  Reach r;
+  if (!reach(x, r)) return;
 #if defined(__x86_64__) || defined(__i386__)
   if (avx) {
-    combine_avx(count, p, inside, at_a, past_b, past_end, out);
+    combine_avx(count, r.p, r.inside, r.at_a, r.past_b, r.past_end, out);
     return;
   }
 #endif
-  combine_wide_kernel_dots<Lanes>(count, p, inside, at_a, past_b, past_end, out);
+  combine_wide_kernel_dots<Lanes>(count, r.p, r.inside, r.at_a, r.past_b, r.past_end, out);
 }
 
 template <std::size_t kCount>

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -124,6 +125,62 @@ __attribute__((target("avx"))) void wide_kernel_pass_avx(const SampleInfluence& 
       [&dots](double x, double* d) __attribute__((always_inline)) { dots.template dots_in<kCount, FourDoubles>(x, d, false); },
       se);
 }
+// The same for a multiple of four gradients with every running value in AVX registers: influence_pass'
+// operations in its order, lane by lane (combine_wide_kernel_dots' for the dots), so the same bits — but
+// its arrays of z and sums, indexed by loops, went through memory on every landing.
+template <std::size_t kVectors>
+__attribute__((target("avx"))) void wide_kernel_pass_avx_registers(const SampleInfluence& in,
+                                                                    const metrics::WideKernelDots& dots, double* se) {
+  typedef double Quad __attribute__((vector_size(32)));
+  constexpr std::size_t kCount = 4 * kVectors;
+  // Into an out-parameter: a lambda returning an AVX vector would change its ABI without AVX.
+  const auto load = [](const double* at, Quad& v) __attribute__((always_inline)) { std::memcpy(&v, at, sizeof v); };
+  const double n = static_cast<double>(in.sample_count);
+  Quad z[kVectors] = {}, sum[kVectors] = {}, sum_squares[kVectors] = {};
+  for_each_sample(
+      in,
+      [&](std::size_t l) __attribute__((always_inline)) {
+        Quad d[kVectors] = {};
+        metrics::WideKernelDots::Reach r;
+        if (dots.reach(in.x_m[l], r)) {
+#pragma GCC unroll 2
+          for (std::size_t v = 0; v < kVectors; ++v) {
+            Quad end, right, left;
+            load(r.past_end + 4 * v, end);
+            load(r.past_b + 4 * v, right);
+            d[v] = end - right;
+            if (r.inside) {
+#pragma GCC unroll 4
+              for (std::size_t k = 0; k < 4; ++k) {
+                load(r.past_b + k * kCount + 4 * v, right);
+                load(r.at_a + k * kCount + 4 * v, left);
+                d[v] += r.p[k] * (right - left);
+              }
+            }
+          }
+        }
+        const double weight = in.weight[l];
+#pragma GCC unroll 2
+        for (std::size_t v = 0; v < kVectors; ++v) z[v] += weight * d[v];
+      },
+      [&]() __attribute__((always_inline)) {
+#pragma GCC unroll 2
+        for (std::size_t v = 0; v < kVectors; ++v) {
+          z[v] *= n;
+          sum[v] += z[v];
+          sum_squares[v] += z[v] * z[v];
+          z[v] = Quad{};
+        }
+      });
+  double sums[kCount], squares[kCount];
+  std::memcpy(sums, sum, sizeof sums);
+  std::memcpy(squares, sum_squares, sizeof squares);
+  for (std::size_t g = 0; g < kCount; ++g) {
+    const double mean = sums[g] / n;
+    const double variance_of_z = std::max(0.0, (squares[g] - mean * sums[g]) / static_cast<double>(in.sample_count - 1));
+    se[g] = std::sqrt(variance_of_z / n);
+  }
+}
 #endif
 
 }  // namespace
@@ -180,7 +237,11 @@ void InfluencePass::standard_errors(std::span<double> out) const {
     const auto pass = [&]<std::size_t kCount>() {
 #if defined(__x86_64__) || defined(__i386__)
       if (dots.avx()) {
-        wide_kernel_pass_avx<kCount>(in, count, dots, se);
+        if constexpr (kCount == 4 || kCount == 8) {
+          wide_kernel_pass_avx_registers<kCount / 4>(in, dots, se);
+        } else {
+          wide_kernel_pass_avx<kCount>(in, count, dots, se);
+        }
         return;
       }
 #endif
