@@ -16,7 +16,7 @@ struct InletParams {
   double mass_rate_kg_s = 0.11;
   double diameter_mean_m = 3e-3;    // arithmetic mean of the lognormal
   double diameter_sd_m = 0.0;       // arithmetic sd; 0 = one size
-  double release_speed_m_s = 1.0;   // downwards
+  double release_speed_m_s = 0.5;   // downwards, as the granules leave the metering opening
   int material = 0;
   std::uint64_t seed = 1;
   double batch_interval_s = 1e-3;   // particles are released in batches (each batch rebuilds the pair list)
