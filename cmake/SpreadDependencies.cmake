@@ -23,7 +23,7 @@ endif()
 if(SPREAD_WITH_MPI)
   find_package(MPI COMPONENTS CXX)
 endif()
-# LCM 1.3.1 in Debian ships no CMake package; lcm-gen runs at build time (DESIGN.md §6). Required by
+# LCM 1.3.1 in Debian ships no CMake package; lcm-gen runs at build time (docs/design.md §6). Required by
 # default: without it firmware_sim, spread-tractor and the firmware LCM tests would silently vanish.
 if(SPREAD_WITH_LCM)
   find_program(LCM_GEN lcm-gen)

@@ -1,5 +1,5 @@
 #pragma once
-// The sweep over MPI ranks (DESIGN.md §8): `mpirun -np N lookup_builder SCENE ...`. Rank 0 is the
+// The sweep over MPI ranks (docs/design.md §8): `mpirun -np N lookup_builder SCENE ...`. Rank 0 is the
 // only process that opens the table file; it hands out runs one at a time (so fast and slow runs
 // balance), computes runs itself on a second thread, and writes every finished run — its own and the
 // ones workers send back as serialised Run buffers (run_message.hpp) — in its own transaction.

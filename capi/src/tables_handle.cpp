@@ -1,5 +1,5 @@
 // spread_open / spread_close, the workspaces and the table queries. Every entry point catches everything:
-// no C++ exception may unwind into C (DESIGN.md §5).
+// no C++ exception may unwind into C (docs/design.md §5).
 #include <cmath>
 #include <cstdlib>
 #include <new>

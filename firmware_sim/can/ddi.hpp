@@ -1,5 +1,5 @@
 #pragma once
-// ISO 11783-11 data dictionary identifiers this ECU implements (DESIGN.md §6), with their units.
+// ISO 11783-11 data dictionary identifiers this ECU implements (docs/design.md §6), with their units.
 #include <cstdint>
 
 namespace spread::firmware::can {

@@ -1,6 +1,6 @@
 #pragma once
 // A two-node virtual CAN bus: socketpair(AF_UNIX, SOCK_SEQPACKET) carrying struct can_frame records,
-// for machines without AF_CAN/vcan (DESIGN.md §6). What one end sends, the other end reads.
+// for machines without AF_CAN/vcan (docs/design.md §6). What one end sends, the other end reads.
 #include <utility>
 
 #include "firmware_sim/can/can_frame_port.hpp"

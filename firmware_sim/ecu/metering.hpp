@@ -1,6 +1,6 @@
 #pragma once
 // Metering: the mass flow the metering gates must deliver so that the ground receives the set-point
-// rate over the width being worked. DESIGN.md §3:
+// rate over the width being worked. docs/design.md §3:
 //   Q [kg/s] = rate [kg/ha] * W [m] * v [km/h] / 36000
 // (1 ha = 10^4 m², 1 km/h = 1/3.6 m/s: rate/10^4 * W * v/3.6 = rate * W * v / 36000.)
 

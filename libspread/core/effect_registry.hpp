@@ -1,5 +1,5 @@
 #pragma once
-// The effects a scene can turn on, one row each (DESIGN.md §7: exactly the effects a scene calls for
+// The effects a scene can turn on, one row each (docs/design.md §7: exactly the effects a scene calls for
 // run; an effect that is off is not evaluated). Everything that knows an effect by name or bit reads it
 // from this table: the scene reader (names, defaults, requirements), the flight's right-hand-side table
 // (one instantiation per subset of the flight bits), the DEM's configuration, the tables' provenance

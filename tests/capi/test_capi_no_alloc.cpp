@@ -1,4 +1,4 @@
-// spread_predict must not allocate (DESIGN.md §5): this binary replaces malloc & co. (glibc lets an
+// spread_predict must not allocate (docs/design.md §5): this binary replaces malloc & co. (glibc lets an
 // executable interpose them; operator new goes through malloc) and counts calls while a flag is set.
 // The same hook, told to fail, shows spread_open turning an allocation failure into
 // SPREAD_ERROR_OUT_OF_MEMORY instead of an exception crossing into C.

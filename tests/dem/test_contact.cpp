@@ -8,7 +8,7 @@ using namespace spread;
 using namespace spread::dem;
 
 TEST(DemRestitution, HertzFitReproducesRequestedRestitution) {
-  // The corrected fit (DESIGN.md §2) against the non-dimensional clipped impact: measured within 0.2 %
+  // The corrected fit (docs/design.md §2) against the non-dimensional clipped impact: measured within 0.2 %
   // over [0.1, 0.95] (0.95 is the worst, −0.20 %).
   for (double e : {0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 0.95}) {
     const double measured = simulated_restitution_hertz(hertz_damping_ratio(e));

@@ -4,7 +4,7 @@
 
 namespace spread::flight::test {
 
-// A typical fertiliser granule thrown by a disc (DESIGN.md: 3.2 mm, 1500 kg/m³, ~30 m/s, 0.8 m high).
+// A typical fertiliser granule thrown by a disc (3.2 mm, 1500 kg/m³, ~30 m/s, 0.8 m high).
 inline Granule typical_granule() { return Granule{3.2e-3, 1500.0}; }
 
 inline State typical_launch() {

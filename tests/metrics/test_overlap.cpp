@@ -1,4 +1,4 @@
-// Overlap, CV(W) and effective working width (DESIGN.md §3, docs/metrics.md).
+// Overlap, CV(W) and effective working width (docs/design.md §3, docs/metrics.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Tray layout, accumulation into trays, and the twin-disc mirror (DESIGN.md §3).
+// Tray layout, accumulation into trays, and the twin-disc mirror (docs/design.md §3).
 #include <cmath>
 #include <stdexcept>
 #include <vector>

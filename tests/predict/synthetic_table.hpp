@@ -1,6 +1,6 @@
 #pragma once
 // Launch-table files for the predictor and C API tests, written with the real tables::TableWriter
-// (never a hand-made format). The launch states follow the Patterson & Reece picture (DESIGN.md §2):
+// (never a hand-made format). The launch states follow the Patterson & Reece picture (docs/design.md §2):
 // granules leave the rim of a flat disc with the rim speed ωR tangentially plus a radial component, over
 // an arc of launch angles, with a spread of diameters. Sample k of every row of a material describes the
 // same granule (same angle and diameter), as the analytic builder does, so rows interpolate pairwise.

@@ -1,4 +1,4 @@
-// spread-canbus PATH: a virtual CAN bus for processes on one machine without AF_CAN/vcan (DESIGN.md §6).
+// spread-canbus PATH: a virtual CAN bus for processes on one machine without AF_CAN/vcan (docs/design.md §6).
 // Clients connect a SOCK_SEQPACKET Unix socket to PATH and exchange 16-byte `struct can_frame` datagrams;
 // every frame reaches every other client. Datagram format and adapters: docs/can-integration.md.
 // --paced runs the bus at a bit rate with arbitration by identifier (can_bus_pacer.hpp); --status-interval

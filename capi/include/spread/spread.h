@@ -1,6 +1,6 @@
 /*
  * spread.h — C API of libspread: predict where a centrifugal fertiliser spreader throws its granules,
- * from a launch-table file (DESIGN.md §4) and a ballistic flight model (seed 000, Sect. 2.4).
+ * from a launch-table file (docs/design.md §4) and a ballistic flight model (seed 000, Sect. 2.4).
  *
  * C99, no dependencies beyond the C standard library. Guide and a complete example: docs/c-api.md.
  *

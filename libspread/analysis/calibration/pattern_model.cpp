@@ -231,7 +231,7 @@ std::vector<double> PatternModel::tray_fractions(const PatternParameters& parame
   std::vector<flight::Landing> landings(n);
   flight::fly_batch(granules, launches, 0.0, setup_.air, setup_.effects, options_.flight, landings, options_.threads);
 
-  // In still air the right disc throws the mirror image of the left one (DESIGN.md §3): fly once, land twice.
+  // In still air the right disc throws the mirror image of the left one (docs/design.md §3): fly once, land twice.
   const bool two_discs = setup_.machine.disc_count == 2;
   const double half_spacing_m = two_discs ? 0.5 * setup_.machine.disc_spacing_m : 0.0;
   const double discs = two_discs ? 2.0 : 1.0;

@@ -9,7 +9,7 @@
 // through zero — the usual assumption of a spreader's setting chart); two catches at different openings
 // fix both (a two-point fit), which absorbs the gate's dead zone.
 //
-// Application rate (DESIGN.md §3): Q [kg/s] = rate [kg/ha] · W [m] · v [km/h] / 36000
+// Application rate (docs/design.md §3): Q [kg/s] = rate [kg/ha] · W [m] · v [km/h] / 36000
 // (W · v / 3.6 is the area covered in m²/s, and 1 ha = 10 000 m²).
 //
 // Every function throws std::invalid_argument naming the input when it is not finite or out of range.

@@ -1,4 +1,4 @@
-// Ground pattern of the whole machine (DESIGN.md §3): mass per grid cell of both discs' landings.
+// Ground pattern of the whole machine (docs/design.md §3): mass per grid cell of both discs' landings.
 // The left disc's samples are placed at x - spacing/2, the right disc's are their mirror image, so
 // the grid is made symmetric about x = 0 (a twin-disc pattern is then symmetric cell for cell) and
 // aligned to multiples of the cell size, with a one-cell margin round the landings.

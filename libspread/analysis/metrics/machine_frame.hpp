@@ -1,5 +1,5 @@
 #pragma once
-// Where a left-disc sample lands in the machine frame (DESIGN.md §3): the left disc centre sits at
+// Where a left-disc sample lands in the machine frame (docs/design.md §3): the left disc centre sits at
 // x = -spacing/2 and the right disc throws the mirror image (x → -x about the centre line x = 0).
 #include "libspread/analysis/metrics/metrics.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Spread metrics (DESIGN.md §3): transverse distribution in trays, overlap at a bout width
+// Spread metrics (docs/design.md §3): transverse distribution in trays, overlap at a bout width
 // (to-and-fro, racetrack), CV(W), effective working width, throw width, and the seed's R̄ and ξ
 // (Eqs. 51–52). Functions taking spans do not allocate: the C API calls them in its control loop.
 // Definitions, tray convention and edge cases: docs/metrics.md.
@@ -27,7 +27,7 @@ TrayLayout tray_layout_covering(double half_extent_m, double tray_width_m);
 
 // One disc, or two counter-rotating discs: the samples given are those of the LEFT disc relative to
 // its own centre, which sits at x = -disc_spacing_m / 2; the right disc is their mirror image x → -x
-// about the centre line (DESIGN.md §3). One disc sits at x = 0.
+// about the centre line (docs/design.md §3). One disc sits at x = 0.
 struct MachineLayout {
   int disc_count = 2;          // 1 or 2
   double disc_spacing_m = 0.0; // centre-to-centre, lateral; two discs only

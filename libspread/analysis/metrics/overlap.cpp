@@ -1,4 +1,4 @@
-// Overlap at a bout width W (DESIGN.md §3): the distribution across the field is the sum of the machine's
+// Overlap at a bout width W (docs/design.md §3): the distribution across the field is the sum of the machine's
 // pattern placed at every multiple of W, Σ_k pass_k(x − kW). Racetrack: every pass is the same pattern.
 // To-and-fro: the machine turns at the headland, so odd passes are mirrored (x → −x).
 //

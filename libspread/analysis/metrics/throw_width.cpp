@@ -1,4 +1,4 @@
-// Throw width (DESIGN.md §3): the lateral extent holding a fraction f of the mass (99 % by default),
+// Throw width (docs/design.md §3): the lateral extent holding a fraction f of the mass (99 % by default),
 // between the (1-f)/2 and (1+f)/2 quantiles of the cumulative tray mass, the mass spread uniformly
 // within each tray (so the cumulative mass is piecewise linear in x).
 #include <cmath>

@@ -1,4 +1,4 @@
-// Tray layout and the transverse distribution (DESIGN.md §3: the pattern summed along the driving
+// Tray layout and the transverse distribution (docs/design.md §3: the pattern summed along the driving
 // direction into 0.5 m trays, ISO 5690 / EN 13739).
 #include <cmath>
 #include <stdexcept>

@@ -1,5 +1,5 @@
 #pragma once
-// Launch samples at an rpm between two table rows (DESIGN.md §4: velocities are stored divided by the rim
+// Launch samples at an rpm between two table rows (docs/design.md §4: velocities are stored divided by the rim
 // speed ωR and spins by ω, so the normalised samples of neighbouring rows are close and interpolate well;
 // the caller scales them back by the requested ω).
 //

@@ -14,7 +14,7 @@ void landing_rank_keys(std::span<const tables::LaunchSample> samples, double rpm
   if (transverse_x_m.size() != samples.size() || radius_m.size() != samples.size()) {
     throw std::invalid_argument("landing_rank_keys: key outputs differ in size from the row");
   }
-  // Stored samples are normalised (DESIGN.md §4): velocity / ωR, spin / ω.
+  // Stored samples are normalised (docs/design.md §4): velocity / ωR, spin / ω.
   const double omega_rad_s = rpm * 2.0 * kPi / 60.0;
   const double rim_speed_m_s = omega_rad_s * disc_radius_m;
   const flight::Air still_air;

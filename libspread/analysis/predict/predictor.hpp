@@ -14,7 +14,7 @@
 //      (landing_grid.hpp); otherwise fly each granule (flight::fly_many — SIMD lanes for drag/wind-only
 //      flights, the same landings as flight::fly_to_ground one by one —, default_flight_settings()),
 //   4. machine frame: the left disc centre is at x = −s/2, the right disc is its mirror image
-//      (DESIGN.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
+//      (docs/design.md §3). With a lateral wind the mirror trick is invalid (the wind breaks the symmetry),
 //      so the right disc's launches are mirrored and flown themselves,
 //   5. trays fitted to the landings, throw width, effective working widths (to-and-fro, racetrack),
 //      CV at the bout width, R̄ and ξ of one disc (seed Eqs. 51–52).

@@ -75,14 +75,14 @@ struct Air {
   std::array<double, 2> wind_m_s{0.0, 0.0};  // horizontal wind (x, y)
 };
 
-// Exactly the effects that run (DESIGN.md §7): bits of the effect registry
+// Exactly the effects that run (docs/design.md §7): bits of the effect registry
 // (libspread/core/effect_registry.hpp), named there as in the TOML list.
 using effect::EffectSet;
 
 struct Numerics {
   std::uint64_t seed = 1;
   double duration_s = 0.4;            // simulated time of a DEM run
-  double dt_contact_s = 0.0;          // 0 = automatic, t_c / steps_per_contact (DESIGN.md §2)
+  double dt_contact_s = 0.0;          // 0 = automatic, t_c / steps_per_contact (docs/design.md §2)
   int steps_per_contact = 15;         // N_c
   Integrator integrator = Integrator::kSymplecticEuler;
   ContactModel contact_model = ContactModel::kHertzThornton;

@@ -27,7 +27,7 @@ void check_within(const std::string& source, const std::string& key, double valu
 
 void fail_effect_off(const std::string& source, const std::string& key, const std::string& value,
                      effect::EffectSet effect) {
-  // DESIGN.md §7: a value set for an effect that is off would be recorded as provenance yet never act.
+  // docs/design.md §7: a value set for an effect that is off would be recorded as provenance yet never act.
   const bool one = (effect & (effect - 1)) == 0;
   const std::string names = effect::names_of(effect);
   const std::string off = one ? "the `" + names + "` effect is off" : "none of the effects `" + names + "` is on";

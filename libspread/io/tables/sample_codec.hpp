@@ -1,5 +1,5 @@
 #pragma once
-// Launch samples <-> the little-endian float32 BLOB of the `runs.samples` column (DESIGN.md §4).
+// Launch samples <-> the little-endian float32 BLOB of the `runs.samples` column (docs/design.md §4).
 // Byte order is written out explicitly (bit_cast + shifts), so files move between hosts unchanged.
 #include <cstddef>
 #include <cstdint>

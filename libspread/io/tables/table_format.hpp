@@ -1,5 +1,5 @@
 #pragma once
-// Launch tables in SQLite (DESIGN.md §4): one file per machine; per (material, rpm) run the launch
+// Launch tables in SQLite (docs/design.md §4): one file per machine; per (material, rpm) run the launch
 // samples as a little-endian float32 BLOB with an explicit record layout, plus provenance.
 // docs/table-format.md describes the schema for people writing their own readers.
 #include <cstdint>
@@ -20,7 +20,7 @@ inline constexpr std::int32_t kFormatVersion = 2;
 // One launch-off state. Stored as kSampleFloats little-endian float32 in this order; the layout string
 // kSampleLayout is stored with every run and checked on read.
 // Velocities are normalised by the rim speed ω·R and spins by the disc speed ω, so rows of one material
-// interpolate well in rpm (DESIGN.md §4). Positions are relative to the disc centre (inertial frame,
+// interpolate well in rpm (docs/design.md §4). Positions are relative to the disc centre (inertial frame,
 // z up, disc surface at the rim = 0 for a flat disc).
 struct LaunchSample {
   float x_m, y_m, z_m;

@@ -1,5 +1,5 @@
 #pragma once
-// Writes a launch-table file (DESIGN.md §4, docs/table-format.md). One run per transaction, so an
+// Writes a launch-table file (docs/design.md §4, docs/table-format.md). One run per transaction, so an
 // interrupted build loses at most the run in progress. Never touches a file that is not ours: an
 // existing file that is not SQLite, or whose application_id differs, is refused (TableError kNotOurs)
 // and left byte-identical; a file of another format version is refused (kWrongVersion), a damaged or

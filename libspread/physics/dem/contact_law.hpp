@@ -1,5 +1,5 @@
 #pragma once
-// A contact law as four sub-models chosen independently (DESIGN.md §7: no fused type per combination):
+// A contact law as four sub-models chosen independently (docs/design.md §7: no fused type per combination):
 // the normal elastic force, the normal damping, the tangential force and the rolling resistance, each
 // with an explicit `none`. This header is the run-time description; the evaluators are the sub-model
 // types (normal_models.hpp, damping_models.hpp, tangential_models.hpp, rolling_models.hpp) put together by

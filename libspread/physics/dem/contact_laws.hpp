@@ -1,5 +1,5 @@
 #pragma once
-// Contact laws composed from sub-models (HOOMD/LAMMPS GRANULAR style, DESIGN.md §7): ComposedLaw<Normal,
+// Contact laws composed from sub-models (HOOMD/LAMMPS GRANULAR style, docs/design.md §7): ComposedLaw<Normal,
 // Damping, Tangential, Rolling> puts one model of each list below together into an evaluator with an
 // inline kernel over the lane types (one contact, or two in lanes) and per-pair coefficients derived once
 // per material pair (Coeffs: each sub-model's own, R* and M*). The force passes are templates over the

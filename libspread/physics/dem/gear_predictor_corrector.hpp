@@ -7,11 +7,11 @@
 // Evaluate: forces at the predicted state. Corrector: Δ = (Δt²/2) a(x_p, v_p) − r_2 (translation) or
 // Δ = Δt α − w_1 (spin), then r_k += c_k Δ.
 //
-// Corrector coefficients (DESIGN.md §2 correction of the seed's garbled table):
+// Corrector coefficients (docs/design.md §2 correction of the seed's garbled table):
 //   second order   4 values: 1/6, 5/6, 1, 1/3
 //                  5 values: 19/120, 3/4, 1, 1/2, 1/12
 //                  6 values: 3/16, 251/360, 1, 11/18, 1/6, 1/60   (A&T give c0 = 3/20 when forces depend on
-//                                                                  velocity; DESIGN.md asks for 3/16)
+//                                                                  velocity; docs/design.md §2 lists 3/16)
 //   first order    4 values: 3/8, 1, 3/4, 1/6
 //                  5 values: 251/720, 1, 11/12, 1/3, 1/24
 //                  6 values: 95/288, 1, 25/24, 35/72, 5/48, 1/120

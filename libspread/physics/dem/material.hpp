@@ -1,5 +1,5 @@
 #pragma once
-// Materials and the contact parameters derived once per material pair (DESIGN.md §7: "parameters derived
+// Materials and the contact parameters derived once per material pair (docs/design.md §7: "parameters derived
 // once"). Particles and walls both refer to materials by index into one table.
 #include <cstdint>
 #include <string>

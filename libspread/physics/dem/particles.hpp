@@ -1,6 +1,6 @@
 #pragma once
 // Particle state in flat arrays (structure of arrays): one std::vector per component, indexed by the
-// particle's slot. Spin and torque arrays exist only when rotation is on (DESIGN.md §7: no spin state
+// particle's slot. Spin and torque arrays exist only when rotation is on (docs/design.md §7: no spin state
 // without rotation). Wall-contact history lives here too, kWallSlots per particle, so it moves with the
 // particle when the arrays are compacted.
 #include <cstdint>

@@ -3,7 +3,7 @@
 namespace spread::dem {
 
 // Hertz with δ^{1/4} damping (Eqs. 17–18): damping ratio γ for restitution e, Thornton, Cummins &
-// Cleary (2013) fit as corrected in DESIGN.md §2: γ = sqrt(1/(1 − (1+e)² exp(α)) − 1),
+// Cleary (2013) fit as corrected in docs/design.md §2: γ = sqrt(1/(1 − (1+e)² exp(α)) − 1),
 // α = e(h1 + e(h2 + … + e·h10)). The seed's Eq. 25 prints (1−e)², which is wrong. e >= 1 → 0.
 double hertz_damping_ratio(double restitution);
 

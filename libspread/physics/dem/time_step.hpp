@@ -1,5 +1,5 @@
 #pragma once
-// Time step from the contact duration (seed Sect. 3.1 with the DESIGN.md §2 correction of Eq. 43).
+// Time step from the contact duration (seed Sect. 3.1 with the docs/design.md §2 correction of Eq. 43).
 #include <vector>
 
 #include "libspread/physics/dem/material.hpp"

@@ -1,4 +1,4 @@
-// Flight effect lists ↔ bits, through the effect registry (DESIGN.md §7: unknown → error).
+// Flight effect lists ↔ bits, through the effect registry (docs/design.md §7: unknown → error).
 #include <stdexcept>
 #include <string>
 #include <string_view>

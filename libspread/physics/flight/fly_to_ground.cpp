@@ -1,5 +1,5 @@
 // Public entry point: validate, derive the parameters once, and dispatch through a table to the
-// integrator instantiated for exactly this effect combination (DESIGN.md §7: "an effect that is off costs
+// integrator instantiated for exactly this effect combination (docs/design.md §7: "an effect that is off costs
 // nothing").
 #include <array>
 #include <cstddef>

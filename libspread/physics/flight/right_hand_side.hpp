@@ -1,6 +1,6 @@
 #pragma once
 // The flight ODE, seed Eqs. 26–36, as a template over the effect bits: an effect that is off is not
-// compiled into that instantiation at all (DESIGN.md §7). The state is a flat array
+// compiled into that instantiation at all (docs/design.md §7). The state is a flat array
 //   y = [x, y, z, vx, vy, vz, (ωx, ωy, ωz)]
 // and the spin block exists only when kSpinDecay is on — otherwise ω is constant (Eq. 34 switched off)
 // and Magnus reads it from the parameters.
@@ -60,7 +60,7 @@ inline void flight_rhs(const FlightParameters& p, const StateVector<E>& y, State
   double az = -p.gravity_m_s2;
 
   if constexpr (kNeedsAir) {
-    // Relative air velocity replaces v_p in every air term (DESIGN.md §2, wind).
+    // Relative air velocity replaces v_p in every air term (docs/design.md §2, wind).
     double ux = y[3];
     double uy = y[4];
     double uz = y[5];

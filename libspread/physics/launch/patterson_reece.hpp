@@ -1,6 +1,6 @@
 #pragma once
 // Motion of a granule along a radial vane of a spinning disc with sliding friction μ on disc and vane
-// (Patterson & Reece 1962, DESIGN.md §2), generalised to a cone whose surface rises outward at angle α.
+// (Patterson & Reece 1962, docs/design.md §2), generalised to a cone whose surface rises outward at angle α.
 //
 // s is the distance along the generatrix from the axis (radius ρ = s cos α, height z = s sin α).
 // In the disc's rotating frame, at constant ω, the granule feels (per unit mass):
