@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "libspread/io/tables/run_schema.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 
 namespace spread::lookup {
@@ -80,50 +81,49 @@ class Reader {
 
 }  // namespace
 
+// The fields in the order of tables::kRunColumns (run_schema.hpp); of the samples' four columns only the
+// records themselves (their count, layout and record size follow from them).
 std::vector<std::uint8_t> serialise_run(const tables::Run& run) {
+  using Kind = tables::RunColumn::Kind;
   Writer w;
   w.bytes.assign(kMagic, kMagic + kMagicBytes);
-  w.text(run.material);
-  w.f64(run.rpm);
-  w.text(run.source);
-  w.raw(tables::encode_samples(run.samples));
-  w.text(run.scene_hash);
-  w.text(run.inputs_hash);
-  w.text(run.scene_text);
-  w.text(run.effects);
-  w.f64(run.dt_contact_s);
-  w.f64(run.dt_flight_s);
-  w.u64(static_cast<std::uint64_t>(run.particle_count));
-  w.text(run.software_version);
-  w.text(run.created_utc);
-  w.text(run.stats_json);
-  w.text(run.convergence_json);
+  for (const tables::RunColumn& column : tables::kRunColumns) {
+    switch (column.kind) {
+      case Kind::kText: w.text(run.*column.text); break;
+      case Kind::kReal: w.f64(run.*column.real); break;
+      case Kind::kInteger: w.u64(static_cast<std::uint64_t>(run.*column.integer)); break;
+      case Kind::kSamples: w.raw(tables::encode_samples(run.samples)); break;
+      case Kind::kSampleCount:
+      case Kind::kRecordLayout:
+      case Kind::kRecordBytes: break;
+    }
+  }
   return std::move(w.bytes);
 }
 
 tables::Run deserialise_run(std::span<const std::uint8_t> bytes) {
+  using Kind = tables::RunColumn::Kind;
   Reader r(bytes);
   r.magic();
   tables::Run run;
-  run.material = r.text();
-  run.rpm = r.f64();
-  run.source = r.text();
-  const auto samples = r.raw();
-  if (samples.size() % tables::kSampleBytes != 0) {
-    throw std::invalid_argument("serialised run: sample bytes not a multiple of the record size");
+  for (const tables::RunColumn& column : tables::kRunColumns) {
+    switch (column.kind) {
+      case Kind::kText: run.*column.text = r.text(); break;
+      case Kind::kReal: run.*column.real = r.f64(); break;
+      case Kind::kInteger: run.*column.integer = static_cast<std::int64_t>(r.u64()); break;
+      case Kind::kSamples: {
+        const auto samples = r.raw();
+        if (samples.size() % tables::kSampleBytes != 0) {
+          throw std::invalid_argument("serialised run: sample bytes not a multiple of the record size");
+        }
+        run.samples = tables::decode_samples(samples);
+        break;
+      }
+      case Kind::kSampleCount:
+      case Kind::kRecordLayout:
+      case Kind::kRecordBytes: break;
+    }
   }
-  run.samples = tables::decode_samples(samples);
-  run.scene_hash = r.text();
-  run.inputs_hash = r.text();
-  run.scene_text = r.text();
-  run.effects = r.text();
-  run.dt_contact_s = r.f64();
-  run.dt_flight_s = r.f64();
-  run.particle_count = static_cast<std::int64_t>(r.u64());
-  run.software_version = r.text();
-  run.created_utc = r.text();
-  run.stats_json = r.text();
-  run.convergence_json = r.text();
   r.finish();
   return run;
 }

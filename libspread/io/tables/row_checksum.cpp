@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "libspread/io/tables/material_schema.hpp"
+#include "libspread/io/tables/run_schema.hpp"
 
 namespace spread::tables {
 namespace {
@@ -90,11 +91,6 @@ std::string Crc64::hex() const {
   return out;
 }
 
-std::string stored_stats_json(const Run& run) { return run.stats_json.empty() ? "{}" : run.stats_json; }
-std::string stored_convergence_json(const Run& run) {
-  return run.convergence_json.empty() ? "[]" : run.convergence_json;
-}
-
 std::string machine_checksum(const Machine& m) {
   Crc64 crc;
   crc.text(m.name);
@@ -118,24 +114,17 @@ std::string material_checksum(const Material& m) {
 std::string run_checksum(const Run& run, std::int64_t sample_count, std::span<const std::uint8_t> samples_blob,
                          std::string_view record_layout, std::int64_t record_bytes) {
   Crc64 crc;
-  crc.text(run.material);
-  crc.real(run.rpm);
-  crc.text(run.source);
-  crc.integer(sample_count);
-  crc.text(record_layout);
-  crc.integer(record_bytes);
-  crc.blob(samples_blob);
-  crc.text(run.scene_hash);
-  crc.text(run.inputs_hash);
-  crc.text(run.scene_text);
-  crc.text(run.effects);
-  crc.real(run.dt_contact_s);
-  crc.real(run.dt_flight_s);
-  crc.integer(run.particle_count);
-  crc.text(run.software_version);
-  crc.text(run.created_utc);
-  crc.text(stored_stats_json(run));
-  crc.text(stored_convergence_json(run));
+  for (const RunColumn& column : kRunColumns) {
+    switch (column.kind) {
+      case RunColumn::Kind::kText: crc.text(column.stored_text(run)); break;
+      case RunColumn::Kind::kReal: crc.real(run.*column.real); break;
+      case RunColumn::Kind::kInteger: crc.integer(run.*column.integer); break;
+      case RunColumn::Kind::kSampleCount: crc.integer(sample_count); break;
+      case RunColumn::Kind::kRecordLayout: crc.text(record_layout); break;
+      case RunColumn::Kind::kRecordBytes: crc.integer(record_bytes); break;
+      case RunColumn::Kind::kSamples: crc.blob(samples_blob); break;
+    }
+  }
   return crc.hex();
 }
 

@@ -35,9 +35,6 @@ class Crc64 {
   std::uint64_t state_ = ~std::uint64_t{0};
 };
 
-// What the writer stores for a run's JSON columns: "{}" and "[]" stand for empty text.
-std::string stored_stats_json(const Run& run);
-std::string stored_convergence_json(const Run& run);
 
 std::string machine_checksum(const Machine& machine);
 std::string material_checksum(const Material& material);

@@ -9,6 +9,7 @@
 
 #include "libspread/io/tables/landing_data.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
+#include "libspread/io/tables/run_schema.hpp"
 #include "libspread/io/tables/runs_manifest.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 #include "libspread/io/tables/sqlite_connection.hpp"
@@ -111,60 +112,68 @@ std::size_t declared_sample_count(Connection& db, std::int64_t file_bytes) {
 // pool: nullptr, each run's samples in its own vector; otherwise appended to `pool`, with `offsets` the
 // start of each run's and, at the end, the total.
 std::vector<Run> read_runs(Connection& db, std::pmr::vector<LaunchSample>* pool, std::vector<std::size_t>* offsets) {
-  Statement query(db,
-                  "SELECT material, rpm, source, sample_count, record_layout, record_bytes, samples, scene_hash, "
-                  "scene_text, effects, dt_contact_s, dt_flight_s, particle_count, software_version, created_utc, "
-                  "stats_json, convergence_json, inputs_hash, checksum FROM runs ORDER BY material, rpm");
+  // The columns of kRunColumns in their order, then the checksum.
+  std::string columns;
+  for (const RunColumn& column : kRunColumns) columns += std::string(column.name) + ", ";
+  Statement query(db, "SELECT " + columns + "checksum FROM runs ORDER BY material, rpm");
+  constexpr int kChecksumColumn = static_cast<int>(kRunColumns.size());
+  static_assert(kRunColumns[0].name == "material" && kRunColumns[1].name == "rpm",
+                "the rows' names in messages need the material and the rpm first");
   std::vector<Run> runs;
   while (query.step()) {
     Run run;
-    run.material = query.column_text(0);
-    run.rpm = required_double(query, 1, db, "run " + run.material + ": rpm");
-    run.source = query.column_text(2);
-    const std::int64_t sample_count = query.column_int(3);
-    const std::string layout = query.column_text(4);
-    const std::int64_t record_bytes = query.column_int(5);
-    const std::span<const std::uint8_t> blob = query.column_blob_view(6);
-    const std::string which = "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: ";
-    if (layout != kSampleLayout) {
-      raise(TableErrorKind::kCorrupt, db.path(), which + "record layout \"" + layout + "\" differs from \"" +
-                                                     kSampleLayout + "\"");
-    }
-    if (record_bytes != static_cast<std::int64_t>(kSampleBytes)) {
-      raise(TableErrorKind::kCorrupt, db.path(), which + "record size " + std::to_string(record_bytes) +
-                                                     " bytes, expected " + std::to_string(kSampleBytes));
-    }
-    if (sample_count <= 0 || blob.size() != static_cast<std::size_t>(sample_count) * kSampleBytes) {
-      raise(TableErrorKind::kCorrupt, db.path(),
-            which + "sample BLOB has " + std::to_string(blob.size()) + " bytes, expected sample_count " +
-                std::to_string(sample_count) + " x " + std::to_string(kSampleBytes));
-    }
+    // Named by material and rpm once those are read (they come first): "run Urea @ 600.000000 rpm: ".
+    std::string which = "run ";
+    std::int64_t sample_count = 0, record_bytes = 0;
+    std::string layout;
+    std::span<const std::uint8_t> blob;
     std::span<const LaunchSample> samples;
-    if (pool != nullptr) {
-      offsets->push_back(pool->size());
-      pool->resize(pool->size() + static_cast<std::size_t>(sample_count));
-      const std::span<LaunchSample> into = std::span(*pool).last(static_cast<std::size_t>(sample_count));
-      decode_samples_into(blob, into);
-      samples = into;
-    } else {
-      run.samples = decode_samples(blob);
-      samples = run.samples;
+    for (int c = 0; c < kChecksumColumn; ++c) {
+      const RunColumn& column = kRunColumns[static_cast<std::size_t>(c)];
+      switch (column.kind) {
+        case RunColumn::Kind::kText: run.*column.text = query.column_text(c); break;
+        case RunColumn::Kind::kReal:
+          run.*column.real = required_double(query, c, db, which + std::string(column.name));
+          break;
+        case RunColumn::Kind::kInteger: run.*column.integer = query.column_int(c); break;
+        case RunColumn::Kind::kSampleCount: sample_count = query.column_int(c); break;
+        case RunColumn::Kind::kRecordLayout: layout = query.column_text(c); break;
+        case RunColumn::Kind::kRecordBytes: record_bytes = query.column_int(c); break;
+        case RunColumn::Kind::kSamples: {
+          blob = query.column_blob_view(c);
+          if (layout != kSampleLayout) {
+            raise(TableErrorKind::kCorrupt, db.path(), which + "record layout \"" + layout + "\" differs from \"" +
+                                                           kSampleLayout + "\"");
+          }
+          if (record_bytes != static_cast<std::int64_t>(kSampleBytes)) {
+            raise(TableErrorKind::kCorrupt, db.path(), which + "record size " + std::to_string(record_bytes) +
+                                                           " bytes, expected " + std::to_string(kSampleBytes));
+          }
+          if (sample_count <= 0 || blob.size() != static_cast<std::size_t>(sample_count) * kSampleBytes) {
+            raise(TableErrorKind::kCorrupt, db.path(),
+                  which + "sample BLOB has " + std::to_string(blob.size()) + " bytes, expected sample_count " +
+                      std::to_string(sample_count) + " x " + std::to_string(kSampleBytes));
+          }
+          if (pool != nullptr) {
+            offsets->push_back(pool->size());
+            pool->resize(pool->size() + static_cast<std::size_t>(sample_count));
+            const std::span<LaunchSample> into = std::span(*pool).last(static_cast<std::size_t>(sample_count));
+            decode_samples_into(blob, into);
+            samples = into;
+          } else {
+            run.samples = decode_samples(blob);
+            samples = run.samples;
+          }
+          break;
+        }
+      }
+      if (column.text == &Run::material) which = "run " + run.material + ": ";
+      if (column.real == &Run::rpm) which = "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: ";
     }
-    run.scene_hash = query.column_text(7);
-    run.scene_text = query.column_text(8);
-    run.effects = query.column_text(9);
-    run.dt_contact_s = required_double(query, 10, db, which + "dt_contact_s");
-    run.dt_flight_s = required_double(query, 11, db, which + "dt_flight_s");
-    run.particle_count = query.column_int(12);
-    run.software_version = query.column_text(13);
-    run.created_utc = query.column_text(14);
-    run.stats_json = query.column_text(15);
-    run.convergence_json = query.column_text(16);
-    run.inputs_hash = query.column_text(17);
     std::string problem = run_record_problem(run);
     if (problem.empty()) problem = samples_problem(samples);
     if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), which + "impossible value: " + problem);
-    verify_checksum(db, which.substr(0, which.size() - 2), query.column_text(18),
+    verify_checksum(db, which.substr(0, which.size() - 2), query.column_text(kChecksumColumn),
                     run_checksum(run, sample_count, blob, layout, record_bytes));
     runs.push_back(std::move(run));
   }
@@ -200,8 +209,13 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
   }
   require_tables(db);
   // The pool's memory given at construction: a vector's allocator does not follow an assignment.
-  TableContents contents{.pooled_samples = std::pmr::vector<LaunchSample>(
-                             sample_memory != nullptr ? sample_memory : std::pmr::get_default_resource())};
+  TableContents contents{.machine = {},
+                         .materials = {},
+                         .runs = {},
+                         .landing_data = {},
+                         .pooled_samples = std::pmr::vector<LaunchSample>(
+                             sample_memory != nullptr ? sample_memory : std::pmr::get_default_resource()),
+                         .pooled_offset = {}};
   const std::optional<Machine> machine = detail::read_machine_row(db);
   if (!machine) raise(TableErrorKind::kCorrupt, path, "the `machine` row is missing");
   contents.machine = *machine;

@@ -6,6 +6,7 @@
 
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
+#include "libspread/io/tables/run_schema.hpp"
 #include "libspread/io/tables/runs_manifest.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 #include "libspread/io/tables/sqlite_connection.hpp"
@@ -264,31 +265,29 @@ void TableWriter::write_run(const Run& run, bool replace) {
     remove.step();
   }
   const std::vector<std::uint8_t> blob = encode_samples(run.samples);
-  Statement insert(db,
-                   "INSERT INTO runs (material, rpm, source, sample_count, record_layout, record_bytes, samples, "
-                   "scene_hash, inputs_hash, scene_text, effects, dt_contact_s, dt_flight_s, particle_count, "
-                   "software_version, created_utc, stats_json, convergence_json, checksum) "
-                   "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  insert.bind(1, run.material);
-  insert.bind(2, run.rpm);
-  insert.bind(3, run.source);
-  insert.bind(4, static_cast<std::int64_t>(run.samples.size()));
-  insert.bind(5, std::string(kSampleLayout));
-  insert.bind(6, static_cast<std::int64_t>(kSampleBytes));
-  insert.bind_blob(7, blob);
-  insert.bind(8, run.scene_hash);
-  insert.bind(9, run.inputs_hash);
-  insert.bind(10, run.scene_text);
-  insert.bind(11, run.effects);
-  insert.bind(12, run.dt_contact_s);
-  insert.bind(13, run.dt_flight_s);
-  insert.bind(14, run.particle_count);
-  insert.bind(15, run.software_version);
-  insert.bind(16, run.created_utc);
-  insert.bind(17, stored_stats_json(run));
-  insert.bind(18, stored_convergence_json(run));
-  insert.bind(19, run_checksum(run, static_cast<std::int64_t>(run.samples.size()), blob, kSampleLayout,
-                               static_cast<std::int64_t>(kSampleBytes)));
+  // The columns of kRunColumns in their order, then the checksum.
+  std::string columns, values;
+  for (const RunColumn& column : kRunColumns) {
+    columns += std::string(column.name) + ", ";
+    values += "?, ";
+  }
+  Statement insert(db, "INSERT INTO runs (" + columns + "checksum) VALUES (" + values + "?)");
+  const auto sample_count = static_cast<std::int64_t>(run.samples.size());
+  const auto record_bytes = static_cast<std::int64_t>(kSampleBytes);
+  int parameter = 1;
+  for (const RunColumn& column : kRunColumns) {
+    switch (column.kind) {
+      case RunColumn::Kind::kText: insert.bind(parameter, std::string(column.stored_text(run))); break;
+      case RunColumn::Kind::kReal: insert.bind(parameter, run.*column.real); break;
+      case RunColumn::Kind::kInteger: insert.bind(parameter, run.*column.integer); break;
+      case RunColumn::Kind::kSampleCount: insert.bind(parameter, sample_count); break;
+      case RunColumn::Kind::kRecordLayout: insert.bind(parameter, std::string(kSampleLayout)); break;
+      case RunColumn::Kind::kRecordBytes: insert.bind(parameter, record_bytes); break;
+      case RunColumn::Kind::kSamples: insert.bind_blob(parameter, blob); break;
+    }
+    ++parameter;
+  }
+  insert.bind(parameter, run_checksum(run, sample_count, blob, kSampleLayout, record_bytes));
   insert.step();
   write_meta(detail::kRunsManifestKey, detail::runs_manifest(db));  // in the run's transaction
   transaction.commit();
