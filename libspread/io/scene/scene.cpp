@@ -1,6 +1,9 @@
 #include "libspread/io/scene/scene.hpp"
 
 #include <cstdio>
+#include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include "libspread/io/scene/scene_keys.hpp"
 #include "libspread/io/tables/material_schema.hpp"
@@ -47,64 +50,54 @@ class CanonicalText {
   void line(const char* key, const std::string& value) { text += std::string(key) + " = " + value + "\n"; }
 };
 
+// Adds `section.key = value` for each key of `keys` whose row makes it an input of a run of `role`, in the
+// rows' order (the canonical text's order: docs/table-format.md "Inputs hash").
+template <typename Owner, std::size_t kCount>
+void add_inputs(CanonicalText& t, const char* section, const Owner& owner, const std::array<Key<Owner>, kCount>& keys,
+                RunInput role) {
+  for (const Key<Owner>& key : keys) {
+    if (key.run_input != role || (key.input_when != nullptr && !key.input_when(owner))) continue;
+    const std::string name = std::string(section) + "." + std::string(key.name);
+    std::visit(
+        [&](const auto& field) {
+          using F = std::decay_t<decltype(field)>;
+          if constexpr (std::is_same_v<F, double Owner::*> || std::is_same_v<F, int Owner::*> ||
+                        std::is_same_v<F, std::string Owner::*>) {
+            t.add(name.c_str(), owner.*field);
+          } else if constexpr (std::is_same_v<F, std::uint64_t Owner::*>) {
+            t.add(name.c_str(), static_cast<std::int64_t>(owner.*field));
+          } else if constexpr (std::is_same_v<F, std::array<double, 2> Owner::*>) {
+            for (std::size_t k = 0; k < 2; ++k) t.add((name + "[" + std::to_string(k) + "]").c_str(), (owner.*field)[k]);
+          } else if constexpr (std::is_same_v<F, Choice<Owner>>) {
+            t.add(name.c_str(), std::string(choice_name(field.names, field.get(owner))));
+          } else {
+            throw std::logic_error(name + ": a run input of a type the canonical text does not write");
+          }
+        },
+        key.field);
+  }
+}
+
 }  // namespace
 
 std::string Scene::run_inputs_text(const Material& material, double rpm) const {
+  // The key rows say which values are a run's inputs (scene_keys.hpp, Key::run_input); the materials'
+  // quantities and the effects are inputs of every run.
   CanonicalText t;
-  const Machine& m = machine;
-  t.add("machine.name", m.name);
-  t.add("machine.disc_radius_m", m.disc_radius_m);
-  t.add("machine.disc_height_m", m.disc_height_m);
-  t.add("machine.disc_count", m.disc_count);
-  t.add("machine.disc_spacing_m", m.disc_spacing_m);
-  t.add("machine.rotation_sense", m.rotation_sense);
-  t.add("machine.cone_angle_rad", m.cone_angle_rad);
-  t.add("machine.vane_count", m.vane_count);
-  t.add("machine.vane_start_radius_m", m.vane_start_radius_m);
-  t.add("machine.vane_end_radius_m", m.vane_end_radius_m);
-  t.add("machine.vane_height_m", m.vane_height_m);
-  t.add("machine.vane_pitch_rad", m.vane_pitch_rad);
-  t.add("machine.disc_model", to_string(m.disc_model));
-  if (m.disc_model == DiscModel::kMesh) t.add("machine.mesh_size_m", m.mesh_size_m);
-  if (m.disc_model == DiscModel::kStl) {
-    t.add("machine.stl_path", m.stl_path);
-    t.add("machine.stl_scale", m.stl_scale);
-  }
-  t.add("inlet.radius_m", inlet.radius_m);
-  t.add("inlet.offset_m", inlet.offset_m);
-  t.add("inlet.angle_rad", inlet.angle_rad);
-  t.add("inlet.drop_height_m", inlet.drop_height_m);
-  t.add("inlet.mass_flow_kg_s", inlet.mass_flow_kg_s);
+  add_inputs(t, "machine", machine, kMachineKeys, RunInput::kAlways);
+  add_inputs(t, "inlet", inlet, kInletKeys, RunInput::kAlways);
   t.add("material.name", material.name);
   for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
     t.add(("material." + std::string(q.name)).c_str(), material.*q.member);
   }
   t.add("rpm", rpm);
-  t.add("air.density_kg_m3", air.density_kg_m3);
-  t.add("air.viscosity_pa_s", air.viscosity_pa_s);
-  t.add("air.wind_m_s[0]", air.wind_m_s[0]);
-  t.add("air.wind_m_s[1]", air.wind_m_s[1]);
+  add_inputs(t, "air", air, kAirKeys, RunInput::kAlways);
   t.add("effects", effect::to_string(effects));
-  t.add("numerics.seed", static_cast<std::int64_t>(numerics.seed));
-  t.add("sweep.source", to_string(sweep.source));
-  t.add("sweep.samples_per_run", sweep.samples_per_run);
-  if (sweep.source == LaunchSource::kAnalytic) {
-    t.add("sweep.spin_model", to_string(sweep.spin_model));
-  } else {
-    t.add("numerics.duration_s", numerics.duration_s);
-    t.add("numerics.dt_contact_s", numerics.dt_contact_s);
-    t.add("numerics.steps_per_contact", numerics.steps_per_contact);
-    t.add("numerics.integrator", to_string(numerics.integrator));
-    t.add("numerics.contact_model", to_string(numerics.contact_model));
-    t.add("numerics.flight_scheme", to_string(numerics.flight_scheme));
-    t.add("numerics.flight_dt_s", numerics.flight_dt_s);
-    t.add("numerics.flight_tolerance", numerics.flight_tolerance);
-    t.add("numerics.collector_radius_m", numerics.collector_radius_m);
-    t.add("sweep.batch_s", sweep.batch_s);
-    t.add("sweep.convergence_tolerance", sweep.convergence_tolerance);
-    t.add("sweep.particle_budget", sweep.particle_budget);
-    t.add("sweep.working_width_ci_m", sweep.working_width_ci_m);
-  }
+  add_inputs(t, "numerics", numerics, kNumericsKeys, RunInput::kAlways);
+  add_inputs(t, "sweep", sweep, kSweepKeys, RunInput::kAlways);
+  const RunInput source = sweep.source == LaunchSource::kAnalytic ? RunInput::kAnalytic : RunInput::kDem;
+  add_inputs(t, "numerics", numerics, kNumericsKeys, source);
+  add_inputs(t, "sweep", sweep, kSweepKeys, source);
   return t.text;
 }
 

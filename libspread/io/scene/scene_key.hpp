@@ -68,6 +68,12 @@ using Field = std::variant<double Owner::*, int Owner::*, std::uint64_t Owner::*
                            std::vector<double> Owner::*, std::vector<std::string> Owner::*,
                            std::array<double, 2> Owner::*, Choice<Owner>>;
 
+// What a key is to a table run built from the scene (Scene::run_inputs_text, whose hash lookup_builder
+// compares before it extends a table): a value that can change the run's samples — for every run
+// (kAlways) or only for runs of one launch source (kDem, kAnalytic) — or none of its inputs (kNone:
+// outputs, threads, the sweep's lists, the `simulate` command's own keys).
+enum class RunInput { kAlways, kDem, kAnalytic, kNone };
+
 template <typename Owner>
 struct Key {
   std::string_view name;
@@ -78,6 +84,10 @@ struct Key {
                              // sets it away from its default with all of them off is refused
   std::string_view meaning;
   std::string_view alias = {};  // an older name still accepted (never both in one table)
+  // A new key is an input of every run unless its row says otherwise: a key forgotten here then makes
+  // lookup_builder rebuild rather than mix runs of other inputs into a table.
+  RunInput run_input = RunInput::kAlways;
+  bool (*input_when)(const Owner&) = nullptr;  // an input only when this holds (nullptr: whenever its role says)
 };
 
 // A material quantity's name, unit and bounds as a key of another owner (the drum's contact section):

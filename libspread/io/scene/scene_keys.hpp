@@ -53,11 +53,14 @@ inline constexpr std::array<Key<Machine>, 17> kMachineKeys{{
     {"vane_height_m", &Machine::vane_height_m, "m", kNonNegative, 0, "vane height"},
     {"vane_pitch_rad", &Machine::vane_pitch_rad, "rad", closed(-1.2, 1.2), 0, "0 = radial"},
     {"disc_model", choice<&Machine::disc_model>(kDiscModelNames), "–", kAnyValue, 0, "the disc's walls"},
-    {"mesh_size_m", &Machine::mesh_size_m, "m", kNonNegative, 0, "ξ, mesh size for `\"mesh\"`"},
-    {"stl_path", &Machine::stl_path, "–", kAnyValue, 0, "`\"stl\"` only (required there, an error otherwise)"},
-    {"stl_scale", &Machine::stl_scale, "–", kPositive, 0, "STL coordinates × `stl_scale` = metres"},
+    {"mesh_size_m", &Machine::mesh_size_m, "m", kNonNegative, 0, "ξ, mesh size for `\"mesh\"`", {},
+     RunInput::kAlways, [](const Machine& m) { return m.disc_model == DiscModel::kMesh; }},
+    {"stl_path", &Machine::stl_path, "–", kAnyValue, 0, "`\"stl\"` only (required there, an error otherwise)", {},
+     RunInput::kAlways, [](const Machine& m) { return m.disc_model == DiscModel::kStl; }},
+    {"stl_scale", &Machine::stl_scale, "–", kPositive, 0, "STL coordinates × `stl_scale` = metres", {},
+     RunInput::kAlways, [](const Machine& m) { return m.disc_model == DiscModel::kStl; }},
     {"rpm", &Machine::rpm, "rev/min", positive_at_most(scene_keys_detail::L::kMaxRpm), 0,
-     "disc speed of a `simulate` run"},
+     "disc speed of a `simulate` run", {}, RunInput::kNone},
 }};
 
 inline constexpr std::array<Key<Inlet>, 5> kInletKeys{{
@@ -69,7 +72,7 @@ inline constexpr std::array<Key<Inlet>, 5> kInletKeys{{
 }};
 
 inline constexpr std::array<Key<Scene>, 1> kSimulateKeys{{
-    {"material", &Scene::simulate_material, "–", kAnyValue, 0, "material of a `simulate` run"},
+    {"material", &Scene::simulate_material, "–", kAnyValue, 0, "material of a `simulate` run", {}, RunInput::kNone},
 }};
 
 inline constexpr std::array<Key<Air>, 3> kAirKeys{{
@@ -80,39 +83,53 @@ inline constexpr std::array<Key<Air>, 3> kAirKeys{{
 
 inline constexpr std::array<Key<Numerics>, 11> kNumericsKeys{{
     {"seed", &Numerics::seed, "–", kNonNegative, 0, "RNG seed"},
-    {"duration_s", &Numerics::duration_s, "s", kPositive, 0, "simulated time of a DEM run"},
-    {"dt_contact_s", &Numerics::dt_contact_s, "s", kNonNegative, 0, "DEM step"},
-    {"steps_per_contact", &Numerics::steps_per_contact, "–", {1.0, false, kInfinity, true}, 0, "N_c"},
-    {"integrator", choice<&Numerics::integrator>(kIntegratorNames), "–", kAnyValue, 0, "DEM integrator"},
-    {"contact_model", choice<&Numerics::contact_model>(kContactModelNames), "–", kAnyValue, 0, "DEM contact law"},
-    {"flight_scheme", choice<&Numerics::flight_scheme>(kFlightSchemeNames), "–", kAnyValue, 0, "flight integrator"},
-    {"flight_dt_s", &Numerics::flight_dt_s, "s", kPositive, 0, "RK4 step, or first trial step of dopri5"},
-    {"flight_tolerance", &Numerics::flight_tolerance, "–", {0.0, true, 1.0, true}, 0, "dopri5 relative tolerance"},
-    {"collector_radius_m", &Numerics::collector_radius_m, "m", kNonNegative, 0, "launch-off cylinder radius"},
-    {"threads", &Numerics::threads, "–", kNonNegative, 0, "worker threads"},
+    {"duration_s", &Numerics::duration_s, "s", kPositive, 0, "simulated time of a DEM run", {}, RunInput::kDem},
+    {"dt_contact_s", &Numerics::dt_contact_s, "s", kNonNegative, 0, "DEM step", {}, RunInput::kDem},
+    {"steps_per_contact", &Numerics::steps_per_contact, "–", {1.0, false, kInfinity, true}, 0, "N_c", {},
+     RunInput::kDem},
+    {"integrator", choice<&Numerics::integrator>(kIntegratorNames), "–", kAnyValue, 0, "DEM integrator", {},
+     RunInput::kDem},
+    {"contact_model", choice<&Numerics::contact_model>(kContactModelNames), "–", kAnyValue, 0, "DEM contact law", {},
+     RunInput::kDem},
+    {"flight_scheme", choice<&Numerics::flight_scheme>(kFlightSchemeNames), "–", kAnyValue, 0, "flight integrator",
+     {}, RunInput::kDem},
+    {"flight_dt_s", &Numerics::flight_dt_s, "s", kPositive, 0, "RK4 step, or first trial step of dopri5", {},
+     RunInput::kDem},
+    {"flight_tolerance", &Numerics::flight_tolerance, "–", {0.0, true, 1.0, true}, 0, "dopri5 relative tolerance",
+     {}, RunInput::kDem},
+    {"collector_radius_m", &Numerics::collector_radius_m, "m", kNonNegative, 0, "launch-off cylinder radius", {},
+     RunInput::kDem},
+    {"threads", &Numerics::threads, "–", kNonNegative, 0, "worker threads", {}, RunInput::kNone},
 }};
 
 inline constexpr std::array<Key<Sweep>, 10> kSweepKeys{{
-    {"rpm", &Sweep::rpm, "rev/min", positive_at_most(scene_keys_detail::L::kMaxRpm), 0, "table rows"},
-    {"materials", &Sweep::materials, "–", kAnyValue, 0, "material names to build"},
+    {"rpm", &Sweep::rpm, "rev/min", positive_at_most(scene_keys_detail::L::kMaxRpm), 0, "table rows", {},
+     RunInput::kNone},
+    {"materials", &Sweep::materials, "–", kAnyValue, 0, "material names to build", {}, RunInput::kNone},
     {"source", choice<&Sweep::source>(kLaunchSourceNames), "–", kAnyValue, 0, "launch source"},
     {"samples_per_run", &Sweep::samples_per_run, "–", closed(1, 10'000'000), 0, "launch records per run"},
-    {"output", &Sweep::output, "–", kAnyValue, 0, "table file"},
-    {"spin_model", choice<&Sweep::spin_model>(kSpinModelNames), "–", kAnyValue, 0, "analytic source: launch spin"},
-    {"batch_s", &Sweep::batch_s, "s", kPositive, 0, "DEM source: simulated time between convergence checks"},
+    {"output", &Sweep::output, "–", kAnyValue, 0, "table file", {}, RunInput::kNone},
+    {"spin_model", choice<&Sweep::spin_model>(kSpinModelNames), "–", kAnyValue, 0, "analytic source: launch spin", {},
+     RunInput::kAnalytic},
+    {"batch_s", &Sweep::batch_s, "s", kPositive, 0, "DEM source: simulated time between convergence checks", {},
+     RunInput::kDem},
     {"convergence_tolerance", &Sweep::convergence_tolerance, "–", kPositive, 0,
-     "DEM source: stop when R̄ and ξ of the flown launches change by at most this (relative) between batches"},
-    {"particle_budget", &Sweep::particle_budget, "–", kNonNegative, 0, "DEM source: stop after this many launches"},
+     "DEM source: stop when R̄ and ξ of the flown launches change by at most this (relative) between batches", {},
+     RunInput::kDem},
+    {"particle_budget", &Sweep::particle_budget, "–", kNonNegative, 0, "DEM source: stop after this many launches",
+     {}, RunInput::kDem},
     {"working_width_ci_m", &Sweep::working_width_ci_m, "m", closed(0.0, 100.0), 0,
      "DEM source: besides converging, a run goes on until the 95 % interval of the working width predicted from "
-     "its launches is within ± this"},
+     "its launches is within ± this",
+     {}, RunInput::kDem},
 }};
 
 inline constexpr std::array<Key<Outputs>, 4> kOutputsKeys{{
-    {"directory", &Outputs::directory, "–", kAnyValue, 0, "where output files go"},
-    {"vtk_every_steps", &Outputs::vtk_every_steps, "–", kNonNegative, 0, "VTK particle/wall files every N DEM steps"},
-    {"launch_csv", &Outputs::launch_csv, "–", kAnyValue, 0, "write the launch states as CSV"},
-    {"pattern_png", &Outputs::pattern_png, "–", kAnyValue, 0, "write the ground pattern PNG"},
+    {"directory", &Outputs::directory, "–", kAnyValue, 0, "where output files go", {}, RunInput::kNone},
+    {"vtk_every_steps", &Outputs::vtk_every_steps, "–", kNonNegative, 0, "VTK particle/wall files every N DEM steps",
+     {}, RunInput::kNone},
+    {"launch_csv", &Outputs::launch_csv, "–", kAnyValue, 0, "write the launch states as CSV", {}, RunInput::kNone},
+    {"pattern_png", &Outputs::pattern_png, "–", kAnyValue, 0, "write the ground pattern PNG", {}, RunInput::kNone},
 }};
 
 }  // namespace spread::scene
