@@ -12,6 +12,7 @@
 
 #include "libspread/analysis/predict/flight_defaults.hpp"
 #include "libspread/analysis/predict/predictor.hpp"
+#include "libspread/analysis/predict/run_flight_effects.hpp"
 #include "libspread/analysis/predict/sample_influence.hpp"
 #include "libspread/analysis/metrics/wide_kernel.hpp"
 #include "tests/predict/synthetic_table.hpp"
@@ -689,6 +690,26 @@ TEST(Predictor, DropPointTurnIsTheTableTurnedAboutTheDiscAxis) {
   EXPECT_EQ(predictor.predict(bad, out), PredictStatus::kOutOfRange);
   bad.drop_point_turn_rad = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(predictor.predict(bad, out), PredictStatus::kNotFinite);
+}
+
+}  // namespace
+}  // namespace spread::predict
+
+namespace spread::predict {
+namespace {
+
+// One reading of a run's flight effects for every reader: the recorded ones, or all of them for a run that
+// records none (tables made before runs recorded them flew everything); an unknown one is refused.
+TEST(RunFlightEffects, RecordedOrElseEveryFlightEffect) {
+  tables::Run run;
+  run.stats_json = "{\"speed_mean\":1.0}";
+  EXPECT_EQ(run_flight_effects(run), flight::kAllEffects);
+  run.stats_json = "{\"flight_effects\":\"drag\"}";
+  EXPECT_EQ(run_flight_effects(run), flight::EffectSet{flight::kDrag});
+  run.stats_json = "{\"flight_effects\":\"\"}";
+  EXPECT_EQ(run_flight_effects(run), flight::EffectSet{0});
+  run.stats_json = "{\"flight_effects\":\"drag,levitation\"}";
+  EXPECT_THROW(run_flight_effects(run), std::invalid_argument);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "libspread/analysis/calibration/scene_of_run.hpp"
 #include "libspread/physics/launch/analytic_launch.hpp"
 #include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/run_flight_effects.hpp"
 
 namespace spread::calibration {
 namespace {
@@ -107,11 +108,9 @@ PatternSetup pattern_setup_from_table(const tables::TableContents& contents, con
   setup.disc_height_m = contents.machine.disc_height_m;
   setup.air.density_kg_m3 = scene.air.density_kg_m3;
   setup.air.viscosity_pa_s = scene.air.viscosity_pa_s;
-  // The effects the run's launches are flown with by predict: those it recorded (a DEM run records the
-  // ones its own flights used), else the scene's.
-  const std::optional<std::string> recorded = tables::recorded_flight_effects(*nearest);
-  flight::EffectSet effects = recorded ? flight::parse_effects(*recorded) : scene.effects & flight::kAllEffects;
-  setup.effects = effects & ~static_cast<flight::EffectSet>(flight::kWind);  // a tray test is judged in still air
+  // The effects the run's launches are flown with by predict (predict::run_flight_effects: the recorded
+  // ones, or all of them for a run that records none).
+  setup.effects = predict::run_flight_effects(*nearest) & ~static_cast<flight::EffectSet>(flight::kWind);  // still air
   if (!analytic_model && nearest->source != "analytic") {
     setup.table_samples = nearest->samples;
     setup.table_row_rpm = nearest->rpm;

@@ -14,6 +14,7 @@
 #include "libspread/analysis/predict/launch_interpolation.hpp"
 #include "libspread/analysis/predict/launch_landing_keys.hpp"
 #include "libspread/analysis/predict/launch_quantile_cells.hpp"
+#include "libspread/analysis/predict/run_flight_effects.hpp"
 #include "libspread/analysis/predict/sample_influence.hpp"
 #include "libspread/analysis/metrics/wide_kernel.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
@@ -107,10 +108,8 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   });
   for (const auto& run : runs) {
     run_rpm_.push_back(run.rpm);
-    // Tables made before runs recorded their flight effects flew everything: keep that meaning.
-    const std::optional<std::string> recorded = tables::recorded_flight_effects(run);
     try {
-      run_effects_.push_back(recorded ? flight::parse_effects(*recorded) : flight::kAllEffects);
+      run_effects_.push_back(run_flight_effects(run));
     } catch (const std::invalid_argument& e) {
       throw tables::TableError(tables::TableErrorKind::kCorrupt,
                                "run " + run.material + " @ " + std::to_string(run.rpm) + " rpm: " + e.what());
