@@ -504,7 +504,8 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
   auto* sub = app.add_subcommand("predict", "predict the spread pattern and working widths from a launch table (via the C API)");
   spread::cli::add_prediction_args(*sub, options);
   sub->add_option("--width", options.bout_width_m, "bout width for the CV (m); 0 = the to-and-fro working width");
-  sub->add_option("--effects", options.effects, "in-flight effects: table (as the table was built, the default), all, none, or a list of drag,magnus,spin_decay,wind");
+  sub->add_option("--effects", options.effects, "in-flight effects: table (as the table was built, the default), all, none, or a list of " +
+                      spread::effect::to_string(spread::flight::kAllEffects));
   sub->add_option("--kernel", options.kernel_half_width_m,
                   "half-width (m) of the kernel each landing is spread over; default automatic, 0 = point masses");
   sub->add_flag("--compensate-wind", options.compensate_wind,

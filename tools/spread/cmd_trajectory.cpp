@@ -27,7 +27,7 @@ struct TrajectoryOptions {
   std::string velocity;
   std::string spin;
   double ground_z_m = 0.0;
-  std::string effects = "drag,magnus,spin_decay";
+  std::string effects = effect::to_string(flight::kAllEffects & ~flight::EffectSet{flight::kWind});  // all but wind
   double air_density_kg_m3 = flight::Air{}.density_kg_m3;
   double air_viscosity_pa_s = flight::Air{}.viscosity_pa_s;
   std::string wind;
@@ -137,7 +137,8 @@ spread::cli::CommandRegistration registration{"trajectory", [](CLI::App& app, in
   sub->add_option("--spin", options->spin, "Launch spin WX,WY,WZ (rad/s)")->required();
   sub->add_option("--ground-z", options->ground_z_m, "Ground height (m)")->capture_default_str();
   sub->add_option("--effects", options->effects,
-                  "Effects that run: drag,magnus,spin_decay,wind (or none); gravity always acts")
+                  "Effects that run: " + spread::effect::to_string(spread::flight::kAllEffects) +
+                      " (or none); gravity always acts")
       ->capture_default_str();
   sub->add_option("--air-density", options->air_density_kg_m3, "Air density (kg/m^3)")->capture_default_str();
   sub->add_option("--air-viscosity", options->air_viscosity_pa_s, "Air dynamic viscosity (Pa s)")

@@ -54,7 +54,7 @@ void validate_shared_inputs(double ground_z_m, const Air& air, EffectSet effects
   if ((effects & ~kAllEffects) != 0) {
     std::ostringstream message;
     message << "fly_to_ground: effects has unknown bits 0x" << std::hex << (effects & ~kAllEffects)
-            << " (known: drag, magnus, spin_decay, wind)";
+            << " (known: " << effect::names_of(kAllEffects) << ")";
     throw std::invalid_argument(message.str());
   }
   require_positive(w, "settings.dt_s", settings.dt_s);
