@@ -3,6 +3,7 @@
 
 #include <bit>
 #include <cstring>
+#include <filesystem>
 #include <memory_resource>
 
 #include "libspread/io/tables/sample_codec.hpp"
@@ -122,6 +123,23 @@ TEST(TableRoundTrip, PooledSamplesAreTheRunsInOneBlock) {
   }
   EXPECT_EQ(memory.allocations, 1);
   EXPECT_EQ(memory.bytes, pooled.pooled_samples.size() * sizeof(LaunchSample));
+}
+
+// A damaged sample count cannot make the pooled read reserve more than the file could hold, nor overflow:
+// the run is refused as damaged, naming it.
+TEST(TableRoundTrip, PooledReadOfAHugeDeclaredCountIsCorruptNotOutOfMemory) {
+  TempPath file("pooled_huge");
+  spread::testing::write_sample_table(file.path(), 100);
+  spread::testing::raw_exec(file.path(), "UPDATE runs SET sample_count = 4611686018427387904 WHERE rpm = 600");
+  CountingMemory memory;
+  try {
+    read_table_file(file.path(), &memory);
+    ADD_FAILURE() << "read";
+  } catch (const TableError& e) {
+    EXPECT_EQ(e.kind(), TableErrorKind::kCorrupt) << e.what();
+    EXPECT_NE(std::string(e.what()).find("run A @ 600"), std::string::npos) << e.what();
+  }
+  EXPECT_LE(memory.bytes, std::filesystem::file_size(file.path()));
 }
 
 TEST(TableWriter, SecondWriteOfARunNeedsReplace) {

@@ -102,11 +102,12 @@ void require_tables(Connection& db) {
 // The runs' sample count as the file declares it, bounded by what its size can hold: the pool's one
 // reservation, so a damaged count cannot ask for more memory than the file's bytes could fill.
 std::size_t declared_sample_count(Connection& db, std::int64_t file_bytes) {
-  Statement total(db, "SELECT SUM(sample_count) FROM runs WHERE sample_count > 0");
-  if (!total.step() || total.column_is_null(0)) return 0;
-  const std::int64_t declared = total.column_int(0);
-  const std::int64_t most = file_bytes / static_cast<std::int64_t>(kSampleBytes);
-  return static_cast<std::size_t>(std::clamp<std::int64_t>(declared, 0, most));
+  // TOTAL, not SUM: a real number, which no damaged count can make overflow.
+  Statement total(db, "SELECT TOTAL(sample_count) FROM runs WHERE sample_count > 0");
+  if (!total.step()) return 0;
+  const double declared = total.column_double(0);
+  const double most = static_cast<double>(file_bytes / static_cast<std::int64_t>(kSampleBytes));
+  return static_cast<std::size_t>(declared >= 0.0 ? std::min(declared, most) : 0.0);
 }
 
 // pool: nullptr, each run's samples in its own vector; otherwise appended to `pool`, with `offsets` the
