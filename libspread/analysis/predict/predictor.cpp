@@ -62,10 +62,12 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
   }
   auto& runs = contents_.runs;
   const bool pooled = !contents_.pooled_offset.empty();
-  if (pooled && (contents_.pooled_offset.size() != runs.size() + 1 ||
+  if (pooled && (contents_.pooled_offset.size() != runs.size() + 1 || contents_.pooled_offset.front() != 0 ||
                  contents_.pooled_offset.back() != contents_.pooled_samples.size() ||
-                 !std::is_sorted(contents_.pooled_offset.begin(), contents_.pooled_offset.end()))) {
-    throw std::invalid_argument("Predictor: the pooled samples' offsets do not match the runs");
+                 !std::is_sorted(contents_.pooled_offset.begin(), contents_.pooled_offset.end()) ||
+                 std::any_of(runs.begin(), runs.end(), [](const tables::Run& r) { return !r.samples.empty(); }))) {
+    throw std::invalid_argument("Predictor: the pooled samples' offsets do not match the runs (or a run has "
+                                "samples of its own besides)");
   }
   // Run k's samples, wherever the contents keep them.
   const auto samples_of = [&](std::size_t k) -> std::span<const tables::LaunchSample> {
