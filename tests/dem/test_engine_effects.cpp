@@ -23,21 +23,30 @@ Material granule() {
   return m;
 }
 
-// A granule released just above a fixed floor (z = 0), run for 0.1 s under gravity; returns its height.
-double height_after_drop_m(effect::EffectSet effects) {
-  Material floor = granule();
-  floor.name = "floor";
-  floor.rigid = true;
+// The floor's material: the granule's, rigid.
+Material rigid_floor(Material m) {
+  m.name = "floor";
+  m.rigid = true;
+  return m;
+}
+
+// A fixed floor at z = 0 of material 1.
+WallSet floor_walls() {
   WallGroup g;
   g.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
   g.material = 1;
   WallSet walls;
   walls.groups.push_back(g);
+  return walls;
+}
+
+// A granule released just above a fixed floor (z = 0), run for 0.1 s under gravity; returns its height.
+double height_after_drop_m(effect::EffectSet effects) {
   EngineParams ep;
   ep.effects = effects;
   ep.min_particle_radius_m = kRadius_m;
   ep.impact_speed_m_s = 1.0;
-  DemEngine e({granule(), floor}, {}, walls, ep);
+  DemEngine e({granule(), rigid_floor(granule())}, {}, floor_walls(), ep);
   e.add_particle(Vec3(0.0, 0.0, 1.2 * kRadius_m), Vec3::Zero(), kRadius_m, 0);
   e.run_until(0.1);
   return e.particles().z[0];
@@ -126,14 +135,6 @@ std::vector<double> pile_state(effect::EffectSet effects) {
   p.restitution = 0.5;
   p.youngs_modulus_pa = 5e7;
   p.rolling_friction = 0.1;
-  Material floor = p;
-  floor.name = "floor";
-  floor.rigid = true;
-  WallGroup g;
-  g.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
-  g.material = 1;
-  WallSet walls;
-  walls.groups.push_back(g);
   EngineParams ep;
   ep.effects = effects;
   ep.min_particle_radius_m = kRadius_m;
@@ -141,7 +142,7 @@ std::vector<double> pile_state(effect::EffectSet effects) {
   ep.impact_speed_m_s = 2.0;
   // As a scene maps it (scene_config.cpp): the rolling effect names its model.
   if ((effects & effect::kRolling) != 0) ep.contact_law.rolling = RollingModel::kConstantTorque;
-  DemEngine e({p, floor}, {}, walls, ep);
+  DemEngine e({p, rigid_floor(p)}, {}, floor_walls(), ep);
   int k = 0;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {

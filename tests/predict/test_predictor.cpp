@@ -276,6 +276,15 @@ TEST(Predictor, BoutWidthAndHeightAreHonoured) {
   EXPECT_GT(high.mean_radius_m, low.mean_radius_m);  // higher disc, longer flights
 }
 
+// `count` landings of equal weight spread evenly over [-17, 17] m (golden-ratio steps), one of them NaN.
+void spread_landings(int count, std::vector<double>& x, std::vector<double>& w) {
+  for (int i = 0; i < count; ++i) {
+    x.push_back(-17.0 + 34.0 * std::fmod(0.618033988749895 * i, 1.0));
+    w.push_back(1.0 / count);
+  }
+  x[17] = std::numeric_limits<double>::quiet_NaN();
+}
+
 // A kernel many trays wide gives the standard errors of the tray-by-tray dot products from each
 // gradient's prefix sums (wide_kernel.hpp), within the rounding the header states.
 TEST(SampleInfluence, AWideKernelsStandardErrorsAreTrayByTraysWithinRounding) {
@@ -283,11 +292,7 @@ TEST(SampleInfluence, AWideKernelsStandardErrorsAreTrayByTraysWithinRounding) {
   trays.tray_width_m = 0.1;
   trays.tray_count = 300;  // [-15, 15] m
   std::vector<double> x, w;
-  for (int i = 0; i < 2000; ++i) {
-    x.push_back(-17.0 + 34.0 * std::fmod(0.618033988749895 * i, 1.0));
-    w.push_back(1.0 / 2000.0);
-  }
-  x[17] = std::numeric_limits<double>::quiet_NaN();
+  spread_landings(2000, x, w);
   std::vector<double> a(300), b(300);
   for (std::size_t k = 0; k < a.size(); ++k) {
     a[k] = std::sin(0.05 * static_cast<double>(k));
@@ -354,11 +359,7 @@ TEST(SampleInfluence, AWideKernelsPassOfManyGradientsIsEachAloneBitForBit) {
   trays.tray_width_m = 0.25;
   trays.tray_count = 120;  // [-15, 15] m
   std::vector<double> x, w;
-  for (int i = 0; i < 1200; ++i) {
-    x.push_back(-17.0 + 34.0 * std::fmod(0.618033988749895 * i, 1.0));
-    w.push_back(1.0 / 1200.0);
-  }
-  x[17] = std::numeric_limits<double>::quiet_NaN();
+  spread_landings(1200, x, w);
   std::vector<std::vector<double>> gradient(SampleInfluence::kMaxGradients, std::vector<double>(120));
   for (std::size_t g = 0; g < gradient.size(); ++g) {
     for (std::size_t k = 0; k < 120; ++k) gradient[g][k] = std::sin(0.05 * static_cast<double>(k * (g + 1)) + 0.3 * static_cast<double>(g));

@@ -55,6 +55,14 @@ void kernel_dots(double x, std::span<const std::span<const double>> gradients, c
   }
 }
 
+// The standard error of the mean of n samples' z from Σ z and Σ z²: sqrt(Var z / n), Var z the sample
+// variance (n − 1), never below 0 through rounding.
+inline double standard_error_of(double sum, double sum_squares, std::size_t n) {
+  const double mean = sum / static_cast<double>(n);
+  const double variance_of_z = std::max(0.0, (sum_squares - mean * sum) / static_cast<double>(n - 1));
+  return std::sqrt(variance_of_z / static_cast<double>(n));
+}
+
 // Calls visit(s, landing) for every landing of sample s, sample by sample in order (s = 0 … n − 1), and
 // done(s) after each sample's landings.
 template <typename Visit, typename Done>
@@ -99,11 +107,7 @@ __attribute__((always_inline)) inline void influence_pass(const SampleInfluence&
           z[g] = 0.0;
         }
       });
-  for (std::size_t g = 0; g < count; ++g) {
-    const double mean = sum[g] / static_cast<double>(n);
-    const double variance_of_z = std::max(0.0, (sum_squares[g] - mean * sum[g]) / static_cast<double>(n - 1));
-    out[g] = std::sqrt(variance_of_z / static_cast<double>(n));
-  }
+  for (std::size_t g = 0; g < count; ++g) out[g] = standard_error_of(sum[g], sum_squares[g], n);
 }
 
 // The pass over a wide kernel's dots: here through dots() (AVX sums by a call per landing where the
@@ -175,11 +179,7 @@ __attribute__((target("avx"))) void wide_kernel_pass_avx_registers(const SampleI
   double sums[kCount], squares[kCount];
   std::memcpy(sums, sum, sizeof sums);
   std::memcpy(squares, sum_squares, sizeof squares);
-  for (std::size_t g = 0; g < kCount; ++g) {
-    const double mean = sums[g] / n;
-    const double variance_of_z = std::max(0.0, (squares[g] - mean * sums[g]) / static_cast<double>(in.sample_count - 1));
-    se[g] = std::sqrt(variance_of_z / n);
-  }
+  for (std::size_t g = 0; g < kCount; ++g) se[g] = standard_error_of(sums[g], squares[g], in.sample_count);
 }
 #endif
 
