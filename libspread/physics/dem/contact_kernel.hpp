@@ -58,11 +58,32 @@ struct ContactForce {
 
 // One contact's tangential history in the kernel's types: the elastic tangential force (N) and the
 // overlap at the previous step (m). Stored as kHistoryDoubles doubles per contact by the caller.
+// The law owns this layout: every pass reads and writes a contact's slots through load/store (and
+// clear on release), never by index.
 template <class T>
 struct LawHistory {
   lanes::V3<T> elastic;
   T overlap_m;
 };
+inline LawHistory<double> load_history(const double* slots) { return {{slots[0], slots[1], slots[2]}, slots[3]}; }
+// Two contacts' histories side by side (lane 0 from slots0, lane 1 from slots1).
+inline LawHistory<lanes::Lanes2> load_history(const double* slots0, const double* slots1) {
+  using lanes::pack;
+  return {{pack(slots0[0], slots1[0]), pack(slots0[1], slots1[1]), pack(slots0[2], slots1[2])}, pack(slots0[3], slots1[3])};
+}
+inline void store_history(const LawHistory<double>& h, double* slots) {
+  slots[0] = h.elastic.x;
+  slots[1] = h.elastic.y;
+  slots[2] = h.elastic.z;
+  slots[3] = h.overlap_m;
+}
+inline void store_history(const LawHistory<lanes::Lanes2>& h, int lane, double* slots) {
+  store_history(LawHistory<double>{lanes::lane3(h.elastic, lane), h.overlap_m[lane]}, slots);
+}
+// A contact that has come apart: its tangential spring is released.
+inline void clear_history(double* slots) {
+  for (int k = 0; k < kHistoryDoubles; ++k) slots[k] = 0.0;
+}
 // What a law returns for body a, in the kernel's types.
 template <class T>
 struct LawForce {

@@ -111,6 +111,33 @@ struct ComposedLaw {
     return out;
   }
 
+  // Rolling resistance on a (b takes its opposite): the rolling model's torque against the relative spin
+  // ω_a − ω_b from the normal force F_n, R* and the pair's I* = (1/I_a + 1/I_b)^-1 (walls: I_a); zero
+  // without a rolling model. Both passes take it from here, so the law alone decides whether and how.
+  SPREAD_CONTACT_INLINE static lanes::V3<double> rolling_torque(const PairParams& p, double normal_force_n, double r_eff_m,
+                                                                const lanes::V3<double>& relative_spin_rad_s,
+                                                                double inertia_eff_kg_m2, double dt_s) {
+    if constexpr (kRolling) {
+      const Vec3 t = Rolling::torque(p.rolling_friction, normal_force_n, r_eff_m,
+                                     Vec3(relative_spin_rad_s.x, relative_spin_rad_s.y, relative_spin_rad_s.z),
+                                     inertia_eff_kg_m2, dt_s);
+      return {t.x(), t.y(), t.z()};
+    } else {
+      return {0.0, 0.0, 0.0};
+    }
+  }
+  // Two contacts' rolling torques, lane by lane the one-contact torque.
+  SPREAD_CONTACT_INLINE static lanes::V3<lanes::Lanes2> rolling_torque(const PairParams& p, lanes::Lanes2 normal_force_n,
+                                                                       double r_eff_m,
+                                                                       const lanes::V3<lanes::Lanes2>& relative_spin_rad_s,
+                                                                       lanes::Lanes2 inertia_eff_kg_m2, double dt_s) {
+    const lanes::V3<double> t0 = rolling_torque(p, normal_force_n[0], r_eff_m, lanes::lane3(relative_spin_rad_s, 0),
+                                                inertia_eff_kg_m2[0], dt_s);
+    const lanes::V3<double> t1 = rolling_torque(p, normal_force_n[1], r_eff_m, lanes::lane3(relative_spin_rad_s, 1),
+                                                inertia_eff_kg_m2[1], dt_s);
+    return {lanes::pack(t0.x, t1.x), lanes::pack(t0.y, t1.y), lanes::pack(t0.z, t1.z)};
+  }
+
   // Lever arm from a's centre to the contact point (Eq. 10): how the normal model shares the overlap.
   template <class T>
   SPREAD_CONTACT_INLINE static T lever(T radius_m, double share, T overlap_m) {
@@ -121,14 +148,11 @@ struct ComposedLaw {
   // in.r_eff_m and in.m_eff_kg are not read: c holds what depends on them.
   static ContactForce eval(const PairParams& p, const Coeffs& c, const ContactInput& in, double* history) {
     using lanes::V3;
-    LawHistory<double> h{{history[0], history[1], history[2]}, history[3]};
+    LawHistory<double> h = load_history(history);
     const V3<double> n{in.normal.x(), in.normal.y(), in.normal.z()};
     const LawForce<double> r = kernel(c, p.friction, ContactNormal<double>{n, n, 1.0}, in.overlap_m,
                                       V3<double>{in.slip_m_s.x(), in.slip_m_s.y(), in.slip_m_s.z()}, in.dt_s, h);
-    history[0] = h.elastic.x;
-    history[1] = h.elastic.y;
-    history[2] = h.elastic.z;
-    history[3] = h.overlap_m;
+    store_history(h, history);
     ContactForce out;
     out.force_n = Vec3(r.force_n.x, r.force_n.y, r.force_n.z);
     out.tangential_force_n = Vec3(r.tangential_n.x, r.tangential_n.y, r.tangential_n.z);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "libspread/physics/dem/contact_kernel.hpp"
 #include "libspread/physics/dem/engine.hpp"
 
 namespace spread::dem {
@@ -28,12 +29,13 @@ void EnergyMonitor::attach(const DemEngine& engine) {
   attached_ = true;
 }
 
-// Energy stored in one contact's springs, from the history the force pass left (contact_laws.hpp:
-// history[0..2] the elastic tangential force, history[3] the overlap δ of that evaluation).
+// Energy stored in one contact's springs, from the history the force pass left (contact_kernel.hpp,
+// LawHistory: the elastic tangential force and the overlap δ of that evaluation).
 double EnergyMonitor::spring_energy_j(const PairParams& pair, double r_eff_m, const double* history) const {
-  const double delta = history[3];
+  const LawHistory<double> h = load_history(history);
+  const double delta = h.overlap_m;
   if (!(delta > 0.0)) return 0.0;
-  const double ft2 = history[0] * history[0] + history[1] * history[1] + history[2] * history[2];
+  const double ft2 = h.elastic.x * h.elastic.x + h.elastic.y * h.elastic.y + h.elastic.z * h.elastic.z;
   // ∫ F dδ of Eq. 16: 4/3 E* √R* δ^{3/2} → 8/15 E* √R* δ^{5/2}; Thornton's spring k_t = 8 G* √(R* δ).
   const double sqrt_r_delta = std::sqrt(r_eff_m * delta);
   double normal = 0.0, k_t = 0.0;
@@ -67,18 +69,19 @@ EnergyMonitor::Totals EnergyMonitor::measure(const DemEngine& engine) const {
       const std::size_t group = (key >> 24) - 1;  // wall_feature_key: (group + 1) << 24
       const int wall_material = group < walls.groups.size() ? walls.groups[group].material : 0;
       t.elastic_j += spring_energy_j(pair_table_(p.material[i], wall_material), r, h);
-      t.max_penetration_ratio = std::max(t.max_penetration_ratio, h[3] / r);
+      t.max_penetration_ratio = std::max(t.max_penetration_ratio, load_history(h).overlap_m / r);
     }
   }
   const PairList& pairs = engine.pair_list();
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const double* h = &pairs.history[k * kHistoryDoubles];
-    if (!(h[3] > 0.0)) continue;  // not touching: the pass reset the history
+    const double overlap_m = load_history(h).overlap_m;
+    if (!(overlap_m > 0.0)) continue;  // not touching: the pass reset the history
     const std::size_t i = pairs.first[k], j = pairs.second[k];
     if (i >= n || j >= n || !p.active[i] || !p.active[j]) continue;
     const double ri = p.radius_m[i], rj = p.radius_m[j];
     t.elastic_j += spring_energy_j(pair_table_(p.material[i], p.material[j]), ri * rj / (ri + rj), h);
-    t.max_penetration_ratio = std::max(t.max_penetration_ratio, h[3] / std::min(ri, rj));
+    t.max_penetration_ratio = std::max(t.max_penetration_ratio, overlap_m / std::min(ri, rj));
   }
   return t;
 }

@@ -75,6 +75,13 @@ struct LaunchRecord {
   std::uint32_t id = 0;
 };
 
+// Pair-force sums of one particle (force N, torque N m); all zero between force passes. One 64-byte
+// record per particle: adding a partner's share touches one cache line instead of six arrays.
+struct alignas(64) PairSum {
+  double f[3];
+  double t[3];
+};
+
 class EnergyMonitor;  // energy_monitor.hpp
 struct ForcePassTables;  // engine_detail.hpp: the passes' instantiation tables
 
@@ -132,19 +139,18 @@ class DemEngine {
   friend struct ForcePassTables;
   // One force evaluation (force_dispatch.cpp): the passes of force variant force_variant_.
   void compute_forces();
+  // The passes are templates over one force variant V (force_variants.hpp, PassVariant: V::Law, the
+  // pass-shaping effects V::kEffects).
   // Walls (wall_pass.cpp): sets each particle's force (and torque) sums to its wall contacts' share.
-  template <class Law, bool kRotation>
+  template <class V>
   void wall_forces();
   // Without wall_contact: the sums start at zero instead (force_dispatch.cpp).
   void clear_forces();
-  // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started.
-  template <class Law, bool kRotation>
+  // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started: the pass over the
+  // CSR half list either adds each pair straight into the sums or stores the pairs' results, which are
+  // then gathered (threads, energy monitor). Both add in the same order, so the results are bit-identical.
+  template <class V>
   void particle_forces();
-  // Particle–particle pass over the CSR half list. kStorePairs: each pair's results go to the list's
-  // per-pair arrays and are gathered afterwards (threads, energy monitor); otherwise they are added
-  // straight into the sums. Both add in the same order, so the results are bit-identical.
-  template <class Law, bool kRotation, bool kStorePairs, bool kPeriodic>
-  void pair_forces();
   template <bool kRotation>
   void gather_stored_pair_forces();
   // Law::coeffs per material pair (pair_coeffs_table.cpp).
@@ -175,9 +181,6 @@ class DemEngine {
   EnergyMonitor* monitor_ = nullptr;
   GearPredictorCorrector gear_;  // Gear integrators only
   std::vector<LaunchRecord> launches_;
-  // Pair-force sums per particle (force N, torque N m); all zero between force passes. One 64-byte
-  // record per particle: adding a partner's share touches one cache line instead of six arrays.
-  struct alignas(64) PairSum { double f[3]; double t[3]; };
   std::vector<PairSum> pair_sum_;
   std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
   // Wall list: 1 = no wall within radius + skin at the last pair-list build (the wall test is skipped

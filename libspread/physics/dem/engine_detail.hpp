@@ -24,11 +24,11 @@ using ForcePassTable = std::array<ForcePass, kForceVariantCount>;
 struct ForcePassTables {
   template <std::size_t... I>
   static constexpr ForcePassTable wall(std::index_sequence<I...>) {
-    return {&DemEngine::wall_forces<VariantLaw<I>, kVariantRotation<I>>...};
+    return {&DemEngine::wall_forces<PassVariant<I>>...};
   }
   template <std::size_t... I>
   static constexpr ForcePassTable particle(std::index_sequence<I...>) {
-    return {&DemEngine::particle_forces<VariantLaw<I>, kVariantRotation<I>>...};
+    return {&DemEngine::particle_forces<PassVariant<I>>...};
   }
   template <std::size_t... I>
   static constexpr ForcePassTable coeffs(std::index_sequence<I...>) {

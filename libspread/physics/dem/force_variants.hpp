@@ -90,14 +90,22 @@ inline constexpr std::array<ForceVariant, kForceVariantCount> kForceVariants = [
   return out;
 }();
 
-// The law type and rotation flag of variant I.
+// The law type of variant I.
 template <std::size_t I>
 using VariantLaw = ComposedLaw<typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.normal), NormalModels>::type,
                                typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.damping), DampingModels>::type,
                                typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.tangential), TangentialModels>::type,
                                typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.rolling), RollingModels>::type>;
+// Variant I as the one type the passes are templated on: its law and its pass-shaping effects. A new
+// pass-shaping effect is a new bit of kPassEffects, read in a pass as V::has(bit): no pass's signature
+// changes.
 template <std::size_t I>
-inline constexpr bool kVariantRotation = kForceVariants[I].rotation();
+struct PassVariant {
+  using Law = VariantLaw<I>;
+  static constexpr effect::EffectSet kEffects = kForceVariants[I].effects;
+  static constexpr bool has(effect::EffectSet bit) { return (kEffects & bit) != 0; }
+  static constexpr bool kRotation = has(effect::kRotation);
+};
 
 // Position of (law, effects & kPassEffects) in kForceVariants; throws std::invalid_argument naming the law
 // when it is invalid (validate_contact_law) or valid but not instantiated (and which are).

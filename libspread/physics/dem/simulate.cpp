@@ -70,29 +70,13 @@ void write_launch_csv(const std::vector<LaunchRecord>& launches, const std::stri
   std::fclose(f);
 }
 
-SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) {
-  const auto t_start = Clock::now();
-  if (cfg.materials.empty()) throw std::invalid_argument("simulate: no materials");
-  if (!(cfg.duration_s > 0.0)) throw std::invalid_argument("simulate: duration_s must be > 0");
-  if (!(cfg.disc_height_m >= 0.0)) throw std::invalid_argument("simulate: disc_height_m must be >= 0");
-  if (cfg.energy_monitor_every_steps < 0)
-    throw std::invalid_argument("simulate: energy_monitor_every_steps must be >= 0 (0 = off)");
-  SimulationResult res;
+namespace {
 
-  auto t0 = Clock::now();
-  DiscRun run(cfg);
+// The DEM until the run's duration, with the VTK snapshots it asks for; returns the time spent writing them.
+double run_disc(const SimulationConfig& cfg, DiscRun& run, RunExtension* extension) {
   DemEngine& engine = run.engine();
-  res.module_time_s["disc_generator"] = since(t0);  // the disc's walls and the engine set up
   const bool write_vtk = !cfg.vtk_prefix.empty() && cfg.vtk_every_steps > 0;
   const bool write_walls_vtk_files = write_vtk && !cfg.vtk_walls_prefix.empty();
-  std::unique_ptr<EnergyMonitor> monitor;
-  if (cfg.energy_monitor_every_steps > 0) {
-    monitor = std::make_unique<EnergyMonitor>(cfg.energy_monitor_every_steps);
-    engine.set_energy_monitor(monitor.get());
-  }
-  res.dt_contact_s = engine.dt_s();
-  res.contact_time_s = engine.contact_time_s();
-
   double vtk_s = 0.0;
   std::uint64_t step = 0;
   while (run.before(cfg.duration_s)) {
@@ -100,7 +84,7 @@ SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) 
     if (extension != nullptr) extension->after_step(engine);
     ++step;
     if (write_vtk && step % static_cast<std::uint64_t>(cfg.vtk_every_steps) == 0) {
-      t0 = Clock::now();
+      const auto t0 = Clock::now();
       char name[64];
       std::snprintf(name, sizeof name, "_%09llu.vtk", static_cast<unsigned long long>(step));
       write_particles_vtk(engine.particles(), cfg.vtk_prefix + name);
@@ -108,11 +92,15 @@ SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) 
       vtk_s += since(t0);
     }
   }
-  res.on_disc_at_end = engine.active_count();
-  if (extension != nullptr) extension->after_duration(engine);
+  return vtk_s;
+}
+
+// What the DEM run leaves: its launches and their summary, counts, the energy report and module times.
+void record_disc_run(const SimulationConfig& cfg, const DiscRun& run, const EnergyMonitor* monitor, SimulationResult& res) {
+  const DemEngine& engine = run.engine();
   const EngineStats& st = engine.stats();
   res.engine_stats = st;
-  if (monitor) {
+  if (monitor != nullptr) {
     res.energy_monitored = true;
     res.energy = monitor->report();
     res.energy_samples = monitor->samples();
@@ -126,47 +114,74 @@ SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) 
   res.module_time_s["dem_forces"] = st.forces_s;
   res.module_time_s["dem_integrate"] = st.integrate_s;
   res.module_time_s["dem_collector"] = st.collector_s;
-  if (vtk_s > 0.0) res.module_time_s["vtk"] = vtk_s;
-
   const Vec3 axis = Vec3::Zero();
   res.launch = summarise_launches(res.launches, axis);
   res.sector_mass_fraction = sector_mass_fraction(res.launches, axis);
-
   res.effects = effect::names_in(cfg.engine.effects);
+}
 
-  if (cfg.fly && !res.launches.empty()) {
-    t0 = Clock::now();
-    std::vector<flight::Granule> granules(res.launches.size());
-    std::vector<flight::State> states(res.launches.size());
-    for (std::size_t k = 0; k < res.launches.size(); ++k) {
-      const auto& l = res.launches[k];
-      granules[k].diameter_m = l.diameter_m;
-      granules[k].density_kg_m3 = cfg.materials[static_cast<std::size_t>(l.material)].density_kg_m3;
-      states[k].position_m = l.position_m;
-      states[k].velocity_m_s = l.velocity_m_s;
-      states[k].spin_rad_s = l.spin_rad_s;
-    }
-    res.landings.resize(res.launches.size());
-    flight::fly_batch(granules, states, -cfg.disc_height_m, cfg.air, cfg.flight_effects, cfg.flight_settings,
-                      res.landings, cfg.flight_threads);
-    for (const auto& l : res.landings) res.flight_steps += static_cast<std::uint64_t>(l.steps);
-    res.module_time_s["flight"] = since(t0);
-    for (std::string& name : effect::names_in(cfg.flight_effects & effect::kFlightEffects)) res.effects.push_back(std::move(name));
-    t0 = Clock::now();
-    std::vector<double> x, y, m;
-    for (std::size_t k = 0; k < res.landings.size(); ++k) {
-      if (!res.landings[k].landed) continue;
-      x.push_back(res.landings[k].state.position_m.x());
-      y.push_back(res.landings[k].state.position_m.y());
-      m.push_back(res.launches[k].mass_kg);
-    }
-    if (!m.empty()) {
-      const auto rs = metrics::radial_statistics(x, y, m, 0.0, 0.0);
-      res.mean_radius_m = rs.mean_radius_m;
-      res.radial_width_m = rs.radial_width_m;
-    }
-    res.module_time_s["metrics"] = since(t0);
+// The launches flown to the ground (the partitioned scheme's flight module) and their radial statistics.
+void fly_launches(const SimulationConfig& cfg, SimulationResult& res) {
+  auto t0 = Clock::now();
+  std::vector<flight::Granule> granules(res.launches.size());
+  std::vector<flight::State> states(res.launches.size());
+  for (std::size_t k = 0; k < res.launches.size(); ++k) {
+    const auto& l = res.launches[k];
+    granules[k].diameter_m = l.diameter_m;
+    granules[k].density_kg_m3 = cfg.materials[static_cast<std::size_t>(l.material)].density_kg_m3;
+    states[k].position_m = l.position_m;
+    states[k].velocity_m_s = l.velocity_m_s;
+    states[k].spin_rad_s = l.spin_rad_s;
   }
+  res.landings.resize(res.launches.size());
+  flight::fly_batch(granules, states, -cfg.disc_height_m, cfg.air, cfg.flight_effects, cfg.flight_settings, res.landings,
+                    cfg.flight_threads);
+  for (const auto& l : res.landings) res.flight_steps += static_cast<std::uint64_t>(l.steps);
+  res.module_time_s["flight"] = since(t0);
+  for (std::string& name : effect::names_in(cfg.flight_effects & effect::kFlightEffects)) res.effects.push_back(std::move(name));
+  t0 = Clock::now();
+  std::vector<double> x, y, m;
+  for (std::size_t k = 0; k < res.landings.size(); ++k) {
+    if (!res.landings[k].landed) continue;
+    x.push_back(res.landings[k].state.position_m.x());
+    y.push_back(res.landings[k].state.position_m.y());
+    m.push_back(res.launches[k].mass_kg);
+  }
+  if (!m.empty()) {
+    const auto rs = metrics::radial_statistics(x, y, m, 0.0, 0.0);
+    res.mean_radius_m = rs.mean_radius_m;
+    res.radial_width_m = rs.radial_width_m;
+  }
+  res.module_time_s["metrics"] = since(t0);
+}
+
+}  // namespace
+
+SimulationResult simulate(const SimulationConfig& cfg, RunExtension* extension) {
+  const auto t_start = Clock::now();
+  if (cfg.materials.empty()) throw std::invalid_argument("simulate: no materials");
+  if (!(cfg.duration_s > 0.0)) throw std::invalid_argument("simulate: duration_s must be > 0");
+  if (!(cfg.disc_height_m >= 0.0)) throw std::invalid_argument("simulate: disc_height_m must be >= 0");
+  if (cfg.energy_monitor_every_steps < 0)
+    throw std::invalid_argument("simulate: energy_monitor_every_steps must be >= 0 (0 = off)");
+  SimulationResult res;
+  const auto t0 = Clock::now();
+  DiscRun run(cfg);
+  DemEngine& engine = run.engine();
+  res.module_time_s["disc_generator"] = since(t0);  // the disc's walls and the engine set up
+  std::unique_ptr<EnergyMonitor> monitor;
+  if (cfg.energy_monitor_every_steps > 0) {
+    monitor = std::make_unique<EnergyMonitor>(cfg.energy_monitor_every_steps);
+    engine.set_energy_monitor(monitor.get());
+  }
+  res.dt_contact_s = engine.dt_s();
+  res.contact_time_s = engine.contact_time_s();
+  const double vtk_s = run_disc(cfg, run, extension);
+  res.on_disc_at_end = engine.active_count();
+  if (extension != nullptr) extension->after_duration(engine);
+  record_disc_run(cfg, run, monitor.get(), res);
+  if (vtk_s > 0.0) res.module_time_s["vtk"] = vtk_s;
+  if (cfg.fly && !res.launches.empty()) fly_launches(cfg, res);
   res.wall_time_s = since(t_start);
   return res;
 }

@@ -243,65 +243,50 @@ MeshCollider::MeshCollider(TriangleMesh mesh, double max_particle_radius_m, doub
   }
 }
 
-int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, int max_out) const {
-  if (mesh_.triangles.empty()) return 0;
-  constexpr int kMaxCandidates = 48;
-  MeshContact cand[kMaxCandidates];
-  std::uint32_t cand_v[kMaxCandidates][2];
-  int ncand = 0;
-  int l[3], h[3];
-  const int n[3] = {nx_, ny_, nz_};
-  for (int d = 0; d < 3; ++d) {
-    l[d] = static_cast<int>(std::floor((centre[d] - radius_m - lo_[d]) / cell_m_));
-    h[d] = static_cast<int>(std::floor((centre[d] + radius_m - lo_[d]) / cell_m_));
-    if (h[d] < 0 || l[d] >= n[d]) return 0;
-    l[d] = std::max(l[d], 0);
-    h[d] = std::min(h[d], n[d] - 1);
+namespace {
+
+// v / |v|, scaled by its largest component first: with tiny coordinates d² or a face's cross product
+// underflows and d/|d| is not a unit vector (fuzz_stl_reader regression). False for a zero or non-finite v.
+bool unit_vector(const Vec3& v, Vec3& unit_v) {
+  const double m = v.cwiseAbs().maxCoeff();
+  if (!(m > 0.0) || !std::isfinite(m)) return false;
+  unit_v = v / m;
+  unit_v /= unit_v.norm();
+  return true;
+}
+
+// The contact of the sphere (centre, radius_m) with triangle ti, if it touches: closest point, feature,
+// distance and normal (the face's when the centre lies on the surface), and the feature's vertices (an edge's
+// two, a vertex's one twice). False when it does not touch or has no defined normal (collinear vertices).
+bool triangle_contact(const TriangleMesh& mesh, std::uint32_t ti, const Vec3& centre, double radius_m, MeshContact& mc,
+                      std::uint32_t (&feature_vertices)[2]) {
+  const auto& t = mesh.triangles[ti];
+  Feature f;
+  int fv[2] = {0, 0};
+  const Vec3 q = closest_point_on_triangle(centre, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], f, fv);
+  const Vec3 d = centre - q;
+  const double dist2 = d.squaredNorm();
+  if (dist2 >= radius_m * radius_m) return false;
+  mc.triangle = ti;
+  mc.feature = f;
+  mc.point = q;
+  mc.distance_m = std::sqrt(dist2);
+  const bool centre_off_surface = mc.distance_m > 1e-12 * radius_m && unit_vector(d, mc.normal);
+  if (!centre_off_surface) {
+    const Vec3 fn = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+    if (!unit_vector(fn, mc.normal)) return false;
   }
-  const double r2 = radius_m * radius_m;
-  for (int iz = l[2]; iz <= h[2]; ++iz)
-    for (int iy = l[1]; iy <= h[1]; ++iy)
-      for (int ix = l[0]; ix <= h[0]; ++ix) {
-        const std::size_t cell = (static_cast<std::size_t>(iz) * ny_ + iy) * nx_ + ix;
-        for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-          const std::uint32_t ti = cell_items_[k];
-          bool seen = false;
-          for (int c = 0; c < ncand && !seen; ++c) seen = cand[c].triangle == ti;
-          if (seen || ncand == kMaxCandidates) continue;
-          const auto& t = mesh_.triangles[ti];
-          Feature f;
-          int fv[2] = {0, 0};
-          const Vec3 q = closest_point_on_triangle(centre, mesh_.vertices[t[0]], mesh_.vertices[t[1]],
-                                                   mesh_.vertices[t[2]], f, fv);
-          const Vec3 d = centre - q;
-          const double dist2 = d.squaredNorm();
-          if (dist2 >= r2) continue;
-          MeshContact& mc = cand[ncand];
-          mc.triangle = ti;
-          mc.feature = f;
-          mc.point = q;
-          mc.distance_m = std::sqrt(dist2);
-          // Scaled by the largest component before normalising: with tiny coordinates d² or the face
-          // cross product underflows and d/|d| is not a unit vector (fuzz_stl_reader regression).
-          const auto unit = [](const Vec3& v, Vec3& unit_v) {
-            const double m = v.cwiseAbs().maxCoeff();
-            if (!(m > 0.0) || !std::isfinite(m)) return false;
-            unit_v = v / m;
-            unit_v /= unit_v.norm();
-            return true;
-          };
-          const bool centre_off_surface = mc.distance_m > 1e-12 * radius_m && unit(d, mc.normal);
-          if (!centre_off_surface) {
-            const Vec3 fn = (mesh_.vertices[t[1]] - mesh_.vertices[t[0]]).cross(mesh_.vertices[t[2]] - mesh_.vertices[t[0]]);
-            if (!unit(fn, mc.normal)) continue;  // no defined normal (collinear vertices): no contact
-          }
-          cand_v[ncand][0] = t[static_cast<std::size_t>(fv[0])];
-          cand_v[ncand][1] = f == Feature::kEdge ? t[static_cast<std::size_t>(fv[1])] : cand_v[ncand][0];
-          ++ncand;
-        }
-      }
-  // Closest first; ties broken by feature rank (face before edge before vertex) then triangle id, so
-  // the outcome never depends on grid traversal order.
+  feature_vertices[0] = t[static_cast<std::size_t>(fv[0])];
+  feature_vertices[1] = f == Feature::kEdge ? t[static_cast<std::size_t>(fv[1])] : feature_vertices[0];
+  return true;
+}
+
+// The candidates that are local minima of the distance, closest first, into out (at most max_out). Ties are
+// broken by feature rank (face before edge before vertex) then triangle id, so the outcome never depends on
+// the grid's traversal order.
+int local_minima(const TriangleMesh& mesh, const MeshContact* cand, const std::uint32_t (*cand_v)[2], int ncand,
+                 MeshContact* out, int max_out) {
+  constexpr int kMaxCandidates = 48;
   int order[kMaxCandidates];
   for (int c = 0; c < ncand; ++c) order[c] = c;
   std::sort(order, order + ncand, [&](int x, int y) {
@@ -318,7 +303,7 @@ int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, i
     for (int a = 0; a < nout && keep; ++a) {
       if (c.normal.dot(out[a].normal) > kSameNormal) keep = false;
       if (keep && c.feature != Feature::kFace) {
-        const auto& at = mesh_.triangles[out[a].triangle];
+        const auto& at = mesh.triangles[out[a].triangle];
         auto contains = [&](std::uint32_t v) { return at[0] == v || at[1] == v || at[2] == v; };
         const bool has0 = contains(cand_v[order[oi]][0]), has1 = contains(cand_v[order[oi]][1]);
         // Contains the whole feature: not a local minimum. Shares one vertex with a nearly parallel
@@ -329,6 +314,38 @@ int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, i
     if (keep && nout < max_out) out[nout++] = c;
   }
   return nout;
+}
+
+}  // namespace
+
+int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, int max_out) const {
+  if (mesh_.triangles.empty()) return 0;
+  constexpr int kMaxCandidates = 48;
+  MeshContact cand[kMaxCandidates];
+  std::uint32_t cand_v[kMaxCandidates][2];
+  int ncand = 0;
+  int l[3], h[3];
+  const int n[3] = {nx_, ny_, nz_};
+  for (int d = 0; d < 3; ++d) {
+    l[d] = static_cast<int>(std::floor((centre[d] - radius_m - lo_[d]) / cell_m_));
+    h[d] = static_cast<int>(std::floor((centre[d] + radius_m - lo_[d]) / cell_m_));
+    if (h[d] < 0 || l[d] >= n[d]) return 0;
+    l[d] = std::max(l[d], 0);
+    h[d] = std::min(h[d], n[d] - 1);
+  }
+  for (int iz = l[2]; iz <= h[2]; ++iz)
+    for (int iy = l[1]; iy <= h[1]; ++iy)
+      for (int ix = l[0]; ix <= h[0]; ++ix) {
+        const std::size_t cell = (static_cast<std::size_t>(iz) * ny_ + iy) * nx_ + ix;
+        for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+          const std::uint32_t ti = cell_items_[k];
+          bool seen = false;
+          for (int c = 0; c < ncand && !seen; ++c) seen = cand[c].triangle == ti;
+          if (seen || ncand == kMaxCandidates) continue;
+          if (triangle_contact(mesh_, ti, centre, radius_m, cand[ncand], cand_v[ncand])) ++ncand;
+        }
+      }
+  return local_minima(mesh_, cand, cand_v, ncand, out, max_out);
 }
 
 }  // namespace spread::dem

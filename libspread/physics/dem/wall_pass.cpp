@@ -1,6 +1,7 @@
 // Particle–wall contacts: each particle's walls within its radius, the law per contact, and the
 // particle's wall-history slots (kWallSlots, particles.hpp) carried from step to step. This pass also
 // starts the force and torque sums of the step (the particle–particle pass adds to them).
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 
@@ -13,9 +14,83 @@ namespace spread::dem {
 using detail::kMinParallelItems;
 using detail::thread_index;
 
-template <class Law, bool kRotation>
+namespace {
+
+// A particle's wall slots of the step before, copied (this step's contacts overwrite the slots in place).
+struct OldWallSlots {
+  std::uint32_t key[kWallSlots];
+  double history[kWallSlots * kHistoryDoubles];
+  double normal[kWallSlots * 3];
+  bool claimed[kWallSlots] = {};
+
+  OldWallSlots(const ParticleArrays& p, std::size_t base) {
+    for (int s = 0; s < kWallSlots; ++s) {
+      key[s] = p.wall_key[base + s];
+      for (int k = 0; k < kHistoryDoubles; ++k) history[s * kHistoryDoubles + k] = p.wall_history[(base + s) * kHistoryDoubles + k];
+      for (int k = 0; k < 3; ++k) normal[s * 3 + k] = p.wall_normal[(base + s) * 3 + k];
+    }
+  }
+  // The slot whose history contact c carries on, claimed, or −1: the slot with c's key, else an unclaimed
+  // old slot with a nearly equal normal (a particle sliding from one triangle to its coplanar neighbour
+  // keeps its tangential spring).
+  int claim(const WallContact& c) {
+    int match = -1;
+    for (int s = 0; s < kWallSlots && match < 0; ++s)
+      if (!claimed[s] && key[s] == c.key) match = s;
+    if (match < 0) {
+      double best = 0.95;
+      for (int s = 0; s < kWallSlots; ++s) {
+        if (claimed[s] || key[s] == 0) continue;
+        const double d = c.normal.dot(Vec3(normal[s * 3], normal[s * 3 + 1], normal[s * 3 + 2]));
+        if (d > best) { best = d; match = s; }
+      }
+    }
+    if (match >= 0) claimed[match] = true;
+    return match;
+  }
+};
+
+// What one particle's wall contacts read of it.
+struct WallBody {
+  Vec3 v, w;
+  double r, m, inertia;
+  int material;
+};
+
+// One wall contact: the law with the particle's lever (Eq. 10), the contact point's slip against the wall's
+// surface velocity (Eq. 8), the moment (Eq. 15) and the law's rolling resistance against the wall's spin.
+template <class V>
+SPREAD_CONTACT_INLINE void wall_contact(const PairTable& pair_table, const typename V::Law::Coeffs* wall_coeffs, std::size_t material_count,
+                  const WallSet& walls, const WallBody& b, const WallContact& c, double dt, double* history, Vec3& force,
+                  Vec3& torque) {
+  using Law = typename V::Law;
+  const PairParams& pp = pair_table(b.material, c.material);
+  ContactInput in;
+  in.normal = c.normal;
+  in.overlap_m = b.r - c.distance_m;
+  const double lever = Law::lever(b.r, pp.share_a, in.overlap_m);
+  const Vec3 arm = -lever * in.normal;  // centre → contact point
+  Vec3 v_contact = b.v;
+  if constexpr (V::kRotation) v_contact += b.w.cross(arm);
+  in.slip_m_s = v_contact - c.wall_velocity_m_s;
+  in.dt_s = dt;
+  const typename Law::Coeffs& tab = wall_coeffs[static_cast<std::size_t>(b.material) * material_count + static_cast<std::size_t>(c.material)];
+  const ContactForce cf = Law::eval(pp, tab.uniform ? tab : Law::coeffs(pp, b.r, b.m), in, history);
+  force += cf.force_n;
+  if constexpr (V::kRotation) torque += arm.cross(cf.tangential_force_n);  // Eq. 15
+  if constexpr (Law::kRolling) {
+    const Vec3 relative_spin = b.w - Vec3(0.0, 0.0, walls.groups[static_cast<std::size_t>(c.group)].angular_velocity_rad_s);
+    const lanes::V3<double> t = Law::rolling_torque(pp, cf.normal_force_n, b.r, {relative_spin.x(), relative_spin.y(), relative_spin.z()},
+                                                    b.inertia, dt);
+    torque += Vec3(t.x, t.y, t.z);
+  }
+}
+
+}  // namespace
+
+template <class V>
 void DemEngine::wall_forces() {
-  const typename Law::Coeffs* const wall_coeffs = coeffs_table<Law>(wall_coeffs_);
+  const typename V::Law::Coeffs* const wall_coeffs = coeffs_table<typename V::Law>(wall_coeffs_);
   const std::size_t material_count = materials_.size();
   const std::size_t n = p_.size();
   const double dt = dt_s_;
@@ -29,77 +104,32 @@ void DemEngine::wall_forces() {
   for (long long ii = 0; ii < nn; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
     p_.fx[i] = p_.fy[i] = p_.fz[i] = 0.0;
-    if constexpr (kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
+    if constexpr (V::kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
     if (!p_.active[i] || (far_from_walls != nullptr && far_from_walls[i])) continue;
-    const Vec3 x = p_.position(i);
     const double r = p_.radius_m[i];
     WallContact* const wc = scratch + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2);
-    int nc = walls_.collect(x, r, wc, kWallSlots + 2);
+    int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2);
     if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
     const std::size_t base = i * kWallSlots;
     // Slots are filled from the front, so an empty first slot means no wall history to carry: most
     // particles of a bed touch no wall, and they skip the slot bookkeeping below.
     if (nc == 0 && p_.wall_key[base] == 0) continue;
-    // Old slots (copy), then matched by key; an unmatched contact inherits the history of an unclaimed
-    // old slot with a nearly equal normal (a particle sliding from one triangle to its coplanar
-    // neighbour keeps its tangential spring).
-    std::uint32_t okey[kWallSlots];
-    double ohist[kWallSlots * kHistoryDoubles];
-    double onorm[kWallSlots * 3];
-    bool claimed[kWallSlots] = {};
-    for (int s = 0; s < kWallSlots; ++s) {
-      okey[s] = p_.wall_key[base + s];
-      for (int k = 0; k < kHistoryDoubles; ++k) ohist[s * kHistoryDoubles + k] = p_.wall_history[(base + s) * kHistoryDoubles + k];
-      for (int k = 0; k < 3; ++k) onorm[s * 3 + k] = p_.wall_normal[(base + s) * 3 + k];
-    }
+    OldWallSlots old(p_, base);
+    WallBody b{p_.velocity(i), Vec3::Zero(), r, p_.mass_kg[i], p_.inertia_kg_m2[i], p_.material[i]};
+    if constexpr (V::kRotation) b.w = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
     Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-    const Vec3 v = p_.velocity(i);
-    Vec3 w = Vec3::Zero();
-    if constexpr (kRotation) w = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
-    const double m = p_.mass_kg[i];
     for (int c = 0; c < nc; ++c) {
-      int match = -1;
-      for (int s = 0; s < kWallSlots && match < 0; ++s)
-        if (!claimed[s] && okey[s] == wc[c].key) match = s;
-      if (match < 0) {
-        double best = 0.95;
-        for (int s = 0; s < kWallSlots; ++s) {
-          if (claimed[s] || okey[s] == 0) continue;
-          const double d = wc[c].normal.dot(Vec3(onorm[s * 3], onorm[s * 3 + 1], onorm[s * 3 + 2]));
-          if (d > best) { best = d; match = s; }
-        }
-      }
+      const int match = old.claim(wc[c]);
       double hist[kHistoryDoubles] = {0.0, 0.0, 0.0, 0.0};
-      if (match >= 0) {
-        claimed[match] = true;
-        for (int k = 0; k < kHistoryDoubles; ++k) hist[k] = ohist[match * kHistoryDoubles + k];
-      }
-      const PairParams& pp = pair_table_(p_.material[i], wc[c].material);
-      ContactInput in;
-      in.normal = wc[c].normal;
-      in.overlap_m = r - wc[c].distance_m;
-      const double lever = Law::lever(r, pp.share_a, in.overlap_m);
-      const Vec3 arm = -lever * in.normal;  // centre → contact point
-      Vec3 v_contact = v;
-      if constexpr (kRotation) v_contact += w.cross(arm);
-      in.slip_m_s = v_contact - wc[c].wall_velocity_m_s;
-      in.dt_s = dt;
-      const typename Law::Coeffs& tab = wall_coeffs[static_cast<std::size_t>(p_.material[i]) * material_count +
-                                          static_cast<std::size_t>(wc[c].material)];
-      const ContactForce cf = Law::eval(pp, tab.uniform ? tab : Law::coeffs(pp, r, m), in, hist);
-      force += cf.force_n;
-      if constexpr (kRotation) torque += arm.cross(cf.tangential_force_n);  // Eq. 15
-      if constexpr (Law::kRolling) {
-        const Vec3 wall_spin(0.0, 0.0, walls_.groups[static_cast<std::size_t>(wc[c].group)].angular_velocity_rad_s);
-        torque += Law::RollingModel::torque(pp.rolling_friction, cf.normal_force_n, r, w - wall_spin, p_.inertia_kg_m2[i], dt);
-      }
+      if (match >= 0) std::copy_n(old.history + match * kHistoryDoubles, kHistoryDoubles, hist);
+      wall_contact<V>(pair_table_, wall_coeffs, material_count, walls_, b, wc[c], dt, hist, force, torque);
       p_.wall_key[base + c] = wc[c].key;
-      for (int k = 0; k < kHistoryDoubles; ++k) p_.wall_history[(base + c) * kHistoryDoubles + k] = hist[k];
+      std::copy_n(hist, kHistoryDoubles, &p_.wall_history[(base + c) * kHistoryDoubles]);
       for (int k = 0; k < 3; ++k) p_.wall_normal[(base + c) * 3 + k] = wc[c].normal[k];
     }
     for (int s = nc; s < kWallSlots; ++s) p_.wall_key[base + s] = 0;
     p_.fx[i] = force.x(); p_.fy[i] = force.y(); p_.fz[i] = force.z();
-    if constexpr (kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
+    if constexpr (V::kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
   }
   stats_.wall_contacts_dropped += dropped;
 }
