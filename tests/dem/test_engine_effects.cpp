@@ -2,6 +2,7 @@
 // an effect that is off is not run, and what cannot run is refused with the reason.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -128,8 +129,8 @@ TEST(DemEngineEffects, SceneEffectsBecomeTheEngineEffects) {
 namespace {
 
 // A small pile thrown sideways onto a floor, with friction and rolling resistance: every DEM effect acts
-// in it. Returns every particle's position and velocity after 15 ms.
-std::vector<double> pile_state(effect::EffectSet effects) {
+// in it. Returns every particle's position and velocity after 15 ms; `inspect` sees the engine after each step.
+std::vector<double> pile_state(effect::EffectSet effects, const std::function<void(const DemEngine&)>& inspect = {}) {
   Material p = granule();
   p.friction_particle = p.friction_wall = 0.4;
   p.restitution = 0.5;
@@ -152,7 +153,10 @@ std::vector<double> pile_state(effect::EffectSet effects) {
       }
     }
   }
-  e.run_until(0.015);
+  while (e.time_s() + 0.5 * e.dt_s() < 0.015) {  // run_until(0.015), step by step
+    e.step();
+    if (inspect) inspect(e);
+  }
   std::vector<double> state;
   const ParticleArrays& q = e.particles();
   for (std::size_t i = 0; i < q.size(); ++i) {
@@ -191,5 +195,47 @@ TEST(EffectRegistry, EveryEffectChangesItsResult) {
       ASSERT_TRUE(with.landed && without.landed) << e.name;
       EXPECT_GT((with.state.position_m - without.state.position_m).norm(), 1e-3) << e.name << " moves no landing";
     }
+  }
+}
+
+namespace {
+
+// What shows that a DEM effect's work was not done, in an engine that ran with the effect off: no pair list
+// (particle_contact), no wall contact recorded in any particle's slots although the pile lies on a floor
+// (wall_contact), no spin arrays (rotation), a law without a rolling model (rolling). Each must also be false
+// with the effect on, so that it witnesses something.
+bool skipped(effect::EffectSet bit, const DemEngine& e, bool& known) {
+  known = true;
+  const ParticleArrays& p = e.particles();
+  if (bit == effect::kParticleContact) return e.stats().pair_list_builds == 0 && e.pair_count() == 0;
+  if (bit == effect::kWallContact) {
+    for (std::uint32_t key : p.wall_key)
+      if (key != 0) return false;
+    return true;
+  }
+  if (bit == effect::kRotation) return !p.with_spin && p.wx.empty();
+  if (bit == effect::kRolling) return e.params().contact_law.rolling == RollingModel::kNone;
+  known = false;
+  return false;
+}
+
+}  // namespace
+
+// An effect that is off costs nothing: its work is not done at all (not done and thrown away). Each DEM row
+// of the registry needs its witness in skipped(): a row added without one fails here.
+TEST(EffectRegistry, EveryDemEffectOffIsNotRun) {
+  for (const effect::Effect& e : effect::kRegistry) {
+    if (e.domain != effect::Domain::kDem) continue;
+    effect::EffectSet off = e.bit;
+    for (const effect::Effect& other : effect::kRegistry) {
+      if ((other.requires_effects & e.bit) != 0) off |= other.bit;
+    }
+    // At every step with the effect off; not at every step with it on.
+    bool known = false, skipped_on = true, skipped_off = true;
+    pile_state(effect::kDemEffects, [&](const DemEngine& engine) { skipped_on &= skipped(e.bit, engine, known); });
+    ASSERT_TRUE(known) << e.name << ": no witness that it is not run when off (add one to skipped())";
+    pile_state(effect::kDemEffects & ~off, [&](const DemEngine& engine) { skipped_off &= skipped(e.bit, engine, known); });
+    EXPECT_TRUE(skipped_off) << e.name << " is off, but its work was done";
+    EXPECT_FALSE(skipped_on) << e.name << " is on, but the witness says its work was not done";
   }
 }

@@ -23,6 +23,13 @@ namespace spread::dem {
 // contact moments). The others do not shape a pass: particle_contact and wall_contact decide whether a
 // pass runs at all (force_dispatch.cpp), and rolling is the law's rolling sub-model.
 inline constexpr effect::EffectSet kPassEffects = effect::kRotation;
+// The DEM effects that decide whether a pass runs at all (force_dispatch.cpp) or which law runs (rolling: the
+// law's rolling model), rather than shaping a pass.
+inline constexpr effect::EffectSet kRunEffects = effect::kParticleContact | effect::kWallContact | effect::kRolling;
+// A DEM row of the registry in neither set would be accepted by the engine and never evaluated.
+static_assert((kPassEffects | kRunEffects) == effect::kDemEffects && (kPassEffects & kRunEffects) == 0,
+              "each DEM effect of the registry either shapes the passes (kPassEffects, read in a pass as V::has(bit)) "
+              "or decides which pass or law runs (kRunEffects)");
 
 struct ForceVariant {
   ContactLaw law;
