@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/force_variants.hpp"
 #include "libspread/physics/dem/scene_config.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "libspread/physics/flight/flight.hpp"
@@ -200,20 +201,21 @@ TEST(EffectRegistry, EveryEffectChangesItsResult) {
 
 namespace {
 
-// What shows that a DEM effect's work was not done, in an engine that ran with the effect off: no pair list
-// (particle_contact), no wall contact recorded in any particle's slots although the pile lies on a floor
-// (wall_contact), no spin arrays (rotation), a law without a rolling model (rolling). Each must also be false
-// with the effect on, so that it witnesses something.
+// What shows that a DEM effect's work was not done, in an engine that ran with the effect off: for an effect
+// that shapes the passes, passes instantiated without it (and for rotation no spin arrays either); for those
+// that decide what runs, no pair list (particle_contact), no wall contact recorded in any particle's slots
+// although the pile lies on a floor (wall_contact), a law without a rolling model (rolling). Each must also
+// be false with the effect on, so that it witnesses something.
 bool skipped(effect::EffectSet bit, const DemEngine& e, bool& known) {
   known = true;
   const ParticleArrays& p = e.particles();
+  if ((kPassEffects & bit) != 0) return (e.pass_effects() & bit) == 0 && (bit != effect::kRotation || (!p.with_spin && p.wx.empty()));
   if (bit == effect::kParticleContact) return e.stats().pair_list_builds == 0 && e.pair_count() == 0;
   if (bit == effect::kWallContact) {
     for (std::uint32_t key : p.wall_key)
       if (key != 0) return false;
     return true;
   }
-  if (bit == effect::kRotation) return !p.with_spin && p.wx.empty();
   if (bit == effect::kRolling) return e.params().contact_law.rolling == RollingModel::kNone;
   known = false;
   return false;

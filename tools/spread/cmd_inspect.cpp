@@ -142,12 +142,13 @@ spread::cli::CommandRegistration reg{"inspect", [](CLI::App& app, int& exit_code
       }
       exit_code = spread::cli::kExitOk;
     } catch (const spread::tables::TableError& e) {
-      std::cerr << "spread inspect: error: " << e.what() << " (" << advice(e.kind()) << ")\n";
+      // The JSON reader gets the error on stdout too; stderr and the exit code are main()'s, as for every
+      // command, with the advice for this kind of damage.
       if (options.json) {
         std::cout << json{{"error", {{"kind", kind_code(e.kind())}, {"message", e.what()}, {"file", options.file}}}}.dump(2)
                   << "\n";
       }
-      exit_code = spread::cli::exit_code_for(e);
+      throw spread::Error(e.kind(), e.where(), std::string(e.what()) + " (" + advice(e.kind()) + ")");
     }
   });
 }};

@@ -11,11 +11,13 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "libspread/core/error.hpp"
 #include "libspread/physics/flight/flight.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
 #include "spread/spread.h"
@@ -103,6 +105,14 @@ std::string explain(spread_status status, const Options& o, spread_tables* table
     }
     default: return spread_status_str(status);
   }
+}
+
+// A refused call as the CLI's failures are (error_exit.hpp, mapped once in main): the table file could not
+// be read, or memory or the library failed — a failure; anything else is the user's input.
+[[noreturn]] void throw_status(spread_status status, const std::string& message) {
+  if (status == SPREAD_ERROR_IO) throw spread::Error(spread::ErrorKind::kIo, {}, message);
+  if (status == SPREAD_ERROR_OUT_OF_MEMORY || status == SPREAD_ERROR_INTERNAL) throw std::runtime_error(message);
+  throw BadInput(message);
 }
 
 std::string effects_label(std::uint32_t effects) {
@@ -316,11 +326,7 @@ void run(const Options& o, int& exit_code) {
   const spread_status opened = spread_open(o.tables.c_str(), &raw);
   if (opened != SPREAD_OK) {
     // The status, then what exactly (the C API's detail names the row, run or column at fault).
-    std::cerr << "spread predict: error: --tables '" << o.tables << "': " << spread_status_str(opened) << ": "
-              << spread_last_error_detail() << "\n";
-    exit_code = opened == SPREAD_ERROR_IO || opened == SPREAD_ERROR_OUT_OF_MEMORY ? spread::cli::kExitFailure
-                                                                                  : spread::cli::kExitUsage;
-    return;
+    throw_status(opened, "--tables '" + o.tables + "': " + spread_status_str(opened) + ": " + spread_last_error_detail());
   }
   TablesHandle tables(raw);
 
@@ -336,11 +342,7 @@ void run(const Options& o, int& exit_code) {
                              : spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
   };
   if (status == SPREAD_OK && o.compensate_wind) status = predict_once();
-  if (status != SPREAD_OK) {
-    std::cerr << "spread predict: error: " << explain(status, o, tables.get()) << "\n";
-    exit_code = status == SPREAD_ERROR_INTERNAL ? spread::cli::kExitFailure : spread::cli::kExitUsage;
-    return;
-  }
+  if (status != SPREAD_OK) throw_status(status, explain(status, o, tables.get()));
 
   // --repeat K: the median wall time of K further predictions (the first, above, warmed the caches).
   double median_us = std::numeric_limits<double>::quiet_NaN();

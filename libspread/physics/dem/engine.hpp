@@ -132,6 +132,10 @@ class DemEngine {
   std::size_t pair_count() const { return pairs_.size(); }
   const PairList& pair_list() const { return pairs_; }
 
+  // The pass-shaping effects (force_variants.hpp, kPassEffects) the passes that run were instantiated with:
+  // an effect outside it has no code in them.
+  effect::EffectSet pass_effects() const;
+
   // Total kinetic energy (translation + rotation) of the active particles (J).
   double kinetic_energy_j() const;
 

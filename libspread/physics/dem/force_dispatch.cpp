@@ -22,6 +22,8 @@ void DemEngine::compute_forces() {
   stats_.forces_s += seconds_since(t0);
 }
 
+effect::EffectSet DemEngine::pass_effects() const { return kForceVariants[force_variant_].effects; }
+
 void DemEngine::clear_forces() {
   const std::size_t n = p_.size();
   std::fill_n(p_.fx.begin(), n, 0.0);

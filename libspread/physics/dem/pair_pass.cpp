@@ -70,10 +70,12 @@ template <class T>
 struct PairOut {
   V3<T> f, t_i, t_j;  // force on i (j gets −f); torques on i and j
 };
-template <class Law, bool kRotation, class T>
+template <class V, class T>
 SPREAD_CONTACT_INLINE PairOut<T> pair_contact(const V3<T>& d, T dist2, T ri, T rj, const V3<T>& v_rel, const V3<T>& wi,
                                               const V3<T>& wj, T inertia_eff, const PairParams& pp,
-                                              const typename Law::Coeffs& pc, double dt, LawHistory<T>& h) {
+                                              const typename V::Law::Coeffs& pc, double dt, LawHistory<T>& h) {
+  using Law = typename V::Law;
+  constexpr bool kRotation = V::kRotation;
   // 1/|d|² does not wait for the sqrt (the two overlap); the normal is d |d| / |d|².
   const T inv_dist2 = splat<T>(1.0) / dist2;
   const T dist = lanes::sqrt(dist2);
@@ -146,7 +148,7 @@ SPREAD_CONTACT_INLINE void one_pair(const PairPassArrays<typename V::Law>& a, Fi
   double inertia_eff = 0.0;
   if constexpr (Law::kRolling) inertia_eff = a.inertia[b.i] * a.inertia[j] / (a.inertia[b.i] + a.inertia[j]);
   LawHistory<double> h = load_history(hist);
-  const PairOut<double> r = pair_contact<Law, V::kRotation>(separation<Law, kForm>(a, b, j), dist2, b.r, rj,
+  const PairOut<double> r = pair_contact<V>(separation<Law, kForm>(a, b, j), dist2, b.r, rj,
                                                             b.v - V3<double>{a.vx[j], a.vy[j], a.vz[j]}, b.w, wj,
                                                             inertia_eff, pp, pc, a.dt_s, h);
   store_history(h, hist);
@@ -173,7 +175,7 @@ SPREAD_CONTACT_INLINE void two_pairs(const PairPassArrays<typename V::Law>& a, F
   LawHistory<Lanes2> h = load_history(h0, h1);
   const V3<Lanes2> v_rel{splat<Lanes2>(b.v.x) - pack(a.vx[j0], a.vx[j1]), splat<Lanes2>(b.v.y) - pack(a.vy[j0], a.vy[j1]),
                          splat<Lanes2>(b.v.z) - pack(a.vz[j0], a.vz[j1])};
-  const PairOut<Lanes2> r = pair_contact<Law, V::kRotation>(
+  const PairOut<Lanes2> r = pair_contact<V>(
       V3<Lanes2>{pack(d0.x, d1.x), pack(d0.y, d1.y), pack(d0.z, d1.z)}, pack(dist2_0, dist2_1), splat<Lanes2>(b.r),
       pack(a.radius[j0], a.radius[j1]), v_rel, V3<Lanes2>{splat<Lanes2>(b.w.x), splat<Lanes2>(b.w.y), splat<Lanes2>(b.w.z)},
       wj, inertia_eff, b.params_row[a.material[j0]], b.coeffs_row[a.material[j0]], a.dt_s, h);
