@@ -114,8 +114,9 @@ SPREAD_API const char* spread_version_string(void);
 #define SPREAD_EFFECT_WIND 0x8u       /* wind: the relative air velocity replaces the granule velocity */
 #define SPREAD_EFFECT_ALL (SPREAD_EFFECT_DRAG | SPREAD_EFFECT_MAGNUS | SPREAD_EFFECT_SPIN_DECAY | SPREAD_EFFECT_WIND)
 /* The flight effects the table file was built with (each run records them; files that do not record
- * them mean SPREAD_EFFECT_ALL), plus any SPREAD_EFFECT_* bits given beside it, plus SPREAD_EFFECT_WIND
- * whenever the wind is not zero (the wind is a condition of the day, not of the machine). The default. */
+ * them mean drag, Magnus, spin decay and wind), plus any SPREAD_EFFECT_* bits given beside it, plus
+ * SPREAD_EFFECT_WIND whenever the wind is not zero (the wind is a condition of the day, not of the
+ * machine). The default. */
 #define SPREAD_EFFECTS_AS_TABLE 0x80000000u
 
 /* ---------------------------------------------------------------------------------------------------
