@@ -14,13 +14,12 @@
 #include "capi/src/tables_handle.hpp"
 #include "libspread/analysis/predict/wind_compensation.hpp"
 
-// The C bits are passed through unchanged: each must be its effect registry row's, looked up by the
-// name the docs give it, and together they must be every flight row (a new flight effect needs its bit).
-static_assert(SPREAD_EFFECT_DRAG == spread::effect::find("drag")->bit &&
-              SPREAD_EFFECT_MAGNUS == spread::effect::find("magnus")->bit &&
-              SPREAD_EFFECT_SPIN_DECAY == spread::effect::find("spin_decay")->bit &&
-              SPREAD_EFFECT_WIND == spread::effect::find("wind")->bit);
-static_assert(SPREAD_EFFECT_ALL == spread::effect::kFlightEffects);
+// The C bits are passed through unchanged, so they must be the effect registry's. SPREAD_EFFECT_ALL is the
+// OR of the header's bits: a flight row without its bit (or a bit left out of it) fails here. That each
+// SPREAD_EFFECT_<NAME> is its row's bit: EffectRegistry.CHeaderDefinesEveryFlightBit.
+static_assert(SPREAD_EFFECT_ALL == spread::effect::kFlightEffects,
+              "spread.h: SPREAD_EFFECT_ALL must be the OR of one SPREAD_EFFECT_<NAME> per flight row of the effect "
+              "registry");
 static_assert(SPREAD_EFFECTS_AS_TABLE == spread::predict::kTableEffects);
 static_assert((SPREAD_EFFECTS_AS_TABLE & SPREAD_EFFECT_ALL) == 0);
 static_assert(SPREAD_MAX_BANDS == spread::predict::kMaxBands);

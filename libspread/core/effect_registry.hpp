@@ -4,8 +4,10 @@
 // from this table: the scene reader (names, defaults, requirements), the flight's right-hand-side table
 // (one instantiation per subset of the flight bits), the DEM's configuration, the tables' provenance
 // strings, the C header's SPREAD_EFFECT_* bits (static_asserts in capi/src/predict.cpp) and the
-// docs (tests/scene/test_effect_registry.cpp checks docs/scene-format.md lists every row).
-// Adding an effect: its row here, its evaluator, its doc line.
+// docs (tests/scene/test_effect_registry.cpp checks docs/scene-format.md lists every row, and the C header
+// defines every flight bit). Adding an effect: its bit and row here, its evaluator, its doc line; a flight
+// effect also its SPREAD_EFFECT_* bit (docs/design.md §7 gives the recipe, and what fails if a step is
+// missed).
 #include <array>
 #include <cstdint>
 #include <string>
@@ -23,11 +25,14 @@ enum class Domain : std::uint8_t {
 
 // Bits of one set for the whole scene. The flight effects are the low bits, contiguous from bit 0: they
 // index the flight's instantiation table, and they are the C API's SPREAD_EFFECT_* values, which are
-// public ABI — never renumber a row.
+// public ABI — never renumber a row. The flight bits have a namespace of their own, which
+// libspread/physics/flight/flight.hpp brings into spread::flight whole: a new one needs no line there.
+inline namespace flight_bits {
 inline constexpr EffectSet kDrag = 1u << 0;
 inline constexpr EffectSet kMagnus = 1u << 1;
 inline constexpr EffectSet kSpinDecay = 1u << 2;
 inline constexpr EffectSet kWind = 1u << 3;
+}  // namespace flight_bits
 inline constexpr EffectSet kParticleContact = 1u << 8;
 inline constexpr EffectSet kWallContact = 1u << 9;
 inline constexpr EffectSet kRotation = 1u << 10;
@@ -42,8 +47,8 @@ struct Effect {
   std::string_view model;      // what is evaluated, with its source (docs)
 };
 
-// Canonical order: the order of every list written (provenance, messages).
-inline constexpr std::array<Effect, 8> kRegistry{{
+// Canonical order: the order of every list written (provenance, messages). The size follows the rows.
+inline constexpr auto kRegistry = std::to_array<Effect>({
     {"particle_contact", Domain::kDem, kParticleContact, 0, true,
      "particle–particle contacts with the scene's contact law (seed 000 Eqs. 1–24)"},
     {"wall_contact", Domain::kDem, kWallContact, 0, true,
@@ -56,7 +61,7 @@ inline constexpr std::array<Effect, 8> kRegistry{{
     {"spin_decay", Domain::kFlight, kSpinDecay, 0, true, "spin decay in flight, seed 000 Eqs. 34–36"},
     {"wind", Domain::kFlight, kWind, 0, false,
      "uniform horizontal wind: the relative air velocity replaces the granule velocity in every air term"},
-}};
+});
 
 constexpr EffectSet mask(Domain domain) {
   EffectSet set = 0;

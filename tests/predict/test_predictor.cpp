@@ -699,12 +699,13 @@ TEST(Predictor, DropPointTurnIsTheTableTurnedAboutTheDiscAxis) {
 namespace spread::predict {
 namespace {
 
-// One reading of a run's flight effects for every reader: the recorded ones, or all of them for a run that
-// records none (tables made before runs recorded them flew everything); an unknown one is refused.
+// One reading of a run's flight effects for every reader: the recorded ones, or for a run that records none
+// the four there were when runs began to record them (such tables flew all of them); an unknown one is
+// refused.
 TEST(RunFlightEffects, RecordedOrElseEveryFlightEffect) {
   tables::Run run;
   run.stats_json = "{\"speed_mean\":1.0}";
-  EXPECT_EQ(run_flight_effects(run), flight::kAllEffects);
+  EXPECT_EQ(run_flight_effects(run), flight::kDrag | flight::kMagnus | flight::kSpinDecay | flight::kWind);
   run.stats_json = "{\"flight_effects\":\"drag\"}";
   EXPECT_EQ(run_flight_effects(run), flight::EffectSet{flight::kDrag});
   run.stats_json = "{\"flight_effects\":\"\"}";

@@ -1,6 +1,10 @@
-// The effect registry is the one list of effects: the scene reader, the docs and the flight use it.
+// The effect registry is the one list of effects: the scene reader, the docs, the C header and the flight
+// use it.
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -27,6 +31,32 @@ TEST(EffectRegistry, DocsListEveryRow) {
   const std::string doc = spread::testing::read_source_file("docs/scene-format.md");
   ASSERT_FALSE(doc.empty());
   for (const Effect& e : kRegistry) EXPECT_NE(doc.find(doc_row(e) + "\n"), std::string::npos) << doc_row(e);
+}
+
+// The C API passes its SPREAD_EFFECT_* bits through unchanged: each flight row has its
+// `#define SPREAD_EFFECT_<NAME> 0x<bit>u`, and the header has no other (capi/src/predict.cpp checks at compile
+// time that SPREAD_EFFECT_ALL, the OR of them, is every flight bit).
+TEST(EffectRegistry, CHeaderDefinesEveryFlightBit) {
+  const std::string header = spread::testing::read_source_file("capi/include/spread/spread.h");
+  const std::regex define(R"(#define SPREAD_EFFECT_([A-Z0-9_]+) 0x([0-9A-Fa-f]+)u\b)");
+  std::set<std::string> defined;
+  for (auto it = std::sregex_iterator(header.begin(), header.end(), define); it != std::sregex_iterator(); ++it) {
+    const std::string macro = (*it)[1];
+    defined.insert(macro);
+    std::string name = macro;
+    for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const Effect* e = find(name);
+    ASSERT_NE(e, nullptr) << "SPREAD_EFFECT_" << macro << " has no effect registry row";
+    EXPECT_EQ(e->domain, Domain::kFlight) << "SPREAD_EFFECT_" << macro << " is not a flight effect";
+    EXPECT_EQ(std::stoul((*it)[2], nullptr, 16), e->bit) << "SPREAD_EFFECT_" << macro;
+  }
+  for (const Effect& e : kRegistry) {
+    if (e.domain != Domain::kFlight) continue;
+    std::string macro(e.name);
+    for (char& c : macro) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    EXPECT_EQ(defined.count(macro), 1u) << "spread.h lacks #define SPREAD_EFFECT_" << macro << " 0x" << std::hex
+                                        << e.bit << "u";
+  }
 }
 
 TEST(EffectRegistry, SceneDefaultIsTheRegistryDefault) {

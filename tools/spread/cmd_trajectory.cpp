@@ -27,7 +27,7 @@ struct TrajectoryOptions {
   std::string velocity;
   std::string spin;
   double ground_z_m = 0.0;
-  std::string effects = effect::to_string(flight::kAllEffects & ~flight::EffectSet{flight::kWind});  // all but wind
+  std::string effects = effect::to_string(effect::kDefault & flight::kAllEffects);  // a scene's default flight effects
   double air_density_kg_m3 = flight::Air{}.density_kg_m3;
   double air_viscosity_pa_s = flight::Air{}.viscosity_pa_s;
   std::string wind;

@@ -104,16 +104,19 @@ SPREAD_API uint32_t spread_version(void);
 SPREAD_API const char* spread_version_string(void);
 
 /* ---------------------------------------------------------------------------------------------------
- * In-flight effects. The same bits as libspread's flight::Effect. Gravity always acts.
+ * In-flight effects: SPREAD_EFFECT_<NAME> for each flight effect of docs/scene-format.md, the bit of its
+ * effect registry row (checked by the library's build and tests); SPREAD_EFFECT_ALL is all of them.
+ * Bits are never renumbered. Gravity always acts.
  * ------------------------------------------------------------------------------------------------- */
 #define SPREAD_EFFECT_DRAG 0x1u       /* air drag, seed Eq. 27 with the Haider–Levenspiel C_D, Eq. 32 */
 #define SPREAD_EFFECT_MAGNUS 0x2u     /* Magnus lift, Eq. 28 (smoothly vanishing lift model) */
 #define SPREAD_EFFECT_SPIN_DECAY 0x4u /* spin decay in flight, Eqs. 34–36 */
 #define SPREAD_EFFECT_WIND 0x8u       /* wind: the relative air velocity replaces the granule velocity */
-#define SPREAD_EFFECT_ALL 0xFu
+#define SPREAD_EFFECT_ALL (SPREAD_EFFECT_DRAG | SPREAD_EFFECT_MAGNUS | SPREAD_EFFECT_SPIN_DECAY | SPREAD_EFFECT_WIND)
 /* The flight effects the table file was built with (each run records them; files that do not record
- * them mean SPREAD_EFFECT_ALL), plus any SPREAD_EFFECT_* bits given beside it, plus SPREAD_EFFECT_WIND
- * whenever the wind is not zero (the wind is a condition of the day, not of the machine). The default. */
+ * them mean drag, Magnus, spin decay and wind), plus any SPREAD_EFFECT_* bits given beside it, plus
+ * SPREAD_EFFECT_WIND whenever the wind is not zero (the wind is a condition of the day, not of the
+ * machine). The default. */
 #define SPREAD_EFFECTS_AS_TABLE 0x80000000u
 
 /* ---------------------------------------------------------------------------------------------------

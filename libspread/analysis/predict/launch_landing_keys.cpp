@@ -18,7 +18,7 @@ void landing_rank_keys(std::span<const tables::LaunchSample> samples, double rpm
   const double omega_rad_s = rpm * 2.0 * kPi / 60.0;
   const double rim_speed_m_s = omega_rad_s * disc_radius_m;
   const flight::Air still_air;
-  const flight::EffectSet effects = flight::kAllEffects & ~flight::EffectSet{flight::kWind};
+  const flight::EffectSet effects = flight::kDrag | flight::kMagnus | flight::kSpinDecay;
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const tables::LaunchSample& s = samples[k];
     const flight::Granule granule{s.diameter_m, density_kg_m3};

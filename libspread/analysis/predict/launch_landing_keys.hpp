@@ -1,7 +1,7 @@
 #pragma once
 // Keys of a launch-table row's quantile cells (launch_quantile_cells.hpp): where each sample lands when
-// flown at the row's own rpm, from the machine's stored disc height, in still air with every effect but
-// wind.
+// flown at the row's own rpm, from the machine's stored disc height, in still air with drag, Magnus lift
+// and spin decay (a fixed set: a flight effect added later does not reorder the rows of a table).
 //
 // Why the landing point and not a launch quantity: the throw width, R̄ and ξ are statistics of the
 // landings, and a landing depends jointly on the launch direction, speed, elevation and granule diameter

@@ -7,7 +7,7 @@ namespace spread::predict {
 
 flight::EffectSet run_flight_effects(const tables::Run& run) {
   const std::optional<std::string> recorded = tables::recorded_flight_effects(run);
-  return recorded ? flight::parse_effects(*recorded) : flight::kAllEffects;
+  return recorded ? flight::parse_effects(*recorded) : kUnrecordedRunEffects;
 }
 
 }  // namespace spread::predict

@@ -21,8 +21,9 @@
 
 namespace spread::flight::detail {
 
+// The effects the lanes evaluate (flight_rhs_lanes): drag and wind, nothing else.
 template <EffectSet E>
-inline constexpr bool kLaneEffects = (E & (kMagnus | kSpinDecay)) == 0;
+inline constexpr bool kLaneEffects = (E & ~(kDrag | kWind)) == 0;
 
 // flight_rhs for kLaneEffects combinations, on lanes: the same operations as flight_rhs<E>.
 template <EffectSet E>

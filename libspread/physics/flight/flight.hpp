@@ -16,13 +16,12 @@
 
 namespace spread::flight {
 
-// In-flight effects: the flight rows of the effect registry (libspread/core/effect_registry.hpp).
-// Gravity is not an effect: it always acts.
+// In-flight effects: the flight rows of the effect registry (libspread/core/effect_registry.hpp), whose
+// bits (kDrag, kMagnus, kSpinDecay, kWind, …) are all names of this namespace; each row says what it
+// evaluates, flight_terms.hpp where. Without kSpinDecay ω stays constant in flight; without kWind the
+// air is still. Gravity is not an effect: it always acts.
 using effect::EffectSet;
-using effect::kDrag;       // Eq. 27 with the Haider–Levenspiel C_D, Eq. 32
-using effect::kMagnus;     // Eq. 28; C_L from the selected LiftModel
-using effect::kSpinDecay;  // Eqs. 34–36; without it ω stays constant in flight
-using effect::kWind;       // Air::wind_m_s; without it the air is still
+using namespace effect::flight_bits;
 inline constexpr EffectSet kAllEffects = effect::kFlightEffects;
 
 // "drag,magnus,spin_decay,wind" (any order; "" or "none" → no effects). Throws std::invalid_argument

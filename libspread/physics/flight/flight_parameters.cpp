@@ -21,6 +21,7 @@ FlightParameters make_flight_parameters(const Granule& granule, const State& lau
   }
   p.constant_spin_norm_rad_s = launch.spin_rad_s.norm();
   p.gravity_m_s2 = settings.gravity_m_s2;
+  p.terms = derive_term_parameters(granule, launch, air, settings);
   return p;
 }
 

@@ -2,6 +2,7 @@
 // Everything the right-hand side needs, derived once per flight so the hot loop only multiplies.
 // All rates are per unit mass: the RHS returns accelerations (m/s²) and spin rates (rad/s²).
 #include "libspread/physics/flight/flight.hpp"
+#include "libspread/physics/flight/flight_term_table.hpp"
 
 namespace spread::flight::detail {
 
@@ -23,6 +24,8 @@ struct FlightParameters {
   // Spin used by Magnus when spin decay is off (then ω is constant and not integrated).
   double constant_spin_rad_s[3] = {0.0, 0.0, 0.0};
   double constant_spin_norm_rad_s = 0.0;  // |constant_spin_rad_s|
+  // The terms of their own (flight_terms.hpp): each derives its parameters.
+  TermParameters terms;
 };
 
 // Assumes validated inputs.

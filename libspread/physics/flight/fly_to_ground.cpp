@@ -29,7 +29,7 @@ constexpr std::array<FlyFunction, sizeof...(I)> make_dormand_prince_table(std::i
   return {&fly_dormand_prince<static_cast<EffectSet>(I)>...};
 }
 
-constexpr std::size_t kCombinations = static_cast<std::size_t>(kAllEffects) + 1;  // 16
+constexpr std::size_t kCombinations = static_cast<std::size_t>(kAllEffects) + 1;  // 2^(flight rows)
 constexpr auto kRk4Table = make_rk4_table(std::make_index_sequence<kCombinations>{});
 constexpr auto kDormandPrinceTable = make_dormand_prince_table(std::make_index_sequence<kCombinations>{});
 

@@ -1,6 +1,8 @@
 #pragma once
 // The flight ODE, seed Eqs. 26–36, as a template over the effect bits: an effect that is off is not
-// compiled into that instantiation at all (docs/design.md §7). The state is a flat array
+// compiled into that instantiation at all (docs/design.md §7). Gravity and the air block (drag, Magnus,
+// spin decay, wind) are written here; every other flight effect is a term of its own (flight_terms.hpp),
+// added through the term table. The state is a flat array
 //   y = [x, y, z, vx, vy, vz, (ωx, ωy, ωz)]
 // and the spin block exists only when kSpinDecay is on — otherwise ω is constant (Eq. 34 switched off)
 // and Magnus reads it from the parameters.
@@ -9,10 +11,16 @@
 
 #include "libspread/physics/flight/drag_coefficient.hpp"
 #include "libspread/physics/flight/flight_parameters.hpp"
+#include "libspread/physics/flight/flight_term_table.hpp"
 #include "libspread/physics/flight/lift_coefficient.hpp"
 #include "libspread/physics/flight/spin_decay.hpp"
 
 namespace spread::flight::detail {
+
+// A term marked kInAirBlock is evaluated by the code below, which knows exactly these.
+static_assert(kAirBlockEffects == (kDrag | kMagnus | kSpinDecay | kWind),
+              "flight_rhs's air block evaluates drag, Magnus, spin decay and wind: a term marked kInAirBlock "
+              "needs its evaluation there (or is a term of its own, flight_terms.hpp)");
 
 template <EffectSet E>
 inline constexpr bool kIntegratesSpin = (E & kSpinDecay) != 0;
@@ -103,6 +111,7 @@ inline void flight_rhs(const FlightParameters& p, const StateVector<E>& y, State
       az += c * (wx * uy - wy * ux);
     }
   }
+  add_term_accelerations<E>(p.terms, y.data(), ax, ay, az);
   dy[3] = ax;
   dy[4] = ay;
   dy[5] = az;

@@ -127,6 +127,7 @@ double rk4_stable_step_bound_s(const Granule& granule, const State& launch, doub
     const double spin_reynolds = p.spin_reynolds_per_rad_s * launch.spin_rad_s.norm();
     rate_per_s = std::max(rate_per_s, p.spin_decay_rate_per_s * 2.01 * (1.0 + 1.5 * 0.201 * std::sqrt(spin_reynolds)));
   }
+  rate_per_s = std::max(rate_per_s, detail::term_rate_per_s(effects, p.terms, launch));
   if (!(rate_per_s > 0.0)) return std::numeric_limits<double>::infinity();
   return kRk4StabilityLimit / rate_per_s;
 }
