@@ -1,9 +1,11 @@
 // Rotating drum throughput: particle–particle contact steps per second on one core, a drum of
 // ≥ 20,000 particles. Short run: the grid is packed with neighbours just touching (spacing 0.999 d) so
 // every particle starts with its ~6 contacts, as in a settled bed, and the drum turns at Fr 0.1.
-// Counter `particle_steps_per_s` = particles × steps / wall time. SPREAD_BENCH_DRUM_STEPS sets the steps.
+// Counter `particle_steps_per_s` = particles × steps / wall time. SPREAD_BENCH_DRUM_STEPS sets the steps,
+// SPREAD_BENCH_DRUM_THREADS the OpenMP threads (default 1; bench/peers/lammps_drum/compare.sh uses 2).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "libspread/physics/drum/drum_packing.hpp"
@@ -26,7 +28,8 @@ spread::drum::DrumScene bench_scene(spread::dem::Integrator integrator, double f
 }
 
 void run(benchmark::State& state, spread::dem::Integrator integrator, double froude = 0.1) {
-  const auto s = bench_scene(integrator, froude);
+  auto s = bench_scene(integrator, froude);
+  if (const char* threads = std::getenv("SPREAD_BENCH_DRUM_THREADS")) s.threads = std::max(1, std::atoi(threads));
   const char* env = std::getenv("SPREAD_BENCH_DRUM_STEPS");
   const int steps = env ? std::atoi(env) : 200;
   double particle_steps = 0.0;
