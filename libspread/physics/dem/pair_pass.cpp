@@ -54,12 +54,13 @@ struct PairPassArrays {
 template <class Law>
 struct FirstBody {
   std::size_t i;
-  double x, y, z, r, m;
-  V3<double> v, w;
+  double x, y, z;  // position (m)
+  double r, m;     // radius (m), mass (kg)
+  V3<double> v, w;  // velocity (m/s), spin (rad/s)
   bool active;
   const PairParams* params_row;
   const typename Law::Coeffs* coeffs_row;
-  double sum_f[3], sum_t[3];
+  double sum_f[3], sum_t[3];  // force (N), torque (N m)
 };
 
 // One touching pair's contact (T = double), or two pairs' side by side (T = Lanes2) with the same
@@ -297,7 +298,7 @@ void DemEngine::particle_forces() {
   using Law = typename V::Law;
   const std::size_t n = p_.size();
   if (pair_sum_.size() != n) pair_sum_.assign(n, PairSum{});
-  const bool with_spin = V::kRotation;
+  constexpr bool with_spin = V::kRotation;
   const PairPassArrays<Law> a{
       p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
       with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr,

@@ -52,8 +52,9 @@ struct OldWallSlots {
 
 // What one particle's wall contacts read of it.
 struct WallBody {
-  Vec3 v, w;
-  double r, m, inertia;
+  Vec3 v, w;         // velocity (m/s), spin (rad/s)
+  double r, m;       // radius (m), mass (kg)
+  double inertia;    // moment of inertia (kg m²)
   int material;
 };
 
