@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <string>
@@ -33,6 +34,7 @@
 
 #include "libspread/physics/launch/analytic_launch.hpp"
 #include "libspread/analysis/predict/flight_defaults.hpp"
+#include "libspread/analysis/predict/landing_grid.hpp"
 #include "libspread/analysis/predict/predictor.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -422,6 +424,45 @@ void BM_LandingGridError(benchmark::State& state) {
   state.counters["grid_bytes"] = static_cast<double>(grid.bytes());
 }
 
+// The landing grid alone on a real table file (SPREAD_BENCH_TABLE): both discs' landings of the Urea rows
+// around 560 rpm (what a prediction between them lands) at 560 rpm from the machine's disc height, in a
+// lateral wind of range(0) m/s. The time is one pass over the samples (LandingGrid::sample_landings).
+void BM_GridSampleLandings(benchmark::State& state) {
+  const char* path = bench_table(state);
+  if (path == nullptr) return;
+  const auto contents = spread::tables::read_table_file(path);
+  std::vector<spread::tables::LaunchSample> samples, between;
+  double max_rim_speed_m_s = 0.0, density_kg_m3 = 0.0;
+  const double rim_speed_m_s = kRpm * 2.0 * std::numbers::pi / 60.0 * contents.machine.disc_radius_m;
+  for (const auto& m : contents.materials) {
+    if (m.name == kMaterial) density_kg_m3 = m.density_kg_m3;
+  }
+  for (const auto& run : contents.runs) {
+    if (run.material != kMaterial) continue;
+    samples.insert(samples.end(), run.samples.begin(), run.samples.end());
+    max_rim_speed_m_s = std::max(max_rim_speed_m_s, run.rpm * 2.0 * std::numbers::pi / 60.0 * contents.machine.disc_radius_m);
+    if (std::abs(run.rpm - kRpm) < 150.0) between.insert(between.end(), run.samples.begin(), run.samples.end());
+  }
+  spread::predict::LandingGrid grid;
+  auto settings = spread::predict::default_flight_settings();
+  settings.rel_tol = settings.abs_tol = 1e-7;  // as the Predictor flies its grids
+  const auto domain = spread::predict::landing_domain_for(contents.machine.disc_height_m);
+  if (between.empty() ||
+      !grid.build(spread::predict::landing_grid_axes(samples, max_rim_speed_m_s, domain), density_kg_m3, spread::flight::kDrag, settings, {})) {
+    state.SkipWithError("no grid");
+    return;
+  }
+  auto block = std::make_unique<spread::predict::LandingGrid::StencilBlock>();
+  std::vector<double> xs(2 * between.size()), ys(2 * between.size());
+  for (auto _ : state) {
+    grid.sample_landings(between, rim_speed_m_s, contents.machine.disc_height_m, static_cast<double>(state.range(0)), 0.0,
+                         spread::predict::LandingGrid::Sides::kBoth, *block, xs, ys);
+    benchmark::DoNotOptimize(xs.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["samples"] = static_cast<double>(between.size());
+}
+
 // The landing grid's cost and error on a real table file (SPREAD_BENCH_TABLE).
 void BM_PredictLandingGrid(benchmark::State& state) {
   const char* path = bench_table(state);
@@ -473,6 +514,7 @@ BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benc
 BENCHMARK(BM_PredictEdgeCApiFile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FindEdgeSettingCApiFile)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_LandingGridError)->DenseRange(0, 2)->ArgName("material")->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_GridSampleLandings)->Arg(0)->Arg(3)->ArgName("wind")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictLandingGrid)
     ->ArgsProduct({{0, 3, 10}, {0, 1}})
     ->ArgNames({"wind", "grid"})

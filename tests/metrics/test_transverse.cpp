@@ -156,9 +156,16 @@ TEST(TransverseKernel, TraysTwoAtATimeAreTheBitsOfEachAlone) {
   }
   x.push_back(left_m + 1.0);  // a landing exactly on an edge
   m.push_back(1e-4);
-  for (double h : {0.04, 0.1, 0.25, 0.37, 0.79}) {
-    std::vector<double> binned(120, 0.0);
-    sm::accumulate_transverse_kernel(x, m, trays, h, binned);
+  for (double h : {0.04, 0.1, 0.2, 0.25, 0.37, 0.79}) {
+    // Landings one at a time, four at a time and eight (AVX-512, where the processor has it).
+    std::vector<double> binned(120, 0.0), one_by_one(120, 0.0), in_four(120, 0.0), in_eight(120, 0.0);
+    const double lost = sm::accumulate_transverse_kernel(x, m, trays, h, binned);
+    EXPECT_EQ(sm::detail::accumulate_transverse_kernel_in_lanes(x, m, trays, h, one_by_one, 1), lost) << h;
+    EXPECT_EQ(sm::detail::accumulate_transverse_kernel_in_lanes(x, m, trays, h, in_four, 4), lost) << h;
+    EXPECT_EQ(sm::detail::accumulate_transverse_kernel_in_lanes(x, m, trays, h, in_eight, 8), lost) << h;
+    EXPECT_EQ(one_by_one, binned) << h;
+    EXPECT_EQ(in_four, binned) << h;
+    EXPECT_EQ(in_eight, binned) << h;
     std::vector<double> alone(120, 0.0);
     for (std::size_t i = 0; i < x.size(); ++i) {
       if (x[i] + h <= left_m || x[i] - h >= -left_m) continue;

@@ -60,6 +60,15 @@ double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const
 double accumulate_transverse_kernel(std::span<const double> x_m, std::span<const double> mass_kg,
                                     const TrayLayout& trays, double kernel_half_width_m,
                                     std::span<double> tray_mass_kg, std::span<double> scratch);
+namespace detail {
+// accumulate_transverse_kernel's tray-by-tray binning with the landings taken `lanes` at a time: 1 (one by
+// one), 4 (SSE or AVX registers) or 8 (AVX-512 ones where the processor has them, else 4), as the
+// function itself takes them (the widest the processor has, for kernels a few trays wide). The same bits
+// every way; for the tests that show it.
+double accumulate_transverse_kernel_in_lanes(std::span<const double> x_m, std::span<const double> mass_kg,
+                                             const TrayLayout& trays, double kernel_half_width_m,
+                                             std::span<double> tray_mass_kg, std::size_t lanes);
+}  // namespace detail
 // The kernel's CDF at u = (x' − x)/h: 0 below −1, 1 above 1. Inline: the kernel binning and the standard
 // errors call it once per tray a landing's kernel touches.
 inline double epanechnikov_cdf(double u) {

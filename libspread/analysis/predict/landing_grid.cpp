@@ -208,7 +208,13 @@ LandingGrid::LandingGrid(std::pmr::memory_resource* memory) : values_(memory) { 
 
 bool LandingGrid::set_avx(bool enabled) {
   avx_ = enabled && cpu_has_avx();
+  avx512_ = avx_ && cpu_has_avx512f();
   return avx_;
+}
+
+bool LandingGrid::set_avx512(bool enabled) {
+  avx512_ = enabled && avx_ && cpu_has_avx512f();
+  return avx512_;
 }
 
 std::size_t LandingGrid::value_count(const Axes& axes) {
@@ -398,14 +404,15 @@ void LandingGrid::mirrored_landings(double diameter_m, double x_m, double y_m, d
 
 namespace {
 
-// Four doubles side by side (GCC/Clang vector extension: one AVX register, or two SSE ones).
-typedef double Double4 __attribute__((vector_size(32)));
-typedef float Float4x __attribute__((vector_size(16)));
-typedef std::int32_t Int4 __attribute__((vector_size(16)));
+// kLanes doubles (and as many 32-bit integers and floats) side by side, GCC/Clang vector extension: four
+// are one AVX register (or two SSE ones), eight one AVX-512 register.
+template <std::size_t kLanes>
+struct Lanes {
+  typedef double Double __attribute__((vector_size(8 * kLanes)));
+  typedef float Float __attribute__((vector_size(4 * kLanes)));
+  typedef std::int32_t Int __attribute__((vector_size(4 * kLanes)));
+};
 
-
-// grid_stencil<4> of four values, lane by lane the same operations: std::clamp(v, lo, hi) is v < lo ? lo :
-// hi < v ? hi : v, and the conversion to an integer truncates in both.
 // An axis as the lanes read it (grid_stencil's constants, computed once per call).
 struct AxisLanes {
   double first, inverse_step, top;  // top: count + 1, the highest position
@@ -416,17 +423,20 @@ AxisLanes axis_lanes(const GridAxis& axis, double inverse_step, std::int32_t low
           static_cast<std::int32_t>(axis.count - kGridStencil)};
 }
 
-__attribute__((always_inline)) inline void stencil_lanes(const Double4& x, const AxisLanes& axis, Int4& first,
-                                                         Double4 (&w)[4]) {
-  Double4 position = (x - axis.first) * axis.inverse_step;
-  const Double4 lo = Double4{} - 2.0, hi = Double4{} + axis.top;
+// grid_stencil<4> of kLanes values, lane by lane the same operations: std::clamp(v, lo, hi) is v < lo ? lo :
+// hi < v ? hi : v, and the conversion to an integer truncates in both.
+template <typename Double, typename Int>
+__attribute__((always_inline)) inline void stencil_lanes(const Double& x, const AxisLanes& axis, Int& first,
+                                                         Double (&w)[4]) {
+  Double position = (x - axis.first) * axis.inverse_step;
+  const Double lo = Double{} - 2.0, hi = Double{} + axis.top;
   position = position < lo ? lo : (hi < position ? hi : position);
-  const Int4 lowest_lanes = Int4{} + axis.lowest, highest_lanes = Int4{} + axis.highest;
-  Int4 k = __builtin_convertvector(position, Int4) - 1;
+  const Int lowest_lanes = Int{} + axis.lowest, highest_lanes = Int{} + axis.highest;
+  Int k = __builtin_convertvector(position, Int) - 1;
   k = k < lowest_lanes ? lowest_lanes : (highest_lanes < k ? highest_lanes : k);
   first = k;
-  const Double4 f = position - __builtin_convertvector(k + 1, Double4);
-  const Double4 fm1 = f - 1.0, fm2 = f - 2.0, fp1 = f + 1.0;
+  const Double f = position - __builtin_convertvector(k + 1, Double);
+  const Double fm1 = f - 1.0, fm2 = f - 2.0, fp1 = f + 1.0;
   w[0] = -f * fm1 * fm2 * (1.0 / 6.0);
   w[1] = fp1 * fm1 * fm2 * 0.5;
   w[2] = -fp1 * f * fm2 * 0.5;
@@ -436,13 +446,17 @@ __attribute__((always_inline)) inline void stencil_lanes(const Double4& x, const
 // Correctly rounded square roots, the same bits as std::sqrt one at a time, without its check for a
 // negative argument (libm's errno; the arguments are >= 0): SSE2's, two lanes at a time (AVX's encoding
 // of the same instruction where the caller is compiled for AVX).
-__attribute__((always_inline)) inline void sqrt_lanes(Double4& x) {
+template <typename Double>
+__attribute__((always_inline)) inline void sqrt_lanes(Double& x) {
+  constexpr std::size_t kLanes = sizeof(Double) / sizeof(double);
 #if defined(__x86_64__) || defined(__i386__)
-  const __m128d low = _mm_sqrt_pd(_mm_set_pd(x[1], x[0]));
-  const __m128d high = _mm_sqrt_pd(_mm_set_pd(x[3], x[2]));
-  x = Double4{low[0], low[1], high[0], high[1]};
+  for (std::size_t k = 0; k < kLanes; k += 2) {
+    const __m128d root = _mm_sqrt_pd(_mm_set_pd(x[k + 1], x[k]));
+    x[k] = root[0];
+    x[k + 1] = root[1];
+  }
 #else
-  for (int k = 0; k < 4; ++k) x[k] = std::sqrt(x[k]);
+  for (std::size_t k = 0; k < kLanes; ++k) x[k] = std::sqrt(x[k]);
 #endif
 }
 
@@ -455,46 +469,50 @@ struct BlockRequest {
   AxisLanes axes[LandingGrid::kAxisCount];
 };
 
-// The set-up of a block, four samples at a time: what interpolate() and landing() compute per landing
+// The set-up of a block, kLanes samples at a time: what interpolate() and landing() compute per landing
 // before reading the grid (a lane past the block's end repeats its last sample).
+template <std::size_t kLanes>
 __attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, LandingGrid::StencilBlock& b) {
   using Grid = LandingGrid;
-  for (std::size_t i = 0; i < r.count; i += 4) {
-    const tables::LaunchSample* s[4];
-    for (std::size_t k = 0; k < 4; ++k) s[k] = &r.samples[std::min(i + k, r.count - 1)];
-    Double4 vx, vy, vz, z, diameter;
-    for (std::size_t k = 0; k < 4; ++k) {
-      vx[k] = s[k]->vx_norm;
-      vy[k] = s[k]->vy_norm;
-      vz[k] = s[k]->vz_norm;
-      z[k] = s[k]->z_m;
-      diameter[k] = s[k]->diameter_m;
+  using Double = typename Lanes<kLanes>::Double;
+  using Float = typename Lanes<kLanes>::Float;
+  using Int = typename Lanes<kLanes>::Int;
+  static_assert(LandingGrid::kBlock % kLanes == 0);
+  for (std::size_t i = 0; i < r.count; i += kLanes) {
+    Double vx, vy, vz, z, diameter;
+    for (std::size_t k = 0; k < kLanes; ++k) {
+      const tables::LaunchSample& s = r.samples[std::min(i + k, r.count - 1)];
+      vx[k] = s.vx_norm;
+      vy[k] = s.vy_norm;
+      vz[k] = s.vz_norm;
+      z[k] = s.z_m;
+      diameter[k] = s.diameter_m;
     }
     vx = r.rim_speed_m_s * vx;
     vy = r.rim_speed_m_s * vy;
     vz = r.rim_speed_m_s * vz;
     z = z + r.disc_height_m;
-    const Double4 ry = vy - r.wind_y_m_s;
+    const Double ry = vy - r.wind_y_m_s;
     std::memcpy(&b.relative_y[i], &ry, sizeof ry);
     for (int side = 0; side < 2; ++side) {
       if (!r.sides[side]) continue;
-      const Double4 rx = (side == 0 ? vx : -1.0 * vx) - r.wind_x_m_s;
-      Double4 u = rx * rx + ry * ry;
+      const Double rx = (side == 0 ? vx : -1.0 * vx) - r.wind_x_m_s;
+      Double u = rx * rx + ry * ry;
       sqrt_lanes(u);
-      Int4 first;
-      Double4 wu[4];
+      Int first;
+      Double wu[4];
       stencil_lanes(u, r.axes[Grid::kSpeed], first, wu);
       std::memcpy(&b.relative_x[side][i], &rx, sizeof rx);
       std::memcpy(&b.speed[side][i], &u, sizeof u);
       std::memcpy(&b.speed_first[side][i], &first, sizeof first);
       for (int c = 0; c < 4; ++c) std::memcpy(&b.speed_weight[side][c][i], &wu[c], sizeof wu[c]);
     }
-    Int4 d0, v0, h0;
-    Double4 wd[4], wv[4], wh[4];
+    Int d0, v0, h0;
+    Double wd[4], wv[4], wh[4];
     stencil_lanes(diameter, r.axes[Grid::kDiameter], d0, wd);
     stencil_lanes(vz, r.axes[Grid::kVerticalSpeed], v0, wv);
-    const Double4 zero{};
-    Double4 root_height = z < zero ? zero : z;
+    const Double zero{};
+    Double root_height = z < zero ? zero : z;
     sqrt_lanes(root_height);
     stencil_lanes(root_height, r.axes[Grid::kHeight], h0, wh);
     std::memcpy(&b.diameter_first[i], &d0, sizeof d0);
@@ -502,19 +520,22 @@ __attribute__((always_inline)) inline void set_up_block(const BlockRequest& r, L
     std::memcpy(&b.height_first[i], &h0, sizeof h0);
     for (int a = 0; a < 4; ++a) {
       for (int c = 0; c < 4; ++c) {
-        const Float4x w = __builtin_convertvector(wd[a] * wv[c], Float4x);
+        const Float w = __builtin_convertvector(wd[a] * wv[c], Float);
         std::memcpy(&b.line_weight[4 * a + c][i], &w, sizeof w);
       }
-      const Float4x w = __builtin_convertvector(wh[a], Float4x);
+      const Float w = __builtin_convertvector(wh[a], Float);
       std::memcpy(&b.height_weight[a][i], &w, sizeof w);
     }
   }
 }
 
-void set_up_block_portable(const BlockRequest& r, LandingGrid::StencilBlock& b) { set_up_block(r, b); }
+void set_up_block_portable(const BlockRequest& r, LandingGrid::StencilBlock& b) { set_up_block<4>(r, b); }
 #ifdef SPREAD_GRID_AVX
 __attribute__((target("avx"))) void set_up_block_avx(const BlockRequest& r, LandingGrid::StencilBlock& b) {
-  set_up_block(r, b);
+  set_up_block<4>(r, b);
+}
+__attribute__((target("avx512f"))) void set_up_block_avx512(const BlockRequest& r, LandingGrid::StencilBlock& b) {
+  set_up_block<8>(r, b);
 }
 #endif
 
@@ -548,7 +569,9 @@ void LandingGrid::sample_landings(std::span<const tables::LaunchSample> samples,
     request.samples = samples.data() + first;
     request.count = std::min(kBlock, count - first);
 #ifdef SPREAD_GRID_AVX
-    if (avx_) {
+    if (avx512_) {
+      set_up_block_avx512(request, b);
+    } else if (avx_) {
       set_up_block_avx(request, b);
     } else {
       set_up_block_portable(request, b);

@@ -79,8 +79,11 @@ class LandingGrid {
   std::size_t bytes() const { return sizeof(float) * values_.size(); }
   static std::size_t value_count(const Axes& axes);
   // Sums the stencil in AVX registers (on x86 processors that have AVX, chosen at construction) or in SSE
-  // ones: the same bits either way. Returns whether AVX is now used.
+  // ones, and sets up a block's stencils eight samples at a time in AVX-512 registers where the processor
+  // has them too (else four at a time): the same bits every way. set_avx(true) takes the widest the
+  // processor has; set_avx512(false) then keeps to AVX. Each returns whether its registers are now used.
   bool set_avx(bool enabled);
+  bool set_avx512(bool enabled);
 
   // R (m) and T (s) of a launch with horizontal speed speed_m_s >= 0. Arguments slightly outside the axes
   // extrapolate the edge stencil.
@@ -139,6 +142,7 @@ class LandingGrid {
   // both are one 32-byte read.
   std::pmr::vector<float> values_;
   bool avx_ = false;
+  bool avx512_ = false;
 };
 
 // The conditions a table's landing grids cover: what a controller meets in the field. Requests inside it

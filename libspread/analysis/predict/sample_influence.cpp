@@ -8,6 +8,7 @@
 #include <string>
 
 #include "libspread/analysis/metrics/wide_kernel.hpp"
+#include "libspread/core/cpu_features.hpp"
 
 namespace spread::predict {
 namespace {
@@ -181,6 +182,46 @@ __attribute__((target("avx"))) void wide_kernel_pass_avx_registers(const SampleI
   std::memcpy(squares, sum_squares, sizeof squares);
   for (std::size_t g = 0; g < kCount; ++g) se[g] = standard_error_of(sums[g], squares[g], in.sample_count);
 }
+// Eight gradients in one AVX-512 register: the same operations lane by lane (half the instructions and
+// reads of two AVX registers).
+__attribute__((target("avx512f"))) void wide_kernel_pass_avx512(const SampleInfluence& in,
+                                                                const metrics::WideKernelDots& dots, double* se) {
+  typedef double Oct __attribute__((vector_size(64)));
+  const auto load = [](const double* at, Oct& v) __attribute__((always_inline)) { std::memcpy(&v, at, sizeof v); };
+  const double n = static_cast<double>(in.sample_count);
+  Oct z = {}, sum = {}, sum_squares = {};
+  for_each_sample(
+      in,
+      [&](std::size_t l) __attribute__((always_inline)) {
+        Oct d = {};
+        metrics::WideKernelDots::Reach r;
+        if (dots.reach(in.x_m[l], r)) {
+          Oct end, right, left;
+          load(r.past_end, end);
+          load(r.past_b, right);
+          d = end - right;
+          if (r.inside) {
+#pragma GCC unroll 4
+            for (std::size_t k = 0; k < 4; ++k) {
+              load(r.past_b + k * 8, right);
+              load(r.at_a + k * 8, left);
+              d += r.p[k] * (right - left);
+            }
+          }
+        }
+        z += in.weight[l] * d;
+      },
+      [&]() __attribute__((always_inline)) {
+        z *= n;
+        sum += z;
+        sum_squares += z * z;
+        z = Oct{};
+      });
+  double sums[8], squares[8];
+  std::memcpy(sums, &sum, sizeof sums);
+  std::memcpy(squares, &sum_squares, sizeof squares);
+  for (std::size_t g = 0; g < 8; ++g) se[g] = standard_error_of(sums[g], squares[g], in.sample_count);
+}
 #endif
 
 }  // namespace
@@ -237,6 +278,12 @@ void InfluencePass::standard_errors(std::span<double> out) const {
     const auto pass = [&]<std::size_t kCount>() {
 #if defined(__x86_64__) || defined(__i386__)
       if (dots.avx()) {
+        if constexpr (kCount == 8) {
+          if (cpu_has_avx512f()) {
+            wide_kernel_pass_avx512(in, dots, se);
+            return;
+          }
+        }
         if constexpr (kCount == 4 || kCount == 8) {
           wide_kernel_pass_avx_registers<kCount / 4>(in, dots, se);
         } else {
