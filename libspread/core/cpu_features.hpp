@@ -5,32 +5,46 @@
 // multiply-add): the choice may change the speed, never a result. (A function compiled for "avx512f" may
 // use FMA instructions; the build turns the compiler's contraction of a · b + c into them off,
 // -ffp-contract=off in CMakeLists.txt.)
+#include <atomic>
 
 namespace spread {
 
+// The widest registers the run-time choices may take: the processor's widest unless limited (tests limit
+// it to compare every path's bits; an object that chose at its construction keeps its choice).
+enum class Registers : int { kBaseline = 0, kAvx = 1, kAvx512 = 2 };
+namespace detail {
+inline std::atomic<int> widest_registers{static_cast<int>(Registers::kAvx512)};
+}  // namespace detail
+inline void limit_registers(Registers widest) {
+  detail::widest_registers.store(static_cast<int>(widest), std::memory_order_relaxed);
+}
+inline bool registers_allowed(Registers registers) {
+  return static_cast<int>(registers) <= detail::widest_registers.load(std::memory_order_relaxed);
+}
+
 // Whether the processor (and the operating system, which must save its registers) has AVX: 256-bit
-// registers of 4 doubles or 8 floats. Always false off x86.
+// registers of 4 doubles or 8 floats, and they are allowed. Always false off x86.
 inline bool cpu_has_avx() {
 #if defined(__x86_64__) || defined(__i386__)
   static const bool avx = [] {
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx") != 0;
   }();
-  return avx;
+  return avx && registers_allowed(Registers::kAvx);
 #else
   return false;
 #endif
 }
 
 // Whether the processor (and the operating system) has AVX-512 Foundation: 512-bit registers of 8 doubles
-// or 16 floats. Always false off x86.
+// or 16 floats, and they are allowed. Always false off x86.
 inline bool cpu_has_avx512f() {
 #if defined(__x86_64__) || defined(__i386__)
   static const bool avx512f = [] {
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx512f") != 0;
   }();
-  return avx512f;
+  return avx512f && registers_allowed(Registers::kAvx512);
 #else
   return false;
 #endif
