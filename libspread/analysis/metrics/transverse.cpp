@@ -155,11 +155,13 @@ __attribute__((always_inline)) inline void bin_landing_lanes(const double* x_m, 
   Double x, m;
   std::memcpy(&x, x_m, sizeof x);
   std::memcpy(&m, mass_kg, sizeof m);
-  // kernel_edge_floor lane by lane: clamped to [−2, T + 2], truncated, one down where that rounded up.
+  // kernel_edge_floor lane by lane: clamped to [−2, T + 2], truncated, one down where that rounded up (a
+  // NaN, whose landing bin_landing() takes, clamped to −2 so that every conversion is in range).
   // (Helpers into out-parameters: a lambda returning a wide vector would change its ABI.)
   const double top = static_cast<double>(f.last + 1) + 2.0;
   const auto floor_lanes = [top](Double position, Int& out) __attribute__((always_inline)) {
-    position = position < -2.0 ? Double{} - 2.0 : (top < position ? Double{} + top : position);
+    position = position >= -2.0 ? position : Double{} - 2.0;
+    position = position <= top ? position : Double{} + top;
     const Int truncated = __builtin_convertvector(position, Int);
     out = truncated + __builtin_convertvector(__builtin_convertvector(truncated, Double) > position, Int);
   };

@@ -130,35 +130,36 @@ __attribute__((target("avx"))) void wide_kernel_pass_avx(const SampleInfluence& 
       [&dots](double x, double* d) __attribute__((always_inline)) { dots.template dots_in<kCount, FourDoubles>(x, d, false); },
       se);
 }
-// The same for a multiple of four gradients with every running value in AVX registers: influence_pass'
-// operations in its order, lane by lane (combine_wide_kernel_dots' for the dots), so the same bits — but
-// its arrays of z and sums, indexed by loops, went through memory on every landing.
-template <std::size_t kVectors>
-__attribute__((target("avx"))) void wide_kernel_pass_avx_registers(const SampleInfluence& in,
-                                                                    const metrics::WideKernelDots& dots, double* se) {
-  typedef double Quad __attribute__((vector_size(32)));
-  constexpr std::size_t kCount = 4 * kVectors;
-  // Into an out-parameter: a lambda returning an AVX vector would change its ABI without AVX.
-  const auto load = [](const double* at, Quad& v) __attribute__((always_inline)) { std::memcpy(&v, at, sizeof v); };
+// The same for a multiple of the lanes' width of gradients with every running value in registers:
+// influence_pass' operations in its order, lane by lane (combine_wide_kernel_dots' for the dots), so the
+// same bits — but its arrays of z and sums, indexed by loops, went through memory on every landing. Lanes:
+// a vector of doubles (four: AVX, eight: AVX-512), kVectors of them.
+template <typename Lanes, std::size_t kVectors>
+__attribute__((always_inline)) inline void pass_in_registers(const SampleInfluence& in,
+                                                            const metrics::WideKernelDots& dots, double* se) {
+  constexpr std::size_t kWidth = sizeof(Lanes) / sizeof(double);
+  constexpr std::size_t kCount = kWidth * kVectors;
+  // Into an out-parameter: a lambda returning a wide vector would change its ABI.
+  const auto load = [](const double* at, Lanes& v) __attribute__((always_inline)) { std::memcpy(&v, at, sizeof v); };
   const double n = static_cast<double>(in.sample_count);
-  Quad z[kVectors] = {}, sum[kVectors] = {}, sum_squares[kVectors] = {};
+  Lanes z[kVectors] = {}, sum[kVectors] = {}, sum_squares[kVectors] = {};
   for_each_sample(
       in,
       [&](std::size_t l) __attribute__((always_inline)) {
-        Quad d[kVectors] = {};
+        Lanes d[kVectors] = {};
         metrics::WideKernelDots::Reach r;
         if (dots.reach(in.x_m[l], r)) {
 #pragma GCC unroll 2
           for (std::size_t v = 0; v < kVectors; ++v) {
-            Quad end, right, left;
-            load(r.past_end + 4 * v, end);
-            load(r.past_b + 4 * v, right);
+            Lanes end, right, left;
+            load(r.past_end + kWidth * v, end);
+            load(r.past_b + kWidth * v, right);
             d[v] = end - right;
             if (r.inside) {
 #pragma GCC unroll 4
               for (std::size_t k = 0; k < 4; ++k) {
-                load(r.past_b + k * kCount + 4 * v, right);
-                load(r.at_a + k * kCount + 4 * v, left);
+                load(r.past_b + k * kCount + kWidth * v, right);
+                load(r.at_a + k * kCount + kWidth * v, left);
                 d[v] += r.p[k] * (right - left);
               }
             }
@@ -174,7 +175,7 @@ __attribute__((target("avx"))) void wide_kernel_pass_avx_registers(const SampleI
           z[v] *= n;
           sum[v] += z[v];
           sum_squares[v] += z[v] * z[v];
-          z[v] = Quad{};
+          z[v] = Lanes{};
         }
       });
   double sums[kCount], squares[kCount];
@@ -182,45 +183,18 @@ __attribute__((target("avx"))) void wide_kernel_pass_avx_registers(const SampleI
   std::memcpy(squares, sum_squares, sizeof squares);
   for (std::size_t g = 0; g < kCount; ++g) se[g] = standard_error_of(sums[g], squares[g], in.sample_count);
 }
-// Eight gradients in one AVX-512 register: the same operations lane by lane (half the instructions and
-// reads of two AVX registers).
+typedef double FourDoubles __attribute__((vector_size(32)));
+typedef double EightDoubles __attribute__((vector_size(64)));
+// 4 or 8 gradients in one or two AVX registers.
+template <std::size_t kVectors>
+__attribute__((target("avx"))) void wide_kernel_pass_avx_registers(const SampleInfluence& in,
+                                                                    const metrics::WideKernelDots& dots, double* se) {
+  pass_in_registers<FourDoubles, kVectors>(in, dots, se);
+}
+// 8 gradients in one AVX-512 register: half the instructions and reads of two AVX registers.
 __attribute__((target("avx512f"))) void wide_kernel_pass_avx512(const SampleInfluence& in,
                                                                 const metrics::WideKernelDots& dots, double* se) {
-  typedef double Oct __attribute__((vector_size(64)));
-  const auto load = [](const double* at, Oct& v) __attribute__((always_inline)) { std::memcpy(&v, at, sizeof v); };
-  const double n = static_cast<double>(in.sample_count);
-  Oct z = {}, sum = {}, sum_squares = {};
-  for_each_sample(
-      in,
-      [&](std::size_t l) __attribute__((always_inline)) {
-        Oct d = {};
-        metrics::WideKernelDots::Reach r;
-        if (dots.reach(in.x_m[l], r)) {
-          Oct end, right, left;
-          load(r.past_end, end);
-          load(r.past_b, right);
-          d = end - right;
-          if (r.inside) {
-#pragma GCC unroll 4
-            for (std::size_t k = 0; k < 4; ++k) {
-              load(r.past_b + k * 8, right);
-              load(r.at_a + k * 8, left);
-              d += r.p[k] * (right - left);
-            }
-          }
-        }
-        z += in.weight[l] * d;
-      },
-      [&]() __attribute__((always_inline)) {
-        z *= n;
-        sum += z;
-        sum_squares += z * z;
-        z = Oct{};
-      });
-  double sums[8], squares[8];
-  std::memcpy(sums, &sum, sizeof sums);
-  std::memcpy(squares, &sum_squares, sizeof squares);
-  for (std::size_t g = 0; g < 8; ++g) se[g] = standard_error_of(sums[g], squares[g], in.sample_count);
+  pass_in_registers<EightDoubles, 1>(in, dots, se);
 }
 #endif
 
