@@ -22,32 +22,31 @@ inline bool registers_allowed(Registers registers) {
   return static_cast<int>(registers) <= detail::widest_registers.load(std::memory_order_relaxed);
 }
 
-// Whether the processor (and the operating system, which must save its registers) has AVX: 256-bit
-// registers of 4 doubles or 8 floats, and they are allowed. Always false off x86.
-inline bool cpu_has_avx() {
+namespace detail {
+// The processor's features, read once: whether it (and the operating system, which must save their
+// registers) has AVX (256-bit registers of 4 doubles or 8 floats) and AVX-512 Foundation (512-bit registers
+// of 8 doubles or 16 floats). None off x86.
+struct CpuFeatures {
+  bool avx = false;
+  bool avx512f = false;
+};
+inline const CpuFeatures& cpu_features() {
+  static const CpuFeatures features = [] {
+    CpuFeatures f;
 #if defined(__x86_64__) || defined(__i386__)
-  static const bool avx = [] {
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx") != 0;
-  }();
-  return avx && registers_allowed(Registers::kAvx);
-#else
-  return false;
+    f.avx = __builtin_cpu_supports("avx") != 0;
+    f.avx512f = __builtin_cpu_supports("avx512f") != 0;
 #endif
+    return f;
+  }();
+  return features;
 }
+}  // namespace detail
 
-// Whether the processor (and the operating system) has AVX-512 Foundation: 512-bit registers of 8 doubles
-// or 16 floats, and they are allowed. Always false off x86.
-inline bool cpu_has_avx512f() {
-#if defined(__x86_64__) || defined(__i386__)
-  static const bool avx512f = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx512f") != 0;
-  }();
-  return avx512f && registers_allowed(Registers::kAvx512);
-#else
-  return false;
-#endif
-}
+// Whether the kernels may take AVX registers: the processor has them and they are allowed.
+inline bool cpu_has_avx() { return detail::cpu_features().avx && registers_allowed(Registers::kAvx); }
+// Whether the kernels may take AVX-512 registers: the processor has them and they are allowed.
+inline bool cpu_has_avx512f() { return detail::cpu_features().avx512f && registers_allowed(Registers::kAvx512); }
 
 }  // namespace spread

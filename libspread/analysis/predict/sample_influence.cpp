@@ -121,10 +121,11 @@ void wide_kernel_pass(const SampleInfluence& in, std::size_t count, const metric
       se);
 }
 #if defined(__x86_64__) || defined(__i386__)
+// Four doubles side by side: one AVX register (GCC/Clang vector extension).
+typedef double FourDoubles __attribute__((vector_size(32)));
 template <std::size_t kCount>
 __attribute__((target("avx"))) void wide_kernel_pass_avx(const SampleInfluence& in, std::size_t count,
                                                           const metrics::WideKernelDots& dots, double* se) {
-  typedef double FourDoubles __attribute__((vector_size(32)));
   influence_pass<kCount>(
       in, count,
       [&dots](double x, double* d) __attribute__((always_inline)) { dots.template dots_in<kCount, FourDoubles>(x, d, false); },
@@ -183,7 +184,6 @@ __attribute__((always_inline)) inline void pass_in_registers(const SampleInfluen
   std::memcpy(squares, sum_squares, sizeof squares);
   for (std::size_t g = 0; g < kCount; ++g) se[g] = standard_error_of(sums[g], squares[g], in.sample_count);
 }
-typedef double FourDoubles __attribute__((vector_size(32)));
 typedef double EightDoubles __attribute__((vector_size(64)));
 // 4 or 8 gradients in one or two AVX registers.
 template <std::size_t kVectors>
