@@ -14,7 +14,9 @@ using namespace spread::dem;
 
 namespace {
 
-DemEngine dense_block(int threads) {
+// uniform: one radius for all (the material pair's coefficients tabulated, the law in lanes where the
+// processor has them); else radii varied, every pair's coefficients its own.
+DemEngine dense_block(int threads, bool uniform = false, bool periodic = false) {
   Material p;
   p.name = "bead";
   p.friction_particle = p.friction_wall = 0.5;
@@ -35,6 +37,7 @@ DemEngine dense_block(int threads) {
   ep.max_particle_radius_m = 2.0e-3;
   ep.impact_speed_m_s = 1.0;
   ep.threads = threads;
+  if (periodic) ep.periodic_z = {true, 0.0, 8 * 3.99e-3};  // the 8 layers, the top one touching the bottom one
   DemEngine e({p, w}, {}, walls, ep);
   // 24 × 24 × 8 grid, neighbours just touching (spacing 3.99 mm for radii up to 2 mm), sizes and
   // velocities varied deterministically so that every pair differs.
@@ -43,7 +46,8 @@ DemEngine dense_block(int threads) {
     for (int iy = 0; iy < 24; ++iy)
       for (int iz = 0; iz < 8; ++iz, ++k)
         e.add_particle(Vec3(ix * 3.99e-3, iy * 3.99e-3, 2.0e-3 + iz * 3.99e-3),
-                       Vec3(0.01 * ((k * 7) % 5 - 2), 0.01 * ((k * 3) % 5 - 2), -0.05), 1.8e-3 + 0.2e-3 * ((k * 11) % 10) / 9.0, 0,
+                       Vec3(0.01 * ((k * 7) % 5 - 2), 0.01 * ((k * 3) % 5 - 2), -0.05),
+                       uniform ? 1.995e-3 : 1.8e-3 + 0.2e-3 * ((k * 11) % 10) / 9.0, 0,
                        Vec3(0.0, 0.0, 0.5 * ((k * 5) % 3 - 1)));
   return e;
 }
@@ -82,14 +86,21 @@ TEST(DemPairPass, OneThreadAndTwoThreadsGiveIdenticalStates) {
 
 // The pair pass chosen at run time (AVX-512's encoding where the processor has it) gives the bits of the
 // portable one: 60 steps of a dense block, every state compared.
+// Both with radii varied (each pair alone) and with one radius (eight pairs in lanes), along a periodic axis
+// too (the minimum image in lanes).
 TEST(DemPairPass, WidestRegistersGiveIdenticalStates) {
-  DemEngine widest = dense_block(1);
-  limit_registers(Registers::kBaseline);
-  DemEngine portable = dense_block(1);
-  for (int s = 0; s < 60; ++s) portable.step();
-  limit_registers(Registers::kAvx512);
-  for (int s = 0; s < 60; ++s) widest.step();
-  EXPECT_GT(expect_identical_states(widest, portable), 100u);
+  for (const bool uniform : {false, true})
+    for (const bool periodic : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "uniform " << uniform << ", periodic " << periodic);
+      limit_registers(Registers::kAvx512);
+      DemEngine widest = dense_block(1, uniform, periodic);
+      limit_registers(Registers::kBaseline);
+      DemEngine portable = dense_block(1, uniform, periodic);
+      for (int s = 0; s < 60; ++s) portable.step();
+      limit_registers(Registers::kAvx512);
+      for (int s = 0; s < 60; ++s) widest.step();
+      EXPECT_GT(expect_identical_states(widest, portable), 100u);
+    }
   if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
 }
 

@@ -85,7 +85,7 @@ struct ComposedLaw {
     return c;
   }
 
-  // One contact (T = double) or two (T = lanes::Lanes2) with the same coefficients c and friction μ.
+  // One contact (T = double) or several (T = lanes::Lanes2, Lanes8) with the same coefficients c and friction μ.
   // contact_normal: unit normal from b to a, and its unnormalised axis (ContactNormal); delta_m: overlap > 0;
   // slip_m_s: Eq. 8; h: in/out history (the elastic tangential force and this evaluation's overlap).
   template <class T>
@@ -126,16 +126,20 @@ struct ComposedLaw {
       return {0.0, 0.0, 0.0};
     }
   }
-  // Two contacts' rolling torques, lane by lane the one-contact torque.
-  SPREAD_CONTACT_INLINE static lanes::V3<lanes::Lanes2> rolling_torque(const PairParams& p, lanes::Lanes2 normal_force_n,
-                                                                       double r_eff_m,
-                                                                       const lanes::V3<lanes::Lanes2>& relative_spin_rad_s,
-                                                                       lanes::Lanes2 inertia_eff_kg_m2, double dt_s) {
-    const lanes::V3<double> t0 = rolling_torque(p, normal_force_n[0], r_eff_m, lanes::lane3(relative_spin_rad_s, 0),
-                                                inertia_eff_kg_m2[0], dt_s);
-    const lanes::V3<double> t1 = rolling_torque(p, normal_force_n[1], r_eff_m, lanes::lane3(relative_spin_rad_s, 1),
-                                                inertia_eff_kg_m2[1], dt_s);
-    return {lanes::pack(t0.x, t1.x), lanes::pack(t0.y, t1.y), lanes::pack(t0.z, t1.z)};
+  // Several contacts' rolling torques (T = lanes::Lanes2 or Lanes8), lane by lane the one-contact torque.
+  template <class T>
+  SPREAD_CONTACT_INLINE static lanes::V3<T> rolling_torque(const PairParams& p, T normal_force_n, double r_eff_m,
+                                                           const lanes::V3<T>& relative_spin_rad_s, T inertia_eff_kg_m2,
+                                                           double dt_s) {
+    lanes::V3<T> out;
+    for (int l = 0; l < static_cast<int>(sizeof(T) / sizeof(double)); ++l) {
+      const lanes::V3<double> t = rolling_torque(p, normal_force_n[l], r_eff_m, lanes::lane3(relative_spin_rad_s, l),
+                                                 inertia_eff_kg_m2[l], dt_s);
+      out.x[l] = t.x;
+      out.y[l] = t.y;
+      out.z[l] = t.z;
+    }
+    return out;
   }
 
   // Lever arm from a's centre to the contact point (Eq. 10): how the normal model shares the overlap.

@@ -1,7 +1,8 @@
 #pragma once
-// Arithmetic written once for one contact (T = double) or for two contacts side by side (T = Lanes2:
-// two doubles in one SSE2 register, GCC/Clang vector extension). The contact laws and the pair geometry
-// are templates over T; the pair pass feeds the touching pairs two at a time.
+// Arithmetic written once for one contact (T = double), for two contacts side by side (T = Lanes2:
+// two doubles in one SSE2 register, GCC/Clang vector extension) or for eight (T = Lanes8: one AVX-512
+// register where the caller is compiled for it). The contact laws and the pair geometry are templates
+// over T; the pair pass feeds the touching pairs two at a time, or eight where the processor has AVX-512.
 //
 // Every operation acts lane by lane with the same IEEE operation as the scalar code (no fused
 // multiply-add on the x86-64 baseline, sqrt and division correctly rounded), so a pair gives bit for bit
@@ -13,15 +14,24 @@
 #include <emmintrin.h>
 #endif
 
+// Eight-lane values pass only between always-inline functions inside functions compiled for AVX-512 (the
+// pair pass): no call ever takes or returns one, so the compilers' note that the ABI of such a call
+// differs without AVX-512 does not apply.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace spread::dem::lanes {
 
 using Lanes2 = double __attribute__((vector_size(16)));
 using Mask2 = decltype(Lanes2{} < Lanes2{});  // lane all ones (true) or all zeros
+using Lanes8 = double __attribute__((vector_size(64)));
+using Mask8 = decltype(Lanes8{} < Lanes8{});
 
 // Broadcast: the same value in every lane.
 template <class T> inline T splat(double v);
 template <> inline double splat<double>(double v) { return v; }
 template <> inline Lanes2 splat<Lanes2>(double v) { return Lanes2{v, v}; }
+template <> inline Lanes8 splat<Lanes8>(double v) { return Lanes8{v, v, v, v, v, v, v, v}; }
 
 inline double sqrt(double v) { return std::sqrt(v); }
 inline Lanes2 sqrt(Lanes2 v) {
@@ -31,22 +41,48 @@ inline Lanes2 sqrt(Lanes2 v) {
   return Lanes2{std::sqrt(v[0]), std::sqrt(v[1])};
 #endif
 }
+// Four correctly rounded two-lane roots (the eight-lane code runs inside AVX-512 functions, which
+// combine them; no target-specific intrinsic here, so the template code calling it needs no target).
+inline Lanes8 sqrt(Lanes8 v) {
+  Lanes8 r;
+  for (int k = 0; k < 8; k += 2) {
+    const Lanes2 s = sqrt(Lanes2{v[k], v[k + 1]});
+    r[k] = s[0];
+    r[k + 1] = s[1];
+  }
+  return r;
+}
 
 // select(m, a, b): a where m holds, else b.
 inline double select(bool m, double a, double b) { return m ? a : b; }
 inline Lanes2 select(Mask2 m, Lanes2 a, Lanes2 b) {
   return reinterpret_cast<Lanes2>((reinterpret_cast<Mask2>(a) & m) | (reinterpret_cast<Mask2>(b) & ~m));
 }
+inline Lanes8 select(Mask8 m, Lanes8 a, Lanes8 b) {
+  return reinterpret_cast<Lanes8>((reinterpret_cast<Mask8>(a) & m) | (reinterpret_cast<Mask8>(b) & ~m));
+}
 inline bool both(bool a, bool b) { return a && b; }
 inline Mask2 both(Mask2 a, Mask2 b) { return a & b; }
+inline Mask8 both(Mask8 a, Mask8 b) { return a & b; }
 inline bool any(bool m) { return m; }
 inline bool any(Mask2 m) { return (m[0] | m[1]) != 0; }
 inline bool all(bool m) { return m; }
 inline bool all(Mask2 m) { return (m[0] & m[1]) != 0; }
+// Eight lanes folded in halves: 8 → 4 → 2 → 1.
+using Mask4 = long __attribute__((vector_size(32)));
+inline bool any(Mask8 m) {
+  const Mask4 h = __builtin_shufflevector(m, m, 0, 1, 2, 3) | __builtin_shufflevector(m, m, 4, 5, 6, 7);
+  return any(__builtin_shufflevector(h, h, 0, 1) | __builtin_shufflevector(h, h, 2, 3));
+}
+inline bool all(Mask8 m) {
+  const Mask4 h = __builtin_shufflevector(m, m, 0, 1, 2, 3) & __builtin_shufflevector(m, m, 4, 5, 6, 7);
+  return all(__builtin_shufflevector(h, h, 0, 1) & __builtin_shufflevector(h, h, 2, 3));
+}
 
 // std::max(0.0, v) lane by lane: v where 0 < v, else +0 (a NaN becomes 0, as std::max(0.0, NaN)).
 inline double max0(double v) { return 0.0 < v ? v : 0.0; }
 inline Lanes2 max0(Lanes2 v) { return select(Lanes2{0.0, 0.0} < v, v, Lanes2{0.0, 0.0}); }
+inline Lanes8 max0(Lanes8 v) { return select(splat<Lanes8>(0.0) < v, v, splat<Lanes8>(0.0)); }
 
 // A 3-vector of T (the contact kernel's own; Eigen's Vec3 stays the interface type).
 template <class T>
@@ -70,6 +106,8 @@ template <class T> inline V3<T> zero3() { return {splat<T>(0.0), splat<T>(0.0), 
 // Lane l of a two-lane value, and two scalars packed.
 inline double lane(Lanes2 v, int l) { return v[l]; }
 inline Lanes2 pack(double a, double b) { return Lanes2{a, b}; }
-inline V3<double> lane3(const V3<Lanes2>& v, int l) { return {v.x[l], v.y[l], v.z[l]}; }
+template <class T> inline V3<double> lane3(const V3<T>& v, int l) { return {v.x[l], v.y[l], v.z[l]}; }
 
 }  // namespace spread::dem::lanes
+
+#pragma GCC diagnostic pop

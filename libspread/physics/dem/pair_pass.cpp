@@ -7,6 +7,10 @@
 #include <cstdint>
 #include <utility>
 
+// The contact laws' templates take eight-lane values here, inlined into the AVX-512 pass only (lanes.hpp).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+
 #include "libspread/core/cpu_features.hpp"
 #include "libspread/physics/dem/contact_laws.hpp"
 #include "libspread/physics/dem/engine.hpp"
@@ -132,10 +136,11 @@ SPREAD_CONTACT_INLINE void add_pair(const PairPassArrays<typename V::Law>& a, Fi
   }
 }
 
-// One touching pair alone (T = double): any materials and sizes.
+// One touching pair alone (T = double): any materials and sizes. Its history is updated; the result is
+// returned for the sums.
 template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void one_pair(const PairPassArrays<typename V::Law>& a, FirstBody<typename V::Law>& b, std::uint32_t k,
-                                    double dist2) {
+SPREAD_CONTACT_INLINE PairOut<double> one_pair_out(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b,
+                                                   std::uint32_t k, double dist2) {
   using Law = typename V::Law;
   const std::size_t j = a.partner[k];
   double* const hist = a.history + static_cast<std::size_t>(k) * kHistoryDoubles;
@@ -154,7 +159,12 @@ SPREAD_CONTACT_INLINE void one_pair(const PairPassArrays<typename V::Law>& a, Fi
                                                             b.v - V3<double>{a.vx[j], a.vy[j], a.vz[j]}, b.w, wj,
                                                             inertia_eff, pp, pc, a.dt_s, h);
   store_history(h, hist);
-  add_pair<V, kForm>(a, b, k, j, r);
+  return r;
+}
+template <class V, PairForm kForm>
+SPREAD_CONTACT_INLINE void one_pair(const PairPassArrays<typename V::Law>& a, FirstBody<typename V::Law>& b, std::uint32_t k,
+                                    double dist2) {
+  add_pair<V, kForm>(a, b, k, a.partner[k], one_pair_out<V, kForm>(a, b, k, dist2));
 }
 
 // Two touching pairs of one material pair whose table entry holds (both materials of one size), side by
@@ -191,19 +201,26 @@ SPREAD_CONTACT_INLINE void two_pairs(const PairPassArrays<typename V::Law>& a, F
 // Stage 1 of a chunk of i's pairs [chunk, chunk_end): without a branch on "touching" — about a third of
 // the listed pairs touch, scattered, so that branch was mispredicted often — the touching pairs' indices
 // and squared distances are appended to the buffers; a pair that has just come apart releases its
-// tangential spring. Returns how many touch.
+// tangential spring. Returns how many touch. With pair vectors given (d[3], batched pass below), each
+// touching pair's vector from j to i is kept too.
 template <class V, PairForm kForm>
 SPREAD_CONTACT_INLINE std::uint32_t touching_in_chunk(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b,
                                                       std::uint32_t chunk, std::uint32_t chunk_end, std::uint32_t* pairs,
-                                                      double* dist2s) {
+                                                      double* dist2s, double* const* d = nullptr) {
   std::uint32_t touching = 0;
   for (std::uint32_t k = chunk; k < chunk_end; ++k) {
     const std::size_t j = a.partner[k];
-    const double dist2 = squared_norm(separation<typename V::Law, kForm>(a, b, j));
+    const V3<double> dk = separation<typename V::Law, kForm>(a, b, j);
+    const double dist2 = squared_norm(dk);
     const double cut = b.r + a.radius[j];
     const bool touches = (dist2 < cut * cut) & b.active & (a.active[j] != 0) & (dist2 != 0.0);
     pairs[touching] = k;
     dist2s[touching] = dist2;
+    if (d != nullptr) {
+      d[0][touching] = dk.x;
+      d[1][touching] = dk.y;
+      d[2][touching] = dk.z;
+    }
     touching += touches ? 1u : 0u;
     // The history is touched only if it holds anything (held byte): the apart pairs cost a byte read, not
     // 32 bytes. Rarely true, so predictable.
@@ -243,21 +260,26 @@ SPREAD_CONTACT_INLINE void law_over_touching(const PairPassArrays<typename V::La
 // order as the direct pass; direct, every pair with i as `second` came earlier (its `first` is smaller),
 // so sums[i] is complete and goes into the force sums.
 template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void finish_particle(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b) {
-  PairSum& si = a.sums[b.i];
+SPREAD_CONTACT_INLINE void finish_sums(const PairPassArrays<typename V::Law>& a, std::size_t i, const double (&sum_f)[3],
+                                       const double (&sum_t)[3]) {
+  PairSum& si = a.sums[i];
   if constexpr (kForm.store_pairs) {
-    for (int c = 0; c < 3; ++c) { si.f[c] = b.sum_f[c]; if constexpr (V::kRotation) si.t[c] = b.sum_t[c]; }
+    for (int c = 0; c < 3; ++c) { si.f[c] = sum_f[c]; if constexpr (V::kRotation) si.t[c] = sum_t[c]; }
     return;
   }
-  a.fx[b.i] += si.f[0] + b.sum_f[0];
-  a.fy[b.i] += si.f[1] + b.sum_f[1];
-  a.fz[b.i] += si.f[2] + b.sum_f[2];
+  a.fx[i] += si.f[0] + sum_f[0];
+  a.fy[i] += si.f[1] + sum_f[1];
+  a.fz[i] += si.f[2] + sum_f[2];
   if constexpr (V::kRotation) {
-    a.tx[b.i] += si.t[0] + b.sum_t[0];
-    a.ty[b.i] += si.t[1] + b.sum_t[1];
-    a.tz[b.i] += si.t[2] + b.sum_t[2];
+    a.tx[i] += si.t[0] + sum_t[0];
+    a.ty[i] += si.t[1] + sum_t[1];
+    a.tz[i] += si.t[2] + sum_t[2];
   }
   si = PairSum{};
+}
+template <class V, PairForm kForm>
+SPREAD_CONTACT_INLINE void finish_particle(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b) {
+  finish_sums<V, kForm>(a, b.i, b.sum_f, b.sum_t);
 }
 
 template <class V>
@@ -305,6 +327,173 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_avx512(
 #pragma omp parallel for schedule(static) num_threads(threads) if (parallel) firstprivate(a)
   for (long long ii = 0; ii < count; ++ii) pass_particle<V, kForm>(a, ii);
 }
+
+// The batched pass (one thread, sums added directly): the touching pairs of consecutive particles are
+// staged, the law runs over them eight at a time in AVX-512 lanes — pairs of different first bodies
+// side by side — and the results are added in pair order afterwards. A pair's law reads only the state
+// and its own history, never a sum, so computing all of a batch's forces before adding any changes no
+// sum: each is added to in the same order as in pass_particle (the same bits).
+struct PairBatch {
+  static constexpr std::uint32_t kPairs = 256;  // staged pairs: about 30 KB with the results, within L1
+  static constexpr std::uint32_t kSlots = kPairs + 8;
+  alignas(64) double d[3][kSlots];  // pair vector from j to i (m)
+  alignas(64) double dist2[kSlots];  // |d|² (m²)
+  alignas(64) double f[3][kSlots], t_i[3][kSlots], t_j[3][kSlots];
+  std::uint32_t k[kSlots], i[kSlots], j[kSlots];  // pair index, first body, second body
+  std::uint32_t particle_end[kPairs];  // the staged pairs of the window's p-th particle end at particle_end[p]
+};
+
+// Eight values into one register, two at a time (a load and a load into the upper half), then the halves
+// joined: GCC's per-lane insertion went through the stack, a 64-byte load after eight 8-byte stores.
+SPREAD_CONTACT_INLINE lanes::Lanes8 lanes8(double a0, double a1, double a2, double a3, double a4, double a5, double a6,
+                                           double a7) {
+  using Lanes4 = double __attribute__((vector_size(32)));
+  const Lanes4 low = __builtin_shufflevector(lanes::Lanes2{a0, a1}, lanes::Lanes2{a2, a3}, 0, 1, 2, 3);
+  const Lanes4 high = __builtin_shufflevector(lanes::Lanes2{a4, a5}, lanes::Lanes2{a6, a7}, 0, 1, 2, 3);
+  return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+SPREAD_CONTACT_INLINE lanes::Lanes8 gather_lanes8(const double* base, const std::uint32_t* index) {
+  return lanes8(base[index[0]], base[index[1]], base[index[2]], base[index[3]], base[index[4]], base[index[5]],
+                base[index[6]], base[index[7]]);
+}
+SPREAD_CONTACT_INLINE lanes::Lanes8 load_lanes8(const double* p) {
+  lanes::Lanes8 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+SPREAD_CONTACT_INLINE void store_lanes8(double* p, lanes::Lanes8 v) { __builtin_memcpy(p, &v, sizeof v); }
+
+// Staged pairs [q, q + 8): one material pair whose table entry holds (both materials of one size), eight
+// pairs in lanes; otherwise each alone. Lanes past `valid` repeat pair q and are not written back.
+template <class V, PairForm kForm>
+SPREAD_CONTACT_INLINE void eight_pairs(const PairPassArrays<typename V::Law>& a, PairBatch& s, std::uint32_t q,
+                                       std::uint32_t valid) {
+  using Law = typename V::Law;
+  using lanes::Lanes8;
+  std::uint32_t* const j = s.j + q;
+  for (int l = 0; l < 8; ++l) {
+    j[l] = a.partner[s.k[q + l]];
+    // Stage 3 adds into j's sums, which a later particle finished a step ago: likely out of L2 by now.
+    __builtin_prefetch(a.sums + j[l], 1);
+  }
+  bool one_entry = true;
+  std::size_t entry = 0;
+  if (a.material_count > 1) {
+    const std::uint16_t mi = a.material[s.i[q]], mj = a.material[j[0]];
+    for (int l = 1; l < 8; ++l) one_entry &= (a.material[s.i[q + l]] == mi) & (a.material[j[l]] == mj);
+    entry = static_cast<std::size_t>(mi) * a.material_count + mj;
+  }
+  if (!one_entry || !a.coeffs[entry].uniform) {
+    for (std::uint32_t l = 0; l < valid; ++l) {
+      const FirstBody<Law> b = first_body<V>(a, s.i[q + l]);
+      const PairOut<double> r = one_pair_out<V, kForm>(a, b, s.k[q + l], s.dist2[q + l]);
+      for (int c = 0; c < 3; ++c) {
+        s.f[c][q + l] = (&r.f.x)[c];
+        s.t_i[c][q + l] = (&r.t_i.x)[c];
+        s.t_j[c][q + l] = (&r.t_j.x)[c];
+      }
+    }
+    return;
+  }
+  const std::uint32_t* i = s.i + q;
+  const V3<Lanes8> v_rel{gather_lanes8(a.vx, i) - gather_lanes8(a.vx, j), gather_lanes8(a.vy, i) - gather_lanes8(a.vy, j),
+                         gather_lanes8(a.vz, i) - gather_lanes8(a.vz, j)};
+  V3<Lanes8> wi = lanes::zero3<Lanes8>(), wj = lanes::zero3<Lanes8>();
+  if constexpr (V::kRotation) {
+    wi = V3<Lanes8>{gather_lanes8(a.wx, i), gather_lanes8(a.wy, i), gather_lanes8(a.wz, i)};
+    wj = V3<Lanes8>{gather_lanes8(a.wx, j), gather_lanes8(a.wy, j), gather_lanes8(a.wz, j)};
+  }
+  Lanes8 inertia_eff = splat<Lanes8>(0.0);
+  if constexpr (Law::kRolling) {
+    const Lanes8 ii = gather_lanes8(a.inertia, i), ij = gather_lanes8(a.inertia, j);
+    inertia_eff = ii * ij / (ii + ij);
+  }
+  const double* hist[8];
+  for (int l = 0; l < 8; ++l) hist[l] = a.history + static_cast<std::size_t>(s.k[q + l]) * kHistoryDoubles;
+  LawHistory<Lanes8> h;
+  Lanes8* const h_slots[kHistoryDoubles] = {&h.elastic.x, &h.elastic.y, &h.elastic.z, &h.overlap_m};
+  for (int c = 0; c < kHistoryDoubles; ++c)
+    *h_slots[c] = lanes8(hist[0][c], hist[1][c], hist[2][c], hist[3][c], hist[4][c], hist[5][c], hist[6][c], hist[7][c]);
+  const PairOut<Lanes8> r = pair_contact<V>(
+      V3<Lanes8>{load_lanes8(s.d[0] + q), load_lanes8(s.d[1] + q), load_lanes8(s.d[2] + q)}, load_lanes8(s.dist2 + q),
+      gather_lanes8(a.radius, i), gather_lanes8(a.radius, j), v_rel, wi, wj, inertia_eff, a.params[entry], a.coeffs[entry],
+      a.dt_s, h);
+  alignas(64) double h_out[kHistoryDoubles][8];
+  for (int c = 0; c < kHistoryDoubles; ++c) store_lanes8(h_out[c], *h_slots[c]);
+  for (std::uint32_t l = 0; l < valid; ++l)
+    for (int c = 0; c < kHistoryDoubles; ++c) const_cast<double*>(hist[l])[c] = h_out[c][l];
+  const V3<Lanes8>* outs[3] = {&r.f, &r.t_i, &r.t_j};
+  double(*slots[3])[PairBatch::kSlots] = {s.f, s.t_i, s.t_j};
+  for (int o = 0; o < 3; ++o) {
+    store_lanes8(slots[o][0] + q, outs[o]->x);
+    store_lanes8(slots[o][1] + q, outs[o]->y);
+    store_lanes8(slots[o][2] + q, outs[o]->z);
+  }
+}
+
+template <class V, PairForm kForm>
+__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched_avx512(PairPassArrays<typename V::Law> a,
+                                                                                       long long count) {
+  static_assert(!kForm.store_pairs, "the batched pass adds the sums directly (one thread)");
+  PairBatch s;
+  long long i0 = 0;
+  while (i0 < count) {
+    // Stage 1 over the particles whose lists fit in the batch.
+    std::uint32_t n = 0, particles = 0;
+    long long i1 = i0;
+    for (; i1 < count && particles < PairBatch::kPairs; ++i1) {
+      const std::uint32_t k0 = a.pair_start[i1], k1 = a.pair_start[i1 + 1];
+      if (n + (k1 - k0) > PairBatch::kPairs) break;
+      const FirstBody<typename V::Law> b = first_body<V>(a, static_cast<std::size_t>(i1));
+      double* const d[3] = {s.d[0] + n, s.d[1] + n, s.d[2] + n};
+      const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, k0, k1, s.k + n, s.dist2 + n, d);
+      for (std::uint32_t q = n; q < n + touching; ++q) s.i[q] = static_cast<std::uint32_t>(i1);
+      n += touching;
+      s.particle_end[particles++] = n;
+    }
+    if (particles == 0) {  // a list longer than the batch: that particle alone, as the other passes do
+      pass_particle<V, kForm>(a, i0++);
+      continue;
+    }
+    // Stage 2: the law, eight pairs at a time; the last group's spare lanes repeat its first pair.
+    constexpr std::uint32_t kAhead = 16;  // pairs: two groups
+    for (std::uint32_t p = 0; p < std::min(kAhead, n); ++p)
+      __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
+    for (std::uint32_t q = 0; q < n; q += 8) {
+      const std::uint32_t valid = std::min<std::uint32_t>(8, n - q);
+      for (std::uint32_t l = valid; l < 8; ++l) {
+        s.k[q + l] = s.k[q];
+        s.i[q + l] = s.i[q];
+        s.dist2[q + l] = s.dist2[q];
+        for (int c = 0; c < 3; ++c) s.d[c][q + l] = s.d[c][q];
+      }
+      // The histories (32 bytes per listed pair, megabytes in all) of two groups ahead.
+      for (std::uint32_t p = q + kAhead; p < std::min(q + kAhead + 8, n); ++p)
+        __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
+      eight_pairs<V, kForm>(a, s, q, valid);
+    }
+    // Stage 3: the sums, in pair order.
+    std::uint32_t q = 0;
+    for (std::uint32_t p = 0; p < particles; ++p) {
+      double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
+      for (; q < s.particle_end[p]; ++q) {
+        a.held[s.k[q]] = 1;
+        PairSum& sj = a.sums[s.j[q]];
+        for (int c = 0; c < 3; ++c) {
+          sum_f[c] += s.f[c][q];
+          sj.f[c] -= s.f[c][q];
+        }
+        if constexpr (V::kRotation)
+          for (int c = 0; c < 3; ++c) {
+            sum_t[c] += s.t_i[c][q];
+            sj.t[c] += s.t_j[c][q];
+          }
+      }
+      finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t);
+    }
+    i0 = i1;
+  }
+}
 #endif
 
 // The same operations either way (the law's lanes stay two doubles wide), with AVX-512's 32 vector
@@ -314,7 +503,8 @@ template <class V, PairForm kForm>
 void pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads) {
 #if defined(__x86_64__) || defined(__i386__)
   if (cpu_has_avx512f()) {
-    pair_pass_avx512<V, kForm>(a, count, threads);
+    if constexpr (!kForm.store_pairs) pair_pass_batched_avx512<V, kForm>(a, count);
+    else pair_pass_avx512<V, kForm>(a, count, threads);
     return;
   }
 #endif
