@@ -208,6 +208,10 @@ class DemEngine {
   std::uint32_t next_id_ = 1;
   bool lists_dirty_ = true;
   bool forces_valid_ = false;
+  // Velocity Verlet's closing half kick, handed to the particle–particle pass (Δt/2, 0: none); the pass
+  // says whether it applied it.
+  double kick_in_pass_dt_s_ = 0.0;
+  bool kicked_in_pass_ = false;
   std::size_t inactive_ = 0;
 };
 

@@ -52,7 +52,29 @@ struct PairPassArrays {
   const typename Law::Coeffs* coeffs;                  // Law::coeffs per material pair
   std::size_t material_count;
   double period_m, dt_s;
+  // Velocity Verlet's closing half kick, applied to each particle as its sums complete (the data are
+  // still in cache; DemEngine::kick would read them all again): Δt/2 (s), 0 when the step has no kick here.
+  double kick_dt_s;
+  double gravity_m_s2[3];
+  const double *inv_mass, *inv_inertia;
+  double *kick_v[3], *kick_w[3];  // the velocities and spins the kick writes (the same arrays as vx… wz)
 };
+
+// v += Δt (F/m + g), ω += Δt T/I for particle i, exactly as DemEngine::kick and kick_spin do it.
+template <bool kRotation, class Law>
+SPREAD_CONTACT_INLINE void kick_particle(const PairPassArrays<Law>& a, std::size_t i) {
+  if (!a.active[i]) return;
+  const double dt = a.kick_dt_s, inv_m = a.inv_mass[i];
+  a.kick_v[0][i] += dt * (a.fx[i] * inv_m + a.gravity_m_s2[0]);
+  a.kick_v[1][i] += dt * (a.fy[i] * inv_m + a.gravity_m_s2[1]);
+  a.kick_v[2][i] += dt * (a.fz[i] * inv_m + a.gravity_m_s2[2]);
+  if constexpr (kRotation) {
+    const double inv_i = a.inv_inertia[i];
+    a.kick_w[0][i] += dt * a.tx[i] * inv_i;
+    a.kick_w[1][i] += dt * a.ty[i] * inv_i;
+    a.kick_w[2][i] += dt * a.tz[i] * inv_i;
+  }
+}
 
 // Particle i as its pairs read it (it is `first` in all of them), and its share of its pairs, summed from
 // zero in pair order.
@@ -276,6 +298,7 @@ SPREAD_CONTACT_INLINE void finish_sums(const PairPassArrays<typename V::Law>& a,
     a.tz[i] += si.t[2] + sum_t[2];
   }
   si = PairSum{};
+  if (a.kick_dt_s != 0.0) kick_particle<V::kRotation>(a, i);
 }
 template <class V, PairForm kForm>
 SPREAD_CONTACT_INLINE void finish_particle(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b) {
@@ -527,12 +550,16 @@ void DemEngine::particle_forces() {
       pairs_.torque_first.data(), pairs_.torque_second.data(), pair_sum_.data(), p_.fx.data(), p_.fy.data(),
       p_.fz.data(), with_spin ? p_.tx.data() : nullptr, with_spin ? p_.ty.data() : nullptr,
       with_spin ? p_.tz.data() : nullptr, &pair_table_(0, 0), coeffs_table<Law>(pair_coeffs_),
-      pair_table_.material_count(), params_.periodic_z.length_m(), dt_s_};
+      pair_table_.material_count(), params_.periodic_z.length_m(), dt_s_, kick_in_pass_dt_s_,
+      {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()}, p_.inv_mass_kg.data(),
+      with_spin ? p_.inv_inertia_kg_m2.data() : nullptr, {p_.vx.data(), p_.vy.data(), p_.vz.data()},
+      {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr}};
   const long long count = static_cast<long long>(n);
   // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
   // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
   const bool store = (params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems) || monitor_ != nullptr;
   const bool periodic = params_.periodic_z.enabled;
+  kicked_in_pass_ = kick_in_pass_dt_s_ != 0.0;
   if (store) {
     if (periodic) pair_pass<V, PairForm{true, true}>(a, count, params_.threads);
     else pair_pass<V, PairForm{true, false}>(a, count, params_.threads);
@@ -569,6 +596,19 @@ void DemEngine::gather_stored_pair_forces() {
       p_.tz[i] += t[2] + si.t[2];
     }
     si = PairSum{};
+    if (kick_in_pass_dt_s_ != 0.0 && p_.active[i]) {  // as kick_particle
+      const double dt = kick_in_pass_dt_s_, inv_m = p_.inv_mass_kg[i];
+      const Vec3& g = params_.gravity_m_s2;
+      p_.vx[i] += dt * (p_.fx[i] * inv_m + g.x());
+      p_.vy[i] += dt * (p_.fy[i] * inv_m + g.y());
+      p_.vz[i] += dt * (p_.fz[i] * inv_m + g.z());
+      if constexpr (kRotation) {
+        const double inv_i = p_.inv_inertia_kg_m2[i];
+        p_.wx[i] += dt * p_.tx[i] * inv_i;
+        p_.wy[i] += dt * p_.ty[i] * inv_i;
+        p_.wz[i] += dt * p_.tz[i] * inv_i;
+      }
+    }
   }
 }
 

@@ -115,10 +115,26 @@ void DemEngine::wall_forces() {
     // Slots are filled from the front, so an empty first slot means no wall history to carry: most
     // particles of a bed touch no wall, and they skip the slot bookkeeping below.
     if (nc == 0 && p_.wall_key[base] == 0) continue;
-    OldWallSlots old(p_, base);
     WallBody b{p_.velocity(i), Vec3::Zero(), r, p_.mass_kg[i], p_.inertia_kg_m2[i], p_.material[i]};
     if constexpr (V::kRotation) b.w = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
     Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    // The usual case, a particle resting on the same walls as a step ago: each contact finds its own key
+    // in its own slot (keys are unique within a particle's slots, so that is the slot claim() would
+    // give), and its history is carried on in place, without the copy of every slot below.
+    bool in_place = true;
+    for (int c = 0; c < nc; ++c) in_place &= p_.wall_key[base + c] == wc[c].key;
+    if (in_place) {
+      for (int c = 0; c < nc; ++c) {
+        wall_contact<V>(pair_table_, wall_coeffs, material_count, walls_, b, wc[c], dt,
+                        &p_.wall_history[(base + c) * kHistoryDoubles], force, torque);
+        for (int k = 0; k < 3; ++k) p_.wall_normal[(base + c) * 3 + k] = wc[c].normal[k];
+      }
+      for (int s = nc; s < kWallSlots; ++s) p_.wall_key[base + s] = 0;
+      p_.fx[i] = force.x(); p_.fy[i] = force.y(); p_.fz[i] = force.z();
+      if constexpr (V::kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
+      continue;
+    }
+    OldWallSlots old(p_, base);
     for (int c = 0; c < nc; ++c) {
       const int match = old.claim(wc[c]);
       double hist[kHistoryDoubles] = {0.0, 0.0, 0.0, 0.0};
