@@ -169,8 +169,11 @@ class DemEngine {
   void forces_at_next_time();  // forces at the positions just predicted or drifted to t + Δt
   void kick(double dt);
   void kick_spin(double dt);  // ω += Δt T/I (rotation only); kick() and kick_drift() end with it
-  // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles.
+  // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles, which also measures the
+  // largest move since the last pair-list build (moved2_since_build_).
   void kick_drift(double dt_kick, double dt_drift);
+  template <bool kSpin>
+  void kick_drift_pass(double dt_kick, double dt_drift);
   void wrap_periodic_z();
   // Launched and lost particles leave (launch_collector.cpp).
   void collect();
@@ -211,6 +214,9 @@ class DemEngine {
   // Velocity Verlet's closing half kick, handed to the particle–particle pass (Δt/2, 0: none); the pass
   // says whether it applied it.
   double kick_in_pass_dt_s_ = 0.0;
+  // Largest squared move since the last pair-list build (m²), measured by the last drift; < 0: unknown
+  // (positions changed since in another way), maintain_lists measures it itself.
+  double moved2_since_build_ = -1.0;
   bool kicked_in_pass_ = false;
   std::size_t inactive_ = 0;
 };

@@ -19,8 +19,10 @@ void DemEngine::maintain_lists() {
   }
   if (!lists_dirty_) {
     const double half = 0.5 * skin_m_;
-    if (max_displacement2(p_, params_.periodic_z) > half * half) lists_dirty_ = true;
+    const double moved2 = moved2_since_build_ >= 0.0 ? moved2_since_build_ : max_displacement2(p_, params_.periodic_z);
+    if (moved2 > half * half) lists_dirty_ = true;
   }
+  moved2_since_build_ = -1.0;
   if (lists_dirty_) {
     if (inactive_ > 0) {
       // Compaction renumbers the slots; the pair history follows the particle ids.
