@@ -162,6 +162,7 @@ class DemEngine {
   void update_pair_coeffs();
   // Pair list and wall list rebuilt when needed (list_upkeep.cpp).
   void maintain_lists();
+  double inner_skin_m() const;  // the near list's skin (m)
   // The integrator families (integrators.cpp).
   void step_symplectic_euler();
   void step_velocity_verlet();
@@ -170,7 +171,7 @@ class DemEngine {
   void kick(double dt);
   void kick_spin(double dt);  // ω += Δt T/I (rotation only); kick() and kick_drift() end with it
   // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles, which also measures the
-  // largest move since the last pair-list build (moved2_since_build_).
+  // largest move since the near list's last build (moved2_since_near_).
   void kick_drift(double dt_kick, double dt_drift);
   template <bool kSpin>
   void kick_drift_pass(double dt_kick, double dt_drift);
@@ -184,6 +185,7 @@ class DemEngine {
   EngineParams params_;
   ParticleArrays p_;
   PairList pairs_;
+  NearList near_;  // the pairs the direct force pass looks at (neighbor_list.hpp)
   Collector collector_;
   EnergyMonitor* monitor_ = nullptr;
   GearPredictorCorrector gear_;  // Gear integrators only
@@ -214,9 +216,9 @@ class DemEngine {
   // Velocity Verlet's closing half kick, handed to the particle–particle pass (Δt/2, 0: none); the pass
   // says whether it applied it.
   double kick_in_pass_dt_s_ = 0.0;
-  // Largest squared move since the last pair-list build (m²), measured by the last drift; < 0: unknown
+  // Largest squared move since the near list's last build (m²), measured by the last drift; < 0: unknown
   // (positions changed since in another way), maintain_lists measures it itself.
-  double moved2_since_build_ = -1.0;
+  double moved2_since_near_ = -1.0;
   bool kicked_in_pass_ = false;
   std::size_t inactive_ = 0;
 };

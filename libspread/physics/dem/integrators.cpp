@@ -118,9 +118,9 @@ void DemEngine::kick_drift(double dt_kick, double dt_drift) {
 
 template <bool kSpin>
 void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
-  // kick(dt_kick), then x += dt_drift v, and the largest squared move since the last pair-list build
-  // (max_displacement2, which maintain_lists would otherwise take in a pass of its own): one pass over
-  // the particles. Each quantity is computed as kick, kick_spin and max_displacement2 compute it.
+  // kick(dt_kick), then x += dt_drift v, and the largest squared move since the near list's last build
+  // (which maintain_lists would otherwise measure in a pass of its own): one pass over the particles.
+  // Each quantity is computed as kick, kick_spin and max_displacement2 compute it.
   const std::size_t n = p_.size();
   const Vec3 g = params_.gravity_m_s2;
   double* const x = p_.x.data(); double* const y = p_.y.data(); double* const z = p_.z.data();
@@ -128,15 +128,15 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
   double* const wx = p_.wx.data(); double* const wy = p_.wy.data(); double* const wz = p_.wz.data();
   const double* const fx = p_.fx.data(); const double* const fy = p_.fy.data(); const double* const fz = p_.fz.data();
   const double* const tx = p_.tx.data(); const double* const ty = p_.ty.data(); const double* const tz = p_.tz.data();
-  const double* const x0 = p_.x0.data(); const double* const y0 = p_.y0.data(); const double* const z0 = p_.z0.data();
   const double* const inv_mass = p_.inv_mass_kg.data();
   const double* const inv_inertia = p_.inv_inertia_kg_m2.data();
   const std::uint8_t* const active = p_.active.data();
   const bool periodic = params_.periodic_z.enabled;
   const double period = params_.periodic_z.length_m();
   // x0 is sized at the first build; before it the move is measured by maintain_lists as before.
-  const bool measure = p_.x0.size() == n;
-  double moved2 = 0.0;
+  const bool measure_near = near_.x0.size() == n;
+  const double* const xn = near_.x0.data(); const double* const yn = near_.y0.data(); const double* const zn = near_.z0.data();
+  double moved2_near = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (active[i]) {
       const double inv_m = inv_mass[i];
@@ -153,18 +153,18 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
     x[i] += dt_drift * vx[i];
     y[i] += dt_drift * vy[i];
     z[i] += dt_drift * vz[i];
-    if (measure) {
-      const double dx = x[i] - x0[i], dy = y[i] - y0[i];
-      double dz = z[i] - z0[i];
+    if (measure_near) {
+      const double dx = x[i] - xn[i], dy = y[i] - yn[i];
+      double dz = z[i] - zn[i];
       if (periodic) dz = minimum_image_z(dz, period);  // a wrap is not a move
-      moved2 = std::max(moved2, dx * dx + dy * dy + dz * dz);
+      moved2_near = std::max(moved2_near, dx * dx + dy * dy + dz * dz);
     }
   }
-  moved2_since_build_ = measure ? moved2 : -1.0;
+  moved2_since_near_ = measure_near ? moved2_near : -1.0;
 }
 
 void DemEngine::wrap_periodic_z() {
-  moved2_since_build_ = -1.0;  // measured on the positions before the wrap: maintain_lists measures again
+  moved2_since_near_ = -1.0;  // measured before the wrap: maintain_lists measures again
   const PeriodicZ& pz = params_.periodic_z;
   const double period = pz.length_m();
   double* const z = p_.z.data();

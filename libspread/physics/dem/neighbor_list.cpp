@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "libspread/physics/dem/contact_kernel.hpp"
+
 namespace spread::dem {
 
 namespace {
@@ -14,15 +16,50 @@ std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
 }  // namespace
 
 double max_displacement2(const ParticleArrays& p, const PeriodicZ& periodic) {
+  return max_displacement2(p, p.x0, p.y0, p.z0, periodic);
+}
+
+double max_displacement2(const ParticleArrays& p, const std::vector<double>& x_ref, const std::vector<double>& y_ref,
+                         const std::vector<double>& z_ref, const PeriodicZ& periodic) {
   double m = 0.0;
   const double period = periodic.length_m();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double dx = p.x[i] - p.x0[i], dy = p.y[i] - p.y0[i];
-    double dz = p.z[i] - p.z0[i];
+    const double dx = p.x[i] - x_ref[i], dy = p.y[i] - y_ref[i];
+    double dz = p.z[i] - z_ref[i];
     if (periodic.enabled) dz = minimum_image_z(dz, period);  // a wrap is not a move
     m = std::max(m, dx * dx + dy * dy + dz * dz);
   }
   return m;
+}
+
+void build_near_list(const ParticleArrays& p, double inner_skin_m, PairList& list, NearList& near, const PeriodicZ& periodic) {
+  const std::size_t n = p.size();
+  const double period = periodic.length_m();
+  near.inner_skin_m = inner_skin_m;
+  near.start.assign(n + 1, 0);
+  near.pairs.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    near.start[i] = static_cast<std::uint32_t>(near.pairs.size());
+    for (std::uint32_t k = list.first_start[i]; k < list.first_start[i + 1]; ++k) {
+      const std::uint32_t j = list.second[k];
+      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
+      double dz = p.z[i] - p.z[j];
+      if (periodic.enabled) dz = minimum_image_z(dz, period);
+      const double cut = p.radius_m[i] + p.radius_m[j] + inner_skin_m;
+      if (dx * dx + dy * dy + dz * dz < cut * cut) {
+        near.pairs.push_back(k);
+      } else if (list.held[k] != 0) {
+        clear_history(list.history.data() + static_cast<std::size_t>(k) * kHistoryDoubles);
+        list.held[k] = 0;
+      }
+    }
+  }
+  near.start[n] = static_cast<std::uint32_t>(near.pairs.size());
+  near.x0 = p.x;
+  near.y0 = p.y;
+  near.z0 = p.z;
+  near.moved_since_pair_build_m = std::sqrt(max_displacement2(p, periodic));
+  ++near.builds;
 }
 
 namespace {

@@ -58,7 +58,22 @@ struct PairPassArrays {
   double gravity_m_s2[3];
   const double *inv_mass, *inv_inertia;
   double *kick_v[3], *kick_w[3];  // the velocities and spins the kick writes (the same arrays as vx… wz)
+  // The pairs the direct pass looks at: entries [near_start[i], near_start[i + 1]) of near_pairs, each a
+  // pair index (the near list, neighbor_list.hpp); null: all of i's listed pairs (the stored form).
+  const std::uint32_t *near_start, *near_pairs;
 };
+
+// Particle i's pairs to look at: entries [begin, end) of `at` (null: the pair indices themselves).
+struct PairRange {
+  const std::uint32_t* at;
+  std::uint32_t begin, end;
+  std::uint32_t operator[](std::uint32_t e) const { return at != nullptr ? at[e] : e; }
+};
+template <class Law>
+SPREAD_CONTACT_INLINE PairRange pairs_of(const PairPassArrays<Law>& a, std::size_t i) {
+  if (a.near_start != nullptr) return {a.near_pairs, a.near_start[i], a.near_start[i + 1]};
+  return {nullptr, a.pair_start[i], a.pair_start[i + 1]};
+}
 
 // v += Δt (F/m + g), ω += Δt T/I for particle i, exactly as DemEngine::kick and kick_spin do it.
 template <bool kRotation, class Law>
@@ -227,10 +242,11 @@ SPREAD_CONTACT_INLINE void two_pairs(const PairPassArrays<typename V::Law>& a, F
 // touching pair's vector from j to i is kept too.
 template <class V, PairForm kForm>
 SPREAD_CONTACT_INLINE std::uint32_t touching_in_chunk(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b,
-                                                      std::uint32_t chunk, std::uint32_t chunk_end, std::uint32_t* pairs,
-                                                      double* dist2s, double* const* d = nullptr) {
+                                                      const PairRange& range, std::uint32_t chunk, std::uint32_t chunk_end,
+                                                      std::uint32_t* pairs, double* dist2s, double* const* d = nullptr) {
   std::uint32_t touching = 0;
-  for (std::uint32_t k = chunk; k < chunk_end; ++k) {
+  for (std::uint32_t e = chunk; e < chunk_end; ++e) {
+    const std::uint32_t k = range[e];
     const std::size_t j = a.partner[k];
     const V3<double> dk = separation<typename V::Law, kForm>(a, b, j);
     const double dist2 = squared_norm(dk);
@@ -321,11 +337,11 @@ template <class V, PairForm kForm>
 __attribute__((always_inline)) inline void pass_particle(const PairPassArrays<typename V::Law>& a, long long ii) {
   FirstBody<typename V::Law> b = first_body<V>(a, static_cast<std::size_t>(ii));
   constexpr std::uint32_t kChunk = 64;
-  const std::uint32_t k_end = a.pair_start[b.i + 1];
-  for (std::uint32_t chunk = a.pair_start[b.i]; chunk < k_end; chunk += kChunk) {
+  const PairRange range = pairs_of(a, b.i);
+  for (std::uint32_t chunk = range.begin; chunk < range.end; chunk += kChunk) {
     std::uint32_t pairs[kChunk];
     double dist2s[kChunk];
-    const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, chunk, std::min(k_end, chunk + kChunk), pairs, dist2s);
+    const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, range, chunk, std::min(range.end, chunk + kChunk), pairs, dist2s);
     law_over_touching<V, kForm>(a, b, pairs, dist2s, touching);
   }
   finish_particle<V, kForm>(a, b);
@@ -465,11 +481,11 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
     std::uint32_t n = 0, particles = 0;
     long long i1 = i0;
     for (; i1 < count && particles < PairBatch::kPairs; ++i1) {
-      const std::uint32_t k0 = a.pair_start[i1], k1 = a.pair_start[i1 + 1];
-      if (n + (k1 - k0) > PairBatch::kPairs) break;
+      const PairRange range = pairs_of(a, static_cast<std::size_t>(i1));
+      if (n + (range.end - range.begin) > PairBatch::kPairs) break;
       const FirstBody<typename V::Law> b = first_body<V>(a, static_cast<std::size_t>(i1));
       double* const d[3] = {s.d[0] + n, s.d[1] + n, s.d[2] + n};
-      const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, k0, k1, s.k + n, s.dist2 + n, d);
+      const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, range, range.begin, range.end, s.k + n, s.dist2 + n, d);
       for (std::uint32_t q = n; q < n + touching; ++q) s.i[q] = static_cast<std::uint32_t>(i1);
       n += touching;
       s.particle_end[particles++] = n;
@@ -542,7 +558,7 @@ void DemEngine::particle_forces() {
   const std::size_t n = p_.size();
   if (pair_sum_.size() != n) pair_sum_.assign(n, PairSum{});
   constexpr bool with_spin = V::kRotation;
-  const PairPassArrays<Law> a{
+  PairPassArrays<Law> a{
       p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
       with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr,
       p_.radius_m.data(), p_.mass_kg.data(), p_.inertia_kg_m2.data(), p_.material.data(), p_.active.data(),
@@ -553,12 +569,17 @@ void DemEngine::particle_forces() {
       pair_table_.material_count(), params_.periodic_z.length_m(), dt_s_, kick_in_pass_dt_s_,
       {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()}, p_.inv_mass_kg.data(),
       with_spin ? p_.inv_inertia_kg_m2.data() : nullptr, {p_.vx.data(), p_.vy.data(), p_.vz.data()},
-      {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr}};
+      {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr},
+      nullptr, nullptr};
   const long long count = static_cast<long long>(n);
   // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
   // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
   const bool store = (params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems) || monitor_ != nullptr;
   const bool periodic = params_.periodic_z.enabled;
+  if (!store && near_.start.size() == n + 1) {
+    a.near_start = near_.start.data();
+    a.near_pairs = near_.pairs.data();
+  }
   kicked_in_pass_ = kick_in_pass_dt_s_ != 0.0;
   if (store) {
     if (periodic) pair_pass<V, PairForm{true, true}>(a, count, params_.threads);
