@@ -8,6 +8,7 @@
 
 #include "libspread/core/cpu_features.hpp"
 #include "libspread/physics/dem/engine.hpp"
+#include "libspread/physics/dem/neighbor_list.hpp"
 
 using namespace spread;
 using namespace spread::dem;
@@ -16,7 +17,8 @@ namespace {
 
 // uniform: one radius for all (the material pair's coefficients tabulated, the law in lanes where the
 // processor has them); else radii varied, every pair's coefficients its own.
-DemEngine dense_block(int threads, bool uniform = false, bool periodic = false) {
+// speed: scales the initial velocities (1: a gentle fall).
+DemEngine dense_block(int threads, bool uniform = false, bool periodic = false, double speed = 1.0) {
   Material p;
   p.name = "bead";
   p.friction_particle = p.friction_wall = 0.5;
@@ -46,7 +48,7 @@ DemEngine dense_block(int threads, bool uniform = false, bool periodic = false) 
     for (int iy = 0; iy < 24; ++iy)
       for (int iz = 0; iz < 8; ++iz, ++k)
         e.add_particle(Vec3(ix * 3.99e-3, iy * 3.99e-3, 2.0e-3 + iz * 3.99e-3),
-                       Vec3(0.01 * ((k * 7) % 5 - 2), 0.01 * ((k * 3) % 5 - 2), -0.05),
+                       speed * Vec3(0.01 * ((k * 7) % 5 - 2), 0.01 * ((k * 3) % 5 - 2), -0.05),
                        uniform ? 1.995e-3 : 1.8e-3 + 0.2e-3 * ((k * 11) % 10) / 9.0, 0,
                        Vec3(0.0, 0.0, 0.5 * ((k * 5) % 3 - 1)));
   return e;
@@ -102,6 +104,53 @@ TEST(DemPairPass, WidestRegistersGiveIdenticalStates) {
       EXPECT_GT(expect_identical_states(widest, portable), 100u);
     }
   if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
+}
+
+// One thread looks at the near list only (the pairs within half the skin, rebuilt as particles move),
+// two threads at every listed pair: a block thrown ten times as fast, so that the near list is rebuilt
+// between pair-list builds and leaves pairs out that touch later, gives the same bits either way.
+TEST(DemPairPass, NearListGivesTheBitsOfTheWholeList) {
+  DemEngine one = dense_block(1, true, false, 10.0), two = dense_block(2, true, false, 10.0);
+  for (int s = 0; s < 150; ++s) {
+    one.step();
+    two.step();
+  }
+  EXPECT_GT(one.stats().near_list_builds, 0u);
+  EXPECT_GT(expect_identical_states(one, two), 100u);
+}
+
+// A listed pair farther apart than r_i + r_j + inner skin is left out of the near list, and the spring it
+// still held is released; nearer pairs stay, in pair order.
+TEST(NearList, LeavesOutOnlyPairsBeyondTheInnerSkin) {
+  ParticleArrays p;
+  const double r = 1e-3;
+  const double mass = 1e-5, inertia = 4e-12;
+  // 0–1 touching, 0–2 within the inner skin (0.5 mm) but apart, 1–3 beyond it yet within the skin (1 mm).
+  p.push_back(Vec3(0.0, 0.0, 0.0), Vec3::Zero(), Vec3::Zero(), r, mass, inertia, 0, 1, 0.0);
+  p.push_back(Vec3(1.9e-3, 0.0, 0.0), Vec3::Zero(), Vec3::Zero(), r, mass, inertia, 0, 2, 0.0);
+  p.push_back(Vec3(0.0, 2.4e-3, 0.0), Vec3::Zero(), Vec3::Zero(), r, mass, inertia, 0, 3, 0.0);
+  p.push_back(Vec3(1.9e-3 + 2.8e-3, 0.0, 0.0), Vec3::Zero(), Vec3::Zero(), r, mass, inertia, 0, 4, 0.0);
+  PairList list;
+  build_pair_list(p, 1e-3, list);
+  ASSERT_EQ(list.size(), 3u);  // 0–1, 0–2, 1–3
+  std::uint32_t far = 0;
+  for (std::uint32_t k = 0; k < list.size(); ++k) {
+    if (list.first[k] == 1 && list.second[k] == 3) far = k;
+    list.held[k] = 1;
+    for (int h = 0; h < kHistoryDoubles; ++h) list.history[k * kHistoryDoubles + h] = 0.25;
+  }
+  NearList near;
+  build_near_list(p, 0.5e-3, list, near);
+  ASSERT_EQ(near.start.size(), 5u);
+  ASSERT_EQ(near.pairs.size(), 2u);
+  EXPECT_LT(near.pairs[0], near.pairs[1]);
+  for (const std::uint32_t k : near.pairs) {
+    EXPECT_NE(k, far);
+    EXPECT_EQ(list.held[k], 1);
+    EXPECT_EQ(list.history[k * kHistoryDoubles], 0.25);
+  }
+  EXPECT_EQ(list.held[far], 0);
+  for (int h = 0; h < kHistoryDoubles; ++h) EXPECT_EQ(list.history[far * kHistoryDoubles + h], 0.0);
 }
 
 TEST(DemPairPass, NewtonsThirdLawHoldsWithoutWallsOrGravity) {

@@ -89,6 +89,7 @@ struct EngineStats {
   std::uint64_t steps = 0;
   std::uint64_t particle_steps = 0;       // Σ over steps of particles on the disc
   std::uint64_t pair_list_builds = 0;
+  std::uint64_t near_list_builds = 0;  // between pair-list builds (neighbor_list.hpp NearList)
   std::uint64_t wall_contacts_dropped = 0;  // beyond kWallSlots at once
   std::uint64_t lost = 0;
   double pair_search_s = 0.0;

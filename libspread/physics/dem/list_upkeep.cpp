@@ -38,7 +38,10 @@ void DemEngine::maintain_lists() {
     // The near list holds while no particle has moved inner_skin / 2 since its build (a hair less, so
     // that rounding in the distances cannot let a pair through).
     const double half = 0.5 * (1.0 - 1e-9) * near_.inner_skin_m;
-    if (moved2_near > half * half) build_near_list(p_, near_.inner_skin_m, pairs_, near_, params_.periodic_z);
+    if (moved2_near > half * half) {
+      build_near_list(p_, near_.inner_skin_m, pairs_, near_, params_.periodic_z);
+      ++stats_.near_list_builds;
+    }
   }
   if (lists_dirty_) {
     if (inactive_ > 0) {
