@@ -34,16 +34,18 @@ void run(benchmark::State& state, spread::dem::Integrator integrator, double fro
   const int steps = env ? std::atoi(env) : 200;
   double particle_steps = 0.0;
   std::size_t n = 0, pairs = 0;
-  long long builds = 0;
+  long long builds = 0, near_builds = 0;
   for (auto _ : state) {
     state.PauseTiming();
     auto engine = spread::drum::make_drum_engine(s, s.angular_velocity_rad_s);
     for (const auto& q : spread::drum::grid_packing(s, 0.999)) engine.add_particle(q.position_m, spread::Vec3::Zero(), q.radius_m, q.species);
     engine.step();  // first pair-list build outside the timing
     const long long builds_before = engine.stats().pair_list_builds;
+    const long long near_before = engine.stats().near_list_builds;
     state.ResumeTiming();
     for (int k = 0; k < steps; ++k) engine.step();
     builds = engine.stats().pair_list_builds - builds_before;
+    near_builds = engine.stats().near_list_builds - near_before;
     n = engine.active_count();
     pairs = engine.pair_count();
     particle_steps += static_cast<double>(n) * steps;
@@ -51,6 +53,7 @@ void run(benchmark::State& state, spread::dem::Integrator integrator, double fro
   state.counters["particles"] = static_cast<double>(n);
   state.counters["pair_list"] = static_cast<double>(pairs);
   state.counters["list_builds"] = static_cast<double>(builds);  // within the timed steps
+  state.counters["near_builds"] = static_cast<double>(near_builds);  // near lists rebuilt between them
   state.counters["particle_steps_per_s"] = benchmark::Counter(particle_steps, benchmark::Counter::kIsRate);
 }
 
