@@ -119,6 +119,44 @@ TEST(DemPairPass, NearListGivesTheBitsOfTheWholeList) {
   EXPECT_GT(expect_identical_states(one, two), 100u);
 }
 
+// A particle whose list outgrows the batched pass's batch (256 pairs) goes through the particle-by-particle
+// pass: a 6 mm sphere first, in a block of 1 mm ones, gives the bits of the portable pass.
+TEST(DemPairPass, AListLongerThanABatchGivesThePortableBits) {
+  auto block = [] {
+    Material p;
+    p.name = "bead";
+    p.friction_particle = p.friction_wall = 0.5;
+    p.restitution = 0.5;
+    EngineParams ep;
+    ep.contact_law = kLinearSpringDashpotLaw;
+    ep.linear.normal_stiffness_n_m = 1000.0;
+    ep.integrator = Integrator::kVelocityVerlet;
+    ep.min_particle_radius_m = 1e-3;
+    ep.max_particle_radius_m = 6e-3;
+    ep.gravity_m_s2 = Vec3::Zero();
+    DemEngine e({p}, {}, WallSet{}, ep);
+    e.add_particle(Vec3(0.0, 0.0, 0.0), Vec3(0.02, 0.0, 0.0), 6e-3, 0, Vec3(0.0, 0.0, 1.0));
+    int k = 0;
+    for (int ix = -7; ix <= 7; ++ix)
+      for (int iy = -7; iy <= 7; ++iy)
+        for (int iz = -7; iz <= 7; ++iz, ++k) {
+          const Vec3 c(ix * 1.99e-3, iy * 1.99e-3, iz * 1.99e-3);
+          if (c.norm() < 6.9e-3) continue;  // room for the large one
+          e.add_particle(c, Vec3(0.0, 0.01 * (k % 3 - 1), 0.0), 1e-3, 0);
+        }
+    return e;
+  };
+  limit_registers(Registers::kAvx512);
+  DemEngine widest = block();
+  limit_registers(Registers::kBaseline);
+  DemEngine portable = block();
+  for (int s = 0; s < 40; ++s) portable.step();
+  limit_registers(Registers::kAvx512);
+  for (int s = 0; s < 40; ++s) widest.step();
+  EXPECT_GT(expect_identical_states(widest, portable), 100u);
+  if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
+}
+
 // A listed pair farther apart than r_i + r_j + inner skin is left out of the near list, and the spring it
 // still held is released; nearer pairs stay, in pair order.
 TEST(NearList, LeavesOutOnlyPairsBeyondTheInnerSkin) {

@@ -193,10 +193,11 @@ class DemEngine {
   std::vector<LaunchRecord> launches_;
   std::vector<PairSum> pair_sum_;
   std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
-  // Wall list: 1 = no wall within radius + skin at the last pair-list build (the wall test is skipped
-  // until the next build). Used only when every wall group's surface is fixed in space
+  // Wall list: per particle, bit g set when wall group g was within radius + skin at the last pair-list
+  // build (WallSet::groups_within; 0: no wall, the wall test is skipped until the next build; the others
+  // are not looked at). Used only when every wall group's surface is fixed in space
   // (walls_fixed_in_space_); empty otherwise.
-  std::vector<std::uint8_t> far_from_walls_;
+  std::vector<std::uint64_t> walls_near_;
   bool walls_fixed_in_space_ = false;
   // Law::coeffs per material pair (a·M + b), for particle pairs (pair_coeffs_) and particle–wall contacts
   // (wall_coeffs_, R* = r, M* = m): valid (uniform) when every particle of the particle materials has the

@@ -54,6 +54,7 @@ void DemEngine::step_gear() {
 }
 
 void DemEngine::step_velocity_verlet() {
+  kick_in_pass_dt_s_ = 0.0;  // (left set if a force evaluation threw) no kick with the start-up forces
   // v(t + Δt/2) = v(t) + Δt/2 a(t), x(t + Δt) = x(t) + Δt v(t + Δt/2), then a(t + Δt) and
   // v(t + Δt) = v(t + Δt/2) + Δt/2 a(t + Δt). The forces at t are those of the previous step's end.
   if (!forces_valid_) {

@@ -57,11 +57,12 @@ void DemEngine::maintain_lists() {
       // plus the skin (and no wall history) cannot touch a wall before then. (A centre behind a one-sided
       // wall is not reported either; it is looked at again at the next build.)
       walls_.set_time(time_s_);
-      far_from_walls_.assign(p_.size(), 0);
-      WallContact* const wc = wall_scratch_.data();
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        far_from_walls_[i] = p_.active[i] && p_.wall_key[i * kWallSlots] == 0 &&
-                             walls_.collect(p_.position(i), p_.radius_m[i] + skin_m_, wc, 1) == 0;
+      // Per particle, the wall groups within reach (a particle still holding a wall history looks at all).
+      walls_near_.assign(p_.size(), 0);
+      for (std::size_t i = 0; i < p_.size(); ++i) {
+        if (!p_.active[i]) continue;
+        walls_near_[i] = p_.wall_key[i * kWallSlots] != 0 ? ~0ull : walls_.groups_within(p_.position(i), p_.radius_m[i] + skin_m_);
+      }
     }
     lists_dirty_ = false;
   }

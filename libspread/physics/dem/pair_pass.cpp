@@ -1,8 +1,10 @@
-// Particle–particle contacts over the Verlet pair list (CSR half list, neighbor_list.hpp), as stages over
-// the pass's own view of the engine (PairPassArrays: flat arrays, nothing else): per particle i, the
-// touching pairs of a chunk of its list (touching_in_chunk), the contact law over them two at a time or
-// one (law_over_touching), and i's finished sums (finish_particle). Newton's third law (seed Eq. 1) is
-// applied per pair, so each pair's law runs once.
+// Particle–particle contacts over the Verlet pair list (CSR half list, neighbor_list.hpp; the direct form
+// looks only at the near list's pairs), as stages over the pass's own view of the engine (PairPassArrays:
+// flat arrays, nothing else): per particle i, the touching pairs of a chunk of its list
+// (touching_in_chunk), the contact law over them two at a time or one (law_over_touching), and i's
+// finished sums (finish_particle). Where the processor has AVX-512, the direct form stages the touching
+// pairs of many particles and runs the law over eight at a time (pair_pass_batched_avx512). Newton's third
+// law (seed Eq. 1) is applied per pair, so each pair's law runs once.
 #include <algorithm>
 #include <cstdint>
 #include <utility>
@@ -235,7 +237,7 @@ SPREAD_CONTACT_INLINE void two_pairs(const PairPassArrays<typename V::Law>& a, F
   }
 }
 
-// Stage 1 of a chunk of i's pairs [chunk, chunk_end): without a branch on "touching" — about a third of
+// Stage 1 of entries [chunk, chunk_end) of i's pairs (range): without a branch on "touching" — about a third of
 // the listed pairs touch, scattered, so that branch was mispredicted often — the touching pairs' indices
 // and squared distances are appended to the buffers; a pair that has just come apart releases its
 // tangential spring. Returns how many touch. With pair vectors given (d[3], batched pass below), each
@@ -352,11 +354,14 @@ __attribute__((always_inline)) inline void pass_particle(const PairPassArrays<ty
 // loop; at -O2 GCC otherwise keeps the law as a call per touching pair, which costs about a third of the
 // pass. Each has its own OpenMP loop: the region is outlined from the function it is written in, with
 // that function's target.
+// Particles [begin, end). noinline: the batched pass calls it for a particle whose list outgrows a batch,
+// and flatten there would otherwise compile a second copy of the whole two-lane pass into it.
 template <class V, PairForm kForm>
-SPREAD_CONTACT_FLATTEN void pair_pass_portable(PairPassArrays<typename V::Law> a, long long count, int threads) {
-  const bool parallel = kForm.store_pairs && threads > 1 && count >= kMinParallelItems;
+__attribute__((noinline)) SPREAD_CONTACT_FLATTEN void pair_pass_portable(PairPassArrays<typename V::Law> a, long long begin,
+                                                                         long long end, int threads) {
+  const bool parallel = kForm.store_pairs && threads > 1 && end - begin >= kMinParallelItems;
 #pragma omp parallel for schedule(static) num_threads(threads) if (parallel) firstprivate(a)
-  for (long long ii = 0; ii < count; ++ii) pass_particle<V, kForm>(a, ii);
+  for (long long ii = begin; ii < end; ++ii) pass_particle<V, kForm>(a, ii);
 }
 #if defined(__x86_64__) || defined(__i386__)
 template <class V, PairForm kForm>
@@ -373,7 +378,7 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_avx512(
 // and its own history, never a sum, so computing all of a batch's forces before adding any changes no
 // sum: each is added to in the same order as in pass_particle (the same bits).
 struct PairBatch {
-  static constexpr std::uint32_t kPairs = 256;  // staged pairs: about 30 KB with the results, within L1
+  static constexpr std::uint32_t kPairs = 256;  // staged pairs: 32 KB with the results, within L1 (48 KB)
   static constexpr std::uint32_t kSlots = kPairs + 8;
   alignas(64) double d[3][kSlots];  // pair vector from j to i (m)
   alignas(64) double dist2[kSlots];  // |d|² (m²)
@@ -402,6 +407,22 @@ SPREAD_CONTACT_INLINE lanes::Lanes8 load_lanes8(const double* p) {
 }
 SPREAD_CONTACT_INLINE void store_lanes8(double* p, lanes::Lanes8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
+// Staged pairs [q, q + valid) one at a time (materials differ, or sizes within a material). noinline: one
+// copy of the one-pair law per variant, not one inside each batched pass.
+template <class V, PairForm kForm>
+__attribute__((noinline)) SPREAD_CONTACT_FLATTEN void staged_pairs_alone(const PairPassArrays<typename V::Law>& a, PairBatch& s,
+                                                                         std::uint32_t q, std::uint32_t valid) {
+  for (std::uint32_t l = 0; l < valid; ++l) {
+    const FirstBody<typename V::Law> b = first_body<V>(a, s.i[q + l]);
+    const PairOut<double> r = one_pair_out<V, kForm>(a, b, s.k[q + l], s.dist2[q + l]);
+    for (int c = 0; c < 3; ++c) {
+      s.f[c][q + l] = (&r.f.x)[c];
+      s.t_i[c][q + l] = (&r.t_i.x)[c];
+      s.t_j[c][q + l] = (&r.t_j.x)[c];
+    }
+  }
+}
+
 // Staged pairs [q, q + 8): one material pair whose table entry holds (both materials of one size), eight
 // pairs in lanes; otherwise each alone. Lanes past `valid` repeat pair q and are not written back.
 template <class V, PairForm kForm>
@@ -423,15 +444,7 @@ SPREAD_CONTACT_INLINE void eight_pairs(const PairPassArrays<typename V::Law>& a,
     entry = static_cast<std::size_t>(mi) * a.material_count + mj;
   }
   if (!one_entry || !a.coeffs[entry].uniform) {
-    for (std::uint32_t l = 0; l < valid; ++l) {
-      const FirstBody<Law> b = first_body<V>(a, s.i[q + l]);
-      const PairOut<double> r = one_pair_out<V, kForm>(a, b, s.k[q + l], s.dist2[q + l]);
-      for (int c = 0; c < 3; ++c) {
-        s.f[c][q + l] = (&r.f.x)[c];
-        s.t_i[c][q + l] = (&r.t_i.x)[c];
-        s.t_j[c][q + l] = (&r.t_j.x)[c];
-      }
-    }
+    staged_pairs_alone<V, kForm>(a, s, q, valid);
     return;
   }
   const std::uint32_t* i = s.i + q;
@@ -490,8 +503,9 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
       n += touching;
       s.particle_end[particles++] = n;
     }
-    if (particles == 0) {  // a list longer than the batch: that particle alone, as the other passes do
-      pass_particle<V, kForm>(a, i0++);
+    if (particles == 0) {  // a list longer than the batch: that particle alone, by the portable pass
+      pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1);
+      ++i0;
       continue;
     }
     // Stage 2: the law, eight pairs at a time; the last group's spare lanes repeat its first pair.
@@ -535,9 +549,10 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
 }
 #endif
 
-// The same operations either way (the law's lanes stay two doubles wide), with AVX-512's 32 vector
-// registers instead of SSE's 16, which spill less of a contact's state: 4–5 % of the drum's step
-// (docs/drum.md "Where the time goes"). The same bits (DemPairPass.WidestRegistersGiveIdenticalStates).
+// Where the processor has AVX-512: the stored form is the particle-by-particle pass compiled for it (the
+// law's lanes two doubles wide, 32 vector registers instead of 16, less of a contact's state spilled), the
+// direct form the batched pass (eight pairs a register). The same bits either way
+// (DemPairPass.WidestRegistersGiveIdenticalStates; docs/drum.md "Where the time goes").
 template <class V, PairForm kForm>
 void pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads) {
 #if defined(__x86_64__) || defined(__i386__)
@@ -547,7 +562,7 @@ void pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads) 
     return;
   }
 #endif
-  pair_pass_portable<V, kForm>(a, count, threads);
+  pair_pass_portable<V, kForm>(a, 0, count, threads);
 }
 
 }  // namespace

@@ -99,17 +99,18 @@ void DemEngine::wall_forces() {
   std::uint64_t dropped = 0;
   const bool parallel_particles = params_.threads > 1 && nn >= kMinParallelItems;
   WallContact* const scratch = wall_scratch_.data();
-  const std::uint8_t* const far_from_walls = far_from_walls_.size() == n ? far_from_walls_.data() : nullptr;
+  const std::uint64_t* const walls_near = walls_near_.size() == n ? walls_near_.data() : nullptr;
   // Walls, per particle (each particle owns its wall-history slots: no races).
 #pragma omp parallel for schedule(static) num_threads(params_.threads) reduction(+ : dropped) if (parallel_particles)
   for (long long ii = 0; ii < nn; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
     p_.fx[i] = p_.fy[i] = p_.fz[i] = 0.0;
     if constexpr (V::kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
-    if (!p_.active[i] || (far_from_walls != nullptr && far_from_walls[i])) continue;
+    const std::uint64_t groups = walls_near != nullptr ? walls_near[i] : ~0ull;
+    if (!p_.active[i] || groups == 0) continue;
     const double r = p_.radius_m[i];
     WallContact* const wc = scratch + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2);
-    int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2);
+    int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2, groups);
     if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
     const std::size_t base = i * kWallSlots;
     // Slots are filled from the front, so an empty first slot means no wall history to carry: most

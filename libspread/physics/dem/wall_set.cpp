@@ -13,9 +13,10 @@ void WallSet::set_time(double t_s) {
   }
 }
 
-int WallSet::collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out) const {
+int WallSet::collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out, std::uint64_t group_mask) const {
   int n = 0;
   for (std::size_t g = 0; g < groups.size() && n < max_out; ++g) {
+    if (g < 64 && ((group_mask >> g) & 1u) == 0) continue;
     const WallGroup& grp = groups[g];
     const Pose& pose = poses_[g];
     // Inertial → group frame: rotate by −θ about z.
@@ -61,6 +62,16 @@ int WallSet::collect(const Vec3& centre_m, double radius_m, WallContact* out, in
     }
   }
   return n;
+}
+
+std::uint64_t WallSet::groups_within(const Vec3& centre_m, double radius_m) const {
+  std::uint64_t mask = 0;
+  WallContact one;
+  for (std::size_t g = 0; g < std::min<std::size_t>(groups.size(), 64); ++g)
+    if (collect(centre_m, radius_m, &one, 1, 1ull << g) > 0) mask |= 1ull << g;
+  // Groups past 63 are looked at whatever the mask; any of them within reach sets bit 63.
+  if (groups.size() > 64 && collect(centre_m, radius_m, &one, 1, 0) > 0) mask |= 1ull << 63;
+  return mask;
 }
 
 double WallSet::max_surface_speed_m_s() const {

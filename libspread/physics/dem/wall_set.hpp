@@ -41,8 +41,12 @@ class WallSet {
 
   // Caches each group's rotation at time t (call once per force evaluation).
   void set_time(double t_s);
-  // Contacts of a sphere at time set_time(); at most max_out, returns the count.
-  int collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out) const;
+  // Contacts of a sphere at time set_time(); at most max_out, returns the count. group_mask: bit g set to
+  // look at group g (groups past 63 always looked at); the contacts of the groups looked at come in the
+  // same order as with all of them.
+  int collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out, std::uint64_t group_mask = ~0ull) const;
+  // Bit g set when group g has a surface within radius_m of the centre (groups past 63: bit 63).
+  std::uint64_t groups_within(const Vec3& centre_m, double radius_m) const;
   // Largest surface speed of any moving wall piece (m/s), for the time-step estimate.
   double max_surface_speed_m_s() const;
 
