@@ -15,6 +15,17 @@ using namespace spread::dem;
 
 namespace {
 
+// Linear springs (k_n 1000 N/m), velocity Verlet, particles of radii in [r_min, r_max] (m).
+EngineParams linear_verlet(double r_min_m, double r_max_m) {
+  EngineParams ep;
+  ep.contact_law = kLinearSpringDashpotLaw;
+  ep.linear.normal_stiffness_n_m = 1000.0;
+  ep.integrator = Integrator::kVelocityVerlet;
+  ep.min_particle_radius_m = r_min_m;
+  ep.max_particle_radius_m = r_max_m;
+  return ep;
+}
+
 // uniform: one radius for all (the material pair's coefficients tabulated, the law in lanes where the
 // processor has them); else radii varied, every pair's coefficients its own.
 // speed: scales the initial velocities (1: a gentle fall).
@@ -31,12 +42,7 @@ DemEngine dense_block(int threads, bool uniform = false, bool periodic = false, 
   floor.material = 1;
   WallSet walls;
   walls.groups.push_back(floor);
-  EngineParams ep;
-  ep.contact_law = kLinearSpringDashpotLaw;
-  ep.linear.normal_stiffness_n_m = 1000.0;
-  ep.integrator = Integrator::kVelocityVerlet;
-  ep.min_particle_radius_m = 1.8e-3;
-  ep.max_particle_radius_m = 2.0e-3;
+  EngineParams ep = linear_verlet(1.8e-3, 2.0e-3);
   ep.impact_speed_m_s = 1.0;
   ep.threads = threads;
   if (periodic) ep.periodic_z = {true, 0.0, 8 * 3.99e-3};  // the 8 layers, the top one touching the bottom one
@@ -74,6 +80,20 @@ std::size_t expect_identical_states(const DemEngine& first, const DemEngine& sec
   return pushed;
 }
 
+// Two engines from `make`, one stepped with the registers limited to the baseline, one with the widest the
+// processor has (AVX-512's passes where it has them), compared state for state.
+template <class Make>
+void expect_widest_gives_the_portable_bits(const Make& make, int steps) {
+  limit_registers(Registers::kAvx512);
+  DemEngine widest = make();
+  limit_registers(Registers::kBaseline);
+  DemEngine portable = make();
+  for (int s = 0; s < steps; ++s) portable.step();
+  limit_registers(Registers::kAvx512);
+  for (int s = 0; s < steps; ++s) widest.step();
+  EXPECT_GT(expect_identical_states(widest, portable), 100u);
+}
+
 }  // namespace
 
 TEST(DemPairPass, OneThreadAndTwoThreadsGiveIdenticalStates) {
@@ -94,14 +114,7 @@ TEST(DemPairPass, WidestRegistersGiveIdenticalStates) {
   for (const bool uniform : {false, true})
     for (const bool periodic : {false, true}) {
       SCOPED_TRACE(testing::Message() << "uniform " << uniform << ", periodic " << periodic);
-      limit_registers(Registers::kAvx512);
-      DemEngine widest = dense_block(1, uniform, periodic);
-      limit_registers(Registers::kBaseline);
-      DemEngine portable = dense_block(1, uniform, periodic);
-      for (int s = 0; s < 60; ++s) portable.step();
-      limit_registers(Registers::kAvx512);
-      for (int s = 0; s < 60; ++s) widest.step();
-      EXPECT_GT(expect_identical_states(widest, portable), 100u);
+      expect_widest_gives_the_portable_bits([&] { return dense_block(1, uniform, periodic); }, 60);
     }
   if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
 }
@@ -127,12 +140,7 @@ TEST(DemPairPass, AListLongerThanABatchGivesThePortableBits) {
     p.name = "bead";
     p.friction_particle = p.friction_wall = 0.5;
     p.restitution = 0.5;
-    EngineParams ep;
-    ep.contact_law = kLinearSpringDashpotLaw;
-    ep.linear.normal_stiffness_n_m = 1000.0;
-    ep.integrator = Integrator::kVelocityVerlet;
-    ep.min_particle_radius_m = 1e-3;
-    ep.max_particle_radius_m = 6e-3;
+    EngineParams ep = linear_verlet(1e-3, 6e-3);
     ep.gravity_m_s2 = Vec3::Zero();
     DemEngine e({p}, {}, WallSet{}, ep);
     e.add_particle(Vec3(0.0, 0.0, 0.0), Vec3(0.02, 0.0, 0.0), 6e-3, 0, Vec3(0.0, 0.0, 1.0));
@@ -146,14 +154,7 @@ TEST(DemPairPass, AListLongerThanABatchGivesThePortableBits) {
         }
     return e;
   };
-  limit_registers(Registers::kAvx512);
-  DemEngine widest = block();
-  limit_registers(Registers::kBaseline);
-  DemEngine portable = block();
-  for (int s = 0; s < 40; ++s) portable.step();
-  limit_registers(Registers::kAvx512);
-  for (int s = 0; s < 40; ++s) widest.step();
-  EXPECT_GT(expect_identical_states(widest, portable), 100u);
+  expect_widest_gives_the_portable_bits(block, 40);
   if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
 }
 
