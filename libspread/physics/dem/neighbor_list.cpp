@@ -59,7 +59,6 @@ void build_near_list(const ParticleArrays& p, double inner_skin_m, PairList& lis
   near.y0 = p.y;
   near.z0 = p.z;
   near.moved_since_pair_build_m = std::sqrt(max_displacement2(p, periodic));
-  ++near.builds;
 }
 
 namespace {

@@ -85,7 +85,6 @@ struct NearList {
   std::vector<double> x0, y0, z0;           // positions at the build (m)
   double inner_skin_m = 0.0;
   double moved_since_pair_build_m = 0.0;    // largest move from the pair list's build to this one (m)
-  std::size_t builds = 0;
 };
 void build_near_list(const ParticleArrays& p, double inner_skin_m, PairList& list, NearList& near,
                      const PeriodicZ& periodic = {});
