@@ -27,6 +27,17 @@
 #define SPREAD_CONTACT_INLINE inline
 #define SPREAD_CONTACT_FLATTEN
 #endif
+// SPREAD_UNROLL(n) before a short loop of constant count (lanes, components, history slots): unrolled
+// completely, so that what it indexes stays in registers. GCC at -O2 unrolls a loop completely only when the
+// code does not grow, and left such loops in the pair pass with their values on the stack. Clang builds
+// only the sanitizer build here and is left to its own unrolling: with the pragma, pair_pass.cpp took 122 s
+// to compile under the sanitizers instead of 104 s.
+#if defined(__GNUC__) && !defined(__clang__)
+#define SPREAD_PRAGMA(text) _Pragma(#text)
+#define SPREAD_UNROLL(n) SPREAD_PRAGMA(GCC unroll n)
+#else
+#define SPREAD_UNROLL(n)
+#endif
 
 namespace spread::dem {
 

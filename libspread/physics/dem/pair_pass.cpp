@@ -11,10 +11,9 @@
 
 // The contact laws' templates take eight-lane values here, inlined into the AVX-512 pass only (lanes.hpp).
 #pragma GCC diagnostic ignored "-Wpsabi"
-// `#pragma GCC unroll` on the short loops over lanes, components and history slots: at -O2 GCC unrolls
-// a loop completely only if that does not grow the code, and left most of these as loops, with what
-// they index (the history lanes, i's sums) in memory on the stack instead of in registers. -O3's
-// -fpeel-loops unrolls them all; the pragmas do it in the build users get (docs/drum.md).
+// SPREAD_UNROLL (contact_kernel.hpp) on the short loops over lanes, components and history slots: GCC at
+// -O2 left most of them as loops, with a group's history lanes and i's sums on the stack (-O3's
+// -fpeel-loops unrolls them; the pragma does it in the build users get; docs/drum.md).
 
 
 #include "libspread/core/cpu_features.hpp"
@@ -234,7 +233,7 @@ SPREAD_CONTACT_INLINE void two_pairs(const PairPassArrays<typename V::Law>& a, F
       V3<Lanes2>{pack(d0.x, d1.x), pack(d0.y, d1.y), pack(d0.z, d1.z)}, pack(dist2_0, dist2_1), splat<Lanes2>(b.r),
       pack(a.radius[j0], a.radius[j1]), v_rel, V3<Lanes2>{splat<Lanes2>(b.w.x), splat<Lanes2>(b.w.y), splat<Lanes2>(b.w.z)},
       wj, inertia_eff, b.params_row[a.material[j0]], b.coeffs_row[a.material[j0]], a.dt_s, h);
-#pragma GCC unroll 2
+SPREAD_UNROLL(2)
   for (int l = 0; l < 2; ++l) {
     store_history(h, l, l == 0 ? h0 : h1);
     add_pair<V, kForm>(a, b, l == 0 ? k0 : k1, l == 0 ? j0 : j1,
@@ -274,10 +273,10 @@ SPREAD_CONTACT_INLINE std::uint32_t touching_in_chunk(const PairPassArrays<typen
       a.held[k] = 0;
     }
     if constexpr (kForm.store_pairs) {
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
       for (int c = 0; c < 3; ++c) a.pair_force[k * 3 + c] = 0.0;
       if constexpr (V::kRotation)
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
         for (int c = 0; c < 3; ++c) a.pair_torque_i[k * 3 + c] = a.pair_torque_j[k * 3 + c] = 0.0;
     }
   }
@@ -422,7 +421,7 @@ __attribute__((noinline)) SPREAD_CONTACT_FLATTEN void staged_pairs_alone(const P
   for (std::uint32_t l = 0; l < valid; ++l) {
     const FirstBody<typename V::Law> b = first_body<V>(a, s.i[q + l]);
     const PairOut<double> r = one_pair_out<V, kForm>(a, b, s.k[q + l], s.dist2[q + l]);
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
     for (int c = 0; c < 3; ++c) {
       s.f[c][q + l] = (&r.f.x)[c];
       s.t_i[c][q + l] = (&r.t_i.x)[c];
@@ -439,7 +438,7 @@ SPREAD_CONTACT_INLINE void eight_pairs(const PairPassArrays<typename V::Law>& a,
   using Law = typename V::Law;
   using lanes::Lanes8;
   std::uint32_t* const j = s.j + q;
-#pragma GCC unroll 8
+SPREAD_UNROLL(8)
   for (int l = 0; l < 8; ++l) {
     j[l] = a.partner[s.k[q + l]];
     // Stage 3 adds into j's sums, which a later particle finished a step ago: likely out of L2 by now.
@@ -449,7 +448,7 @@ SPREAD_CONTACT_INLINE void eight_pairs(const PairPassArrays<typename V::Law>& a,
   std::size_t entry = 0;
   if (a.material_count > 1) {
     const std::uint16_t mi = a.material[s.i[q]], mj = a.material[j[0]];
-#pragma GCC unroll 8
+SPREAD_UNROLL(8)
     for (int l = 1; l < 8; ++l) one_entry &= (a.material[s.i[q + l]] == mi) & (a.material[j[l]] == mj);
     entry = static_cast<std::size_t>(mi) * a.material_count + mj;
   }
@@ -471,11 +470,11 @@ SPREAD_CONTACT_INLINE void eight_pairs(const PairPassArrays<typename V::Law>& a,
     inertia_eff = ii * ij / (ii + ij);
   }
   const double* hist[8];
-#pragma GCC unroll 8
+SPREAD_UNROLL(8)
   for (int l = 0; l < 8; ++l) hist[l] = a.history + static_cast<std::size_t>(s.k[q + l]) * kHistoryDoubles;
   LawHistory<Lanes8> h;
   Lanes8* const h_slots[kHistoryDoubles] = {&h.elastic.x, &h.elastic.y, &h.elastic.z, &h.overlap_m};
-#pragma GCC unroll 4
+SPREAD_UNROLL(4)
   for (int c = 0; c < kHistoryDoubles; ++c)
     *h_slots[c] = lanes8(hist[0][c], hist[1][c], hist[2][c], hist[3][c], hist[4][c], hist[5][c], hist[6][c], hist[7][c]);
   const PairOut<Lanes8> r = pair_contact<V>(
@@ -483,15 +482,15 @@ SPREAD_CONTACT_INLINE void eight_pairs(const PairPassArrays<typename V::Law>& a,
       gather_lanes8(a.radius, i), gather_lanes8(a.radius, j), v_rel, wi, wj, inertia_eff, a.params[entry], a.coeffs[entry],
       a.dt_s, h);
   alignas(64) double h_out[kHistoryDoubles][8];
-#pragma GCC unroll 4
+SPREAD_UNROLL(4)
   for (int c = 0; c < kHistoryDoubles; ++c) store_lanes8(h_out[c], *h_slots[c]);
-#pragma GCC unroll 8
+SPREAD_UNROLL(8)
   for (std::uint32_t l = 0; l < valid; ++l)
-#pragma GCC unroll 4
+SPREAD_UNROLL(4)
     for (int c = 0; c < kHistoryDoubles; ++c) const_cast<double*>(hist[l])[c] = h_out[c][l];
   const V3<Lanes8>* outs[3] = {&r.f, &r.t_i, &r.t_j};
   double(*slots[3])[PairBatch::kSlots] = {s.f, s.t_i, s.t_j};
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
   for (int o = 0; o < 3; ++o) {
     store_lanes8(slots[o][0] + q, outs[o]->x);
     store_lanes8(slots[o][1] + q, outs[o]->y);
@@ -530,12 +529,12 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
       __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
     for (std::uint32_t q = 0; q < n; q += 8) {
       const std::uint32_t valid = std::min<std::uint32_t>(8, n - q);
-#pragma GCC unroll 8
+SPREAD_UNROLL(8)
       for (std::uint32_t l = valid; l < 8; ++l) {
         s.k[q + l] = s.k[q];
         s.i[q + l] = s.i[q];
         s.dist2[q + l] = s.dist2[q];
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
         for (int c = 0; c < 3; ++c) s.d[c][q + l] = s.d[c][q];
       }
       // The histories (32 bytes per listed pair, megabytes in all) of two groups ahead.
@@ -550,13 +549,13 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
       for (; q < s.particle_end[p]; ++q) {
         a.held[s.k[q]] = 1;
         PairSum& sj = a.sums[s.j[q]];
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
         for (int c = 0; c < 3; ++c) {
           sum_f[c] += s.f[c][q];
           sj.f[c] -= s.f[c][q];
         }
         if constexpr (V::kRotation)
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
           for (int c = 0; c < 3; ++c) {
             sum_t[c] += s.t_i[c][q];
             sj.t[c] += s.t_j[c][q];
@@ -637,7 +636,7 @@ void DemEngine::gather_stored_pair_forces() {
     double f[3] = {0.0, 0.0, 0.0}, t[3] = {0.0, 0.0, 0.0};
     for (std::uint32_t q = pairs_.second_start[i]; q < pairs_.second_start[i + 1]; ++q) {
       const std::uint32_t k = pairs_.second_pairs[q];
-#pragma GCC unroll 3
+SPREAD_UNROLL(3)
       for (int c = 0; c < 3; ++c) {
         f[c] -= pairs_.force[k * 3 + c];
         if constexpr (kRotation) t[c] += pairs_.torque_second[k * 3 + c];
