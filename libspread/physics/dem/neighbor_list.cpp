@@ -201,9 +201,14 @@ void search_pairs(const ParticleArrays& p, const CellGrid& g, double skin_m, con
           const int cx = ix + dx, cy = iy + dy;
           if (cx < 0 || cy < 0 || cx >= g.nx || cy >= g.ny) continue;
           const std::size_t c = g.flat(cx, cy, layers[l]);
-          for (std::uint32_t k = g.start[c]; k < g.start[c + 1]; ++k) {
+          // A cell's slots ascend: those up to i are passed over without a look at their positions (a
+          // cell below i in the packing order holds none above it).
+          const std::uint32_t end = g.start[c + 1];
+          std::uint32_t k = g.start[c];
+          if (k == end || g.items[end - 1] <= i) continue;
+          while (g.items[k] <= i) ++k;
+          for (; k < end; ++k) {
             const std::uint32_t j = g.items[k];
-            if (j <= i) continue;
             const double cut = p.radius_m[i] + p.radius_m[j] + skin_m;
             const double ddx = p.x[j] - p.x[i], ddy = p.y[j] - p.y[i];
             double ddz = p.z[j] - p.z[i];
