@@ -96,13 +96,32 @@ void expect_widest_gives_the_portable_bits(const Make& make, int steps) {
 
 }  // namespace
 
+// Where the processor has AVX-512 two threads run the batched pass, each its own range of particles, the
+// sums range after range; elsewhere they store each pair's results and gather them. Either gives the bits of
+// one thread, with radii varied (each pair alone) and with one radius (eight pairs in lanes).
 TEST(DemPairPass, OneThreadAndTwoThreadsGiveIdenticalStates) {
+  for (const bool uniform : {false, true}) {
+    SCOPED_TRACE(testing::Message() << "uniform " << uniform);
+    DemEngine one = dense_block(1, uniform), two = dense_block(2, uniform);
+    for (int s = 0; s < 60; ++s) {
+      one.step();
+      two.step();
+    }
+    ASSERT_GT(one.pair_count(), 4096u);
+    EXPECT_GT(expect_identical_states(one, two), 100u);
+  }
+}
+
+// Two threads storing each pair's results (the form without AVX-512, and with an energy monitor) against
+// one thread on the same registers.
+TEST(DemPairPass, TwoThreadsStoringThePairsGiveTheBitsOfOne) {
+  limit_registers(Registers::kBaseline);
   DemEngine one = dense_block(1), two = dense_block(2);
   for (int s = 0; s < 60; ++s) {
     one.step();
     two.step();
   }
-  ASSERT_GT(one.pair_count(), 4096u);
+  limit_registers(Registers::kAvx512);
   EXPECT_GT(expect_identical_states(one, two), 100u);
 }
 
@@ -120,14 +139,15 @@ TEST(DemPairPass, WidestRegistersGiveIdenticalStates) {
 }
 
 // One thread looks at the near list only (the pairs within half the skin, rebuilt as particles move),
-// two threads at every listed pair: a block thrown ten times as fast, so that the near list is rebuilt
-// between pair-list builds and leaves pairs out that touch later, gives the same bits either way.
+// two threads storing the pairs' results at every listed pair: a block thrown ten times as fast, so that
+// the near list is rebuilt between pair-list builds and leaves pairs out that touch later, gives the same
+// bits either way.
 TEST(DemPairPass, NearListGivesTheBitsOfTheWholeList) {
   DemEngine one = dense_block(1, true, false, 10.0), two = dense_block(2, true, false, 10.0);
-  for (int s = 0; s < 150; ++s) {
-    one.step();
-    two.step();
-  }
+  for (int s = 0; s < 150; ++s) one.step();
+  limit_registers(Registers::kBaseline);  // two threads store the pairs' results there
+  for (int s = 0; s < 150; ++s) two.step();
+  limit_registers(Registers::kAvx512);
   EXPECT_GT(one.stats().near_list_builds, 0u);
   EXPECT_GT(expect_identical_states(one, two), 100u);
 }

@@ -152,8 +152,9 @@ class DemEngine {
   // Without wall_contact: the sums start at zero instead (force_dispatch.cpp).
   void clear_forces();
   // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started: the pass over the
-  // CSR half list either adds each pair straight into the sums or stores the pairs' results, which are
-  // then gathered (threads, energy monitor). Both add in the same order, so the results are bit-identical.
+  // CSR half list either adds each pair straight into the sums (one thread; several where the processor
+  // has AVX-512) or stores the pairs' results, which are then gathered (several threads without AVX-512, an
+  // energy monitor). All add in the same order, so the results are bit-identical.
   template <class V>
   void particle_forces();
   template <bool kRotation>

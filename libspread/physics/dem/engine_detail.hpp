@@ -63,5 +63,13 @@ inline int thread_index() {
   return 0;
 #endif
 }
+// The threads of the enclosing parallel region (1 outside one, or without OpenMP).
+inline int thread_count() {
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
 
 }  // namespace spread::dem::detail

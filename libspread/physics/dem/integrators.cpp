@@ -2,6 +2,8 @@
 // predictor–corrector (gear_predictor_corrector.hpp); the kicks and drifts over the flat arrays, and the
 // periodic wrap after the step.
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
 
 #include "libspread/physics/dem/energy_monitor.hpp"
 #include "libspread/physics/dem/engine.hpp"
@@ -117,49 +119,80 @@ void DemEngine::kick_drift(double dt_kick, double dt_drift) {
   else kick_drift_pass<false>(dt_kick, dt_drift);
 }
 
+namespace {
+
+// The flat arrays kick_drift_pass reads and writes, by value in each thread (shared, GCC would reload
+// them through the parallel region's argument block at every store).
+struct KickDriftArrays {
+  double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz;
+  const double *fx, *fy, *fz, *tx, *ty, *tz, *inv_mass, *inv_inertia;
+  const std::uint8_t* active;
+  const double *xn, *yn, *zn;  // positions at the near list's build (null: the move is not measured)
+  double gravity_m_s2[3];
+  double period_m;  // 0: no periodic axis
+};
+
+// Particles [begin, end): the kick, the drift, and the largest squared move since the near build (m²).
+template <bool kSpin>
+double kick_drift_range(const KickDriftArrays& k, double dt_kick, double dt_drift, std::size_t begin, std::size_t end) {
+  double moved2_near = 0.0;
+  for (std::size_t i = begin; i < end; ++i) {
+    if (k.active[i]) {
+      const double inv_m = k.inv_mass[i];
+      k.vx[i] += dt_kick * (k.fx[i] * inv_m + k.gravity_m_s2[0]);
+      k.vy[i] += dt_kick * (k.fy[i] * inv_m + k.gravity_m_s2[1]);
+      k.vz[i] += dt_kick * (k.fz[i] * inv_m + k.gravity_m_s2[2]);
+      if constexpr (kSpin) {
+        const double inv_i = k.inv_inertia[i];
+        k.wx[i] += dt_kick * k.tx[i] * inv_i;
+        k.wy[i] += dt_kick * k.ty[i] * inv_i;
+        k.wz[i] += dt_kick * k.tz[i] * inv_i;
+      }
+    }
+    k.x[i] += dt_drift * k.vx[i];
+    k.y[i] += dt_drift * k.vy[i];
+    k.z[i] += dt_drift * k.vz[i];
+    if (k.xn != nullptr) {
+      const double dx = k.x[i] - k.xn[i], dy = k.y[i] - k.yn[i];
+      double dz = k.z[i] - k.zn[i];
+      if (k.period_m > 0.0) dz = minimum_image_z(dz, k.period_m);  // a wrap is not a move
+      moved2_near = std::max(moved2_near, dx * dx + dy * dy + dz * dz);
+    }
+  }
+  return moved2_near;
+}
+
+}  // namespace
+
 template <bool kSpin>
 void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
   // kick(dt_kick), then x += dt_drift v, and the largest squared move since the near list's last build
   // (which maintain_lists would otherwise measure in a pass of its own): one pass over the particles.
   // Each quantity is computed as kick, kick_spin and max_displacement2 compute it.
   const std::size_t n = p_.size();
-  const Vec3 g = params_.gravity_m_s2;
-  double* const x = p_.x.data(); double* const y = p_.y.data(); double* const z = p_.z.data();
-  double* const vx = p_.vx.data(); double* const vy = p_.vy.data(); double* const vz = p_.vz.data();
-  double* const wx = p_.wx.data(); double* const wy = p_.wy.data(); double* const wz = p_.wz.data();
-  const double* const fx = p_.fx.data(); const double* const fy = p_.fy.data(); const double* const fz = p_.fz.data();
-  const double* const tx = p_.tx.data(); const double* const ty = p_.ty.data(); const double* const tz = p_.tz.data();
-  const double* const inv_mass = p_.inv_mass_kg.data();
-  const double* const inv_inertia = p_.inv_inertia_kg_m2.data();
-  const std::uint8_t* const active = p_.active.data();
-  const bool periodic = params_.periodic_z.enabled;
-  const double period = params_.periodic_z.length_m();
   // x0 is sized at the first build; before it the move is measured by maintain_lists as before.
   const bool measure_near = near_.x0.size() == n;
-  const double* const xn = near_.x0.data(); const double* const yn = near_.y0.data(); const double* const zn = near_.z0.data();
+  const KickDriftArrays k{p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
+                          p_.wx.data(), p_.wy.data(), p_.wz.data(), p_.fx.data(), p_.fy.data(), p_.fz.data(),
+                          p_.tx.data(), p_.ty.data(), p_.tz.data(), p_.inv_mass_kg.data(), p_.inv_inertia_kg_m2.data(),
+                          p_.active.data(), measure_near ? near_.x0.data() : nullptr,
+                          measure_near ? near_.y0.data() : nullptr, measure_near ? near_.z0.data() : nullptr,
+                          {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()},
+                          params_.periodic_z.enabled ? params_.periodic_z.length_m() : 0.0};
+  // Where the pair pass shares its pairs among threads, each thread takes the particles of one of as many
+  // equal ranges (about those it stages there): they stay in its cache.
+  const bool shared = params_.threads > 1 && static_cast<long long>(n) >= detail::kMinParallelItems &&
+                      static_cast<long long>(pairs_.size()) >= detail::kMinParallelItems;
   double moved2_near = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (active[i]) {
-      const double inv_m = inv_mass[i];
-      vx[i] += dt_kick * (fx[i] * inv_m + g.x());
-      vy[i] += dt_kick * (fy[i] * inv_m + g.y());
-      vz[i] += dt_kick * (fz[i] * inv_m + g.z());
-      if constexpr (kSpin) {
-        const double inv_i = inv_inertia[i];
-        wx[i] += dt_kick * tx[i] * inv_i;
-        wy[i] += dt_kick * ty[i] * inv_i;
-        wz[i] += dt_kick * tz[i] * inv_i;
-      }
+  if (shared) {
+#pragma omp parallel num_threads(params_.threads) firstprivate(k) reduction(max : moved2_near)
+    {
+      const std::size_t t = static_cast<std::size_t>(detail::thread_index());
+      const std::size_t threads = static_cast<std::size_t>(detail::thread_count());
+      moved2_near = std::max(moved2_near, kick_drift_range<kSpin>(k, dt_kick, dt_drift, n * t / threads, n * (t + 1) / threads));
     }
-    x[i] += dt_drift * vx[i];
-    y[i] += dt_drift * vy[i];
-    z[i] += dt_drift * vz[i];
-    if (measure_near) {
-      const double dx = x[i] - xn[i], dy = y[i] - yn[i];
-      double dz = z[i] - zn[i];
-      if (periodic) dz = minimum_image_z(dz, period);  // a wrap is not a move
-      moved2_near = std::max(moved2_near, dx * dx + dy * dy + dz * dz);
-    }
+  } else {
+    moved2_near = kick_drift_range<kSpin>(k, dt_kick, dt_drift, 0, n);
   }
   moved2_since_near_ = measure_near ? moved2_near : -1.0;
 }

@@ -3,11 +3,15 @@
 // flat arrays, nothing else): per particle i, the touching pairs of a chunk of its list
 // (touching_in_chunk), the contact law over them two at a time or one (law_over_touching), and i's
 // finished sums (finish_particle). Where the processor has AVX-512, the direct form stages the touching
-// pairs of many particles and runs the law over eight at a time (pair_pass_batched_avx512). Newton's third
-// law (seed Eq. 1) is applied per pair, so each pair's law runs once.
+// pairs of many particles and runs the law over eight at a time (pair_pass_batched_avx512; on several
+// threads pair_pass_batched_threads_avx512, the sums still added in pair order). Newton's third law (seed
+// Eq. 1) is applied per pair, so each pair's law runs once.
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <thread>
 #include <utility>
+#include <vector>
 
 // The contact laws' templates take eight-lane values here, inlined into the AVX-512 pass only (lanes.hpp).
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -498,85 +502,190 @@ SPREAD_UNROLL(3)
   }
 }
 
+// Stage 1 of the batched pass: the touching pairs of particles [i0, i1) staged in s, as many particles
+// from i0 on as fit (a particle's whole list must fit beside the touching pairs staged before it), or
+// those up to `limit` only. Sets s's per-particle ends; returns i1 (i0 when i0's list alone outgrows the
+// batch) and the staged pair count in n.
+template <class V, PairForm kForm>
+SPREAD_CONTACT_INLINE long long stage_touching(const PairPassArrays<typename V::Law>& a, PairBatch& s, long long i0, long long limit,
+                                               std::uint32_t& n) {
+  n = 0;
+  std::uint32_t particles = 0;
+  long long i1 = i0;
+  for (; i1 < limit && particles < PairBatch::kPairs; ++i1) {
+    const PairRange range = pairs_of(a, static_cast<std::size_t>(i1));
+    if (n + (range.end - range.begin) > PairBatch::kPairs) break;
+    const FirstBody<typename V::Law> b = first_body<V>(a, static_cast<std::size_t>(i1));
+    double* const d[3] = {s.d[0] + n, s.d[1] + n, s.d[2] + n};
+    const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, range, range.begin, range.end, s.k + n, s.dist2 + n, d);
+    for (std::uint32_t q = n; q < n + touching; ++q) s.i[q] = static_cast<std::uint32_t>(i1);
+    n += touching;
+    s.particle_end[particles++] = n;
+  }
+  return i1;
+}
+
+// Stage 2: the law over the n staged pairs, eight at a time; the last group's spare lanes repeat its first
+// pair.
+template <class V, PairForm kForm>
+SPREAD_CONTACT_INLINE void staged_law(const PairPassArrays<typename V::Law>& a, PairBatch& s, std::uint32_t n) {
+  constexpr std::uint32_t kAhead = 16;  // pairs: two groups
+  for (std::uint32_t p = 0; p < std::min(kAhead, n); ++p)
+    __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
+  for (std::uint32_t q = 0; q < n; q += 8) {
+    const std::uint32_t valid = std::min<std::uint32_t>(8, n - q);
+SPREAD_UNROLL(8)
+    for (std::uint32_t l = valid; l < 8; ++l) {
+      s.k[q + l] = s.k[q];
+      s.i[q + l] = s.i[q];
+      s.dist2[q + l] = s.dist2[q];
+SPREAD_UNROLL(3)
+      for (int c = 0; c < 3; ++c) s.d[c][q + l] = s.d[c][q];
+    }
+    // The histories (32 bytes per listed pair, megabytes in all) of two groups ahead.
+    for (std::uint32_t p = q + kAhead; p < std::min(q + kAhead + 8, n); ++p)
+      __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
+    eight_pairs<V, kForm>(a, s, q, valid);
+  }
+}
+
+// Stage 3: the sums of particles [i0, i1), in pair order.
+template <class V, PairForm kForm>
+SPREAD_CONTACT_INLINE void staged_sums(const PairPassArrays<typename V::Law>& a, const PairBatch& s, long long i0, long long i1) {
+  std::uint32_t q = 0;
+  for (std::uint32_t p = 0; p < static_cast<std::uint32_t>(i1 - i0); ++p) {
+    double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
+    for (; q < s.particle_end[p]; ++q) {
+      a.held[s.k[q]] = 1;
+      PairSum& sj = a.sums[s.j[q]];
+SPREAD_UNROLL(3)
+      for (int c = 0; c < 3; ++c) {
+        sum_f[c] += s.f[c][q];
+        sj.f[c] -= s.f[c][q];
+      }
+      if constexpr (V::kRotation)
+SPREAD_UNROLL(3)
+        for (int c = 0; c < 3; ++c) {
+          sum_t[c] += s.t_i[c][q];
+          sj.t[c] += s.t_j[c][q];
+        }
+    }
+    finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t);
+  }
+}
+
 template <class V, PairForm kForm>
 __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched_avx512(PairPassArrays<typename V::Law> a,
                                                                                        long long count) {
-  static_assert(!kForm.store_pairs, "the batched pass adds the sums directly (one thread)");
+  static_assert(!kForm.store_pairs, "the batched pass adds the sums directly");
   PairBatch s;
   long long i0 = 0;
   while (i0 < count) {
-    // Stage 1 over the particles whose lists fit in the batch.
-    std::uint32_t n = 0, particles = 0;
-    long long i1 = i0;
-    for (; i1 < count && particles < PairBatch::kPairs; ++i1) {
-      const PairRange range = pairs_of(a, static_cast<std::size_t>(i1));
-      if (n + (range.end - range.begin) > PairBatch::kPairs) break;
-      const FirstBody<typename V::Law> b = first_body<V>(a, static_cast<std::size_t>(i1));
-      double* const d[3] = {s.d[0] + n, s.d[1] + n, s.d[2] + n};
-      const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, range, range.begin, range.end, s.k + n, s.dist2 + n, d);
-      for (std::uint32_t q = n; q < n + touching; ++q) s.i[q] = static_cast<std::uint32_t>(i1);
-      n += touching;
-      s.particle_end[particles++] = n;
-    }
-    if (particles == 0) {  // a list longer than the batch: that particle alone, by the portable pass
+    std::uint32_t n = 0;
+    const long long i1 = stage_touching<V, kForm>(a, s, i0, count, n);
+    if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass
       pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1);
       ++i0;
       continue;
     }
-    // Stage 2: the law, eight pairs at a time; the last group's spare lanes repeat its first pair.
-    constexpr std::uint32_t kAhead = 16;  // pairs: two groups
-    for (std::uint32_t p = 0; p < std::min(kAhead, n); ++p)
-      __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
-    for (std::uint32_t q = 0; q < n; q += 8) {
-      const std::uint32_t valid = std::min<std::uint32_t>(8, n - q);
-SPREAD_UNROLL(8)
-      for (std::uint32_t l = valid; l < 8; ++l) {
-        s.k[q + l] = s.k[q];
-        s.i[q + l] = s.i[q];
-        s.dist2[q + l] = s.dist2[q];
-SPREAD_UNROLL(3)
-        for (int c = 0; c < 3; ++c) s.d[c][q + l] = s.d[c][q];
-      }
-      // The histories (32 bytes per listed pair, megabytes in all) of two groups ahead.
-      for (std::uint32_t p = q + kAhead; p < std::min(q + kAhead + 8, n); ++p)
-        __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
-      eight_pairs<V, kForm>(a, s, q, valid);
-    }
-    // Stage 3: the sums, in pair order.
-    std::uint32_t q = 0;
-    for (std::uint32_t p = 0; p < particles; ++p) {
-      double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
-      for (; q < s.particle_end[p]; ++q) {
-        a.held[s.k[q]] = 1;
-        PairSum& sj = a.sums[s.j[q]];
-SPREAD_UNROLL(3)
-        for (int c = 0; c < 3; ++c) {
-          sum_f[c] += s.f[c][q];
-          sj.f[c] -= s.f[c][q];
-        }
-        if constexpr (V::kRotation)
-SPREAD_UNROLL(3)
-          for (int c = 0; c < 3; ++c) {
-            sum_t[c] += s.t_i[c][q];
-            sj.t[c] += s.t_j[c][q];
-          }
-      }
-      finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t);
-    }
+    staged_law<V, kForm>(a, s, n);
+    staged_sums<V, kForm>(a, s, i0, i1);
     i0 = i1;
+  }
+}
+
+// Until `turn` reaches t: a short spin, then the core given up between looks (with more threads than cores
+// the thread awaited may need this one's core).
+inline void wait_for_turn(const std::atomic<int>& turn, int t) {
+  for (int spins = 0; turn.load(std::memory_order_acquire) != t; ++spins) {
+    if (spins < 256) __builtin_ia32_pause();
+    else std::this_thread::yield();
+  }
+}
+
+// The batched pass on several threads, the same bits as on one. Thread t takes the t-th of `threads`
+// consecutive ranges of particles (about equal in listed pairs) and runs stages 1 and 2 over its range
+// batch by batch; stage 3 — the only one that adds into sums another range reads (a pair's second body may
+// lie in a later range) — runs range after range, in order, so every sum is added to in pair order. Until
+// the ranges before its own are summed, a thread keeps its batches (stages 1 and 2 done) and goes on; then
+// it sums those and the rest of its range as it goes. Staging reads only particles from the batch's first
+// on (every pair's second body comes after its first), which stage 3 of earlier particles never writes.
+template <class V, PairForm kForm>
+__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched_threads_avx512(PairPassArrays<typename V::Law> a,
+                                                                                               long long count, int threads) {
+  static_assert(!kForm.store_pairs, "the batched pass adds the sums directly");
+  std::vector<long long> range_start(static_cast<std::size_t>(threads) + 1, count);
+  {
+    const long long listed = pairs_of(a, static_cast<std::size_t>(count - 1)).end - pairs_of(a, 0).begin;
+    range_start[0] = 0;
+    int t = 1;
+    for (long long i = 0; i < count && t < threads; ++i)
+      if ((pairs_of(a, static_cast<std::size_t>(i)).begin - pairs_of(a, 0).begin) * threads >= listed * t) range_start[t++] = i;
+  }
+  std::atomic<int> turn{0};
+#pragma omp parallel num_threads(threads) firstprivate(a)
+  {
+    const int t = detail::thread_index();
+    // Batches staged while earlier ranges were not yet summed: [0, kept) of `kept_batches`, with their
+    // particles [kept_start[b], kept_start[b + 1]). Kept across steps (a few MB: no page faults per step).
+    thread_local std::vector<PairBatch> kept_batches;
+    thread_local std::vector<long long> kept_start;
+    std::size_t kept = 0;
+    kept_start.assign(1, range_start[t]);
+    bool my_turn = t == 0;
+    auto sum_kept = [&] {
+      for (std::size_t b = 0; b < kept; ++b) staged_sums<V, kForm>(a, kept_batches[b], kept_start[b], kept_start[b + 1]);
+      kept = 0;
+    };
+    PairBatch own;
+    const long long end = range_start[t + 1];
+    for (long long i0 = range_start[t]; i0 < end;) {
+      if (!my_turn && turn.load(std::memory_order_acquire) == t) {
+        my_turn = true;
+        sum_kept();
+      }
+      if (!my_turn && kept_batches.size() <= kept) kept_batches.resize(kept + 1);
+      PairBatch& s = my_turn ? own : kept_batches[kept];
+      std::uint32_t n = 0;
+      long long i1 = stage_touching<V, kForm>(a, s, i0, end, n);
+      if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass, in its turn
+        wait_for_turn(turn, t);
+        my_turn = true;
+        sum_kept();
+        pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1);
+        i0 += 1;
+        continue;
+      }
+      staged_law<V, kForm>(a, s, n);
+      if (my_turn) {
+        staged_sums<V, kForm>(a, s, i0, i1);
+      } else {
+        ++kept;
+        kept_start.resize(kept + 1);
+        kept_start[kept] = i1;
+      }
+      i0 = i1;
+    }
+    wait_for_turn(turn, t);
+    sum_kept();
+    turn.store(t + 1, std::memory_order_release);
   }
 }
 #endif
 
 // Where the processor has AVX-512: the stored form is the particle-by-particle pass compiled for it (the
 // law's lanes two doubles wide, 32 vector registers instead of 16, less of a contact's state spilled), the
-// direct form the batched pass (eight pairs a register). The same bits either way
+// direct form the batched pass (eight pairs a register; on several threads, a range of particles each).
+// The same bits either way
 // (DemPairPass.WidestRegistersGiveIdenticalStates; docs/drum.md "Where the time goes").
 template <class V, PairForm kForm>
 void pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads) {
 #if defined(__x86_64__) || defined(__i386__)
   if (cpu_has_avx512f()) {
-    if constexpr (!kForm.store_pairs) pair_pass_batched_avx512<V, kForm>(a, count);
+    if constexpr (!kForm.store_pairs) {
+      if (threads > 1 && count >= kMinParallelItems) pair_pass_batched_threads_avx512<V, kForm>(a, count, threads);
+      else pair_pass_batched_avx512<V, kForm>(a, count);
+    }
     else pair_pass_avx512<V, kForm>(a, count, threads);
     return;
   }
@@ -608,7 +717,14 @@ void DemEngine::particle_forces() {
   const long long count = static_cast<long long>(n);
   // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
   // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
-  const bool store = (params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems) || monitor_ != nullptr;
+  // Where the batched pass runs (AVX-512) several threads add them straight into the sums too: it keeps
+  // the order of the additions for any thread count (pair_pass_batched_threads_avx512).
+  bool batched = false;
+#if defined(__x86_64__) || defined(__i386__)
+  batched = cpu_has_avx512f();
+#endif
+  const bool shared = params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems;
+  const bool store = (shared && !batched) || monitor_ != nullptr;
   const bool periodic = params_.periodic_z.enabled;
   if (!store && near_.start.size() == n + 1) {
     a.near_start = near_.start.data();
@@ -620,8 +736,9 @@ void DemEngine::particle_forces() {
     else pair_pass<V, PairForm{true, false}>(a, count, params_.threads);
     gather_stored_pair_forces<V::kRotation>();
   } else {
-    if (periodic) pair_pass<V, PairForm{false, true}>(a, count, params_.threads);
-    else pair_pass<V, PairForm{false, false}>(a, count, params_.threads);
+    const int threads = shared ? params_.threads : 1;
+    if (periodic) pair_pass<V, PairForm{false, true}>(a, count, threads);
+    else pair_pass<V, PairForm{false, false}>(a, count, threads);
   }
 }
 
