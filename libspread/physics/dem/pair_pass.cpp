@@ -625,50 +625,52 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
   std::atomic<int> turn{0};
 #pragma omp parallel num_threads(threads) firstprivate(a)
   {
-    const int t = detail::thread_index();
-    // Batches staged while earlier ranges were not yet summed: [0, kept) of `kept_batches`, with their
-    // particles [kept_start[b], kept_start[b + 1]). Kept across steps (a few MB: no page faults per step).
-    thread_local std::vector<PairBatch> kept_batches;
-    thread_local std::vector<long long> kept_start;
-    std::size_t kept = 0;
-    kept_start.assign(1, range_start[t]);
-    bool my_turn = t == 0;
-    auto sum_kept = [&] {
-      for (std::size_t b = 0; b < kept; ++b) staged_sums<V, kForm>(a, kept_batches[b], kept_start[b], kept_start[b + 1]);
-      kept = 0;
-    };
-    PairBatch own;
-    const long long end = range_start[t + 1];
-    for (long long i0 = range_start[t]; i0 < end;) {
-      if (!my_turn && turn.load(std::memory_order_acquire) == t) {
-        my_turn = true;
-        sum_kept();
+    // Range t for thread t; a team smaller than asked for (or no OpenMP) takes the ranges in turn.
+    for (int t = detail::thread_index(); t < threads; t += detail::thread_count()) {
+      // Batches staged while earlier ranges were not yet summed: [0, kept) of `kept_batches`, with their
+      // particles [kept_start[b], kept_start[b + 1]). Kept across steps (a few MB: no page faults per step).
+      thread_local std::vector<PairBatch> kept_batches;
+      thread_local std::vector<long long> kept_start;
+      std::size_t kept = 0;
+      kept_start.assign(1, range_start[t]);
+      bool my_turn = t == 0;
+      auto sum_kept = [&] {
+        for (std::size_t b = 0; b < kept; ++b) staged_sums<V, kForm>(a, kept_batches[b], kept_start[b], kept_start[b + 1]);
+        kept = 0;
+      };
+      PairBatch own;
+      const long long end = range_start[t + 1];
+      for (long long i0 = range_start[t]; i0 < end;) {
+        if (!my_turn && turn.load(std::memory_order_acquire) == t) {
+          my_turn = true;
+          sum_kept();
+        }
+        if (!my_turn && kept_batches.size() <= kept) kept_batches.resize(kept + 1);
+        PairBatch& s = my_turn ? own : kept_batches[kept];
+        std::uint32_t n = 0;
+        long long i1 = stage_touching<V, kForm>(a, s, i0, end, n);
+        if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass, in its turn
+          wait_for_turn(turn, t);
+          my_turn = true;
+          sum_kept();
+          pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1);
+          i0 += 1;
+          continue;
+        }
+        staged_law<V, kForm>(a, s, n);
+        if (my_turn) {
+          staged_sums<V, kForm>(a, s, i0, i1);
+        } else {
+          ++kept;
+          kept_start.resize(kept + 1);
+          kept_start[kept] = i1;
+        }
+        i0 = i1;
       }
-      if (!my_turn && kept_batches.size() <= kept) kept_batches.resize(kept + 1);
-      PairBatch& s = my_turn ? own : kept_batches[kept];
-      std::uint32_t n = 0;
-      long long i1 = stage_touching<V, kForm>(a, s, i0, end, n);
-      if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass, in its turn
-        wait_for_turn(turn, t);
-        my_turn = true;
-        sum_kept();
-        pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1);
-        i0 += 1;
-        continue;
-      }
-      staged_law<V, kForm>(a, s, n);
-      if (my_turn) {
-        staged_sums<V, kForm>(a, s, i0, i1);
-      } else {
-        ++kept;
-        kept_start.resize(kept + 1);
-        kept_start[kept] = i1;
-      }
-      i0 = i1;
+      wait_for_turn(turn, t);
+      sum_kept();
+      turn.store(t + 1, std::memory_order_release);
     }
-    wait_for_turn(turn, t);
-    sum_kept();
-    turn.store(t + 1, std::memory_order_release);
   }
 }
 #endif
