@@ -271,12 +271,19 @@ TEST(SceneBounds, AbsurdValuesAndAMissingDiscFileAreRefusedAtLoad) {
 // lookup_builder killed (SIGKILL) at a random moment of a --rebuild, again and again: the table it
 // replaces always opens at once, whole (every run), without a journal to roll back — the build writes a
 // staging file and renames it into place — and a build after the kills completes and leaves no staging
-// file. The delays are seeded; where the kills land depends on the machine, the assertions do not.
+// file. The kill times are fractions of the first, complete build as timed here (about 0.3 s in the
+// release build, 0.9 s under the sanitizers, its staging file after 12 and 50 ms; slower still on a
+// loaded machine), so that the kills land in the same phases everywhere: every other kill anywhere from
+// the spawn to past the end, the others once the staging file exists (one left by an interrupted build
+// exists from the start), short of the end. The fractions are seeded; the assertions do not depend on
+// where the kills land.
 void kill_builds_at_random(int kills) {
+  using Clock = std::chrono::steady_clock;
   TempPath table("killed_again.sqlite");
+  const std::string staging = table.path() + ".building";
   const std::string scene_path = std::string(SPREAD_SOURCE_DIR) + "/scenes/default.toml";
   std::vector<std::string> args = {LOOKUP_BUILDER_EXE, scene_path, "--output", table.path(), "--rebuild",
-                                   "--set", "sweep.source=\"analytic\"", "--set", "sweep.samples_per_run=4000",
+                                   "--set", "sweep.source=\"analytic\"", "--set", "sweep.samples_per_run=2000",
                                    "--set", "sweep.rpm=[450, 500, 550, 600, 650, 700, 750]"};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -285,26 +292,50 @@ void kill_builds_at_random(int kills) {
   posix_spawn_file_actions_init(&quiet);
   posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
-  const auto run = [&](std::chrono::microseconds kill_after) {
+  const auto spawn = [&] {
     pid_t pid = 0;
-    ASSERT_EQ(posix_spawn(&pid, LOOKUP_BUILDER_EXE, &quiet, nullptr, argv.data(), environ), 0);
-    if (kill_after.count() >= 0) {
-      std::this_thread::sleep_for(kill_after);
-      kill(pid, SIGKILL);
-    }
-    int status = 0;
-    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    EXPECT_EQ(posix_spawn(&pid, LOOKUP_BUILDER_EXE, &quiet, nullptr, argv.data(), environ), 0);
+    return pid;
   };
-  run(std::chrono::microseconds(-1));  // the first table, complete
+  // Polls until the staging file exists or the builder has exited; returns whether it exited.
+  const auto wait_for_staging = [&](pid_t pid) {
+    int status = 0;
+    while (!std::filesystem::exists(staging)) {
+      if (waitpid(pid, &status, WNOHANG) == pid) return true;
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    return false;
+  };
+  // The first table, complete, timed: when the staging file appeared and when the builder exited.
+  const Clock::time_point start = Clock::now();
+  pid_t pid = spawn();
+  ASSERT_GT(pid, 0);
+  ASSERT_FALSE(wait_for_staging(pid)) << "the builder exited before writing its staging file";
+  const double staging_s = std::chrono::duration<double>(Clock::now() - start).count();
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the first build failed";
+  const double build_s = std::chrono::duration<double>(Clock::now() - start).count();
   const std::size_t runs = tables::read_table_file(table.path()).runs.size();
   ASSERT_EQ(runs, 21u);
   std::mt19937 random(1);
-  // A whole build takes about 0.1 s here: kills spread over it, and some after it.
-  std::uniform_int_distribution<int> delay_us(0, 150000);
+  std::uniform_real_distribution<double> fraction(0.0, 1.0);
   int interrupted = 0;  // kills that landed inside a build (its staging file left behind)
   for (int k = 0; k < kills; ++k) {
-    run(std::chrono::microseconds(delay_us(random)));
-    if (std::filesystem::exists(table.path() + ".building")) ++interrupted;
+    pid = spawn();
+    ASSERT_GT(pid, 0);
+    bool exited = false;
+    if (k % 2 == 0) {  // anywhere: during start-up, the writing, or after the builder has finished
+      std::this_thread::sleep_for(std::chrono::duration<double>(1.2 * build_s * fraction(random)));
+    } else {  // inside the writing, short of its end
+      exited = wait_for_staging(pid);
+      std::this_thread::sleep_for(std::chrono::duration<double>(0.8 * (build_s - staging_s) * fraction(random)));
+    }
+    if (!exited) {
+      kill(pid, SIGKILL);
+      ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    }
+    if (std::filesystem::exists(staging)) ++interrupted;
     EXPECT_FALSE(std::filesystem::exists(table.path() + "-journal")) << "kill " << k;
     try {
       EXPECT_EQ(tables::read_table_file(table.path()).runs.size(), runs) << "kill " << k;
@@ -312,11 +343,13 @@ void kill_builds_at_random(int kills) {
       ADD_FAILURE() << "kill " << k << ": the table does not open: " << e.what();
     }
   }
-  EXPECT_GT(interrupted, 0) << "no kill landed inside a build";
-  run(std::chrono::microseconds(-1));
+  EXPECT_GT(interrupted, 0) << "no kill landed inside a build (the first build: staging file after "
+                            << staging_s << " s, done after " << build_s << " s)";
+  pid = spawn();
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
   posix_spawn_file_actions_destroy(&quiet);
   EXPECT_EQ(tables::read_table_file(table.path()).runs.size(), runs);
-  EXPECT_FALSE(std::filesystem::exists(table.path() + ".building"));
+  EXPECT_FALSE(std::filesystem::exists(staging));
 }
 
 TEST(LookupBuilderKills, TenRandomKillsLeaveTheTableWhole) { kill_builds_at_random(10); }
