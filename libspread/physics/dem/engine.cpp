@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "libspread/physics/dem/engine_detail.hpp"
 #include "libspread/physics/dem/force_variants.hpp"
 #include "libspread/physics/dem/time_step.hpp"
 
@@ -116,6 +117,11 @@ bool DemEngine::overlaps_particle(const Vec3& pos, double radius) const {
 }
 
 std::size_t DemEngine::active_count() const { return p_.size() - inactive_; }
+
+bool DemEngine::threads_share_pairs() const {
+  return params_.threads > 1 && static_cast<long long>(p_.size()) >= detail::kMinParallelItems &&
+         static_cast<long long>(pairs_.size()) >= detail::kMinParallelItems;
+}
 
 double DemEngine::kinetic_energy_j() const {
   double e = 0.0;

@@ -157,6 +157,11 @@ class DemEngine {
   // energy monitor). All add in the same order, so the results are bit-identical.
   template <class V>
   void particle_forces();
+  // Whether threads share the particles' pairs: more than one thread, and particles and listed pairs
+  // enough to share. The pair pass then takes consecutive ranges of particles, one a thread, and the
+  // opening kick and drift (kick_drift_pass) take the same particles, so that each thread finds them in
+  // its own cache; the two must agree.
+  bool threads_share_pairs() const;
   template <bool kRotation>
   void gather_stored_pair_forces();
   // Law::coeffs per material pair (pair_coeffs_table.cpp).

@@ -181,10 +181,8 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
                           params_.periodic_z.enabled ? params_.periodic_z.length_m() : 0.0};
   // Where the pair pass shares its pairs among threads, each thread takes the particles of one of as many
   // equal ranges (about those it stages there): they stay in its cache.
-  const bool shared = params_.threads > 1 && static_cast<long long>(n) >= detail::kMinParallelItems &&
-                      static_cast<long long>(pairs_.size()) >= detail::kMinParallelItems;
   double moved2_near = 0.0;
-  if (shared) {
+  if (threads_share_pairs()) {
 #pragma omp parallel num_threads(params_.threads) firstprivate(k) reduction(max : moved2_near)
     {
       const std::size_t t = static_cast<std::size_t>(detail::thread_index());

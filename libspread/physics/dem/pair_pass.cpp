@@ -725,7 +725,7 @@ void DemEngine::particle_forces() {
 #if defined(__x86_64__) || defined(__i386__)
   batched = cpu_has_avx512f();
 #endif
-  const bool shared = params_.threads > 1 && static_cast<long long>(pairs_.size()) >= kMinParallelItems;
+  const bool shared = threads_share_pairs();
   const bool store = (shared && !batched) || monitor_ != nullptr;
   const bool periodic = params_.periodic_z.enabled;
   if (!store && near_.start.size() == n + 1) {
