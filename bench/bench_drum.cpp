@@ -1,7 +1,9 @@
 // Rotating drum throughput: particle–particle contact steps per second on one core, a drum of
 // ≥ 20,000 particles. Short run: the grid is packed with neighbours just touching (spacing 0.999 d) so
 // every particle starts with its ~6 contacts, as in a settled bed, and the drum turns at Fr 0.1.
-// Counter `particle_steps_per_s` = particles × steps / wall time. SPREAD_BENCH_DRUM_STEPS sets the steps,
+// Counter `particle_steps_per_s` = particles × steps / wall time; where the timed steps went (s): the pair
+// pass with the closing half kick (`pairs_s`), the wall pass (`walls_s`), the opening kick and drift
+// (`integrate_s`), the pair- and near-list upkeep (`lists_s`). SPREAD_BENCH_DRUM_STEPS sets the steps,
 // SPREAD_BENCH_DRUM_THREADS the OpenMP threads (default 1; bench/peers/lammps_drum/compare.sh uses 2).
 #include <benchmark/benchmark.h>
 
@@ -42,9 +44,16 @@ void run(benchmark::State& state, spread::dem::Integrator integrator, double fro
     engine.step();  // first pair-list build outside the timing
     const long long builds_before = engine.stats().pair_list_builds;
     const long long near_before = engine.stats().near_list_builds;
+    const spread::dem::EngineStats before = engine.stats();
     state.ResumeTiming();
     for (int k = 0; k < steps; ++k) engine.step();
     builds = engine.stats().pair_list_builds - builds_before;
+    const spread::dem::EngineStats& after = engine.stats();
+    const double walls_s = after.walls_s - before.walls_s;
+    state.counters["walls_s"] = walls_s;
+    state.counters["pairs_s"] = after.forces_s - before.forces_s - walls_s;
+    state.counters["integrate_s"] = after.integrate_s - before.integrate_s;
+    state.counters["lists_s"] = after.pair_search_s - before.pair_search_s;
     near_builds = engine.stats().near_list_builds - near_before;
     n = engine.active_count();
     pairs = engine.pair_count();

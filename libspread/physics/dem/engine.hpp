@@ -94,6 +94,7 @@ struct EngineStats {
   std::uint64_t lost = 0;
   double pair_search_s = 0.0;
   double forces_s = 0.0;
+  double walls_s = 0.0;  // the wall pass, part of forces_s
   double integrate_s = 0.0;
   double collector_s = 0.0;
 };

@@ -16,8 +16,13 @@ void DemEngine::compute_forces() {
   const auto t0 = Clock::now();
   walls_.set_time(time_s_);
   if (coeffs_dirty_) (this->*kCoeffUpdates[force_variant_])();
-  if (params_.has(effect::kWallContact)) (this->*kWallPasses[force_variant_])();  // sets the sums: walls first
-  else clear_forces();
+  if (params_.has(effect::kWallContact)) {
+    const auto t_walls = Clock::now();
+    (this->*kWallPasses[force_variant_])();  // sets the sums: walls first
+    stats_.walls_s += seconds_since(t_walls);
+  } else {
+    clear_forces();
+  }
   if (params_.has(effect::kParticleContact)) (this->*kParticlePasses[force_variant_])();
   stats_.forces_s += seconds_since(t0);
 }
