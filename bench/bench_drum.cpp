@@ -42,19 +42,17 @@ void run(benchmark::State& state, spread::dem::Integrator integrator, double fro
     auto engine = spread::drum::make_drum_engine(s, s.angular_velocity_rad_s);
     for (const auto& q : spread::drum::grid_packing(s, 0.999)) engine.add_particle(q.position_m, spread::Vec3::Zero(), q.radius_m, q.species);
     engine.step();  // first pair-list build outside the timing
-    const long long builds_before = engine.stats().pair_list_builds;
-    const long long near_before = engine.stats().near_list_builds;
     const spread::dem::EngineStats before = engine.stats();
     state.ResumeTiming();
     for (int k = 0; k < steps; ++k) engine.step();
-    builds = engine.stats().pair_list_builds - builds_before;
     const spread::dem::EngineStats& after = engine.stats();
+    builds = static_cast<long long>(after.pair_list_builds - before.pair_list_builds);
+    near_builds = static_cast<long long>(after.near_list_builds - before.near_list_builds);
     const double walls_s = after.walls_s - before.walls_s;
     state.counters["walls_s"] = walls_s;
     state.counters["pairs_s"] = after.forces_s - before.forces_s - walls_s;
     state.counters["integrate_s"] = after.integrate_s - before.integrate_s;
     state.counters["lists_s"] = after.pair_search_s - before.pair_search_s;
-    near_builds = engine.stats().near_list_builds - near_before;
     n = engine.active_count();
     pairs = engine.pair_count();
     particle_steps += static_cast<double>(n) * steps;
