@@ -12,6 +12,7 @@
 #include <any>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,8 @@ struct Collector {
   bool enabled = false;
   Vec3 axis_point_m = Vec3::Zero();
   double radius_m = 0.0;
-  double lost_below_z_m = -1e300;  // particles falling below this are removed and counted as lost
+  // Particles falling below this are removed and counted as lost; −∞ (the default): no loss plane.
+  double lost_below_z_m = -std::numeric_limits<double>::infinity();
 };
 
 struct LaunchRecord {

@@ -1,5 +1,7 @@
 // The collector: a particle beyond the collector cylinder has launched; its state is recorded and it
 // leaves the DEM (the partitioned scheme hands it to the flight module).
+#include <limits>
+
 #include "libspread/physics/dem/engine.hpp"
 #include "libspread/physics/dem/engine_detail.hpp"
 
@@ -9,6 +11,8 @@ using detail::Clock;
 using detail::seconds_since;
 
 void DemEngine::collect() {
+  // Neither a collector nor a loss plane (a drum): no particle can leave, and the pass is not run.
+  if (!collector_.enabled && collector_.lost_below_z_m == -std::numeric_limits<double>::infinity()) return;
   const auto t0 = Clock::now();
   const std::size_t n = p_.size();
   for (std::size_t i = 0; i < n; ++i) {
