@@ -180,7 +180,8 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
                           {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()},
                           params_.periodic_z.enabled ? params_.periodic_z.length_m() : 0.0};
   // Where the pair pass shares its pairs among threads, each thread takes the particles of one of as many
-  // equal ranges (about those it stages there): they stay in its cache.
+  // consecutive ranges, so that they stay in its cache for the pair pass. These ranges are equal in
+  // particles, the pair pass's equal in listed pairs: the same on an even bed, apart where the density varies.
   double moved2_near = 0.0;
   if (threads_share_pairs()) {
 #pragma omp parallel num_threads(params_.threads) firstprivate(k) reduction(max : moved2_near)

@@ -616,11 +616,22 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
   static_assert(!kForm.store_pairs, "the batched pass adds the sums directly");
   std::vector<long long> range_start(static_cast<std::size_t>(threads) + 1, count);
   {
+    // Range t starts at the first particle whose list starts at or past t/threads of the listed pairs; the
+    // list starts ascend, so a bisection finds it.
+    const auto listed_before = [&](long long i) {
+      return static_cast<long long>(pairs_of(a, static_cast<std::size_t>(i)).begin - pairs_of(a, 0).begin);
+    };
     const long long listed = pairs_of(a, static_cast<std::size_t>(count - 1)).end - pairs_of(a, 0).begin;
     range_start[0] = 0;
-    int t = 1;
-    for (long long i = 0; i < count && t < threads; ++i)
-      if ((pairs_of(a, static_cast<std::size_t>(i)).begin - pairs_of(a, 0).begin) * threads >= listed * t) range_start[t++] = i;
+    for (int t = 1; t < threads; ++t) {
+      long long lo = range_start[t - 1], hi = count;  // the answer lies in [lo, hi]
+      while (lo < hi) {
+        const long long mid = lo + (hi - lo) / 2;
+        if (listed_before(mid) * threads >= listed * t) hi = mid;
+        else lo = mid + 1;
+      }
+      range_start[t] = lo;
+    }
   }
   std::atomic<int> turn{0};
 #pragma omp parallel num_threads(threads) firstprivate(a)
