@@ -149,9 +149,15 @@ class DemEngine {
   void compute_forces();
   // The passes are templates over one force variant V (force_variants.hpp, PassVariant: V::Law, the
   // pass-shaping effects V::kEffects).
-  // Walls (wall_pass.cpp): sets each particle's force (and torque) sums to its wall contacts' share.
+  // Walls (wall_pass.cpp): sets each particle's force (and torque) sums to its wall contacts' share. When
+  // the opening kick has left the sums at zero (sums_cleared_) and the wall list is current, only the
+  // particles on the wall list are visited.
   template <class V>
   void wall_forces();
+  // One particle's wall contacts (groups: the wall groups to look at): its sums, zero on entry, set to their
+  // share; `dropped` counts contacts past its kWallSlots.
+  template <class V>
+  void wall_particle(std::size_t i, std::uint64_t groups, std::uint64_t& dropped);
   // Without wall_contact: the sums start at zero instead (force_dispatch.cpp).
   void clear_forces();
   // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started: the pass over the
@@ -181,9 +187,11 @@ class DemEngine {
   void kick(double dt);
   void kick_spin(double dt);  // ω += Δt T/I (rotation only); kick() and kick_drift() end with it
   // kick(dt_kick), then the drift x += dt_drift v, in one pass over the particles, which also measures the
-  // largest move since the near list's last build (moved2_since_near_).
-  void kick_drift(double dt_kick, double dt_drift);
-  template <bool kSpin>
+  // largest move since the near list's last build (moved2_since_near_). clear_sums: the force and torque
+  // sums, read by the kick, are left at zero for the force evaluation that follows (sums_cleared_), so
+  // that the wall pass need not visit the particles away from the walls.
+  void kick_drift(double dt_kick, double dt_drift, bool clear_sums);
+  template <bool kSpin, bool kClearSums>
   void kick_drift_pass(double dt_kick, double dt_drift);
   void wrap_periodic_z();
   // Launched and lost particles leave (launch_collector.cpp).
@@ -207,6 +215,7 @@ class DemEngine {
   // are not looked at). Used only when every wall group's surface is fixed in space
   // (walls_fixed_in_space_); empty otherwise.
   std::vector<std::uint64_t> walls_near_;
+  std::vector<std::uint32_t> wall_listed_;  // the particles whose walls_near_ is not 0, ascending
   bool walls_fixed_in_space_ = false;
   // Law::coeffs per material pair (a·M + b), for particle pairs (pair_coeffs_) and particle–wall contacts
   // (wall_coeffs_, R* = r, M* = m): valid (uniform) when every particle of the particle materials has the
@@ -231,6 +240,8 @@ class DemEngine {
   // (positions changed since in another way), maintain_lists measures it itself.
   double moved2_since_near_ = -1.0;
   bool kicked_in_pass_ = false;
+  // The force and torque sums are zero (the opening kick left them so) and nothing has been added yet.
+  bool sums_cleared_ = false;
   std::size_t inactive_ = 0;
 };
 

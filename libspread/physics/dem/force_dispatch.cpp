@@ -20,9 +20,10 @@ void DemEngine::compute_forces() {
     const auto t_walls = Clock::now();
     (this->*kWallPasses[force_variant_])();  // sets the sums: walls first
     stats_.walls_s += seconds_since(t_walls);
-  } else {
+  } else if (!sums_cleared_) {
     clear_forces();
   }
+  sums_cleared_ = false;
   if (params_.has(effect::kParticleContact)) (this->*kParticlePasses[force_variant_])();
   stats_.forces_s += seconds_since(t0);
 }

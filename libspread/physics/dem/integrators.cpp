@@ -35,7 +35,7 @@ void DemEngine::step_symplectic_euler() {
   maintain_lists();
   compute_forces();
   const auto t0 = Clock::now();
-  kick_drift(dt_s_, dt_s_);  // Eq. 41: v from the forces at t, then x with the new v
+  kick_drift(dt_s_, dt_s_, false);  // Eq. 41: v from the forces at t, then x with the new v
   stats_.integrate_s += seconds_since(t0);
 }
 
@@ -64,7 +64,7 @@ void DemEngine::step_velocity_verlet() {
     compute_forces();
   }
   auto t0 = Clock::now();
-  kick_drift(0.5 * dt_s_, dt_s_);
+  kick_drift(0.5 * dt_s_, dt_s_, true);  // the forces at t are not read again: the sums start at zero
   stats_.integrate_s += seconds_since(t0);
   // The closing half kick goes with the particle–particle pass, each particle's as its sums complete
   // (pair_pass.cpp); without that pass, here.
@@ -114,9 +114,15 @@ void DemEngine::kick_spin(double dt) {
   }
 }
 
-void DemEngine::kick_drift(double dt_kick, double dt_drift) {
-  if (p_.with_spin) kick_drift_pass<true>(dt_kick, dt_drift);
-  else kick_drift_pass<false>(dt_kick, dt_drift);
+void DemEngine::kick_drift(double dt_kick, double dt_drift, bool clear_sums) {
+  if (p_.with_spin) {
+    if (clear_sums) kick_drift_pass<true, true>(dt_kick, dt_drift);
+    else kick_drift_pass<true, false>(dt_kick, dt_drift);
+  } else {
+    if (clear_sums) kick_drift_pass<false, true>(dt_kick, dt_drift);
+    else kick_drift_pass<false, false>(dt_kick, dt_drift);
+  }
+  sums_cleared_ = clear_sums;
 }
 
 namespace {
@@ -125,15 +131,18 @@ namespace {
 // them through the parallel region's argument block at every store).
 struct KickDriftArrays {
   double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz;
-  const double *fx, *fy, *fz, *tx, *ty, *tz, *inv_mass, *inv_inertia;
+  double *fx, *fy, *fz, *tx, *ty, *tz;
+  const double *inv_mass, *inv_inertia;
   const std::uint8_t* active;
   const double *xn, *yn, *zn;  // positions at the near list's build (null: the move is not measured)
   double gravity_m_s2[3];
   double period_m;  // 0: no periodic axis
 };
 
-// Particles [begin, end): the kick, the drift, and the largest squared move since the near build (m²).
-template <bool kSpin>
+// Particles [begin, end): the kick, the drift, and the largest squared move since the near build (m²);
+// kClearSums: the force and torque sums zeroed once read (their lines are in cache here; a pass of its own
+// would stream them through the core again).
+template <bool kSpin, bool kClearSums>
 double kick_drift_range(const KickDriftArrays& k, double dt_kick, double dt_drift, std::size_t begin, std::size_t end) {
   double moved2_near = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
@@ -149,6 +158,10 @@ double kick_drift_range(const KickDriftArrays& k, double dt_kick, double dt_drif
         k.wz[i] += dt_kick * k.tz[i] * inv_i;
       }
     }
+    if constexpr (kClearSums) {
+      k.fx[i] = k.fy[i] = k.fz[i] = 0.0;
+      if constexpr (kSpin) k.tx[i] = k.ty[i] = k.tz[i] = 0.0;
+    }
     k.x[i] += dt_drift * k.vx[i];
     k.y[i] += dt_drift * k.vy[i];
     k.z[i] += dt_drift * k.vz[i];
@@ -162,9 +175,20 @@ double kick_drift_range(const KickDriftArrays& k, double dt_kick, double dt_drif
   return moved2_near;
 }
 
+// The arrays of p; measure_near: the moves since the near list's build measured against its positions.
+KickDriftArrays kick_drift_arrays(ParticleArrays& p, const NearList& near, const EngineParams& params, bool measure_near) {
+  return {p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(), p.vz.data(),
+          p.wx.data(), p.wy.data(), p.wz.data(), p.fx.data(), p.fy.data(), p.fz.data(),
+          p.tx.data(), p.ty.data(), p.tz.data(), p.inv_mass_kg.data(), p.inv_inertia_kg_m2.data(),
+          p.active.data(), measure_near ? near.x0.data() : nullptr,
+          measure_near ? near.y0.data() : nullptr, measure_near ? near.z0.data() : nullptr,
+          {params.gravity_m_s2.x(), params.gravity_m_s2.y(), params.gravity_m_s2.z()},
+          params.periodic_z.enabled ? params.periodic_z.length_m() : 0.0};
+}
+
 }  // namespace
 
-template <bool kSpin>
+template <bool kSpin, bool kClearSums>
 void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
   // kick(dt_kick), then x += dt_drift v, and the largest squared move since the near list's last build
   // (which maintain_lists would otherwise measure in a pass of its own): one pass over the particles.
@@ -172,13 +196,7 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
   const std::size_t n = p_.size();
   // x0 is sized at the first build; before it the move is measured by maintain_lists as before.
   const bool measure_near = near_.x0.size() == n;
-  const KickDriftArrays k{p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
-                          p_.wx.data(), p_.wy.data(), p_.wz.data(), p_.fx.data(), p_.fy.data(), p_.fz.data(),
-                          p_.tx.data(), p_.ty.data(), p_.tz.data(), p_.inv_mass_kg.data(), p_.inv_inertia_kg_m2.data(),
-                          p_.active.data(), measure_near ? near_.x0.data() : nullptr,
-                          measure_near ? near_.y0.data() : nullptr, measure_near ? near_.z0.data() : nullptr,
-                          {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()},
-                          params_.periodic_z.enabled ? params_.periodic_z.length_m() : 0.0};
+  const KickDriftArrays k = kick_drift_arrays(p_, near_, params_, measure_near);
   // Where the pair pass shares its pairs among threads, each thread takes the particles of one of as many
   // consecutive ranges, so that they stay in its cache for the pair pass. These ranges are equal in
   // particles, the pair pass's equal in listed pairs: the same on an even bed, apart where the density varies.
@@ -188,10 +206,10 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
     {
       const std::size_t t = static_cast<std::size_t>(detail::thread_index());
       const std::size_t threads = static_cast<std::size_t>(detail::thread_count());
-      moved2_near = std::max(moved2_near, kick_drift_range<kSpin>(k, dt_kick, dt_drift, n * t / threads, n * (t + 1) / threads));
+      moved2_near = std::max(moved2_near, kick_drift_range<kSpin, kClearSums>(k, dt_kick, dt_drift, n * t / threads, n * (t + 1) / threads));
     }
   } else {
-    moved2_near = kick_drift_range<kSpin>(k, dt_kick, dt_drift, 0, n);
+    moved2_near = kick_drift_range<kSpin, kClearSums>(k, dt_kick, dt_drift, 0, n);
   }
   moved2_since_near_ = measure_near ? moved2_near : -1.0;
 }

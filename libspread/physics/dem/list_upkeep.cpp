@@ -59,9 +59,11 @@ void DemEngine::maintain_lists() {
       walls_.set_time(time_s_);
       // Per particle, the wall groups within reach (a particle still holding a wall history looks at all).
       walls_near_.assign(p_.size(), 0);
+      wall_listed_.clear();
       for (std::size_t i = 0; i < p_.size(); ++i) {
         if (!p_.active[i]) continue;
         walls_near_[i] = p_.wall_key[i * kWallSlots] != 0 ? ~0ull : walls_.groups_within(p_.position(i), p_.radius_m[i] + skin_m_);
+        if (walls_near_[i] != 0) wall_listed_.push_back(static_cast<std::uint32_t>(i));
       }
     }
     lists_dirty_ = false;

@@ -90,64 +90,73 @@ SPREAD_CONTACT_INLINE void wall_contact(const PairTable& pair_table, const typen
 }  // namespace
 
 template <class V>
-void DemEngine::wall_forces() {
+void DemEngine::wall_particle(std::size_t i, std::uint64_t groups, std::uint64_t& dropped) {
   const typename V::Law::Coeffs* const wall_coeffs = coeffs_table<typename V::Law>(wall_coeffs_);
   const std::size_t material_count = materials_.size();
-  const std::size_t n = p_.size();
-  const double dt = dt_s_;
-  const long long nn = static_cast<long long>(n);
-  std::uint64_t dropped = 0;
-  const bool parallel_particles = params_.threads > 1 && nn >= kMinParallelItems;
-  WallContact* const scratch = wall_scratch_.data();
-  const std::uint64_t* const walls_near = walls_near_.size() == n ? walls_near_.data() : nullptr;
-  // Walls, per particle (each particle owns its wall-history slots: no races).
-#pragma omp parallel for schedule(static) num_threads(params_.threads) reduction(+ : dropped) if (parallel_particles)
-  for (long long ii = 0; ii < nn; ++ii) {
-    const std::size_t i = static_cast<std::size_t>(ii);
-    p_.fx[i] = p_.fy[i] = p_.fz[i] = 0.0;
-    if constexpr (V::kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
-    const std::uint64_t groups = walls_near != nullptr ? walls_near[i] : ~0ull;
-    if (!p_.active[i] || groups == 0) continue;
-    const double r = p_.radius_m[i];
-    WallContact* const wc = scratch + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2);
-    int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2, groups);
-    if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
-    const std::size_t base = i * kWallSlots;
-    // Slots are filled from the front, so an empty first slot means no wall history to carry: most
-    // particles of a bed touch no wall, and they skip the slot bookkeeping below.
-    if (nc == 0 && p_.wall_key[base] == 0) continue;
-    WallBody b{p_.velocity(i), Vec3::Zero(), r, p_.mass_kg[i], p_.inertia_kg_m2[i], p_.material[i]};
-    if constexpr (V::kRotation) b.w = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
-    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-    // The usual case, a particle resting on the same walls as a step ago: each contact finds its own key
-    // in its own slot (keys are unique within a particle's slots, so that is the slot claim() would
-    // give), and its history is carried on in place, without the copy of every slot below.
-    bool in_place = true;
-    for (int c = 0; c < nc; ++c) in_place &= p_.wall_key[base + c] == wc[c].key;
-    if (in_place) {
-      for (int c = 0; c < nc; ++c) {
-        wall_contact<V>(pair_table_, wall_coeffs, material_count, walls_, b, wc[c], dt,
-                        &p_.wall_history[(base + c) * kHistoryDoubles], force, torque);
-        for (int k = 0; k < 3; ++k) p_.wall_normal[(base + c) * 3 + k] = wc[c].normal[k];
-      }
-      for (int s = nc; s < kWallSlots; ++s) p_.wall_key[base + s] = 0;
-      p_.fx[i] = force.x(); p_.fy[i] = force.y(); p_.fz[i] = force.z();
-      if constexpr (V::kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
-      continue;
+  const double r = p_.radius_m[i];
+  WallContact* const wc = wall_scratch_.data() + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2);
+  int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2, groups);
+  if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
+  const std::size_t base = i * kWallSlots;
+  // Slots are filled from the front, so an empty first slot means no wall history to carry: most
+  // particles of a bed touch no wall, and they skip the slot bookkeeping below.
+  if (nc == 0 && p_.wall_key[base] == 0) return;
+  WallBody b{p_.velocity(i), Vec3::Zero(), r, p_.mass_kg[i], p_.inertia_kg_m2[i], p_.material[i]};
+  if constexpr (V::kRotation) b.w = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  // The usual case, a particle resting on the same walls as a step ago: each contact finds its own key
+  // in its own slot (keys are unique within a particle's slots, so that is the slot claim() would
+  // give), and its history is carried on in place, without the copy of every slot below.
+  bool in_place = true;
+  for (int c = 0; c < nc; ++c) in_place &= p_.wall_key[base + c] == wc[c].key;
+  if (in_place) {
+    for (int c = 0; c < nc; ++c) {
+      wall_contact<V>(pair_table_, wall_coeffs, material_count, walls_, b, wc[c], dt_s_,
+                      &p_.wall_history[(base + c) * kHistoryDoubles], force, torque);
+      for (int k = 0; k < 3; ++k) p_.wall_normal[(base + c) * 3 + k] = wc[c].normal[k];
     }
+  } else {
     OldWallSlots old(p_, base);
     for (int c = 0; c < nc; ++c) {
       const int match = old.claim(wc[c]);
       double hist[kHistoryDoubles] = {0.0, 0.0, 0.0, 0.0};
       if (match >= 0) std::copy_n(old.history + match * kHistoryDoubles, kHistoryDoubles, hist);
-      wall_contact<V>(pair_table_, wall_coeffs, material_count, walls_, b, wc[c], dt, hist, force, torque);
+      wall_contact<V>(pair_table_, wall_coeffs, material_count, walls_, b, wc[c], dt_s_, hist, force, torque);
       p_.wall_key[base + c] = wc[c].key;
       std::copy_n(hist, kHistoryDoubles, &p_.wall_history[(base + c) * kHistoryDoubles]);
       for (int k = 0; k < 3; ++k) p_.wall_normal[(base + c) * 3 + k] = wc[c].normal[k];
     }
-    for (int s = nc; s < kWallSlots; ++s) p_.wall_key[base + s] = 0;
-    p_.fx[i] = force.x(); p_.fy[i] = force.y(); p_.fz[i] = force.z();
-    if constexpr (V::kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
+  }
+  for (int s = nc; s < kWallSlots; ++s) p_.wall_key[base + s] = 0;
+  p_.fx[i] = force.x(); p_.fy[i] = force.y(); p_.fz[i] = force.z();
+  if constexpr (V::kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
+}
+
+template <class V>
+void DemEngine::wall_forces() {
+  const std::size_t n = p_.size();
+  std::uint64_t dropped = 0;
+  const bool listed = walls_near_.size() == n;
+  const std::uint64_t* const walls_near = listed ? walls_near_.data() : nullptr;
+  if (listed && sums_cleared_) {
+    // The sums are zero already: only the particles that may touch a wall before the next build.
+    const std::uint32_t* const on_list = wall_listed_.data();
+    const long long count = static_cast<long long>(wall_listed_.size());
+#pragma omp parallel for schedule(static) num_threads(params_.threads) reduction(+ : dropped) if (params_.threads > 1 && count >= kMinParallelItems)
+    for (long long q = 0; q < count; ++q) {
+      const std::size_t i = on_list[q];
+      if (p_.active[i]) wall_particle<V>(i, walls_near[i], dropped);
+    }
+  } else {
+    const long long nn = static_cast<long long>(n);
+#pragma omp parallel for schedule(static) num_threads(params_.threads) reduction(+ : dropped) if (params_.threads > 1 && nn >= kMinParallelItems)
+    for (long long ii = 0; ii < nn; ++ii) {
+      const std::size_t i = static_cast<std::size_t>(ii);
+      p_.fx[i] = p_.fy[i] = p_.fz[i] = 0.0;
+      if constexpr (V::kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
+      const std::uint64_t groups = walls_near != nullptr ? walls_near[i] : ~0ull;
+      if (p_.active[i] && groups != 0) wall_particle<V>(i, groups, dropped);
+    }
   }
   stats_.wall_contacts_dropped += dropped;
 }
