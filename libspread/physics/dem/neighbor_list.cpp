@@ -233,8 +233,9 @@ void transfer_history(PairList& list) {
   const std::vector<std::uint64_t>& old_keys = list.previous_key;
   const std::vector<double>& old_hist = list.previous_history;
   const std::size_t np = list.size();
-  list.history.assign(np * kHistoryDoubles, 0.0);
-  list.held.assign(np, 0);
+  // Sized only (the storage is an earlier build's): every entry is written below, once.
+  list.history.resize(np * kHistoryDoubles);
+  list.held.resize(np);
   const bool new_sorted = std::is_sorted(list.key.begin(), list.key.end());
   std::size_t walk = 0;
   for (std::size_t k = 0; k < np; ++k) {
@@ -246,12 +247,17 @@ void transfer_history(PairList& list) {
     } else {
       o = static_cast<std::size_t>(std::lower_bound(old_keys.begin(), old_keys.end(), key) - old_keys.begin());
     }
+    double* const h = list.history.data() + k * kHistoryDoubles;
+    std::uint8_t held = 0;
     if (o < old_keys.size() && old_keys[o] == key) {
-      for (int h = 0; h < kHistoryDoubles; ++h) {
-        list.history[k * kHistoryDoubles + h] = old_hist[o * kHistoryDoubles + h];
-        if (old_hist[o * kHistoryDoubles + h] != 0.0) list.held[k] = 1;
+      for (int c = 0; c < kHistoryDoubles; ++c) {
+        h[c] = old_hist[o * kHistoryDoubles + c];
+        if (h[c] != 0.0) held = 1;
       }
+    } else {
+      for (int c = 0; c < kHistoryDoubles; ++c) h[c] = 0.0;
     }
+    list.held[k] = held;
   }
 }
 
@@ -278,14 +284,19 @@ void build_pair_list(ParticleArrays& p, double skin_m, PairList& list, const Per
   list.first.clear();
   list.second.clear();
   list.key.clear();
-  list.history.clear();
   for (std::size_t i = 0; i < n; ++i) { p.x0[i] = p.x[i]; p.y0[i] = p.y[i]; p.z0[i] = p.z[i]; }
   list.first_start.assign(n + 1, 0);
   double rmax;
   Vec3 lo, hi;
   if (active_bounds(p, rmax, lo, hi)) search_pairs(p, bin_particles(p, rmax, lo, hi, skin_m, periodic), skin_m, periodic, list);
   transfer_history(list);
+  list.stored_pairs_ready = false;
+}
+
+void prepare_stored_pairs(std::size_t n, PairList& list) {
+  if (list.stored_pairs_ready) return;
   index_by_second(n, list);
+  list.stored_pairs_ready = true;
 }
 
 }  // namespace spread::dem

@@ -48,13 +48,15 @@ struct PairList {
   // 1 when the pair's history may hold something (it touched at its last evaluation): the force pass
   // tests this byte for the ~2/3 of listed pairs that are apart instead of loading their 32-byte history.
   std::vector<std::uint8_t> held;
-  // Gather index: pairs where a slot is `second`, CSR (start has size()+1 entries).
+  // Gather index: pairs where a slot is `second`, CSR (start has size()+1 entries). Built with the per-pair
+  // outputs below on demand (prepare_stored_pairs): only the force pass that stores pairs reads them.
   std::vector<std::uint32_t> second_start, second_pairs;
   std::vector<std::uint32_t> first_start;  // CSR start of each slot's pairs as `first`
   // Per-pair outputs of the force pass (force on `first`, torques on both). Written only when the
   // engine stores per-pair results (several threads, or an energy monitor attached); the single-thread
   // pass adds each pair straight into the particles' sums instead. Zero for pairs not touching.
   std::vector<double> force, torque_first, torque_second;
+  bool stored_pairs_ready = false;  // the gather index and the per-pair outputs fit this build
   // The previous build's keys and history: build_pair_list's scratch, kept for their storage.
   std::vector<std::uint64_t> previous_key;
   std::vector<double> previous_history;
@@ -66,6 +68,9 @@ struct PairList {
 // Also stores the build positions (x0,y0,z0) in `p`. With a periodic z axis the period must be at least
 // twice the search cut-off 2 r_max + skin (one image per pair); throws std::invalid_argument otherwise.
 void build_pair_list(ParticleArrays& p, double skin_m, PairList& list, const PeriodicZ& periodic = {});
+// The gather index and the per-pair outputs for the list's current build (n: the particle slots), if not
+// built yet.
+void prepare_stored_pairs(std::size_t n, PairList& list);
 
 // Largest squared displacement since the last build (m²), active particles only (minimum image in z).
 double max_displacement2(const ParticleArrays& p, const PeriodicZ& periodic = {});

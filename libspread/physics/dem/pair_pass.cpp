@@ -713,6 +713,17 @@ void DemEngine::particle_forces() {
   using Law = typename V::Law;
   const std::size_t n = p_.size();
   if (pair_sum_.size() != n) pair_sum_.assign(n, PairSum{});
+  // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
+  // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
+  // Where the batched pass runs (AVX-512) several threads add them straight into the sums too: it keeps
+  // the order of the additions for any thread count (pair_pass_batched_threads_avx512).
+  bool batched = false;
+#if defined(__x86_64__) || defined(__i386__)
+  batched = cpu_has_avx512f();
+#endif
+  const bool shared = threads_share_pairs();
+  const bool store = (shared && !batched) || monitor_ != nullptr;
+  if (store) prepare_stored_pairs(n, pairs_);
   constexpr bool with_spin = V::kRotation;
   PairPassArrays<Law> a{
       p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
@@ -728,16 +739,6 @@ void DemEngine::particle_forces() {
       {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr},
       nullptr, nullptr};
   const long long count = static_cast<long long>(n);
-  // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
-  // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
-  // Where the batched pass runs (AVX-512) several threads add them straight into the sums too: it keeps
-  // the order of the additions for any thread count (pair_pass_batched_threads_avx512).
-  bool batched = false;
-#if defined(__x86_64__) || defined(__i386__)
-  batched = cpu_has_avx512f();
-#endif
-  const bool shared = threads_share_pairs();
-  const bool store = (shared && !batched) || monitor_ != nullptr;
   const bool periodic = params_.periodic_z.enabled;
   if (!store && near_.start.size() == n + 1) {
     a.near_start = near_.start.data();
