@@ -154,10 +154,12 @@ class DemEngine {
   // particles on the wall list are visited.
   template <class V>
   void wall_forces();
-  // One particle's wall contacts (groups: the wall groups to look at): its sums, zero on entry, set to their
-  // share; `dropped` counts contacts past its kWallSlots.
+  // One particle's wall contacts (groups: the wall groups to look at; wall_coeffs: the law's coefficients
+  // per material pair; wc: this thread's contact scratch): its sums, zero on entry, set to their share;
+  // `dropped` counts contacts past its kWallSlots.
   template <class V>
-  void wall_particle(std::size_t i, std::uint64_t groups, std::uint64_t& dropped);
+  void wall_particle(std::size_t i, std::uint64_t groups, const typename V::Law::Coeffs* wall_coeffs, WallContact* wc,
+                     std::uint64_t& dropped);
   // Without wall_contact: the sums start at zero instead (force_dispatch.cpp).
   void clear_forces();
   // Particle–particle contacts (pair_pass.cpp), added to the sums the wall pass started: the pass over the

@@ -64,7 +64,10 @@ void DemEngine::step_velocity_verlet() {
     compute_forces();
   }
   auto t0 = Clock::now();
-  kick_drift(0.5 * dt_s_, dt_s_, true);  // the forces at t are not read again: the sums start at zero
+  // The forces at t are not read again: on one thread the kick leaves the sums at zero for the wall pass.
+  // Where threads share the particles, the wall pass zeroes them, each thread its own range (the wall list's
+  // particles are too few to share: one thread would write into the other's range).
+  kick_drift(0.5 * dt_s_, dt_s_, !threads_share_pairs());
   stats_.integrate_s += seconds_since(t0);
   // The closing half kick goes with the particle–particle pass, each particle's as its sums complete
   // (pair_pass.cpp); without that pass, here.

@@ -90,11 +90,10 @@ SPREAD_CONTACT_INLINE void wall_contact(const PairTable& pair_table, const typen
 }  // namespace
 
 template <class V>
-void DemEngine::wall_particle(std::size_t i, std::uint64_t groups, std::uint64_t& dropped) {
-  const typename V::Law::Coeffs* const wall_coeffs = coeffs_table<typename V::Law>(wall_coeffs_);
+void DemEngine::wall_particle(std::size_t i, std::uint64_t groups, const typename V::Law::Coeffs* wall_coeffs, WallContact* wc,
+                              std::uint64_t& dropped) {
   const std::size_t material_count = materials_.size();
   const double r = p_.radius_m[i];
-  WallContact* const wc = wall_scratch_.data() + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2);
   int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2, groups);
   if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
   const std::size_t base = i * kWallSlots;
@@ -135,6 +134,8 @@ void DemEngine::wall_particle(std::size_t i, std::uint64_t groups, std::uint64_t
 template <class V>
 void DemEngine::wall_forces() {
   const std::size_t n = p_.size();
+  const typename V::Law::Coeffs* const wall_coeffs = coeffs_table<typename V::Law>(wall_coeffs_);
+  WallContact* const scratch = wall_scratch_.data();  // kWallSlots + 2 per thread
   std::uint64_t dropped = 0;
   const bool listed = walls_near_.size() == n;
   const std::uint64_t* const walls_near = listed ? walls_near_.data() : nullptr;
@@ -145,7 +146,8 @@ void DemEngine::wall_forces() {
 #pragma omp parallel for schedule(static) num_threads(params_.threads) reduction(+ : dropped) if (params_.threads > 1 && count >= kMinParallelItems)
     for (long long q = 0; q < count; ++q) {
       const std::size_t i = on_list[q];
-      if (p_.active[i]) wall_particle<V>(i, walls_near[i], dropped);
+      if (p_.active[i])
+        wall_particle<V>(i, walls_near[i], wall_coeffs, scratch + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2), dropped);
     }
   } else {
     const long long nn = static_cast<long long>(n);
@@ -155,7 +157,8 @@ void DemEngine::wall_forces() {
       p_.fx[i] = p_.fy[i] = p_.fz[i] = 0.0;
       if constexpr (V::kRotation) p_.tx[i] = p_.ty[i] = p_.tz[i] = 0.0;
       const std::uint64_t groups = walls_near != nullptr ? walls_near[i] : ~0ull;
-      if (p_.active[i] && groups != 0) wall_particle<V>(i, groups, dropped);
+      if (p_.active[i] && groups != 0)
+        wall_particle<V>(i, groups, wall_coeffs, scratch + static_cast<std::size_t>(thread_index()) * (kWallSlots + 2), dropped);
     }
   }
   stats_.wall_contacts_dropped += dropped;
