@@ -1,6 +1,7 @@
 // Particle–wall contacts: each particle's walls within its radius, the law per contact, and the
 // particle's wall-history slots (kWallSlots, particles.hpp) carried from step to step. This pass also
-// starts the force and torque sums of the step (the particle–particle pass adds to them).
+// starts the force and torque sums of the step (the particle–particle pass adds to them); where the opening
+// kick has zeroed them already, it sets those of the particles on the wall list only.
 #include <algorithm>
 #include <cstdint>
 #include <utility>
