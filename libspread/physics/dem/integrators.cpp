@@ -64,10 +64,13 @@ void DemEngine::step_velocity_verlet() {
     compute_forces();
   }
   auto t0 = Clock::now();
-  // The forces at t are not read again: on one thread the kick leaves the sums at zero for the wall pass.
-  // Where threads share the particles, the wall pass zeroes them, each thread its own range (the wall list's
-  // particles are too few to share: one thread would write into the other's range).
-  kick_drift(0.5 * dt_s_, dt_s_, !threads_share_pairs());
+  // The forces at t are not read again: on one thread the kick leaves the sums at zero, where the force
+  // evaluation would otherwise zero them in a pass of its own — without wall contacts, or with walls on the
+  // wall list (fixed in space, kept with the pair list); other walls are looked at for every particle, which
+  // zeroes the sums anyway. Where threads share the particles, the wall pass zeroes them, each thread its own
+  // range (the wall list's particles are too few to share: one thread would write into the other's range).
+  const bool walls_listed = walls_fixed_in_space_ && params_.has(effect::kParticleContact);
+  kick_drift(0.5 * dt_s_, dt_s_, !threads_share_pairs() && (!params_.has(effect::kWallContact) || walls_listed));
   stats_.integrate_s += seconds_since(t0);
   // The closing half kick goes with the particle–particle pass, each particle's as its sums complete
   // (pair_pass.cpp); without that pass, here.
@@ -178,17 +181,6 @@ double kick_drift_range(const KickDriftArrays& k, double dt_kick, double dt_drif
   return moved2_near;
 }
 
-// The arrays of p; measure_near: the moves since the near list's build measured against its positions.
-KickDriftArrays kick_drift_arrays(ParticleArrays& p, const NearList& near, const EngineParams& params, bool measure_near) {
-  return {p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(), p.vz.data(),
-          p.wx.data(), p.wy.data(), p.wz.data(), p.fx.data(), p.fy.data(), p.fz.data(),
-          p.tx.data(), p.ty.data(), p.tz.data(), p.inv_mass_kg.data(), p.inv_inertia_kg_m2.data(),
-          p.active.data(), measure_near ? near.x0.data() : nullptr,
-          measure_near ? near.y0.data() : nullptr, measure_near ? near.z0.data() : nullptr,
-          {params.gravity_m_s2.x(), params.gravity_m_s2.y(), params.gravity_m_s2.z()},
-          params.periodic_z.enabled ? params.periodic_z.length_m() : 0.0};
-}
-
 }  // namespace
 
 template <bool kSpin, bool kClearSums>
@@ -199,7 +191,13 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
   const std::size_t n = p_.size();
   // x0 is sized at the first build; before it the move is measured by maintain_lists as before.
   const bool measure_near = near_.x0.size() == n;
-  const KickDriftArrays k = kick_drift_arrays(p_, near_, params_, measure_near);
+  const KickDriftArrays k{p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
+                          p_.wx.data(), p_.wy.data(), p_.wz.data(), p_.fx.data(), p_.fy.data(), p_.fz.data(),
+                          p_.tx.data(), p_.ty.data(), p_.tz.data(), p_.inv_mass_kg.data(), p_.inv_inertia_kg_m2.data(),
+                          p_.active.data(), measure_near ? near_.x0.data() : nullptr,
+                          measure_near ? near_.y0.data() : nullptr, measure_near ? near_.z0.data() : nullptr,
+                          {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()},
+                          params_.periodic_z.enabled ? params_.periodic_z.length_m() : 0.0};
   // Where the pair pass shares its pairs among threads, each thread takes the particles of one of as many
   // consecutive ranges, so that they stay in its cache for the pair pass. These ranges are equal in
   // particles, the pair pass's equal in listed pairs: the same on an even bed, apart where the density varies.
