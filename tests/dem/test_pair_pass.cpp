@@ -155,6 +155,29 @@ TEST(DemPairPass, WidestRegistersGiveIdenticalStates) {
   if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
 }
 
+// steps(n) gives each step's opening kick and drift to the previous step's pair pass (velocity Verlet): the
+// bits of n calls of step(), on one thread (the kick leaves the sums at zero) and two (the wall pass zeroes
+// them), on both passes, with a block thrown fast enough to rebuild the near and pair lists at the same steps,
+// and with a list longer than a batch (the particle-by-particle pass called from the batched one).
+TEST(DemPairPass, StepsGiveTheBitsOfSteppingOneByOne) {
+  for (const Registers registers : {Registers::kAvx512, Registers::kBaseline})
+    for (const int threads : {1, 2})
+      for (const double speed : {1.0, 10.0}) {
+        SCOPED_TRACE(testing::Message() << "baseline " << (registers == Registers::kBaseline) << ", threads " << threads
+                                        << ", speed " << speed);
+        const RegistersLimited limit(registers);
+        DemEngine one_by_one = dense_block(threads, true, false, speed), fused = dense_block(threads, true, false, speed);
+        for (int s = 0; s < 80; ++s) one_by_one.step();
+        fused.steps(80);
+        EXPECT_EQ(fused.stats().steps, 80u);
+        EXPECT_EQ(fused.stats().pair_list_builds, one_by_one.stats().pair_list_builds);
+        EXPECT_EQ(fused.stats().near_list_builds, one_by_one.stats().near_list_builds);
+        if (speed > 1.0) EXPECT_GT(fused.stats().near_list_builds, 0u);
+        EXPECT_GT(expect_identical_states(fused, one_by_one), 100u);
+        EXPECT_EQ(fused.time_s(), one_by_one.time_s());
+      }
+}
+
 // One thread looks at the near list only (the pairs within half the skin, rebuilt as particles move),
 // two threads storing the pairs' results at every listed pair: a block thrown ten times as fast, so that
 // the near list is rebuilt between pair-list builds and leaves pairs out that touch later, gives the same
@@ -194,6 +217,12 @@ TEST(DemPairPass, AListLongerThanABatchGivesThePortableBits) {
     return e;
   };
   expect_widest_gives_the_portable_bits(block, 40);
+  {
+    DemEngine one_by_one = block(), fused = block();
+    for (int s = 0; s < 40; ++s) one_by_one.step();
+    fused.steps(40);
+    EXPECT_GT(expect_identical_states(fused, one_by_one), 100u);
+  }
   if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
 }
 

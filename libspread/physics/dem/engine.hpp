@@ -79,9 +79,13 @@ struct LaunchRecord {
 
 // Pair-force sums of one particle (force N, torque N m); all zero between force passes. One 64-byte
 // record per particle: adding a partner's share touches one cache line instead of six arrays.
+// walls_set: the wall pass has set the particle's force and torque sums (fx…tz) in this force evaluation;
+// where it has not, they are zero for the pair pass, which then does not read them (most particles of a
+// bed touch no wall: six loads fewer each).
 struct alignas(64) PairSum {
   double f[3];
   double t[3];
+  std::uint32_t walls_set;
 };
 
 class EnergyMonitor;  // energy_monitor.hpp
@@ -114,6 +118,11 @@ class DemEngine {
   bool overlaps_particle(const Vec3& position_m, double radius_m) const;
 
   void step();
+  // n steps, the state read only after the last: the same bits as n calls of step(). With velocity Verlet,
+  // and nothing run between steps (no energy monitor, collector, loss plane or periodic wrap), each step's
+  // opening half kick and drift go with the previous step's particle–particle pass, as each particle's
+  // sums complete, instead of a pass of their own over every particle.
+  void steps(std::size_t n);
   void run_until(double t_s);
   // Removes every particle still on the disc (end of a run whose launched particles fly on).
   void drop_on_disc_particles();
@@ -193,11 +202,15 @@ class DemEngine {
   // sums, read by the kick, are left at zero for the force evaluation that follows (sums_cleared_), so
   // that the wall pass need not visit the particles away from the walls.
   void kick_drift(double dt_kick, double dt_drift, bool clear_sums);
+  // Whether velocity Verlet's opening kick leaves the sums at zero (kick_drift's clear_sums): on one thread,
+  // without wall contacts or with the walls on the wall list.
+  bool opening_kick_clears_sums() const;
   template <bool kSpin, bool kClearSums>
   void kick_drift_pass(double dt_kick, double dt_drift);
   void wrap_periodic_z();
-  // Launched and lost particles leave (launch_collector.cpp).
+  // Launched and lost particles leave (launch_collector.cpp); collects(): whether any can.
   void collect();
+  bool collects() const;
 
   std::vector<Material> materials_;
   PairTable pair_table_;
@@ -242,6 +255,10 @@ class DemEngine {
   // (positions changed since in another way), maintain_lists measures it itself.
   double moved2_since_near_ = -1.0;
   bool kicked_in_pass_ = false;
+  // The next step's opening kick and drift handed to the same pass too (steps(): the state between the two
+  // steps is not read), and whether the pass gave them; the next step then starts with the force evaluation.
+  bool fuse_next_step_ = false;
+  bool drifted_in_pass_ = false;
   // The force and torque sums are zero (the opening kick left them so) and nothing has been added yet.
   bool sums_cleared_ = false;
   std::size_t inactive_ = 0;

@@ -57,6 +57,8 @@ void DemEngine::step_gear() {
 
 void DemEngine::step_velocity_verlet() {
   kick_in_pass_dt_s_ = 0.0;  // (left set if a force evaluation threw) no kick with the start-up forces
+  const bool drifted = drifted_in_pass_;
+  drifted_in_pass_ = false;
   // v(t + Δt/2) = v(t) + Δt/2 a(t), x(t + Δt) = x(t) + Δt v(t + Δt/2), then a(t + Δt) and
   // v(t + Δt) = v(t + Δt/2) + Δt/2 a(t + Δt). The forces at t are those of the previous step's end.
   if (!forces_valid_) {
@@ -64,14 +66,11 @@ void DemEngine::step_velocity_verlet() {
     compute_forces();
   }
   auto t0 = Clock::now();
-  // The forces at t are not read again: on one thread the kick leaves the sums at zero, where the force
-  // evaluation would otherwise zero them in a pass of its own — without wall contacts, or with walls on the
-  // wall list (fixed in space, kept with the pair list); other walls are looked at for every particle, which
-  // zeroes the sums anyway. Where threads share the particles, the wall pass zeroes them, each thread its own
-  // range (the wall list's particles are too few to share: one thread would write into the other's range).
-  const bool walls_listed = walls_fixed_in_space_ && params_.has(effect::kParticleContact);
-  kick_drift(0.5 * dt_s_, dt_s_, !threads_share_pairs() && (!params_.has(effect::kWallContact) || walls_listed));
-  stats_.integrate_s += seconds_since(t0);
+  // The previous step's pass may have given this step's opening kick and drift (steps()).
+  if (!drifted) {
+    kick_drift(0.5 * dt_s_, dt_s_, opening_kick_clears_sums());
+    stats_.integrate_s += seconds_since(t0);
+  }
   // The closing half kick goes with the particle–particle pass, each particle's as its sums complete
   // (pair_pass.cpp); without that pass, here.
   kick_in_pass_dt_s_ = 0.5 * dt_s_;
@@ -84,6 +83,32 @@ void DemEngine::step_velocity_verlet() {
     stats_.integrate_s += seconds_since(t0);
   }
   forces_valid_ = true;
+}
+
+bool DemEngine::opening_kick_clears_sums() const {
+  // The forces at t are not read again: on one thread the kick leaves the sums at zero, where the force
+  // evaluation would otherwise zero them in a pass of its own — without wall contacts, or with walls on the
+  // wall list (fixed in space, kept with the pair list); other walls are looked at for every particle, which
+  // zeroes the sums anyway. Where threads share the particles, the wall pass zeroes them, each thread its own
+  // range (the wall list's particles are too few to share: one thread would write into the other's range).
+  const bool walls_listed = walls_fixed_in_space_ && params_.has(effect::kParticleContact);
+  return !threads_share_pairs() && (!params_.has(effect::kWallContact) || walls_listed);
+}
+
+void DemEngine::steps(std::size_t n) {
+  // Between two of these steps only the wrap, the monitor and the collector would run; without them the
+  // next step's opening kick and drift may go with this step's pass (Verlet only: the others' passes do
+  // not kick).
+  const bool fusable = params_.integrator == Integrator::kVelocityVerlet && monitor_ == nullptr && !collects() &&
+                       !params_.periodic_z.enabled;
+  struct Reset {
+    bool& flag;
+    ~Reset() { flag = false; }
+  } reset{fuse_next_step_};
+  for (std::size_t k = 0; k < n; ++k) {
+    fuse_next_step_ = fusable && k + 1 < n;
+    step();
+  }
 }
 
 void DemEngine::forces_at_next_time() {

@@ -10,9 +10,13 @@ namespace spread::dem {
 using detail::Clock;
 using detail::seconds_since;
 
+bool DemEngine::collects() const {
+  return collector_.enabled || collector_.lost_below_z_m != -std::numeric_limits<double>::infinity();
+}
+
 void DemEngine::collect() {
   // Neither a collector nor a loss plane (a drum): no particle can leave, and the pass is not run.
-  if (!collector_.enabled && collector_.lost_below_z_m == -std::numeric_limits<double>::infinity()) return;
+  if (!collects()) return;
   const auto t0 = Clock::now();
   const std::size_t n = p_.size();
   for (std::size_t i = 0; i < n; ++i) {

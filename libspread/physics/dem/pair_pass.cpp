@@ -70,6 +70,17 @@ struct PairPassArrays {
   // The pairs the direct pass looks at: entries [near_start[i], near_start[i + 1]) of near_pairs, each a
   // pair index (the near list, neighbor_list.hpp); null: all of i's listed pairs (the stored form).
   const std::uint32_t *near_start, *near_pairs;
+  // The next step's opening half kick and drift, applied right after the closing kick when nothing comes
+  // between the two steps (DemEngine::steps): Δt of the drift (s), 0 when not here. Both kicks take the same
+  // forces and the same Δt/2, so the opening one adds the closing one's increment again. The sums are not
+  // stored: the next force evaluation reads them only where its wall pass set them (PairSum::walls_set).
+  // drift_clears_sums: that wall pass may then visit the wall list's particles only, as after kick_drift's
+  // clear_sums (otherwise it zeroes every particle's). x0…: the positions at the near list's build, for the
+  // largest move since (null: not measured).
+  double drift_dt_s;
+  bool drift_clears_sums;
+  double* position[3];
+  const double *x0, *y0, *z0;
 };
 
 // Particle i's pairs to look at: entries [begin, end) of `at` (null: the pair indices themselves).
@@ -97,6 +108,49 @@ SPREAD_CONTACT_INLINE void kick_particle(const PairPassArrays<Law>& a, std::size
     a.kick_w[0][i] += dt * a.tx[i] * inv_i;
     a.kick_w[1][i] += dt * a.ty[i] * inv_i;
     a.kick_w[2][i] += dt * a.tz[i] * inv_i;
+  }
+}
+
+// Velocity Verlet's closing half kick of particle i with its finished sums F = F_walls + (partners' share +
+// own share), the next step's opening half kick with the same F (v(t + 3Δt/2) = v(t + Δt) + Δt/2 a(t + Δt):
+// the same increment added twice), and the next step's drift x += Δt v — each operation as kick_particle
+// and the engine's kick_drift_range do it, so the bits are those of the two passes. The drift and the move
+// apply to every particle, the kicks to the active ones (as there).
+template <bool kRotation, class Law>
+SPREAD_CONTACT_INLINE void kick_twice_and_drift(const PairPassArrays<Law>& a, std::size_t i, const PairSum& si,
+                                                const double (&sum_f)[3], const double (&sum_t)[3], double& moved2) {
+  const bool walls = si.walls_set != 0;  // else the sums are zero (PairSum::walls_set)
+  const double f[3] = {(walls ? a.fx[i] : 0.0) + (si.f[0] + sum_f[0]), (walls ? a.fy[i] : 0.0) + (si.f[1] + sum_f[1]),
+                       (walls ? a.fz[i] : 0.0) + (si.f[2] + sum_f[2])};
+  double v[3] = {a.kick_v[0][i], a.kick_v[1][i], a.kick_v[2][i]};
+  if (a.active[i]) {
+    const double dt = a.kick_dt_s, inv_m = a.inv_mass[i];
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) {
+      const double dv = dt * (f[c] * inv_m + a.gravity_m_s2[c]);
+      v[c] = (v[c] + dv) + dv;
+      a.kick_v[c][i] = v[c];
+    }
+    if constexpr (kRotation) {
+      const double t[3] = {(walls ? a.tx[i] : 0.0) + (si.t[0] + sum_t[0]), (walls ? a.ty[i] : 0.0) + (si.t[1] + sum_t[1]),
+                           (walls ? a.tz[i] : 0.0) + (si.t[2] + sum_t[2])};
+      const double inv_i = a.inv_inertia[i];
+SPREAD_UNROLL(3)
+      for (int c = 0; c < 3; ++c) {
+        const double dw = dt * t[c] * inv_i;
+        a.kick_w[c][i] = (a.kick_w[c][i] + dw) + dw;
+      }
+    }
+  }
+  double x[3];
+SPREAD_UNROLL(3)
+  for (int c = 0; c < 3; ++c) {
+    x[c] = a.position[c][i] + a.drift_dt_s * v[c];
+    a.position[c][i] = x[c];
+  }
+  if (a.x0 != nullptr) {
+    const double dx = x[0] - a.x0[i], dy = x[1] - a.y0[i], dz = x[2] - a.z0[i];
+    moved2 = std::max(moved2, dx * dx + dy * dy + dz * dz);
   }
 }
 
@@ -311,26 +365,33 @@ SPREAD_CONTACT_INLINE void law_over_touching(const PairPassArrays<typename V::La
 // so sums[i] is complete and goes into the force sums.
 template <class V, PairForm kForm>
 SPREAD_CONTACT_INLINE void finish_sums(const PairPassArrays<typename V::Law>& a, std::size_t i, const double (&sum_f)[3],
-                                       const double (&sum_t)[3]) {
+                                       const double (&sum_t)[3], double& moved2) {
   PairSum& si = a.sums[i];
   if constexpr (kForm.store_pairs) {
     for (int c = 0; c < 3; ++c) { si.f[c] = sum_f[c]; if constexpr (V::kRotation) si.t[c] = sum_t[c]; }
     return;
   }
-  a.fx[i] += si.f[0] + sum_f[0];
-  a.fy[i] += si.f[1] + sum_f[1];
-  a.fz[i] += si.f[2] + sum_f[2];
+  if (a.drift_dt_s != 0.0) {
+    kick_twice_and_drift<V::kRotation>(a, i, si, sum_f, sum_t, moved2);
+    si = PairSum{};
+    return;
+  }
+  const bool walls = si.walls_set != 0;  // else the sums are zero (PairSum::walls_set)
+  a.fx[i] = (walls ? a.fx[i] : 0.0) + (si.f[0] + sum_f[0]);
+  a.fy[i] = (walls ? a.fy[i] : 0.0) + (si.f[1] + sum_f[1]);
+  a.fz[i] = (walls ? a.fz[i] : 0.0) + (si.f[2] + sum_f[2]);
   if constexpr (V::kRotation) {
-    a.tx[i] += si.t[0] + sum_t[0];
-    a.ty[i] += si.t[1] + sum_t[1];
-    a.tz[i] += si.t[2] + sum_t[2];
+    a.tx[i] = (walls ? a.tx[i] : 0.0) + (si.t[0] + sum_t[0]);
+    a.ty[i] = (walls ? a.ty[i] : 0.0) + (si.t[1] + sum_t[1]);
+    a.tz[i] = (walls ? a.tz[i] : 0.0) + (si.t[2] + sum_t[2]);
   }
   si = PairSum{};
   if (a.kick_dt_s != 0.0) kick_particle<V::kRotation>(a, i);
 }
 template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void finish_particle(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b) {
-  finish_sums<V, kForm>(a, b.i, b.sum_f, b.sum_t);
+SPREAD_CONTACT_INLINE void finish_particle(const PairPassArrays<typename V::Law>& a, const FirstBody<typename V::Law>& b,
+                                           double& moved2) {
+  finish_sums<V, kForm>(a, b.i, b.sum_f, b.sum_t, moved2);
 }
 
 template <class V>
@@ -346,7 +407,7 @@ SPREAD_CONTACT_INLINE FirstBody<typename V::Law> first_body(const PairPassArrays
 
 // One particle of the pass: its list in chunks through stages 1 and 2, then stage 3.
 template <class V, PairForm kForm>
-__attribute__((always_inline)) inline void pass_particle(const PairPassArrays<typename V::Law>& a, long long ii) {
+__attribute__((always_inline)) inline void pass_particle(const PairPassArrays<typename V::Law>& a, long long ii, double& moved2) {
   FirstBody<typename V::Law> b = first_body<V>(a, static_cast<std::size_t>(ii));
   constexpr std::uint32_t kChunk = 64;
   const PairRange range = pairs_of(a, b.i);
@@ -356,7 +417,7 @@ __attribute__((always_inline)) inline void pass_particle(const PairPassArrays<ty
     const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, range, chunk, std::min(range.end, chunk + kChunk), pairs, dist2s);
     law_over_touching<V, kForm>(a, b, pairs, dist2s, touching);
   }
-  finish_particle<V, kForm>(a, b);
+  finish_particle<V, kForm>(a, b, moved2);
 }
 
 // The pass, particle by particle, compiled for the baseline and (on x86) for AVX-512, chosen at run time
@@ -367,19 +428,23 @@ __attribute__((always_inline)) inline void pass_particle(const PairPassArrays<ty
 // Particles [begin, end). noinline: the batched pass calls it for a particle whose list outgrows a batch,
 // and flatten there would otherwise compile a second copy of the whole two-lane pass into it.
 template <class V, PairForm kForm>
-__attribute__((noinline)) SPREAD_CONTACT_FLATTEN void pair_pass_portable(PairPassArrays<typename V::Law> a, long long begin,
-                                                                         long long end, int threads) {
+__attribute__((noinline)) SPREAD_CONTACT_FLATTEN double pair_pass_portable(PairPassArrays<typename V::Law> a, long long begin,
+                                                                           long long end, int threads) {
   const bool parallel = kForm.store_pairs && threads > 1 && end - begin >= kMinParallelItems;
-#pragma omp parallel for schedule(static) num_threads(threads) if (parallel) firstprivate(a)
-  for (long long ii = begin; ii < end; ++ii) pass_particle<V, kForm>(a, ii);
+  double moved2 = 0.0;
+#pragma omp parallel for schedule(static) num_threads(threads) if (parallel) firstprivate(a) reduction(max : moved2)
+  for (long long ii = begin; ii < end; ++ii) pass_particle<V, kForm>(a, ii, moved2);
+  return moved2;
 }
 #if defined(__x86_64__) || defined(__i386__)
 template <class V, PairForm kForm>
-__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_avx512(PairPassArrays<typename V::Law> a,
-                                                                               long long count, int threads) {
+__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_avx512(PairPassArrays<typename V::Law> a,
+                                                                                 long long count, int threads) {
   const bool parallel = kForm.store_pairs && threads > 1 && count >= kMinParallelItems;
-#pragma omp parallel for schedule(static) num_threads(threads) if (parallel) firstprivate(a)
-  for (long long ii = 0; ii < count; ++ii) pass_particle<V, kForm>(a, ii);
+  double moved2 = 0.0;
+#pragma omp parallel for schedule(static) num_threads(threads) if (parallel) firstprivate(a) reduction(max : moved2)
+  for (long long ii = 0; ii < count; ++ii) pass_particle<V, kForm>(a, ii, moved2);
+  return moved2;
 }
 
 // The batched pass (one thread, sums added directly): the touching pairs of consecutive particles are
@@ -551,7 +616,8 @@ SPREAD_UNROLL(3)
 
 // Stage 3: the sums of particles [i0, i1), in pair order.
 template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void staged_sums(const PairPassArrays<typename V::Law>& a, const PairBatch& s, long long i0, long long i1) {
+SPREAD_CONTACT_INLINE void staged_sums(const PairPassArrays<typename V::Law>& a, const PairBatch& s, long long i0, long long i1,
+                                       double& moved2) {
   std::uint32_t q = 0;
   for (std::uint32_t p = 0; p < static_cast<std::uint32_t>(i1 - i0); ++p) {
     double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
@@ -570,28 +636,30 @@ SPREAD_UNROLL(3)
           sj.t[c] += s.t_j[c][q];
         }
     }
-    finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t);
+    finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t, moved2);
   }
 }
 
 template <class V, PairForm kForm>
-__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched_avx512(PairPassArrays<typename V::Law> a,
-                                                                                       long long count) {
+__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_batched_avx512(PairPassArrays<typename V::Law> a,
+                                                                                         long long count) {
   static_assert(!kForm.store_pairs, "the batched pass adds the sums directly");
   PairBatch s;
+  double moved2 = 0.0;
   long long i0 = 0;
   while (i0 < count) {
     std::uint32_t n = 0;
     const long long i1 = stage_touching<V, kForm>(a, s, i0, count, n);
     if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass
-      pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1);
+      moved2 = std::max(moved2, pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1));
       ++i0;
       continue;
     }
     staged_law<V, kForm>(a, s, n);
-    staged_sums<V, kForm>(a, s, i0, i1);
+    staged_sums<V, kForm>(a, s, i0, i1, moved2);
     i0 = i1;
   }
+  return moved2;
 }
 
 // Until `turn` reaches t: a short spin, then the core given up between looks (with more threads than cores
@@ -611,8 +679,8 @@ inline void wait_for_turn(const std::atomic<int>& turn, int t) {
 // it sums those and the rest of its range as it goes. Staging reads only particles from the batch's first
 // on (every pair's second body comes after its first), which stage 3 of earlier particles never writes.
 template <class V, PairForm kForm>
-__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched_threads_avx512(PairPassArrays<typename V::Law> a,
-                                                                                               long long count, int threads) {
+__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_batched_threads_avx512(PairPassArrays<typename V::Law> a,
+                                                                                                 long long count, int threads) {
   static_assert(!kForm.store_pairs, "the batched pass adds the sums directly");
   std::vector<long long> range_start(static_cast<std::size_t>(threads) + 1, count);
   {
@@ -634,7 +702,8 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
     }
   }
   std::atomic<int> turn{0};
-#pragma omp parallel num_threads(threads) firstprivate(a)
+  double moved2 = 0.0;
+#pragma omp parallel num_threads(threads) firstprivate(a) reduction(max : moved2)
   {
     // Range t for thread t; a team smaller than asked for (or no OpenMP) takes the ranges in turn.
     for (int t = detail::thread_index(); t < threads; t += detail::thread_count()) {
@@ -646,7 +715,7 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
       kept_start.assign(1, range_start[t]);
       bool my_turn = t == 0;
       auto sum_kept = [&] {
-        for (std::size_t b = 0; b < kept; ++b) staged_sums<V, kForm>(a, kept_batches[b], kept_start[b], kept_start[b + 1]);
+        for (std::size_t b = 0; b < kept; ++b) staged_sums<V, kForm>(a, kept_batches[b], kept_start[b], kept_start[b + 1], moved2);
         kept = 0;
       };
       PairBatch own;
@@ -664,13 +733,13 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
           wait_for_turn(turn, t);
           my_turn = true;
           sum_kept();
-          pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1);
+          moved2 = std::max(moved2, pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1));
           i0 += 1;
           continue;
         }
         staged_law<V, kForm>(a, s, n);
         if (my_turn) {
-          staged_sums<V, kForm>(a, s, i0, i1);
+          staged_sums<V, kForm>(a, s, i0, i1, moved2);
         } else {
           ++kept;
           kept_start.resize(kept + 1);
@@ -683,6 +752,7 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
       turn.store(t + 1, std::memory_order_release);
     }
   }
+  return moved2;
 }
 #endif
 
@@ -690,20 +760,20 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN void pair_pass_batched
 // law's lanes two doubles wide, 32 vector registers instead of 16, less of a contact's state spilled), the
 // direct form the batched pass (eight pairs a register; on several threads, a range of particles each).
 // The same bits either way
-// (DemPairPass.WidestRegistersGiveIdenticalStates; docs/drum.md "Where the time goes").
+// (DemPairPass.WidestRegistersGiveIdenticalStates; docs/drum.md "Where the time goes"). Returns the largest
+// squared move since the near list's build where the pass drifted the particles (a.drift_dt_s), else 0.
 template <class V, PairForm kForm>
-void pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads) {
+double pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads) {
 #if defined(__x86_64__) || defined(__i386__)
   if (cpu_has_avx512f()) {
     if constexpr (!kForm.store_pairs) {
-      if (threads > 1 && count >= kMinParallelItems) pair_pass_batched_threads_avx512<V, kForm>(a, count, threads);
-      else pair_pass_batched_avx512<V, kForm>(a, count);
+      if (threads > 1 && count >= kMinParallelItems) return pair_pass_batched_threads_avx512<V, kForm>(a, count, threads);
+      return pair_pass_batched_avx512<V, kForm>(a, count);
     }
-    else pair_pass_avx512<V, kForm>(a, count, threads);
-    return;
+    return pair_pass_avx512<V, kForm>(a, count, threads);
   }
 #endif
-  pair_pass_portable<V, kForm>(a, 0, count, threads);
+  return pair_pass_portable<V, kForm>(a, 0, count, threads);
 }
 
 }  // namespace
@@ -712,7 +782,6 @@ template <class V>
 void DemEngine::particle_forces() {
   using Law = typename V::Law;
   const std::size_t n = p_.size();
-  if (pair_sum_.size() != n) pair_sum_.assign(n, PairSum{});
   // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
   // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
   // Where the batched pass runs (AVX-512) several threads add them straight into the sums too: it keeps
@@ -737,7 +806,7 @@ void DemEngine::particle_forces() {
       {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()}, p_.inv_mass_kg.data(),
       with_spin ? p_.inv_inertia_kg_m2.data() : nullptr, {p_.vx.data(), p_.vy.data(), p_.vz.data()},
       {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr},
-      nullptr, nullptr};
+      nullptr, nullptr, 0.0, false, {nullptr, nullptr, nullptr}, nullptr, nullptr, nullptr};
   const long long count = static_cast<long long>(n);
   const bool periodic = params_.periodic_z.enabled;
   if (!store && near_.start.size() == n + 1) {
@@ -745,14 +814,36 @@ void DemEngine::particle_forces() {
     a.near_pairs = near_.pairs.data();
   }
   kicked_in_pass_ = kick_in_pass_dt_s_ != 0.0;
+  // The next step's opening kick and drift (steps()) go with the direct pass's closing kick; the stored
+  // form kicks in its gather, and a periodic axis wraps between the steps.
+  const bool drift = fuse_next_step_ && kicked_in_pass_ && !store && !periodic;
+  const bool measure_near = near_.x0.size() == n;
+  if (drift) {
+    a.drift_dt_s = dt_s_;
+    a.drift_clears_sums = opening_kick_clears_sums();
+    a.position[0] = p_.x.data();
+    a.position[1] = p_.y.data();
+    a.position[2] = p_.z.data();
+    if (measure_near) {
+      a.x0 = near_.x0.data();
+      a.y0 = near_.y0.data();
+      a.z0 = near_.z0.data();
+    }
+  }
   if (store) {
     if (periodic) pair_pass<V, PairForm{true, true}>(a, count, params_.threads);
     else pair_pass<V, PairForm{true, false}>(a, count, params_.threads);
     gather_stored_pair_forces<V::kRotation>();
   } else {
     const int threads = shared ? params_.threads : 1;
-    if (periodic) pair_pass<V, PairForm{false, true}>(a, count, threads);
-    else pair_pass<V, PairForm{false, false}>(a, count, threads);
+    double moved2 = 0.0;
+    if (periodic) moved2 = pair_pass<V, PairForm{false, true}>(a, count, threads);
+    else moved2 = pair_pass<V, PairForm{false, false}>(a, count, threads);
+    if (drift) {
+      drifted_in_pass_ = true;
+      sums_cleared_ = a.drift_clears_sums;
+      moved2_since_near_ = measure_near ? moved2 : -1.0;
+    }
   }
 }
 
@@ -774,13 +865,14 @@ SPREAD_UNROLL(3)
       }
     }
     PairSum& si = pair_sum_[i];
-    p_.fx[i] += f[0] + si.f[0];
-    p_.fy[i] += f[1] + si.f[1];
-    p_.fz[i] += f[2] + si.f[2];
+    const bool walls = si.walls_set != 0;  // else the sums are zero (PairSum::walls_set)
+    p_.fx[i] = (walls ? p_.fx[i] : 0.0) + (f[0] + si.f[0]);
+    p_.fy[i] = (walls ? p_.fy[i] : 0.0) + (f[1] + si.f[1]);
+    p_.fz[i] = (walls ? p_.fz[i] : 0.0) + (f[2] + si.f[2]);
     if constexpr (kRotation) {
-      p_.tx[i] += t[0] + si.t[0];
-      p_.ty[i] += t[1] + si.t[1];
-      p_.tz[i] += t[2] + si.t[2];
+      p_.tx[i] = (walls ? p_.tx[i] : 0.0) + (t[0] + si.t[0]);
+      p_.ty[i] = (walls ? p_.ty[i] : 0.0) + (t[1] + si.t[1]);
+      p_.tz[i] = (walls ? p_.tz[i] : 0.0) + (t[2] + si.t[2]);
     }
     si = PairSum{};
     if (kick_in_pass_dt_s_ != 0.0 && p_.active[i]) {  // as kick_particle
