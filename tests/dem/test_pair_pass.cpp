@@ -172,7 +172,9 @@ TEST(DemPairPass, StepsGiveTheBitsOfSteppingOneByOne) {
         EXPECT_EQ(fused.stats().steps, 80u);
         EXPECT_EQ(fused.stats().pair_list_builds, one_by_one.stats().pair_list_builds);
         EXPECT_EQ(fused.stats().near_list_builds, one_by_one.stats().near_list_builds);
-        if (speed > 1.0) EXPECT_GT(fused.stats().near_list_builds, 0u);
+        if (speed > 1.0) {
+          EXPECT_GT(fused.stats().near_list_builds, 0u);
+        }
         EXPECT_GT(expect_identical_states(fused, one_by_one), 100u);
         EXPECT_EQ(fused.time_s(), one_by_one.time_s());
       }

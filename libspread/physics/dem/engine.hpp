@@ -79,13 +79,9 @@ struct LaunchRecord {
 
 // Pair-force sums of one particle (force N, torque N m); all zero between force passes. One 64-byte
 // record per particle: adding a partner's share touches one cache line instead of six arrays.
-// walls_set: the wall pass has set the particle's force and torque sums (fx…tz) in this force evaluation;
-// where it has not, they are zero for the pair pass, which then does not read them (most particles of a
-// bed touch no wall: six loads fewer each).
 struct alignas(64) PairSum {
   double f[3];
   double t[3];
-  std::uint32_t walls_set;
 };
 
 class EnergyMonitor;  // energy_monitor.hpp

@@ -16,8 +16,6 @@ void DemEngine::compute_forces() {
   const auto t0 = Clock::now();
   walls_.set_time(time_s_);
   if (coeffs_dirty_) (this->*kCoeffUpdates[force_variant_])();
-  // Sized before the wall pass, which marks the particles whose sums it sets (PairSum::walls_set).
-  if (params_.has(effect::kParticleContact) && pair_sum_.size() != p_.size()) pair_sum_.assign(p_.size(), PairSum{});
   if (params_.has(effect::kWallContact)) {
     const auto t_walls = Clock::now();
     (this->*kWallPasses[force_variant_])();  // sets the sums: walls first

@@ -35,11 +35,14 @@ using lanes::pack;
 using lanes::splat;
 using lanes::V3;
 
-// The pass's two forms, one template argument: per-pair results stored for a gather (threads, an energy
-// monitor) or added straight into the sums; along a periodic z axis (minimum image) or not.
+// The pass's forms, one template argument: per-pair results stored for a gather (threads, an energy
+// monitor) or added straight into the sums; along a periodic z axis (minimum image) or not; with the next
+// step's opening kick and drift (drift: direct form only, PairPassArrays::drift_dt_s) or without, so that
+// the passes without it carry none of its code.
 struct PairForm {
   bool store_pairs;
   bool periodic;
+  bool drift;
 };
 
 // What the pass reads and writes, as flat arrays taken once outside the loop (the vectors' bounds and
@@ -71,12 +74,11 @@ struct PairPassArrays {
   // pair index (the near list, neighbor_list.hpp); null: all of i's listed pairs (the stored form).
   const std::uint32_t *near_start, *near_pairs;
   // The next step's opening half kick and drift, applied right after the closing kick when nothing comes
-  // between the two steps (DemEngine::steps): Δt of the drift (s), 0 when not here. Both kicks take the same
-  // forces and the same Δt/2, so the opening one adds the closing one's increment again. The sums are not
-  // stored: the next force evaluation reads them only where its wall pass set them (PairSum::walls_set).
-  // drift_clears_sums: that wall pass may then visit the wall list's particles only, as after kick_drift's
-  // clear_sums (otherwise it zeroes every particle's). x0…: the positions at the near list's build, for the
-  // largest move since (null: not measured).
+  // between the two steps (DemEngine::steps), by the passes of form drift: Δt of the drift (s). Both kicks
+  // take the same forces and the same Δt/2, so the opening one adds the closing one's increment again.
+  // drift_clears_sums: the sums are left at zero for the next step's force evaluation, as kick_drift's
+  // clear_sums leaves them (otherwise its wall pass zeroes them, and they are not written here); x0…: the
+  // positions at the near list's build, for the largest move since (null: not measured).
   double drift_dt_s;
   bool drift_clears_sums;
   double* position[3];
@@ -119,9 +121,7 @@ SPREAD_CONTACT_INLINE void kick_particle(const PairPassArrays<Law>& a, std::size
 template <bool kRotation, class Law>
 SPREAD_CONTACT_INLINE void kick_twice_and_drift(const PairPassArrays<Law>& a, std::size_t i, const PairSum& si,
                                                 const double (&sum_f)[3], const double (&sum_t)[3], double& moved2) {
-  const bool walls = si.walls_set != 0;  // else the sums are zero (PairSum::walls_set)
-  const double f[3] = {(walls ? a.fx[i] : 0.0) + (si.f[0] + sum_f[0]), (walls ? a.fy[i] : 0.0) + (si.f[1] + sum_f[1]),
-                       (walls ? a.fz[i] : 0.0) + (si.f[2] + sum_f[2])};
+  const double f[3] = {a.fx[i] + (si.f[0] + sum_f[0]), a.fy[i] + (si.f[1] + sum_f[1]), a.fz[i] + (si.f[2] + sum_f[2])};
   double v[3] = {a.kick_v[0][i], a.kick_v[1][i], a.kick_v[2][i]};
   if (a.active[i]) {
     const double dt = a.kick_dt_s, inv_m = a.inv_mass[i];
@@ -132,8 +132,7 @@ SPREAD_UNROLL(3)
       a.kick_v[c][i] = v[c];
     }
     if constexpr (kRotation) {
-      const double t[3] = {(walls ? a.tx[i] : 0.0) + (si.t[0] + sum_t[0]), (walls ? a.ty[i] : 0.0) + (si.t[1] + sum_t[1]),
-                           (walls ? a.tz[i] : 0.0) + (si.t[2] + sum_t[2])};
+      const double t[3] = {a.tx[i] + (si.t[0] + sum_t[0]), a.ty[i] + (si.t[1] + sum_t[1]), a.tz[i] + (si.t[2] + sum_t[2])};
       const double inv_i = a.inv_inertia[i];
 SPREAD_UNROLL(3)
       for (int c = 0; c < 3; ++c) {
@@ -141,6 +140,10 @@ SPREAD_UNROLL(3)
         a.kick_w[c][i] = (a.kick_w[c][i] + dw) + dw;
       }
     }
+  }
+  if (a.drift_clears_sums) {
+    a.fx[i] = a.fy[i] = a.fz[i] = 0.0;
+    if constexpr (kRotation) a.tx[i] = a.ty[i] = a.tz[i] = 0.0;
   }
   double x[3];
 SPREAD_UNROLL(3)
@@ -371,19 +374,18 @@ SPREAD_CONTACT_INLINE void finish_sums(const PairPassArrays<typename V::Law>& a,
     for (int c = 0; c < 3; ++c) { si.f[c] = sum_f[c]; if constexpr (V::kRotation) si.t[c] = sum_t[c]; }
     return;
   }
-  if (a.drift_dt_s != 0.0) {
+  if constexpr (kForm.drift) {
     kick_twice_and_drift<V::kRotation>(a, i, si, sum_f, sum_t, moved2);
     si = PairSum{};
     return;
   }
-  const bool walls = si.walls_set != 0;  // else the sums are zero (PairSum::walls_set)
-  a.fx[i] = (walls ? a.fx[i] : 0.0) + (si.f[0] + sum_f[0]);
-  a.fy[i] = (walls ? a.fy[i] : 0.0) + (si.f[1] + sum_f[1]);
-  a.fz[i] = (walls ? a.fz[i] : 0.0) + (si.f[2] + sum_f[2]);
+  a.fx[i] += si.f[0] + sum_f[0];
+  a.fy[i] += si.f[1] + sum_f[1];
+  a.fz[i] += si.f[2] + sum_f[2];
   if constexpr (V::kRotation) {
-    a.tx[i] = (walls ? a.tx[i] : 0.0) + (si.t[0] + sum_t[0]);
-    a.ty[i] = (walls ? a.ty[i] : 0.0) + (si.t[1] + sum_t[1]);
-    a.tz[i] = (walls ? a.tz[i] : 0.0) + (si.t[2] + sum_t[2]);
+    a.tx[i] += si.t[0] + sum_t[0];
+    a.ty[i] += si.t[1] + sum_t[1];
+    a.tz[i] += si.t[2] + sum_t[2];
   }
   si = PairSum{};
   if (a.kick_dt_s != 0.0) kick_particle<V::kRotation>(a, i);
@@ -782,6 +784,7 @@ template <class V>
 void DemEngine::particle_forces() {
   using Law = typename V::Law;
   const std::size_t n = p_.size();
+  if (pair_sum_.size() != n) pair_sum_.assign(n, PairSum{});
   // Per-pair results are stored (and gathered in a second pass) when threads share the pairs or an
   // energy monitor reads them; one thread adds them straight into the sums. Same sums, same order.
   // Where the batched pass runs (AVX-512) several threads add them straight into the sums too: it keeps
@@ -831,14 +834,15 @@ void DemEngine::particle_forces() {
     }
   }
   if (store) {
-    if (periodic) pair_pass<V, PairForm{true, true}>(a, count, params_.threads);
-    else pair_pass<V, PairForm{true, false}>(a, count, params_.threads);
+    if (periodic) pair_pass<V, PairForm{true, true, false}>(a, count, params_.threads);
+    else pair_pass<V, PairForm{true, false, false}>(a, count, params_.threads);
     gather_stored_pair_forces<V::kRotation>();
   } else {
     const int threads = shared ? params_.threads : 1;
     double moved2 = 0.0;
-    if (periodic) moved2 = pair_pass<V, PairForm{false, true}>(a, count, threads);
-    else moved2 = pair_pass<V, PairForm{false, false}>(a, count, threads);
+    if (periodic) pair_pass<V, PairForm{false, true, false}>(a, count, threads);
+    else if (drift) moved2 = pair_pass<V, PairForm{false, false, true}>(a, count, threads);
+    else pair_pass<V, PairForm{false, false, false}>(a, count, threads);
     if (drift) {
       drifted_in_pass_ = true;
       sums_cleared_ = a.drift_clears_sums;
@@ -865,14 +869,13 @@ SPREAD_UNROLL(3)
       }
     }
     PairSum& si = pair_sum_[i];
-    const bool walls = si.walls_set != 0;  // else the sums are zero (PairSum::walls_set)
-    p_.fx[i] = (walls ? p_.fx[i] : 0.0) + (f[0] + si.f[0]);
-    p_.fy[i] = (walls ? p_.fy[i] : 0.0) + (f[1] + si.f[1]);
-    p_.fz[i] = (walls ? p_.fz[i] : 0.0) + (f[2] + si.f[2]);
+    p_.fx[i] += f[0] + si.f[0];
+    p_.fy[i] += f[1] + si.f[1];
+    p_.fz[i] += f[2] + si.f[2];
     if constexpr (kRotation) {
-      p_.tx[i] = (walls ? p_.tx[i] : 0.0) + (t[0] + si.t[0]);
-      p_.ty[i] = (walls ? p_.ty[i] : 0.0) + (t[1] + si.t[1]);
-      p_.tz[i] = (walls ? p_.tz[i] : 0.0) + (t[2] + si.t[2]);
+      p_.tx[i] += t[0] + si.t[0];
+      p_.ty[i] += t[1] + si.t[1];
+      p_.tz[i] += t[2] + si.t[2];
     }
     si = PairSum{};
     if (kick_in_pass_dt_s_ != 0.0 && p_.active[i]) {  // as kick_particle

@@ -130,7 +130,6 @@ void DemEngine::wall_particle(std::size_t i, std::uint64_t groups, const typenam
   for (int s = nc; s < kWallSlots; ++s) p_.wall_key[base + s] = 0;
   p_.fx[i] = force.x(); p_.fy[i] = force.y(); p_.fz[i] = force.z();
   if constexpr (V::kRotation) { p_.tx[i] = torque.x(); p_.ty[i] = torque.y(); p_.tz[i] = torque.z(); }
-  if (!pair_sum_.empty()) pair_sum_[i].walls_set = 1;
 }
 
 template <class V>
