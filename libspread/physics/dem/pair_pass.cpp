@@ -484,6 +484,49 @@ SPREAD_CONTACT_INLINE lanes::Lanes8 load_lanes8(const double* p) {
 }
 SPREAD_CONTACT_INLINE void store_lanes8(double* p, lanes::Lanes8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
+// The histories of eight pairs (kHistoryDoubles = 4 doubles each, at rows[l]) as four eight-lane values,
+// slot by slot: each row loaded whole, two rows a register, and the 8 × 4 block transposed in registers
+// (12 shuffles, where the lanes filled one at a time took 32 loads and 28 shuffles).
+using Lanes4 = double __attribute__((vector_size(32)));
+static_assert(kHistoryDoubles == 4, "the history transposes are written for four slots");
+SPREAD_CONTACT_INLINE void load_histories8(double* const (&rows)[8], lanes::Lanes8 (&slot)[4]) {
+  using lanes::Lanes8;
+  Lanes4 r[8];
+SPREAD_UNROLL(8)
+  for (int l = 0; l < 8; ++l) __builtin_memcpy(&r[l], rows[l], sizeof r[l]);
+  // a_l = rows l and l + 4; then pairs of slots of rows (l, l + 1) side by side in each 128-bit lane.
+  Lanes8 a[4];
+SPREAD_UNROLL(4)
+  for (int l = 0; l < 4; ++l) a[l] = __builtin_shufflevector(r[l], r[l + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+  const Lanes8 b0 = __builtin_shufflevector(a[0], a[1], 0, 8, 2, 10, 4, 12, 6, 14);  // slots 0, 2 of rows 0 1 | 4 5
+  const Lanes8 b1 = __builtin_shufflevector(a[0], a[1], 1, 9, 3, 11, 5, 13, 7, 15);  // slots 1, 3
+  const Lanes8 b2 = __builtin_shufflevector(a[2], a[3], 0, 8, 2, 10, 4, 12, 6, 14);  // rows 2 3 | 6 7
+  const Lanes8 b3 = __builtin_shufflevector(a[2], a[3], 1, 9, 3, 11, 5, 13, 7, 15);
+  slot[0] = __builtin_shufflevector(b0, b2, 0, 1, 8, 9, 4, 5, 12, 13);
+  slot[2] = __builtin_shufflevector(b0, b2, 2, 3, 10, 11, 6, 7, 14, 15);
+  slot[1] = __builtin_shufflevector(b1, b3, 0, 1, 8, 9, 4, 5, 12, 13);
+  slot[3] = __builtin_shufflevector(b1, b3, 2, 3, 10, 11, 6, 7, 14, 15);
+}
+// The inverse: lane l of the four slots back to rows[l], for the first `valid` lanes.
+SPREAD_CONTACT_INLINE void store_histories8(const lanes::Lanes8 (&slot)[4], double* const (&rows)[8], std::uint32_t valid) {
+  using lanes::Lanes8;
+  const Lanes8 c0 = __builtin_shufflevector(slot[0], slot[1], 0, 8, 2, 10, 4, 12, 6, 14);  // slots 0 1 of lanes 0 2 4 6
+  const Lanes8 c1 = __builtin_shufflevector(slot[0], slot[1], 1, 9, 3, 11, 5, 13, 7, 15);  // of lanes 1 3 5 7
+  const Lanes8 c2 = __builtin_shufflevector(slot[2], slot[3], 0, 8, 2, 10, 4, 12, 6, 14);  // slots 2 3
+  const Lanes8 c3 = __builtin_shufflevector(slot[2], slot[3], 1, 9, 3, 11, 5, 13, 7, 15);
+  Lanes4 r[8];
+  r[0] = __builtin_shufflevector(c0, c2, 0, 1, 8, 9);
+  r[2] = __builtin_shufflevector(c0, c2, 2, 3, 10, 11);
+  r[4] = __builtin_shufflevector(c0, c2, 4, 5, 12, 13);
+  r[6] = __builtin_shufflevector(c0, c2, 6, 7, 14, 15);
+  r[1] = __builtin_shufflevector(c1, c3, 0, 1, 8, 9);
+  r[3] = __builtin_shufflevector(c1, c3, 2, 3, 10, 11);
+  r[5] = __builtin_shufflevector(c1, c3, 4, 5, 12, 13);
+  r[7] = __builtin_shufflevector(c1, c3, 6, 7, 14, 15);
+SPREAD_UNROLL(8)
+  for (std::uint32_t l = 0; l < valid; ++l) __builtin_memcpy(rows[l], &r[l], sizeof r[l]);
+}
+
 // Staged pairs [q, q + valid) one at a time (materials differ, or sizes within a material). noinline: one
 // copy of the one-pair law per variant, not one inside each batched pass.
 template <class V, PairForm kForm>
@@ -540,25 +583,18 @@ SPREAD_UNROLL(8)
     const Lanes8 ii = gather_lanes8(a.inertia, i), ij = gather_lanes8(a.inertia, j);
     inertia_eff = ii * ij / (ii + ij);
   }
-  const double* hist[8];
+  double* hist[8];
 SPREAD_UNROLL(8)
   for (int l = 0; l < 8; ++l) hist[l] = a.history + static_cast<std::size_t>(s.k[q + l]) * kHistoryDoubles;
-  LawHistory<Lanes8> h;
-  Lanes8* const h_slots[kHistoryDoubles] = {&h.elastic.x, &h.elastic.y, &h.elastic.z, &h.overlap_m};
-SPREAD_UNROLL(4)
-  for (int c = 0; c < kHistoryDoubles; ++c)
-    *h_slots[c] = lanes8(hist[0][c], hist[1][c], hist[2][c], hist[3][c], hist[4][c], hist[5][c], hist[6][c], hist[7][c]);
+  Lanes8 h_in[kHistoryDoubles];
+  load_histories8(hist, h_in);
+  LawHistory<Lanes8> h{{h_in[0], h_in[1], h_in[2]}, h_in[3]};
   const PairOut<Lanes8> r = pair_contact<V>(
       V3<Lanes8>{load_lanes8(s.d[0] + q), load_lanes8(s.d[1] + q), load_lanes8(s.d[2] + q)}, load_lanes8(s.dist2 + q),
       gather_lanes8(a.radius, i), gather_lanes8(a.radius, j), v_rel, wi, wj, inertia_eff, a.params[entry], a.coeffs[entry],
       a.dt_s, h);
-  alignas(64) double h_out[kHistoryDoubles][8];
-SPREAD_UNROLL(4)
-  for (int c = 0; c < kHistoryDoubles; ++c) store_lanes8(h_out[c], *h_slots[c]);
-SPREAD_UNROLL(8)
-  for (std::uint32_t l = 0; l < valid; ++l)
-SPREAD_UNROLL(4)
-    for (int c = 0; c < kHistoryDoubles; ++c) const_cast<double*>(hist[l])[c] = h_out[c][l];
+  const Lanes8 h_out[kHistoryDoubles] = {h.elastic.x, h.elastic.y, h.elastic.z, h.overlap_m};
+  store_histories8(h_out, hist, valid);
   const V3<Lanes8>* outs[3] = {&r.f, &r.t_i, &r.t_j};
   double(*slots[3])[PairBatch::kSlots] = {s.f, s.t_i, s.t_j};
 SPREAD_UNROLL(3)
