@@ -101,6 +101,7 @@ std::uint32_t DemEngine::add_particle(const Vec3& pos, const Vec3& vel, double r
   if (params_.periodic_z.enabled) at.z() = wrap_into_period(at.z(), params_.periodic_z);
   p_.push_back(at, vel, spin, radius, m, 0.4 * m * radius * radius, static_cast<std::uint16_t>(material), pid, time_s_);
   lists_dirty_ = true;
+  touch_rows_kept_ = false;
   coeffs_dirty_ = true;
   return pid;
 }
@@ -140,6 +141,7 @@ void DemEngine::drop_on_disc_particles() {
       ++inactive_;
     }
   lists_dirty_ = true;
+  touch_rows_kept_ = false;
 }
 
 void DemEngine::run_until(double t_s) {

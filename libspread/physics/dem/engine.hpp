@@ -220,6 +220,13 @@ class DemEngine {
   GearPredictorCorrector gear_;  // Gear integrators only
   std::vector<LaunchRecord> launches_;
   std::vector<PairSum> pair_sum_;
+  // x, y, z, r per particle, 32-byte aligned from touch_rows_at_ (doubles), r NaN for an inactive particle:
+  // what the batched pass's touch test reads of a body, in one load (pair_pass.cpp, refreshed per pass).
+  std::vector<double> touch_rows_;
+  std::size_t touch_rows_at_ = 0;
+  // The last pass's drift brought the rows to the particles' positions (drifted_in_pass_ too): nothing has
+  // moved, added or renumbered a particle since.
+  bool touch_rows_kept_ = false;
   std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
   // Wall list: per particle, bit g set when wall group g was within radius + skin at the last pair-list
   // build (WallSet::groups_within; 0: no wall, the wall test is skipped until the next build; the others

@@ -18,7 +18,11 @@ double DemEngine::inner_skin_m() const { return 0.5 * skin_m_; }
 void DemEngine::maintain_lists() {
   const auto t0 = Clock::now();
   if (!params_.has(effect::kParticleContact)) {
-    if (inactive_ > 0) { p_.compact(); inactive_ = 0; }
+    if (inactive_ > 0) {
+      p_.compact();
+      touch_rows_kept_ = false;
+      inactive_ = 0;
+    }
     lists_dirty_ = false;
     return;
   }
@@ -47,6 +51,7 @@ void DemEngine::maintain_lists() {
     if (inactive_ > 0) {
       // Compaction renumbers the slots; the pair history follows the particle ids.
       p_.compact();
+      touch_rows_kept_ = false;
       inactive_ = 0;
     }
     build_pair_list(p_, skin_m_, pairs_, params_.periodic_z);

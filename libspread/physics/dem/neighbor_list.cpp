@@ -38,6 +38,9 @@ void build_near_list(const ParticleArrays& p, double inner_skin_m, PairList& lis
   near.inner_skin_m = inner_skin_m;
   near.start.assign(n + 1, 0);
   near.pairs.clear();
+  near.first.clear();
+  near.second.clear();
+  near.held.clear();
   for (std::size_t i = 0; i < n; ++i) {
     near.start[i] = static_cast<std::uint32_t>(near.pairs.size());
     for (std::uint32_t k = list.first_start[i]; k < list.first_start[i + 1]; ++k) {
@@ -48,6 +51,9 @@ void build_near_list(const ParticleArrays& p, double inner_skin_m, PairList& lis
       const double cut = p.radius_m[i] + p.radius_m[j] + inner_skin_m;
       if (dx * dx + dy * dy + dz * dz < cut * cut) {
         near.pairs.push_back(k);
+        near.first.push_back(static_cast<std::uint32_t>(i));
+        near.second.push_back(j);
+        near.held.push_back(list.held[k]);
       } else if (list.held[k] != 0) {
         clear_history(list.history.data() + static_cast<std::size_t>(k) * kHistoryDoubles);
         list.held[k] = 0;
@@ -55,6 +61,8 @@ void build_near_list(const ParticleArrays& p, double inner_skin_m, PairList& lis
     }
   }
   near.start[n] = static_cast<std::uint32_t>(near.pairs.size());
+  near.held.resize(near.held.size() + kNearHeldPadding, 0);
+  near.held_synced = true;
   near.x0 = p.x;
   near.y0 = p.y;
   near.z0 = p.z;

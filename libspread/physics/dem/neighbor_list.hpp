@@ -87,10 +87,17 @@ double max_displacement2(const ParticleArrays& p, const std::vector<double>& x_r
 // still holds a spring is apart, and is released here, as the force pass would release it this step.
 struct NearList {
   std::vector<std::uint32_t> start, pairs;  // start: slots + 1 entries
+  std::vector<std::uint32_t> first, second;  // per entry: the pair's bodies (the batched pass's touch test)
+  // Per entry, a copy of its pair's PairList::held that the batched pass keeps with it (eight entries' in one
+  // load), and kNearHeldPadding zeros after the last; held_synced: equal to the pairs' (a pass that updates
+  // only those clears it).
+  std::vector<std::uint8_t> held;
+  bool held_synced = false;
   std::vector<double> x0, y0, z0;           // positions at the build (m)
   double inner_skin_m = 0.0;
   double moved_since_pair_build_m = 0.0;    // largest move from the pair list's build to this one (m)
 };
+inline constexpr std::size_t kNearHeldPadding = 8;
 void build_near_list(const ParticleArrays& p, double inner_skin_m, PairList& list, NearList& near,
                      const PeriodicZ& periodic = {});
 

@@ -9,9 +9,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <thread>
 #include <utility>
 #include <vector>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 // The contact laws' templates take eight-lane values here, inlined into the AVX-512 pass only (lanes.hpp).
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -73,6 +78,11 @@ struct PairPassArrays {
   // The pairs the direct pass looks at: entries [near_start[i], near_start[i + 1]) of near_pairs, each a
   // pair index (the near list, neighbor_list.hpp); null: all of i's listed pairs (the stored form).
   const std::uint32_t *near_start, *near_pairs;
+  // The near list's bodies per entry and the bodies' touch rows (x, y, z, r; r NaN when inactive): the batched
+  // pass's touch test, eight entries a register (null: one entry at a time).
+  const std::uint32_t *near_first, *near_second;
+  const double* touch_rows;
+  std::uint8_t* near_held;  // NearList::held, kept with `held` by the pass that reads the touch rows
   // The next step's opening half kick and drift, applied right after the closing kick when nothing comes
   // between the two steps (DemEngine::steps), by the passes of form drift: Δt of the drift (s). Both kicks
   // take the same forces and the same Δt/2, so the opening one adds the closing one's increment again.
@@ -83,6 +93,9 @@ struct PairPassArrays {
   bool drift_clears_sums;
   double* position[3];
   const double *x0, *y0, *z0;
+  // The touch rows the drift brings to the new positions as it moves each particle (the next pass then
+  // reads them as they are; null: not kept). A particle's row is read last by its own batch's stage 1.
+  double* drifted_rows;
 };
 
 // Particle i's pairs to look at: entries [begin, end) of `at` (null: the pair indices themselves).
@@ -150,6 +163,10 @@ SPREAD_UNROLL(3)
   for (int c = 0; c < 3; ++c) {
     x[c] = a.position[c][i] + a.drift_dt_s * v[c];
     a.position[c][i] = x[c];
+  }
+  if (a.drifted_rows != nullptr) {
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) a.drifted_rows[4 * i + static_cast<std::size_t>(c)] = x[c];
   }
   if (a.x0 != nullptr) {
     const double dx = x[0] - a.x0[i], dy = x[1] - a.y0[i], dz = x[2] - a.z0[i];
@@ -461,6 +478,7 @@ struct PairBatch {
   alignas(64) double dist2[kSlots];  // |d|² (m²)
   alignas(64) double f[3][kSlots], t_i[3][kSlots], t_j[3][kSlots];
   std::uint32_t k[kSlots], i[kSlots], j[kSlots];  // pair index, first body, second body
+  std::uint32_t e[kSlots];                          // near entry (the rows' stage 1 only)
   std::uint32_t particle_end[kPairs];  // the staged pairs of the window's p-th particle end at particle_end[p]
 };
 
@@ -484,12 +502,13 @@ SPREAD_CONTACT_INLINE lanes::Lanes8 load_lanes8(const double* p) {
 }
 SPREAD_CONTACT_INLINE void store_lanes8(double* p, lanes::Lanes8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
-// The histories of eight pairs (kHistoryDoubles = 4 doubles each, at rows[l]) as four eight-lane values,
-// slot by slot: each row loaded whole, two rows a register, and the 8 × 4 block transposed in registers
-// (12 shuffles, where the lanes filled one at a time took 32 loads and 28 shuffles).
+// Eight rows of four doubles (rows[l]: a pair's history, kHistoryDoubles = 4, or a body's touch row) as four
+// eight-lane values, slot by slot: each row loaded whole, two rows a register, and the 8 × 4 block
+// transposed in registers (12 shuffles, where the lanes filled one at a time took 32 loads and 28 shuffles).
 using Lanes4 = double __attribute__((vector_size(32)));
 static_assert(kHistoryDoubles == 4, "the history transposes are written for four slots");
-SPREAD_CONTACT_INLINE void load_histories8(double* const (&rows)[8], lanes::Lanes8 (&slot)[4]) {
+template <class Row>
+SPREAD_CONTACT_INLINE void load_rows8(Row* const (&rows)[8], lanes::Lanes8 (&slot)[4]) {
   using lanes::Lanes8;
   Lanes4 r[8];
 SPREAD_UNROLL(8)
@@ -587,7 +606,7 @@ SPREAD_UNROLL(8)
 SPREAD_UNROLL(8)
   for (int l = 0; l < 8; ++l) hist[l] = a.history + static_cast<std::size_t>(s.k[q + l]) * kHistoryDoubles;
   Lanes8 h_in[kHistoryDoubles];
-  load_histories8(hist, h_in);
+  load_rows8(hist, h_in);
   LawHistory<Lanes8> h{{h_in[0], h_in[1], h_in[2]}, h_in[3]};
   const PairOut<Lanes8> r = pair_contact<V>(
       V3<Lanes8>{load_lanes8(s.d[0] + q), load_lanes8(s.d[1] + q), load_lanes8(s.d[2] + q)}, load_lanes8(s.dist2 + q),
@@ -628,6 +647,90 @@ SPREAD_CONTACT_INLINE long long stage_touching(const PairPassArrays<typename V::
   return i1;
 }
 
+// Stage 1 eight near entries a register, where the pass has the near list's bodies and the touch rows (not
+// along a periodic axis): the touching pairs of particles [i0, i1) staged in s, as many particles from i0 on
+// as have at most a batch of near entries in all, or those up to `limit` only; the same pairs, vectors and
+// squared distances as stage_touching (the same operations, lane by lane: d = x_i − x_j, |d|² = (d_x² + d_y²)
+// + d_z², touching when 0 ≠ |d|² < (r_i + r_j)², an inactive body's NaN radius failing the test), and a pair
+// come apart releases its spring. Each entry's two rows are loaded whole and transposed (load_rows8); the
+// touching lanes are packed by the processor's compress. Returns i1 (i0 when i0's entries alone outgrow the
+// batch) and the staged pair count in n.
+template <class V, PairForm kForm>
+__attribute__((target("avx512f"))) SPREAD_CONTACT_INLINE long long stage_touching_rows(const PairPassArrays<typename V::Law>& a,
+                                                                                       PairBatch& s, long long i0, long long limit,
+                                                                                       std::uint32_t& n) {
+  static_assert(!kForm.periodic, "the rows' touch test has no minimum image");
+  using lanes::Lanes8;
+  const std::uint32_t e0 = a.near_start[i0];
+  long long i1 = i0;
+  while (i1 < limit && i1 - i0 < static_cast<long long>(PairBatch::kPairs) && a.near_start[i1 + 1] - e0 <= PairBatch::kPairs) ++i1;
+  n = 0;
+  if (i1 == i0) return i0;
+  const std::uint32_t e1 = a.near_start[i1];
+  const __m512i lane = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+  for (std::uint32_t e = e0; e < e1; e += 8) {
+    const std::uint32_t count = std::min<std::uint32_t>(8, e1 - e);
+    const __mmask8 valid = static_cast<__mmask8>((1u << count) - 1u);
+    const double* row_i[8];
+    const double* row_j[8];
+SPREAD_UNROLL(8)
+    for (std::uint32_t l = 0; l < 8; ++l) {
+      const std::uint32_t at = e + std::min(l, count - 1);  // spare lanes repeat the last entry
+      row_i[l] = a.touch_rows + 4 * static_cast<std::size_t>(a.near_first[at]);
+      row_j[l] = a.touch_rows + 4 * static_cast<std::size_t>(a.near_second[at]);
+    }
+    Lanes8 ri[4], rj[4];
+    load_rows8(row_i, ri);
+    load_rows8(row_j, rj);
+    const Lanes8 dx = ri[0] - rj[0], dy = ri[1] - rj[1], dz = ri[2] - rj[2];
+    const Lanes8 dist2 = (dx * dx + dy * dy) + dz * dz;
+    const Lanes8 cut = ri[3] + rj[3];
+    const __m512d dist2_v = reinterpret_cast<__m512d>(dist2);
+    const __mmask8 touch = _mm512_mask_cmp_pd_mask(valid, dist2_v, reinterpret_cast<__m512d>(cut * cut), _CMP_LT_OQ) &
+                           _mm512_cmp_pd_mask(dist2_v, _mm512_setzero_pd(), _CMP_NEQ_UQ);
+    const __m512i k = _mm512_maskz_loadu_epi32(valid, a.near_pairs + e);
+    // The springs of the apart entries that still hold one (the entries' copies of `held`, eight in one load;
+    // a gather of the pairs' own bytes cost more than the rest of the test here).
+    const __m128i held8 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(a.near_held + e));
+    const auto held = static_cast<__mmask8>(~_mm_movemask_epi8(_mm_cmpeq_epi8(held8, _mm_setzero_si128())));
+    __mmask8 release = static_cast<__mmask8>(held & valid & ~touch);
+    while (release != 0) {
+      const int l = __builtin_ctz(release);
+      release = static_cast<__mmask8>(release & (release - 1u));
+      const std::uint32_t el = e + static_cast<std::uint32_t>(l), kl = a.near_pairs[el];
+      clear_history(a.history + static_cast<std::size_t>(kl) * kHistoryDoubles);
+      a.held[kl] = 0;
+      a.near_held[el] = 0;
+    }
+    // The touching lanes, packed, after the n staged (a batch has room for eight past its pairs).
+    _mm512_mask_storeu_epi32(s.k + n, 0xFF, _mm512_maskz_compress_epi32(touch, k));
+    _mm512_mask_storeu_epi32(s.i + n, 0xFF, _mm512_maskz_compress_epi32(touch, _mm512_maskz_loadu_epi32(valid, a.near_first + e)));
+    _mm512_mask_storeu_epi32(s.e + n, 0xFF, _mm512_maskz_compress_epi32(touch, _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(e)), lane)));
+    _mm512_storeu_pd(s.dist2 + n, _mm512_maskz_compress_pd(touch, dist2_v));
+    _mm512_storeu_pd(s.d[0] + n, _mm512_maskz_compress_pd(touch, reinterpret_cast<__m512d>(dx)));
+    _mm512_storeu_pd(s.d[1] + n, _mm512_maskz_compress_pd(touch, reinterpret_cast<__m512d>(dy)));
+    _mm512_storeu_pd(s.d[2] + n, _mm512_maskz_compress_pd(touch, reinterpret_cast<__m512d>(dz)));
+    n += static_cast<std::uint32_t>(__builtin_popcount(touch));
+  }
+  // Each particle's staged pairs end after its last (the staged first bodies ascend), or where the
+  // particle before it ends when it has none.
+  const auto particles = static_cast<std::uint32_t>(i1 - i0);
+  for (std::uint32_t p = 0; p < particles; ++p) s.particle_end[p] = 0;
+  for (std::uint32_t q = 0; q < n; ++q) s.particle_end[s.i[q] - static_cast<std::uint32_t>(i0)] = q + 1;
+  for (std::uint32_t p = 1; p < particles; ++p) s.particle_end[p] = std::max(s.particle_end[p], s.particle_end[p - 1]);
+  return i1;
+}
+
+// Stage 1 as the pass has it: eight entries a register from the touch rows, else entry by entry.
+template <class V, PairForm kForm>
+__attribute__((target("avx512f"))) SPREAD_CONTACT_INLINE long long stage_batch(const PairPassArrays<typename V::Law>& a, PairBatch& s,
+                                                                               long long i0, long long limit, std::uint32_t& n) {
+  if constexpr (!kForm.periodic) {
+    if (a.touch_rows != nullptr) return stage_touching_rows<V, kForm>(a, s, i0, limit, n);
+  }
+  return stage_touching<V, kForm>(a, s, i0, limit, n);
+}
+
 // Stage 2: the law over the n staged pairs, eight at a time; the last group's spare lanes repeat its first
 // pair.
 template <class V, PairForm kForm>
@@ -661,6 +764,7 @@ SPREAD_CONTACT_INLINE void staged_sums(const PairPassArrays<typename V::Law>& a,
     double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
     for (; q < s.particle_end[p]; ++q) {
       a.held[s.k[q]] = 1;
+      if (a.near_held != nullptr) a.near_held[s.e[q]] = 1;
       PairSum& sj = a.sums[s.j[q]];
 SPREAD_UNROLL(3)
       for (int c = 0; c < 3; ++c) {
@@ -687,7 +791,7 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_batch
   long long i0 = 0;
   while (i0 < count) {
     std::uint32_t n = 0;
-    const long long i1 = stage_touching<V, kForm>(a, s, i0, count, n);
+    const long long i1 = stage_batch<V, kForm>(a, s, i0, count, n);
     if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass
       moved2 = std::max(moved2, pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1));
       ++i0;
@@ -766,7 +870,7 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_batch
         if (!my_turn && kept_batches.size() <= kept) kept_batches.resize(kept + 1);
         PairBatch& s = my_turn ? own : kept_batches[kept];
         std::uint32_t n = 0;
-        long long i1 = stage_touching<V, kForm>(a, s, i0, end, n);
+        long long i1 = stage_batch<V, kForm>(a, s, i0, end, n);
         if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass, in its turn
           wait_for_turn(turn, t);
           my_turn = true;
@@ -845,14 +949,44 @@ void DemEngine::particle_forces() {
       {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()}, p_.inv_mass_kg.data(),
       with_spin ? p_.inv_inertia_kg_m2.data() : nullptr, {p_.vx.data(), p_.vy.data(), p_.vz.data()},
       {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr},
-      nullptr, nullptr, 0.0, false, {nullptr, nullptr, nullptr}, nullptr, nullptr, nullptr};
+      nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0.0, false, {nullptr, nullptr, nullptr}, nullptr, nullptr, nullptr, nullptr};
   const long long count = static_cast<long long>(n);
   const bool periodic = params_.periodic_z.enabled;
   if (!store && near_.start.size() == n + 1) {
     a.near_start = near_.start.data();
     a.near_pairs = near_.pairs.data();
+#if defined(__x86_64__) || defined(__i386__)
+    // The batched pass's touch test reads each body's x, y, z, r in one load (r NaN: inactive, never touching).
+    // Kept by the last pass's drift (the steps between: nothing else moved a particle), else written here.
+    if (batched && !periodic && near_.first.size() == near_.pairs.size()) {
+      if (touch_rows_.size() < 4 * n + 4) {
+        touch_rows_.resize(4 * n + 4);
+        touch_rows_kept_ = false;
+      }
+      const auto address = reinterpret_cast<std::uintptr_t>(touch_rows_.data());
+      touch_rows_at_ = ((32 - address % 32) % 32) / sizeof(double);
+      double* const rows = touch_rows_.data() + touch_rows_at_;
+      for (std::size_t i = 0; i < (touch_rows_kept_ ? 0 : n); ++i) {
+        rows[4 * i] = p_.x[i];
+        rows[4 * i + 1] = p_.y[i];
+        rows[4 * i + 2] = p_.z[i];
+        rows[4 * i + 3] = p_.active[i] ? p_.radius_m[i] : std::numeric_limits<double>::quiet_NaN();
+      }
+      if (!near_.held_synced) {
+        for (std::size_t e = 0; e < near_.pairs.size(); ++e) near_.held[e] = pairs_.held[near_.pairs[e]];
+        near_.held_synced = true;
+      }
+      a.touch_rows = rows;
+      a.drifted_rows = rows;
+      a.near_first = near_.first.data();
+      a.near_held = near_.held.data();
+      a.near_second = near_.second.data();
+    }
+#endif
   }
   kicked_in_pass_ = kick_in_pass_dt_s_ != 0.0;
+  touch_rows_kept_ = false;
+  if (a.touch_rows == nullptr) near_.held_synced = false;  // this pass updates the pairs' held bytes only
   // The next step's opening kick and drift (steps()) go with the direct pass's closing kick; the stored
   // form kicks in its gather, and a periodic axis wraps between the steps.
   const bool drift = fuse_next_step_ && kicked_in_pass_ && !store && !periodic;
@@ -881,6 +1015,7 @@ void DemEngine::particle_forces() {
     else pair_pass<V, PairForm{false, false, false}>(a, count, threads);
     if (drift) {
       drifted_in_pass_ = true;
+      touch_rows_kept_ = a.drifted_rows != nullptr;
       sums_cleared_ = a.drift_clears_sums;
       moved2_since_near_ = measure_near ? moved2 : -1.0;
     }
