@@ -242,6 +242,9 @@ class DemEngine {
   std::any pair_coeffs_, wall_coeffs_;
   std::size_t force_variant_ = 0;  // position in kForceVariants (force_variants.hpp), chosen at construction
   bool coeffs_dirty_ = true;
+  // Every material's particles have one radius and mass (update_pair_coeffs): the batched pass's law runs
+  // eight pairs a register, and its touch test then too (touch_rows_).
+  bool one_size_per_material_ = false;
   EngineStats stats_;
   double time_s_ = 0.0;
   double dt_s_ = 0.0;

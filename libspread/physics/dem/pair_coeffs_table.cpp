@@ -37,6 +37,8 @@ void DemEngine::update_pair_coeffs() {
       pair_coeffs[a * mc + b].uniform = true;
     }
   }
+  one_size_per_material_ = true;
+  for (std::size_t a = 0; a < mc; ++a) one_size_per_material_ = one_size_per_material_ && (!seen[a] || uniform[a]);
   pair_coeffs_ = std::move(pair_coeffs);
   wall_coeffs_ = std::move(wall_coeffs);
   coeffs_dirty_ = false;
