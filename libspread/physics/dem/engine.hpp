@@ -224,8 +224,12 @@ class DemEngine {
   // what the batched pass's touch test reads of a body, in one load (pair_pass.cpp, refreshed per pass).
   std::vector<double> touch_rows_;
   std::size_t touch_rows_at_ = 0;
-  // The last pass's drift brought the rows to the particles' positions (drifted_in_pass_ too): nothing has
-  // moved, added or renumbered a particle since.
+  // vx, vy, vz, wx, wy, wz, r, I per particle, 64-byte aligned from law_rows_at_: what the batched pass's
+  // law reads of a body, in one load (with the touch rows).
+  std::vector<double> law_rows_;
+  std::size_t law_rows_at_ = 0;
+  // The last pass's drift brought both kinds of rows to the particles' positions and velocities
+  // (drifted_in_pass_ too): nothing has moved, added or renumbered a particle since.
   bool touch_rows_kept_ = false;
   std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
   // Wall list: per particle, bit g set when wall group g was within radius + skin at the last pair-list

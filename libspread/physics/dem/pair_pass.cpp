@@ -82,6 +82,7 @@ struct PairPassArrays {
   // pass's touch test, eight entries a register (null: one entry at a time).
   const std::uint32_t *near_first, *near_second;
   const double* touch_rows;
+  const double* law_rows;  // the bodies' law rows (vx, vy, vz, wx, wy, wz, r, I), with touch_rows
   std::uint8_t* near_held;  // NearList::held, kept with `held` by the pass that reads the touch rows
   // The next step's opening half kick and drift, applied right after the closing kick when nothing comes
   // between the two steps (DemEngine::steps), by the passes of form drift: Δt of the drift (s). Both kicks
@@ -93,9 +94,11 @@ struct PairPassArrays {
   bool drift_clears_sums;
   double* position[3];
   const double *x0, *y0, *z0;
-  // The touch rows the drift brings to the new positions as it moves each particle (the next pass then
-  // reads them as they are; null: not kept). A particle's row is read last by its own batch's stage 1.
+  // The touch and law rows the drift brings to the new positions and velocities as it moves each particle
+  // (the next pass then reads them as they are; null: not kept). A particle's rows are read last by its own
+  // batch's stages 1 and 2.
   double* drifted_rows;
+  double* drifted_law_rows;
 };
 
 // Particle i's pairs to look at: entries [begin, end) of `at` (null: the pair indices themselves).
@@ -166,7 +169,11 @@ SPREAD_UNROLL(3)
   }
   if (a.drifted_rows != nullptr) {
 SPREAD_UNROLL(3)
-    for (int c = 0; c < 3; ++c) a.drifted_rows[4 * i + static_cast<std::size_t>(c)] = x[c];
+    for (int c = 0; c < 3; ++c) {
+      a.drifted_rows[4 * i + static_cast<std::size_t>(c)] = x[c];
+      a.drifted_law_rows[8 * i + static_cast<std::size_t>(c)] = a.kick_v[c][i];
+      if constexpr (kRotation) a.drifted_law_rows[8 * i + 3 + static_cast<std::size_t>(c)] = a.kick_w[c][i];
+    }
   }
   if (a.x0 != nullptr) {
     const double dx = x[0] - a.x0[i], dy = x[1] - a.y0[i], dz = x[2] - a.z0[i];
@@ -526,6 +533,36 @@ SPREAD_UNROLL(4)
   slot[1] = __builtin_shufflevector(b1, b3, 0, 1, 8, 9, 4, 5, 12, 13);
   slot[3] = __builtin_shufflevector(b1, b3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
+// Eight rows of eight doubles (a body's law row each) as eight eight-lane values, column by column: an 8 × 8
+// transpose in registers (24 shuffles, where eight columns filled a lane at a time take 64 loads and 56).
+SPREAD_CONTACT_INLINE void load_rows8x8(const double* const (&rows)[8], lanes::Lanes8 (&col)[8]) {
+  using lanes::Lanes8;
+  Lanes8 r[8];
+SPREAD_UNROLL(8)
+  for (int l = 0; l < 8; ++l) __builtin_memcpy(&r[l], rows[l], sizeof r[l]);
+  Lanes8 t[8], u[8];
+SPREAD_UNROLL(4)
+  for (int l = 0; l < 8; l += 2) {
+    t[l] = __builtin_shufflevector(r[l], r[l + 1], 0, 8, 2, 10, 4, 12, 6, 14);      // columns 0 2 4 6 of rows l, l + 1
+    t[l + 1] = __builtin_shufflevector(r[l], r[l + 1], 1, 9, 3, 11, 5, 13, 7, 15);  // columns 1 3 5 7
+  }
+SPREAD_UNROLL(2)
+  for (int h = 0; h < 8; h += 4) {  // rows h … h + 3
+    u[h] = __builtin_shufflevector(t[h], t[h + 2], 0, 1, 8, 9, 4, 5, 12, 13);          // columns 0, 4
+    u[h + 1] = __builtin_shufflevector(t[h], t[h + 2], 2, 3, 10, 11, 6, 7, 14, 15);    // columns 2, 6
+    u[h + 2] = __builtin_shufflevector(t[h + 1], t[h + 3], 0, 1, 8, 9, 4, 5, 12, 13);  // columns 1, 5
+    u[h + 3] = __builtin_shufflevector(t[h + 1], t[h + 3], 2, 3, 10, 11, 6, 7, 14, 15);  // columns 3, 7
+  }
+  col[0] = __builtin_shufflevector(u[0], u[4], 0, 1, 2, 3, 8, 9, 10, 11);
+  col[4] = __builtin_shufflevector(u[0], u[4], 4, 5, 6, 7, 12, 13, 14, 15);
+  col[2] = __builtin_shufflevector(u[1], u[5], 0, 1, 2, 3, 8, 9, 10, 11);
+  col[6] = __builtin_shufflevector(u[1], u[5], 4, 5, 6, 7, 12, 13, 14, 15);
+  col[1] = __builtin_shufflevector(u[2], u[6], 0, 1, 2, 3, 8, 9, 10, 11);
+  col[5] = __builtin_shufflevector(u[2], u[6], 4, 5, 6, 7, 12, 13, 14, 15);
+  col[3] = __builtin_shufflevector(u[3], u[7], 0, 1, 2, 3, 8, 9, 10, 11);
+  col[7] = __builtin_shufflevector(u[3], u[7], 4, 5, 6, 7, 12, 13, 14, 15);
+}
+
 // The inverse: lane l of the four slots back to rows[l], for the first `valid` lanes.
 SPREAD_CONTACT_INLINE void store_histories8(const lanes::Lanes8 (&slot)[4], double* const (&rows)[8], std::uint32_t valid) {
   using lanes::Lanes8;
@@ -590,18 +627,35 @@ SPREAD_UNROLL(8)
     return;
   }
   const std::uint32_t* i = s.i + q;
-  const V3<Lanes8> v_rel{gather_lanes8(a.vx, i) - gather_lanes8(a.vx, j), gather_lanes8(a.vy, i) - gather_lanes8(a.vy, j),
-                         gather_lanes8(a.vz, i) - gather_lanes8(a.vz, j)};
+  // Each body's v, ω, r, I: from its law row where the pass has them, else lane by lane from the arrays.
+  Lanes8 body_i[8], body_j[8];
+  if (a.law_rows != nullptr) {
+    const double* rows_i[8];
+    const double* rows_j[8];
+SPREAD_UNROLL(8)
+    for (int l = 0; l < 8; ++l) {
+      rows_i[l] = a.law_rows + 8 * static_cast<std::size_t>(i[l]);
+      rows_j[l] = a.law_rows + 8 * static_cast<std::size_t>(j[l]);
+    }
+    load_rows8x8(rows_i, body_i);
+    load_rows8x8(rows_j, body_j);
+  } else {
+    const double* const arrays[8] = {a.vx, a.vy, a.vz, a.wx, a.wy, a.wz, a.radius, a.inertia};
+SPREAD_UNROLL(8)
+    for (int c = 0; c < 8; ++c) {
+      const bool needed = c < 3 || (c < 6 && V::kRotation) || c == 6 || (c == 7 && Law::kRolling);
+      body_i[c] = needed ? gather_lanes8(arrays[c], i) : splat<Lanes8>(0.0);
+      body_j[c] = needed ? gather_lanes8(arrays[c], j) : splat<Lanes8>(0.0);
+    }
+  }
+  const V3<Lanes8> v_rel{body_i[0] - body_j[0], body_i[1] - body_j[1], body_i[2] - body_j[2]};
   V3<Lanes8> wi = lanes::zero3<Lanes8>(), wj = lanes::zero3<Lanes8>();
   if constexpr (V::kRotation) {
-    wi = V3<Lanes8>{gather_lanes8(a.wx, i), gather_lanes8(a.wy, i), gather_lanes8(a.wz, i)};
-    wj = V3<Lanes8>{gather_lanes8(a.wx, j), gather_lanes8(a.wy, j), gather_lanes8(a.wz, j)};
+    wi = V3<Lanes8>{body_i[3], body_i[4], body_i[5]};
+    wj = V3<Lanes8>{body_j[3], body_j[4], body_j[5]};
   }
   Lanes8 inertia_eff = splat<Lanes8>(0.0);
-  if constexpr (Law::kRolling) {
-    const Lanes8 ii = gather_lanes8(a.inertia, i), ij = gather_lanes8(a.inertia, j);
-    inertia_eff = ii * ij / (ii + ij);
-  }
+  if constexpr (Law::kRolling) inertia_eff = body_i[7] * body_j[7] / (body_i[7] + body_j[7]);
   double* hist[8];
 SPREAD_UNROLL(8)
   for (int l = 0; l < 8; ++l) hist[l] = a.history + static_cast<std::size_t>(s.k[q + l]) * kHistoryDoubles;
@@ -610,7 +664,7 @@ SPREAD_UNROLL(8)
   LawHistory<Lanes8> h{{h_in[0], h_in[1], h_in[2]}, h_in[3]};
   const PairOut<Lanes8> r = pair_contact<V>(
       V3<Lanes8>{load_lanes8(s.d[0] + q), load_lanes8(s.d[1] + q), load_lanes8(s.d[2] + q)}, load_lanes8(s.dist2 + q),
-      gather_lanes8(a.radius, i), gather_lanes8(a.radius, j), v_rel, wi, wj, inertia_eff, a.params[entry], a.coeffs[entry],
+      body_i[6], body_j[6], v_rel, wi, wj, inertia_eff, a.params[entry], a.coeffs[entry],
       a.dt_s, h);
   const Lanes8 h_out[kHistoryDoubles] = {h.elastic.x, h.elastic.y, h.elastic.z, h.overlap_m};
   store_histories8(h_out, hist, valid);
@@ -949,7 +1003,8 @@ void DemEngine::particle_forces() {
       {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()}, p_.inv_mass_kg.data(),
       with_spin ? p_.inv_inertia_kg_m2.data() : nullptr, {p_.vx.data(), p_.vy.data(), p_.vz.data()},
       {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr},
-      nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0.0, false, {nullptr, nullptr, nullptr}, nullptr, nullptr, nullptr, nullptr};
+      nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0.0, false, {nullptr, nullptr, nullptr}, nullptr, nullptr, nullptr,
+      nullptr, nullptr};
   const long long count = static_cast<long long>(n);
   const bool periodic = params_.periodic_z.enabled;
   if (!store && near_.start.size() == n + 1) {
@@ -969,12 +1024,30 @@ void DemEngine::particle_forces() {
       const auto address = reinterpret_cast<std::uintptr_t>(touch_rows_.data());
       touch_rows_at_ = ((32 - address % 32) % 32) / sizeof(double);
       double* const rows = touch_rows_.data() + touch_rows_at_;
+      if (law_rows_.size() < 8 * n + 8) {
+        law_rows_.resize(8 * n + 8);
+        touch_rows_kept_ = false;
+      }
+      const auto law_address = reinterpret_cast<std::uintptr_t>(law_rows_.data());
+      law_rows_at_ = ((64 - law_address % 64) % 64) / sizeof(double);
+      double* const law_rows = law_rows_.data() + law_rows_at_;
       for (std::size_t i = 0; i < (touch_rows_kept_ ? 0 : n); ++i) {
         rows[4 * i] = p_.x[i];
         rows[4 * i + 1] = p_.y[i];
         rows[4 * i + 2] = p_.z[i];
         rows[4 * i + 3] = p_.active[i] ? p_.radius_m[i] : std::numeric_limits<double>::quiet_NaN();
+        double* const row = law_rows + 8 * i;
+        row[0] = p_.vx[i];
+        row[1] = p_.vy[i];
+        row[2] = p_.vz[i];
+        row[3] = with_spin ? p_.wx[i] : 0.0;
+        row[4] = with_spin ? p_.wy[i] : 0.0;
+        row[5] = with_spin ? p_.wz[i] : 0.0;
+        row[6] = p_.radius_m[i];
+        row[7] = p_.inertia_kg_m2[i];
       }
+      a.law_rows = law_rows;
+      a.drifted_law_rows = law_rows;
       if (!near_.held_synced) {
         for (std::size_t e = 0; e < near_.pairs.size(); ++e) near_.held[e] = pairs_.held[near_.pairs[e]];
         near_.held_synced = true;
