@@ -220,14 +220,11 @@ class DemEngine {
   GearPredictorCorrector gear_;  // Gear integrators only
   std::vector<LaunchRecord> launches_;
   std::vector<PairSum> pair_sum_;
-  // x, y, z, r per particle, 32-byte aligned from touch_rows_at_ (doubles), r NaN for an inactive particle:
-  // what the batched pass's touch test reads of a body, in one load (pair_pass.cpp, refreshed per pass).
+  // x, y, z, r per particle from a 32-byte boundary, r NaN for an inactive particle: what the batched pass's
+  // touch test reads of a body, in one load (pair_pass.cpp); vx, vy, vz, wx, wy, wz, r, I per particle from
+  // a 64-byte boundary: what its law reads of a body (written before a pass, or kept by the fused drift).
   std::vector<double> touch_rows_;
-  std::size_t touch_rows_at_ = 0;
-  // vx, vy, vz, wx, wy, wz, r, I per particle, 64-byte aligned from law_rows_at_: what the batched pass's
-  // law reads of a body, in one load (with the touch rows).
   std::vector<double> law_rows_;
-  std::size_t law_rows_at_ = 0;
   // The last pass's drift brought both kinds of rows to the particles' positions and velocities
   // (drifted_in_pass_ too): nothing has moved, added or renumbered a particle since.
   bool touch_rows_kept_ = false;

@@ -981,6 +981,20 @@ double pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads
   return pair_pass_portable<V, kForm>(a, 0, count, threads);
 }
 
+#if defined(__x86_64__) || defined(__i386__)
+// `count` doubles of `storage` from an `align`-byte boundary (one row per load), grown when short; fresh
+// storage holds no rows, so `kept` is cleared then.
+double* aligned_rows(std::vector<double>& storage, std::size_t count, std::size_t align, bool& kept) {
+  const std::size_t pad = align / sizeof(double);
+  if (storage.size() < count + pad) {
+    storage.resize(count + pad);
+    kept = false;
+  }
+  const auto address = reinterpret_cast<std::uintptr_t>(storage.data());
+  return storage.data() + (align - address % align) % align / sizeof(double);
+}
+#endif
+
 }  // namespace
 
 template <class V>
@@ -1026,20 +1040,8 @@ void DemEngine::particle_forces() {
     // 512-bit instructions, a pass of scalar laws (sizes mixed within a material) with this test in 512-bit
     // registers made the disc's whole step slower (bench_dem: 0.634–0.651 s → 0.703–0.707 s).
     if (batched && !periodic && one_size_per_material_ && near_.first.size() == near_.pairs.size()) {
-      if (touch_rows_.size() < 4 * n + 4) {
-        touch_rows_.resize(4 * n + 4);
-        touch_rows_kept_ = false;
-      }
-      const auto address = reinterpret_cast<std::uintptr_t>(touch_rows_.data());
-      touch_rows_at_ = ((32 - address % 32) % 32) / sizeof(double);
-      double* const rows = touch_rows_.data() + touch_rows_at_;
-      if (law_rows_.size() < 8 * n + 8) {
-        law_rows_.resize(8 * n + 8);
-        touch_rows_kept_ = false;
-      }
-      const auto law_address = reinterpret_cast<std::uintptr_t>(law_rows_.data());
-      law_rows_at_ = ((64 - law_address % 64) % 64) / sizeof(double);
-      double* const law_rows = law_rows_.data() + law_rows_at_;
+      double* const rows = aligned_rows(touch_rows_, 4 * n, 32, touch_rows_kept_);
+      double* const law_rows = aligned_rows(law_rows_, 8 * n, 64, touch_rows_kept_);
       for (std::size_t i = 0; i < (touch_rows_kept_ ? 0 : n); ++i) {
         rows[4 * i] = p_.x[i];
         rows[4 * i + 1] = p_.y[i];
