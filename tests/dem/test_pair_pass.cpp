@@ -180,6 +180,31 @@ TEST(DemPairPass, StepsGiveTheBitsOfSteppingOneByOne) {
       }
 }
 
+// Particles removed below a loss plane stay in the lists, inactive, until the next pair-list build; the
+// batched pass's touch rows give them a NaN radius instead of testing the active flags. The bottom layer of
+// the block removed after the first step, the bits of the portable pass, which tests the flags.
+TEST(DemPairPass, RemovedParticlesTouchNothingOnEitherPass) {
+  auto block = [] {
+    DemEngine e = dense_block(1, true);
+    Collector loss;
+    loss.lost_below_z_m = 2.5e-3;  // the bottom layer's centres are at 2.0 mm
+    e.set_collector(loss);
+    return e;
+  };
+  limit_registers(Registers::kAvx512);
+  DemEngine widest = block();
+  const RegistersLimited baseline(Registers::kBaseline);
+  DemEngine portable = block();
+  for (int s = 0; s < 40; ++s) portable.step();
+  limit_registers(Registers::kAvx512);
+  for (int s = 0; s < 40; ++s) widest.step();
+  EXPECT_EQ(widest.stats().lost, 24u * 24u);
+  EXPECT_EQ(widest.stats().pair_list_builds, 1u);  // no build since: the removed ones are still listed
+  EXPECT_LT(widest.active_count(), widest.particles().size());
+  EXPECT_GT(expect_identical_states(widest, portable), 100u);
+  if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
+}
+
 // One thread looks at the near list only (the pairs within half the skin, rebuilt as particles move),
 // two threads storing the pairs' results at every listed pair: a block thrown ten times as fast, so that
 // the near list is rebuilt between pair-list builds and leaves pairs out that touch later, gives the same

@@ -113,19 +113,37 @@ SPREAD_CONTACT_INLINE PairRange pairs_of(const PairPassArrays<Law>& a, std::size
   return {nullptr, a.pair_start[i], a.pair_start[i + 1]};
 }
 
-// v += Δt (F/m + g), ω += Δt T/I for particle i, exactly as DemEngine::kick and kick_spin do it.
+// One kick's increments for particle i with force f (N) and torque t (N m): Δv = Δt (F/m + g),
+// Δω = Δt T/I, exactly as DemEngine::kick and kick_spin compute them (Δt = kick_dt_s).
+template <bool kRotation, class Law>
+SPREAD_CONTACT_INLINE void kick_increments(const PairPassArrays<Law>& a, std::size_t i, const double (&f)[3], const double (&t)[3],
+                                           double (&dv)[3], double (&dw)[3]) {
+  const double dt = a.kick_dt_s, inv_m = a.inv_mass[i];
+SPREAD_UNROLL(3)
+  for (int c = 0; c < 3; ++c) dv[c] = dt * (f[c] * inv_m + a.gravity_m_s2[c]);
+  if constexpr (kRotation) {
+    const double inv_i = a.inv_inertia[i];
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) dw[c] = dt * t[c] * inv_i;
+  }
+}
+
+// v += Δt (F/m + g), ω += Δt T/I for particle i, with its sums as stored.
 template <bool kRotation, class Law>
 SPREAD_CONTACT_INLINE void kick_particle(const PairPassArrays<Law>& a, std::size_t i) {
   if (!a.active[i]) return;
-  const double dt = a.kick_dt_s, inv_m = a.inv_mass[i];
-  a.kick_v[0][i] += dt * (a.fx[i] * inv_m + a.gravity_m_s2[0]);
-  a.kick_v[1][i] += dt * (a.fy[i] * inv_m + a.gravity_m_s2[1]);
-  a.kick_v[2][i] += dt * (a.fz[i] * inv_m + a.gravity_m_s2[2]);
+  const double f[3] = {a.fx[i], a.fy[i], a.fz[i]};
+  double t[3] = {0.0, 0.0, 0.0}, dv[3], dw[3];
   if constexpr (kRotation) {
-    const double inv_i = a.inv_inertia[i];
-    a.kick_w[0][i] += dt * a.tx[i] * inv_i;
-    a.kick_w[1][i] += dt * a.ty[i] * inv_i;
-    a.kick_w[2][i] += dt * a.tz[i] * inv_i;
+    t[0] = a.tx[i];
+    t[1] = a.ty[i];
+    t[2] = a.tz[i];
+  }
+  kick_increments<kRotation>(a, i, f, t, dv, dw);
+SPREAD_UNROLL(3)
+  for (int c = 0; c < 3; ++c) {
+    a.kick_v[c][i] += dv[c];
+    if constexpr (kRotation) a.kick_w[c][i] += dw[c];
   }
 }
 
@@ -138,22 +156,27 @@ template <bool kRotation, class Law>
 SPREAD_CONTACT_INLINE void kick_twice_and_drift(const PairPassArrays<Law>& a, std::size_t i, const PairSum& si,
                                                 const double (&sum_f)[3], const double (&sum_t)[3], double& moved2) {
   const double f[3] = {a.fx[i] + (si.f[0] + sum_f[0]), a.fy[i] + (si.f[1] + sum_f[1]), a.fz[i] + (si.f[2] + sum_f[2])};
-  double v[3] = {a.kick_v[0][i], a.kick_v[1][i], a.kick_v[2][i]};
+  double t[3] = {0.0, 0.0, 0.0};
+  if constexpr (kRotation) {
+    const double* const torque[3] = {a.tx, a.ty, a.tz};
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) t[c] = torque[c][i] + (si.t[c] + sum_t[c]);
+  }
+  double v[3] = {a.kick_v[0][i], a.kick_v[1][i], a.kick_v[2][i]}, w[3] = {0.0, 0.0, 0.0};
+  if constexpr (kRotation) {
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) w[c] = a.kick_w[c][i];
+  }
   if (a.active[i]) {
-    const double dt = a.kick_dt_s, inv_m = a.inv_mass[i];
+    double dv[3], dw[3];
+    kick_increments<kRotation>(a, i, f, t, dv, dw);
 SPREAD_UNROLL(3)
     for (int c = 0; c < 3; ++c) {
-      const double dv = dt * (f[c] * inv_m + a.gravity_m_s2[c]);
-      v[c] = (v[c] + dv) + dv;
+      v[c] = (v[c] + dv[c]) + dv[c];
       a.kick_v[c][i] = v[c];
-    }
-    if constexpr (kRotation) {
-      const double t[3] = {a.tx[i] + (si.t[0] + sum_t[0]), a.ty[i] + (si.t[1] + sum_t[1]), a.tz[i] + (si.t[2] + sum_t[2])};
-      const double inv_i = a.inv_inertia[i];
-SPREAD_UNROLL(3)
-      for (int c = 0; c < 3; ++c) {
-        const double dw = dt * t[c] * inv_i;
-        a.kick_w[c][i] = (a.kick_w[c][i] + dw) + dw;
+      if constexpr (kRotation) {
+        w[c] = (w[c] + dw[c]) + dw[c];
+        a.kick_w[c][i] = w[c];
       }
     }
   }
@@ -171,8 +194,8 @@ SPREAD_UNROLL(3)
 SPREAD_UNROLL(3)
     for (int c = 0; c < 3; ++c) {
       a.drifted_rows[4 * i + static_cast<std::size_t>(c)] = x[c];
-      a.drifted_law_rows[8 * i + static_cast<std::size_t>(c)] = a.kick_v[c][i];
-      if constexpr (kRotation) a.drifted_law_rows[8 * i + 3 + static_cast<std::size_t>(c)] = a.kick_w[c][i];
+      a.drifted_law_rows[8 * i + static_cast<std::size_t>(c)] = v[c];
+      if constexpr (kRotation) a.drifted_law_rows[8 * i + 3 + static_cast<std::size_t>(c)] = w[c];
     }
   }
   if (a.x0 != nullptr) {
