@@ -152,15 +152,16 @@ SPREAD_UNROLL(3)
 // the same increment added twice), and the next step's drift x += Δt v — each operation as kick_particle
 // and the engine's kick_drift_range do it, so the bits are those of the two passes. The drift and the move
 // apply to every particle, the kicks to the active ones (as there).
+// The pairs' share of the sums comes as total_f = partners' share + own share (N), total_t likewise (N m).
 template <bool kRotation, class Law>
-SPREAD_CONTACT_INLINE void kick_twice_and_drift(const PairPassArrays<Law>& a, std::size_t i, const PairSum& si,
-                                                const double (&sum_f)[3], const double (&sum_t)[3], double& moved2) {
-  const double f[3] = {a.fx[i] + (si.f[0] + sum_f[0]), a.fy[i] + (si.f[1] + sum_f[1]), a.fz[i] + (si.f[2] + sum_f[2])};
+SPREAD_CONTACT_INLINE void kick_twice_and_drift(const PairPassArrays<Law>& a, std::size_t i, const double (&total_f)[3],
+                                                const double (&total_t)[3], double& moved2) {
+  const double f[3] = {a.fx[i] + total_f[0], a.fy[i] + total_f[1], a.fz[i] + total_f[2]};
   double t[3] = {0.0, 0.0, 0.0};
   if constexpr (kRotation) {
     const double* const torque[3] = {a.tx, a.ty, a.tz};
 SPREAD_UNROLL(3)
-    for (int c = 0; c < 3; ++c) t[c] = torque[c][i] + (si.t[c] + sum_t[c]);
+    for (int c = 0; c < 3; ++c) t[c] = torque[c][i] + total_t[c];
   }
   double v[3] = {a.kick_v[0][i], a.kick_v[1][i], a.kick_v[2][i]}, w[3] = {0.0, 0.0, 0.0};
   if constexpr (kRotation) {
@@ -422,7 +423,13 @@ SPREAD_CONTACT_INLINE void finish_sums(const PairPassArrays<typename V::Law>& a,
     return;
   }
   if constexpr (kForm.drift) {
-    kick_twice_and_drift<V::kRotation>(a, i, si, sum_f, sum_t, moved2);
+    double total_f[3], total_t[3] = {0.0, 0.0, 0.0};
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) {
+      total_f[c] = si.f[c] + sum_f[c];
+      if constexpr (V::kRotation) total_t[c] = si.t[c] + sum_t[c];
+    }
+    kick_twice_and_drift<V::kRotation>(a, i, total_f, total_t, moved2);
     si = PairSum{};
     return;
   }
@@ -510,6 +517,9 @@ struct PairBatch {
   std::uint32_t k[kSlots], i[kSlots], j[kSlots];  // pair index, first body, second body
   std::uint32_t e[kSlots];                          // near entry (the rows' stage 1 only)
   std::uint32_t particle_end[kPairs];  // the staged pairs of the window's p-th particle end at particle_end[p]
+  // The pairs' share of the p-th particle's sums, partners' share + own share (N, N m): stage 3 of the drift
+  // form, which kicks and drifts the batch's particles eight at a time after their sums.
+  alignas(64) double total_f[3][kPairs], total_t[3][kPairs];
 };
 
 // Eight values into one register, two at a time (a load and a load into the upper half), then the halves
@@ -556,13 +566,9 @@ SPREAD_UNROLL(4)
   slot[1] = __builtin_shufflevector(b1, b3, 0, 1, 8, 9, 4, 5, 12, 13);
   slot[3] = __builtin_shufflevector(b1, b3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
-// Eight rows of eight doubles (a body's law row each) as eight eight-lane values, column by column: an 8 × 8
-// transpose in registers (24 shuffles, where eight columns filled a lane at a time take 64 loads and 56).
-SPREAD_CONTACT_INLINE void load_rows8x8(const double* const (&rows)[8], lanes::Lanes8 (&col)[8]) {
+// An 8 × 8 block of doubles transposed in registers (24 shuffles): r[l][c] → col[c][l].
+SPREAD_CONTACT_INLINE void transpose8x8(const lanes::Lanes8 (&r)[8], lanes::Lanes8 (&col)[8]) {
   using lanes::Lanes8;
-  Lanes8 r[8];
-SPREAD_UNROLL(8)
-  for (int l = 0; l < 8; ++l) __builtin_memcpy(&r[l], rows[l], sizeof r[l]);
   Lanes8 t[8], u[8];
 SPREAD_UNROLL(4)
   for (int l = 0; l < 8; l += 2) {
@@ -585,6 +591,14 @@ SPREAD_UNROLL(2)
   col[3] = __builtin_shufflevector(u[3], u[7], 0, 1, 2, 3, 8, 9, 10, 11);
   col[7] = __builtin_shufflevector(u[3], u[7], 4, 5, 6, 7, 12, 13, 14, 15);
 }
+// Eight rows of eight doubles (a body's law row each) as eight eight-lane values, column by column: the
+// rows loaded whole and transposed (where eight columns filled a lane at a time take 64 loads and 56 shuffles).
+SPREAD_CONTACT_INLINE void load_rows8x8(const double* const (&rows)[8], lanes::Lanes8 (&col)[8]) {
+  lanes::Lanes8 r[8];
+SPREAD_UNROLL(8)
+  for (int l = 0; l < 8; ++l) __builtin_memcpy(&r[l], rows[l], sizeof r[l]);
+  transpose8x8(r, col);
+}
 
 // The inverse: lane l of the four slots back to rows[l], for the first `valid` lanes.
 SPREAD_CONTACT_INLINE void store_histories8(const lanes::Lanes8 (&slot)[4], double* const (&rows)[8], std::uint32_t valid) {
@@ -604,6 +618,87 @@ SPREAD_CONTACT_INLINE void store_histories8(const lanes::Lanes8 (&slot)[4], doub
   r[7] = __builtin_shufflevector(c1, c3, 6, 7, 14, 15);
 SPREAD_UNROLL(8)
   for (std::uint32_t l = 0; l < valid; ++l) __builtin_memcpy(rows[l], &r[l], sizeof r[l]);
+}
+
+// Touch rows 2M and 2M + 1 of eight consecutive ones (x, y, z, r) given the new x, y, z of lanes 2M and 2M + 1;
+// r stays as the row has it.
+template <int M>
+SPREAD_CONTACT_INLINE void store_touch_rows2(double* rows, lanes::Lanes8 x, lanes::Lanes8 y, lanes::Lanes8 z) {
+  double* const at = rows + 8 * M;
+  const lanes::Lanes8 old = load_lanes8(at);
+  const lanes::Lanes8 xy = __builtin_shufflevector(x, y, 2 * M, 8 + 2 * M, 0, 0, 2 * M + 1, 9 + 2 * M, 0, 0);
+  const lanes::Lanes8 xyz = __builtin_shufflevector(xy, z, 0, 1, 8 + 2 * M, 3, 4, 5, 9 + 2 * M, 7);
+  store_lanes8(at, __builtin_shufflevector(xyz, old, 0, 1, 2, 11, 4, 5, 6, 15));
+}
+
+// kick_twice_and_drift for particles [i, i + 8), a particle a lane: lane by lane the same operations in the
+// same order (the same bits), eight particles an instruction (one at a time, the kicks and the drift took
+// about a quarter of the pass). total_f[c], total_t[c]: the pairs' share of the eight particles' sums,
+// component c. moved2: the largest squared move since the near list's build, lane by lane.
+template <bool kRotation, class Law>
+SPREAD_CONTACT_INLINE void kick_twice_and_drift8(const PairPassArrays<Law>& a, std::size_t i, const double* const (&total_f)[3],
+                                                 const double* const (&total_t)[3], lanes::Lanes8& moved2) {
+  using lanes::Lanes8;
+  using lanes::Mask8;
+  using Bytes8 = std::uint8_t __attribute__((vector_size(8)));
+  Bytes8 active_bytes;
+  __builtin_memcpy(&active_bytes, a.active + i, sizeof active_bytes);
+  const Mask8 active = __builtin_convertvector(active_bytes, Mask8) != 0;  // the kicks apply to the active only
+  const Lanes8 dt = splat<Lanes8>(a.kick_dt_s), inv_m = load_lanes8(a.inv_mass + i);
+  double* const force[3] = {a.fx, a.fy, a.fz};
+  double* const torque[3] = {a.tx, a.ty, a.tz};
+  Lanes8 v[3], w[3] = {splat<Lanes8>(0.0), splat<Lanes8>(0.0), splat<Lanes8>(0.0)};
+SPREAD_UNROLL(3)
+  for (int c = 0; c < 3; ++c) {
+    const Lanes8 f = load_lanes8(force[c] + i) + load_lanes8(total_f[c]);
+    const Lanes8 dv = dt * (f * inv_m + splat<Lanes8>(a.gravity_m_s2[c]));
+    const Lanes8 v0 = load_lanes8(a.kick_v[c] + i);
+    v[c] = lanes::select(active, (v0 + dv) + dv, v0);
+    store_lanes8(a.kick_v[c] + i, v[c]);
+  }
+  if constexpr (kRotation) {
+    const Lanes8 inv_i = load_lanes8(a.inv_inertia + i);
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) {
+      const Lanes8 t = load_lanes8(torque[c] + i) + load_lanes8(total_t[c]);
+      const Lanes8 dw = dt * t * inv_i;
+      const Lanes8 w0 = load_lanes8(a.kick_w[c] + i);
+      w[c] = lanes::select(active, (w0 + dw) + dw, w0);
+      store_lanes8(a.kick_w[c] + i, w[c]);
+    }
+  }
+  if (a.drift_clears_sums) {
+SPREAD_UNROLL(3)
+    for (int c = 0; c < 3; ++c) {
+      store_lanes8(force[c] + i, splat<Lanes8>(0.0));
+      if constexpr (kRotation) store_lanes8(torque[c] + i, splat<Lanes8>(0.0));
+    }
+  }
+  Lanes8 x[3];
+  const Lanes8 drift_dt = splat<Lanes8>(a.drift_dt_s);
+SPREAD_UNROLL(3)
+  for (int c = 0; c < 3; ++c) {
+    x[c] = load_lanes8(a.position[c] + i) + drift_dt * v[c];
+    store_lanes8(a.position[c] + i, x[c]);
+  }
+  if (a.drifted_rows != nullptr) {
+    double* const rows = a.drifted_rows + 4 * i;
+    store_touch_rows2<0>(rows, x[0], x[1], x[2]);
+    store_touch_rows2<1>(rows, x[0], x[1], x[2]);
+    store_touch_rows2<2>(rows, x[0], x[1], x[2]);
+    store_touch_rows2<3>(rows, x[0], x[1], x[2]);
+    // The law rows (vx, vy, vz, wx, wy, wz, r, I) as written before the pass (no spin: zeros).
+    const Lanes8 col[8] = {v[0], v[1], v[2], w[0], w[1], w[2], load_lanes8(a.radius + i), load_lanes8(a.inertia + i)};
+    Lanes8 row[8];
+    transpose8x8(col, row);
+SPREAD_UNROLL(8)
+    for (int l = 0; l < 8; ++l) store_lanes8(a.drifted_law_rows + 8 * (i + static_cast<std::size_t>(l)), row[l]);
+  }
+  if (a.x0 != nullptr) {
+    const Lanes8 dx = x[0] - load_lanes8(a.x0 + i), dy = x[1] - load_lanes8(a.y0 + i), dz = x[2] - load_lanes8(a.z0 + i);
+    const Lanes8 d2 = dx * dx + dy * dy + dz * dz;
+    moved2 = lanes::select(moved2 < d2, d2, moved2);  // std::max(moved2, d2), lane by lane
+  }
 }
 
 // Staged pairs [q, q + valid) one at a time (materials differ, or sizes within a material). noinline: one
@@ -841,12 +936,15 @@ SPREAD_UNROLL(3)
   }
 }
 
-// Stage 3: the sums of particles [i0, i1), in pair order.
+// Stage 3: the sums of particles [i0, i1), in pair order. The drift form kicks and drifts the particles
+// once their sums are complete, eight a register (the rest one at a time): a particle's kick reads only its
+// own sums and arrays, and stage 3 of the particles after it in the batch writes neither.
 template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void staged_sums(const PairPassArrays<typename V::Law>& a, const PairBatch& s, long long i0, long long i1,
+SPREAD_CONTACT_INLINE void staged_sums(const PairPassArrays<typename V::Law>& a, PairBatch& s, long long i0, long long i1,
                                        double& moved2) {
   std::uint32_t q = 0;
-  for (std::uint32_t p = 0; p < static_cast<std::uint32_t>(i1 - i0); ++p) {
+  const auto particles = static_cast<std::uint32_t>(i1 - i0);
+  for (std::uint32_t p = 0; p < particles; ++p) {
     double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
     for (; q < s.particle_end[p]; ++q) {
       a.held[s.k[q]] = 1;
@@ -864,7 +962,34 @@ SPREAD_UNROLL(3)
           sj.t[c] += s.t_j[c][q];
         }
     }
-    finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t, moved2);
+    if constexpr (kForm.drift) {
+      PairSum& si = a.sums[static_cast<std::size_t>(i0 + p)];
+SPREAD_UNROLL(3)
+      for (int c = 0; c < 3; ++c) {
+        s.total_f[c][p] = si.f[c] + sum_f[c];
+        if constexpr (V::kRotation) s.total_t[c][p] = si.t[c] + sum_t[c];
+      }
+      si = PairSum{};
+    } else {
+      finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t, moved2);
+    }
+  }
+  if constexpr (kForm.drift) {
+    lanes::Lanes8 moved8 = splat<lanes::Lanes8>(0.0);
+    std::uint32_t p = 0;
+    for (; p + 8 <= particles; p += 8) {
+      const double* const total_f[3] = {s.total_f[0] + p, s.total_f[1] + p, s.total_f[2] + p};
+      const double* const total_t[3] = {s.total_t[0] + p, s.total_t[1] + p, s.total_t[2] + p};
+      kick_twice_and_drift8<V::kRotation>(a, static_cast<std::size_t>(i0 + p), total_f, total_t, moved8);
+    }
+SPREAD_UNROLL(8)
+    for (int l = 0; l < 8; ++l) moved2 = std::max(moved2, moved8[l]);
+    for (; p < particles; ++p) {
+      const double total_f[3] = {s.total_f[0][p], s.total_f[1][p], s.total_f[2][p]};
+      double total_t[3] = {0.0, 0.0, 0.0};
+      if constexpr (V::kRotation) for (int c = 0; c < 3; ++c) total_t[c] = s.total_t[c][p];
+      kick_twice_and_drift<V::kRotation>(a, static_cast<std::size_t>(i0 + p), total_f, total_t, moved2);
+    }
   }
 }
 
