@@ -185,6 +185,7 @@ class DemEngine {
   void update_pair_coeffs();
   // Pair list and wall list rebuilt when needed (list_upkeep.cpp).
   void maintain_lists();
+  void narrow_wall_list();
   double inner_skin_m() const;  // the near list's skin (m)
   // The integrator families (integrators.cpp).
   void step_symplectic_euler();
@@ -229,12 +230,15 @@ class DemEngine {
   // (drifted_in_pass_ too): nothing has moved, added or renumbered a particle since.
   bool touch_rows_kept_ = false;
   std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
-  // Wall list: per particle, bit g set when wall group g was within radius + skin at the last pair-list
-  // build (WallSet::groups_within; 0: no wall, the wall test is skipped until the next build; the others
-  // are not looked at). Used only when every wall group's surface is fixed in space
+  // Wall list: per particle, bit g set when wall group g was within radius + half the near list's inner
+  // skin at the last near-list build (WallSet::groups_within; 0: no wall, the wall test is skipped until the
+  // next build; the others are not looked at). Used only when every wall group's surface is fixed in space
   // (walls_fixed_in_space_); empty otherwise.
   std::vector<std::uint64_t> walls_near_;
   std::vector<std::uint32_t> wall_listed_;  // the particles whose walls_near_ is not 0, ascending
+  // The particles that may touch a wall before the next pair-list build (within radius + skin, or holding
+  // a wall history, at the build), ascending; walls_near_ is narrowed from them at each near-list build.
+  std::vector<std::uint32_t> wall_candidates_;
   bool walls_fixed_in_space_ = false;
   // Law::coeffs per material pair (a·M + b), for particle pairs (pair_coeffs_) and particle–wall contacts
   // (wall_coeffs_, R* = r, M* = m): valid (uniform) when every particle of the particle materials has the
