@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -153,4 +154,66 @@ TEST(DemWalls, BadGeometryIsRefusedWithItsName) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("radius_m"), std::string::npos);
   }
+}
+
+// The wall list (walls fixed in space) looks at a particle only while a wall lies within its radius plus
+// half the near list's inner skin at the near list's last build; particles raining fast into a cylinder
+// onto its floor, entering that reach at many different steps, must see exactly the contacts of a wall pass
+// that looks at every particle — here forced by a small tilted plate far away that turns (not symmetric
+// about its axis, so no wall list), which nothing touches.
+TEST(DemWalls, WallListGivesTheBitsOfLookingAtEveryParticle) {
+  auto rain = [](bool far_turning_plate) {
+    Material p;
+    p.name = "bead";
+    p.friction_particle = p.friction_wall = 0.5;
+    p.restitution = 0.5;
+    Material w = p;
+    w.rigid = true;
+    WallGroup drum;
+    drum.pieces.push_back(make_cylinder_inner(0.02, 0.0, 0.1));
+    drum.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
+    drum.material = 1;
+    WallSet walls;
+    walls.groups.push_back(drum);
+    if (far_turning_plate) {
+      WallGroup plate;
+      plate.pieces.push_back(make_rectangle(Vec3(1.0, 0.0, 1.0), Vec3(1.0, 0.0, 0.2), 0.01, Vec3::UnitY(), 0.01));
+      plate.material = 1;
+      plate.angular_velocity_rad_s = 1e-9;  // a surface speed of 1e-9 m/s: the time step is the same
+      walls.groups.push_back(plate);
+    }
+    EngineParams ep;
+    ep.contact_law = kLinearSpringDashpotLaw;
+    ep.linear.normal_stiffness_n_m = 1000.0;
+    ep.integrator = Integrator::kVelocityVerlet;
+    ep.min_particle_radius_m = ep.max_particle_radius_m = 1e-3;
+    ep.impact_speed_m_s = 4.0;
+    DemEngine e({p, w}, {}, walls, ep);
+    // A loose column, each bead thrown down and out at its own speed.
+    int k = 0;
+    for (int iz = 0; iz < 12; ++iz)
+      for (int ix = -6; ix <= 6; ++ix)
+        for (int iy = -6; iy <= 6; ++iy, ++k) {
+          const Vec3 c(ix * 2.6e-3, iy * 2.6e-3, 1.5e-3 + iz * 2.6e-3);
+          if (std::hypot(c.x(), c.y()) > 0.017) continue;
+          e.add_particle(c, Vec3(0.6 * c.x() / 0.017 * (1 + k % 3), 0.6 * c.y() / 0.017 * (1 + k % 2), -1.5 - 0.15 * (k % 7)), 1e-3, 0);
+        }
+    return e;
+  };
+  DemEngine listed = rain(false), every = rain(true);
+  ASSERT_EQ(listed.dt_s(), every.dt_s());
+  listed.steps(1000);
+  every.steps(1000);
+  EXPECT_GT(listed.stats().near_list_builds, 5u);
+  const auto& a = listed.particles();
+  const auto& b = every.particles();
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t on_walls = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (const auto field : {&ParticleArrays::x, &ParticleArrays::y, &ParticleArrays::z, &ParticleArrays::vx, &ParticleArrays::vy,
+                             &ParticleArrays::vz, &ParticleArrays::wx, &ParticleArrays::wy, &ParticleArrays::wz})
+      ASSERT_EQ((a.*field)[i], (b.*field)[i]) << "particle " << i;
+    on_walls += a.wall_key[i * kWallSlots] != 0 ? 1 : 0;
+  }
+  EXPECT_GT(on_walls, 100u);
 }
