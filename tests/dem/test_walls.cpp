@@ -30,6 +30,17 @@ TriangleMesh flat_mesh() {
     }
   return weld_triangle_soup(soup, 1e-9);
 }
+
+// A particle material (μ 0.5 with particles and walls) and a rigid wall material like it: materials 0 and 1.
+std::vector<Material> particle_and_rigid_wall(const char* name, double restitution) {
+  Material p;
+  p.name = name;
+  p.friction_particle = p.friction_wall = 0.5;
+  p.restitution = restitution;
+  Material w = p;
+  w.rigid = true;
+  return {p, w};
+}
 }  // namespace
 
 TEST(DemMesh, OneContactPerFlatPatchAnywhere) {
@@ -124,12 +135,6 @@ TEST(DemWalls, MeshedPlaneGivesTheAnalyticForce) {
 TEST(DemWalls, RotatingDiscCarriesAParticle) {
   // A particle at rest on a spinning flat disc slides: friction μ m g along the relative velocity
   // (+y at +x for counter-clockwise spin) accelerates it at μ g.
-  Material p;
-  p.name = "p";
-  p.friction_particle = p.friction_wall = 0.5;
-  p.restitution = 0.3;
-  Material w = p;
-  w.rigid = true;
   DiscGeometry g;
   g.radius_m = 0.3;
   WallSet ws;
@@ -138,7 +143,7 @@ TEST(DemWalls, RotatingDiscCarriesAParticle) {
   ep.effects &= ~spread::effect::kParticleContact;
   ep.effects &= ~spread::effect::kRotation;
   ep.min_particle_radius_m = 1e-3;
-  DemEngine e({p, w}, {}, ws, ep);
+  DemEngine e(particle_and_rigid_wall("p", 0.3), {}, ws, ep);
   e.add_particle(Vec3(0.05, 0, 1e-3), Vec3::Zero(), 1e-3, 0);
   e.run_until(0.02);
   const Vec3 v = e.particles().velocity(0);
@@ -163,12 +168,6 @@ TEST(DemWalls, BadGeometryIsRefusedWithItsName) {
 // about its axis, so no wall list), which nothing touches.
 TEST(DemWalls, WallListGivesTheBitsOfLookingAtEveryParticle) {
   auto rain = [](bool far_turning_plate) {
-    Material p;
-    p.name = "bead";
-    p.friction_particle = p.friction_wall = 0.5;
-    p.restitution = 0.5;
-    Material w = p;
-    w.rigid = true;
     WallGroup drum;
     drum.pieces.push_back(make_cylinder_inner(0.02, 0.0, 0.1));
     drum.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
@@ -188,7 +187,7 @@ TEST(DemWalls, WallListGivesTheBitsOfLookingAtEveryParticle) {
     ep.integrator = Integrator::kVelocityVerlet;
     ep.min_particle_radius_m = ep.max_particle_radius_m = 1e-3;
     ep.impact_speed_m_s = 4.0;
-    DemEngine e({p, w}, {}, walls, ep);
+    DemEngine e(particle_and_rigid_wall("bead", 0.5), {}, walls, ep);
     // A loose column, each bead thrown down and out at its own speed.
     int k = 0;
     for (int iz = 0; iz < 12; ++iz)
