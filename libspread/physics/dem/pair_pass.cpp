@@ -79,10 +79,12 @@ struct PairPassArrays {
   // pair index (the near list, neighbor_list.hpp); null: all of i's listed pairs (the stored form).
   const std::uint32_t *near_start, *near_pairs;
   // The near list's bodies per entry and the bodies' touch rows (x, y, z, r; r NaN when inactive): the batched
-  // pass's touch test, eight entries a register (null: one entry at a time).
+  // pass's touch test, eight entries a register (null: one entry at a time). The drift form brings both
+  // kinds of rows to the new positions and velocities as it moves each particle (the next pass then reads
+  // them as they are); a particle's rows are read last by its own batch's stages 1 and 2.
   const std::uint32_t *near_first, *near_second;
-  const double* touch_rows;
-  const double* law_rows;  // the bodies' law rows (vx, vy, vz, wx, wy, wz, r, I), with touch_rows
+  double* touch_rows;
+  double* law_rows;  // the bodies' law rows (vx, vy, vz, wx, wy, wz, r, I), with touch_rows
   std::uint8_t* near_held;  // NearList::held, kept with `held` by the pass that reads the touch rows
   // The next step's opening half kick and drift, applied right after the closing kick when nothing comes
   // between the two steps (DemEngine::steps), by the passes of form drift: Δt of the drift (s). Both kicks
@@ -94,11 +96,6 @@ struct PairPassArrays {
   bool drift_clears_sums;
   double* position[3];
   const double *x0, *y0, *z0;
-  // The touch and law rows the drift brings to the new positions and velocities as it moves each particle
-  // (the next pass then reads them as they are; null: not kept). A particle's rows are read last by its own
-  // batch's stages 1 and 2.
-  double* drifted_rows;
-  double* drifted_law_rows;
 };
 
 // Particle i's pairs to look at: entries [begin, end) of `at` (null: the pair indices themselves).
@@ -191,12 +188,12 @@ SPREAD_UNROLL(3)
     x[c] = a.position[c][i] + a.drift_dt_s * v[c];
     a.position[c][i] = x[c];
   }
-  if (a.drifted_rows != nullptr) {
+  if (a.touch_rows != nullptr) {
 SPREAD_UNROLL(3)
     for (int c = 0; c < 3; ++c) {
-      a.drifted_rows[4 * i + static_cast<std::size_t>(c)] = x[c];
-      a.drifted_law_rows[8 * i + static_cast<std::size_t>(c)] = v[c];
-      if constexpr (kRotation) a.drifted_law_rows[8 * i + 3 + static_cast<std::size_t>(c)] = w[c];
+      a.touch_rows[4 * i + static_cast<std::size_t>(c)] = x[c];
+      a.law_rows[8 * i + static_cast<std::size_t>(c)] = v[c];
+      if constexpr (kRotation) a.law_rows[8 * i + 3 + static_cast<std::size_t>(c)] = w[c];
     }
   }
   if (a.x0 != nullptr) {
@@ -632,9 +629,10 @@ SPREAD_CONTACT_INLINE void store_touch_rows2(double* rows, lanes::Lanes8 x, lane
 }
 
 // kick_twice_and_drift for particles [i, i + 8), a particle a lane: lane by lane the same operations in the
-// same order (the same bits), eight particles an instruction (one at a time, the kicks and the drift took
-// about a quarter of the pass). total_f[c], total_t[c]: the pairs' share of the eight particles' sums,
-// component c. moved2: the largest squared move since the near list's build, lane by lane.
+// same order (the same bits), eight particles an instruction (one at a time they took about a quarter of the
+// pass's samples; in registers about 18 time-stamp ticks a particle, docs/drum.md). total_f[c], total_t[c]:
+// the pairs' share of the eight particles' sums, component c. moved2: the largest squared move since the near
+// list's build, lane by lane.
 template <bool kRotation, class Law>
 SPREAD_CONTACT_INLINE void kick_twice_and_drift8(const PairPassArrays<Law>& a, std::size_t i, const double* const (&total_f)[3],
                                                  const double* const (&total_t)[3], lanes::Lanes8& moved2) {
@@ -681,8 +679,8 @@ SPREAD_UNROLL(3)
     x[c] = load_lanes8(a.position[c] + i) + drift_dt * v[c];
     store_lanes8(a.position[c] + i, x[c]);
   }
-  if (a.drifted_rows != nullptr) {
-    double* const rows = a.drifted_rows + 4 * i;
+  if (a.touch_rows != nullptr) {
+    double* const rows = a.touch_rows + 4 * i;
     store_touch_rows2<0>(rows, x[0], x[1], x[2]);
     store_touch_rows2<1>(rows, x[0], x[1], x[2]);
     store_touch_rows2<2>(rows, x[0], x[1], x[2]);
@@ -692,7 +690,7 @@ SPREAD_UNROLL(3)
     Lanes8 row[8];
     transpose8x8(col, row);
 SPREAD_UNROLL(8)
-    for (int l = 0; l < 8; ++l) store_lanes8(a.drifted_law_rows + 8 * (i + static_cast<std::size_t>(l)), row[l]);
+    for (int l = 0; l < 8; ++l) store_lanes8(a.law_rows + 8 * (i + static_cast<std::size_t>(l)), row[l]);
   }
   if (a.x0 != nullptr) {
     const Lanes8 dx = x[0] - load_lanes8(a.x0 + i), dy = x[1] - load_lanes8(a.y0 + i), dz = x[2] - load_lanes8(a.z0 + i);
@@ -1174,8 +1172,7 @@ void DemEngine::particle_forces() {
       {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()}, p_.inv_mass_kg.data(),
       with_spin ? p_.inv_inertia_kg_m2.data() : nullptr, {p_.vx.data(), p_.vy.data(), p_.vz.data()},
       {with_spin ? p_.wx.data() : nullptr, with_spin ? p_.wy.data() : nullptr, with_spin ? p_.wz.data() : nullptr},
-      nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0.0, false, {nullptr, nullptr, nullptr}, nullptr, nullptr, nullptr,
-      nullptr, nullptr};
+      nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0.0, false, {nullptr, nullptr, nullptr}, nullptr, nullptr, nullptr};
   const long long count = static_cast<long long>(n);
   const bool periodic = params_.periodic_z.enabled;
   if (!store && near_.start.size() == n + 1) {
@@ -1206,13 +1203,11 @@ void DemEngine::particle_forces() {
         row[7] = p_.inertia_kg_m2[i];
       }
       a.law_rows = law_rows;
-      a.drifted_law_rows = law_rows;
       if (!near_.held_synced) {
         for (std::size_t e = 0; e < near_.pairs.size(); ++e) near_.held[e] = pairs_.held[near_.pairs[e]];
         near_.held_synced = true;
       }
       a.touch_rows = rows;
-      a.drifted_rows = rows;
       a.near_first = near_.first.data();
       a.near_held = near_.held.data();
       a.near_second = near_.second.data();
@@ -1250,7 +1245,7 @@ void DemEngine::particle_forces() {
     else pair_pass<V, PairForm{false, false, false}>(a, count, threads);
     if (drift) {
       drifted_in_pass_ = true;
-      touch_rows_kept_ = a.drifted_rows != nullptr;
+      touch_rows_kept_ = a.touch_rows != nullptr;
       sums_cleared_ = a.drift_clears_sums;
       moved2_since_near_ = measure_near ? moved2 : -1.0;
     }
