@@ -162,18 +162,20 @@ TEST(DemWalls, BadGeometryIsRefusedWithItsName) {
 }
 
 // The wall list (walls fixed in space) looks at a particle only while a wall lies within its radius plus
-// half the near list's inner skin at the near list's last build; particles raining fast into a cylinder
-// onto its floor, entering that reach at many different steps, must see exactly the contacts of a wall pass
+// half the near list's inner skin at the near list's last build, and then only at the wall groups within it;
+// particles raining fast into a cylinder onto its floor (two groups), entering that reach at many different
+// steps, must see exactly the contacts of a wall pass
 // that looks at every particle — here forced by a small tilted plate far away that turns (not symmetric
 // about its axis, so no wall list), which nothing touches.
 TEST(DemWalls, WallListGivesTheBitsOfLookingAtEveryParticle) {
   auto rain = [](bool far_turning_plate) {
-    WallGroup drum;
-    drum.pieces.push_back(make_cylinder_inner(0.02, 0.0, 0.1));
-    drum.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
-    drum.material = 1;
+    WallGroup mantle, floor;
+    mantle.pieces.push_back(make_cylinder_inner(0.02, 0.0, 0.1));
+    floor.pieces.push_back(make_plane(Vec3::Zero(), Vec3::UnitZ()));
+    mantle.material = floor.material = 1;
     WallSet walls;
-    walls.groups.push_back(drum);
+    walls.groups.push_back(mantle);
+    walls.groups.push_back(floor);
     if (far_turning_plate) {
       WallGroup plate;
       plate.pieces.push_back(make_rectangle(Vec3(1.0, 0.0, 1.0), Vec3(1.0, 0.0, 0.2), 0.01, Vec3::UnitY(), 0.01));
