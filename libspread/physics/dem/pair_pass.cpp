@@ -506,7 +506,9 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_avx51
 // and its own history, never a sum, so computing all of a batch's forces before adding any changes no
 // sum: each is added to in the same order as in pass_particle (the same bits).
 struct PairBatch {
-  static constexpr std::uint32_t kPairs = 256;  // staged pairs: 32 KB with the results, within L1 (48 KB)
+  // Staged pairs. The batch is about 45 KB with the results and the kicks' totals, most of L1 (48 KB); 128
+  // pairs took the same time on the drum, 64 more (docs/drum.md).
+  static constexpr std::uint32_t kPairs = 256;
   static constexpr std::uint32_t kSlots = kPairs + 8;
   alignas(64) double d[3][kSlots];  // pair vector from j to i (m)
   alignas(64) double dist2[kSlots];  // |d|² (m²)
