@@ -164,9 +164,8 @@ TEST(DemWalls, BadGeometryIsRefusedWithItsName) {
 // The wall list (walls fixed in space) looks at a particle only while a wall lies within its radius plus
 // half the near list's inner skin at the near list's last build, and then only at the wall groups within it;
 // particles raining fast into a cylinder onto its floor (two groups), entering that reach at many different
-// steps, must see exactly the contacts of a wall pass
-// that looks at every particle — here forced by a small tilted plate far away that turns (not symmetric
-// about its axis, so no wall list), which nothing touches.
+// steps, must see exactly the contacts of a wall pass that looks at every particle — here forced by a small
+// tilted plate far away that turns (not symmetric about its axis, so no wall list), which nothing touches.
 TEST(DemWalls, WallListGivesTheBitsOfLookingAtEveryParticle) {
   auto rain = [](bool far_turning_plate) {
     WallGroup mantle, floor;
