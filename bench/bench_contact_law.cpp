@@ -12,11 +12,11 @@
 // the plane of a normal turned slightly since. docs/drum.md ("Within the pair pass") reads it.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <utility>
 #include <vector>
 
 // The law's templates take eight-lane values here, inlined into the AVX-512 sweep only (lanes.hpp).
@@ -52,7 +52,7 @@ template <class Law>
 Setup<Law> make_setup(const PairParams& params, double radius_m, double density_kg_m3, double max_overlap_m) {
   Setup<Law> s;
   s.params = params;
-  const double mass_kg = density_kg_m3 * 4.0 / 3.0 * M_PI * radius_m * radius_m * radius_m;
+  const double mass_kg = density_kg_m3 * 4.0 / 3.0 * spread::kPi * radius_m * radius_m * radius_m;
   s.coeffs = Law::coeffs(params, radius_m / 2.0, mass_kg / 2.0);
   std::mt19937_64 rng(2026);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -89,8 +89,8 @@ SPREAD_CONTACT_INLINE void store(double* p, const T& v) {
 }
 
 // Every contact through the law once, a group of lanes at a time.
-template <class T, class Law>
-SPREAD_CONTACT_INLINE void sweep(Setup<Law>& s, bool chained) {
+template <class T, class Law, bool kChained>
+SPREAD_CONTACT_INLINE void sweep(Setup<Law>& s) {
   constexpr std::size_t kLanes = sizeof(T) / sizeof(double);
   Contacts& k = s.contacts;
   T carry = lanes::splat<T>(0.0);
@@ -98,11 +98,11 @@ SPREAD_CONTACT_INLINE void sweep(Setup<Law>& s, bool chained) {
     const auto in = [&](int f) { return load<T>(k.in[f].data() + c); };
     const V3<T> n{in(Contacts::kNx), in(Contacts::kNy), in(Contacts::kNz)};
     V3<T> slip{in(Contacts::kSx), in(Contacts::kSy), in(Contacts::kSz)};
-    if (chained) slip.x = slip.x + carry;
+    if constexpr (kChained) slip.x = slip.x + carry;
     LawHistory<T> h{{in(Contacts::kHx), in(Contacts::kHy), in(Contacts::kHz)}, in(Contacts::kHOverlap)};
     const LawForce<T> r = Law::kernel(s.coeffs, s.params.friction, ContactNormal<T>{n, n, lanes::splat<T>(1.0)},
                                       in(Contacts::kOverlap), slip, kDt_s, h);
-    if (chained) carry = r.force_n.x - r.force_n.x;
+    if constexpr (kChained) carry = r.force_n.x - r.force_n.x;
     store(k.force[0].data() + c, r.force_n.x);
     store(k.force[1].data() + c, r.force_n.y);
     store(k.force[2].data() + c, r.force_n.z);
@@ -113,34 +113,34 @@ SPREAD_CONTACT_INLINE void sweep(Setup<Law>& s, bool chained) {
   }
 }
 
-template <class T, class Law>
-__attribute__((noinline)) SPREAD_CONTACT_FLATTEN void sweep_portable(Setup<Law>& s, bool chained) {
-  sweep<T, Law>(s, chained);
+template <class T, class Law, bool kChained>
+__attribute__((noinline)) SPREAD_CONTACT_FLATTEN void sweep_portable(Setup<Law>& s) {
+  sweep<T, Law, kChained>(s);
 }
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-template <class Law>
-__attribute__((noinline, target("avx512f"))) SPREAD_CONTACT_FLATTEN void sweep_avx512(Setup<Law>& s, bool chained) {
-  sweep<lanes::Lanes8, Law>(s, chained);
+template <class Law, bool kChained>
+__attribute__((noinline, target("avx512f"))) SPREAD_CONTACT_FLATTEN void sweep_avx512(Setup<Law>& s) {
+  sweep<lanes::Lanes8, Law, kChained>(s);
 }
 #endif
 
-template <class Law>
-void run(benchmark::State& state, Setup<Law> s, int lanes, bool chained) {
-  void (*sweep_fn)(Setup<Law>&, bool) = lanes == 1 ? sweep_portable<double, Law> : sweep_portable<lanes::Lanes2, Law>;
+template <class Law, bool kChained>
+void run(benchmark::State& state, Setup<Law> s, int lanes) {
+  void (*sweep_fn)(Setup<Law>&) = lanes == 1 ? sweep_portable<double, Law, kChained> : sweep_portable<lanes::Lanes2, Law, kChained>;
   if (lanes == 8) {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
     if (!spread::cpu_has_avx512f()) {
       state.SkipWithError("no AVX-512 on this processor");
       return;
     }
-    sweep_fn = sweep_avx512<Law>;
+    sweep_fn = sweep_avx512<Law, kChained>;
 #else
     state.SkipWithError("eight lanes are built with GCC on x86-64 only");
     return;
 #endif
   }
   for (auto _ : state) {
-    sweep_fn(s, chained);
+    sweep_fn(s);
     benchmark::DoNotOptimize(s.contacts.force[0].data());
     benchmark::ClobberMemory();
   }
@@ -166,12 +166,16 @@ Setup<HertzThornton> disc_contacts() {
   return make_setup<HertzThornton>(p, 0.0016, 1800.0, 1e-5);
 }
 
-void BM_LinearLaw(benchmark::State& state) {
-  run(state, drum_contacts(), static_cast<int>(state.range(0)), state.range(1) != 0);
+template <class Law>
+void run(benchmark::State& state, Setup<Law> s) {
+  const int lanes = static_cast<int>(state.range(0));
+  if (state.range(1) != 0)
+    run<Law, true>(state, std::move(s), lanes);
+  else
+    run<Law, false>(state, std::move(s), lanes);
 }
-void BM_HertzThorntonLaw(benchmark::State& state) {
-  run(state, disc_contacts(), static_cast<int>(state.range(0)), state.range(1) != 0);
-}
+void BM_LinearLaw(benchmark::State& state) { run(state, drum_contacts()); }
+void BM_HertzThorntonLaw(benchmark::State& state) { run(state, disc_contacts()); }
 BENCHMARK(BM_LinearLaw)->ArgNames({"lanes", "chained"})->ArgsProduct({{1, 2, 8}, {0, 1}});
 BENCHMARK(BM_HertzThorntonLaw)->ArgNames({"lanes", "chained"})->ArgsProduct({{1, 2, 8}, {0, 1}});
 
