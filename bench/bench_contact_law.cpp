@@ -6,10 +6,11 @@
 //   chained      each group's slip waits on the force of the group before (adds f − f, zero): one group's
 //                dependency chain after the other (latency).
 // `items_per_second` counts contacts. The contacts: the drum's linear spring–dashpot (bench_drum's beads:
-// k_n 1000 N/m, d 4 mm, 2500 kg/m³, μ 0.5; overlaps up to 40 µm) and the disc's Hertz–Thornton (Case 1's
-// granules, scenes/case1.toml: E 50 MPa, ν 0.25, 1800 kg/m³, d 3.2 mm, μ 0.35; overlaps up to 10 µm), both
-// with damping ratio 0.3; the stored tangential spring up to 1.3 μ F_n, so that about a quarter slide, in
-// the plane of a normal turned slightly since. docs/drum.md ("Within the pair pass") reads it.
+// k_n 1000 N/m, k_t 2/7 k_n, d 4 mm, 2500 kg/m³, μ 0.5; overlaps up to 40 µm) and the disc's Hertz–Thornton
+// (Case 1's granules, scenes/case1.toml: E 50 MPa, ν 0.25, 1800 kg/m³, d 3.2 mm, μ 0.35; overlaps up to
+// 10 µm), both with restitution 0.5, the pair's parameters formed by PairTable; the stored tangential spring
+// up to 1.3 μ F_n, so that about a quarter slide, in the plane of a normal turned slightly since.
+// docs/drum.md ("Within the pair pass") reads it.
 #include <benchmark/benchmark.h>
 
 #include <cstddef>
@@ -23,6 +24,8 @@
 #pragma GCC diagnostic ignored "-Wpsabi"
 #include "libspread/core/cpu_features.hpp"
 #include "libspread/physics/dem/contact_laws.hpp"
+#include "libspread/physics/dem/material.hpp"
+#include "libspread/physics/dem/particles.hpp"
 
 namespace {
 
@@ -52,7 +55,7 @@ template <class Law>
 Setup<Law> make_setup(const PairParams& params, double radius_m, double density_kg_m3, double max_overlap_m) {
   Setup<Law> s;
   s.params = params;
-  const double mass_kg = density_kg_m3 * 4.0 / 3.0 * spread::kPi * radius_m * radius_m * radius_m;
+  const double mass_kg = sphere_mass(density_kg_m3, radius_m);
   s.coeffs = Law::coeffs(params, radius_m / 2.0, mass_kg / 2.0);
   std::mt19937_64 rng(2026);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -147,23 +150,27 @@ void run(benchmark::State& state, Setup<Law> s, int lanes) {
   state.SetItemsProcessed(static_cast<std::int64_t>(kContacts) * state.iterations());
 }
 
+// The pair's parameters as an engine forms them (PairTable: the mixing rules, damping from the restitution).
+PairParams particle_pair(const Material& material, const ContactLaw& law, const LinearSprings& springs) {
+  return PairTable({material}, {}, law, springs)(0, 0);
+}
 Setup<LinearSpringDashpot> drum_contacts() {
-  PairParams p;
-  p.kn_linear_n_m = 1000.0;
-  p.kt_linear_n_m = 1000.0 * 2.0 / 7.0;
-  p.damping_ratio = 0.3;
-  p.friction = 0.5;
-  return make_setup<LinearSpringDashpot>(p, 0.002, 2500.0, 4e-5);
+  Material bead;
+  bead.density_kg_m3 = 2500.0;
+  bead.restitution = 0.5;
+  bead.friction_particle = 0.5;
+  const PairParams p = particle_pair(bead, kLinearSpringDashpotLaw, LinearSprings{1000.0, 2.0 / 7.0});
+  return make_setup<LinearSpringDashpot>(p, 0.002, bead.density_kg_m3, 4e-5);
 }
 Setup<HertzThornton> disc_contacts() {
-  PairParams p;
-  // Two bodies of E, ν: E* = E / (2 (1 − ν²)), G* = G / (4 − 2ν) with G = E / (2 + 2ν) (contact_params.cpp).
-  const double e_pa = 5e7, nu = 0.25;
-  p.e_star_pa = e_pa / (2.0 * (1.0 - nu * nu));
-  p.g_star_pa = e_pa / (2.0 * (1.0 + nu)) / (2.0 * (2.0 - nu));
-  p.damping_ratio = 0.3;
-  p.friction = 0.35;
-  return make_setup<HertzThornton>(p, 0.0016, 1800.0, 1e-5);
+  Material granule;  // scenes/case1.toml
+  granule.density_kg_m3 = 1800.0;
+  granule.youngs_modulus_pa = 5e7;
+  granule.poisson_ratio = 0.25;
+  granule.restitution = 0.5;
+  granule.friction_particle = 0.35;
+  const PairParams p = particle_pair(granule, kHertzThorntonLaw, LinearSprings{});
+  return make_setup<HertzThornton>(p, 0.0016, granule.density_kg_m3, 1e-5);
 }
 
 template <class Law>
