@@ -245,6 +245,12 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
   }
   if (options.rebuild) impl_->changed = true;
   writer.write_machine(scene::table_machine(scene.machine));
+  // The drop-point turns the scene states as checked against DEM rows: what the searches may use.
+  const std::string validated_turn = tables::drop_point_turn_validated_text(scene.inlet.validated_turn_deg);
+  if (writer.stored_meta(tables::kDropPointTurnValidatedKey) != validated_turn) {
+    writer.write_meta(tables::kDropPointTurnValidatedKey, validated_turn);
+    impl_->changed = true;
+  }
   std::vector<tables::Material> rows;
   for (const scene::Material* m : scene.sweep_materials()) rows.push_back(*m);
   writer.write_materials(rows);

@@ -1,8 +1,8 @@
 // The setting chart on the main job's table (the DEM table of scenes/default.toml, built by the ctest
 // fixture capi.fixture.default_scene): for every material and tramline widths 6–24 m, no setting of a
-// scan in 25 rpm and 10 degree drop-point steps has a CV lower by more than half a point than the chart's
-// choice, and a width is "not reachable" only when no scanned setting meets the target. Run through ctest
-// (the fixture builds the file).
+// scan in 25 rpm and 10 degree drop-point steps (within the turns the table validates) has a CV lower by
+// more than half a point than the chart's choice, and a width is "not reachable" only when no scanned
+// setting meets the target. Run through ctest (the fixture builds the file).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -39,6 +39,7 @@ TEST(DefaultChart, NoScanSettingBeatsTheChart) {
     std::vector<std::string> scan_setting(widths.size());
     for (double rpm = chart.min_rpm; rpm <= chart.max_rpm + 1e-9; rpm += 25.0) {
       for (double turn_deg = -90.0; turn_deg <= 90.0; turn_deg += 10.0) {
+        if (!predictor.drop_point_turn_range().contains(turn_deg * spread::kPi / 180.0)) continue;
         pr::PredictionRequest request;
         request.material = name;
         request.rpm = rpm;
@@ -91,12 +92,13 @@ TEST(DefaultWind, CompensationRestoresTheCvInACrosswind) {
   EXPECT_NE(out.discs[pr::kLeftDisc].rpm, out.discs[pr::kRightDisc].rpm);
 }
 
-// Urea at 600 rpm on 11 m bouts (the stated setting): border spreading puts at most 0.1 % of the last
-// pass's mass over the edge line and edge spreading keeps 80 % of the rate at the edge, neither
-// over-applying the last bout; the normal setting does neither. Each disc throws across the centre line,
-// so the border needs the field-side disc's drop point turned too: with it at the field's setting, more
-// than 0.1 % lands over the line even with the edge-side disc off.
-TEST(DefaultEdge, BorderAndEdgeSettingsMeetTheirThresholds) {
+// Urea at 600 rpm on 11 m bouts (the stated setting), judged over every bout the last pass reaches: edge
+// spreading keeps 80 % of the rate at the edge without over-applying any bout; the normal setting does not.
+// Each disc throws across the centre line, so border spreading needs the field-side disc turned away from
+// the edge too, and within the drop-point turns the table validates (to −45°) that disc alone still puts
+// more than 0.1 % of the pass over the line: no setting meets the border, the search says so and shows
+// the closest — it does not flood the bout before to hide it.
+TEST(DefaultEdge, EdgeMeetsItsThresholdsAndBorderSaysWhyNot) {
   if (!std::filesystem::exists(SPREAD_DEFAULT_TABLE)) {
     GTEST_SKIP() << SPREAD_DEFAULT_TABLE << " missing: run through ctest (fixture capi.fixture.default_scene)";
   }
@@ -110,20 +112,24 @@ TEST(DefaultEdge, BorderAndEdgeSettingsMeetTheirThresholds) {
     edge.kind = kind;
     const pr::EdgeResult r = pr::find_edge_setting(predictor, field, edge);
     ASSERT_EQ(r.status, pr::PredictStatus::kOk);
-    EXPECT_TRUE(r.profile.meets) << pr::to_string(kind);
     EXPECT_FALSE(r.normal_profile.meets) << pr::to_string(kind);
-    EXPECT_LE(r.profile.max_rate_inside, r.profile.over_limit);
-    if (kind == pr::EdgeKind::kBorder) {
-      EXPECT_LE(r.profile.mass_beyond_fraction, 0.001);
-      ASSERT_FALSE(std::isnan(r.setting.field_side_drop_point_turn_rad));
-      pr::EdgeSetting unchanged = r.setting;
-      unchanged.field_side_drop_point_turn_rad = std::numeric_limits<double>::quiet_NaN();
-      unchanged.flow_fraction = 0.0;
-      pr::EdgeProfile off;
-      ASSERT_EQ(pr::edge_profile(predictor, field, edge, unchanged, off), pr::PredictStatus::kOk);
-      EXPECT_GT(off.mass_beyond_fraction, 0.001);
-    } else {
+    if (kind == pr::EdgeKind::kEdge) {
+      EXPECT_TRUE(r.profile.meets);
+      EXPECT_LE(r.profile.max_excess, edge.rate_tolerance);
+      EXPECT_LE(r.profile.most_over_applied_m, edge.max_over_applied_fraction * 11.0);
       EXPECT_GE(r.profile.rate_at_edge, 0.8);
+    } else {
+      // The closest: how far it misses is said (the strips), and no bout is flooded
+      // (DefaultEdge.NoBoutTheLastPassReachesIsFlooded judges the ground itself).
+      EXPECT_FALSE(r.profile.meets);
+      EXPECT_EQ(r.profile.over_applied_m.empty(), r.profile.most_over_applied_m == 0.0);
+      // Why: with the edge-side disc off, the field-side disc at the turn found still throws over the line.
+      pr::EdgeSetting off_setting = r.setting;
+      off_setting.flow_fraction = 0.0;
+      pr::EdgeProfile off;
+      ASSERT_EQ(pr::edge_profile(predictor, field, edge, off_setting, off), pr::PredictStatus::kOk);
+      EXPECT_GT(off.mass_beyond_fraction, edge.max_beyond_fraction);
+      EXPECT_TRUE(predictor.drop_point_turn_range().contains(r.setting.field_side_drop_point_turn_rad));
     }
   }
 }

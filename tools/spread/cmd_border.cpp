@@ -1,10 +1,12 @@
 // spread border --tables FILE --material NAME --rpm R --width W [--edge border|edge] [--side right|left]
-//               [--gap M] [--max-beyond PCT] [--tolerance PCT] [--min-edge-rate PCT] [--wind VX,VY]
+//               [--gap M] [--max-beyond PCT] [--tolerance PCT] [--max-over-applied PCT] [--min-edge-rate PCT]
+//               [--wind VX,VY]
 //               [--drop-point-turn DEG] [--left-/--right-...] [--json]
 // The last bout along a field edge: the setting of the edge-side disc (speed, drop point, flow) for
 // border spreading (nothing over the edge line: a road, a path, water with --gap 1 or 3) or edge
 // spreading (full rate to the edge: another field), and the profile of this pass plus the passes before
-// it, with the mass beyond the edge line and the under- and over-applied strips
+// it over every bout the last pass reaches, with the mass beyond the edge line and the under- and
+// over-applied strips
 // (libspread/analysis/predict/edge_spreading.hpp; docs/field-calibration.md "Border and edge spreading").
 // Bad input → a message naming it on stderr, exit code 2, before any work.
 #include <cmath>
@@ -37,6 +39,7 @@ struct Options : spread::cli::PredictionArgs {
   double max_beyond_percent = 0.1;
   double tolerance_percent = 10.0;
   double min_edge_rate_percent = 80.0;
+  double max_over_applied_percent = 5.0;
   double drop_point_range_deg = 90.0;
   bool json = false;
 };
@@ -62,7 +65,13 @@ json profile_json(const pr::EdgeProfile& p) {
   return {{"edge_line_m", p.edge_line_m},
           {"mass_beyond_percent", 100.0 * p.mass_beyond_fraction},
           {"max_rate_inside_percent", 100.0 * p.max_rate_inside},
+          {"max_rate_field_percent", 100.0 * p.max_rate_field},
           {"rate_at_edge_percent", 100.0 * p.rate_at_edge},
+          {"mean_rate_last_bout_percent", 100.0 * p.mean_rate_last_bout},
+          {"under_applied_last_bout_m", p.under_applied_last_bout_m},
+          {"most_over_applied_bout", p.most_over_applied_bout},
+          {"most_over_applied_m", p.most_over_applied_m},
+          {"judged_from_m", p.judged_from_m},
           {"over_limit_percent", 100.0 * p.over_limit},
           {"under_limit_percent", 100.0 * p.under_limit},
           {"missing_inside_m", p.missing_inside_m},
@@ -74,14 +83,25 @@ json profile_json(const pr::EdgeProfile& p) {
           {"rate_fraction", rate}};
 }
 
-void print_profile(const char* title, const pr::EdgeProfile& p) {
-  std::printf("  %s: beyond the edge line %s of this pass's mass, in the last bout at most %s of the field's rate, "
-              "at the edge %s\n",
+void print_profile(const char* title, const pr::EdgeProfile& p, double bout_width_m) {
+  std::printf("  %s: beyond the edge line %s of this pass's mass; the last bout gets %s of the field's rate on "
+              "average, at most %s, %s over the tray width ending at the edge line\n",
               title, format("%.3f %%", 100.0 * p.mass_beyond_fraction).c_str(),
+              format("%.0f %%", 100.0 * p.mean_rate_last_bout).c_str(),
               format("%.0f %%", 100.0 * p.max_rate_inside).c_str(), format("%.0f %%", 100.0 * p.rate_at_edge).c_str());
-  std::printf("    under-applied (below %s): %s; over-applied (above %s): %s\n",
-              format("%.0f %%", 100.0 * p.under_limit).c_str(), strips_text(p.under_applied_m).c_str(),
-              format("%.0f %%", 100.0 * p.over_limit).c_str(), strips_text(p.over_applied_m).c_str());
+  std::printf("    last bout under-applied (below %s) over %s of its %s\n", format("%.0f %%", 100.0 * p.under_limit).c_str(),
+              format("%.1f m", p.under_applied_last_bout_m).c_str(),
+              format("%.1f m", p.edge_line_m + 0.5 * bout_width_m).c_str());
+  const std::string worst = p.most_over_applied_m <= 0.0 ? std::string("no bout")
+                            : p.most_over_applied_bout == 0
+                                ? format("the last bout, %.1f m", p.most_over_applied_m)
+                                : "bout " + std::to_string(p.most_over_applied_bout) + " before the last" +
+                                      format(", %.1f m", p.most_over_applied_m);
+  std::printf("    judged from %s to the edge line: highest rate %s; most over-applied (above %s): %s\n",
+              format("%.1f m", p.judged_from_m).c_str(), format("%.0f %%", 100.0 * p.max_rate_field).c_str(),
+              format("%.0f %%", 100.0 * p.over_limit).c_str(), worst.c_str());
+  std::printf("    under-applied strips: %s; over-applied strips: %s\n", strips_text(p.under_applied_m).c_str(),
+              strips_text(p.over_applied_m).c_str());
 }
 
 void run(const Options& o, int& exit_code) {
@@ -113,6 +133,10 @@ void run(const Options& o, int& exit_code) {
   if (!(o.min_edge_rate_percent > 0.0 && o.min_edge_rate_percent <= 100.0)) {
     throw BadInput("--min-edge-rate " + format("%g", o.min_edge_rate_percent) + ": in (0, 100] %");
   }
+  if (!(o.max_over_applied_percent >= 0.0 && o.max_over_applied_percent <= 100.0)) {
+    throw BadInput("--max-over-applied " + format("%g", o.max_over_applied_percent) + ": a share of a bout in [0, 100] %");
+  }
+  edge.max_over_applied_fraction = o.max_over_applied_percent / 100.0;
   edge.max_beyond_fraction = o.max_beyond_percent / 100.0;
   edge.rate_tolerance = o.tolerance_percent / 100.0;
   edge.min_edge_rate = o.min_edge_rate_percent / 100.0;
@@ -167,7 +191,7 @@ void run(const Options& o, int& exit_code) {
                   "over the line at the field's setting)\n",
                   other_name, format("%+.1f deg", s.field_side_drop_point_turn_rad / kRadPerDeg).c_str());
     }
-    print_profile("with it", r.profile);
+    print_profile("with it", r.profile, o.bout_width_m);
     if (!r.profile.meets && edge.kind == pr::EdgeKind::kBorder) {
       // Why not: what reaches over the line with the edge-side disc off.
       pr::EdgeProfile off;
@@ -179,7 +203,7 @@ void run(const Options& o, int& exit_code) {
                     side_name, format("%.3f %%", 100.0 * off.mass_beyond_fraction).c_str());
       }
     }
-    print_profile("at the normal setting", r.normal_profile);
+    print_profile("at the normal setting", r.normal_profile, o.bout_width_m);
     std::printf("  (x from the last tramline, towards the edge; rates as a share of the field's; %d predictions)\n",
                 r.predictions);
   }
@@ -199,6 +223,9 @@ spread::cli::CommandRegistration reg{"border", [](CLI::App& app, int& exit_code)
   sub->add_option("--max-beyond", options.max_beyond_percent, "border: most of this pass's mass beyond the edge line (%)")
       ->capture_default_str();
   sub->add_option("--tolerance", options.tolerance_percent, "inside: over-applied above 100 + this, under-applied below 100 - this (%)")
+      ->capture_default_str();
+  sub->add_option("--max-over-applied", options.max_over_applied_percent,
+                  "of any bout the last pass reaches, at most this much of its width over-applied, none of it by more than the tolerance (%)")
       ->capture_default_str();
   sub->add_option("--min-edge-rate", options.min_edge_rate_percent, "edge: the rate at the edge line at least this of the field's (%)")
       ->capture_default_str();

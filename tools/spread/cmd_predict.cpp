@@ -28,6 +28,7 @@
 #include "tools/spread/number_format.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/io/tables/table_reader.hpp"
+#include "libspread/analysis/predict/width_stability.hpp"
 
 namespace spread::cli::cmd_predict {
 namespace {
@@ -40,6 +41,7 @@ struct Options : spread::cli::PredictionArgs {
   std::string effects = "table";
   double kernel_half_width_m = std::numeric_limits<double>::quiet_NaN();
   int repeat = 0;
+  int stability = 0;
   bool compensate_wind = false;
   bool fly_outside_domain = false;
   bool json = false;
@@ -358,6 +360,17 @@ void run(const Options& o, int& exit_code) {
     median_us = n % 2 == 1 ? times_us[n / 2] : 0.5 * (times_us[n / 2 - 1] + times_us[n / 2]);
   }
 
+  // --stability N: the headline under N bootstrap resamples of the table's launch samples.
+  std::optional<spread::predict::WidthStability> stability;
+  if (o.stability > 0) {
+    spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+    request.bout_width_m = o.bout_width_m;
+    request.kernel_half_width_m = o.kernel_half_width_m;
+    request.effects = o.effects == "table" ? spread::predict::kTableEffects : def.effects;
+    request.fly_outside_domain = o.fly_outside_domain;
+    stability = spread::predict::width_stability(spread::tables::read_table_file(o.tables), request, o.stability);
+  }
+
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
   const spread::cli::SettingGuidance guidance = guidance_for(o, result);
@@ -422,6 +435,15 @@ void run(const Options& o, int& exit_code) {
                                   {"present_cv_to_and_fro_se_percent", number_or_null(present_cv_se_percent)},
                                   {"meets_target", result.cv_percent <= o.cv_target_percent}};
     }
+    if (stability) {
+      out["width_stability"] = {{"resamples", stability->resamples},
+                                {"outside_interval_percent", 100.0 * stability->outside_interval_fraction},
+                                {"beyond_1m_percent", 100.0 * stability->beyond_1m_fraction},
+                                {"quantile_2_5_m", stability->quantile_025_m},
+                                {"quantile_97_5_m", stability->quantile_975_m},
+                                {"lowest_m", stability->lowest_m},
+                                {"highest_m", stability->highest_m}};
+    }
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
@@ -477,7 +499,11 @@ void run(const Options& o, int& exit_code) {
         }
         std::cout << ")";
         if (b == c.headline) std::cout << " = working width";
-        if (!band.established) std::cout << " [not established: the lowest CV's 95 % interval reaches over the target]";
+        if (!band.established && b == c.headline && b > 0) {
+          std::cout << " [joined to the band before: the samples do not show the gap above the target]";
+        } else if (!band.established) {
+          std::cout << " [not established: the lowest CV's 95 % interval reaches over the target]";
+        }
       }
       if (c.count > SPREAD_MAX_BANDS) std::cout << " (" << c.count << " bands; the first and the widest shown)";
       std::cout << "\n";
@@ -486,6 +512,12 @@ void run(const Options& o, int& exit_code) {
       std::cout << "  note: only " << result.sample_count << " launch samples: below " << kFewSamples
                 << " the working width can stop at a noise spike and the ± understates its spread"
                    " (docs/metrics.md \"Uncertainty\"); build the table with more samples per row\n";
+    }
+    if (stability) {
+      std::cout << "  working width over " << stability->resamples << " bootstrap resamples of the launch samples: "
+                << 100.0 * (1.0 - stability->outside_interval_fraction) << " % within its ±, "
+                << 100.0 * stability->beyond_1m_fraction << " % more than 1 m away (2.5-97.5 %: "
+                << stability->quantile_025_m << "-" << stability->quantile_975_m << " m)\n";
     }
     std::cout << "  (± = 95 % interval, 1.96 standard errors over the launch samples; kernel half-width "
               << result.kernel_half_width_m << " m)\n";
@@ -516,6 +548,9 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
   sub->add_flag("--fly-outside-domain", options.fly_outside_domain,
                 "a disc height, wind or effect outside the table's landing grid (spread inspect): fly every launch "
                 "sample (tens of ms) instead of refusing");
+  sub->add_option("--stability", options.stability,
+                  "N bootstrap resamples of the table's launch samples: how often the working width leaves its ±")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);

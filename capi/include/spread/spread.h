@@ -223,8 +223,10 @@ typedef struct spread_prediction {
   double working_width_to_and_fro_m;  /* the headline working width, to-and-fro (docs/metrics.md "Effective
                                          working width"): the upper end of the widest band of bout widths
                                          with CV <= target whose lowest CV meets the target at 95 %
-                                         confidence (the first band when none does); 0 = none. Before 0.3
-                                         this was the first band's upper end (first_band_width_*_m) */
+                                         confidence, or that is joined to such a band by gaps the samples
+                                         do not show above the target (the first band when none is); 0 =
+                                         none. Before 0.3 this was the first band's upper end
+                                         (first_band_width_*_m) */
   double working_width_racetrack_m;   /* the same for racetrack driving */
   double bout_width_m;                /* bout width cv_percent refers to (the requested one, or the
                                          to-and-fro working width); 0 when that width is 0 */

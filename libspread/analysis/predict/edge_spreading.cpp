@@ -1,6 +1,7 @@
 #include "libspread/analysis/predict/edge_spreading.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -26,8 +27,8 @@ double beyond(double x, double weight, double line_m, double h) {
   return weight * (1.0 - metrics::epanechnikov_cdf((line_m - x) / h));
 }
 
-// What does not change with this pass's settings: the layout and the passes before this one, at the normal
-// setting.
+// What does not change with this pass's settings: the layout, the passes before this one at the normal
+// setting, and the judged span.
 struct Frame {
   explicit Frame(std::pmr::memory_resource* memory) : fixed(memory), interior(memory) {}
   metrics::TrayLayout trays;
@@ -35,9 +36,11 @@ struct Frame {
   double target_per_tray = 0.0;   // the field's rate inside, as mass per tray
   std::pmr::vector<double> fixed;     // per tray
   double fixed_beyond = 0.0;      // mass beyond the line
-  int first_inside = 0, end_inside = 0;  // trays of the last bout, [−W/2, line]
-  double over_limit = 0.0;        // the rate above which a tray is over-applied
-  double under_limit = 0.0;       // … and below which under-applied
+  int first_judged = 0, end_inside = 0;  // trays of the judged span up to the one holding the line
+  int judged_bouts = 1;           // the last bout and the bouts before it that the last pass can reach
+  double judged_from_m = 0.0;     // −(judged_bouts − 1/2) W
+  double over_limit = 0.0;        // 1 + tolerance: above it and the interior's rate a tray is over-applied
+  double under_limit = 0.0;       // 1 − tolerance: below it and the interior's rate under-applied
   std::pmr::vector<double> interior;  // per tray, the rate the field's interior gets there (all passes)
 };
 
@@ -50,8 +53,15 @@ void disc_landings(const Prediction& p, int disc, int edge_side, Visit visit) {
   for (std::size_t i = first; i < end; ++i) visit(orient * p.landing_x_m[i], p.landing_mass_fraction[i]);
 }
 
+// The bout of x: 0 for the last bout (x >= −W/2), k for [−(k + 1/2) W, −(k − 1/2) W).
+int bout_of(double x_m, double bout_width_m) {
+  return x_m >= -0.5 * bout_width_m ? 0 : static_cast<int>(std::ceil((-x_m - 0.5 * bout_width_m) / bout_width_m - 1e-12));
+}
+
+// `reach_scale`: how much further than the normal setting a setting searched can throw (the fastest speed
+// searched over the field's: launch speed is ωR).
 void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_width_m, double tray_width_m,
-                std::pmr::memory_resource* memory, Frame& f) {
+                double reach_scale, std::pmr::memory_resource* memory, Frame& f) {
   f.bout_width_m = bout_width_m;
   f.line_m = 0.5 * bout_width_m - edge.gap_m;
   f.kernel_m = normal.kernel_half_width_m;
@@ -63,11 +73,19 @@ void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_w
     landed += normal.landing_mass_fraction[i];
   }
   reach_m += f.kernel_m;
-  f.trays = metrics::tray_layout_covering(bout_width_m + reach_m, tray_width_m);
+  const double search_reach_m = reach_scale * reach_m;
+  // Every bout the last pass can reach, and the trays to hold them with the passes that reach them.
+  f.judged_bouts = 1 + std::max(1, static_cast<int>(std::ceil((search_reach_m - 0.5 * bout_width_m) / bout_width_m)));
+  f.judged_from_m = -(f.judged_bouts - 0.5) * bout_width_m;
+  f.trays = metrics::tray_layout_covering(std::max(bout_width_m + search_reach_m, -f.judged_from_m + reach_m), tray_width_m);
+  // An even count puts tray edges on the multiples of the tray width: on the bouts' ends and the edge line
+  // wherever those lie on them (W/2 and the gap in whole trays), so no tray straddles them.
+  if (f.trays.tray_count % 2 != 0) ++f.trays.tray_count;
   f.target_per_tray = landed * tray_width_m / bout_width_m;
   f.fixed.assign(static_cast<std::size_t>(f.trays.tray_count), 0.0);
+  const double half_extent_m = -f.trays.left_edge_m();
   // The passes before: pass k at −kW, mirrored for odd k (to-and-fro), while it still reaches the layout.
-  const int passes = static_cast<int>(std::ceil(2.0 * reach_m / bout_width_m)) + 1;
+  const int passes = static_cast<int>(std::ceil((half_extent_m + reach_m) / bout_width_m)) + 1;
   std::pmr::vector<double> x(normal.landing_x_m.size(), 0.0, memory);
   for (int k = 1; k <= passes; ++k) {
     const double mirror = k % 2 == 1 ? -1.0 : 1.0;
@@ -78,26 +96,22 @@ void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_w
     metrics::accumulate_transverse_kernel(x, normal.landing_mass_fraction, f.trays, f.kernel_m, f.fixed);
   }
   const double left_m = f.trays.left_edge_m(), w = f.trays.tray_width_m;
-  f.first_inside = std::max(0, static_cast<int>(std::ceil((-0.5 * bout_width_m - left_m) / w - 1e-9)));
-  // Over-applied: above 1 + tolerance, or above the highest rate the field's interior gets at the normal
-  // setting where that is higher (the last bout cannot be asked to be more even than the field). The
-  // interior: the same passes continued past the edge (pass −k at +kW), read over the last bout.
+  f.first_judged = std::max(0, static_cast<int>(std::floor((f.judged_from_m - left_m) / w + 1e-9)));
+  // Over-applied: above 1 + tolerance, or above what the field's interior gets at that place where that is
+  // higher (a bout cannot be asked to be more even than the field); under-applied likewise. The interior:
+  // the same passes continued past the edge (pass −k at +kW).
   std::pmr::vector<double> interior(f.fixed.size(), 0.0, memory);
   for (int k = -passes; k <= passes; ++k) {
     const double mirror = k % 2 != 0 ? -1.0 : 1.0;
     for (std::size_t i = 0; i < x.size(); ++i) x[i] = mirror * orient * normal.landing_x_m[i] - k * bout_width_m;
     metrics::accumulate_transverse_kernel(x, normal.landing_mass_fraction, f.trays, f.kernel_m, interior);
   }
-  double interior_peak = 0.0, interior_low = std::numeric_limits<double>::infinity();
   for (double& v : interior) v /= f.target_per_tray;
-  for (int k = f.first_inside; k < std::min(f.trays.tray_count, f.first_inside + metrics::bout_tray_count(f.trays, bout_width_m)); ++k) {
-    interior_peak = std::max(interior_peak, interior[static_cast<std::size_t>(k)]);
-    interior_low = std::min(interior_low, interior[static_cast<std::size_t>(k)]);
-  }
   f.interior = std::move(interior);
-  f.under_limit = std::min(1.0 - edge.rate_tolerance, interior_low);
-  f.over_limit = std::max(1.0 + edge.rate_tolerance, interior_peak);
-  f.end_inside = std::min(f.trays.tray_count, static_cast<int>(std::floor((f.line_m - left_m) / w + 1e-9)));
+  f.under_limit = 1.0 - edge.rate_tolerance;
+  f.over_limit = 1.0 + edge.rate_tolerance;
+  // Up to and with the tray that holds the line (only its part inside counts).
+  f.end_inside = std::min(f.trays.tray_count, static_cast<int>(std::ceil((f.line_m - left_m) / w - 1e-9)));
 }
 
 // One disc of this pass at one setting: its trays and its mass beyond the line, at full flow.
@@ -107,42 +121,91 @@ struct EdgeDisc {
   double beyond = 0.0, mass = 0.0;
 };
 
+// At most this many bouts judged (a throw of 100 m over 1 m bouts is already far beyond any spreader).
+constexpr int kMaxJudgedBouts = 256;
+
 // The profile's figures with the field-side disc `inner` and the edge-side disc at flow f (strips only when
-// `strips`).
+// `strips`): the judged span tray by tray, each tray's inside part [a, b] split at the bouts' ends.
 void evaluate(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, double flow, const EdgeRequest& edge,
               EdgeProfile& out, bool strips) {
-  const double w = frame.trays.tray_width_m, left_m = frame.trays.left_edge_m();
+  const double w = frame.trays.tray_width_m, left_m = frame.trays.left_edge_m(), bout_m = frame.bout_width_m;
   const double pass_mass = inner.mass + flow * disc.mass;
   out.mass_beyond_fraction =
       pass_mass > 0.0 ? (frame.fixed_beyond + inner.beyond + flow * disc.beyond) / pass_mass : 0.0;
   out.max_rate_inside = 0.0;
+  out.max_rate_field = 0.0;
+  out.max_excess = -std::numeric_limits<double>::infinity();
   out.missing_inside_m = 0.0;
   out.rate_at_edge = 0.0;
+  out.mean_rate_last_bout = 0.0;
+  out.under_applied_last_bout_m = 0.0;
   out.under_applied_m.clear();
   out.over_applied_m.clear();
-  const auto rate = [&](int k) {
-    const auto i = static_cast<std::size_t>(k);
-    return (frame.fixed[i] + inner.trays[i] + flow * disc.trays[i]) / frame.target_per_tray;
-  };
-  const auto strip = [&](std::pmr::vector<std::pair<double, double>>& list, int k) {
-    const double from = left_m + k * w;
+  // Per bout: the length above the over limit, and above it by more than the tolerance (flooded).
+  std::array<double, kMaxJudgedBouts> over_m{}, flooded_m{};
+  const int bouts = std::min(frame.judged_bouts, kMaxJudgedBouts);
+  const auto strip = [](std::pmr::vector<std::pair<double, double>>& list, double from, double to) {
     if (!list.empty() && std::abs(list.back().second - from) < 1e-9) {
-      list.back().second = from + w;
+      list.back().second = to;
     } else {
-      list.emplace_back(from, from + w);
+      list.emplace_back(from, to);
     }
   };
-  for (int k = frame.first_inside; k < frame.end_inside; ++k) {
-    const double r = rate(k);
-    out.max_rate_inside = std::max(out.max_rate_inside, r);
-    out.missing_inside_m += std::max(0.0, frame.interior[static_cast<std::size_t>(k)] - r) * w;
-    out.rate_at_edge = r;
-    if (strips && r < frame.under_limit) strip(out.under_applied_m, k);
-    if (strips && r > frame.over_limit) strip(out.over_applied_m, k);
+  const double last_from_m = -0.5 * bout_m, edge_strip_from_m = frame.line_m - w;
+  for (int k = frame.first_judged; k < frame.end_inside; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    const double r = (frame.fixed[i] + inner.trays[i] + flow * disc.trays[i]) / frame.target_per_tray;
+    const double a = std::max(left_m + k * w, frame.judged_from_m), b = std::min(left_m + (k + 1) * w, frame.line_m);
+    if (!(b > a)) continue;
+    const double interior = frame.interior[i];
+    // Where this pass gives what the interior gets, the two sums differ only by rounding: not over.
+    constexpr double kRounding = 1e-9;
+    const double over_limit = std::max(frame.over_limit, interior + kRounding);
+    const double under_limit = std::min(frame.under_limit, interior - kRounding);
+    const bool over = r > over_limit, under = r < under_limit;
+    out.max_rate_field = std::max(out.max_rate_field, r);
+    out.max_excess = std::max(out.max_excess, r - over_limit);
+    if (b > last_from_m) {  // in the last bout
+      const double inside_m = b - std::max(a, last_from_m);
+      out.max_rate_inside = std::max(out.max_rate_inside, r);
+      out.missing_inside_m += std::max(0.0, frame.interior[i] - r) * inside_m;
+      out.mean_rate_last_bout += r * inside_m;
+      if (under) out.under_applied_last_bout_m += inside_m;
+    }
+    if (b > edge_strip_from_m) out.rate_at_edge += r * (b - std::max(a, edge_strip_from_m)) / w;
+    if (over) {
+      // Split [a, b] at the bouts' ends.
+      double from = a;
+      while (from < b) {
+        const int bout = bout_of(from + 1e-12, bout_m);
+        const double bout_end = bout == 0 ? b : -(bout - 0.5) * bout_m;
+        const double to = std::min(b, bout_end);
+        if (bout < bouts) {
+          over_m[static_cast<std::size_t>(bout)] += to - from;
+          if (r > over_limit + edge.rate_tolerance) flooded_m[static_cast<std::size_t>(bout)] += to - from;
+        }
+        from = to;
+      }
+    }
+    if (strips && under) strip(out.under_applied_m, a, b);
+    if (strips && over) strip(out.over_applied_m, a, b);
   }
+  out.mean_rate_last_bout /= frame.line_m - last_from_m;
+  out.most_flooded_m = *std::max_element(flooded_m.begin(), flooded_m.begin() + bouts);
+  out.most_over_applied_bout = 0;
+  out.most_over_applied_m = over_m[0];
+  for (int j = 1; j < bouts; ++j) {
+    if (over_m[static_cast<std::size_t>(j)] > out.most_over_applied_m) {
+      out.most_over_applied_m = over_m[static_cast<std::size_t>(j)];
+      out.most_over_applied_bout = j;
+    }
+  }
+  out.judged_from_m = frame.judged_from_m;
   out.over_limit = frame.over_limit;
   out.under_limit = frame.under_limit;
-  const bool not_over = out.max_rate_inside <= frame.over_limit;
+  // The last bout is only [−W/2, line] wide; every bout is allowed the same length.
+  const bool not_over = out.most_over_applied_m <= edge.max_over_applied_fraction * bout_m + 1e-9 &&
+                        out.max_excess <= edge.rate_tolerance;
   out.meets = edge.kind == EdgeKind::kBorder ? out.mass_beyond_fraction <= edge.max_beyond_fraction && not_over
                                              : out.rate_at_edge >= edge.min_edge_rate && not_over;
 }
@@ -156,11 +219,18 @@ double score(const EdgeProfile& p, const EdgeRequest& edge, double bout_width_m)
   if (p.meets) {
     return edge.kind == EdgeKind::kBorder ? p.missing_inside_m : p.missing_inside_m + p.mass_beyond_fraction * bout_width_m;
   }
-  const double over = std::max(0.0, p.max_rate_inside - p.over_limit) / edge.rate_tolerance;
+  const double over = std::max(0.0, p.most_over_applied_m / bout_width_m - edge.max_over_applied_fraction) /
+                          std::max(edge.max_over_applied_fraction, 0.01) +
+                      std::max(0.0, p.max_excess - edge.rate_tolerance) / edge.rate_tolerance;
   const double miss = edge.kind == EdgeKind::kBorder
                           ? std::max(0.0, p.mass_beyond_fraction / edge.max_beyond_fraction - 1.0)
                           : std::max(0.0, 1.0 - p.rate_at_edge / edge.min_edge_rate);
-  return 1e6 * (1.0 + over + miss);
+  // Among those that miss, each threshold's miss in units of the threshold: a border missed by a factor 30
+  // is not closer than one missed by 2.5 with a bout over-applied a little more than allowed. But a setting
+  // that floods a bout — more than twice the allowed length above the over limit by more than the
+  // tolerance (10 % of a bout above 120 % with the defaults) — is the closest only when every other is too.
+  const bool floods = p.most_flooded_m > 2.0 * edge.max_over_applied_fraction * bout_width_m + 1e-9;
+  return (floods ? 1e12 : 1e6) * (1.0 + over + miss);
 }
 
 bool valid(const PredictionRequest& normal, const EdgeRequest& edge, const Predictor& predictor) {
@@ -169,6 +239,7 @@ bool valid(const PredictionRequest& normal, const EdgeRequest& edge, const Predi
          (edge.side == kLeftDisc || edge.side == kRightDisc) && edge.gap_m >= 0.0 && edge.gap_m < half &&
          edge.max_beyond_fraction > 0.0 && edge.max_beyond_fraction <= 1.0 && edge.rate_tolerance > 0.0 &&
          edge.rate_tolerance <= 1.0 && edge.min_edge_rate > 0.0 && edge.min_edge_rate <= 1.0 &&
+         edge.max_over_applied_fraction >= 0.0 && edge.max_over_applied_fraction <= 1.0 &&
          edge.max_drop_point_turn_rad >= 0.0 && edge.max_drop_point_turn_rad <= kPi;
 }
 
@@ -193,10 +264,13 @@ class EdgeSearch {
     status_ = predictor_.predict(r, prediction_);
     ++predictions_;
     if (status_ != PredictStatus::kOk) return false;
-    make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m, frame_.fixed.get_allocator().resource(),
-               frame_);
     normal_disc_ = disc_setting(normal_, edge_.side);
     normal_field_side_ = disc_setting(normal_, field_side_index());
+    const double max_rpm = predictor_.max_rpm(*predictor_.find_material(normal_.material));
+    const double slowest_rpm = std::min(normal_disc_.rpm, normal_field_side_.rpm);
+    make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m,
+               slowest_rpm > 0.0 ? std::max(1.0, max_rpm / slowest_rpm) : 1.0, frame_.fixed.get_allocator().resource(),
+               frame_);
     kernel_m_ = prediction_.kernel_half_width_m;
     return true;
   }
@@ -325,10 +399,13 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   search.pass_at(search.normal_field_side_, search.normal_disc_, inner_normal, disc);
   search.profile(inner_normal, disc, 1.0, result.normal_profile);
 
-  // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within ±π.
+  // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within the turns the table
+  // validates (a disc set outside them keeps its drop point).
+  const TurnRange valid = predictor.drop_point_turn_range();
   const auto turn_range = [&](double base_rad, double& low, double& high) {
-    low = std::max(-kPi, base_rad - edge.max_drop_point_turn_rad);
-    high = std::min(kPi, base_rad + edge.max_drop_point_turn_rad);
+    low = std::max(valid.low_rad, base_rad - edge.max_drop_point_turn_rad);
+    high = std::min(valid.high_rad, base_rad + edge.max_drop_point_turn_rad);
+    if (low > high) low = high = base_rad;
   };
   const double base_turn = search.normal_disc_.drop_point_turn_rad;
   const double field_base_turn = search.normal_field_side_.drop_point_turn_rad;
@@ -343,8 +420,11 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   // speed × drop point grid; every pair is judged from the two discs' trays (each disc flown once per setting).
   std::pmr::vector<double> inner_turns(memory);
   std::pmr::vector<EdgeDisc> inners(memory);
+  // Grid points outside a disc's range are skipped (not clamped onto its end: no setting is flown twice).
+  const auto outside = [](double t, double low, double high) { return t < low - 1e-12 || t > high + 1e-12; };
   for (int j = -turns; j <= turns; ++j) {
-    const double t = j == 0 ? field_base_turn : std::clamp(field_base_turn + j * step_rad, field_low, field_high);
+    const double t = j == 0 ? field_base_turn : field_base_turn + j * step_rad;
+    if (j != 0 && outside(t, field_low, field_high)) continue;
     EdgeDisc d(memory);
     if (j != 0 && !search.disc_at(field_side, DiscSetting{search.normal_field_side_.rpm, t}, d)) continue;
     inner_turns.push_back(t);
@@ -366,8 +446,9 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   };
   for (int i = 0; i <= speeds; ++i) {
     for (int j = -turns; j <= turns; ++j) {
+      if (j != 0 && outside(base_turn + j * step_rad, turn_low, turn_high)) continue;
       const DiscSetting setting{std::clamp(min_rpm + (max_rpm - min_rpm) * i / speeds, min_rpm, max_rpm),
-                                std::clamp(base_turn + j * step_rad, turn_low, turn_high)};
+                                base_turn + j * step_rad};
       if (!search.disc_at(edge.side, setting, disc)) continue;
       for (std::size_t k = 0; k < inners.size(); ++k) judge(k, setting, disc);
     }
@@ -379,8 +460,9 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   for (int i = -5; i <= 5; ++i) {
     for (int j = -5; j <= 5; ++j) {
       if (i == 0 && j == 0) continue;
-      const DiscSetting setting{std::clamp(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, min_rpm, max_rpm),
-                                std::clamp(coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad, turn_low, turn_high)};
+      const double turn = coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad;
+      if (j != 0 && outside(turn, turn_low, turn_high)) continue;
+      const DiscSetting setting{std::clamp(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, min_rpm, max_rpm), turn};
       if (!search.disc_at(edge.side, setting, disc)) continue;
       judge(coarse_inner, setting, disc);
     }

@@ -61,6 +61,16 @@ Predictor::Predictor(tables::TableContents contents, PredictorLimits limits, std
     if (problem.empty()) problem = tables::material_problem(m);
   }
   auto& runs = contents_.runs;
+  if (contents_.drop_point_turn_validated_rad) {
+    const auto& [low, high] = *contents_.drop_point_turn_validated_rad;
+    if (!(low >= -kPi && low <= 0.0 && high >= 0.0 && high <= kPi)) {
+      throw std::invalid_argument("Predictor: the validated drop-point turns must be [low, high] with -pi <= low <= 0 <= high <= pi");
+    }
+    turn_range_ = TurnRange{low, high};
+  }
+  if (!runs.empty() && std::all_of(runs.begin(), runs.end(), [](const tables::Run& r) { return r.source == "analytic"; })) {
+    turn_range_ = TurnRange{-kPi, kPi};  // exact for the analytic model, whatever the scene validated for DEM
+  }
   const bool pooled = !contents_.pooled_offset.empty();
   if (pooled && (contents_.pooled_offset.size() != runs.size() + 1 || contents_.pooled_offset.front() != 0 ||
                  contents_.pooled_offset.back() != contents_.pooled_samples.size() ||
@@ -394,7 +404,8 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
       chunk_landing_x_m_(memory),
       chunk_landing_y_m_(memory),
       stencil_block_(memory),
-      cell_target_(memory) {
+      cell_target_(memory),
+      search_buffer_(memory) {
   const std::size_t pair = predictor.largest_pair();
   const PredictorLimits& limits = predictor.limits();
   sample_capacity_ = pair;
@@ -428,6 +439,7 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   metrics_scratch_.resize(std::max({metrics::working_widths_scratch_size(widest), widest_bout, tray_capacity_ + 2,
                                     metrics::wide_kernel_scratch_size(widest_layout)}) +
                           (SampleInfluence::kMaxGradients - 1) * tray_capacity_);
+  search_buffer_.resize(4 * tray_capacity_ + widest_bout);
 }
 
 std::size_t PredictorWorkspace::bytes() const {
@@ -436,7 +448,7 @@ std::size_t PredictorWorkspace::bytes() const {
          sizeof(double) * (sample_weight_kg_.size() + landing_x_m_.size() + landing_y_m_.size() +
                            landing_weight_.size() + tray_mass_.size() + gradients_.size() +
                            gradient_scratch_.size() + metrics_scratch_.size() + chunk_landing_x_m_.size() +
-                           chunk_landing_y_m_.size()) +
+                           chunk_landing_y_m_.size() + search_buffer_.size()) +
          sizeof(LandingGrid::StencilBlock) * stencil_block_.size() +
          sizeof(tables::LaunchSample) * cell_target_.size();
 }
@@ -1086,6 +1098,27 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
       if (!in.limited_by_layout && std::isfinite(in.cv_above) && in.cv_above > in.cv_below) {
         tasks[task_count++] = {&band.upper_se_m, overlaps[o], in.trays_below, &in};
       }
+      // The gap before this band (when the band before is its neighbour: the last stored band follows the
+      // one before it only when every band is stored): its highest CV over the whole-tray bouts between.
+      band.gap_peak_cv = nan;
+      band.gap_peak_cv_se = nan;
+      if (b > 0 && (b < kMaxBands - 1 || ww.band_count == ww.stored_bands())) {
+        const int first = ww.bands[b - 1].trays_below + 1;
+        const int last = static_cast<int>(std::ceil(in.lower_m / trays.tray_width_m - 1e-9)) - 1;
+        int peak_trays = first;
+        double peak = -std::numeric_limits<double>::infinity();
+        for (int gap_trays = first; gap_trays <= last; ++gap_trays) {
+          const double cv = metrics::cv_at_trays(tray_mass, trays, gap_trays, overlaps[o], metrics_scratch);
+          if (!(cv <= peak)) {
+            peak = cv;
+            peak_trays = gap_trays;
+          }
+        }
+        if (last >= first) {
+          band.gap_peak_cv = peak;
+          if (std::isfinite(peak)) tasks[task_count++] = {&band.gap_peak_cv_se, overlaps[o], peak_trays, nullptr};
+        }
+      }
       if (o == 0 && request_bout_trays == 0) {
         extra.racetrack_cv =
             metrics::cv_at_trays(tray_mass, trays, in.trays_below, metrics::Overlap::kRacetrack, metrics_scratch);
@@ -1149,17 +1182,23 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
 
   // The headline: the widest band whose lowest CV meets the target at 95 % confidence over the launch
   // samples (CV + 1.96 SE <= target); a band that the samples do not establish is reported but not taken.
-  // When none is established, the first band.
+  // Bands whose gap the samples do not show above the target (its peak CV − 1.96 SE <= target) count as
+  // one: a band that splits near the target in one draw of the granules and not in another must not take
+  // the headline metres away. When none is established, the first band.
   int headline[2] = {-1, -1};
   for (int o = 0; o < 2; ++o) {
     const int stored = overlap_widths[o]->stored_bands();
+    bool group_established = false;
     for (int b = 0; b < stored; ++b) {
       PredictedBand& band = band_out[o][b];
       if (extras(o)[b].band->lowest_cv_trays == extras(o)[b].band->trays_below) band.lowest_cv_se = band.cv_se;
       band.established = request.standard_errors
                              ? band.lowest_cv + kConfidence95 * band.lowest_cv_se <= request.cv_target
                              : band.lowest_cv <= request.cv_target;
-      if (band.established) headline[o] = b;
+      band.joins_previous = request.standard_errors && std::isfinite(band.gap_peak_cv) &&
+                            band.gap_peak_cv - kConfidence95 * band.gap_peak_cv_se <= request.cv_target;
+      group_established = band.established || (band.joins_previous && group_established);
+      if (group_established) headline[o] = b;
     }
     if (headline[o] < 0 && stored > 0) headline[o] = 0;
   }

@@ -118,6 +118,12 @@ struct PredictionRequest {
 };
 inline constexpr int kLeftDisc = 0, kRightDisc = 1;
 
+// Drop-point turns (rad), [low_rad, high_rad] with low_rad <= 0 <= high_rad.
+struct TurnRange {
+  double low_rad = 0.0, high_rad = 0.0;
+  bool contains(double turn_rad) const { return turn_rad >= low_rad - 1e-12 && turn_rad <= high_rad + 1e-12; }
+};
+
 // The speed (r/min) and drop-point turn (rad) disc `disc` runs at under this request.
 struct DiscSetting {
   double rpm = 0.0;
@@ -148,6 +154,15 @@ struct PredictedBand {
   // lowest_cv + kConfidence95 · lowest_cv_se <= target: the launch samples establish the band (the
   // headline rule takes the widest established band).
   bool established = false;
+  // The gap before this band, between the previous band's upper end and this band's lower end: its
+  // highest CV at a whole-tray bout and that CV's standard error (NaN for the first band, when the band
+  // before is not stored, or without standard errors).
+  double gap_peak_cv = std::numeric_limits<double>::quiet_NaN();
+  double gap_peak_cv_se = std::numeric_limits<double>::quiet_NaN();
+  // gap_peak_cv − kConfidence95 · gap_peak_cv_se <= target: the launch samples do not show the gap above
+  // the target, so the headline rule takes this band and the one before as one (an established band
+  // makes the bands joined to it established).
+  bool joins_previous = false;
 };
 inline constexpr int kMaxBands = metrics::kMaxWidthBands;
 // Two-sided 95 % normal quantile: the intervals the tools print and the headline rule's confidence.
@@ -156,8 +171,9 @@ inline constexpr double kConfidence95 = 1.96;
 struct Prediction {
   double throw_width_m = 0.0;               // 99 % of the mass
   // The headline working width (docs/metrics.md "Effective working width"): the upper end of the widest
-  // band of bout widths with CV <= target whose lowest CV meets the target at 95 % confidence (the first
-  // band when none does), PredictedBand::established; 0 = no width meets the target.
+  // band of bout widths with CV <= target whose lowest CV meets the target at 95 % confidence, or that is
+  // joined to such a band by gaps the samples do not show above the target (the first band when none
+  // is), PredictedBand::established and joins_previous; 0 = no width meets the target.
   double working_width_to_and_fro_m = 0.0;
   double working_width_racetrack_m = 0.0;
   double bout_width_m = 0.0;                // where the CVs below were evaluated
@@ -241,6 +257,9 @@ class PredictorWorkspace {
                               std::pmr::memory_resource* memory = std::pmr::get_default_resource());
   // Bytes of the buffers it holds.
   std::size_t bytes() const;
+  // Room for a search that combines each disc's trays between predictions (wind_compensation.hpp): four
+  // arrays of the widest layout's trays and a bout of the widest bout width. predict() never touches it.
+  std::span<double> search_buffer() { return search_buffer_; }
 
  private:
   friend class Predictor;
@@ -268,6 +287,7 @@ class PredictorWorkspace {
   std::pmr::vector<double> chunk_landing_x_m_, chunk_landing_y_m_;
   std::pmr::vector<LandingGrid::StencilBlock> stencil_block_;
   std::pmr::vector<tables::LaunchSample> cell_target_;  // Predictor::cell_targets
+  std::pmr::vector<double> search_buffer_;
   // predict()'s bookkeeping of the bands and their standard errors (kept here, not on the caller's stack):
   // one standard error to compute — of the CV at `trays` trays, or (width_band set) of that band's upper
   // end, or (throw_width) of the throw width —, and per band the racetrack CV at a to-and-fro band's bout.
@@ -283,7 +303,7 @@ class PredictorWorkspace {
     double racetrack_cv = std::numeric_limits<double>::quiet_NaN();
     double racetrack_cv_se = std::numeric_limits<double>::quiet_NaN();
   };
-  std::array<SeTask, 3 + 2 * kMaxBands * 4> se_tasks_{};
+  std::array<SeTask, 3 + 2 * kMaxBands * 5> se_tasks_{};
   // The discs' launch samples by source (SampleInfluence), when each disc has its own setting.
   std::array<SampleBlock, kMaxSampleBlocks> sample_blocks_{};
   std::size_t sample_block_count_ = 0;
@@ -316,6 +336,12 @@ class Predictor {
   std::span<const double> row_rpm(std::size_t index) const;
   std::optional<std::size_t> find_material(std::string_view name) const;
   const PredictorLimits& limits() const { return limits_; }
+  // The drop-point turns a search over settings may use (the setting chart, border and edge spreading,
+  // wind compensation): all of [−π, π] when every row is analytic (the analytic launch model is the same
+  // all round the disc: its fan turns with the feed exactly); otherwise the table's validated range
+  // (TableContents::drop_point_turn_validated_rad), and none when it states none (a DEM row's turned
+  // launches are an approximation that only a comparison with DEM rows at the turned drop point validates).
+  TurnRange drop_point_turn_range() const { return turn_range_; }
 
   // Tray count of the widest layout for this tray width: an upper bound of Prediction::trays.tray_count.
   // 0 when the tray width is outside the limits.
@@ -459,6 +485,7 @@ class Predictor {
 
   tables::TableContents contents_;  // without the samples (in samples_)
   PredictorLimits limits_;
+  TurnRange turn_range_;
   flight::Settings settings_;
   std::vector<MaterialRows> materials_;
   std::vector<double> run_rpm_;       // contents_.runs[i].rpm, flat for bracket_rpm

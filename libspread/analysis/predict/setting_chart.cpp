@@ -82,11 +82,13 @@ std::vector<double> speed_grid(std::span<const double> rows_rpm, double step_rpm
   return grid;
 }
 
-// 0 and every multiple of `step_rad` within ±max_rad, ascending.
-std::vector<double> drop_point_grid(double max_rad, double step_rad) {
+// 0 and every multiple of `step_rad` within ±max_rad and the validated turns, ascending.
+std::vector<double> drop_point_grid(double max_rad, double step_rad, const TurnRange& valid) {
   const int steps = static_cast<int>(std::floor(max_rad / step_rad + 1e-9));
   std::vector<double> grid;
-  for (int k = -steps; k <= steps; ++k) grid.push_back(k * step_rad);
+  for (int k = -steps; k <= steps; ++k) {
+    if (k == 0 || valid.contains(k * step_rad)) grid.push_back(k * step_rad);
+  }
   return grid;
 }
 
@@ -124,7 +126,8 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
   chart.min_rpm = predictor.min_rpm(*index);
   chart.max_rpm = predictor.max_rpm(*index);
   chart.grid_rpm = speed_grid(predictor.row_rpm(*index), kChartGridStep_rpm);
-  chart.grid_drop_point_turn_rad = drop_point_grid(options.max_drop_point_turn_rad, options.drop_point_step_rad);
+  chart.grid_drop_point_turn_rad = drop_point_grid(options.max_drop_point_turn_rad, options.drop_point_step_rad,
+                                                   predictor.drop_point_turn_range());
   chart.scan_rpm = speed_grid(predictor.row_rpm(*index), kChartScanStep_rpm);
   const std::size_t widths = widths_m.size(), speeds = chart.grid_rpm.size();
   const std::size_t turns = chart.grid_drop_point_turn_rad.size(), points = chart.scan_rpm.size();

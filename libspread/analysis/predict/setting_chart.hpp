@@ -7,7 +7,8 @@
 // Search: one prediction per setting gives the CV at every width (the trays do not depend on the bout),
 // without standard errors (PredictionRequest::standard_errors). CV(rpm, drop point) is evaluated on a
 // grid: every table row and steps of at most kChartGridStep_rpm between rows, times drop-point turns in
-// steps of `drop_point_step_rad` within ±max_drop_point_turn_rad. At each W the best grid point is then
+// steps of `drop_point_step_rad` within ±max_drop_point_turn_rad and the turns the table validates
+// (Predictor::drop_point_turn_range). At each W the best grid point is then
 // refined by golden-section search along the speed (the two grid intervals around it, down to
 // `rpm_tolerance`), along the drop point (the two steps around it, down to `drop_point_tolerance_rad`),
 // and along the speed once more; a refinement only keeps a point lower than the best so far. CV between
@@ -36,7 +37,8 @@ struct SettingChartOptions {
   double wind_y_m_s = 0.0;
   double rpm_tolerance = 0.5;      // r/min: the refinement stops below this interval
   // The drop points searched: turns from the table's within ±max_drop_point_turn_rad (0: the table's drop
-  // point only), on a grid of drop_point_step_rad, refined down to drop_point_tolerance_rad.
+  // point only) and the table's validated turns, on a grid of drop_point_step_rad, refined down to
+  // drop_point_tolerance_rad.
   double max_drop_point_turn_rad = 1.5707963267948966;  // ±90°
   double drop_point_step_rad = 0.08726646259971647;     // 5°
   double drop_point_tolerance_rad = 0.0017453292519943296;  // 0.1°

@@ -4,11 +4,119 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <tuple>
+#include <span>
 
+#include "libspread/analysis/metrics/metrics.hpp"
 #include "libspread/analysis/predict/golden_section.hpp"
 
 namespace spread::predict {
+
+namespace {
+
+// One disc's range: speed [low_rpm, high_rpm], drop-point turn [low_rad, high_rad].
+struct DiscRange {
+  double low_rpm = 0.0, high_rpm = 0.0, low_rad = 0.0, high_rad = 0.0;
+};
+
+// The search over one context: the request being varied, the shared layout and kernel, each disc's trays
+// as they stand, and the buffers they live in (the workspace's search buffer).
+class WindSearch {
+ public:
+  WindSearch(const Predictor& predictor, const PredictionRequest& request, Prediction& out, PredictorWorkspace& workspace)
+      : predictor_(predictor), request_(request), out_(out), workspace_(workspace) {
+    request_.rpm = 0.0;
+    request_.drop_point_turn_rad = 0.0;
+    request_.standard_errors = false;
+  }
+
+  PredictStatus predict_present(const DiscSetting (&present)[2]) {
+    set(present);
+    ++predictions_;
+    return predictor_.predict(request_, out_, workspace_);
+  }
+
+  // The layout (covering `extent_m` each side, within the predictor's limits and the buffer) and kernel of
+  // the search, and each disc's trays at the present setting (the last prediction).
+  void start(double extent_m, double kernel_m) {
+    const double tray_width_m = out_.trays.tray_width_m;
+    layout_ = metrics::tray_layout_covering(std::min(extent_m, predictor_.limits().max_half_extent_m), tray_width_m);
+    kernel_m_ = kernel_m;
+    bout_trays_ = metrics::bout_tray_count(layout_, request_.bout_width_m);
+    const auto t = static_cast<std::size_t>(layout_.tray_count);
+    const std::span<double> buffer = workspace_.search_buffer();
+    for (int d = 0; d < 2; ++d) disc_trays_[d] = buffer.subspan(static_cast<std::size_t>(d) * t, t);
+    candidate_ = buffer.subspan(2 * t, t);
+    pattern_ = buffer.subspan(3 * t, t);
+    scratch_ = buffer.subspan(4 * t);
+    for (int d = 0; d < 2; ++d) land(d, disc_trays_[d]);
+    cv_ = cv_of(disc_trays_[0], disc_trays_[1]);
+  }
+
+  // Disc `d` at `setting`, the other as it stands: the CV, and that disc's trays in candidate_.
+  double try_disc(int d, const DiscSetting& setting) {
+    DiscSetting discs[2] = {current_[0], current_[1]};
+    discs[d] = setting;
+    set(discs);
+    ++predictions_;
+    if (predictor_.predict(request_, out_, workspace_) != PredictStatus::kOk) return std::numeric_limits<double>::infinity();
+    land(d, candidate_);
+    return d == kLeftDisc ? cv_of(candidate_, disc_trays_[1]) : cv_of(disc_trays_[0], candidate_);
+  }
+  // Keeps disc `d` at `setting` when its CV is lower than the present best (candidate_ holds its trays).
+  bool keep_if_lower(int d, const DiscSetting& setting, double cv) {
+    if (!(cv < cv_)) return false;
+    cv_ = cv;
+    current_[d] = setting;
+    std::copy(candidate_.begin(), candidate_.end(), disc_trays_[d].begin());
+    return true;
+  }
+  // The golden-section refinement of one coordinate of disc `d` (speed or turn) around its current value.
+  void refine(int d, bool speed, double low, double high, double tolerance) {
+    const DiscSetting base = current_[d];
+    const auto at = [&](double v) { return speed ? DiscSetting{v, base.drop_point_turn_rad} : DiscSetting{base.rpm, v}; };
+    const auto [best, best_cv] = golden_section_minimum([&](double v) { return try_disc(d, at(v)); }, low, high,
+                                                        speed ? base.rpm : base.drop_point_turn_rad, cv_, tolerance);
+    // The search's last evaluation may not be its best: fly the best once more for its trays.
+    if (best_cv < cv_ && try_disc(d, at(best)) == best_cv) keep_if_lower(d, at(best), best_cv);
+  }
+
+  DiscSetting current_[2];
+  double cv_ = 0.0;
+  int predictions_ = 0;
+
+  void set(const DiscSetting (&discs)[2]) {
+    request_.disc_rpm = {discs[0].rpm, discs[1].rpm};
+    request_.disc_drop_point_turn_rad = {discs[0].drop_point_turn_rad, discs[1].drop_point_turn_rad};
+  }
+  PredictionRequest& request() { return request_; }
+
+ private:
+  // Disc d's landings of the last prediction into `trays` (the left disc's come first).
+  void land(int d, std::span<double> trays) {
+    std::fill(trays.begin(), trays.end(), 0.0);
+    const std::size_t first = d == kLeftDisc ? 0 : out_.left_landing_count;
+    const std::size_t end = d == kLeftDisc ? out_.left_landing_count : out_.landing_x_m.size();
+    metrics::accumulate_transverse_kernel(out_.landing_x_m.subspan(first, end - first),
+                                          out_.landing_mass_fraction.subspan(first, end - first), layout_, kernel_m_,
+                                          trays);
+  }
+  double cv_of(std::span<const double> left, std::span<const double> right) {
+    for (std::size_t k = 0; k < pattern_.size(); ++k) pattern_[k] = left[k] + right[k];
+    const double cv = metrics::cv_at_trays(pattern_, layout_, bout_trays_, metrics::Overlap::kToAndFro, scratch_);
+    return std::isnan(cv) ? std::numeric_limits<double>::infinity() : cv;
+  }
+
+  const Predictor& predictor_;
+  PredictionRequest request_;
+  Prediction& out_;
+  PredictorWorkspace& workspace_;
+  metrics::TrayLayout layout_;
+  double kernel_m_ = 0.0;
+  int bout_trays_ = 1;
+  std::span<double> disc_trays_[2], candidate_, pattern_, scratch_;
+};
+
+}  // namespace
 
 WindCompensation compensate_wind(const Predictor& predictor, const PredictionRequest& request, Prediction& out,
                                  PredictorWorkspace& workspace, const WindCompensationLimits& limits) {
@@ -17,75 +125,76 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
     result.status = PredictStatus::kOutOfRange;
     return result;
   }
-  const DiscSetting left = disc_setting(request, kLeftDisc), right = disc_setting(request, kRightDisc);
-  // The present setting, each disc's own from here on.
-  PredictionRequest search = request;
-  search.rpm = 0.0;
-  search.drop_point_turn_rad = 0.0;
-  search.standard_errors = false;
-  const auto set = [&](double offset_rpm, double turn_rad) {
-    search.disc_rpm = {left.rpm + offset_rpm, right.rpm - offset_rpm};
-    search.disc_drop_point_turn_rad = {left.drop_point_turn_rad + turn_rad, right.drop_point_turn_rad - turn_rad};
-  };
-  // The caller's `out` stays unchanged on a refusal: the present setting is tried in `out` only after a
-  // request check that writes nothing (a refused predict() leaves its output alone).
-  set(0.0, 0.0);
-  result.status = predictor.predict(search, out, workspace);
-  ++result.predictions;
+  const DiscSetting present[2] = {disc_setting(request, kLeftDisc), disc_setting(request, kRightDisc)};
+  // The caller's `out` stays unchanged on a refusal: a refused predict() leaves its output alone.
+  WindSearch search(predictor, request, out, workspace);
+  result.status = search.predict_present(present);
   if (result.status != PredictStatus::kOk) return result;
-  const auto cv_of = [](const Prediction& p) {
-    return std::isnan(p.cv_to_and_fro) ? std::numeric_limits<double>::infinity() : p.cv_to_and_fro;
-  };
-  result.present_cv = cv_of(out);
-  const auto cv_at = [&](double offset_rpm, double turn_rad) {
-    set(offset_rpm, turn_rad);
-    ++result.predictions;
-    // Within the bounds below every setting is one the predictor takes.
-    return predictor.predict(search, out, workspace) == PredictStatus::kOk ? cv_of(out)
-                                                                            : std::numeric_limits<double>::infinity();
-  };
+  const double present_cv = std::isnan(out.cv_to_and_fro) ? std::numeric_limits<double>::infinity() : out.cv_to_and_fro;
 
-  // The bounds: both discs within the material's rows and both drop points within ±π.
+  // Each disc's range: its speed within the material's rows and ± max_speed_offset_rpm, its drop point within
+  // ± max_drop_point_turn_rad and the table's validated turns (a disc outside them keeps its own).
   const std::optional<std::size_t> material = predictor.find_material(request.material);
   const double min_rpm = predictor.min_rpm(*material), max_rpm = predictor.max_rpm(*material);
-  const double offset_low = std::max({-limits.max_speed_offset_rpm, min_rpm - left.rpm, right.rpm - max_rpm});
-  const double offset_high = std::min({limits.max_speed_offset_rpm, max_rpm - left.rpm, right.rpm - min_rpm});
-  const double turn_low = std::max({-limits.max_drop_point_turn_rad, -kPi - left.drop_point_turn_rad,
-                                    right.drop_point_turn_rad - kPi});
-  const double turn_high = std::min({limits.max_drop_point_turn_rad, kPi - left.drop_point_turn_rad,
-                                     right.drop_point_turn_rad + kPi});
+  const TurnRange valid = predictor.drop_point_turn_range();
+  DiscRange range[2];
+  for (int d = 0; d < 2; ++d) {
+    const DiscSetting& p = present[d];
+    range[d].low_rpm = std::max(min_rpm, p.rpm - limits.max_speed_offset_rpm);
+    range[d].high_rpm = std::min(max_rpm, p.rpm + limits.max_speed_offset_rpm);
+    range[d].low_rad = std::max(valid.low_rad, p.drop_point_turn_rad - limits.max_drop_point_turn_rad);
+    range[d].high_rad = std::min(valid.high_rad, p.drop_point_turn_rad + limits.max_drop_point_turn_rad);
+    if (range[d].low_rad > range[d].high_rad) range[d].low_rad = range[d].high_rad = p.drop_point_turn_rad;
+  }
+  // Trays wide enough for the fastest speed searched (launch speed is ωR), the present kernel.
+  double reach_m = 0.0;
+  for (double x : out.landing_x_m) {
+    if (std::isfinite(x)) reach_m = std::max(reach_m, std::abs(x));
+  }
+  const double slowest_rpm = std::min(present[0].rpm, present[1].rpm);
+  const double scale = slowest_rpm > 0.0 ? std::max(1.0, std::max(range[0].high_rpm, range[1].high_rpm) / slowest_rpm) : 1.0;
+  search.current_[0] = present[0];
+  search.current_[1] = present[1];
+  search.start(scale * reach_m + out.kernel_half_width_m + 0.5 * request.bout_width_m, out.kernel_half_width_m);
 
-  double best_offset = 0.0, best_turn = 0.0, best_cv = result.present_cv;
-  const double offset_step = (offset_high - offset_low) / (kCoarseSteps - 1);
-  const double turn_step = (turn_high - turn_low) / (kCoarseSteps - 1);
-  for (int i = 0; i < kCoarseSteps; ++i) {
-    for (int j = 0; j < kCoarseSteps; ++j) {
-      const double offset = offset_low + i * offset_step, turn = turn_low + j * turn_step;
-      const double cv = cv_at(offset, turn);
-      if (cv < best_cv) {
-        best_cv = cv;
-        best_offset = offset;
-        best_turn = turn;
+  // The disc the wind comes from first (a wind towards +x comes from the left): the search is the mirror
+  // image of itself for the mirror-image wind.
+  const int first = request.wind_x_m_s >= 0.0 ? kLeftDisc : kRightDisc;
+  const int order[2] = {first, 1 - first};
+  for (const int d : order) {
+    const DiscRange& r = range[d];
+    const int turns = std::max(1, static_cast<int>(std::ceil((r.high_rad - r.low_rad) / kWindTurnStep_rad - 1e-9)));
+    for (int i = 0; i < kWindSpeedSteps; ++i) {
+      for (int j = 0; j <= turns; ++j) {
+        const DiscSetting s{r.low_rpm + (r.high_rpm - r.low_rpm) * i / (kWindSpeedSteps - 1),
+                            std::min(r.high_rad, r.low_rad + j * (r.high_rad - r.low_rad) / turns)};
+        search.keep_if_lower(d, s, search.try_disc(d, s));
       }
     }
   }
-  std::tie(best_offset, best_cv) = golden_section_minimum(
-      [&](double offset) { return cv_at(offset, best_turn); }, std::max(offset_low, best_offset - offset_step),
-      std::min(offset_high, best_offset + offset_step), best_offset, best_cv, limits.speed_tolerance_rpm);
-  std::tie(best_turn, best_cv) = golden_section_minimum(
-      [&](double turn) { return cv_at(best_offset, turn); }, std::max(turn_low, best_turn - turn_step),
-      std::min(turn_high, best_turn + turn_step), best_turn, best_cv, limits.drop_point_tolerance_rad);
+  for (int round = 0; round < kWindRefineRounds; ++round) {
+    for (const int d : order) {
+      const DiscRange& r = range[d];
+      const double speed_step = (r.high_rpm - r.low_rpm) / (kWindSpeedSteps - 1);
+      const double turn_step = std::min(kWindTurnStep_rad, r.high_rad - r.low_rad);
+      const DiscSetting c = search.current_[d];
+      search.refine(d, true, std::max(r.low_rpm, c.rpm - speed_step), std::min(r.high_rpm, c.rpm + speed_step),
+                    limits.speed_tolerance_rpm);
+      const DiscSetting c2 = search.current_[d];
+      search.refine(d, false, std::max(r.low_rad, c2.drop_point_turn_rad - turn_step),
+                    std::min(r.high_rad, c2.drop_point_turn_rad + turn_step), limits.drop_point_tolerance_rad);
+    }
+  }
 
-  // The answer, with its standard errors.
-  set(best_offset, best_turn);
-  search.standard_errors = request.standard_errors;
-  predictor.predict(search, out, workspace);
-  ++result.predictions;
-  result.speed_offset_rpm = best_offset;
-  result.drop_point_turn_rad = best_turn;
+  // The answer, with its standard errors (the present setting when nothing searched was lower).
+  search.set(search.current_);
+  search.request().standard_errors = request.standard_errors;
+  predictor.predict(search.request(), out, workspace);
+  result.predictions = search.predictions_ + 1;
+  result.present_cv = present_cv;
   result.discs[kLeftDisc] = out.discs[kLeftDisc];
   result.discs[kRightDisc] = out.discs[kRightDisc];
-  result.cv = cv_of(out);
+  result.cv = std::isnan(out.cv_to_and_fro) ? std::numeric_limits<double>::infinity() : out.cv_to_and_fro;
   return result;
 }
 

@@ -1,33 +1,40 @@
 #pragma once
 // Wind compensation: the per-disc settings that bring the CV at a bout width back towards the target in a
 // crosswind. A wind across the driving direction carries the whole pattern downwind, so the passes no
-// longer overlap as in still air. A twin-disc spreader answers by throwing further on the upwind side and
-// shorter on the downwind side, and by turning both fans against the wind: here the discs' speeds move
-// apart by ±δ (the left disc +δ) and their drop points turn by ±θ (the left disc +θ, the right −θ in its
-// own mirrored frame, so both fans turn the same way seen from above), from the present setting.
+// longer overlap as in still air. A twin-disc spreader answers with each disc's own speed and drop point:
+// here each disc's speed and drop-point turn (the right disc's in its own mirrored frame) are searched on
+// their own, within the limits below and the drop-point turns the table validates
+// (Predictor::drop_point_turn_range).
 //
-// Search (deterministic, bounded): a coarse grid of kCoarseSteps × kCoarseSteps over δ and θ, then
-// golden-section search along δ and then along θ around the grid's best, to the tolerances below; a
-// refinement keeps a point only when it is lower. Every prediction of the search is made without
-// standard errors (PredictionRequest::standard_errors); the answer is predicted once more with them.
-// No allocation: the predictions go into the caller's Prediction and workspace.
+// The discs fly apart, so the pattern of a setting is the sum of each disc's landings: a disc is flown once
+// per setting tried and combined with the other disc's trays as they stand, on one tray layout and kernel
+// (the present setting's kernel; trays wide enough for the fastest speed searched). Search (deterministic,
+// bounded, the disc the wind comes from first): for each disc, a grid of kWindSpeedSteps speeds times
+// drop-point turns every kWindTurnStep_rad over its range, the other disc held; then, for kWindRefineRounds
+// rounds, golden-section search along each disc's speed and drop point within one grid step of its best,
+// to the tolerances below. A refinement keeps a point only when it is lower, so the answer is never worse
+// than the present setting. Every prediction of the search is made without standard errors
+// (PredictionRequest::standard_errors); the answer is predicted once more with them.
+// No allocation: the predictions go into the caller's Prediction and workspace, the trays into the
+// workspace's search buffer (PredictorWorkspace::search_buffer).
 #include "libspread/analysis/predict/predictor.hpp"
 
 namespace spread::predict {
 
 struct WindCompensationLimits {
-  double max_speed_offset_rpm = 150.0;          // |δ| at most (and both discs stay within the table's rows)
-  double max_drop_point_turn_rad = 0.7853981633974483;  // |θ| at most (45°; both turns stay within ±π)
-  double speed_tolerance_rpm = 4.0;
+  double max_speed_offset_rpm = 150.0;  // each disc within ± this of its present speed (and within the rows)
+  // Each disc's drop point within ± this of its present one (and within the table's validated turns).
+  double max_drop_point_turn_rad = 1.5707963267948966;  // 90°
+  double speed_tolerance_rpm = 2.0;
   double drop_point_tolerance_rad = 0.008726646259971648;  // 0.5°
 };
 
-inline constexpr int kCoarseSteps = 5;
+inline constexpr int kWindSpeedSteps = 3;                          // grid speeds per disc, over its range
+inline constexpr double kWindTurnStep_rad = 0.17453292519943295;  // 10°
+inline constexpr int kWindRefineRounds = 2;
 
 struct WindCompensation {
   PredictStatus status = PredictStatus::kOk;  // of the present setting's request (kOk: searched)
-  double speed_offset_rpm = 0.0;              // δ found
-  double drop_point_turn_rad = 0.0;           // θ found
   DiscSetting discs[2];                       // the compensated setting (kLeftDisc, kRightDisc)
   double present_cv = 0.0;                    // to-and-fro CV at the bout in the wind, present setting
   double cv = 0.0;                            // the same at the compensated setting (`out` has it ± SE)

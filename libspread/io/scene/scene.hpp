@@ -67,6 +67,11 @@ struct Inlet {
   double angle_rad = 0.0;             // angle of the inlet centre, from +x, counter-clockwise
   double drop_height_m = 0.05;        // release height above the disc surface
   double mass_flow_kg_s = 0.11;
+  // The drop-point turns (degrees, [low, high], low <= 0 <= high) over which this machine's launches,
+  // turned about the disc axis, were checked against DEM rows built at the turned drop point
+  // (tools/drop_point_check.py, docs/building-tables.md "The drop-point turn against DEM rows"). Written into
+  // the table; the searches over settings (chart, border, wind) never turn a drop point beyond it.
+  std::array<double, 2> validated_turn_deg{0.0, 0.0};
 };
 
 struct Air {

@@ -63,12 +63,14 @@ inline constexpr std::array<Key<Machine>, 17> kMachineKeys{{
      "disc speed of a `simulate` run", {}, RunInput::kNone},
 }};
 
-inline constexpr std::array<Key<Inlet>, 5> kInletKeys{{
+inline constexpr std::array<Key<Inlet>, 6> kInletKeys{{
     {"radius_m", &Inlet::radius_m, "m", kPositive, 0, "inlet circle radius"},
     {"offset_m", &Inlet::offset_m, "m", kNonNegative, 0, "inlet centre from the disc centre"},
     {"angle_rad", &Inlet::angle_rad, "rad", kAnyValue, 0, "angle of the inlet centre from +x (counter-clockwise)"},
     {"drop_height_m", &Inlet::drop_height_m, "m", kNonNegative, 0, "release height above the disc surface"},
     {"mass_flow_kg_s", &Inlet::mass_flow_kg_s, "kg/s", kPositive, 0, "feed rate per disc"},
+    {"validated_turn_deg", &Inlet::validated_turn_deg, "deg", kAnyValue, 0,
+     "drop-point turns [low, high] checked against DEM rows (tools/drop_point_check.py)", {}, RunInput::kNone},
 }};
 
 inline constexpr std::array<Key<Scene>, 1> kSimulateKeys{{

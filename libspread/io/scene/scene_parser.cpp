@@ -129,6 +129,12 @@ void validate(Scene& scene) {
                                  format_number(in.offset_m + in.radius_m) + " > disc_radius_m = " +
                                  format_number(m.disc_radius_m) + ")");
   }
+  if (!(in.validated_turn_deg[0] >= -180.0 && in.validated_turn_deg[0] <= 0.0 && in.validated_turn_deg[1] >= 0.0 &&
+        in.validated_turn_deg[1] <= 180.0)) {
+    c.fail("inlet.validated_turn_deg", "must be [low, high] degrees with -180 <= low <= 0 <= high <= 180, got [" +
+                                           format_number(in.validated_turn_deg[0]) + ", " +
+                                           format_number(in.validated_turn_deg[1]) + "]");
+  }
 
   if (scene.materials.empty()) c.fail("materials", "at least one [[materials]] entry is required");
   std::set<std::string> names;

@@ -3,6 +3,8 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <iterator>
 #include <string>
 #include <vector>
@@ -235,6 +237,19 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
       if (!problem.empty()) raise(TableErrorKind::kCorrupt, path, problem);
     }
   }
+  {
+    Statement validated(db, std::string("SELECT value FROM meta WHERE key = '") + kDropPointTurnValidatedKey + "'");
+    if (validated.step()) {
+      const std::string text = validated.column_text(0);
+      const std::optional<std::array<double, 2>> range_deg = parse_drop_point_turn_validated(text);
+      if (!range_deg) {
+        raise(TableErrorKind::kCorrupt, path, std::string("meta `") + kDropPointTurnValidatedKey + "` is '" + text +
+                                                  "': expected 'low,high' degrees with -180 <= low <= 0 <= high <= 180");
+      }
+      constexpr double kRadPerDeg = 0.017453292519943295;
+      contents.drop_point_turn_validated_rad = std::array<double, 2>{(*range_deg)[0] * kRadPerDeg, (*range_deg)[1] * kRadPerDeg};
+    }
+  }
   contents.landing_data = detail::read_landing_data(db);
   if (contents.runs.empty()) raise(TableErrorKind::kEmpty, path, "no runs (the table has no launch data)");
   for (const Run& run : contents.runs) {
@@ -243,6 +258,27 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
     if (!known) raise(TableErrorKind::kCorrupt, path, "run material \"" + run.material + "\" is not in `materials`");
   }
   return contents;
+}
+
+std::string drop_point_turn_validated_text(const std::array<double, 2>& range_deg) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g,%.17g", range_deg[0], range_deg[1]);
+  return text;
+}
+
+std::optional<std::array<double, 2>> parse_drop_point_turn_validated(const std::string& text) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) return std::nullopt;
+  std::array<double, 2> range{};
+  const std::string parts[2] = {text.substr(0, comma), text.substr(comma + 1)};
+  for (int i = 0; i < 2; ++i) {
+    const char* begin = parts[i].c_str();
+    char* end = nullptr;
+    range[static_cast<std::size_t>(i)] = std::strtod(begin, &end);
+    if (end == begin || *end != '\0') return std::nullopt;
+  }
+  if (!(range[0] >= -180.0 && range[0] <= 0.0 && range[1] >= 0.0 && range[1] <= 180.0)) return std::nullopt;
+  return range;
 }
 
 }  // namespace spread::tables

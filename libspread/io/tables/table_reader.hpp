@@ -2,8 +2,10 @@
 // Reads a whole launch-table file into memory. Opens read-only (SQLITE_OPEN_READONLY), checks
 // application_id, user_version and PRAGMA quick_check, and validates every record; every failure is a
 // TableError whose kind() names the class of problem (missing, not ours, corrupt, wrong version, empty).
+#include <array>
 #include <cstddef>
 #include <memory_resource>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +26,17 @@ struct TableContents {
   // keeps the block as it is; the samples are written once, straight from SQLite's bytes.
   std::pmr::vector<LaunchSample> pooled_samples;
   std::vector<std::size_t> pooled_offset;
+  // The drop-point turns (rad, [low, high] with low <= 0 <= high) over which turning the rows' launches
+  // about the disc axis was checked against DEM rows built at the turned drop point (meta key
+  // kDropPointTurnValidatedKey, in degrees; docs/table-format.md). Empty: the table states none.
+  std::optional<std::array<double, 2>> drop_point_turn_validated_rad;
 };
+
+inline constexpr const char* kDropPointTurnValidatedKey = "drop_point_turn_validated_deg";
+// The meta value of a validated range, "low,high" in degrees, and its parse (nullopt: not two finite numbers
+// with -180 <= low <= 0 <= high <= 180).
+std::string drop_point_turn_validated_text(const std::array<double, 2>& range_deg);
+std::optional<std::array<double, 2>> parse_drop_point_turn_validated(const std::string& text);
 
 // sample_memory: nullptr, every Run::samples its own vector; otherwise the samples pooled in one block
 // from it (TableContents::pooled_samples).
