@@ -130,11 +130,24 @@ void CanEcuProcessor::service() {
   // Fail safe without an address: a spreader nobody can address or supervise closes metering (and on
   // losing the address its work state goes off); the task controller switches it on again once the ECU
   // is back on the bus.
-  network_.service();
+  const bool lost = network_.service();
   ecu_.set_bus_address(network_.has_address());
   const Nanoseconds now = clock_.now();
+  if (lost) {
+    // Our address was taken, or we moved to another one (self-configurable): the TC knows our working
+    // set by an address we no longer hold. The connection starts over from the working-set master
+    // message (ISO 11783-10), and until the pool is active again no process data goes either way.
+    tc_client_.restart("our address was lost or changed");
+    rejoin_pending_ = true;
+  }
   if (partner_.update(now, ecu_.parameters().task_controller_timeout)) partner_lost(now);
+  if (rejoin_pending_ && network_.has_address() && partner_.address() &&
+      tc_client_.state() == isobus::TcClientState::kWaitForTc) {
+    // Back on the bus with a TC we know: start at once rather than at its next status (up to 2 s).
+    tc_client_.connect(*partner_.address(), now);
+  }
   tc_client_.update(now);
+  if (tc_client_.connected()) rejoin_pending_ = false;
   // A connection that ended takes its measurement triggers with it; the next one sets them again.
   if (tc_was_connected_ && !tc_client_.connected()) {
     triggers_.clear();
@@ -150,7 +163,7 @@ void CanEcuProcessor::send_measurements(Nanoseconds now) {
   const EcuStatus s = ecu_.status();
   const double dt_s = last_measurement_time_ ? to_seconds(now - *last_measurement_time_) : 0.0;
   last_measurement_time_ = now;
-  if (!network_.has_address()) return;
+  if (!network_.has_address() || rejoining()) return;
   triggers_.evaluate(
       now, s.ground_speed_m_s * dt_s * 1000.0, [&](std::uint16_t ddi) { return actual_value(ddi, s); },
       [&](const MeasurementSubscription& m, std::int32_t value) {
@@ -273,6 +286,9 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
         return;
       }
       handle_process_data(frame, id.source, to_us);
+      return;
+    case kAcknowledgementPgn:
+      handle_acknowledgement(frame, id.source, to_us);
       return;
     case kWheelBasedSpeedPgn:
     case kGroundBasedSpeedPgn:
@@ -439,6 +455,33 @@ void CanEcuProcessor::partner_lost(Nanoseconds now) {
   tc_client_.drop("the partner TC is gone: " + partner_.last_loss(), now);
 }
 
+void CanEcuProcessor::handle_acknowledgement(const can_frame& frame, std::uint8_t source, bool to_us) {
+  // ISO 11783-3 §5.4.5 acknowledgement: byte 0 control, byte 4 the address acknowledged, bytes 5-7 the
+  // PGN. A task controller that does not know a client's working set (it dropped us, or never heard our
+  // working-set master message) answers our process data with a NACK (or access denied): the TC has
+  // ended our session, whatever its status says.
+  if (frame.len != 8) {
+    ecu_.record_fault(Fault::kCanMalformedFrame);
+    return;
+  }
+  const std::uint32_t pgn = std::uint32_t{frame.data[5]} | (std::uint32_t{frame.data[6]} << 8) |
+                            (std::uint32_t{frame.data[7]} << 16);
+  const auto control = static_cast<AckControl>(frame.data[0]);
+  const bool refusal = control == AckControl::kNack || control == AckControl::kAccessDenied;
+  const bool about_us = to_us || frame.data[4] == network_.address();
+  if (!refusal || pgn != kProcessDataPgn || !about_us || !partner_.is_partner(source)) {
+    ++counters_.frames_not_for_us;
+    return;
+  }
+  ++counters_.tc_refusals;
+  // Lost as a partner: metering stops exactly as when the TC falls silent (work state off,
+  // task_controller_lost in DM1), and the client reconnects by itself after its retry delay. A storm of
+  // NACKs ends one session: those that follow, while we wait to reconnect, change nothing more.
+  ecu_.task_controller_gone();
+  rejoin_pending_ = true;
+  tc_client_.drop("the TC refused our process data (NACK): it does not know our working set", clock_.now());
+}
+
 void CanEcuProcessor::handle_tc_status(const can_frame& frame, std::uint8_t source) {
   ++counters_.task_controller_status;
   const Nanoseconds now = clock_.now();
@@ -490,6 +533,14 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   if (!partner_.is_partner(source)) {
     ++counters_.not_from_partner;
     ecu_.record_fault(Fault::kCanNotFromTaskController);
+    return;
+  }
+  // After our address changed or the TC refused us, process data waits for the working set to be
+  // connected again (ISO 11783-10: working-set master, pool, activation come first): values set now would
+  // be those of a session the TC has ended.
+  if (rejoining() && command != ProcessDataCommand::kTechnicalCapabilities &&
+      command != ProcessDataCommand::kDeviceDescriptor) {
+    ++counters_.before_reconnection;
     return;
   }
   // A negative acknowledge is only sent to a specific requester, never in answer to a broadcast.

@@ -214,6 +214,7 @@ Rejection Ecu::set_rpm_setpoint(double rpm) {
 Rejection Ecu::set_work_state(bool on) {
   work_state_setpoint_ = on;
   work_state_owner_ = WorkStateOwner::kTaskController;
+  tc_gone_ = false;
   return std::nullopt;
 }
 
@@ -283,8 +284,19 @@ void Ecu::set_ground_speed_unavailable() {
 
 void Ecu::note_task_controller_alive() { last_task_controller_time_ = clock_.now(); }
 
-// No time of life left: the next step's supervision sees a silent task controller.
-void Ecu::task_controller_gone() { last_task_controller_time_.reset(); }
+// No time of life left, and the work state it switched on goes off now: its status may keep coming (a TC
+// that refuses us is still on the bus), so waiting for the next step's supervision could be too late.
+void Ecu::task_controller_gone() {
+  last_task_controller_time_.reset();
+  if (work_state_setpoint_ && work_state_owner_ == WorkStateOwner::kTaskController) {
+    work_state_setpoint_ = false;
+    work_state_owner_ = WorkStateOwner::kNone;
+    // The fault stays until a task controller switches the work state again: a TC that is still alive
+    // would clear it with its next status, before a DM1 had carried it.
+    tc_gone_ = true;
+    faults_.set_state(Fault::kTaskControllerLost, true, clock_.now());
+  }
+}
 
 void Ecu::set_bus_address(bool has_address) {
   if (has_bus_address_ && !has_address) {
@@ -539,7 +551,7 @@ void Ecu::supervise_controllers(Nanoseconds now) {
   if (!lcm_silent) lcm_lost_ = false;
   if (!tc_silent) tc_lost_ = false;
   faults_.set_state(Fault::kCommandTimeout, lcm_lost_, now);
-  faults_.set_state(Fault::kTaskControllerLost, tc_lost_, now);
+  faults_.set_state(Fault::kTaskControllerLost, tc_lost_ || tc_gone_, now);
 }
 
 void Ecu::step(double dt_s) {

@@ -55,17 +55,30 @@ void TaskControllerClient::drop(std::string why, Nanoseconds now) {
   if (tc_) end_connection(std::move(why), now);
 }
 
+void TaskControllerClient::restart(std::string why) {
+  if (tc_ || state_ == TcClientState::kRetryWait) last_error_ = std::move(why);
+  state_ = TcClientState::kWaitForTc;
+  tc_.reset();
+  out_.clear();  // messages of the old session, from an address we no longer hold
+}
+
+void TaskControllerClient::connect(std::uint8_t tc, Nanoseconds now) {
+  if (state_ != TcClientState::kWaitForTc) return;
+  // ISO 11783-10 (connection procedure): the working set names itself with the working-set master
+  // message (one member, this ECU) before any other message to the TC, then asks the TC's version.
+  tc_ = tc;
+  last_tc_status_ = now;
+  send(kWorkingSetMasterPgn, 0xFF, encode_working_set_master(1));
+  send_tc(tc_frame(TcMessage::kRequestVersion));
+  expect(TcClientState::kWaitVersion, now, settings_.answer_timeout);
+}
+
 void TaskControllerClient::handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now) {
   const auto kind = tc_message_kind(data);
   if (!kind) return;
   if (*kind == TcMessage::kTcStatus) {
     if (state_ == TcClientState::kWaitForTc) {
-      // A TC is there: name our working set (one member, this ECU) and start the handshake.
-      tc_ = source;
-      last_tc_status_ = now;
-      send(kWorkingSetMasterPgn, 0xFF, encode_working_set_master(1));
-      send_tc(tc_frame(TcMessage::kRequestVersion));
-      expect(TcClientState::kWaitVersion, now, settings_.answer_timeout);
+      connect(source, now);  // a TC is there
     } else if (tc_ && source == *tc_) {
       last_tc_status_ = now;
     }

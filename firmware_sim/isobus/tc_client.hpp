@@ -67,8 +67,16 @@ class TaskControllerClient {
   void handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now);
   // Timeouts and the periodic client task message.
   void update(Nanoseconds now);
-  // The partner TC is gone (its address taken or released): the connection ends as on a timeout.
+  // The partner TC is gone (its address taken or released), or refuses us (a NACK of our process data):
+  // the connection ends as on a timeout, and the next attempt waits `retry_delay`.
   void drop(std::string why, Nanoseconds now);
+  // Our own address changed or was lost (ISO 11783-5): the TC knows our working set by an address we no
+  // longer hold, so the connection ends at once, without the retry delay. connect() starts it again once
+  // our address stands.
+  void restart(std::string why);
+  // Starts the connection with `tc` now (working-set master, request version), as a TC status from it
+  // does, when no connection is running or waiting to retry.
+  void connect(std::uint8_t tc, Nanoseconds now);
   std::vector<TcOutgoing> take_outgoing();
 
   TcClientState state() const { return state_; }

@@ -89,6 +89,9 @@ bool wait_for_address_claim(CanFramePort& port, std::uint8_t own, std::uint8_t e
   const std::uint8_t request[8] = {0x00, 0xEE, 0x00, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
   while (Clock::now() < end && !stop_requested()) {
     port.send(make_frame(encode_id({6, 0xEA00, kGlobalAddress, own}), request, 3));
+    // The global request asks us too (ISO 11783-5 §4.4.3): our claim answers it, or a node that drops
+    // whoever has not claimed soon after a global request would drop us.
+    send_address_claim(port, own);
     const auto retry = std::min(end, Clock::now() + std::chrono::milliseconds(250));
     can_frame frame{};
     while (Clock::now() < retry) {
