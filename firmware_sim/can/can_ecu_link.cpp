@@ -32,6 +32,9 @@ std::uint8_t pdack_bits_for(Fault fault) {
     case Fault::kSetpointOutOfRange: return kPdackValueOutOfRange;
     // A function this device cannot run now (wind compensation without its tables): outside its range.
     case Fault::kAutomaticUnavailable: return kPdackValueOutOfRange;
+    // A command that needs the product (a narrowed side, a border, wind compensation) before one is known:
+    // the device cannot carry it out now.
+    case Fault::kUnknownMaterial: return kPdackValueOutOfRange;
     case Fault::kNotANumber: return kPdackValueNotConform;
     case Fault::kCanNotSettable: return kPdackNotSettable;
     case Fault::kCanUnknownDdi: return kPdackDdiNotSupported;
@@ -69,6 +72,8 @@ isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings
   d.section_count = ecu.parameters().section_count;
   d.maximum_width_m = ecu.parameters().width_max_m;
   d.working_width_m = std::min(settings.nominal_width_m, d.maximum_width_m);
+  d.products = ecu.material_names();
+  if (d.products.size() > isobus::kMaxListedProducts) d.products.resize(isobus::kMaxListedProducts);
   const isobus::Ddop pool = isobus::make_spreader_ddop(d);
   isobus::TcClientSettings tc;
   tc.version.sections = static_cast<std::uint8_t>(d.section_count);
@@ -360,6 +365,15 @@ std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, con
     case Ddi::kActualRevolutions: return to_int32(s.rpm_actual * kRevolutionsScale);
     case Ddi::kActualSpeed: return to_int32(s.ground_speed_m_s * 1000.0);
     case Ddi::kSectionControlState: return section_control_state_;
+    case Ddi::kSetpointProduct: {
+      if (!ecu_.has_predictor()) return std::nullopt;  // no table, no product to choose (not in the pool)
+      const std::vector<std::string> names = ecu_.material_names();
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        if (names[k] == s.material) return static_cast<std::int32_t>(k + 1);
+      }
+      return 0;  // none known yet
+    }
+    case Ddi::kProductNumber: return std::nullopt;  // properties of the pool, not process data
   }
   return std::nullopt;
 }
@@ -434,6 +448,20 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
     case Ddi::kSetpointWindAlong:
       rejection = ecu_.set_wind(ecu_.status().wind_x_m_s, m.value / 1000.0);
       break;
+    case Ddi::kSetpointProduct: {
+      // The k-th material of the launch table (the pool lists them); 0 or beyond the list is no product.
+      const std::vector<std::string> names = ecu_.material_names();
+      if (names.empty()) {
+        ecu_.record_fault(Fault::kCanUnknownDdi);
+        return kPdackDdiNotSupported;
+      }
+      if (m.value < 1 || static_cast<std::size_t>(m.value) > names.size()) {
+        ecu_.record_fault(Fault::kUnknownMaterial);
+        return kPdackValueOutOfRange;
+      }
+      rejection = ecu_.set_material(names[static_cast<std::size_t>(m.value - 1)]);
+      break;
+    }
     case Ddi::kActualMassPerArea:
     case Ddi::kActualWorkingWidth:
     case Ddi::kMaximumWorkingWidth:

@@ -80,6 +80,8 @@ class Ecu {
   const EcuParameters& parameters() const { return parameters_; }
   const FaultLog& faults() const { return faults_; }
   bool has_predictor() const { return predictor_ != nullptr; }
+  // The materials of the launch table, in its order (empty without tables): the products it can spread.
+  std::vector<std::string> material_names() const;
 
  private:
   // Which controller last changed the master work state; that one is supervised.
@@ -96,6 +98,10 @@ class Ecu {
   void predict_pattern();
   void check_achieved_width();
   std::uint32_t installed_mask() const;
+  // Whether `mask` narrows a side (its outermost section off, one nearer the centre on).
+  bool needs_narrowing(std::uint32_t mask) const;
+  // Tables loaded but no material known: a narrowing, border or wind plan cannot be made.
+  bool needs_planning_without_material() const { return predictor_ != nullptr && material_.empty(); }
   const WidthCurve* curve_for(std::string_view material) const;
   void plan_sides();
   double field_rpm_actual() const;

@@ -23,7 +23,9 @@
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/isobus/iso_name.hpp"
 #include "firmware_sim/isobus/tc_partner.hpp"
+#include "firmware_sim/isobus/dm1.hpp"
 #include "firmware_sim/isobus/tc_server.hpp"
+#include "tests/firmware/analytic_predictor.hpp"
 
 namespace spread::firmware::can {
 namespace {
@@ -103,7 +105,12 @@ struct Seen {
 
 class IsobusSession : public ::testing::Test {
  protected:
-  IsobusSession() : dir_(make_dir()), bus_(dir_ + "/bus"), ecu_(clock_, parameters()), probe_(connect_unix_can_bus(bus_.path())) {}
+  // `with_tables`: the ECU holds a launch table (an analytic one: materials "urea" and "can27").
+  explicit IsobusSession(bool with_tables = false)
+      : dir_(make_dir()),
+        bus_(dir_ + "/bus"),
+        ecu_(clock_, parameters(), with_tables ? &predictor_ : nullptr),
+        probe_(connect_unix_can_bus(bus_.path())) {}
   ~IsobusSession() override {
     ecu_io_.reset();
     tc_.reset();
@@ -178,6 +185,7 @@ class IsobusSession : public ::testing::Test {
   CanBusRelay bus_;
   ManualClock clock_;
   Nanoseconds loop_start_{};
+  testing::AnalyticPredictor predictor_;
   Ecu ecu_;
   CanFramePort probe_;
   CanFramePort ecu_port_;
@@ -354,6 +362,59 @@ TEST_F(SelfConfigurableSession, MovesAndRestartsItsWorkingSetFromTheNewAddress) 
   EXPECT_EQ(*tc_->server.client_address(), ecu_address());
   EXPECT_EQ(tc_->activations, 2);
   EXPECT_NEAR(mass_flow(), 0.9, 1e-6);
+}
+
+// A CAN-only machine with a launch table but no product chosen yet: a border (or a narrowed side, or wind
+// compensation) cannot be planned, so the TC's command is refused with PDACK 0x80 and the ECU's DM1 carries
+// unknown_material, never acknowledged to do nothing. The TC then chooses the product over the bus (DDI
+// 57349 = the number of a product the pool lists), and the same command is taken.
+class ProductSession : public IsobusSession {
+ protected:
+  ProductSession() : IsobusSession(true) {}
+};
+
+TEST_F(ProductSession, CommandsThatNeedTheProductAreRefusedUntilTheTcChoosesOne) {
+  start_tc();
+  run(1s);
+  start_ecu();
+  run(7s);
+  ASSERT_EQ(tc_->activations, 1);
+  ASSERT_TRUE(ecu_.status().material.empty());
+  const Nanoseconds asked = clock_.now();
+  ASSERT_EQ(tc_->server.set_value(57344, 1), "");  // left border
+  run(100ms);
+  EXPECT_EQ(ecu_.status().border_mode, BorderMode::kOff);
+  EXPECT_EQ(tc_->server.counters().pdack_errors, 1u);
+  int pdack_out_of_range = 0;
+  for (const Seen& s : seen(kProcessDataPgn, kEcu, asked)) {
+    if ((s.frame.data[0] & 0x0F) == 0xD && s.frame.data[2] == 0x00 && s.frame.data[3] == 0xE0) {
+      pdack_out_of_range += s.frame.data[4] == 0x80 ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(pdack_out_of_range, 1) << "PDACK 0x80 (outside the operational range) for DDI 57344";
+  run(1100ms);
+  bool dm1_names_it = false;
+  for (const Seen& s : seen(iso::kDm1Pgn, kEcu, asked)) {
+    const auto dm1 = iso::decode_dm1(std::span<const std::uint8_t>(s.frame.data, 6));
+    if (!dm1) continue;
+    for (const iso::Dtc& d : dm1->active) {
+      dm1_names_it = dm1_names_it || d.spn == iso::kProprietarySpnBase + static_cast<std::uint32_t>(Fault::kUnknownMaterial);
+    }
+  }
+  EXPECT_TRUE(dm1_names_it) << "DM1 carries unknown_material";
+  // The TC chooses product 1 of the pool's list, then asks for the border again: taken.
+  ASSERT_EQ(tc_->server.set_value(57349, 1), "");
+  run(100ms);
+  EXPECT_EQ(ecu_.status().material, "urea");
+  ASSERT_EQ(tc_->server.set_value(57344, 1), "");
+  run(100ms);
+  EXPECT_EQ(ecu_.status().border_mode, BorderMode::kLeftBorder);
+  EXPECT_EQ(tc_->server.counters().pdack_errors, 1u);
+  // A product the pool does not list is refused too.
+  ASSERT_EQ(tc_->server.set_value(57349, 3), "");
+  run(100ms);
+  EXPECT_EQ(tc_->server.counters().pdack_errors, 2u);
+  EXPECT_EQ(ecu_.status().material, "urea");
 }
 
 }  // namespace
