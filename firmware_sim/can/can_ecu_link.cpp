@@ -64,22 +64,36 @@ ProcessDataBytes frame_bytes(const can_frame& frame) {
 
 namespace {
 
-isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings& settings) {
+struct PoolBytes {
+  std::vector<std::uint8_t> version4;
+  std::vector<std::uint8_t> version3;
+  std::array<std::uint8_t, 7> structure_label{};
+  std::array<std::uint8_t, 7> localization_label{};
+};
+
+// The pool of the machine as set: its sections divide `working_width_m` evenly, as the ECU's section
+// control does (side_geometry), so a TC switching by position uses the sections the ECU works with.
+PoolBytes make_pool(const Ecu& ecu, const CanEcuSettings& settings, double working_width_m) {
   isobus::SpreaderDescription d;
   d.name = settings.name;
   // The pool's serial number is the unit's: the NAME's identity number, which differs between units.
   d.serial_number = "SIM-" + std::to_string(isobus::decode_name(settings.name).identity_number);
   d.section_count = ecu.parameters().section_count;
   d.maximum_width_m = ecu.parameters().width_max_m;
-  d.working_width_m = std::min(settings.nominal_width_m, d.maximum_width_m);
+  d.working_width_m = std::min(working_width_m, d.maximum_width_m);
   d.products = ecu.material_names();
   if (d.products.size() > isobus::kMaxListedProducts) d.products.resize(isobus::kMaxListedProducts);
   const isobus::Ddop pool = isobus::make_spreader_ddop(d);
-  isobus::TcClientSettings tc;
-  tc.version.sections = static_cast<std::uint8_t>(d.section_count);
   const auto& device = std::get<isobus::DeviceObject>(pool.objects.front());
-  return isobus::TaskControllerClient(isobus::write_ddop(pool), device.structure_label, device.localization_label, tc,
-                                      isobus::write_ddop(pool, 3));
+  return {isobus::write_ddop(pool), isobus::write_ddop(pool, 3), device.structure_label, device.localization_label};
+}
+
+isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings& settings) {
+  PoolBytes p = make_pool(ecu, settings, settings.nominal_width_m);
+  isobus::TcClientSettings tc;
+  tc.version.sections = static_cast<std::uint8_t>(ecu.parameters().section_count);
+  return isobus::TaskControllerClient(std::move(p.version4), p.structure_label, p.localization_label, tc,
+                                      std::move(p.version3));
 }
 
 }  // namespace
@@ -91,7 +105,19 @@ CanEcuProcessor::CanEcuProcessor(Ecu& ecu, const Clock& clock, CanFrameSink& tx,
       settings_(settings),
       network_(clock, tx, settings.name, settings.address),
       transport_(settings.address),
-      tc_client_(make_tc_client(ecu, settings)) {}
+      tc_client_(make_tc_client(ecu, settings)),
+      pool_width_m_(std::min(settings.nominal_width_m, ecu.parameters().width_max_m)) {}
+
+void CanEcuProcessor::follow_working_width(Nanoseconds now) {
+  // ISO 11783-10: the pool describes the machine as it works. A new working width moves every section's
+  // width and offset, so the pool is made again and, if a TC holds the old one, replaced (deactivate,
+  // transfer, activate). A width of 0 (not set) keeps the pool as it is.
+  const double width_m = ecu_.status().width_setpoint_m;
+  if (!(width_m > 0.0) || std::abs(width_m - pool_width_m_) < 0.0005) return;
+  pool_width_m_ = width_m;
+  PoolBytes p = make_pool(ecu_, settings_, width_m);
+  tc_client_.replace_pool(std::move(p.version4), p.structure_label, p.localization_label, std::move(p.version3), now);
+}
 
 void CanEcuProcessor::flush_isobus(Nanoseconds now) {
   if (!network_.has_address()) return;  // nothing but claims without a standing claim
@@ -151,6 +177,7 @@ void CanEcuProcessor::service() {
     // Back on the bus with a TC we know: start at once rather than at its next status (up to 2 s).
     tc_client_.connect(*partner_.address(), now);
   }
+  follow_working_width(now);
   tc_client_.update(now);
   if (tc_client_.connected()) rejoin_pending_ = false;
   // A connection that ended takes its measurement triggers with it; the next one sets them again.

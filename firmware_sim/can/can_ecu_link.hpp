@@ -101,6 +101,8 @@ class CanEcuProcessor {
   // ISO 11783-3 acknowledgement (PGN 0xE800): a NACK of our process data from the partner TC ends the
   // TC session (metering stops as on TC loss; the client reconnects).
   void handle_acknowledgement(const can_frame& frame, std::uint8_t source, bool to_us);
+  // The pool follows the working width set (sections, widths, offsets); replaced at the TC on a change.
+  void follow_working_width(Nanoseconds now);
   // True from a loss of our address (or the TC's refusal) until the pool is active again.
   bool rejoining() const { return rejoin_pending_ && !tc_client_.connected(); }
   void handle_speed(const can_frame& frame, SpeedSource source);
@@ -137,6 +139,7 @@ class CanEcuProcessor {
   // Our address was lost or changed, or the TC refused us: the working set must connect again (working-set
   // master, pool, activation) before process data flows either way.
   bool rejoin_pending_ = false;
+  double pool_width_m_;  // the working width the pool's sections divide [m]
   // DDI 160 as the TC set it: 1 while the TC switches the sections automatically (ISO 11783-10 section
   // control), 0 (manual) at start and again when the TC connection ends.
   std::int32_t section_control_state_ = 0;

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,7 @@ struct TcNode {
   iso::TcServer server;
   bool was_active = false;
   int activations = 0;
+  std::int32_t width_mm = 24000;  // DDI 66 sent on activation (the operator's working width)
   Nanoseconds next_speed{};
 
   TcNode(const std::string& bus, const Clock& clock)
@@ -86,7 +88,7 @@ struct TcNode {
     if (server.active() && !was_active) {
       ++activations;
       for (const auto& [ddi, value] : std::vector<std::pair<std::uint16_t, std::int32_t>>{
-               {6, 25000}, {66, 24000}, {389, 7000000}, {290, static_cast<std::int32_t>(0xFFFF0055u)}, {289, 1}}) {
+               {6, 25000}, {66, width_mm}, {389, 7000000}, {290, static_cast<std::int32_t>(0xFFFF0055u)}, {289, 1}}) {
         EXPECT_EQ(server.set_value(ddi, value), "");
       }
     }
@@ -415,6 +417,62 @@ TEST_F(ProductSession, CommandsThatNeedTheProductAreRefusedUntilTheTcChoosesOne)
   run(100ms);
   EXPECT_EQ(tc_->server.counters().pdack_errors, 2u);
   EXPECT_EQ(ecu_.status().material, "urea");
+}
+
+// The sections of the pool the TC holds: width (DDI 67) and Y offset (DDI 135) of each, in mm.
+std::vector<std::pair<std::int32_t, std::int32_t>> pool_sections(const iso::Ddop& pool) {
+  std::map<std::uint16_t, const iso::DeviceProperty*> properties;
+  for (const iso::DdopObject& o : pool.objects) {
+    if (const auto* p = std::get_if<iso::DeviceProperty>(&o)) properties[p->id] = p;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> out;
+  for (const iso::DdopObject& o : pool.objects) {
+    const auto* e = std::get_if<iso::DeviceElement>(&o);
+    if (e == nullptr || e->type != iso::ElementType::kSection) continue;
+    std::int32_t width = -1;
+    std::int32_t y = 0;
+    for (const std::uint16_t id : e->children) {
+      const auto it = properties.find(id);
+      if (it == properties.end()) continue;
+      if (it->second->ddi == 67) width = it->second->value;
+      if (it->second->ddi == 135) y = it->second->value;
+    }
+    out.emplace_back(width, y);
+  }
+  return out;
+}
+
+// The pool describes the machine as set (ISO 11783-10): the TC sets 12 m, and the ECU replaces its 24 m
+// pool (deactivate, transfer, activate) with 8 sections of 1.5 m at -5.25 ... +5.25 m; the TC sets 24 m, and
+// the pool goes back to 8 × 3 m at -10.5 ... +10.5 m. Each time the TC activates it again and sends its
+// set-points; metering follows the width set.
+TEST_F(IsobusSession, ThePoolFollowsTheWorkingWidthTheTcSets) {
+  start_tc();
+  tc_->width_mm = 12000;
+  run(1s);
+  start_ecu();
+  run(7s);
+  ASSERT_TRUE(tc_->server.pool());
+  auto sections = pool_sections(*tc_->server.pool());
+  ASSERT_EQ(sections.size(), 8u);
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    EXPECT_EQ(sections[i].first, 1500) << "section " << i + 1;
+    EXPECT_EQ(sections[i].second, -5250 + 1500 * static_cast<std::int32_t>(i)) << "section " << i + 1;
+  }
+  EXPECT_EQ(tc_->activations, 2) << "the 24 m pool activated, then the 12 m one";
+  EXPECT_EQ(processor().task_controller_client().pool_changes(), 1u);
+  EXPECT_NEAR(mass_flow(), 0.45, 1e-6) << "sections 1-4 of 12 m at 3 m/s and 250 kg/ha";
+  // The operator sets 24 m.
+  tc_->width_mm = 24000;
+  ASSERT_EQ(tc_->server.set_value(66, 24000), "");
+  run(3s);
+  sections = pool_sections(*tc_->server.pool());
+  ASSERT_EQ(sections.size(), 8u);
+  EXPECT_EQ(sections.front(), std::make_pair(3000, -10500));
+  EXPECT_EQ(sections.back(), std::make_pair(3000, 10500));
+  EXPECT_EQ(tc_->activations, 3);
+  EXPECT_EQ(processor().task_controller_client().pool_changes(), 2u);
+  EXPECT_NEAR(mass_flow(), 0.9, 1e-6);
 }
 
 }  // namespace
