@@ -564,6 +564,12 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   // Without a standing address claim the ECU could not answer, and nobody could supervise it: process
   // data is not acted on (ISO 11783-5 §4.4.2).
   if (!network_.has_address()) {
+    // Listening needs no address: the partner TC's status still says it is alive, so a hold-off or a move
+    // longer than the 6 s supervision does not lose the partner the ECU is about to reconnect to.
+    if ((frame.data[0] & 0x0F) == static_cast<std::uint8_t>(ProcessDataCommand::kTaskControllerStatus) &&
+        partner_.is_partner(source)) {
+      partner_.on_tc_status(source, clock_.now());
+    }
     ++counters_.frames_not_for_us;
     return;
   }

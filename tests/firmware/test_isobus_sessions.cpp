@@ -330,6 +330,19 @@ TEST_F(MeteringSession, OwnNameFromAnotherAddressIsContendedThenHeldOffNeverSile
   run(8s);
   EXPECT_EQ(tc_->activations, 2);
   EXPECT_NEAR(mass_flow(), 0.9, 1e-6);
+  // A second episode holds off 6 s, longer than the TC's 6 s supervision: the ECU keeps listening to the
+  // TC's status meanwhile, so it comes back to the same partner and reconnects at once.
+  inject(iso::kAddressClaimedPgn, kGlobalAddress, 0x95, own.data(), 8);
+  run(200ms);
+  inject(iso::kAddressClaimedPgn, kGlobalAddress, 0x95, own.data(), 8);
+  run(300ms);
+  EXPECT_FALSE(processor().has_address());
+  run(6s);
+  ASSERT_TRUE(processor().has_address());
+  run(3s);
+  EXPECT_EQ(processor().task_controller_partner().counters().partners_lost, 0u);
+  EXPECT_EQ(tc_->activations, 3);
+  EXPECT_NEAR(mass_flow(), 0.9, 1e-6);
 }
 
 // A self-configurable ECU whose address a lower NAME claims moves to the next free address (ISO 11783-5),
