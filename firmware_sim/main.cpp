@@ -336,8 +336,9 @@ int main(int argc, char** argv) {
       const auto& claim = network.claim().counters();
       std::fprintf(stderr,
                    "firmware_sim: ISOBUS address %s0x%02X, claims sent %llu, contentions won %llu lost %llu, "
-                   "cannot-claim sent %llu, requests NACKed %llu, our NAME from another node %llu, address "
-                   "violations %llu\n",
+                   "cannot-claim sent %llu, requests NACKed %llu, our NAME from another node %llu (hold-offs "
+                   "%llu), address violations %llu, address losses %llu, TC refusals %llu, process data before "
+                   "reconnection %llu, TC connections %llu\n",
                    network.has_address() ? "" : "none, last ", unsigned{network.address()},
                    static_cast<unsigned long long>(claim.claims_sent),
                    static_cast<unsigned long long>(claim.contentions_won),
@@ -345,7 +346,12 @@ int main(int argc, char** argv) {
                    static_cast<unsigned long long>(claim.cannot_claim_sent),
                    static_cast<unsigned long long>(network.counters().requests_nacked),
                    static_cast<unsigned long long>(claim.duplicate_names),
-                   static_cast<unsigned long long>(claim.address_violations));
+                   static_cast<unsigned long long>(claim.duplicate_name_holds),
+                   static_cast<unsigned long long>(claim.address_violations),
+                   static_cast<unsigned long long>(network.counters().address_losses),
+                   static_cast<unsigned long long>(can_io->processor().counters().tc_refusals),
+                   static_cast<unsigned long long>(can_io->processor().counters().before_reconnection),
+                   static_cast<unsigned long long>(can_io->processor().task_controller_client().connections()));
     }
   } catch (const std::exception& e) {
     std::cerr << "firmware_sim: error: " << e.what() << "\n";

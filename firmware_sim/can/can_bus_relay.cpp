@@ -144,10 +144,10 @@ bool CanBusRelay::run_once(std::chrono::milliseconds timeout, const sigset_t* si
   fds.reserve(clients_.size() + 1);
   fds.push_back({listen_fd_, POLLIN, 0});
   for (const Client& c : clients_) {
-    // Paced, a client whose frame waits for the bus is not read (nor polled: a departure shows when it
-    // is read next); its further frames wait in its socket.
+    // Paced, a client whose frame waits for the bus is not read (its further frames wait in its socket),
+    // but still polled for its departure (POLLHUP is reported whatever the events asked).
     const bool holding = pacer_ && pacer_->has_frame(c.id);
-    fds.push_back({holding ? -1 : c.fd, POLLIN, 0});
+    fds.push_back({c.fd, static_cast<short>(holding ? 0 : POLLIN), 0});
   }
   const timespec ts{static_cast<time_t>(wait.count() / 1'000'000'000),
                     static_cast<long>(wait.count() % 1'000'000'000)};
@@ -161,16 +161,34 @@ bool CanBusRelay::run_once(std::chrono::milliseconds timeout, const sigset_t* si
   // not delivered to it, as on a real bus.
   for (std::size_t i = 0; i + 1 < fds.size(); ++i) {
     const short revents = fds[i + 1].revents;
-    if ((revents & POLLIN) != 0) {
+    if ((revents & (POLLHUP | POLLERR | POLLNVAL)) != 0) {
+      // The client left (or died): the frames still queued in its socket never reached the bus, and a
+      // node that is switched off or unplugged loses its transmit queue at once (ISO 11898-1: a frame
+      // exists on the bus only once it is sent). Read and dropped unsent, not relayed.
+      leave(clients_[i]);
+    } else if ((revents & POLLIN) != 0) {
       read_client(i, woke);
-    } else if ((revents & (POLLHUP | POLLERR | POLLNVAL)) != 0) {
-      clients_[i].gone = true;
     }
   }
   if (pacer_) run_bus(woke);
   remove_gone_clients();
   if ((fds[0].revents & POLLIN) != 0) accept_clients();
   return true;
+}
+
+void CanBusRelay::leave(Client& client) {
+  client.gone = true;
+  unsigned char buffer[sizeof(can_frame) + 1];
+  std::size_t got = 0;
+  // Bounded: a socket holds at most its receive buffer's worth of datagrams.
+  for (int n = 0; n < 1 << 16 && receive_datagram(client.fd, buffer, sizeof(buffer), got) == Received::kDatagram; ++n) {
+    if (got == sizeof(can_frame)) ++counters_.lost_with_sender;
+  }
+}
+
+bool CanBusRelay::departed(const Client& client) const {
+  pollfd p{client.fd, 0, 0};
+  return ::poll(&p, 1, 0) > 0 && (p.revents & (POLLHUP | POLLERR | POLLNVAL)) != 0;
 }
 
 void CanBusRelay::accept_clients() {
@@ -245,6 +263,10 @@ void CanBusRelay::run_bus(std::chrono::nanoseconds now) {
     // start of this one and contends when the bus is free again.
     for (Client& c : clients_) {
       if (c.id != sender || c.gone) continue;
+      if (departed(c)) {
+        leave(c);  // its queued frames go with it, not onto the bus
+        continue;
+      }
       can_frame next{};
       if (read_frame(c, next) == Read::kFrame) pacer_->offer(c.id, next, start);
     }

@@ -3,6 +3,8 @@
 // client sends is one 16-byte `struct can_frame` (SocketCAN layout); each valid frame is delivered to every
 // OTHER connected client, as a vcan interface delivers a CAN_RAW socket's frame to the host's other CAN_RAW
 // sockets (the sender does not get its own frame back: CAN_RAW_RECV_OWN_MSGS is off by default).
+// A client that leaves (closes, exits or is killed) takes the frames still queued in its socket with it,
+// as a node switched off loses its transmit queue; only frames the bus already took reach the others.
 // One thread, poll(): a client that does not read never blocks the bus — when its socket buffer is full the
 // frame is dropped for that client only and counted, as a CAN controller with a full receive FIFO would.
 // Unpaced (the default), a frame is passed on as soon as it is read. Paced, the bus runs at a bit rate
@@ -35,6 +37,7 @@ struct CanBusRelayCounters {
   std::uint64_t dropped_full = 0;          // deliveries skipped because the receiver's buffer was full
   std::uint64_t bits = 0;                  // bit times of the frames relayed (can_frame_bits.hpp)
   std::uint64_t withdrawn = 0;             // paced: frames waiting for the bus when their sender left
+  std::uint64_t lost_with_sender = 0;      // frames still queued in a client's socket when it left: dropped
 };
 
 class CanBusRelay {
@@ -80,6 +83,10 @@ class CanBusRelay {
   void run_bus(std::chrono::nanoseconds now);
   void fan_out(std::uint64_t from, const can_frame& frame);
   void remove_gone_clients();
+  // The client has left: marks it gone and drops (counts) the frames still queued in its socket.
+  void leave(Client& client);
+  // Whether the client's end of the socket has closed (checked before taking its next frame).
+  bool departed(const Client& client) const;
   std::chrono::nanoseconds now() const;
 
   std::string path_;

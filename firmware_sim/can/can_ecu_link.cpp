@@ -32,6 +32,9 @@ std::uint8_t pdack_bits_for(Fault fault) {
     case Fault::kSetpointOutOfRange: return kPdackValueOutOfRange;
     // A function this device cannot run now (wind compensation without its tables): outside its range.
     case Fault::kAutomaticUnavailable: return kPdackValueOutOfRange;
+    // A command that needs the product (a narrowed side, a border, wind compensation) before one is known:
+    // the device cannot carry it out now.
+    case Fault::kUnknownMaterial: return kPdackValueOutOfRange;
     case Fault::kNotANumber: return kPdackValueNotConform;
     case Fault::kCanNotSettable: return kPdackNotSettable;
     case Fault::kCanUnknownDdi: return kPdackDdiNotSupported;
@@ -61,20 +64,36 @@ ProcessDataBytes frame_bytes(const can_frame& frame) {
 
 namespace {
 
-isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings& settings) {
+struct PoolBytes {
+  std::vector<std::uint8_t> version4;
+  std::vector<std::uint8_t> version3;
+  std::array<std::uint8_t, 7> structure_label{};
+  std::array<std::uint8_t, 7> localization_label{};
+};
+
+// The pool of the machine as set: its sections divide `working_width_m` evenly, as the ECU's section
+// control does (side_geometry), so a TC switching by position uses the sections the ECU works with.
+PoolBytes make_pool(const Ecu& ecu, const CanEcuSettings& settings, double working_width_m) {
   isobus::SpreaderDescription d;
   d.name = settings.name;
   // The pool's serial number is the unit's: the NAME's identity number, which differs between units.
   d.serial_number = "SIM-" + std::to_string(isobus::decode_name(settings.name).identity_number);
   d.section_count = ecu.parameters().section_count;
   d.maximum_width_m = ecu.parameters().width_max_m;
-  d.working_width_m = std::min(settings.nominal_width_m, d.maximum_width_m);
+  d.working_width_m = std::min(working_width_m, d.maximum_width_m);
+  d.products = ecu.material_names();
+  if (d.products.size() > isobus::kMaxListedProducts) d.products.resize(isobus::kMaxListedProducts);
   const isobus::Ddop pool = isobus::make_spreader_ddop(d);
-  isobus::TcClientSettings tc;
-  tc.version.sections = static_cast<std::uint8_t>(d.section_count);
   const auto& device = std::get<isobus::DeviceObject>(pool.objects.front());
-  return isobus::TaskControllerClient(isobus::write_ddop(pool), device.structure_label, device.localization_label, tc,
-                                      isobus::write_ddop(pool, 3));
+  return {isobus::write_ddop(pool), isobus::write_ddop(pool, 3), device.structure_label, device.localization_label};
+}
+
+isobus::TaskControllerClient make_tc_client(const Ecu& ecu, const CanEcuSettings& settings) {
+  PoolBytes p = make_pool(ecu, settings, settings.nominal_width_m);
+  isobus::TcClientSettings tc;
+  tc.version.sections = static_cast<std::uint8_t>(ecu.parameters().section_count);
+  return isobus::TaskControllerClient(std::move(p.version4), p.structure_label, p.localization_label, tc,
+                                      std::move(p.version3));
 }
 
 }  // namespace
@@ -86,7 +105,19 @@ CanEcuProcessor::CanEcuProcessor(Ecu& ecu, const Clock& clock, CanFrameSink& tx,
       settings_(settings),
       network_(clock, tx, settings.name, settings.address),
       transport_(settings.address),
-      tc_client_(make_tc_client(ecu, settings)) {}
+      tc_client_(make_tc_client(ecu, settings)),
+      pool_width_m_(std::min(settings.nominal_width_m, ecu.parameters().width_max_m)) {}
+
+void CanEcuProcessor::follow_working_width(Nanoseconds now) {
+  // ISO 11783-10: the pool describes the machine as it works. A new working width moves every section's
+  // width and offset, so the pool is made again and, if a TC holds the old one, replaced (deactivate,
+  // transfer, activate). A width of 0 (not set) keeps the pool as it is.
+  const double width_m = ecu_.status().width_setpoint_m;
+  if (!(width_m > 0.0) || std::abs(width_m - pool_width_m_) < 0.0005) return;
+  pool_width_m_ = width_m;
+  PoolBytes p = make_pool(ecu_, settings_, width_m);
+  tc_client_.replace_pool(std::move(p.version4), p.structure_label, p.localization_label, std::move(p.version3), now);
+}
 
 void CanEcuProcessor::flush_isobus(Nanoseconds now) {
   if (!network_.has_address()) return;  // nothing but claims without a standing claim
@@ -130,11 +161,25 @@ void CanEcuProcessor::service() {
   // Fail safe without an address: a spreader nobody can address or supervise closes metering (and on
   // losing the address its work state goes off); the task controller switches it on again once the ECU
   // is back on the bus.
-  network_.service();
+  const bool lost = network_.service();
   ecu_.set_bus_address(network_.has_address());
   const Nanoseconds now = clock_.now();
+  if (lost) {
+    // Our address was taken, or we moved to another one (self-configurable): the TC knows our working
+    // set by an address we no longer hold. The connection starts over from the working-set master
+    // message (ISO 11783-10), and until the pool is active again no process data goes either way.
+    tc_client_.restart("our address was lost or changed");
+    rejoin_pending_ = true;
+  }
   if (partner_.update(now, ecu_.parameters().task_controller_timeout)) partner_lost(now);
+  if (rejoin_pending_ && network_.has_address() && partner_.address() &&
+      tc_client_.state() == isobus::TcClientState::kWaitForTc) {
+    // Back on the bus with a TC we know: start at once rather than at its next status (up to 2 s).
+    tc_client_.connect(*partner_.address(), now);
+  }
+  follow_working_width(now);
   tc_client_.update(now);
+  if (tc_client_.connected()) rejoin_pending_ = false;
   // A connection that ended takes its measurement triggers with it; the next one sets them again.
   if (tc_was_connected_ && !tc_client_.connected()) {
     triggers_.clear();
@@ -150,7 +195,7 @@ void CanEcuProcessor::send_measurements(Nanoseconds now) {
   const EcuStatus s = ecu_.status();
   const double dt_s = last_measurement_time_ ? to_seconds(now - *last_measurement_time_) : 0.0;
   last_measurement_time_ = now;
-  if (!network_.has_address()) return;
+  if (!network_.has_address() || rejoining()) return;
   triggers_.evaluate(
       now, s.ground_speed_m_s * dt_s * 1000.0, [&](std::uint16_t ddi) { return actual_value(ddi, s); },
       [&](const MeasurementSubscription& m, std::int32_t value) {
@@ -274,6 +319,9 @@ void CanEcuProcessor::handle_frame(const can_frame& frame) {
       }
       handle_process_data(frame, id.source, to_us);
       return;
+    case kAcknowledgementPgn:
+      handle_acknowledgement(frame, id.source, to_us);
+      return;
     case kWheelBasedSpeedPgn:
     case kGroundBasedSpeedPgn:
     case kMachineSelectedSpeedPgn:
@@ -344,6 +392,15 @@ std::optional<std::int32_t> CanEcuProcessor::actual_value(std::uint16_t ddi, con
     case Ddi::kActualRevolutions: return to_int32(s.rpm_actual * kRevolutionsScale);
     case Ddi::kActualSpeed: return to_int32(s.ground_speed_m_s * 1000.0);
     case Ddi::kSectionControlState: return section_control_state_;
+    case Ddi::kSetpointProduct: {
+      if (!ecu_.has_predictor()) return std::nullopt;  // no table, no product to choose (not in the pool)
+      const std::vector<std::string> names = ecu_.material_names();
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        if (names[k] == s.material) return static_cast<std::int32_t>(k + 1);
+      }
+      return 0;  // none known yet
+    }
+    case Ddi::kProductNumber: return std::nullopt;  // properties of the pool, not process data
   }
   return std::nullopt;
 }
@@ -418,6 +475,20 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
     case Ddi::kSetpointWindAlong:
       rejection = ecu_.set_wind(ecu_.status().wind_x_m_s, m.value / 1000.0);
       break;
+    case Ddi::kSetpointProduct: {
+      // The k-th material of the launch table (the pool lists them); 0 or beyond the list is no product.
+      const std::vector<std::string> names = ecu_.material_names();
+      if (names.empty()) {
+        ecu_.record_fault(Fault::kCanUnknownDdi);
+        return kPdackDdiNotSupported;
+      }
+      if (m.value < 1 || static_cast<std::size_t>(m.value) > names.size()) {
+        ecu_.record_fault(Fault::kUnknownMaterial);
+        return kPdackValueOutOfRange;
+      }
+      rejection = ecu_.set_material(names[static_cast<std::size_t>(m.value - 1)]);
+      break;
+    }
     case Ddi::kActualMassPerArea:
     case Ddi::kActualWorkingWidth:
     case Ddi::kMaximumWorkingWidth:
@@ -437,6 +508,33 @@ std::uint8_t CanEcuProcessor::apply_set_value(const ProcessData& m) {
 void CanEcuProcessor::partner_lost(Nanoseconds now) {
   ecu_.task_controller_gone();
   tc_client_.drop("the partner TC is gone: " + partner_.last_loss(), now);
+}
+
+void CanEcuProcessor::handle_acknowledgement(const can_frame& frame, std::uint8_t source, bool to_us) {
+  // ISO 11783-3 §5.4.5 acknowledgement: byte 0 control, byte 4 the address acknowledged, bytes 5-7 the
+  // PGN. A task controller that does not know a client's working set (it dropped us, or never heard our
+  // working-set master message) answers our process data with a NACK (or access denied): the TC has
+  // ended our session, whatever its status says.
+  if (frame.len != 8) {
+    ecu_.record_fault(Fault::kCanMalformedFrame);
+    return;
+  }
+  const std::uint32_t pgn = std::uint32_t{frame.data[5]} | (std::uint32_t{frame.data[6]} << 8) |
+                            (std::uint32_t{frame.data[7]} << 16);
+  const auto control = static_cast<AckControl>(frame.data[0]);
+  const bool refusal = control == AckControl::kNack || control == AckControl::kAccessDenied;
+  const bool about_us = to_us || frame.data[4] == network_.address();
+  if (!refusal || pgn != kProcessDataPgn || !about_us || !partner_.is_partner(source)) {
+    ++counters_.frames_not_for_us;
+    return;
+  }
+  ++counters_.tc_refusals;
+  // Lost as a partner: metering stops exactly as when the TC falls silent (work state off,
+  // task_controller_lost in DM1), and the client reconnects by itself after its retry delay. A storm of
+  // NACKs ends one session: those that follow, while we wait to reconnect, change nothing more.
+  ecu_.task_controller_gone();
+  rejoin_pending_ = true;
+  tc_client_.drop("the TC refused our process data (NACK): it does not know our working set", clock_.now());
 }
 
 void CanEcuProcessor::handle_tc_status(const can_frame& frame, std::uint8_t source) {
@@ -466,6 +564,12 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   // Without a standing address claim the ECU could not answer, and nobody could supervise it: process
   // data is not acted on (ISO 11783-5 §4.4.2).
   if (!network_.has_address()) {
+    // Listening needs no address: the partner TC's status still says it is alive, so a hold-off or a move
+    // longer than the 6 s supervision does not lose the partner the ECU is about to reconnect to.
+    if ((frame.data[0] & 0x0F) == static_cast<std::uint8_t>(ProcessDataCommand::kTaskControllerStatus) &&
+        partner_.is_partner(source)) {
+      partner_.on_tc_status(source, clock_.now());
+    }
     ++counters_.frames_not_for_us;
     return;
   }
@@ -490,6 +594,14 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   if (!partner_.is_partner(source)) {
     ++counters_.not_from_partner;
     ecu_.record_fault(Fault::kCanNotFromTaskController);
+    return;
+  }
+  // After our address changed or the TC refused us, process data waits for the working set to be
+  // connected again (ISO 11783-10: working-set master, pool, activation come first): values set now would
+  // be those of a session the TC has ended.
+  if (rejoining() && command != ProcessDataCommand::kTechnicalCapabilities &&
+      command != ProcessDataCommand::kDeviceDescriptor) {
+    ++counters_.before_reconnection;
     return;
   }
   // A negative acknowledge is only sent to a specific requester, never in answer to a broadcast.

@@ -54,6 +54,11 @@ struct CanLinkCounters {
   // counted as fault can_not_from_task_controller (ISO 11783-10: the client obeys its partner TC only).
   std::uint64_t not_from_partner = 0;
   std::uint64_t other_task_controllers = 0;  // TC status of a second, claimed TC: ignored, no fault
+  // NACKs (or access denied) of our process data from the partner TC: it no longer knows our working set.
+  std::uint64_t tc_refusals = 0;
+  // Process data from the partner after our address changed or it refused us, before the pool was
+  // active again: ignored.
+  std::uint64_t before_reconnection = 0;
 };
 
 // The speed sources a tractor broadcasts, in order of precedence.
@@ -93,6 +98,13 @@ class CanEcuProcessor {
   void handle_tc_status(const can_frame& frame, std::uint8_t source);
   // The partner TC is gone: metering stops as for a silent TC, the TC client's connection ends.
   void partner_lost(Nanoseconds now);
+  // ISO 11783-3 acknowledgement (PGN 0xE800): a NACK of our process data from the partner TC ends the
+  // TC session (metering stops as on TC loss; the client reconnects).
+  void handle_acknowledgement(const can_frame& frame, std::uint8_t source, bool to_us);
+  // The pool follows the working width set (sections, widths, offsets); replaced at the TC on a change.
+  void follow_working_width(Nanoseconds now);
+  // True from a loss of our address (or the TC's refusal) until the pool is active again.
+  bool rejoining() const { return rejoin_pending_ && !tc_client_.connected(); }
   void handle_speed(const can_frame& frame, SpeedSource source);
   std::optional<std::int32_t> actual_value(std::uint16_t ddi, const EcuStatus& status) const;
   // Applies a set-value; returns the PDACK error bits (0 = accepted).
@@ -124,6 +136,10 @@ class CanEcuProcessor {
   MeasurementTriggers triggers_;
   std::optional<Nanoseconds> last_measurement_time_;
   bool tc_was_connected_ = false;
+  // Our address was lost or changed, or the TC refused us: the working set must connect again (working-set
+  // master, pool, activation) before process data flows either way.
+  bool rejoin_pending_ = false;
+  double pool_width_m_;  // the working width the pool's sections divide [m]
   // DDI 160 as the TC set it: 1 while the TC switches the sections automatically (ISO 11783-10 section
   // control), 0 (manual) at start and again when the TC connection ends.
   std::int32_t section_control_state_ = 0;

@@ -26,6 +26,12 @@ enum class Ddi : std::uint16_t {
   kSetpointWindCompensation = 57346,  // 0 off, 1 on
   kSetpointWindAcross = 57347,        // [mm/s] measured wind across the travel, to the right
   kSetpointWindAlong = 57348,         // [mm/s] measured wind along the travel, forward
+  // The product in the hopper (on the bin's element): the number k of the k-th material of the ECU's
+  // launch table, which the pool lists as one property each (kProductNumber, designator = the material's
+  // name). 0 = none known yet; settable 1..n. ISO 11783-10's product structure (a product per bin, chosen
+  // in the task) needs a task and ISOXML; a number on the bin is what a TC without tasks can set.
+  kSetpointProduct = 57349,
+  kProductNumber = 57350,             // property: the number of the product its designator names
 };
 
 inline constexpr double kRevolutionsScale = 1e4;  // counts per r/min for DDI 389/390

@@ -73,6 +73,8 @@ std::string ddi_name(std::uint16_t ddi) {
     case Ddi::kSetpointWindCompensation: return "set-point wind compensation (proprietary)";
     case Ddi::kSetpointWindAcross: return "measured wind across (proprietary)";
     case Ddi::kSetpointWindAlong: return "measured wind along (proprietary)";
+    case Ddi::kSetpointProduct: return "set-point product (proprietary)";
+    case Ddi::kProductNumber: return "product number (proprietary)";
   }
   return "unknown DDI";
 }
@@ -108,6 +110,8 @@ std::string format_ddi_value(std::uint16_t ddi, std::int32_t raw) {
     case Ddi::kSetpointWindCompensation: return raw == 1 ? "on" : raw == 0 ? "off" : std::to_string(raw);
     case Ddi::kSetpointWindAcross:
     case Ddi::kSetpointWindAlong: return std::to_string(raw) + " mm/s";
+    case Ddi::kSetpointProduct:
+    case Ddi::kProductNumber: return raw == 0 ? "none" : "product " + std::to_string(raw);
   }
   return std::to_string(raw);
 }

@@ -99,6 +99,12 @@ void NetworkLink::request_address_claims() {
   } else {
     ++counters_.send_failures;
   }
+  // A request to the global address asks every node, its sender included (ISO 11783-5 §4.4.3; SAE
+  // J1939-81 likewise): our own frames never come back to us, so we answer it here. Other nodes take a
+  // node that has not claimed soon after a global request as gone from the bus (an independent stack
+  // drops it after 0.75 s), and a task controller already running would then ignore this ECU.
+  claim_.on_request_for_claim(clock_.now());
+  flush_claims();
 }
 
 void NetworkLink::send_nack(std::uint32_t pgn, std::uint8_t requester) {

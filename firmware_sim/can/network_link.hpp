@@ -47,6 +47,9 @@ class NetworkLink {
   bool service();
 
   Verdict handle(const IsobusId& id, const can_frame& frame);
+  // A global request for every node's address claim, answered by our own claim at once (the request asks
+  // us too). Sent by itself once our claim stands; a tool that waits for a node may ask again.
+  void request_address_claims();
   // Another node sent a frame (not an address claim) from our address: ISO 11783-5 address violation,
   // answered with our claim (rate-limited in AddressClaim). Nothing when not started (a replay).
   void on_address_violation();
@@ -63,7 +66,6 @@ class NetworkLink {
  private:
   Verdict handle_request(const IsobusId& id, const can_frame& frame);
   void send_nack(std::uint32_t pgn, std::uint8_t requester);
-  void request_address_claims();
   void flush_claims();
 
   const Clock& clock_;

@@ -214,13 +214,39 @@ Rejection Ecu::set_rpm_setpoint(double rpm) {
 Rejection Ecu::set_work_state(bool on) {
   work_state_setpoint_ = on;
   work_state_owner_ = WorkStateOwner::kTaskController;
+  tc_gone_ = false;
   return std::nullopt;
+}
+
+bool Ecu::needs_narrowing(std::uint32_t mask) const {
+  if (parameters_.disc_count < 2) return false;
+  const int n = section_count_;
+  const int h = side_geometry(width_setpoint_m_ > 0.0 ? width_setpoint_m_ : 1.0, n).side_sections;
+  // Section 1 is the leftmost: the left side's outermost section is 0, the right side's n − 1; a side is
+  // narrowed when its outermost section is off while one nearer the centre is on (plan_sides).
+  const auto side_bits = [&](int first, int count) { return ((1u << count) - 1u) << first; };
+  const std::uint32_t left = side_bits(0, h);
+  const std::uint32_t right = side_bits(n - h, h);
+  const bool left_narrowed = (mask & left) != 0 && (mask & 1u) == 0;
+  const bool right_narrowed = (mask & right) != 0 && (mask & (1u << (n - 1))) == 0;
+  return left_narrowed || right_narrowed;
 }
 
 Rejection Ecu::set_section_mask(std::uint32_t mask) {
   if ((mask & ~installed_mask()) != 0) return reject(Fault::kSetpointOutOfRange);
+  // A narrowed side is planned from the material's launch samples: with tables but no material the ECU
+  // would keep spreading those sections and say so only in the actual state. Refused instead, so that the
+  // controller learns it at once (PDACK, DM1) rather than after the first pass over the border.
+  if (needs_planning_without_material() && needs_narrowing(mask)) return reject(Fault::kUnknownMaterial);
   section_mask_ = mask;
   return std::nullopt;
+}
+
+std::vector<std::string> Ecu::material_names() const {
+  std::vector<std::string> names;
+  if (predictor_ == nullptr) return names;
+  for (std::size_t i = 0; i < predictor_->material_count(); ++i) names.emplace_back(predictor_->material_name(i));
+  return names;
 }
 
 Rejection Ecu::set_material(std::string_view material) {
@@ -245,6 +271,10 @@ Rejection Ecu::set_border(std::int32_t mode, double gap_m) {
   if (mode != static_cast<std::int32_t>(BorderMode::kOff) && parameters_.disc_count < 2) {
     return reject(Fault::kSetpointOutOfRange);  // one disc: no side to set apart
   }
+  // The border setting is searched on the material's launch samples: none known, nothing to search with.
+  if (mode != static_cast<std::int32_t>(BorderMode::kOff) && needs_planning_without_material()) {
+    return reject(Fault::kUnknownMaterial);
+  }
   border_mode_ = static_cast<BorderMode>(mode);
   border_gap_m_ = gap_m;
   return std::nullopt;
@@ -254,6 +284,7 @@ Rejection Ecu::set_wind_compensation(bool on) {
   if (on && (predictor_ == nullptr || planner_ == nullptr || parameters_.disc_count < 2)) {
     return reject(Fault::kAutomaticUnavailable);  // nothing to compensate with
   }
+  if (on && material_.empty()) return reject(Fault::kUnknownMaterial);  // whose flight to compensate
   wind_compensation_ = on;
   return std::nullopt;
 }
@@ -283,8 +314,19 @@ void Ecu::set_ground_speed_unavailable() {
 
 void Ecu::note_task_controller_alive() { last_task_controller_time_ = clock_.now(); }
 
-// No time of life left: the next step's supervision sees a silent task controller.
-void Ecu::task_controller_gone() { last_task_controller_time_.reset(); }
+// No time of life left, and the work state it switched on goes off now: its status may keep coming (a TC
+// that refuses us is still on the bus), so waiting for the next step's supervision could be too late.
+void Ecu::task_controller_gone() {
+  last_task_controller_time_.reset();
+  if (work_state_setpoint_ && work_state_owner_ == WorkStateOwner::kTaskController) {
+    work_state_setpoint_ = false;
+    work_state_owner_ = WorkStateOwner::kNone;
+    // The fault stays until a task controller switches the work state again: a TC that is still alive
+    // would clear it with its next status, before a DM1 had carried it.
+    tc_gone_ = true;
+    faults_.set_state(Fault::kTaskControllerLost, true, clock_.now());
+  }
+}
 
 void Ecu::set_bus_address(bool has_address) {
   if (has_bus_address_ && !has_address) {
@@ -539,7 +581,7 @@ void Ecu::supervise_controllers(Nanoseconds now) {
   if (!lcm_silent) lcm_lost_ = false;
   if (!tc_silent) tc_lost_ = false;
   faults_.set_state(Fault::kCommandTimeout, lcm_lost_, now);
-  faults_.set_state(Fault::kTaskControllerLost, tc_lost_, now);
+  faults_.set_state(Fault::kTaskControllerLost, tc_lost_ || tc_gone_, now);
 }
 
 void Ecu::step(double dt_s) {

@@ -60,8 +60,9 @@ class Ecu {
   void set_ground_speed_unavailable();
   // The task controller is alive: its status message (ISO 11783-10, every 2 s) or a set-value from it.
   void note_task_controller_alive();
-  // The task controller is gone without falling silent (its address taken by another NAME, or released):
-  // handled exactly as a task controller whose status stopped (work state off, task_controller_lost).
+  // The task controller is gone without falling silent (its address taken by another NAME, or released,
+  // or it refuses our working set): handled as a task controller whose status stopped (work state off,
+  // task_controller_lost), at once; the fault holds until a task controller switches the work state.
   void task_controller_gone();
   // The CAN link's address claim (ISO 11783-5): without a standing claim nobody can address or supervise
   // the ECU, so metering stays closed; losing the claim also switches the work state off.
@@ -79,6 +80,8 @@ class Ecu {
   const EcuParameters& parameters() const { return parameters_; }
   const FaultLog& faults() const { return faults_; }
   bool has_predictor() const { return predictor_ != nullptr; }
+  // The materials of the launch table, in its order (empty without tables): the products it can spread.
+  std::vector<std::string> material_names() const;
 
  private:
   // Which controller last changed the master work state; that one is supervised.
@@ -95,6 +98,10 @@ class Ecu {
   void predict_pattern();
   void check_achieved_width();
   std::uint32_t installed_mask() const;
+  // Whether `mask` narrows a side (its outermost section off, one nearer the centre on).
+  bool needs_narrowing(std::uint32_t mask) const;
+  // Tables loaded but no material known: a narrowing, border or wind plan cannot be made.
+  bool needs_planning_without_material() const { return predictor_ != nullptr && material_.empty(); }
   const WidthCurve* curve_for(std::string_view material) const;
   void plan_sides();
   double field_rpm_actual() const;
@@ -146,6 +153,7 @@ class Ecu {
   std::optional<Nanoseconds> last_task_controller_time_;
   bool lcm_lost_ = false;  // the LCM controller owned the work state and fell silent (until heard again)
   bool tc_lost_ = false;   // the same for the task controller
+  bool tc_gone_ = false;   // the TC's session ended without silence (task_controller_gone), until it switches again
   bool has_bus_address_ = true;  // no CAN link, or one with a standing address claim
 
   // Ground speed as last measured; usable only until `speed_valid_until_` (none: no valid speed).

@@ -67,16 +67,7 @@ void AddressClaim::lose(Nanoseconds now) {
 void AddressClaim::on_address_claimed(std::uint8_t source, std::uint64_t name, Nanoseconds now) {
   const bool active = state_ == ClaimState::kClaiming || state_ == ClaimState::kClaimed;
   if (name == name_) {
-    // ISO 11783-5 §4.3: a NAME identifies one control function on the network. Our NAME from another node
-    // (our own frames never come back: CAN_RAW without RECV_OWN_MSGS, spread-canbus without echo) means two
-    // units share an identity number; neither can be told apart, so neither may hold an address. This one
-    // gives up for good, and its cannot-claim makes the other do the same.
-    if (active) {
-      ++counters_.duplicate_names;
-      state_ = ClaimState::kCannotClaim;
-      address_ = kNullAddress;
-      queue({kNullAddress, name_}, now + cannot_claim_delay());
-    }
+    if (state_ != ClaimState::kNotStarted) on_own_name(now);
     return;
   }
   if (source >= kNullAddress) return;  // another function's cannot-claim: it holds nothing
@@ -91,6 +82,38 @@ void AddressClaim::on_address_claimed(std::uint8_t source, std::uint64_t name, N
   }
   ++counters_.contentions_lost;
   lose(now);
+}
+
+Nanoseconds AddressClaim::hold_off() const {
+  return kDuplicateNameHoldOff * (1 << std::min(std::max(hold_offs_ - 1, 0), kDuplicateNameMaxDoublings));
+}
+
+void AddressClaim::on_own_name(Nanoseconds now) {
+  // ISO 11783-5 §4.3: a NAME identifies one control function on the network. Our own frames never come
+  // back (CAN_RAW without RECV_OWN_MSGS, spread-canbus without echo), so our NAME from another node is
+  // either a stray or spoofed frame, or a second unit with our identity number.
+  ++counters_.duplicate_names;
+  const bool repeated = last_own_name_ && now - *last_own_name_ <= kDuplicateNameWindow;
+  last_own_name_ = now;
+  if (reclaim_at_) {
+    reclaim_at_ = now + hold_off();  // still there: stay silent a while longer
+    return;
+  }
+  if (state_ != ClaimState::kClaiming && state_ != ClaimState::kClaimed) return;
+  if (!repeated) {
+    // Once: contend. Our claim tells every node (the task controller included) which address our NAME
+    // holds, and a second unit with our NAME, seeing it, answers in turn.
+    queue({address_, name_}, now);
+    return;
+  }
+  // Again within the window: two units share the NAME and cannot be told apart, so this one holds no
+  // address for a while. Its cannot-claim (our NAME from 0xFE) makes the other unit do the same.
+  ++hold_offs_;
+  ++counters_.duplicate_name_holds;
+  state_ = ClaimState::kCannotClaim;
+  address_ = kNullAddress;
+  reclaim_at_ = now + hold_off();
+  queue({kNullAddress, name_}, now + cannot_claim_delay());
 }
 
 void AddressClaim::on_request_for_claim(Nanoseconds now) {
@@ -120,6 +143,19 @@ void AddressClaim::on_address_violation(Nanoseconds now) {
 
 std::vector<ClaimMessage> AddressClaim::poll(Nanoseconds now) {
   if (state_ == ClaimState::kClaiming && now - claim_sent_at_ >= kClaimSettleTime) state_ = ClaimState::kClaimed;
+  if (reclaim_at_ && now >= *reclaim_at_ && state_ == ClaimState::kCannotClaim) {
+    // The hold-off after a duplicate NAME is over: start again from the preferred address.
+    reclaim_at_.reset();
+    if (preferred_ < kNullAddress) {
+      claim(preferred_, now);
+    } else {
+      lose(now);
+    }
+  }
+  if (state_ == ClaimState::kClaimed && hold_offs_ > 0 && last_own_name_ &&
+      now - *last_own_name_ >= kDuplicateNameForgetAfter) {
+    hold_offs_ = 0;
+  }
   std::vector<ClaimMessage> due;
   // Stable: equal due times keep their queueing order.
   std::stable_sort(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) { return a.due < b.due; });

@@ -5,7 +5,9 @@
 //   not started --start()--> claiming --250 ms uncontested--> claimed
 //        claiming/claimed --a lower NAME claims our address--> claiming (next free address, if
 //                                       self-configurable) or cannot claim (cannot-claim message)
-//        claiming/claimed --our own NAME from another node--> cannot claim (two units with one NAME)
+//        claiming/claimed --our own NAME from another node, once--> our claim again (contend)
+//        claiming/claimed --our own NAME again within 2 s--> cannot claim for a hold-off (two units with
+//                                       one NAME), then claiming the preferred address again
 //        claiming/claimed --another node sends from our address--> our claim again (address violation)
 //
 // Only in `claimed` may the function send anything but address claims (§4.4.2: no transmission until
@@ -31,6 +33,17 @@ inline constexpr Nanoseconds kClaimSettleTime = std::chrono::milliseconds(250);
 // A cannot-claim message is delayed by 0.6 ms × a pseudo-random 0..255 (0-153 ms) so that several losers
 // answering the same request do not collide on the bus (§4.4.4.3).
 inline constexpr Nanoseconds kCannotClaimDelayUnit = std::chrono::microseconds(600);
+// Our NAME seen twice from another node within this window is a second unit with our NAME, not a stray
+// frame: one sighting is answered with our claim, a second within the window makes us give up.
+inline constexpr Nanoseconds kDuplicateNameWindow = std::chrono::seconds(2);
+// After giving up for a duplicate NAME the function stays silent this long (doubled for each further
+// episode, at most 16 times: 48 s), then claims its preferred address again. Our NAME seen meanwhile
+// starts the hold-off over. A stray frame costs a few seconds, never the rest of the day; two units with
+// one NAME take turns at most, and never hold an address at the same time.
+inline constexpr Nanoseconds kDuplicateNameHoldOff = std::chrono::seconds(3);
+inline constexpr int kDuplicateNameMaxDoublings = 4;
+// A claim that stood this long without our NAME from elsewhere ends the doubling.
+inline constexpr Nanoseconds kDuplicateNameForgetAfter = std::chrono::seconds(60);
 
 enum class ClaimState { kNotStarted, kClaiming, kClaimed, kCannotClaim };
 
@@ -47,6 +60,7 @@ struct AddressClaimCounters {
   std::uint64_t contentions_lost = 0;  // a lower NAME claimed our address
   std::uint64_t cannot_claim_sent = 0;
   std::uint64_t duplicate_names = 0;     // claims (or cannot-claims) carrying our own NAME from another node
+  std::uint64_t duplicate_name_holds = 0;  // times we gave up for a duplicate NAME (and claimed again later)
   std::uint64_t address_violations = 0;  // other nodes' frames from our address
   std::uint64_t violation_claims = 0;    // claims re-sent because of an address violation
 };
@@ -81,6 +95,8 @@ class AddressClaim {
  private:
   void claim(std::uint8_t address, Nanoseconds now);
   void lose(Nanoseconds now);
+  void on_own_name(Nanoseconds now);
+  Nanoseconds hold_off() const;
   void queue(ClaimMessage message, Nanoseconds due);
   std::optional<std::uint8_t> next_candidate() const;
   Nanoseconds cannot_claim_delay() const;
@@ -91,6 +107,9 @@ class AddressClaim {
   std::uint8_t address_ = kNullAddress;
   Nanoseconds claim_sent_at_{};
   std::optional<Nanoseconds> last_violation_claim_;
+  std::optional<Nanoseconds> last_own_name_;  // when our NAME was last seen from another node
+  std::optional<Nanoseconds> reclaim_at_;     // giving up for a duplicate NAME: when to claim again
+  int hold_offs_ = 0;                         // duplicate-NAME episodes since the claim last stood long
   // The NAME last seen claiming each address (0-253): a self-configurable function skips addresses whose
   // holder would beat it.
   std::array<std::optional<std::uint64_t>, 254> holders_{};

@@ -53,7 +53,9 @@ enum : std::uint16_t {
   kDptConnectorX = 60,
   kDptConnectorY = 61,
   kDptConnectorType = 62,
+  kDpdProduct = 42,
   kFirstSection = 100,
+  kFirstProduct = 200,
 };
 
 constexpr std::uint8_t kSetpoint = kPropertyDefaultSet | kPropertySettable;
@@ -93,6 +95,8 @@ std::optional<std::uint16_t> element_for_ddi(std::uint16_t value) {
       return kBoomElement;
     case Ddi::kSetpointMassPerArea:
     case Ddi::kActualMassPerArea:
+    case Ddi::kSetpointProduct:
+    case Ddi::kProductNumber:
       return kBinElement;
     case Ddi::kSetpointRevolutions:
     case Ddi::kActualRevolutions:
@@ -117,6 +121,10 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   if (!std::isfinite(d.boom_offset_x_m) || std::abs(d.boom_offset_x_m) > 100.0) {
     throw std::invalid_argument("SpreaderDescription.boom_offset_x_m: must be finite and within 100 m");
   }
+  if (d.products.size() > kMaxListedProducts) {
+    throw std::invalid_argument("SpreaderDescription.products: at most " + std::to_string(kMaxListedProducts) +
+                                " products, got " + std::to_string(d.products.size()));
+  }
   Ddop pool;
   auto& o = pool.objects;
 
@@ -133,7 +141,8 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   const auto width_cm = static_cast<std::uint32_t>(std::lround(d.working_width_m * 100.0));
   device.structure_label = {'L', 'S', 'P', static_cast<std::uint8_t>(d.section_count),
                             static_cast<std::uint8_t>(width_cm & 0xFFu), static_cast<std::uint8_t>(width_cm >> 8),
-                            0x03};
+                            // Layout revision 3; with a product list, 0x40 + the number of products.
+                            static_cast<std::uint8_t>(d.products.empty() ? 0x03 : 0x40 + d.products.size())};
   const auto offset_mm = static_cast<std::uint32_t>(millimetres(d.boom_offset_x_m));
   device.extended_structure_label = {'L',
                                      'S',
@@ -152,8 +161,10 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
   o.emplace_back(DeviceElement{kDetBoom, ElementType::kFunction, "Boom", kBoomElement, kDetDevice,
                                {kDpdSetpointWidth, kDpdActualWidth, kDpdMaximumWidth, kDpdSetpointCondensed,
                                 kDpdActualCondensed, kDpdSectionControlState, kDptBoomX, kDptBoomY, kDptBoomZ}});
-  o.emplace_back(DeviceElement{kDetBin, ElementType::kBin, "Hopper", kBinElement, kDetDevice,
-                               {kDpdSetpointRate, kDpdActualRate}});
+  std::vector<std::uint16_t> bin_objects{kDpdSetpointRate, kDpdActualRate};
+  if (!d.products.empty()) bin_objects.push_back(kDpdProduct);
+  for (std::size_t k = 0; k < d.products.size(); ++k) bin_objects.push_back(static_cast<std::uint16_t>(kFirstProduct + k));
+  o.emplace_back(DeviceElement{kDetBin, ElementType::kBin, "Hopper", kBinElement, kDetDevice, bin_objects});
   o.emplace_back(DeviceElement{kDetDisc, ElementType::kFunction, "Discs", kDiscElement, kDetDevice,
                                {kDpdSetpointRpm, kDpdActualRpm, kDpdBorderMode, kDpdBorderGap, kDpdWindCompensation,
                                 kDpdWindAcross, kDpdWindAlong}});
@@ -198,6 +209,16 @@ Ddop make_spreader_ddop(const SpreaderDescription& d) {
                                    kTriggerOnChange | kTriggerTimeInterval, "Rate set-point", kDvpRate});
   o.emplace_back(DeviceProcessData{kDpdActualRate, ddi(Ddi::kActualMassPerArea), kPropertyDefaultSet, kMeasured,
                                    "Rate", kDvpRate});
+  if (!d.products.empty()) {
+    // The product in the hopper, and the products to choose from: property k names product k.
+    o.emplace_back(DeviceProcessData{kDpdProduct, ddi(Ddi::kSetpointProduct), kSetpoint, kTriggerOnChange, "Product",
+                                     kNullObjectId});
+    for (std::size_t k = 0; k < d.products.size(); ++k) {
+      // ISO 11783-10 designators hold at most 32 bytes (version 4 pools): longer names are cut.
+      o.emplace_back(DeviceProperty{static_cast<std::uint16_t>(kFirstProduct + k), ddi(Ddi::kProductNumber),
+                                    static_cast<std::int32_t>(k + 1), d.products[k].substr(0, 32), kNullObjectId});
+    }
+  }
   o.emplace_back(DeviceProcessData{kDpdSetpointRpm, ddi(Ddi::kSetpointRevolutions), kSetpoint, kTriggerOnChange,
                                    "Disc speed set-point", kDvpRpm});
   o.emplace_back(DeviceProcessData{kDpdActualRpm, ddi(Ddi::kActualRevolutions), kPropertyDefaultSet, kMeasured,

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "firmware_sim/isobus/ddop.hpp"
 
@@ -32,7 +33,14 @@ struct SpreaderDescription {
   double working_width_m = 24.0;    // width the sections divide evenly [m] (> 0)
   double maximum_width_m = 54.0;    // DDI 70 [m]
   double boom_offset_x_m = -1.0;    // where the discs throw from, behind the reference point [m]
+  // The products the ECU can spread (its launch table's materials, in order): the hopper then carries the
+  // product set-point (DDI 57349) and one product-number property (DDI 57350 = k) per product, named by
+  // its designator. Empty: no table, no product to choose.
+  std::vector<std::string> products;
 };
+
+// At most this many products are listed (object IDs 200-263).
+inline constexpr std::size_t kMaxListedProducts = 64;
 
 // Throws std::invalid_argument naming a bad field.
 Ddop make_spreader_ddop(const SpreaderDescription& description);

@@ -14,6 +14,7 @@ const char* tc_client_state_name(TcClientState state) {
     case TcClientState::kWaitTransferAnswer: return "wait_transfer_answer";
     case TcClientState::kWaitPoolAnswer: return "wait_pool_answer";
     case TcClientState::kWaitActivateAnswer: return "wait_activate_answer";
+    case TcClientState::kWaitDeactivateAnswer: return "wait_deactivate_answer";
     case TcClientState::kConnected: return "connected";
     case TcClientState::kRetryWait: return "retry_wait";
   }
@@ -45,6 +46,7 @@ void TaskControllerClient::expect(TcClientState state, Nanoseconds now, Nanoseco
 }
 
 void TaskControllerClient::end_connection(std::string why, Nanoseconds now) {
+  pool_change_pending_ = false;  // the next connection transfers the current pool anyway
   last_error_ = std::move(why);
   state_ = TcClientState::kRetryWait;
   deadline_ = now + settings_.retry_delay;
@@ -55,17 +57,63 @@ void TaskControllerClient::drop(std::string why, Nanoseconds now) {
   if (tc_) end_connection(std::move(why), now);
 }
 
+void TaskControllerClient::restart(std::string why) {
+  if (tc_ || state_ == TcClientState::kRetryWait) last_error_ = std::move(why);
+  state_ = TcClientState::kWaitForTc;
+  tc_.reset();
+  out_.clear();
+  pool_change_pending_ = false;  // messages of the old session, from an address we no longer hold
+}
+
+void TaskControllerClient::connect(std::uint8_t tc, Nanoseconds now) {
+  if (state_ != TcClientState::kWaitForTc) return;
+  // ISO 11783-10 (connection procedure): the working set names itself with the working-set master
+  // message (one member, this ECU) before any other message to the TC, then asks the TC's version.
+  tc_ = tc;
+  last_tc_status_ = now;
+  send(kWorkingSetMasterPgn, 0xFF, encode_working_set_master(1));
+  send_tc(tc_frame(TcMessage::kRequestVersion));
+  expect(TcClientState::kWaitVersion, now, settings_.answer_timeout);
+}
+
+void TaskControllerClient::replace_pool(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
+                                        std::array<std::uint8_t, 7> localization_label,
+                                        std::vector<std::uint8_t> pool_version3, Nanoseconds now) {
+  pool_ = std::move(pool);
+  pool_version3_ = std::move(pool_version3);
+  structure_label_ = structure_label;
+  localization_label_ = localization_label;
+  structure_known_ = false;  // a label compared before the change named the old pool
+  switch (state_) {
+    case TcClientState::kConnected:
+      begin_pool_change(now);
+      return;
+    case TcClientState::kWaitTransferAnswer:
+    case TcClientState::kWaitPoolAnswer:
+    case TcClientState::kWaitActivateAnswer:
+    case TcClientState::kWaitDeactivateAnswer:
+      pool_change_pending_ = true;  // the old pool is on its way: change it once it is active
+      return;
+    default:
+      return;  // not yet as far as the pool: the connection takes the new one
+  }
+}
+
+void TaskControllerClient::begin_pool_change(Nanoseconds now) {
+  // ISO 11783-10 (change of the device descriptor): the client deactivates its pool, transfers the new one
+  // and activates it; the TC then knows the machine by the new pool's structure label and geometry.
+  pool_change_pending_ = false;
+  ++pool_changes_;
+  send_tc(encode_activate(false));
+  expect(TcClientState::kWaitDeactivateAnswer, now, settings_.answer_timeout);
+}
+
 void TaskControllerClient::handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now) {
   const auto kind = tc_message_kind(data);
   if (!kind) return;
   if (*kind == TcMessage::kTcStatus) {
     if (state_ == TcClientState::kWaitForTc) {
-      // A TC is there: name our working set (one member, this ECU) and start the handshake.
-      tc_ = source;
-      last_tc_status_ = now;
-      send(kWorkingSetMasterPgn, 0xFF, encode_working_set_master(1));
-      send_tc(tc_frame(TcMessage::kRequestVersion));
-      expect(TcClientState::kWaitVersion, now, settings_.answer_timeout);
+      connect(source, now);  // a TC is there
     } else if (tc_ && source == *tc_) {
       last_tc_status_ = now;
     }
@@ -129,6 +177,15 @@ void TaskControllerClient::handle_message(std::uint8_t source, std::span<const s
       expect(TcClientState::kWaitActivateAnswer, now, settings_.answer_timeout);
       return;
     case TcMessage::kActivatePoolResponse:
+      if (state_ == TcClientState::kWaitDeactivateAnswer) {
+        if (data[1] != 0) {
+          end_connection("the TC could not deactivate the pool (error bits " + std::to_string(data[1]) + ")", now);
+          return;
+        }
+        send_tc(encode_request_pool_transfer(static_cast<std::uint32_t>(pool_for_tc().size())));
+        expect(TcClientState::kWaitTransferAnswer, now, settings_.answer_timeout);
+        return;
+      }
       if (state_ != TcClientState::kWaitActivateAnswer) return;
       if (data[1] != 0) {
         end_connection("the TC could not activate the pool (error bits " + std::to_string(data[1]) +
@@ -140,6 +197,7 @@ void TaskControllerClient::handle_message(std::uint8_t source, std::span<const s
       ++connections_;
       last_error_.clear();
       next_client_task_ = now;  // the first client task message goes out with the next update
+      if (pool_change_pending_) begin_pool_change(now);
       return;
     default:
       return;

@@ -10,6 +10,9 @@
 //   transfer answer -> object-pool transfer (the pool, by TP/ETP)
 //   pool answer     -> activate
 //   activate answer -> connected: client task message every 2 s
+//   pool changed while connected (replace_pool) -> deactivate; its answer -> request object-pool transfer
+//                      -> ... -> activate again (ISO 11783-10: a changed pool is deactivated, transferred and
+//                      activated; the TC takes the new structure label and geometry)
 // Any refusal or a TC silent for 6 s (three missed status messages) ends the connection; the client starts
 // again with the next TC status after `retry_delay`. The ECU core's own supervision of the TC (work state
 // off after 6 s) does not depend on this state machine.
@@ -35,6 +38,7 @@ enum class TcClientState : std::uint8_t {
   kWaitTransferAnswer,    // request object-pool transfer sent
   kWaitPoolAnswer,        // object-pool transfer sent
   kWaitActivateAnswer,    // activate sent
+  kWaitDeactivateAnswer,  // deactivate sent: the pool changed while connected
   kConnected,             // pool active: process data flows
   kRetryWait,             // refused or timed out: waiting before the next attempt
 };
@@ -67,8 +71,24 @@ class TaskControllerClient {
   void handle_message(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now);
   // Timeouts and the periodic client task message.
   void update(Nanoseconds now);
-  // The partner TC is gone (its address taken or released): the connection ends as on a timeout.
+  // The partner TC is gone (its address taken or released), or refuses us (a NACK of our process data):
+  // the connection ends as on a timeout, and the next attempt waits `retry_delay`.
   void drop(std::string why, Nanoseconds now);
+  // Our own address changed or was lost (ISO 11783-5): the TC knows our working set by an address we no
+  // longer hold, so the connection ends at once, without the retry delay. connect() starts it again once
+  // our address stands.
+  void restart(std::string why);
+  // Starts the connection with `tc` now (working-set master, request version), as a TC status from it
+  // does, when no connection is running or waiting to retry.
+  void connect(std::uint8_t tc, Nanoseconds now);
+  // The machine changed (the working width, and so the sections' widths and offsets): the new pool and its
+  // labels replace the old. Connected, the pool is deactivated, transferred again and activated; while
+  // connecting, the connection goes on with the new pool (a transfer already under way is followed by
+  // this change once active); otherwise the next connection uses it.
+  void replace_pool(std::vector<std::uint8_t> pool, std::array<std::uint8_t, 7> structure_label,
+                    std::array<std::uint8_t, 7> localization_label, std::vector<std::uint8_t> pool_version3,
+                    Nanoseconds now);
+  std::uint64_t pool_changes() const { return pool_changes_; }  // pools replaced while connected
   std::vector<TcOutgoing> take_outgoing();
 
   TcClientState state() const { return state_; }
@@ -82,6 +102,7 @@ class TaskControllerClient {
   void send_tc(const TcFrame& frame) { send(0xCB00, *tc_, frame); }
   void expect(TcClientState state, Nanoseconds now, Nanoseconds timeout);
   void end_connection(std::string why, Nanoseconds now);
+  void begin_pool_change(Nanoseconds now);
 
   const std::vector<std::uint8_t>& pool_for_tc() const;
 
@@ -99,6 +120,8 @@ class TaskControllerClient {
   Nanoseconds next_client_task_{};
   std::string last_error_;
   std::uint64_t connections_ = 0;
+  std::uint64_t pool_changes_ = 0;
+  bool pool_change_pending_ = false;  // the pool changed while the old one was being transferred
   std::vector<TcOutgoing> out_;
 };
 

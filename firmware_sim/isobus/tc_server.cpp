@@ -48,8 +48,35 @@ void TcServer::start(std::uint8_t address, Nanoseconds now) {
 }
 
 void TcServer::set_address(std::uint8_t address) {
+  if (started_ && address != address_ && client_) {
+    // The client connected to the address we held: its partner is gone (ISO 11783-5: our NAME now claims
+    // another address), and it connects again from its working-set master message.
+    drop_client("our address changed from " + hex8(address_) + " to " + hex8(address));
+  }
   address_ = address;
   transport_.set_address(address);
+}
+
+void TcServer::drop_client(const std::string& why) {
+  event("client " + hex8(*client_) + " disconnected: " + why + "; its pool kept");
+  client_.reset();
+  client_name_.reset();
+  client_version_.reset();
+  state_ = TcConnectionState::kNone;
+}
+
+void TcServer::on_address_claimed(std::uint8_t source, std::uint64_t name) {
+  if (source < 0xFE) names_[source] = name;
+  if (!client_) return;
+  // ISO 11783-5: an address belongs to the NAME that last claimed it, and ISO 11783-10 knows a client by
+  // its NAME. Another NAME at the client's address has replaced it; the client's NAME at another address
+  // (or unable to claim one) has left the address its session runs on. Either way the session ends, and
+  // the working set connects again from its working-set master message.
+  if (source == *client_ && client_name_ && name != *client_name_) {
+    drop_client("another NAME claimed its address");
+  } else if (client_name_ && name == *client_name_ && source != *client_) {
+    drop_client(source == 0xFE ? "it cannot claim an address" : "it moved to " + hex8(source));
+  }
 }
 
 void TcServer::handle_frame(std::uint32_t pgn, std::uint8_t source, std::uint8_t destination,
@@ -103,6 +130,16 @@ void TcServer::handle_frame(std::uint32_t pgn, std::uint8_t source, std::uint8_t
       event("malformed working-set master message from " + hex8(source));
       return;
     }
+    if (client_ && *client_ == source && state_ != TcConnectionState::kConnecting &&
+        state_ != TcConnectionState::kPoolReceiving) {
+      // The working set names itself again: it starts its connection over (its address changed, or it
+      // lost us), and the set-points of the old session are void until its pool is active again.
+      event("client " + hex8(source) + " connects again");
+      client_version_.reset();
+      state_ = TcConnectionState::kConnecting;
+      client_seen_ = now;
+      return;
+    }
     accept_client(source, now);
     return;
   }
@@ -138,6 +175,7 @@ bool TcServer::accept_client(std::uint8_t source, Nanoseconds now) {
     return false;
   }
   client_ = source;
+  client_name_ = source < 0xFE ? names_[source] : std::nullopt;
   client_version_.reset();
   state_ = TcConnectionState::kConnecting;
   client_seen_ = now;

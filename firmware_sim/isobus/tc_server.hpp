@@ -14,6 +14,7 @@
 // message (every 2 s) is supervised: 6 s without it (or, while connecting, without any message) and the
 // client is dropped; the pool stays held, so a reconnecting client whose structure label matches skips the
 // transfer (ISO 11783-10: the structure label identifies a stored pool).
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -84,8 +85,12 @@ class TcServer {
   // Begins serving from `address` (once the caller's address claim stands, ISO 11783-5 §4.4.2): the first
   // TC status goes out at once.
   void start(std::uint8_t address, Nanoseconds now);
-  // The address claim moved us: later frames go from the new address.
+  // The address claim moved us: later frames go from the new address, and a connected client connects
+  // again (it knew us by the old one).
   void set_address(std::uint8_t address);
+  // Every address claim seen on the bus (ISO 11783-5; 0xFE: cannot claim): the TC knows its client by
+  // NAME, and ends the session when the client's address is taken by another NAME or its NAME moves.
+  void on_address_claimed(std::uint8_t source, std::uint64_t name);
   std::uint8_t address() const { return address_; }
   bool started() const { return started_; }
 
@@ -131,6 +136,7 @@ class TcServer {
   void handle_process_data(std::uint8_t source, std::span<const std::uint8_t> data, Nanoseconds now);
   void handle_pool(std::uint8_t source, std::span<const std::uint8_t> pool_bytes);
   bool accept_client(std::uint8_t source, Nanoseconds now);
+  void drop_client(const std::string& why);
   void send_to_client(const TcFrame& frame);
   void send_status(Nanoseconds now);
   std::string send_process_data(std::uint8_t command, std::uint16_t element, std::uint16_t ddi,
@@ -146,6 +152,8 @@ class TcServer {
 
   TcConnectionState state_ = TcConnectionState::kNone;
   std::optional<std::uint8_t> client_;
+  std::optional<std::uint64_t> client_name_;  // the NAME that claimed the client's address, when seen
+  std::array<std::optional<std::uint64_t>, 254> names_{};  // the NAME last seen claiming each address
   std::optional<TcVersion> client_version_;
   Nanoseconds client_seen_{};           // last message that keeps the client alive
   std::uint32_t granted_pool_bytes_ = 0;

@@ -114,23 +114,45 @@ TEST(AddressClaim, LowerNameWinsTheWinnerRepeatsItsClaim) {
   EXPECT_EQ(claim.counters().contentions_won, 1u);
 }
 
-// Two units with one NAME (one identity number): neither can be told apart, neither keeps an address.
-TEST(AddressClaim, OurNameFromAnotherNodeMakesUsGiveUp) {
+// Our NAME from another node once (a stray or spoofed frame): we contend with our claim and keep the
+// address. Twice within 2 s (a second unit with our NAME): neither can be told apart, so we give up for a
+// hold-off and then claim again by ourselves, never going silent for good.
+TEST(AddressClaim, OurNameFromAnotherNodeOnceIsContendedTwiceMakesUsHoldOff) {
   for (const std::uint8_t other_address : {std::uint8_t{0x80}, std::uint8_t{0x81}, kNullAddress}) {
     AddressClaim claim(name_with(true, 10), 0x80);  // even a self-configurable one: moving would not help
     claim.start(0ms);
     claim.poll(300ms);
     ASSERT_TRUE(claim.has_address());
     claim.on_address_claimed(other_address, name_with(true, 10), 400ms);
-    EXPECT_EQ(claim.state(), ClaimState::kCannotClaim) << int{other_address};
-    EXPECT_EQ(claim.counters().duplicate_names, 1u);
-    const auto sent = claim.poll(600ms);
+    auto sent = claim.poll(400ms);
+    ASSERT_EQ(sent.size(), 1u) << int{other_address};
+    EXPECT_EQ(sent[0].source, 0x80) << "one sighting: our claim again, the address stays ours";
+    EXPECT_TRUE(claim.has_address());
+    claim.on_address_claimed(other_address, name_with(true, 10), 500ms);
+    EXPECT_EQ(claim.state(), ClaimState::kCannotClaim) << "a second sighting within 2 s: a second unit";
+    EXPECT_FALSE(claim.has_address());
+    sent = claim.poll(700ms);
     ASSERT_EQ(sent.size(), 1u);
     EXPECT_EQ(sent[0].source, kNullAddress) << "cannot-claim, which the other unit sees in turn";
-    // The other unit's cannot-claim (our NAME again) changes nothing more: no ping-pong.
-    claim.on_address_claimed(kNullAddress, name_with(true, 10), 700ms);
-    EXPECT_TRUE(claim.poll(1000ms).empty());
-    EXPECT_EQ(claim.counters().duplicate_names, 1u);
+    // The other unit's cannot-claim (our NAME again) starts the 3 s hold-off over, and sends nothing.
+    claim.on_address_claimed(kNullAddress, name_with(true, 10), 800ms);
+    EXPECT_TRUE(claim.poll(3799ms).empty());
+    EXPECT_FALSE(claim.has_address());
+    sent = claim.poll(3800ms);
+    ASSERT_EQ(sent.size(), 1u) << "the hold-off is over: claim the preferred address again";
+    EXPECT_EQ(sent[0].source, 0x80);
+    claim.poll(4050ms);
+    EXPECT_TRUE(claim.has_address());
+    EXPECT_EQ(claim.counters().duplicate_names, 3u);
+    EXPECT_EQ(claim.counters().duplicate_name_holds, 1u);
+    // A second episode holds off twice as long (6 s).
+    claim.on_address_claimed(other_address, name_with(true, 10), 10000ms);
+    claim.on_address_claimed(other_address, name_with(true, 10), 10100ms);
+    EXPECT_FALSE(claim.has_address());
+    claim.poll(16099ms);
+    EXPECT_EQ(claim.state(), ClaimState::kCannotClaim);
+    EXPECT_EQ(claim.poll(16100ms).size(), 1u);
+    EXPECT_EQ(claim.state(), ClaimState::kClaiming);
   }
 }
 
@@ -299,11 +321,14 @@ TEST_F(NetworkedEcu, SendsNothingButItsClaimUntilTheClaimStands) {
   // Once the claim stands the ECU also broadcasts its DM1 (once a second): not part of this check.
   std::erase_if(sent, [](const can_frame& f) { return decode_id(f.can_id & CAN_EFF_MASK).pgn == 0xFECAu; });
   // ... and asks every node for its address claim, to learn who holds which address (a TC that claimed
-  // before the ECU joined).
-  ASSERT_EQ(sent.size(), 1u);
+  // before the ECU joined). The request asks the ECU too: its claim follows at once, or a node that drops
+  // whoever does not answer a global request would drop the ECU.
+  ASSERT_EQ(sent.size(), 2u);
   EXPECT_EQ(sent[0].can_id, 0x18EAFF80u | CAN_EFF_FLAG);
   ASSERT_EQ(sent[0].len, 3);
   EXPECT_EQ(sent[0].data[0] | (sent[0].data[1] << 8) | (sent[0].data[2] << 16), 0xEE00);
+  EXPECT_EQ(sent[1].can_id, 0x18EEFF80u | CAN_EFF_FLAG) << "the ECU answers its own global request";
+  EXPECT_EQ(isobus::name_from_bytes(sent[1].data), CanEcuSettings{}.name);
   become_partner();
   sink_.take();  // the TC client's connection start
   request_rate();
@@ -379,15 +404,22 @@ TEST_F(NetworkedEcu, ARequestToUsForAnUnsupportedPgnIsNackedAGlobalOneIsNot) {
   EXPECT_TRUE(sink_.take().empty());
 }
 
-// Two ECUs on one bus (spread-canbus's relay, real sockets): with one NAME neither may hold an address,
-// whether they prefer one address or two; with their own serial numbers both do.
+// Two ECUs on one bus (spread-canbus's relay, real sockets): with one NAME they never hold an address at
+// the same time, whether they prefer one address or two (each gives up for a hold-off and claims again:
+// they may take turns, neither goes silent for good); with their own serial numbers both hold one.
 struct TwoUnits {
-  static bool both_hold_an_address(std::uint32_t identity_a, std::uint8_t address_a, std::uint32_t identity_b,
-                                   std::uint8_t address_b, std::string* report) {
+  bool both_at_1_5_s = false;     // both held an address 1 s after B joined
+  bool both_at_once_later = false;  // both held an address at any step from then on
+  bool a_again = false;           // A held an address again after the first second
+  bool b_again = false;
+  std::uint64_t a_holds = 0;      // duplicate-NAME hold-offs
+  std::uint64_t b_holds = 0;
+  std::string report;
+
+  TwoUnits(std::uint32_t identity_a, std::uint8_t address_a, std::uint32_t identity_b, std::uint8_t address_b,
+           std::chrono::milliseconds watch) {
     char pattern[] = "/tmp/canbus-XXXXXX";
     const std::string dir = ::mkdtemp(pattern);
-    bool a_has = false;
-    bool b_has = false;
     {
       CanBusRelay bus(dir + "/bus");
       ManualClock clock;
@@ -407,35 +439,49 @@ struct TwoUnits {
       };
       CanPortIo a(port_a, ecu_a, clock, settings(identity_a, address_a));
       CanPortIo b(port_b, ecu_b, clock, settings(identity_b, address_b));
-      auto run = [&](std::chrono::milliseconds span) {
+      auto run = [&](std::chrono::milliseconds span, bool watching) {
         for (auto t = 0ms; t < span; t += 10ms) {
           bus.run_once(1ms);
           a.pump(Nanoseconds::zero());
           b.pump(Nanoseconds::zero());
           clock.advance(10ms);
+          if (!watching) continue;
+          const bool a_has = a.processor().has_address();
+          const bool b_has = b.processor().has_address();
+          both_at_once_later = both_at_once_later || (a_has && b_has);
+          a_again = a_again || a_has;
+          b_again = b_again || b_has;
         }
       };
       a.processor().start_address_claim();
-      run(500ms);  // A's claim stands before B joins, as with a unit switched on later
+      run(500ms, false);  // A's claim stands before B joins, as with a unit switched on later
       b.processor().start_address_claim();
-      run(1000ms);
-      a_has = a.processor().has_address();
-      b_has = b.processor().has_address();
-      *report = "A duplicates " + std::to_string(a.processor().network().claim().counters().duplicate_names) +
-                ", B duplicates " + std::to_string(b.processor().network().claim().counters().duplicate_names);
+      run(1000ms, false);
+      both_at_1_5_s = a.processor().has_address() && b.processor().has_address();
+      run(watch, true);
+      const auto& ca = a.processor().network().claim().counters();
+      const auto& cb = b.processor().network().claim().counters();
+      a_holds = ca.duplicate_name_holds;
+      b_holds = cb.duplicate_name_holds;
+      report = "A hold-offs " + std::to_string(a_holds) + ", B hold-offs " + std::to_string(b_holds);
     }
     std::filesystem::remove_all(dir);
-    return a_has && b_has;
   }
 };
 
-TEST(TwoUnitsOnOneBus, OneNameMeansNeitherHoldsAnAddress) {
-  std::string report;
-  EXPECT_FALSE(TwoUnits::both_hold_an_address(0x1234, 0x80, 0x1234, 0x80, &report)) << report;
-  EXPECT_EQ(report, "A duplicates 1, B duplicates 1");
-  EXPECT_FALSE(TwoUnits::both_hold_an_address(0x1234, 0x80, 0x1234, 0x81, &report)) << report;
-  EXPECT_EQ(report, "A duplicates 1, B duplicates 1");
-  EXPECT_TRUE(TwoUnits::both_hold_an_address(1001, 0x80, 1002, 0x81, &report)) << report;
+TEST(TwoUnitsOnOneBus, OneNameNeverHoldsTwoAddressesAtOnce) {
+  for (const std::uint8_t address_b : {std::uint8_t{0x80}, std::uint8_t{0x81}}) {
+    const TwoUnits units(0x1234, 0x80, 0x1234, address_b, 14000ms);
+    EXPECT_FALSE(units.both_at_1_5_s) << units.report;
+    EXPECT_FALSE(units.both_at_once_later) << units.report;
+    EXPECT_GE(units.a_holds, 1u) << units.report;
+    EXPECT_GE(units.b_holds, 1u) << units.report;
+    // The hold-offs end: at least one unit is back on the bus by itself, without a restart.
+    EXPECT_TRUE(units.a_again || units.b_again) << units.report;
+  }
+  const TwoUnits distinct(1001, 0x80, 1002, 0x81, 0ms);
+  EXPECT_TRUE(distinct.both_at_1_5_s) << distinct.report;
+  EXPECT_EQ(distinct.report, "A hold-offs 0, B hold-offs 0");
 }
 
 }  // namespace

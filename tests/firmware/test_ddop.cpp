@@ -133,8 +133,42 @@ TEST(Ddop, StructureLabelChangesWithTheLayout) {
     return all_of<DeviceObject>(make_spreader_ddop(d))[0].structure_label;
   };
   EXPECT_NE(label(8), label(6));
-  EXPECT_THROW(make_spreader_ddop(SpreaderDescription{.section_count = 17}), std::invalid_argument);
-  EXPECT_THROW(make_spreader_ddop(SpreaderDescription{.working_width_m = 60.0}), std::invalid_argument);
+  SpreaderDescription too_many_sections;
+  too_many_sections.section_count = 17;
+  EXPECT_THROW(make_spreader_ddop(too_many_sections), std::invalid_argument);
+  SpreaderDescription too_wide;
+  too_wide.working_width_m = 60.0;
+  EXPECT_THROW(make_spreader_ddop(too_wide), std::invalid_argument);
+}
+
+// With a launch table the hopper offers its products: the product set-point (DDI 57349) and one property
+// per product (DDI 57350 = k, designator = the material's name), and the structure label changes, so a TC
+// holding the pool without them loads it again.
+TEST(Ddop, HopperListsTheTablesProducts) {
+  SpreaderDescription d;
+  d.products = {"urea", "CAN 27 with a name longer than thirty-two bytes"};
+  const Ddop pool = make_spreader_ddop(d);
+  const DdopParseResult result = parse_ddop(write_ddop(pool));
+  ASSERT_TRUE(result.pool) << result.error;
+  const Ddop& parsed = *result.pool;
+  std::vector<std::string> names;
+  for (const DeviceProperty& p : all_of<DeviceProperty>(parsed)) {
+    if (p.ddi == 57350) {
+      names.push_back(p.designator);
+      EXPECT_EQ(p.value, static_cast<std::int32_t>(names.size()));
+    }
+  }
+  ASSERT_EQ(names.size(), 2u);
+  EXPECT_EQ(names[0], "urea");
+  EXPECT_EQ(names[1].size(), 32u);
+  int product_dpd = 0;
+  for (const DeviceProcessData& p : all_of<DeviceProcessData>(parsed)) product_dpd += p.ddi == 57349 ? 1 : 0;
+  EXPECT_EQ(product_dpd, 1);
+  EXPECT_EQ(element_for_ddi(57349), std::optional<std::uint16_t>(2)) << "on the hopper (bin) element";
+  EXPECT_NE(all_of<DeviceObject>(pool)[0].structure_label, all_of<DeviceObject>(make_spreader_ddop({}))[0].structure_label);
+  SpreaderDescription too_many;
+  too_many.products.assign(kMaxListedProducts + 1, "x");
+  EXPECT_THROW(make_spreader_ddop(too_many), std::invalid_argument);
 }
 
 TEST(Ddop, EveryTruncationIsRefusedWithItsOffset) {

@@ -211,6 +211,34 @@ TEST(Ecu, BadSingleSetValuesAreRejected) {
   EXPECT_EQ(ecu.faults().total(), 4u);
 }
 
+// With tables but no material known (a CAN-only machine whose product was never chosen), a command that
+// needs a plan from the material's launch samples — a narrowed side, a border — is refused (fault
+// unknown_material: a PDACK error and a DM1 on the bus), never accepted to do nothing. Commands that need
+// no plan still go through: every section on, or a whole side off (that disc's flow closes).
+TEST(Ecu, CommandsThatNeedTheMaterialAreRefusedUntilOneIsKnown) {
+  ManualClock clock;
+  AnalyticPredictor predictor;
+  Ecu ecu(clock, EcuParameters{}, &predictor);
+  ASSERT_FALSE(ecu.set_width_setpoint(12.0));
+  EXPECT_EQ(ecu.set_section_mask(0x7F), Fault::kUnknownMaterial) << "section 8 off narrows the right side";
+  EXPECT_EQ(ecu.set_section_mask(0xFE), Fault::kUnknownMaterial) << "section 1 off narrows the left side";
+  EXPECT_EQ(ecu.set_border(1, 0.0), Fault::kUnknownMaterial);
+  EXPECT_EQ(ecu.status().section_mask, 0xFF);
+  EXPECT_EQ(ecu.status().border_mode, BorderMode::kOff);
+  EXPECT_EQ(ecu.faults().count(Fault::kUnknownMaterial), 3u);
+  EXPECT_FALSE(ecu.set_section_mask(0x0F)) << "the right side off: its disc closes, no plan needed";
+  EXPECT_FALSE(ecu.set_section_mask(0xFF));
+  EXPECT_FALSE(ecu.set_section_mask(0x99)) << "inner sections off between sections on: nothing narrows";
+  EXPECT_FALSE(ecu.set_border(0, 0.0)) << "border off needs nothing";
+  ASSERT_FALSE(ecu.set_material("urea"));
+  EXPECT_FALSE(ecu.set_section_mask(0x7F));
+  EXPECT_FALSE(ecu.set_border(1, 0.0));
+  // Without tables nothing depends on a material (a side that cannot be narrowed keeps spreading and
+  // says so in the actual state), as before.
+  Ecu no_tables(clock, EcuParameters{});
+  EXPECT_FALSE(no_tables.set_section_mask(0x7F));
+}
+
 TEST(Ecu, AutomaticModeNeedsTables) {
   ManualClock clock;
   Ecu ecu(clock, EcuParameters{});

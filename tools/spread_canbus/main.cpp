@@ -33,12 +33,14 @@ void print_summary(const CanBusRelay& bus, std::chrono::nanoseconds elapsed) {
   std::fprintf(stderr,
                "spread-canbus: %llu clients joined, %llu left, %llu frames relayed, %llu deliveries, "
                "%llu dropped (receiver full), %llu wrong-size datagrams, %llu invalid frames (DLC > 8), "
-               "%llu withdrawn (sender left), bus load %.1f %% at %u kbit/s over %.1f s (%s)\n",
+               "%llu withdrawn (sender left), %llu lost with their sender (queued when it left), bus load %.1f %% "
+               "at %u kbit/s over %.1f s (%s)\n",
                static_cast<unsigned long long>(c.clients_accepted), static_cast<unsigned long long>(c.clients_left),
                static_cast<unsigned long long>(c.frames_relayed), static_cast<unsigned long long>(c.deliveries),
                static_cast<unsigned long long>(c.dropped_full),
                static_cast<unsigned long long>(c.wrong_size_datagrams),
                static_cast<unsigned long long>(c.invalid_frames), static_cast<unsigned long long>(c.withdrawn),
+               static_cast<unsigned long long>(c.lost_with_sender),
                100.0 * bus.bus_load(c.bits, elapsed), bus.timing().bit_rate / 1000,
                std::chrono::duration<double>(elapsed).count(), bus.timing().paced ? "paced" : "unpaced");
 }

@@ -8,6 +8,7 @@
 #include "firmware_sim/can/candump_log.hpp"
 #include "firmware_sim/can/frame_description.hpp"
 #include "firmware_sim/can/isobus_id.hpp"
+#include "firmware_sim/can/network_link.hpp"
 #include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/can/speed_messages.hpp"
@@ -51,54 +52,47 @@ std::uint64_t task_controller_name() {
   return firmware::isobus::encode_name(name);
 }
 
-void send_address_claim(CanFramePort& port, std::uint8_t own) {
-  const auto name = firmware::isobus::name_to_bytes(task_controller_name());
-  port.send(make_frame(encode_id({6, firmware::isobus::kAddressClaimedPgn, kGlobalAddress, own}), name.data(), 8));
-}
-
-// A request for the address claim (to all or to us) is answered with our claim (ISO 11783-5 §4.4.3): the
-// ECU asks once its own claim stands, to learn which NAME holds which address.
-void answer_claim_request(CanFramePort& port, const can_frame& frame, std::uint8_t own) {
-  const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
-  if (id.pgn != 0xEA00 || frame.len < 3 || (id.destination != kGlobalAddress && id.destination != own)) return;
-  const std::uint32_t pgn = frame.data[0] | (frame.data[1] << 8) | (std::uint32_t{frame.data[2]} << 16);
-  if (pgn == firmware::isobus::kAddressClaimedPgn) send_address_claim(port, own);
-}
-
-void drain(CanFramePort& port, Clock::duration wait, std::uint8_t own_address) {
+// Prints what reaches us for `wait`. With a network link (the session's address claim, ISO 11783-5), every
+// frame goes through it first: requests for the claim are answered, a contender for our address is met by
+// NAME (we move, being self-configurable), our NAME from another node is contended, and the claim's
+// timers run. Without one (replay) frames are only printed.
+void drain(CanFramePort& port, Clock::duration wait, NetworkLink* network) {
   const auto end = Clock::now() + wait;
   can_frame frame{};
   while (Clock::now() < end && !stop_requested()) {
-    if (!port.wait_readable(std::chrono::duration_cast<std::chrono::nanoseconds>(end - Clock::now()))) continue;
+    if (network != nullptr) network->service();
+    const auto slice = std::min(end, Clock::now() + std::chrono::milliseconds(10));  // the claim's timers
+    if (!port.wait_readable(std::chrono::duration_cast<std::chrono::nanoseconds>(slice - Clock::now()))) continue;
     while (port.read(frame) == ReadOutcome::kFrame) {
       // Show what concerns us: frames addressed to us or broadcast by others.
       const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
-      if (id.source == own_address) continue;
-      answer_claim_request(port, frame, own_address);
+      if (network != nullptr) network->handle(id, frame);
       std::cout << "rx " << describe_frame(frame) << std::endl;
     }
   }
 }
 
-// Asks every node for its address claim (ISO 11783-5 §4.4.3: request for PGN 0xEE00) until the ECU
-// answers, then waits out the 250 ms in which its claim can still be contested (§4.4.2), so that set-points
-// are sent to an ECU that is on the bus and owns its address. The request is repeated because the ECU may
-// join the bus after us.
-bool wait_for_address_claim(CanFramePort& port, std::uint8_t own, std::uint8_t ecu, double timeout_s) {
+// Asks every node for its address claim (ISO 11783-5 §4.4.3: request for PGN 0xEE00, answered by our own
+// claim too) until the ECU answers, then waits out the 250 ms in which its claim can still be contested
+// (§4.4.2), so that set-points are sent to an ECU that is on the bus and owns its address. The request is
+// repeated because the ECU may join the bus after us.
+bool wait_for_address_claim(CanFramePort& port, NetworkLink& network, std::uint8_t ecu, double timeout_s) {
   const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s));
-  const std::uint8_t request[8] = {0x00, 0xEE, 0x00, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
   while (Clock::now() < end && !stop_requested()) {
-    port.send(make_frame(encode_id({6, 0xEA00, kGlobalAddress, own}), request, 3));
+    network.service();
+    if (network.has_address()) network.request_address_claims();
     const auto retry = std::min(end, Clock::now() + std::chrono::milliseconds(250));
     can_frame frame{};
     while (Clock::now() < retry) {
-      if (!port.wait_readable(std::chrono::duration_cast<std::chrono::nanoseconds>(retry - Clock::now()))) continue;
+      network.service();
+      const auto slice = std::min(retry, Clock::now() + std::chrono::milliseconds(10));
+      if (!port.wait_readable(std::chrono::duration_cast<std::chrono::nanoseconds>(slice - Clock::now()))) continue;
       while (port.read(frame) == ReadOutcome::kFrame) {
-        answer_claim_request(port, frame, own);
         const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
+        network.handle(id, frame);
         if (id.pgn != 0xEE00 || id.source != ecu) continue;
         std::cout << "rx " << describe_frame(frame) << std::endl;
-        drain(port, std::chrono::milliseconds(250), own);  // answering requests meanwhile
+        drain(port, std::chrono::milliseconds(250), &network);  // answering requests meanwhile
         return true;
       }
     }
@@ -127,25 +121,34 @@ int run_can_session(const CanSessionOptions& o) {
     sets.push_back({static_cast<std::uint16_t>(ddi), static_cast<std::int32_t>(value)});
   }
   CanFramePort port = open_can_bus(o.interface);
-  const auto own = static_cast<std::uint8_t>(o.own_address);
   const auto ecu = static_cast<std::uint8_t>(o.ecu_address);
-  // Our own claim first, as a task controller; it stands after 250 ms uncontested (§4.4.2). (This simple
-  // TC does not defend its address: a contender is left to the TC role, spread-tractor tc.)
-  send_address_claim(port, own);
-  drain(port, std::chrono::milliseconds(250), own);
-  if (o.wait_for_ecu_s > 0.0 && !wait_for_address_claim(port, own, ecu, o.wait_for_ecu_s)) {
+  // Our own claim first, as a task controller (ISO 11783-5, the same network code as the ECU's): it stands
+  // after 250 ms uncontested (§4.4.2); a lower NAME on our address moves us (the NAME is
+  // self-configurable), and until a claim stands we send nothing else.
+  firmware::SteadyClock clock;
+  NetworkLink network(clock, port, task_controller_name(), static_cast<std::uint8_t>(o.own_address));
+  network.start();
+  drain(port, std::chrono::milliseconds(260), &network);
+  if (o.wait_for_ecu_s > 0.0 && !wait_for_address_claim(port, network, ecu, o.wait_for_ecu_s)) {
     std::cerr << "spread-tractor: warning: no address claim from 0x" << std::hex << int{ecu} << std::dec
               << " within " << o.wait_for_ecu_s << " s; sending anyway\n";
   }
-  // Our claim once more, then the TC status: the ECU learns our NAME from the claim even if it joined after
-  // our first one, and the status that follows it on the bus makes us its partner TC (ISO 11783-10).
-  send_address_claim(port, own);
+  if (!network.has_address()) {
+    std::cerr << "spread-tractor: error: no address of our own (claim " << int{network.address()}
+              << " contested and none free)\n";
+    return kExitFailure;
+  }
+  // Every claim once more (ours answers the request), then the TC status: the ECU learns our NAME even if
+  // it joined after our first claim, and the status that follows makes us its partner TC (ISO 11783-10).
+  network.request_address_claims();
   const auto first_status = firmware::isobus::encode_tc_status(true);
-  port.send(
-      make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), first_status.data(), 8));
+  port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, network.address()}),
+                       first_status.data(), 8));
   auto send_pd = [&](ProcessDataCommand command, std::uint16_t ddi, std::int32_t value) {
+    if (!network.has_address()) return;  // ISO 11783-5 §4.4.2: nothing but claims without a standing claim
     const ProcessDataBytes bytes = encode_process_data({static_cast<std::uint8_t>(command), 0, ddi, value});
-    const can_frame frame = make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, ecu, own}), bytes.data(), 8);
+    const can_frame frame =
+        make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, ecu, network.address()}), bytes.data(), 8);
     std::cout << "tx " << describe_frame(frame) << std::endl;
     if (!port.send(frame)) std::cerr << "spread-tractor: warning: CAN write failed\n";
   };
@@ -160,17 +163,21 @@ int run_can_session(const CanSessionOptions& o) {
   auto next_tc_status = start + std::chrono::seconds(2);
   while (!stop_requested() && Clock::now() - start < std::chrono::duration<double>(o.duration_s)) {
     // As the task controller: its status every 2 s (ISO 11783-10), which keeps the work state it set alive.
+    const bool may_send = network.has_address();
     if (Clock::now() >= next_tc_status) {
       const auto status = firmware::isobus::encode_tc_status(true);
-      port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, own}), status.data(), 8));
+      if (may_send) {
+        port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, network.address()}),
+                             status.data(), 8));
+      }
       next_tc_status += std::chrono::seconds(2);
     }
-    if (o.speed_m_s >= 0.0) {
+    if (o.speed_m_s >= 0.0 && may_send) {
       const auto bytes = encode_speed(o.speed_m_s, distance_mm, Direction::kForward);
       distance_mm += static_cast<std::uint32_t>(o.speed_m_s * 1000.0 / o.send_hz);
-      port.send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, own}), bytes.data(), 8));
+      port.send(make_frame(encode_id({3, kGroundBasedSpeedPgn, kGlobalAddress, network.address()}), bytes.data(), 8));
     }
-    drain(port, period, own);
+    drain(port, period, &network);
   }
   return kExitOk;
 }
@@ -196,7 +203,7 @@ int run_replay(const ReplayOptions& o) {
     can_frame frame{};
     while (port.read(frame) == ReadOutcome::kFrame) std::cout << "rx " << describe_frame(frame) << std::endl;
   }
-  drain(port, std::chrono::milliseconds(500), 0xFE);
+  drain(port, std::chrono::milliseconds(500), nullptr);
   return log.errors.empty() ? kExitOk : kExitFailure;
 }
 

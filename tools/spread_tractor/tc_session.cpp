@@ -270,6 +270,9 @@ int run_tc_session(const TcSessionOptions& o) {
       }
       if ((frame.can_id & CAN_EFF_FLAG) == 0 || (frame.can_id & (CAN_RTR_FLAG | CAN_ERR_FLAG)) != 0) continue;
       const IsobusId id = decode_id(frame.can_id & CAN_EFF_MASK);
+      if (id.pgn == iso::kAddressClaimedPgn && frame.len == 8) {
+        tc.on_address_claimed(id.source, iso::name_from_bytes(frame.data));
+      }
       const auto verdict = network.handle(id, frame);
       if (verdict == NetworkLink::Verdict::kMalformed) ++malformed_reads;
       if (verdict != NetworkLink::Verdict::kNotNetwork) continue;
