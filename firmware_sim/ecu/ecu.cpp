@@ -402,6 +402,30 @@ void Ecu::check_achieved_width() {
   }
 }
 
+// A disc that meters and is given a new speed for its side (the narrowed side moves to the other one, a
+// narrowing ends, a border is engaged or left) needs a second or two to get there (disc_speed_model.hpp).
+// Closing it meanwhile leaves the strip behind it unspread although every section it still serves is on.
+// It goes on metering, at its new drop point and share of the flow, while its speed cannot throw past the
+// edge its new setting keeps:
+// - it is coming up to its new speed from below: it throws shorter than that setting, inside its edge;
+// - it is slowing down to a setting without a border (a narrowing of its sections, or the field's after
+//   a faster narrowing): what it still throws beyond that setting's edge lands on sections the task
+//   controller switched off as spread already (section control, ISO 11783-10) or on the next bout, an
+//   overlap for that second, never over a border.
+// Slowing down to a border or field edge it stays closed until at speed: nothing may land beyond the edge
+// line. A disc that was not metering (spin-up, work state just switched on) waits for its speed as before.
+bool Ecu::keeps_metering_while_changing_speed(int disc) const {
+  const auto i = static_cast<std::size_t>(disc);
+  const double target = sides_[i].rpm_target;
+  const double rpm = discs_[i].rpm();
+  if (!side_changing_[i] || !disc_metering_[i] || !(target >= parameters_.spreading_rpm_min) ||
+      !(rpm >= parameters_.spreading_rpm_min)) {
+    return false;
+  }
+  if (rpm <= target) return true;
+  return !sides_[i].border;
+}
+
 bool Ecu::disc_at_speed(int disc) const {
   const double target = sides_[static_cast<std::size_t>(disc)].rpm_target;
   if (!(target >= parameters_.spreading_rpm_min) || !(target > 0.0)) return false;
@@ -530,12 +554,13 @@ void Ecu::plan_sides() {
     }
     if (!plan) {
       state.kind = SideKind::kPending;
+      state.border = border_here;
       pending_ |= static_cast<std::uint8_t>(1u << side);
       on_through(h);
       continue;
     }
     state = SideState{SideKind::kNarrowed, plan->narrowing.rpm, plan->narrowing.drop_point_turn_rad,
-                      plan->narrowing.flow_fraction, 0u};
+                      plan->narrowing.flow_fraction, 0u, border_here};
     border_applied_ = border_applied_ || border_here;
     // Spread is what the narrowed pass puts there: each of the side's sections whose strip still gets the
     // section-on share of the field's rate, inside the edge line or beyond it (both discs' throw counted).
@@ -591,7 +616,19 @@ void Ecu::step(double dt_s) {
   supervise_controllers(now);
   if (mode_ == Mode::kAutomatic && solve_pending_ && predictor_ != nullptr) solve_rpm_for_width();
   if (mode_ == Mode::kManual) rpm_target_ = rpm_setpoint_manual_;
+  const std::array<SideState, 2> sides_before = sides_;
   plan_sides();
+  // A new setting of a side: it narrows or widens, moves, or meets or leaves a border (an operator's new
+  // disc speed for the field is not one: the discs wait for it as before).
+  for (std::size_t i = 0; i < 2; ++i) {
+    const SideState& was = sides_before[i];
+    const SideState& now_side = sides_[i];
+    const bool narrowed_both = was.kind == SideKind::kNarrowed && now_side.kind == SideKind::kNarrowed;
+    if (was.kind != now_side.kind || was.border != now_side.border ||
+        (narrowed_both && was.rpm_target != now_side.rpm_target)) {
+      side_changing_[i] = true;
+    }
+  }
   for (int d = 0; d < parameters_.disc_count; ++d) {
     discs_[static_cast<std::size_t>(d)].step(sides_[static_cast<std::size_t>(d)].rpm_target, dt_s);
   }
@@ -605,13 +642,21 @@ void Ecu::step(double dt_s) {
       work_state_setpoint_ && active != 0 && width_setpoint_m_ > 0.0 && rate_setpoint_kg_ha_ > 0.0;
   // Each disc meters its half of the bout's flow times its own share (a one-disc machine: all of it), and
   // only while it runs at its own target: one disc changing speed for a narrowed side does not stop the
-  // other one spreading.
+  // other one spreading — nor a disc that was metering and changes speed for a new setting of its side,
+  // while that is safe (keeps_metering_while_changing_speed).
   bool any_at_speed = false;
   double flow_share = 0.0;
+  std::array<bool, 2> changing{};
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    const auto i = static_cast<std::size_t>(d);
+    if (disc_at_speed(d)) side_changing_[i] = false;
+    changing[i] = !disc_at_speed(d) && keeps_metering_while_changing_speed(d);
+    if (!changing[i]) side_changing_[i] = false;
+  }
   for (int d = 0; d < parameters_.disc_count; ++d) {
     const auto i = static_cast<std::size_t>(d);
     disc_metering_[i] = false;
-    if (!(sides_[i].flow_fraction > 0.0) || !disc_at_speed(d)) continue;
+    if (!(sides_[i].flow_fraction > 0.0) || !(disc_at_speed(d) || changing[i])) continue;
     any_at_speed = disc_metering_[i] = true;
     flow_share += sides_[i].flow_fraction;
   }
@@ -636,7 +681,7 @@ void Ecu::step(double dt_s) {
   bool every_flowing_disc_at_speed = true;
   for (int d = 0; d < parameters_.disc_count; ++d) {
     const auto i = static_cast<std::size_t>(d);
-    if (sides_[i].flow_fraction > 0.0 && !disc_at_speed(d)) every_flowing_disc_at_speed = false;
+    if (sides_[i].flow_fraction > 0.0 && !disc_at_speed(d) && !changing[i]) every_flowing_disc_at_speed = false;
   }
   faults_.set_state(Fault::kDiscNotAtSpeed, requested && moving_forward && !every_flowing_disc_at_speed, now);
 

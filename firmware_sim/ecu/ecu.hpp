@@ -119,7 +119,11 @@ class Ecu {
     double drop_point_turn_rad = 0.0;  // from the table's drop point [rad]
     double flow_fraction = 1.0;        // of the field's flow to this disc [-]
     std::uint32_t sections = 0;        // the sections this disc spreads while it meters (bit i = section i+1)
+    bool border = false;               // its edge is a border or field edge: nothing may land beyond it
   };
+  // Whether disc `disc`, metering on the last step, may go on metering while it changes speed to a new
+  // setting of its side (a side change, a border engaged or left): see step().
+  bool keeps_metering_while_changing_speed(int disc) const;
 
   const Clock& clock_;
   EcuParameters parameters_;
@@ -172,6 +176,8 @@ class Ecu {
   std::optional<SidePlanKey> last_wind_key_;
   std::uint32_t middle_bit_ = 0;           // odd count: the section on the centre line, spread by either disc
   std::array<bool, 2> disc_metering_{};    // each disc receiving fertiliser now
+  // Each disc metering through a new setting of its side, until it reaches that setting's speed (step()).
+  std::array<bool, 2> side_changing_{};
   std::uint32_t section_actual_mask_ = 0;  // sections actually spread now (ecu_status.hpp)
   std::optional<SidePlanKey> prepared_;    // the field setting whose narrowings were last prepared
   double rpm_target_ = 0.0;

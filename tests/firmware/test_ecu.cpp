@@ -2,13 +2,16 @@
 // mode against an analytic predictor, and the fixed-rate loop on a manual clock.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
+#include <iostream>
 #include <limits>
 
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 #include "firmware_sim/ecu/metering.hpp"
+#include "firmware_sim/ecu/section_planner.hpp"
 #include "tests/firmware/analytic_predictor.hpp"
 
 namespace spread::firmware {
@@ -519,6 +522,152 @@ TEST(Ecu, AutomaticModeRefusesManualRpm) {
   c.mode = 1;
   ASSERT_FALSE(ecu.apply_command(c).has_value());
   EXPECT_EQ(ecu.set_rpm_setpoint(500.0), Fault::kCanNotSettable);
+}
+
+// A predictor that narrows a side as the C API's border search would answer it, with known numbers: the
+// side's disc at 3/4 of the field's speed (a narrowing or a border throws shorter), its drop point turned
+// and 60 % of the flow; strips inside the edge line spread, the others not.
+class NarrowingPredictor final : public SpreadPredictor {
+ public:
+  std::size_t material_count() const override { return analytic.material_count(); }
+  std::string_view material_name(std::size_t index) const override { return analytic.material_name(index); }
+  bool has_material(std::string_view material) const override { return analytic.has_material(material); }
+  double cv_target_percent() const override { return analytic.cv_target_percent(); }
+  RpmRange rpm_range(std::string_view material) const override { return analytic.rpm_range(material); }
+  PredictionOutcome predict(std::string_view material, double rpm, double bout_width_m,
+                            SpreadPrediction& out) override {
+    return analytic.predict(material, rpm, bout_width_m, out);
+  }
+  PredictionOutcome narrow_side(const NarrowingRequest& request, std::span<const SideStrip> strips,
+                                std::span<double> strip_rate_percent, SideNarrowing& out) override {
+    out = SideNarrowing{};
+    out.rpm = 0.75 * request.rpm;
+    out.drop_point_turn_rad = 0.1;
+    out.flow_fraction = 0.6;
+    out.meets = true;
+    for (std::size_t j = 0; j < strips.size(); ++j) {
+      strip_rate_percent[j] = strips[j].to_m <= request.edge_line_m + 1e-9 ? 100.0 : 0.0;
+    }
+    return PredictionOutcome::kOk;
+  }
+  AnalyticPredictor analytic;
+};
+
+// Travel [m] while each disc is closed although its side still has sections on, over `duration`.
+struct Unspread {
+  std::array<double, 2> metres{};
+  bool disc_not_at_speed = false;
+};
+Unspread run_and_count_unspread(Ecu& ecu, ManualClock& clock, Nanoseconds duration, double speed_m_s) {
+  Unspread u;
+  for (Nanoseconds t{}; t < duration; t += 50ms) {
+    clock.advance(50ms);
+    ecu.step(0.05);
+    const EcuStatus s = ecu.status();
+    for (std::size_t d = 0; d < 2; ++d) {
+      const std::uint16_t side_bits = d == kLeftDisc ? 0x0F : 0xF0;  // 8 sections: 1-4 left, 5-8 right
+      if ((s.section_mask & side_bits) != 0 && !(s.disc_flow_fraction[d] > 0.0)) u.metres[d] += speed_m_s * 0.05;
+    }
+    u.disc_not_at_speed = u.disc_not_at_speed || (s.fault_codes & fault_bit(Fault::kDiscNotAtSpeed)) != 0;
+  }
+  return u;
+}
+
+// The narrowed side moves from right to left (the TC switches sections 7-8 on and 1-2 off), then a border
+// is engaged on the left and left again, at 3 m/s on 12 m bouts at 600 r/min. Each disc changes speed by a
+// quarter (600 <-> 450 r/min, 1.3-1.5 s with the drive's 0.8 s lag): a disc that stays in use keeps
+// spreading through it, except one slowing down to a border, which must throw nothing beyond it.
+TEST(Ecu, ADiscThatStaysInUseKeepsSpreadingThroughASideChange) {
+  ManualClock clock;
+  EcuParameters p;
+  p.command_timeout = 0s;
+  NarrowingPredictor predictor;
+  SectionPlanner planner(predictor, p.section_max_beyond_percent, SectionPlanner::Threading::kInline);
+  Ecu ecu(clock, p, &predictor, &planner);
+  constexpr double kSpeed = 3.0;
+  EcuCommand c = manual_command(1);
+  c.width_setpoint_m = 12.0;
+  c.rpm_setpoint = 600.0;
+  c.ground_speed_m_s = kSpeed;
+  c.section_on = {};
+  for (int i = 0; i < 6; ++i) c.section_on[static_cast<std::size_t>(i)] = true;  // 11111100: right narrowed
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  run_for(ecu, clock, 8s);
+  EcuStatus s = ecu.status();
+  ASSERT_EQ(s.disc_rpm_target[kRightDisc], 450.0);
+  ASSERT_EQ(s.disc_rpm_target[kLeftDisc], 600.0);
+  ASSERT_GT(s.disc_flow_fraction[kLeftDisc], 0.0);
+  ASSERT_GT(s.disc_flow_fraction[kRightDisc], 0.0);
+
+  c.sequence = 2;
+  c.section_on = {};
+  for (int i = 2; i < 8; ++i) c.section_on[static_cast<std::size_t>(i)] = true;  // 00111111: left narrowed
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  const Unspread side_change = run_and_count_unspread(ecu, clock, 4s, kSpeed);
+  s = ecu.status();
+  EXPECT_EQ(s.disc_rpm_target[kLeftDisc], 450.0);
+  EXPECT_EQ(s.disc_rpm_target[kRightDisc], 600.0);
+  std::cout << "side change right -> left at 3 m/s: unspread " << side_change.metres[kLeftDisc] << " m behind the left disc, "
+            << side_change.metres[kRightDisc] << " m behind the right disc\n";
+  EXPECT_EQ(side_change.metres[kLeftDisc], 0.0);
+  EXPECT_EQ(side_change.metres[kRightDisc], 0.0);
+  EXPECT_FALSE(side_change.disc_not_at_speed);
+  // Each disc meters its share of the field's flow: the narrowed left 60 %, the right all of it.
+  EXPECT_NEAR(s.mass_flow_kg_s, mass_flow_kg_s(200.0, 12.0 * (1.0 + 0.6) / 2.0, kSpeed), 1e-9);
+
+  // Every section on, then a border on the left: the left disc slows to the border's speed and stays
+  // closed until it is there (nothing over the border); the right disc spreads on.
+  c.sequence = 3;
+  c.section_on = {};
+  for (int i = 0; i < 8; ++i) c.section_on[static_cast<std::size_t>(i)] = true;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  const Unspread widen = run_and_count_unspread(ecu, clock, 4s, kSpeed);
+  std::cout << "narrowing ended (left 450 -> 600 r/min): unspread " << widen.metres[kLeftDisc] << " m left, "
+            << widen.metres[kRightDisc] << " m right\n";
+  EXPECT_EQ(widen.metres[kLeftDisc], 0.0);
+  EXPECT_EQ(widen.metres[kRightDisc], 0.0);
+  c.sequence = 4;
+  c.border_mode = static_cast<std::int32_t>(BorderMode::kLeftBorder);
+  c.border_gap_m = 1.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  bool left_metered_above_border_speed = false;
+  Unspread border{};
+  for (int k = 0; k < 80; ++k) {
+    const Unspread step = run_and_count_unspread(ecu, clock, 50ms, kSpeed);
+    border.metres[0] += step.metres[0];
+    border.metres[1] += step.metres[1];
+    s = ecu.status();
+    if (s.disc_flow_fraction[kLeftDisc] > 0.0 && s.disc_rpm_actual[kLeftDisc] > 450.0 * (1.0 + p.disc_speed_tolerance)) {
+      left_metered_above_border_speed = true;
+    }
+  }
+  std::cout << "left border engaged: unspread " << border.metres[kLeftDisc] << " m left (closed while above the border's speed), "
+            << border.metres[kRightDisc] << " m right\n";
+  EXPECT_TRUE(s.border_applied);
+  EXPECT_FALSE(left_metered_above_border_speed) << "thrown over the border while slowing down to its speed";
+  EXPECT_GT(border.metres[kLeftDisc], 0.0);
+  EXPECT_EQ(border.metres[kRightDisc], 0.0);
+  // Leaving the border: the left disc comes back up to the field's speed and spreads on meanwhile.
+  c.sequence = 5;
+  c.border_mode = static_cast<std::int32_t>(BorderMode::kOff);
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  const Unspread leave = run_and_count_unspread(ecu, clock, 4s, kSpeed);
+  EXPECT_EQ(leave.metres[kLeftDisc], 0.0);
+  EXPECT_EQ(leave.metres[kRightDisc], 0.0);
+
+  // A disc that was not metering still waits for its speed: the work state off and on again from rest.
+  c.sequence = 6;
+  c.work_state = false;
+  c.rpm_setpoint = 0.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  run_for(ecu, clock, 10s);
+  c.sequence = 7;
+  c.work_state = true;
+  c.rpm_setpoint = 600.0;
+  ASSERT_FALSE(ecu.apply_command(c).has_value());
+  run_for(ecu, clock, 1s);
+  s = ecu.status();
+  EXPECT_EQ(s.mass_flow_kg_s, 0.0) << "metering from a disc still spinning up";
 }
 
 TEST(Ecu, PredictionFailureIsCountedAndFallsBackToTheCurve) {
