@@ -60,7 +60,7 @@ for t in firmware_sim bench_firmware spread-tractor; do
 done
 cmake --build "$dir" -j2 --target spread lookup_builder test_capi test_capi_golden test_capi_no_alloc make_test_table \
   capi_c99 c_api_example
-ctest --test-dir "$dir" --output-on-failure -j2 -L capi -E "default_scene|default_table|default_chart|default_grid|capi\.abi" ||
+ctest --test-dir "$dir" --output-on-failure -j2 -L capi -E "default_scene|default_table|default_chart|default_grid|default_advice|capi\.abi" ||
   fail "no-extras: C API tests"
 listed=$(ctest --test-dir "$dir" -N -R "capi\.cli\.plot_without_plots")
 [[ $listed == *"Test #"*": capi.cli.plot_without_plots"* ]] || fail "no-extras: the test of \`spread plot\` without plots is not registered"

@@ -374,9 +374,11 @@ typedef struct spread_edge_result {
   double edge_line_m;              /* bout width / 2 - gap */
   double mass_beyond_percent;      /* of this pass's mass, over the edge line */
   double max_rate_inside_percent;  /* the highest rate of the last bout, [-W/2, edge line] */
-  double rate_at_edge_percent;     /* of its last tray inside the line */
-  double over_limit_percent;       /* above it a tray is over-applied */
-  double under_limit_percent;      /* below it under-applied */
+  double rate_at_edge_percent;     /* over the tray width that ends at the line */
+  double over_limit_percent;       /* 100 + tolerance: above it, and above what the field's interior gets
+                                      there, a tray is over-applied (judged over every bout this pass
+                                      reaches; `meets` says whether any bout is) */
+  double under_limit_percent;      /* 100 - tolerance: below it, and below the interior there, under-applied */
   double missing_inside_m;         /* fertiliser missing in the last bout against the field's interior,
                                       in metres of field rate */
   int32_t meets;                   /* 1: the kind's thresholds hold */
