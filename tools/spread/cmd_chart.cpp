@@ -171,14 +171,14 @@ void run(const Options& o, int& exit_code) {
   // The drop points searched: ±--drop-point-range, within the turns the table validates (where narrower).
   const pr::TurnRange valid = predictor.drop_point_turn_range();
   const double range_rad = o.drop_point_range_deg * kRadPerDeg;
-  const std::string turns = valid.low_rad <= -range_rad && valid.high_rad >= range_rad
+  const std::string turns_text = valid.low_rad <= -range_rad && valid.high_rad >= range_rad
                                 ? format("±%g deg", o.drop_point_range_deg)
                                 : format("%+g", std::max(valid.low_rad, -range_rad) / kRadPerDeg) +
                                       format(" to %+g deg (validated against DEM rows)",
                                              std::min(valid.high_rad, range_rad) / kRadPerDeg);
   const std::string range_line = "'" + o.material + "' of " + o.tables + ": the disc speed of " +
                                  format("%.0f", chart.min_rpm) + "-" + format("%.0f rpm", chart.max_rpm) +
-                                 " and drop point within " + turns +
+                                 " and drop point within " + turns_text +
                                  " of the table's (both discs alike) with the lowest to-and-fro CV at each width (target " +
                                  format("%g %%", o.cv_target_percent) + ")";
 
