@@ -238,6 +238,9 @@ Rejection Ecu::set_section_mask(std::uint32_t mask) {
   // would keep spreading those sections and say so only in the actual state. Refused instead, so that the
   // controller learns it at once (PDACK, DM1) rather than after the first pass over the border.
   if (needs_planning_without_material() && needs_narrowing(mask)) return reject(Fault::kUnknownMaterial);
+  // Without tables no side can be narrowed, only closed (all its sections off): a mask that narrows one
+  // would be acknowledged and spread anyway. Refused, as wind compensation is without tables.
+  if (predictor_ == nullptr && needs_narrowing(mask)) return reject(Fault::kAutomaticUnavailable);
   section_mask_ = mask;
   return std::nullopt;
 }

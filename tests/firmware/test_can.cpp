@@ -356,12 +356,13 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   EXPECT_NEAR(ecu_.status().mass_flow_kg_s, 200.0 * 24.0 * 12.0 / 36000.0, 1e-3);
 
   // Close sections 7 and 8 (state 00), leave the rest (11 = unchanged). Without tables the right disc
-  // cannot be narrowed: it keeps throwing out to the bout's edge, and the actual state says so.
+  // cannot be narrowed: the command is refused (not acknowledged and then spread anyway), the sections
+  // stay as they were.
   send_pd(ProcessDataCommand::kSetValueAndAcknowledge, 290, static_cast<std::int32_t>(0xFFFF0FFFu));
-  EXPECT_EQ(pdack_errors(290), kPdackNoError);
-  EXPECT_TRUE(run(1).empty());
+  EXPECT_EQ(pdack_errors(290), kPdackValueOutOfRange);
+  run(1);
   send_pd(ProcessDataCommand::kRequestValue, 290, 0);
-  EXPECT_EQ(static_cast<std::uint32_t>(single_answer(290).value), 0xFFFF0555u);
+  EXPECT_EQ(static_cast<std::uint32_t>(single_answer(290).value), 0xFFFF5555u);
   send_pd(ProcessDataCommand::kRequestValue, 161, 0);
   EXPECT_EQ(static_cast<std::uint32_t>(single_answer(161).value), 0xFFFF5555u);
   send_pd(ProcessDataCommand::kRequestValue, 67, 0);
@@ -375,9 +376,10 @@ TEST_F(VirtualBus, SetValuesRequestsAndSpeedEndToEnd) {
   send_pd(ProcessDataCommand::kRequestValue, 67, 0);
   EXPECT_EQ(single_answer(67).value, 12000);
   EXPECT_NEAR(ecu_.status().mass_flow_kg_s, 0.5 * 200.0 * 24.0 * 12.0 / 36000.0, 1e-3);
-  // The one fault: metering waited while the disc spun up.
+  // The faults: metering waited while the disc spun up, and the narrowing refused.
   EXPECT_EQ(ecu_.faults().count(Fault::kDiscNotAtSpeed), 1u);
-  EXPECT_EQ(ecu_.faults().total(), 1u);
+  EXPECT_EQ(ecu_.faults().count(Fault::kAutomaticUnavailable), 1u);
+  EXPECT_EQ(ecu_.faults().total(), 2u);
 }
 
 // Border spreading and wind compensation over ISOBUS: the manufacturer-proprietary DDIs of ddi.hpp are

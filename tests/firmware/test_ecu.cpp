@@ -236,10 +236,12 @@ TEST(Ecu, CommandsThatNeedTheMaterialAreRefusedUntilOneIsKnown) {
   ASSERT_FALSE(ecu.set_material("urea"));
   EXPECT_FALSE(ecu.set_section_mask(0x7F));
   EXPECT_FALSE(ecu.set_border(1, 0.0));
-  // Without tables nothing depends on a material (a side that cannot be narrowed keeps spreading and
-  // says so in the actual state), as before.
+  // Without tables no side can be narrowed at all: a mask that would narrow one is refused (not
+  // acknowledged and then spread anyway); a whole side off closes its disc and needs no plan.
   Ecu no_tables(clock, EcuParameters{});
-  EXPECT_FALSE(no_tables.set_section_mask(0x7F));
+  EXPECT_EQ(no_tables.set_section_mask(0x7F), Fault::kAutomaticUnavailable);
+  EXPECT_EQ(no_tables.status().section_mask, 0xFF);
+  EXPECT_FALSE(no_tables.set_section_mask(0x0F));
 }
 
 TEST(Ecu, AutomaticModeNeedsTables) {
