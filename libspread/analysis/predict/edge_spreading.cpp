@@ -168,7 +168,7 @@ void evaluate(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, d
     if (b > last_from_m) {  // in the last bout
       const double inside_m = b - std::max(a, last_from_m);
       out.max_rate_inside = std::max(out.max_rate_inside, r);
-      out.missing_inside_m += std::max(0.0, frame.interior[i] - r) * inside_m;
+      out.missing_inside_m += std::max(0.0, interior - r) * inside_m;
       out.mean_rate_last_bout += r * inside_m;
       if (under) out.under_applied_last_bout_m += inside_m;
     }
@@ -421,7 +421,7 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   std::pmr::vector<double> inner_turns(memory);
   std::pmr::vector<EdgeDisc> inners(memory);
   // Grid points outside a disc's range are skipped (not clamped onto its end: no setting is flown twice).
-  const auto outside = [](double t, double low, double high) { return t < low - 1e-12 || t > high + 1e-12; };
+  const auto outside = [](double t, double low, double high) { return !TurnRange{low, high}.contains(t); };
   for (int j = -turns; j <= turns; ++j) {
     const double t = j == 0 ? field_base_turn : field_base_turn + j * step_rad;
     if (j != 0 && outside(t, field_low, field_high)) continue;

@@ -1102,7 +1102,8 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
       // one before it only when every band is stored): its highest CV over the whole-tray bouts between.
       band.gap_peak_cv = nan;
       band.gap_peak_cv_se = nan;
-      if (b > 0 && (b < kMaxBands - 1 || ww.band_count == ww.stored_bands())) {
+      // Only with standard errors: without them no gap can join two bands (a search's predictions skip it).
+      if (request.standard_errors && b > 0 && (b < kMaxBands - 1 || ww.band_count == ww.stored_bands())) {
         const int first = ww.bands[b - 1].trays_below + 1;
         const int last = static_cast<int>(std::ceil(in.lower_m / trays.tray_width_m - 1e-9)) - 1;
         int peak_trays = first;

@@ -13,6 +13,9 @@ namespace spread::predict {
 
 namespace {
 
+// A CV a search can compare: NaN (no mass in the bout) ranks last.
+double comparable(double cv) { return std::isnan(cv) ? std::numeric_limits<double>::infinity() : cv; }
+
 // One disc's range: speed [low_rpm, high_rpm], drop-point turn [low_rad, high_rad].
 struct DiscRange {
   double low_rpm = 0.0, high_rpm = 0.0, low_rad = 0.0, high_rad = 0.0;
@@ -70,14 +73,19 @@ class WindSearch {
     std::copy(candidate_.begin(), candidate_.end(), disc_trays_[d].begin());
     return true;
   }
-  // The golden-section refinement of one coordinate of disc `d` (speed or turn) around its current value.
+  // The golden-section refinement of one coordinate of disc `d` (speed or turn) around its value at the
+  // start. Each point lower than the best so far is kept as it is flown (its trays are in candidate_ then),
+  // which ends where the search's own best is; the other disc, which the points are judged with, stays.
   void refine(int d, bool speed, double low, double high, double tolerance) {
     const DiscSetting base = current_[d];
     const auto at = [&](double v) { return speed ? DiscSetting{v, base.drop_point_turn_rad} : DiscSetting{base.rpm, v}; };
-    const auto [best, best_cv] = golden_section_minimum([&](double v) { return try_disc(d, at(v)); }, low, high,
-                                                        speed ? base.rpm : base.drop_point_turn_rad, cv_, tolerance);
-    // The search's last evaluation may not be its best: fly the best once more for its trays.
-    if (best_cv < cv_ && try_disc(d, at(best)) == best_cv) keep_if_lower(d, at(best), best_cv);
+    golden_section_minimum(
+        [&](double v) {
+          const double cv = try_disc(d, at(v));
+          keep_if_lower(d, at(v), cv);
+          return cv;
+        },
+        low, high, speed ? base.rpm : base.drop_point_turn_rad, cv_, tolerance);
   }
 
   DiscSetting current_[2];
@@ -103,7 +111,7 @@ class WindSearch {
   double cv_of(std::span<const double> left, std::span<const double> right) {
     for (std::size_t k = 0; k < pattern_.size(); ++k) pattern_[k] = left[k] + right[k];
     const double cv = metrics::cv_at_trays(pattern_, layout_, bout_trays_, metrics::Overlap::kToAndFro, scratch_);
-    return std::isnan(cv) ? std::numeric_limits<double>::infinity() : cv;
+    return comparable(cv);
   }
 
   const Predictor& predictor_;
@@ -130,7 +138,7 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
   WindSearch search(predictor, request, out, workspace);
   result.status = search.predict_present(present);
   if (result.status != PredictStatus::kOk) return result;
-  const double present_cv = std::isnan(out.cv_to_and_fro) ? std::numeric_limits<double>::infinity() : out.cv_to_and_fro;
+  const double present_cv = comparable(out.cv_to_and_fro);
 
   // Each disc's range: its speed within the material's rows and ± max_speed_offset_rpm, its drop point within
   // ± max_drop_point_turn_rad and the table's validated turns (a disc outside them keeps its own).
@@ -186,15 +194,22 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
     }
   }
 
-  // The answer, with its standard errors (the present setting when nothing searched was lower).
-  search.set(search.current_);
+  // The answer, with its standard errors. The search compared settings on one layout and kernel; the answer
+  // is predicted on its own (its trays fitted, the automatic kernel): should that put it above the present
+  // setting, the present setting is the answer — never worse than doing nothing.
   search.request().standard_errors = request.standard_errors;
+  search.set(search.current_);
   predictor.predict(search.request(), out, workspace);
   result.predictions = search.predictions_ + 1;
+  if (comparable(out.cv_to_and_fro) > present_cv) {
+    search.set(present);
+    predictor.predict(search.request(), out, workspace);
+    ++result.predictions;
+  }
   result.present_cv = present_cv;
   result.discs[kLeftDisc] = out.discs[kLeftDisc];
   result.discs[kRightDisc] = out.discs[kRightDisc];
-  result.cv = std::isnan(out.cv_to_and_fro) ? std::numeric_limits<double>::infinity() : out.cv_to_and_fro;
+  result.cv = comparable(out.cv_to_and_fro);
   return result;
 }
 

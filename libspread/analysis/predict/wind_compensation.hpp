@@ -12,9 +12,10 @@
 // bounded, the disc the wind comes from first): for each disc, a grid of kWindSpeedSteps speeds times
 // drop-point turns every kWindTurnStep_rad over its range, the other disc held; then, for kWindRefineRounds
 // rounds, golden-section search along each disc's speed and drop point within one grid step of its best,
-// to the tolerances below. A refinement keeps a point only when it is lower, so the answer is never worse
-// than the present setting. Every prediction of the search is made without standard errors
-// (PredictionRequest::standard_errors); the answer is predicted once more with them.
+// to the tolerances below. A refinement keeps a point only when it is lower. Every prediction of the
+// search is made without standard errors (PredictionRequest::standard_errors); the answer is predicted
+// once more with them, on its own trays — and the present setting instead should that come out higher, so
+// the answer is never worse than the present setting.
 // No allocation: the predictions go into the caller's Prediction and workspace, the trays into the
 // workspace's search buffer (PredictorWorkspace::search_buffer).
 #include "libspread/analysis/predict/predictor.hpp"
