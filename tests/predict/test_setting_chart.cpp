@@ -1,6 +1,7 @@
-// The setting chart: at each width it picks the setting (disc speed and drop point) with the lowest CV
-// (no point of a scan in 25 rpm and 10 degree steps is better by more than half a CV point), every width that some setting reaches is reachable, the spans
-// within the target are where the CV is, and bad input is refused.
+// The setting chart: at each width it finds the setting (disc speed and drop point) with the lowest CV
+// (no point of a scan in 25 rpm and 10 degree steps is better by more than half a CV point) and gives
+// the candidate whose 95 % upper bound is lowest, every width that some setting reaches is reachable,
+// the spans within the target are where the CV is, and bad input is refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,9 +53,17 @@ TEST(SettingChart, PicksTheLowestCvAndEveryReachableWidth) {
     ASSERT_TRUE(std::isfinite(row.rpm)) << row.width_m;
     EXPECT_LE(std::abs(row.drop_point_turn_rad), options.max_drop_point_turn_rad) << row.width_m;
     EXPECT_GE(row.cv_to_and_fro, 0.0);
-    EXPECT_LE(row.cv_to_and_fro, scan_best + 0.005) << row.width_m << " m at " << row.rpm << " rpm";
-    // The CV reported is the predictor's at that setting.
+    EXPECT_LE(row.lowest_cv, scan_best + 0.005) << row.width_m << " m at " << row.lowest_cv_rpm << " rpm";
+    // The CVs reported are the predictor's at those settings.
     EXPECT_DOUBLE_EQ(row.cv_to_and_fro, cv_at(predictor, row.rpm, row.width_m, row.drop_point_turn_rad));
+    EXPECT_DOUBLE_EQ(row.lowest_cv, cv_at(predictor, row.lowest_cv_rpm, row.width_m, row.lowest_cv_drop_point_turn_rad));
+    // The chart's setting holds at least as surely as the lowest CV: its 95 % upper bound is not above
+    // the lowest CV's, and it meets the target whenever the lowest CV does.
+    EXPECT_LE(row.cv_to_and_fro + kConfidence95 * row.cv_to_and_fro_se,
+              row.lowest_cv + kConfidence95 * row.lowest_cv_se + 1e-12) << row.width_m;
+    if (row.lowest_cv <= options.cv_target) {
+      EXPECT_LE(row.cv_to_and_fro, options.cv_target) << row.width_m;
+    }
     // Reachable exactly when some setting meets the target.
     if (scan_best <= options.cv_target) {
       EXPECT_NE(row.reach, ChartReach::kNotReached) << row.width_m;

@@ -389,7 +389,7 @@ TEST_F(ReportCli, ChartPicksTheLowestCvAndPrintsItsPage) {
   EXPECT_LT(fail, line_of(lines, "Disc speed per working width")) << text;
   EXPECT_TRUE(std::regex_search(text, std::regex(R"(0\.4 % ± 13\.9\s+501-527 rpm, 629-750 rpm)"))) << text;
   for (const char* line : {"3.0 m    682 rpm, +70.0 deg   0.4 % ± 13.9      0.4 % ± 13.9      501-527 rpm, 629-750 rpm",
-                           "4.0 m    734 rpm, +5.0 deg    2.1 % ± 13.8      2.1 % ± 13.8      501-521 rpm, 679-750 rpm",
+                           "4.0 m    735 rpm, +5.0 deg    2.1 % ± 13.5      2.1 % ± 13.5      500-521 rpm, 679-750 rpm",
                            "12.0 m   not reachable"}) {
     EXPECT_NE(made.out.find(line), std::string::npos) << line << "\n" << made.out;
   }

@@ -240,6 +240,10 @@ void run(const Options& o, int& exit_code) {
                       {"working_width_to_and_fro_m", number_or_null(row.working_width_to_and_fro_m)},
                       {"working_width_to_and_fro_se_m", number_or_null(row.working_width_to_and_fro_se_m)},
                       {"sample_count", row.sample_count},
+                      {"lowest_cv", {{"rpm", number_or_null(row.lowest_cv_rpm)},
+                                     {"drop_point_turn_deg", number_or_null(row.lowest_cv_drop_point_turn_rad / kRadPerDeg)},
+                                     {"cv_to_and_fro_percent", number_or_null(100.0 * row.lowest_cv)},
+                                     {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.lowest_cv_se)}}},
                       {"within_target_rpm", row.within_target_rpm},
                       {"wind_compensation",
                        row.compensated
@@ -288,11 +292,21 @@ void run(const Options& o, int& exit_code) {
       std::printf("  %-8s %-20s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(), setting_text(row).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
                   cv_text(row.cv_racetrack, row.cv_racetrack_se).c_str(), spans_text(row).c_str());
     }
-    std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples; %d predictions)\n",
+    std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples and, between DEM rows, the "
+                "interpolation's own error; %d predictions)\n",
                 chart.predictions);
     for (const pr::SettingChartRow& row : chart.rows) {
       const std::string note = reach_note(row, chart, o.cv_target_percent);
       if (!note.empty()) std::printf("  note: %s\n", note.c_str());
+    }
+    for (const pr::SettingChartRow& row : chart.rows) {
+      if (row.reach == pr::ChartReach::kNotReached) continue;
+      if (row.lowest_cv_rpm == row.rpm && row.lowest_cv_drop_point_turn_rad == row.drop_point_turn_rad) continue;
+      std::printf("  note: %s: the lowest CV found, %s at %s, is less sure than the setting shown (its 95 %% "
+                  "interval reaches higher)\n",
+                  format("%.1f m", row.width_m).c_str(), cv_text(row.lowest_cv, row.lowest_cv_se).c_str(),
+                  (format("%.0f rpm", row.lowest_cv_rpm) +
+                   format(", %+.1f deg", row.lowest_cv_drop_point_turn_rad / kRadPerDeg)).c_str());
     }
     bool heading = false;
     for (const pr::SettingChartRow& row : chart.rows) {

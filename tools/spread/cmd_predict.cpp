@@ -519,7 +519,8 @@ void run(const Options& o, int& exit_code) {
                 << 100.0 * stability->beyond_1m_fraction << " % more than 1 m away (2.5-97.5 %: "
                 << stability->quantile_025_m << "-" << stability->quantile_975_m << " m)\n";
     }
-    std::cout << "  (± = 95 % interval, 1.96 standard errors over the launch samples; kernel half-width "
+    std::cout << "  (± = 95 % interval, 1.96 standard errors over the launch samples and, between DEM rows, the "
+                 "interpolation's own error; kernel half-width "
               << result.kernel_half_width_m << " m)\n";
     std::cout << "  mean radius R " << result.mean_radius_m << " m, radial width xi " << result.radial_width_m
               << " m (one disc)\n";

@@ -246,8 +246,10 @@ typedef struct spread_prediction {
                                          came from the landing grid, docs/c-api.md) */
   /* --- appended in 0.2: written only for a definition of at least this version's struct_size ---
    * Monte Carlo standard errors over the table's launch samples (delta method, docs/metrics.md
-   * "Uncertainty"); a 95 % interval is about ±2 standard errors. NaN where undefined (no width meets
-   * the target, the crossing is the layout's edge, an infinite CV). */
+   * "Uncertainty"); a 95 % interval is about ±2 standard errors. Between two DEM rows the throw width's,
+   * the working widths' and the CVs' (not the bands') also hold the interpolation's own error as the
+   * rows' disagreement shows it, in quadrature (docs/metrics.md "Between rows"). NaN where undefined (no
+   * width meets the target, the crossing is the layout's edge, an infinite CV). */
   int32_t sample_count;               /* independent launch samples behind the estimate */
   double throw_width_se_m;
   double working_width_to_and_fro_se_m;

@@ -864,7 +864,30 @@ Predictor::Landed Predictor::land_discs(PredictorWorkspace& w, const MaterialRow
     }
     for (std::size_t b = 0; b < block_count; ++b) sample_total += blocks[b].count;
   }
-  return Landed{n, landings, sample_total, flights};
+  Landed landed;
+  landed.left_landings = n;
+  landed.landings = landings;
+  landed.samples = sample_total;
+  landed.flights = flights;
+  // Each disc's landings by source row: quantile cells write the lower row's granules, then the upper
+  // row's (interpolate()); a row alone or rows interpolated pairwise are one part.
+  int interpolating = 0;
+  for (int d = 0; d < (two_discs ? 2 : 1); ++d) {
+    const DiscRows& r = disc_rows[per_disc ? d : 0];
+    const std::size_t first = d == kLeftDisc ? 0 : n;
+    DiscRowParts& parts = landed.row_parts[d];
+    parts.lower_first = first;
+    parts.lower_count = interpolated_count(r.lower_run, r.upper_run);
+    if (r.lower_run != r.upper_run && !pairwise(r.lower_run, r.upper_run)) {
+      parts.lower_count = run_samples(r.lower_run).size();
+      parts.upper_first = first + parts.lower_count;
+      parts.upper_count = run_samples(r.upper_run).size();
+      landed.upper_weight += r.t;
+      ++interpolating;
+    }
+  }
+  if (interpolating > 0) landed.upper_weight /= interpolating;
+  return landed;
 }
 
 PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& out) {
@@ -1237,6 +1260,9 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
     p.bout_width_m = 0.0;
     p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;
   }
+  if (request.standard_errors && request.interpolation_error) {
+    add_interpolation_error(request, landed, mirrored, kernel_m, p, w);
+  }
   p.mean_radius_m = w.radial_mean_m_;
   p.radial_width_m = w.radial_width_m_;
   p.tray_mass_fraction = tray_mass;
@@ -1244,6 +1270,51 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
   p.left_landing_count = n;
   p.landing_y_m = ys;
   p.landing_mass_fraction = weights;
+}
+
+void Predictor::add_interpolation_error(const PredictionRequest& request, const Landed& landed, bool mirrored,
+                                        double kernel_half_width_m, Prediction& p, PredictorWorkspace& w) const {
+  InterpolationErrorInput in;
+  in.x_m = std::span(w.landing_x_m_).first(landed.landings);
+  in.weight = std::span(w.landing_weight_).first(landed.landings);
+  in.discs[kLeftDisc] = landed.row_parts[kLeftDisc];
+  in.discs[kRightDisc] = landed.row_parts[kRightDisc];
+  in.disc_count = contents_.machine.disc_count == 2 ? 2 : 1;
+  if (!interpolates_by_cells(in)) return;
+  in.mirrored = mirrored;
+  in.trays = p.trays;
+  in.kernel_half_width_m = kernel_half_width_m;
+  in.upper_weight = landed.upper_weight;
+  in.cv_target = request.cv_target;
+  in.bout_trays = p.bout_width_m > 0.0 ? static_cast<int>(std::lround(p.bout_width_m / p.trays.tray_width_m)) : 0;
+  const int headline[2] = {p.headline_band_to_and_fro, p.headline_band_racetrack};
+  const PredictedBand* bands[2] = {p.bands_to_and_fro, p.bands_racetrack};
+  for (int o = 0; o < 2; ++o) {
+    if (headline[o] < 0) continue;
+    in.headline_lower_m[o] = bands[o][headline[o]].lower_m;
+    in.headline_upper_m[o] = bands[o][headline[o]].upper_m;
+  }
+  InterpolatedFigures answer;
+  answer.throw_width_m = p.throw_width_m;
+  answer.working_width_m[0] = p.working_width_to_and_fro_m;
+  answer.working_width_m[1] = p.working_width_racetrack_m;
+  answer.cv[0] = p.cv_to_and_fro;
+  answer.cv[1] = p.cv_racetrack;
+  // The standard errors' buffers are free by now (their passes are done, the bands copied out).
+  const std::size_t tray_count = static_cast<std::size_t>(p.trays.tray_count);
+  const InterpolationErrorScratch scratch{std::span(w.gradients_).first(tray_count),
+                                          std::span(w.gradient_scratch_).first(tray_count), w.metrics_scratch_,
+                                          &w.widths_};
+  const InterpolatedFigures e = interpolation_error(in, answer, scratch);
+  p.interpolation_se = e;
+  const auto combine = [](double& se, double error) {
+    if (!std::isnan(error)) se = std::hypot(se, error);
+  };
+  combine(p.throw_width_se_m, e.throw_width_m);
+  combine(p.working_width_to_and_fro_se_m, e.working_width_m[0]);
+  combine(p.working_width_racetrack_se_m, e.working_width_m[1]);
+  combine(p.cv_to_and_fro_se, e.cv[0]);
+  combine(p.cv_racetrack_se, e.cv[1]);
 }
 
 }  // namespace spread::predict

@@ -34,6 +34,7 @@
 
 #include "libspread/physics/flight/flight.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
+#include "libspread/analysis/predict/interpolation_error.hpp"
 #include "libspread/analysis/predict/landing_grid.hpp"
 #include "libspread/analysis/predict/launch_interpolation.hpp"
 #include "libspread/analysis/predict/launch_quantile_cells.hpp"
@@ -115,6 +116,10 @@ struct PredictionRequest {
   // cost. The headline rule then takes a band as established when its lowest CV meets the target, with
   // no confidence test.
   bool standard_errors = true;
+  // With standard errors, between DEM rows: include the interpolation's own error (interpolation_error.hpp:
+  // the answer's trays binned again from each row's granules alone). False: the launch samples' error
+  // alone.
+  bool interpolation_error = true;
 };
 inline constexpr int kLeftDisc = 0, kRightDisc = 1;
 
@@ -195,6 +200,10 @@ struct Prediction {
   double working_width_racetrack_se_m = 0.0;
   double cv_to_and_fro_se = 0.0;            // fraction
   double cv_racetrack_se = 0.0;             // fraction
+  // Between DEM rows the standard errors above include the interpolation's own error
+  // (interpolation_error.hpp), in quadrature; here that part alone (0 on a row, between rows that
+  // interpolate sample by sample, and without standard errors).
+  InterpolatedFigures interpolation_se;
   // Times CV(W) crosses the target between two trays and the layout width: more than 1 means more than
   // one band (a bout width between two bands does not meet the target; say so to the user).
   int cv_crossings_to_and_fro = 0;
@@ -419,6 +428,8 @@ class Predictor {
     std::size_t landings = 0;
     std::size_t samples = 0;        // independent launch samples behind the pattern
     int flights = 0;
+    DiscRowParts row_parts[2];      // each disc's landings by source row (interpolation_error.hpp)
+    double upper_weight = 0.0;      // the upper rows' share, the mean of the discs that interpolate by cells
   };
   Landed land_discs(PredictorWorkspace& w, const MaterialRows& rows, const DiscRows (&disc_rows)[2],
                     const DiscSetting (&settings)[2], bool per_disc, double height_m, const flight::Air& air,
@@ -428,6 +439,10 @@ class Predictor {
   void measure(const PredictionRequest& request, const Landed& landed, bool per_disc, bool fly_right_disc,
                flight::EffectSet effects, double height_m, const DiscSetting (&settings)[2], Prediction& out,
                PredictorWorkspace& w) const;
+  // Between DEM rows: the interpolation's own error (interpolation_error.hpp) into p.interpolation_se and,
+  // in quadrature, into p's standard errors. The last step of measure().
+  void add_interpolation_error(const PredictionRequest& request, const Landed& landed, bool mirrored,
+                               double kernel_half_width_m, Prediction& p, PredictorWorkspace& w) const;
   // True when runs a and b (neighbours) interpolate sample by sample: both from the analytic builder
   // (sample k is the same granule in every row) and of equal count.
   bool pairwise(std::size_t run_a, std::size_t run_b) const;

@@ -175,9 +175,56 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
                    best_rpm, best_cv, options.rpm_tolerance);
       }
     }
-    // The spans within the target at the chosen drop point, ends interpolated linearly in CV.
+    // The scan at the lowest-CV drop point may still find a lower point (a finer speed step).
     const std::span<double> cv = std::span(chart.scan_cv_to_and_fro).subspan(w * points, points);
     for (std::size_t k = 0; k < points; ++k) cv[k] = search.cv(chart.scan_rpm[k], best_turn_rad, width_m);
+    for (std::size_t k = 0; k < points; ++k) {
+      if (cv[k] < best_cv) {
+        best_cv = cv[k];
+        best_rpm = chart.scan_rpm[k];
+      }
+    }
+    // The candidates: the lowest-CV setting, then the grid points of lowest CV at W; the chart's setting
+    // is the lowest CV + 1.96 SE among them (the first on a tie), a CV within the target before one above
+    // it (the chart never trades a setting that meets the target for one that does not).
+    std::vector<std::pair<double, double>> candidates{{best_rpm, best_turn_rad}};
+    {
+      std::vector<std::size_t> order(turns * speeds);
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      const auto grid_at = [&](std::size_t i) { return grid_cv[i * widths + w]; };
+      const std::size_t take = std::min<std::size_t>(order.size(), kChartCandidates);
+      std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(take), order.end(),
+                        [&](std::size_t a, std::size_t b) { return grid_at(a) < grid_at(b) || (grid_at(a) == grid_at(b) && a < b); });
+      for (std::size_t i = 0; i < take; ++i) {
+        if (!std::isfinite(grid_at(order[i]))) break;
+        const std::pair<double, double> point{chart.grid_rpm[order[i] % speeds], chart.grid_drop_point_turn_rad[order[i] / speeds]};
+        if (point != candidates.front()) candidates.push_back(point);
+      }
+    }
+    const auto upper_bound = [](const Prediction& p) {
+      return p.cv_to_and_fro + kConfidence95 * (std::isfinite(p.cv_to_and_fro_se) ? p.cv_to_and_fro_se : 0.0);
+    };
+    std::size_t chosen = 0;
+    std::pair<bool, double> chosen_rank{true, std::numeric_limits<double>::infinity()};
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      const Prediction& p = search.at(candidates[c].first, candidates[c].second, width_m, true);
+      if (c == 0) {
+        row.lowest_cv_rpm = best_rpm;
+        row.lowest_cv_drop_point_turn_rad = best_turn_rad;
+        row.lowest_cv = p.cv_to_and_fro;
+        row.lowest_cv_se = p.cv_to_and_fro_se;
+      }
+      const std::pair<bool, double> rank{!(p.cv_to_and_fro <= target), upper_bound(p)};
+      if (c == 0 || rank < chosen_rank) {
+        chosen_rank = rank;
+        chosen = c;
+      }
+    }
+    const double chosen_turn_rad = candidates[chosen].second;
+    // The spans within the target at the chosen drop point, ends interpolated linearly in CV.
+    if (chosen_turn_rad != best_turn_rad) {
+      for (std::size_t k = 0; k < points; ++k) cv[k] = search.cv(chart.scan_rpm[k], chosen_turn_rad, width_m);
+    }
     const auto crossing = [&](std::size_t k) {  // between scan points k and k + 1
       const double a = cv[k], b = cv[k + 1];
       if (!std::isfinite(a) || !std::isfinite(b)) return std::isfinite(a) ? chart.scan_rpm[k] : chart.scan_rpm[k + 1];
@@ -192,13 +239,8 @@ SettingChart setting_chart(Predictor& predictor, std::string_view material, std:
       row.within_target_rpm.emplace_back(low, high);
       k = last;
     }
-    // The scan at the chosen drop point may still find a lower point (a finer speed step).
-    for (std::size_t k = 0; k < points; ++k) {
-      if (cv[k] < best_cv) {
-        best_cv = cv[k];
-        best_rpm = chart.scan_rpm[k];
-      }
-    }
+    best_rpm = candidates[chosen].first;
+    best_turn_rad = chosen_turn_rad;
     const Prediction& p = search.at(best_rpm, best_turn_rad, width_m, true);
     row.rpm = best_rpm;
     row.drop_point_turn_rad = best_turn_rad;

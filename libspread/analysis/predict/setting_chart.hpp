@@ -18,6 +18,14 @@
 // most kChartScanStep_rpm) at the chosen drop point, their ends interpolated linearly in CV. A width is
 // reachable when some setting's CV meets the target there. In a lateral wind each row also gets the discs
 // set apart from its setting (compensate_wind), the answer to the wind a twin-disc spreader has.
+//
+// The setting the chart gives is the one that holds, not the knife edge: the lowest-CV setting and the
+// kChartCandidates grid points of lowest CV at W are predicted with their standard errors (the launch
+// samples' and, between DEM rows, the interpolation's own), and the chart takes the one whose CV + 1.96 SE
+// is lowest. Between rows the lowest CV the search finds is often where the interpolation's smoothing is
+// largest (docs/metrics.md "Between rows"); a setting on a row or whose CV the samples establish then
+// wins. The lowest-CV setting stays in the row (lowest_cv_*), and the spans are read at the chosen drop
+// point.
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -48,6 +56,8 @@ struct SettingChartOptions {
 inline constexpr double kChartScanStep_rpm = 5.0;
 // Largest speed step of the search grid over speed and drop point (r/min).
 inline constexpr double kChartGridStep_rpm = 15.0;
+// Grid points of lowest CV at a width that compete with the lowest-CV setting on their 95 % upper bound.
+inline constexpr int kChartCandidates = 8;
 
 enum class ChartReach {
   kReached,      // the best setting's CV + 1.96 SE is within the target
@@ -58,7 +68,8 @@ enum class ChartReach {
 struct SettingChartRow {
   double width_m = 0.0;
   ChartReach reach = ChartReach::kNotReached;
-  // The best setting (lowest to-and-fro CV at W), both discs alike: speed and drop-point turn.
+  // The chart's setting, both discs alike: speed and drop-point turn — of the candidates, the lowest
+  // to-and-fro CV + 1.96 SE at W.
   double rpm = std::numeric_limits<double>::quiet_NaN();
   double drop_point_turn_rad = std::numeric_limits<double>::quiet_NaN();
   // At `rpm`: the CVs (fractions) at a bout of width_m in whole trays, with their standard errors over
@@ -71,6 +82,12 @@ struct SettingChartRow {
   double working_width_to_and_fro_m = std::numeric_limits<double>::quiet_NaN();
   double working_width_to_and_fro_se_m = std::numeric_limits<double>::quiet_NaN();
   std::size_t sample_count = 0;
+  // The lowest to-and-fro CV the search found at W, where, and its standard error (equal to the chart's
+  // setting when that one also has the lowest upper bound).
+  double lowest_cv_rpm = std::numeric_limits<double>::quiet_NaN();
+  double lowest_cv_drop_point_turn_rad = std::numeric_limits<double>::quiet_NaN();
+  double lowest_cv = std::numeric_limits<double>::quiet_NaN();
+  double lowest_cv_se = std::numeric_limits<double>::quiet_NaN();
   // Spans [low, high] of disc speed (r/min) whose to-and-fro CV at W is within the target, at the
   // chosen drop point.
   std::vector<std::pair<double, double>> within_target_rpm;
