@@ -243,9 +243,12 @@ rate_warnings)
   hasnt "$out.stdout" "warning"
   run calibrate rate --mass 25 --time 60 --gate 40 --target-rate 5000 --width 24 --speed 12
   has "$out.stdout" "warning: the required gate opening 3840 is far outside the caught opening 40"
+  run calibrate rate --mass 1000 --time 60 --gate 40 --target-rate 50 --width 24 --speed 12
+  has "$out.stdout" "2083.3 kg/ha"
+  has "$out.stdout" "is --mass in grams? it takes kilograms (1 kg, not 1000)"
   run calibrate rate --mass 25000 --time 60 --gate 40 --target-rate 50 --width 24 --speed 12
-  has "$out.stdout" "52083.3 kg/ha"
-  has "$out.stdout" "is --mass in grams?"
+  [ $rc -eq 2 ] || fail "exit $rc"
+  has "$out.stderr" "25000 g is 25 kg"
   run calibrate rate --mass 25 --time 60 --gate 40 --mass2 25.1 --time2 60 --gate2 40.1 --target-rate 50 \
       --width 24 --speed 12 --json
   has "$out.stdout" "0.1 gate units apart"

@@ -46,7 +46,10 @@ std::string cv_text(double cv) {
 
 // --width beyond the trays: the CV would describe the ground no tray covered (tray_plausibility.hpp).
 void require_width_within_trays(const cal::TrayTest& t, double width_m) {
-  if (width_m <= 0.0) return;
+  if (width_m == 0.0) return;  // not given
+  if (const std::string range = cal::field_range_problem(cal::kBoutWidthRange, "--width", width_m); !range.empty()) {
+    throw BadInput(range);
+  }
   const std::string problem = cal::bout_width_problem(t.layout, width_m);
   if (!problem.empty()) throw BadInput("--width " + problem);
 }

@@ -19,6 +19,7 @@
 #include "libspread/analysis/calibration/calibrated_table.hpp"
 #include "libspread/analysis/calibration/cv_verdict.hpp"
 #include "libspread/analysis/calibration/disc_speed_check.hpp"
+#include "libspread/analysis/calibration/field_ranges.hpp"
 #include "libspread/analysis/calibration/fit_acceptance.hpp"
 #include "libspread/analysis/calibration/pass_scatter.hpp"
 #include "libspread/analysis/calibration/pattern_fit.hpp"

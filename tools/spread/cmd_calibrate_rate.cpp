@@ -3,7 +3,36 @@
 
 namespace spread::cli::calibrate {
 
+namespace {
+
+// Before the arithmetic: each number within what a catch test and a field can be (field_ranges.hpp).
+void require_field_ranges(const RateOptions& o) {
+  const struct {
+    const cal::FieldRange& range;
+    const char* option;
+    double value;  // NaN: an optional input not given (the required ones CLI11 insists on)
+  } inputs[] = {{cal::kCatchMassRange, "--mass", o.mass_kg},
+                {cal::kCatchTimeRange, "--time", o.time_s},
+                {cal::kGateRange, "--gate", o.gate},
+                {cal::kCatchMassRange, "--mass2", o.mass2_kg},
+                {cal::kCatchTimeRange, "--time2", o.time2_s},
+                {cal::kGateRange, "--gate2", o.gate2},
+                {cal::kRateRange, "--target-rate", o.target_rate_kg_ha},
+                {cal::kBoutWidthRange, "--width", o.width_m},
+                {cal::kSpeedRange, "--speed", o.speed_km_h},
+                {cal::kGateRange, "--current-gate", o.current_gate}};
+  for (const auto& input : inputs) {
+    if (std::isnan(input.value)) continue;
+    if (const std::string problem = cal::field_range_problem(input.range, input.option, input.value); !problem.empty()) {
+      throw BadInput(problem);
+    }
+  }
+}
+
+}  // namespace
+
 void run_rate(const RateOptions& o) {
+  require_field_ranges(o);
   const cal::CatchTest first{o.mass_kg, o.time_s, o.gate};
   const int second_given = !std::isnan(o.mass2_kg) + !std::isnan(o.time2_s) + !std::isnan(o.gate2);
   if (second_given != 0 && second_given != 3) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "libspread/analysis/calibration/field_ranges.hpp"
 #include "libspread/analysis/calibration/tray_rate_check.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
 #include "tools/spread/output_paths.hpp"
@@ -30,19 +31,18 @@ void add_report_args(CLI::App& sub, ReportArgs& args, bool rate) {
 }
 
 std::string check_report_args(const ReportArgs& args) {
-  if (!std::isnan(args.speed_km_h) && !(std::isfinite(args.speed_km_h) && args.speed_km_h > 0.0)) {
-    throw std::invalid_argument("--speed " + format("%g", args.speed_km_h) + ": the forward speed must be > 0 km/h");
-  }
-  if (!std::isnan(args.tray_area_m2) && !(std::isfinite(args.tray_area_m2) && args.tray_area_m2 > 0.0)) {
-    throw std::invalid_argument("--tray-area " + format("%g", args.tray_area_m2) + ": the tray area must be > 0 m²");
-  }
-  if (!std::isnan(args.set_rate_kg_ha)) {
-    if (!(std::isfinite(args.set_rate_kg_ha) && args.set_rate_kg_ha > 0.0)) {
-      throw std::invalid_argument("--rate-kg-ha " + format("%g", args.set_rate_kg_ha) + ": the rate must be > 0 kg/ha");
+  // Before any arithmetic: a number no field holds is a unit or typing slip (calibration/field_ranges.hpp).
+  const auto require = [](const calibration::FieldRange& range, const char* option, double value) {
+    if (std::isnan(value)) return;  // not given
+    if (const std::string problem = calibration::field_range_problem(range, option, value); !problem.empty()) {
+      throw std::invalid_argument(problem);
     }
-    if (std::isnan(args.tray_area_m2)) {
-      throw std::invalid_argument("--rate-kg-ha needs --tray-area (m²): the caught rate is mass per tray area");
-    }
+  };
+  require(calibration::kSpeedRange, "--speed", args.speed_km_h);
+  require(calibration::kTrayAreaRange, "--tray-area", args.tray_area_m2);
+  require(calibration::kRateRange, "--rate-kg-ha", args.set_rate_kg_ha);
+  if (!std::isnan(args.set_rate_kg_ha) && std::isnan(args.tray_area_m2)) {
+    throw std::invalid_argument("--rate-kg-ha needs --tray-area (m²): the caught rate is mass per tray area");
   }
   if (args.path.empty()) return {};
   (void)report_time_s();  // a malformed SOURCE_DATE_EPOCH is refused before the work
