@@ -121,11 +121,11 @@ assert width["bout_width_m"] < 13 and width["meets_target"], width
 PY
   rm -f "$work/guidance.pdf"
   run predict --tables "$dem" --material Urea --rpm 600 --width 13 --report "$work/guidance.pdf"
-  has "$out.stdout" "the CV at 13.00 m is above the target 15 %; predicted from the table, one setting at a time:"
+  has "$out.stdout" "predicted for this material and setting, the CV at 13.00 m is 23.6 %, above the target 15 %; predicted, one setting at a time:"
   has "$out.stdout" "disc speed 750 rpm: CV"
   # The same lines on the report's page.
   pdftotext "$work/guidance.pdf" "$work/guidance.txt" || fail "pdftotext"
-  has "$work/guidance.txt" "the CV at 13.00 m is above the target 15 %"
+  has "$work/guidance.txt" "the CV at 13.00 m is 23.6 %, above the target 15 %"
   has "$work/guidance.txt" "disc speed 750 rpm: CV"
   run predict --tables "$dem" --material Urea --rpm 600 --width 7 --json
   has "$out.stdout" '"adjustments": null'

@@ -31,6 +31,7 @@
 #include "libspread/analysis/calibration/tray_csv.hpp"
 #include "libspread/analysis/calibration/tray_cv_interval.hpp"
 #include "libspread/analysis/calibration/tray_plausibility.hpp"
+#include "libspread/analysis/plot/cv_text.hpp"
 #include "libspread/analysis/plot/plot.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
@@ -41,6 +42,7 @@
 #include "tools/spread/output_paths.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"
 
 namespace spread::cli::calibrate {
@@ -129,8 +131,13 @@ std::vector<std::string> missing_notes(const cal::TrayTest& t);
 
 json pass_scatter_json(const cal::PassScatter& p);
 
+// The tray test's analysis as --json gives it (calibrate tray's output, calibrate pattern's
+// "tray_test_analysis"): every number of its page.
+json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a);
+
 // A CV as printed: NaN is a bout left with less than two trays' weight measured (cv_without_missing.hpp).
-std::string cv_text(double cv);
+// Above the target it is never rounded onto it (plot/cv_text.hpp).
+std::string cv_text(double cv, double target);
 
 // --width beyond the trays: the CV would describe the ground no tray covered (tray_plausibility.hpp).
 void require_width_within_trays(const cal::TrayTest& t, double width_m);
@@ -152,8 +159,9 @@ std::vector<spread::plot::CvTableRow> tray_cv_table(const cal::TrayTestAnalysis&
 // repeatability (tray_cv_interval.hpp; none from one pass).
 cal::CvVerdict bout_verdict(const cal::TrayTest& t, double bout_width_m, double cv_target);
 
-// The verdicts a tray test's page opens with: the CV at the bout, then the rate check.
-std::vector<spread::plot::ReportVerdict> tray_verdicts(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
+// The verdicts of a tray test, computed once for the terminal, --json and the page: the CV at the bout
+// (`bout_width_m` > 0), then the rate check.
+std::vector<spread::cli::Verdict> tray_verdicts(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
                                                        double bout_width_m,
                                                        const std::optional<spread::plot::ReportRate>& rate);
 

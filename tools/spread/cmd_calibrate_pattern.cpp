@@ -263,6 +263,8 @@ void run_pattern(const PatternOptions& o) {
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);
   const std::optional<std::string> rate_note = missing_rate_note(test, rate);
+  // Once, for the terminal, --json and the page alike (a refused fit has no page; its verdicts still print).
+  const std::vector<spread::cli::Verdict> verdicts = tray_verdicts(test, measured, report_width_m, rate);
   std::string report_error;
   if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
@@ -278,7 +280,7 @@ void run_pattern(const PatternOptions& o) {
       page.chart.second_tray_mass_kg = predicted_kg;
       page.chart.second_label = "predicted, calibrated";
       page.summary.push_back(fitted_values_line(fit));
-      page.verdicts = tray_verdicts(test, measured, report_width_m, rate);
+      page.verdicts = spread::cli::page_verdicts(verdicts);
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
@@ -304,6 +306,18 @@ void run_pattern(const PatternOptions& o) {
     report["written"] = written;
     report["rate"] = spread::cli::rate_json(rate);
     report["adjustments"] = spread::cli::setting_guidance_json(guidance);
+    report["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
+    report["verdicts"] = spread::cli::verdicts_json(verdicts);
+    if (report_width_m > 0.0) {
+      report["cv_verdict"] = verdicts.front().numbers;
+      report["judged_bout_width_m"] = report_width_m;
+      report["judged_cv_to_and_fro_percent"] =
+          finite_or_null(100.0 * curve_cv(measured, measured.cv_to_and_fro_curve, report_width_m));
+      report["judged_cv_racetrack_percent"] =
+          finite_or_null(100.0 * curve_cv(measured, measured.cv_racetrack_curve, report_width_m));
+    }
+    report["tray_test_analysis"] = tray_json(test, measured);
+    if (!std::isnan(o.report.speed_km_h)) report["speed_km_h"] = o.report.speed_km_h;
     if (!plot_error.empty()) report["plot_error"] = plot_error;
     if (!report_problem.empty() || !report_error.empty()) {
       report["report_error"] = report_problem.empty() ? report_error : report_problem;
@@ -312,6 +326,7 @@ void run_pattern(const PatternOptions& o) {
   } else {
     std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
                 fit.iterations, fit.converged ? "converged" : "NOT converged");
+    spread::cli::print_verdicts(verdicts);
     if (fit.table_samples) {
       std::printf("  launches: the table's DEM row at %g rpm (%zu samples, %d per evaluation), corrected\n",
                   setup.table_row_rpm, setup.table_samples.size(), o.samples);

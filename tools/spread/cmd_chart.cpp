@@ -25,6 +25,7 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"
 
 namespace spread::cli::cmd_chart {
@@ -113,7 +114,7 @@ std::string reach_note(const pr::SettingChartRow& row, const pr::SettingChart& c
 // The chart page's first lines: the widths by the verdict of their best setting, by the rule of every
 // report (calibration/cv_verdict.hpp) — reached: its 95 % interval within the target (PASS); marginal:
 // the interval reaches over it (MARGINAL); not reachable: no setting meets it (FAIL).
-std::vector<spread::plot::ReportVerdict> chart_verdicts(const pr::SettingChart& chart, double cv_target_percent) {
+std::vector<spread::cli::Verdict> chart_verdicts(const pr::SettingChart& chart, double cv_target_percent) {
   using Level = spread::plot::ReportVerdict::Level;
   struct Group {
     pr::ChartReach reach;
@@ -128,13 +129,18 @@ std::vector<spread::plot::ReportVerdict> chart_verdicts(const pr::SettingChart& 
        "the best setting's 95 % interval reaches over " + target + ": confirm with a tray test"},
       {pr::ChartReach::kNotReached, Level::kFail, "FAIL", "no setting searched keeps the CV within " + target},
   };
-  std::vector<spread::plot::ReportVerdict> verdicts;
+  std::vector<spread::cli::Verdict> verdicts;
   for (const Group& g : groups) {
     std::string widths;
+    json widths_m = json::array();
     for (const pr::SettingChartRow& row : chart.rows) {
-      if (row.reach == g.reach) widths += (widths.empty() ? "" : ", ") + format("%.1f m", row.width_m);
+      if (row.reach != g.reach) continue;
+      widths += (widths.empty() ? "" : ", ") + format("%.1f m", row.width_m);
+      widths_m.push_back(row.width_m);
     }
-    if (!widths.empty()) verdicts.push_back({g.level, g.word, widths + ": " + g.meaning});
+    if (widths.empty()) continue;
+    verdicts.push_back({"widths", {g.level, g.word, widths + ": " + g.meaning},
+                        {{"widths_m", widths_m}, {"cv_target_percent", cv_target_percent}, {"confidence_percent", 95}}});
   }
   return verdicts;
 }
@@ -182,6 +188,8 @@ void run(const Options& o, int& exit_code) {
                                  " of the table's (both discs alike) with the lowest to-and-fro CV at each width (target " +
                                  format("%g %%", o.cv_target_percent) + ")";
 
+  // Once, for the terminal, --json and the page alike.
+  const std::vector<spread::cli::Verdict> verdicts = chart_verdicts(chart, o.cv_target_percent);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     try {
@@ -195,7 +203,7 @@ void run(const Options& o, int& exit_code) {
       page.header.time_s = report_time_s;
       page.header.made_by = spread::cli::command_line();
       page.summary.push_back(range_line);
-      page.verdicts = chart_verdicts(chart, o.cv_target_percent);
+      page.verdicts = spread::cli::page_verdicts(verdicts);
       page.caption = "Disc speed per working width (CV target " + format("%g %%", o.cv_target_percent) + ")";
       page.columns = {"width", "speed, drop point", "CV to-and-fro", "CV racetrack", "CV within target at"};
       for (const pr::SettingChartRow& row : chart.rows) {
@@ -273,11 +281,14 @@ void run(const Options& o, int& exit_code) {
                         }()}}},
              {"rows", rows},
              {"scan", scan},
-             {"predictions", chart.predictions}};
+             {"predictions", chart.predictions},
+             {"verdicts", spread::cli::verdicts_json(verdicts)}};
+    if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("%s\n", range_line.c_str());
+    spread::cli::print_verdicts(verdicts);
     std::printf("  %-8s %-20s %-18s %-18s %s\n", "width", "speed, drop point", "CV to-and-fro", "CV racetrack",
                 "CV within target at");
     for (const pr::SettingChartRow& row : chart.rows) {

@@ -25,6 +25,7 @@
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -227,8 +228,24 @@ spread::cli::SettingGuidance guidance_for(const Options& o, const spread_predict
 
 // The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
 // their 95 % intervals. Returns the error of writing it ("" when written).
+// The predicted CV at the bout width against the target with its 95 % interval over the launch samples
+// (1.96 standard errors, as the text prints it): the rule of every report (calibration/cv_verdict.hpp).
+// None without a bout width.
+std::vector<spread::cli::Verdict> prediction_verdicts(const Options& o, const spread_prediction& r) {
+  if (!(r.bout_width_m > 0.0)) return {};
+  const double cv = r.cv_percent / 100.0, half = 1.96 * r.cv_se_percent / 100.0;
+  const bool interval = std::isfinite(half);
+  spread::cli::Verdict v = spread::cli::cv_verdict(
+      "predicted CV at the " + format("%.2f m", r.bout_width_m) + " bout, to-and-fro",
+      spread::calibration::cv_verdict(cv, interval ? std::max(0.0, cv - half) : NAN, interval ? cv + half : NAN,
+                                      o.cv_target_percent / 100.0));
+  v.numbers["bout_width_m"] = r.bout_width_m;
+  return {v};
+}
+
 std::string write_report(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
-                         const CvCurve& curve, std::int64_t time_s, const spread::cli::SettingGuidance& guidance) {
+                         const CvCurve& curve, std::int64_t time_s, const spread::cli::SettingGuidance& guidance,
+                         const std::vector<spread::cli::Verdict>& verdicts) {
   try {
     spread::plot::PatternReport page;
     page.header.title = "Spread pattern report: prediction";
@@ -279,14 +296,7 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
         spread::plot::with_bout_width_m(spread::plot::cv_table_widths_m(r.throw_width_m, curve.widths_m),
                                         r.bout_width_m, curve.widths_m),
         curve.widths_m, curve.to_and_fro, curve.racetrack);
-    if (r.bout_width_m > 0.0) {
-      // The predicted CV against the target with its 95 % interval over the launch samples (1.96 standard
-      // errors, as the text prints it): the rule of every report (calibration/cv_verdict.hpp).
-      const double cv = r.cv_percent / 100.0, half = 1.96 * r.cv_se_percent / 100.0;
-      page.verdicts.push_back(spread::cli::cv_report_verdict(
-          "predicted CV at the " + format("%.2f m", r.bout_width_m) + " bout, to-and-fro",
-          spread::calibration::cv_verdict(cv, std::max(0.0, cv - half), cv + half, page.cv_target)));
-    }
+    page.verdicts = spread::cli::page_verdicts(verdicts);
     if (!bands_note.empty()) page.notes.push_back(bands_note);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
                          "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
@@ -374,9 +384,10 @@ void run(const Options& o, int& exit_code) {
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
   const spread::cli::SettingGuidance guidance = guidance_for(o, result);
+  const std::vector<spread::cli::Verdict> verdicts = prediction_verdicts(o, result);
   const std::string report_error = o.report.path.empty() || !report_problem.empty()
                                        ? std::string()
-                                       : write_report(o, result, trays, curve, report_time_s, guidance);
+                                       : write_report(o, result, trays, curve, report_time_s, guidance, verdicts);
   if (o.json) {
     json centres = json::array(), fractions = json::array();
     for (std::size_t k = 0; k < tray_count; ++k) {
@@ -430,6 +441,9 @@ void run(const Options& o, int& exit_code) {
                 {"first_band_width_m", {{"to_and_fro", result.first_band_width_to_and_fro_m},
                                         {"racetrack", result.first_band_width_racetrack_m}}}};
     out["adjustments"] = spread::cli::setting_guidance_json(guidance);
+    out["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
+    out["verdicts"] = spread::cli::verdicts_json(verdicts);
+    if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     if (o.compensate_wind) {
       out["wind_compensation"] = {{"present_cv_to_and_fro_percent", number_or_null(present_cv_percent)},
                                   {"present_cv_to_and_fro_se_percent", number_or_null(present_cv_se_percent)},
@@ -461,6 +475,8 @@ void run(const Options& o, int& exit_code) {
               << result.working_width_to_and_fro_m << " m" << plus_minus(result.working_width_to_and_fro_se_m)
               << ", racetrack " << result.working_width_racetrack_m << " m"
               << plus_minus(result.working_width_racetrack_se_m) << "\n";
+    std::cout << std::flush;
+    spread::cli::print_verdicts(verdicts);
     if (o.compensate_wind) {
       std::cout << "  wind compensation: CV at " << result.bout_width_m << " m in this wind " << present_cv_percent
                 << " %" << plus_minus(present_cv_se_percent) << " at the present setting; each disc set apart:\n"

@@ -119,43 +119,6 @@ std::vector<std::string> rate_lines(const std::optional<plot::ReportRate>& rate)
   return lines;
 }
 
-plot::ReportVerdict cv_report_verdict(const std::string& what, const calibration::CvVerdict& verdict) {
-  using Level = plot::ReportVerdict::Level;
-  plot::ReportVerdict v;
-  switch (verdict.verdict) {
-    case calibration::Verdict::kPass: v.level = Level::kPass; break;
-    case calibration::Verdict::kMarginal: v.level = Level::kMarginal; break;
-    case calibration::Verdict::kFail: v.level = Level::kFail; break;
-    case calibration::Verdict::kNoCv: v.level = Level::kNone; break;
-  }
-  v.word = calibration::verdict_word(verdict.verdict);
-  v.text = what + ": " + calibration::verdict_detail(verdict);
-  return v;
-}
-
-std::optional<plot::ReportVerdict> rate_report_verdict(const std::optional<plot::ReportRate>& rate) {
-  if (!rate || std::isnan(rate->set_rate_kg_ha)) return std::nullopt;
-  plot::ReportVerdict v;
-  v.level = rate->pass ? plot::ReportVerdict::Level::kPass : plot::ReportVerdict::Level::kFail;
-  v.word = rate->pass ? "PASS" : "FAIL";
-  v.text = "Rate (EN 13739-2): the trays caught " + format("%.1f kg/ha", rate->rate_kg_ha) + ", " +
-           format("%.1f %%", rate->caught_percent) + " of the set " + format("%.1f kg/ha", rate->set_rate_kg_ha) +
-           " (" + format("%g", rate->lowest_percent) + "-" + format("%g %%", rate->highest_percent) + " required)";
-  return v;
-}
-
-nlohmann::json cv_verdict_json(const calibration::CvVerdict& verdict) {
-  const auto percent_or_null = [](double v) {
-    return std::isfinite(v) ? nlohmann::json(100.0 * v) : nlohmann::json(nullptr);
-  };
-  return {{"verdict", calibration::verdict_key(verdict.verdict)},
-          {"cv_percent", percent_or_null(verdict.cv)},
-          {"interval_percent", verdict.has_interval()
-                                   ? nlohmann::json::array({percent_or_null(verdict.low), percent_or_null(verdict.high)})
-                                   : nlohmann::json(nullptr)},
-          {"cv_target_percent", 100.0 * verdict.target}};
-}
-
 void add_report_outcome(nlohmann::json& out, const ReportArgs& args, const std::string& problem,
                         const std::string& write_error) {
   const bool failed = !problem.empty() || !write_error.empty();

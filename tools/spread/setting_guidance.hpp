@@ -24,5 +24,7 @@ SettingGuidance setting_guidance(const std::string& tables, const predict::Predi
 
 // `adjustments` of a command's JSON: a list, or null when there is none.
 nlohmann::json setting_guidance_json(const SettingGuidance& guidance);
+// `adjusted_from` of a command's JSON: the predicted present CV the adjustments start from, or null.
+nlohmann::json setting_guidance_present_json(const SettingGuidance& guidance);
 
 }  // namespace spread::cli

@@ -9,6 +9,7 @@
 
 #include "libspread/analysis/plot/axes.hpp"
 #include "libspread/analysis/plot/canvas.hpp"
+#include "libspread/analysis/plot/cv_text.hpp"
 #include "libspread/analysis/plot/mass_unit.hpp"
 #include "libspread/analysis/plot/plot.hpp"
 #include "libspread/analysis/plot/transverse_drawing.hpp"
@@ -84,10 +85,9 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
   }
   // The CV the legend and band show, and the bout's mean per tray: x̄ = Σ w_j P_j / n with the weights of
   // metrics::cv_at_trays (1, or 1/2 for the two trays a bout edge cuts) — the x̄ of that CV.
-  const double bout_cv = !overlapped ? 0.0
-                         : std::isnan(options.bout_cv)
-                             ? metrics::cv_at_width(tray_mass_kg, trays, options.bout_width_m, options.overlap)
-                             : options.bout_cv;
+  const double bout_cv = !overlapped                        ? 0.0
+                         : !std::isnan(options.bout_cv) || any_missing ? options.bout_cv
+                             : metrics::cv_at_width(tray_mass_kg, trays, options.bout_width_m, options.overlap);
   double bout_mean_kg = 0.0, bout_weight = 0.0;
   for (std::size_t j = 0; j < bout_kg.size(); ++j) {
     if (bout_gap[j]) continue;
@@ -220,9 +220,10 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0.0);
     char label[160];
-    std::snprintf(label, sizeof label, "overlapped, %s, W = %.1f m: CV = %.1f %%",
+    std::snprintf(label, sizeof label, "overlapped, %s, W = %.2f m: CV %s",
                   options.overlap == metrics::Overlap::kToAndFro ? "to-and-fro" : "racetrack", 2.0 * bout_half_m,
-                  100.0 * bout_cv);
+                  std::isnan(bout_cv) ? "none (too few trays of the bout read)"
+                                      : cv_percent_text(bout_cv, options.cv_target).c_str());
     legend.push_back({label, kOverlapColour, detail::LegendEntry::Kind::kLine});
   }
   if (band) {
@@ -230,7 +231,7 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
     std::snprintf(label, sizeof label, "mean of the bout: %.3g %s%s", bout_mean_kg * unit.per_kg, unit.name.c_str(),
                   rate ? "" : " per tray");
     legend.push_back({label, kMeanColour, detail::LegendEntry::Kind::kDashedLine});
-    std::snprintf(label, sizeof label, "mean ± CV (%.1f %%)", 100.0 * bout_cv);
+    std::snprintf(label, sizeof label, "mean ± CV (%s)", cv_percent_text(bout_cv, options.cv_target).c_str());
     legend.push_back({label, Rgb{0.70, 0.85, 0.74}, detail::LegendEntry::Kind::kBox});
   }
   cairo_restore(cr);  // clip
