@@ -37,6 +37,7 @@
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "libspread/io/tables/table_reader.hpp"
+#include "tools/spread/chart_json.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/error_exit.hpp"
 #include "tools/spread/output_paths.hpp"

@@ -308,6 +308,12 @@ void run_pattern(const PatternOptions& o) {
     report["adjustments"] = spread::cli::setting_guidance_json(guidance);
     report["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
     report["verdicts"] = spread::cli::verdicts_json(verdicts);
+    {
+      // The page's chart overlaps the measured trays, as the tray test's page does.
+      spread::plot::PatternReport chart_page = tray_report_page(test, measured, report_width_m, 0);
+      if (o.report.tray_area_m2 > 0.0) chart_page.chart.tray_area_m2 = o.report.tray_area_m2;
+      report["chart"] = spread::cli::chart_json(chart_page);
+    }
     if (report_width_m > 0.0) {
       report["cv_verdict"] = verdicts.front().numbers;
       report["judged_bout_width_m"] = report_width_m;

@@ -130,6 +130,14 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
              {"tray_spacing_m", t.tray_width_m},
              {"passes", t.mass_columns.size()},
              {"missing_trays_m", t.missing_positions_m()},
+             {"tray_positions_m", t.position_m},
+             {"tray_mass_g", [&] {
+                json masses = json::array();  // mean of the passes read; null for a missing tray
+                for (std::size_t i = 0; i < t.mass_kg.size(); ++i) {
+                  masses.push_back(t.missing[i] ? json(nullptr) : json(1e3 * t.mass_kg[i]));
+                }
+                return masses;
+              }()},
              {"mean_g", 1e3 * q.mean_kg},
              {"sd_g", 1e3 * q.sd_kg},
              {"cv_percent", 100.0 * q.cv},
@@ -186,20 +194,21 @@ void run_tray(const TrayOptions& o) {
   json written = json::object();
   const std::string plot_error =
       o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, o.report.tray_area_m2, written); });
+  // The page, made whether or not it is written: --json gives its chart's numbers too.
+  spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
+  if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
+  page.header.machine = o.machine;
+  page.header.material = o.material;
+  page.header.rpm = o.rpm;
+  page.header.speed_km_h = o.report.speed_km_h;
+  page.verdicts = spread::cli::page_verdicts(verdicts);
+  page.rate = rate;
+  page.notes = warnings;
+  for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+  if (rate_note) page.notes.push_back(*rate_note);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
-      spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
-      if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
-      page.header.machine = o.machine;
-      page.header.material = o.material;
-      page.header.rpm = o.rpm;
-      page.header.speed_km_h = o.report.speed_km_h;
-      page.verdicts = spread::cli::page_verdicts(verdicts);
-      page.rate = rate;
-      page.notes = warnings;
-      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
-      if (rate_note) page.notes.push_back(*rate_note);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
     });
@@ -211,6 +220,7 @@ void run_tray(const TrayOptions& o) {
   if (o.json) {
     json out = tray_json(t, a);
     out["verdicts"] = spread::cli::verdicts_json(verdicts);
+    out["chart"] = spread::cli::chart_json(page);
     // The CV's verdict at the bout judged: --width's, else the widest whole number of trays within the
     // working width (the page's "judged" row).
     if (report_width_m > 0.0) {

@@ -21,6 +21,7 @@
 #include "libspread/physics/flight/flight.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
 #include "spread/spread.h"
+#include "tools/spread/chart_json.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
@@ -226,8 +227,6 @@ spread::cli::SettingGuidance guidance_for(const Options& o, const spread_predict
   return spread::cli::setting_guidance(o.tables, request);
 }
 
-// The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
-// their 95 % intervals. Returns the error of writing it ("" when written).
 // The predicted CV at the bout width against the target with its 95 % interval over the launch samples
 // (1.96 standard errors, as the text prints it): the rule of every report (calibration/cv_verdict.hpp).
 // None without a bout width.
@@ -243,14 +242,17 @@ std::vector<spread::cli::Verdict> prediction_verdicts(const Options& o, const sp
   return {v};
 }
 
-std::string write_report(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
-                         const CvCurve& curve, std::int64_t time_s, const spread::cli::SettingGuidance& guidance,
-                         const std::vector<spread::cli::Verdict>& verdicts) {
-  try {
+// The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
+// their 95 % intervals.
+spread::plot::PatternReport report_page(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
+                                        const CvCurve& curve, std::int64_t time_s,
+                                        const spread::cli::SettingGuidance& guidance,
+                                        const std::vector<spread::cli::Verdict>& verdicts) {
     spread::plot::PatternReport page;
     page.header.title = "Spread pattern report: prediction";
     page.header.source = o.tables;
-    page.header.machine = spread::tables::read_table_file(o.tables).machine.name;
+    // The machine's name is read from the table only for a page to write (a second read of the file).
+    if (!o.report.path.empty()) page.header.machine = spread::tables::read_table_file(o.tables).machine.name;
     page.header.material = o.material;
     page.header.rpm = o.rpm;
     if (own_disc_settings(o)) page.header.rpm_text = setting_label(o, r);
@@ -301,11 +303,7 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
                          "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
     for (const std::string& line : guidance.lines) page.notes.push_back(line);
-    spread::plot::write_report_pdf(o.report.path, &page);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return {};
+    return page;
 }
 
 void run(const Options& o, int& exit_code) {
@@ -385,9 +383,16 @@ void run(const Options& o, int& exit_code) {
   const CvCurve curve = cv_curve_of(result, trays);
   const spread::cli::SettingGuidance guidance = guidance_for(o, result);
   const std::vector<spread::cli::Verdict> verdicts = prediction_verdicts(o, result);
-  const std::string report_error = o.report.path.empty() || !report_problem.empty()
-                                       ? std::string()
-                                       : write_report(o, result, trays, curve, report_time_s, guidance, verdicts);
+  // The page, made whether or not it is written: --json gives its chart's numbers too.
+  const spread::plot::PatternReport page = report_page(o, result, trays, curve, report_time_s, guidance, verdicts);
+  std::string report_error;
+  if (!o.report.path.empty() && report_problem.empty()) {
+    try {
+      spread::plot::write_report_pdf(o.report.path, &page);
+    } catch (const std::exception& e) {
+      report_error = e.what();
+    }
+  }
   if (o.json) {
     json centres = json::array(), fractions = json::array();
     for (std::size_t k = 0; k < tray_count; ++k) {
@@ -443,6 +448,7 @@ void run(const Options& o, int& exit_code) {
     out["adjustments"] = spread::cli::setting_guidance_json(guidance);
     out["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
     out["verdicts"] = spread::cli::verdicts_json(verdicts);
+    out["chart"] = spread::cli::chart_json(page);
     if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     if (o.compensate_wind) {
       out["wind_compensation"] = {{"present_cv_to_and_fro_percent", number_or_null(present_cv_percent)},
