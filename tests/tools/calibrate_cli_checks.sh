@@ -91,6 +91,40 @@ border)
   [ $rc -eq 2 ] || fail "--edge ditch: exit $rc, expected 2"
   has "$out.stderr" "--edge 'ditch'"
   pass ;;
+next_steps)
+  # Every calibration command ends with what to do next, in the technician's terms, by its result.
+  run calibrate rate --mass 93 --time 60 --gate 60 --target-rate 380 --width 12 --speed 12
+  has "$out.stdout" "next: set the gate to 58.84 (it is at 60.00)"
+  has "$out.stdout" "      spread calibrate tray TRAYS.csv --width 12"
+  run calibrate tray "$example" --width 6 --tray-area 0.25 --rate-kg-ha 400
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "next: the spread is uneven at 6.00 m: drive bouts of at most 2.74 m, or change the setting"
+  has "$out.stdout" "      lookup_builder scenes/default.toml --output table.sqlite"
+  has "$out.stdout" "next: the trays did not catch the rate set"
+  run calibrate tray "$example" --width 3.5
+  has "$out.stdout" "next: repeat the tray test to narrow the interval, or drive bouts of at most 2.74 m (within the target)"
+  run calibrate tray "$example"
+  has "$out.stdout" "next: the spread is even at 2.50 m: keep this setting and drive bouts of 2.50 m"
+  run calibrate tray "$src/scenes/field/quick_check_5trays.csv" --quick-check --json
+  has "$out.stdout" '"what": "these few trays cannot tell: lay a row of trays across the whole throw'
+  rm -f "$work/next.sqlite"
+  run calibrate pattern --tables "$work/urea.sqlite" --material Urea --rpm 600 --trays "$example"       --output "$work/next.sqlite" --fit friction,drag --samples 128 --name field --width 3.5
+  [ $rc -eq 0 ] || fail "pattern exit $rc"
+  # The tag keeps the product's name, and the next step charts it.
+  has "$out.stdout" "wrote 'Urea (field)'"
+  has "$out.stdout" "      spread chart --tables $work/next.sqlite --material 'Urea (field)' --widths 3.5"
+  # The bout width the guidance offers moves the gate.
+  has "$out.stdout" "at 2.50 m the gate meters 28.6 % less for the same rate: its opening × 2.50/3.50"
+  # Charting the product when the table holds its calibrated version says so.
+  run chart --tables "$work/next.sqlite" --material Urea --widths 3
+  has "$out.stdout" "note: this table also holds 'Urea (field)', calibrated to a tray test of this spreader"
+  has "$out.stdout" "next: the gate meters for a width"
+  run chart --tables "$work/next.sqlite" --material 'Urea (field)' --widths 3 --json
+  has "$out.stdout" '"calibrated_versions": []'
+  # Where a table comes from, in the help of the command that needs one.
+  run calibrate pattern --help
+  has "$out.stdout" "made by lookup_builder from its scene"
+  pass ;;
 name_date)
   # The calibrated material's default name carries SOURCE_DATE_EPOCH's date (reproducible), not the clock's.
   rm -f "$work/named.sqlite"

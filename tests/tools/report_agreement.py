@@ -55,7 +55,8 @@ def shown_matches(shown, numbers):
     decimals = len(shown.split(".")[1]) if "." in shown else 0
     x = float(shown)
     half = 0.5 * 10 ** -decimals + 1e-9
-    return any(abs(v - x) <= half or abs(abs(v) - abs(x)) <= half and shown.startswith("+") for v in numbers)
+    # A magnitude may be printed with its direction in words ("28.6 % less" for -28.6) or its sign.
+    return any(abs(v - x) <= half or abs(abs(v) - abs(x)) <= half for v in numbers)
 
 
 def page_body(text):

@@ -187,7 +187,7 @@ void run_pattern(const PatternOptions& o) {
   // Before the fit: the name's date is SOURCE_DATE_EPOCH's when set (a malformed one is refused here).
   const std::string material_name =
       o.name.empty() ? cal::calibrated_material_name(o.material, spread::plot::utc_date(spread::cli::report_time_s()))
-                     : o.name;
+                     : cal::tagged_material_name(o.material, o.name);
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   require_width_within_trays(test, o.width_m);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
@@ -265,6 +265,8 @@ void run_pattern(const PatternOptions& o) {
   const std::optional<std::string> rate_note = missing_rate_note(test, rate);
   // Once, for the terminal, --json and the page alike (a refused fit has no page; its verdicts still print).
   const std::vector<spread::cli::Verdict> verdicts = tray_verdicts(test, measured, report_width_m, rate);
+  const std::vector<spread::cli::NextStep> steps = spread::cli::pattern_next_steps(
+      summary.has_value(), summary ? summary->output_path : o.output, material_name, o.width_m);
   std::string report_error;
   if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
@@ -285,7 +287,8 @@ void run_pattern(const PatternOptions& o) {
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
       if (rate_note) page.notes.push_back(*rate_note);
-      for (const std::string& line : guidance.lines) page.notes.push_back(line);
+      for (const std::string& line : guidance.notes) page.notes.push_back(line);
+      for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
     });
@@ -308,6 +311,7 @@ void run_pattern(const PatternOptions& o) {
     report["adjustments"] = spread::cli::setting_guidance_json(guidance);
     report["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
     report["verdicts"] = spread::cli::verdicts_json(verdicts);
+    report["next_steps"] = spread::cli::next_steps_json(steps);
     {
       // The page's chart overlaps the measured trays, as the tray test's page does.
       spread::plot::PatternReport chart_page = tray_report_page(test, measured, report_width_m, 0);
@@ -375,6 +379,7 @@ void run_pattern(const PatternOptions& o) {
     if (rate_note) std::printf("note: %s\n", rate_note->c_str());
     for (const std::string& advice : guidance.lines) std::printf("%s\n", advice.c_str());
     for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+    spread::cli::print_next_steps(steps);
   }
   if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
   if (!acceptance.accepted()) {

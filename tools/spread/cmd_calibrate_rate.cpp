@@ -45,6 +45,8 @@ void run_rate(const RateOptions& o) {
   const double current = std::isnan(o.current_gate) ? o.gate : o.current_gate;
   const cal::RateSetting s = cal::rate_setting(model, o.target_rate_kg_ha, o.width_m, o.speed_km_h, current);
   const std::vector<std::string> warnings = cal::rate_warnings(first, second, s);
+  const std::vector<spread::cli::NextStep> steps =
+      spread::cli::rate_next_steps(s.required_gate_opening, s.current_gate_opening, o.width_m);
   if (o.json) {
     json out{{"model", two_point ? "two-point line" : "line through zero"},
              {"flow_factor_kg_s_per_unit", model.flow_factor_kg_s_per_unit},
@@ -59,7 +61,8 @@ void run_rate(const RateOptions& o) {
              {"current_mass_flow_kg_s", s.current_mass_flow_kg_s},
              {"current_rate_kg_ha", s.current_rate_kg_ha},
              {"rate_error_percent", 100.0 * s.rate_error},
-             {"warnings", warnings}};
+             {"warnings", warnings},
+             {"next_steps", spread::cli::next_steps_json(steps)}};
     std::cout << out.dump(2) << "\n";
     return;
   }
@@ -70,6 +73,7 @@ void run_rate(const RateOptions& o) {
   std::printf("gate at %.2f spreads %.1f kg/ha: %+.1f %% against the target\n", s.current_gate_opening,
               s.current_rate_kg_ha, 100.0 * s.rate_error);
   for (const std::string& w : warnings) std::printf("warning: %s\n", w.c_str());
+  spread::cli::print_next_steps(steps);
 }
 
 }  // namespace spread::cli::calibrate

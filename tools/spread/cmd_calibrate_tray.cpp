@@ -90,6 +90,8 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
       break;
   }
   const std::string verdict = verdicts.front().shown.word + ", " + meaning;
+  const std::vector<spread::cli::NextStep> steps = spread::cli::tray_next_steps(
+      verdicts, q.trays * t.tray_width_m, 0.0, true, static_cast<int>(t.mass_columns.size()), true, t.source);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
@@ -120,6 +122,7 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
       page.notes.push_back("a CV from a few trays is itself uncertain: the 95 % interval says how much; MARGINAL "
                            "means these trays cannot tell, a full tray test across the throw can");
+      for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
       spread::plot::write_report_pdf(o.report.path, nullptr, &page);
     });
   }
@@ -147,7 +150,8 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
              {"verdict", spread::cli::verdict_key(verdicts.front().shown.level)},
              {"verdicts", spread::cli::verdicts_json(verdicts)},
              {"rate", spread::cli::rate_json(rate)},
-             {"notes", notes}};
+             {"notes", notes},
+             {"next_steps", spread::cli::next_steps_json(steps)}};
     spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
     spread::cli::throw_report_outcome(report_problem, report_error);
@@ -165,6 +169,7 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
   if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
     std::printf("wrote %s\n", o.report.path.c_str());
   }
+  spread::cli::print_next_steps(steps);
   spread::cli::throw_report_outcome(report_problem, report_error);
 }
 
@@ -191,6 +196,9 @@ void run_tray(const TrayOptions& o) {
   const std::optional<std::string> rate_note = missing_rate_note(t, rate);
   // Once, for the terminal, --json and the page alike.
   const std::vector<spread::cli::Verdict> verdicts = tray_verdicts(t, a, report_width_m, rate);
+  const std::vector<spread::cli::NextStep> steps =
+      spread::cli::tray_next_steps(verdicts, report_width_m, a.working_width_to_and_fro_m, a.bout_width_m > 0.0,
+                                   static_cast<int>(t.mass_columns.size()), false, t.source);
   json written = json::object();
   const std::string plot_error =
       o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, o.report.tray_area_m2, written); });
@@ -206,6 +214,7 @@ void run_tray(const TrayOptions& o) {
   page.notes = warnings;
   for (const std::string& n : notes) page.notes.push_back("missing: " + n);
   if (rate_note) page.notes.push_back(*rate_note);
+  for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
@@ -221,6 +230,7 @@ void run_tray(const TrayOptions& o) {
     json out = tray_json(t, a);
     out["verdicts"] = spread::cli::verdicts_json(verdicts);
     out["chart"] = spread::cli::chart_json(page);
+    out["next_steps"] = spread::cli::next_steps_json(steps);
     // The CV's verdict at the bout judged: --width's, else the widest whole number of trays within the
     // working width (the page's "judged" row).
     if (report_width_m > 0.0) {
@@ -280,6 +290,7 @@ void run_tray(const TrayOptions& o) {
     std::printf("note: no rate: --tray-area needs a bout width (--width, or a working width of two trays or more)\n");
   }
   for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+  spread::cli::print_next_steps(steps);
   fail_after_report();
 }
 

@@ -24,6 +24,7 @@
 #include "libspread/core/strict_number.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
+#include "tools/spread/next_steps.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"
@@ -145,6 +146,26 @@ std::vector<spread::cli::Verdict> chart_verdicts(const pr::SettingChart& chart, 
   return verdicts;
 }
 
+// The calibrated versions of `material` in the table: a calibration keeps the product's name and adds
+// its tag in parentheses ("Urea (calibrated 2026-12-07)", calibration/calibrated_table.hpp). Charting the
+// product itself then is charting the table's uncalibrated pattern, not this spreader's.
+std::vector<std::string> calibrated_versions(const pr::Predictor& predictor, const std::string& material) {
+  std::vector<std::string> names;
+  const std::string prefix = material + " (";
+  for (std::size_t i = 0; i < predictor.material_count(); ++i) {
+    const std::string& name = predictor.material(i).name;
+    if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 && name.back() == ')') {
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
+std::string calibrated_note(const std::string& name) {
+  return "this table also holds '" + name + "', calibrated to a tray test of this spreader: this chart is of "
+         "the uncalibrated material; chart the calibrated one for the settings to use";
+}
+
 void run(const Options& o, int& exit_code) {
   const double cv_target = spread::calibration::cv_target_from_percent(o.cv_target_percent, "--cv-target");
   const std::vector<double> widths = parse_widths(o.widths);
@@ -190,6 +211,8 @@ void run(const Options& o, int& exit_code) {
 
   // Once, for the terminal, --json and the page alike.
   const std::vector<spread::cli::Verdict> verdicts = chart_verdicts(chart, o.cv_target_percent);
+  const std::vector<spread::cli::NextStep> steps = spread::cli::chart_next_steps();
+  const std::vector<std::string> calibrated = calibrated_versions(predictor, o.material);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     try {
@@ -226,6 +249,8 @@ void run(const Options& o, int& exit_code) {
                            "the one with the lowest predicted to-and-fro CV at the width; the drop point is turned "
                            "from the table's (+ counter-clockwise from above on the left disc, mirrored on the "
                            "right), and the speed spans are at that drop point");
+      for (const std::string& name : calibrated) page.notes.push_back(calibrated_note(name));
+      for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
       spread::plot::write_report_pdf(o.report.path, nullptr, &page);
     } catch (const std::exception& e) {
       report_error = e.what();
@@ -282,7 +307,9 @@ void run(const Options& o, int& exit_code) {
              {"rows", rows},
              {"scan", scan},
              {"predictions", chart.predictions},
-             {"verdicts", spread::cli::verdicts_json(verdicts)}};
+             {"verdicts", spread::cli::verdicts_json(verdicts)},
+             {"calibrated_versions", calibrated},
+             {"next_steps", spread::cli::next_steps_json(steps)}};
     if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
@@ -312,9 +339,11 @@ void run(const Options& o, int& exit_code) {
       heading = true;
       std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), compensation_text(row).c_str());
     }
+    for (const std::string& name : calibrated) std::printf("note: %s\n", calibrated_note(name).c_str());
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::printf("wrote %s\n", o.report.path.c_str());
     }
+    spread::cli::print_next_steps(steps);
   }
   spread::cli::throw_report_outcome(report_problem, report_error);
   exit_code = spread::cli::kExitOk;

@@ -27,6 +27,7 @@
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
 #include "tools/spread/verdicts.hpp"
+#include "tools/spread/next_steps.hpp"
 #include "tools/spread/number_format.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -302,7 +303,7 @@ spread::plot::PatternReport report_page(const Options& o, const spread_predictio
     if (!bands_note.empty()) page.notes.push_back(bands_note);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
                          "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
-    for (const std::string& line : guidance.lines) page.notes.push_back(line);
+    for (const std::string& line : guidance.notes) page.notes.push_back(line);
     return page;
 }
 
@@ -383,8 +384,11 @@ void run(const Options& o, int& exit_code) {
   const CvCurve curve = cv_curve_of(result, trays);
   const spread::cli::SettingGuidance guidance = guidance_for(o, result);
   const std::vector<spread::cli::Verdict> verdicts = prediction_verdicts(o, result);
+  const std::vector<spread::cli::NextStep> steps =
+      spread::cli::predict_next_steps(verdicts, o.tables, o.material, o.bout_width_m);
   // The page, made whether or not it is written: --json gives its chart's numbers too.
-  const spread::plot::PatternReport page = report_page(o, result, trays, curve, report_time_s, guidance, verdicts);
+  spread::plot::PatternReport page = report_page(o, result, trays, curve, report_time_s, guidance, verdicts);
+  for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     try {
@@ -449,6 +453,7 @@ void run(const Options& o, int& exit_code) {
     out["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
     out["verdicts"] = spread::cli::verdicts_json(verdicts);
     out["chart"] = spread::cli::chart_json(page);
+    out["next_steps"] = spread::cli::next_steps_json(steps);
     if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     if (o.compensate_wind) {
       out["wind_compensation"] = {{"present_cv_to_and_fro_percent", number_or_null(present_cv_percent)},
@@ -550,6 +555,8 @@ void run(const Options& o, int& exit_code) {
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::cout << "wrote " << o.report.path << "\n";
     }
+    std::cout << std::flush;
+    spread::cli::print_next_steps(steps);
   }
   spread::cli::throw_report_outcome(report_problem, report_error);
   exit_code = spread::cli::kExitOk;

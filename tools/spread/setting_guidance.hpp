@@ -14,7 +14,8 @@ namespace spread::cli {
 
 struct SettingGuidance {
   std::optional<predict::SettingAdjustments> adjustments;  // none: the CV meets the target
-  std::vector<std::string> lines;
+  std::vector<std::string> lines;  // the terminal's
+  std::vector<std::string> notes;  // the page's: the same without the commands to run
 };
 
 // With the table file `tables` and the present settings `request` (bout width > 0): nothing when the

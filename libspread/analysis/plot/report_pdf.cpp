@@ -271,11 +271,11 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
   y = draw_lines(cr, r.summary, y) + 4.0;
 
   // The chart, drawn in the PNG's pixel space scaled to the text width.
-  // 0.75 of the text width, centred: the verdicts above it need the room, and the page holds the notes
+  // 0.7 of the text width, centred: the verdicts above it need the room, and the page holds the notes
   // (a calibration's guidance and the next steps among them) too.
-  const double scale = 0.75 * kTextWidth_pt / kImageWidth_px;
+  const double scale = 0.7 * kTextWidth_pt / kImageWidth_px;
   cairo_save(cr);
-  cairo_translate(cr, kMargin_pt + 0.125 * kTextWidth_pt, y);
+  cairo_translate(cr, kMargin_pt + 0.15 * kTextWidth_pt, y);
   cairo_scale(cr, scale, scale);
   TransverseOptions chart = r.chart;
   chart.mean_band = true;
