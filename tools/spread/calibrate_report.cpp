@@ -47,6 +47,8 @@ json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
   return out;
 }
 
+std::string passes_text(std::size_t passes) { return std::to_string(passes) + (passes == 1 ? " pass" : " passes"); }
+
 // What the report says about missing readings (empty when there are none).
 std::vector<std::string> missing_notes(const cal::TrayTest& t) {
   const std::vector<double> missing = t.missing_positions_m(), partly = t.partly_missing_positions_m();
@@ -152,9 +154,9 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   r.header.time_s = time_s;
   r.header.made_by = spread::cli::command_line();
   char text[256];
-  std::snprintf(text, sizeof text, "%zu trays of %.2f m, %zu pass(es), %.1f g in the trays (mean of the passes), "
-                "throw width %.1f m", t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg,
-                a.throw_width_m);
+  std::snprintf(text, sizeof text, "%zu trays of %.2f m, %s, %.1f g in the trays (mean of the passes), "
+                "throw width %.1f m", t.mass_kg.size(), t.tray_width_m, passes_text(t.mass_columns.size()).c_str(),
+                1e3 * a.total_mass_kg, a.throw_width_m);
   r.summary.emplace_back(text);
   r.tray_mass_kg = t.layout_mass_kg;
   r.trays = t.layout;

@@ -133,6 +133,9 @@ std::vector<std::string> missing_notes(const cal::TrayTest& t);
 
 json pass_scatter_json(const cal::PassScatter& p);
 
+// "1 pass", "3 passes" (the page's words; the terminal's "pass(es)" is quoted by scripts).
+std::string passes_text(std::size_t passes);
+
 // The tray test's analysis as --json gives it (calibrate tray's output, calibrate pattern's
 // "tray_test_analysis"): every number of its page.
 json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a);

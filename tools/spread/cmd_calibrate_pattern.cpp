@@ -109,8 +109,9 @@ std::string fitted_values_line(const cal::PatternFitResult& f) {
       fixed += (fixed.empty() ? "" : ", ") + std::string(p.name) + " " + value + p.suffix;
     }
   }
-  return std::string(f.table_samples ? "fitted to the table's DEM launches: " : "fitted: ") + fitted +
-         " (± one standard error)" + (fixed.empty() ? "" : "; fixed at the table's values: " + fixed) +
+  return std::string(f.table_samples ? "fitted to the machine's simulated throw: " : "fitted: ") + fitted +
+         " (± how closely this tray test fixes each value)" +
+         (fixed.empty() ? "" : "; fixed at the table's values: " + fixed) +
          "; residual rms " + format("%.2f g per tray", 1e3 * f.residual_rms_kg);
 }
 

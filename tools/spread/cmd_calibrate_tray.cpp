@@ -105,11 +105,11 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
       page.header.time_s = report_time_s;
       page.header.made_by = spread::cli::command_line();
       char text[160];
-      std::snprintf(text, sizeof text, "%d trays read, %.2f m apart, %zu pass(es), mean %.2f g per tray", q.trays,
-                    t.tray_width_m, t.mass_columns.size(), 1e3 * q.mean_kg);
+      std::snprintf(text, sizeof text, "%d trays read, %.2f m apart, %s, mean %.2f g per tray", q.trays,
+                    t.tray_width_m, passes_text(t.mass_columns.size()).c_str(), 1e3 * q.mean_kg);
       page.summary.emplace_back(text);
       page.summary.push_back(format("CV %.1f %%", 100.0 * q.cv) + "; the bout's CV lies between " +
-                             format("%.1f %%", 100.0 * q.interval.low) + " and " + high + " (95 % interval, McKay)");
+                             format("%.1f %%", 100.0 * q.interval.low) + " and " + high + " (95 % interval)");
       page.summary.push_back("against the target: " + verdict);
       page.verdicts = spread::cli::page_verdicts(verdicts);
       for (const std::string& line : spread::cli::rate_lines(rate)) page.summary.push_back(line);

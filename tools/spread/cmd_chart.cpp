@@ -208,6 +208,15 @@ void run(const Options& o, int& exit_code) {
                                  " and drop point within " + turns_text +
                                  " of the table's (both discs alike) with the lowest to-and-fro CV at each width (target " +
                                  format("%g %%", o.cv_target_percent) + ")";
+  // The page's: the same in the farmer's words (the table is named in its header).
+  std::string page_turns = turns_text;
+  if (const auto at = page_turns.find(" (validated against DEM rows)"); at != std::string::npos) {
+    page_turns.replace(at, std::string(" (validated against DEM rows)").size(), " (where the simulation checked it)");
+  }
+  const std::string page_range_line = "'" + o.material + "': the disc speed of " + format("%.0f", chart.min_rpm) + "-" +
+                                      format("%.0f rpm", chart.max_rpm) + " and drop point within " + page_turns +
+                                      " of the table's (both discs alike) with the lowest to-and-fro CV at each width "
+                                      "(target " + format("%g %%", o.cv_target_percent) + ")";
 
   // Once, for the terminal, --json and the page alike.
   const std::vector<spread::cli::Verdict> verdicts = chart_verdicts(chart, o.cv_target_percent);
@@ -225,7 +234,7 @@ void run(const Options& o, int& exit_code) {
       page.header.speed_km_h = o.report.speed_km_h;
       page.header.time_s = report_time_s;
       page.header.made_by = spread::cli::command_line();
-      page.summary.push_back(range_line);
+      page.summary.push_back(page_range_line);
       page.verdicts = spread::cli::page_verdicts(verdicts);
       page.caption = "Disc speed per working width (CV target " + format("%g %%", o.cv_target_percent) + ")";
       page.columns = {"width", "speed, drop point", "CV to-and-fro", "CV racetrack", "CV within target at"};
@@ -245,7 +254,7 @@ void run(const Options& o, int& exit_code) {
                                compensation_text(row));
         }
       }
-      page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the setting is "
+      page.notes.push_back("± = 95 % interval over the table's simulated granules; the setting is "
                            "the one with the lowest predicted to-and-fro CV at the width; the drop point is turned "
                            "from the table's (+ counter-clockwise from above on the left disc, mirrored on the "
                            "right), and the speed spans are at that drop point");

@@ -260,14 +260,14 @@ spread::plot::PatternReport report_page(const Options& o, const spread_predictio
     page.header.speed_km_h = o.report.speed_km_h;
     page.header.time_s = time_s;
     page.header.made_by = spread::cli::command_line();
-    page.summary.push_back(std::to_string(r.sample_count) + " launch samples, disc " +
-                           format("%.2f m", r.disc_height_m) + " above ground, effects " +
+    page.summary.push_back(std::to_string(r.sample_count) + " simulated granules, disc " +
+                           format("%.2f m", r.disc_height_m) + " above ground, in the air: " +
                            effects_label(r.effects) + format(", throw width %.1f m", r.throw_width_m) +
                            plus_minus(r.throw_width_se_m));
     if (r.bout_width_m > 0.0) {
       page.summary.push_back("at W = " + format("%.2f m", r.bout_width_m) + ": CV " + format("%.1f %%", r.cv_percent) +
                              plus_minus(r.cv_se_percent) + " to-and-fro, " + format("%.1f %%", r.cv_racetrack_percent) +
-                             plus_minus(r.cv_racetrack_se_percent) + " racetrack (± = 95 % interval over the launch samples)");
+                             plus_minus(r.cv_racetrack_se_percent) + " racetrack (± = 95 % interval over the simulated granules)");
     }
     // Every band, and which is the working width (the headline rule, docs/metrics.md "Effective working
     // width"): the same as the text and JSON outputs. A note under the chart.
@@ -302,7 +302,7 @@ spread::plot::PatternReport report_page(const Options& o, const spread_predictio
     page.verdicts = spread::cli::page_verdicts(verdicts);
     if (!bands_note.empty()) page.notes.push_back(bands_note);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
-                         "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
+                         "in kg/ha and its check need a tray test with the trays' catching area");
     for (const std::string& line : guidance.notes) page.notes.push_back(line);
     return page;
 }

@@ -145,7 +145,11 @@ double draw_header(cairo_t* cr, const ReportHeader& h) {
     detail::set_font(cr, kBody_pt, true);
     const double label_pt = detail::draw_text(cr, "Data: ", kMargin_pt, y, 0.0, 0.0);
     detail::set_font(cr, kBody_pt);
-    y = draw_wrapped(cr, h.source, kMargin_pt + label_pt, y, kTextWidth_pt - label_pt);
+    // The file's name, not where it lay on the computer that made the page: a farmer reads no paths (the
+    // footer's command line holds the whole one).
+    const std::size_t slash = h.source.find_last_of("/\\");
+    y = draw_wrapped(cr, slash == std::string::npos ? h.source : h.source.substr(slash + 1), kMargin_pt + label_pt, y,
+                     kTextWidth_pt - label_pt);
   }
   cairo_set_line_width(cr, 0.8);
   cairo_move_to(cr, kMargin_pt, y + 4.0);
