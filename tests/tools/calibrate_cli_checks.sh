@@ -125,6 +125,26 @@ next_steps)
   run calibrate pattern --help
   has "$out.stdout" "made by lookup_builder from its scene"
   pass ;;
+machine_scales)
+  # The drop points of the chart and the border also on the machine's own drop-point scale.
+  scales=$src/scenes/field/default_scales.toml
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 3,4 --scales "$scales"
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "4.0 m    734 rpm, scale D+0.3 towards E (+5.0 deg)"
+  has "$out.stdout" "3.0 m    682 rpm, scale beyond H, which is +60.0 deg (+70.0 deg)"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 4 --scales "$scales" --json
+  has "$out.stdout" '"drop_point_mark": "D+0.3 towards E"'
+  run border --tables "$work/urea.sqlite" --material Urea --rpm 600 --width 4 --scales "$scales"
+  [ $rc -eq 0 ] || fail "border exit $rc"
+  has "$out.stdout" "(scale "
+  printf '[drop_point_scale]\nmarks = ["A"]\nturn_deg = [0]\n' > "$work/one_mark.toml"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 4 --scales "$work/one_mark.toml"
+  [ $rc -eq 2 ] || fail "a one-mark scale: exit $rc, expected 2"
+  has "$out.stderr" "drop_point_scale.marks: a scale needs at least two marks"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 4 --scales "$work/none.toml"
+  [ $rc -eq 2 ] || fail "no scales file: exit $rc, expected 2"
+  has "$out.stderr" "cannot open the scales file"
+  pass ;;
 name_date)
   # The calibrated material's default name carries SOURCE_DATE_EPOCH's date (reproducible), not the clock's.
   rm -f "$work/named.sqlite"

@@ -12,12 +12,14 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "libspread/analysis/calibration/machine_scales.hpp"
 #include "libspread/analysis/calibration/tray_analysis.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/analysis/predict/setting_chart.hpp"
@@ -36,9 +38,20 @@ using nlohmann::json;
 using spread::cli::BadInput;
 namespace pr = spread::predict;
 
-// "620 rpm, +15.0°" — the setting of both discs.
+// The machine's drop-point scale, when --scales gives one (calibration/machine_scales.hpp).
+std::optional<spread::calibration::DropPointScale>& drop_point_scale() {
+  static std::optional<spread::calibration::DropPointScale> scale;
+  return scale;
+}
+
+// "620 rpm, +15.0 deg" — the setting of both discs; with the machine's scale "620 rpm, scale E (+15.0 deg)".
 std::string setting_text(const pr::SettingChartRow& row) {
-  return format("%.0f rpm", row.rpm) + format(", %+.1f deg", row.drop_point_turn_rad / kRadPerDeg);
+  const double turn_deg = row.drop_point_turn_rad / kRadPerDeg;
+  if (drop_point_scale()) {
+    return format("%.0f rpm", row.rpm) + ", scale " + spread::calibration::drop_point_mark(*drop_point_scale(), turn_deg) +
+           format(" (%+.1f deg)", turn_deg);
+  }
+  return format("%.0f rpm", row.rpm) + format(", %+.1f deg", turn_deg);
 }
 
 struct Options {
@@ -52,6 +65,7 @@ struct Options {
   double drop_point_step_deg = 5.0;    // their grid step
   bool json = false;
   spread::cli::ReportArgs report;
+  std::string scales;  // the machine's scales file; "" = none
 };
 
 std::vector<double> parse_widths(const std::string& text) {
@@ -168,6 +182,7 @@ std::string calibrated_note(const std::string& name) {
 
 void run(const Options& o, int& exit_code) {
   const double cv_target = spread::calibration::cv_target_from_percent(o.cv_target_percent, "--cv-target");
+  if (!o.scales.empty()) drop_point_scale() = spread::calibration::read_machine_scales(o.scales).drop_point;
   const std::vector<double> widths = parse_widths(o.widths);
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
@@ -274,6 +289,10 @@ void run(const Options& o, int& exit_code) {
                       {"reach", pr::to_string(row.reach)},
                       {"rpm", number_or_null(row.rpm)},
                       {"drop_point_turn_deg", number_or_null(row.drop_point_turn_rad / kRadPerDeg)},
+                      {"drop_point_mark", drop_point_scale() && std::isfinite(row.drop_point_turn_rad)
+                                              ? json(spread::calibration::drop_point_mark(*drop_point_scale(),
+                                                                                          row.drop_point_turn_rad / kRadPerDeg))
+                                              : json(nullptr)},
                       {"bout_width_m", number_or_null(row.bout_width_m)},
                       {"cv_to_and_fro_percent", number_or_null(100.0 * row.cv_to_and_fro)},
                       {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.cv_to_and_fro_se)},
@@ -325,14 +344,22 @@ void run(const Options& o, int& exit_code) {
   } else {
     std::printf("%s\n", range_line.c_str());
     spread::cli::print_verdicts(verdicts);
-    std::printf("  %-8s %-20s %-18s %-18s %s\n", "width", "speed, drop point", "CV to-and-fro", "CV racetrack",
-                "CV within target at");
+    // The setting column as wide as its widest cell (a drop point on the machine's scale is longer).
+    int setting_width = 20;
+    for (const pr::SettingChartRow& row : chart.rows) {
+      if (row.reach != pr::ChartReach::kNotReached) {
+        setting_width = std::max(setting_width, static_cast<int>(setting_text(row).size()));
+      }
+    }
+    std::printf("  %-8s %-*s %-18s %-18s %s\n", "width", setting_width, "speed, drop point", "CV to-and-fro",
+                "CV racetrack", "CV within target at");
     for (const pr::SettingChartRow& row : chart.rows) {
       if (row.reach == pr::ChartReach::kNotReached) {
         std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), "not reachable");
         continue;
       }
-      std::printf("  %-8s %-20s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(), setting_text(row).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
+      std::printf("  %-8s %-*s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(), setting_width,
+                  setting_text(row).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
                   cv_text(row.cv_racetrack, row.cv_racetrack_se).c_str(), spans_text(row).c_str());
     }
     std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples; %d predictions)\n",
@@ -375,6 +402,9 @@ spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) 
   sub->add_option("--drop-point-step", options.drop_point_step_deg, "grid step of the drop points searched (degrees)")
       ->capture_default_str();
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  sub->add_option("--scales", options.scales,
+                  "the machine's scales file (TOML): each drop point also on its drop-point scale, e.g. "
+                  "scenes/field/default_scales.toml");
   spread::cli::add_report_args(*sub, options.report, false);
   sub->callback([&exit_code] { run(options, exit_code); });
 }};
