@@ -29,7 +29,7 @@ std::vector<std::string> tray_warnings(const cal::TrayTest& t, const cal::TrayTe
   if (a.bout_width_m > 0.0 && a.bout_width_rounded()) {
     char text[256];
     std::snprintf(text, sizeof text,
-                  "--width %.3g m is not a whole number of %.2f m trays: the CVs are at W = %.2f m, the nearest "
+                  "the bout width %.3g m is not a whole number of %.2f m trays: the CVs are at W = %.2f m, the nearest "
                   "width the tray test resolves",
                   a.requested_bout_width_m, t.tray_width_m, a.bout_width_m);
     warnings.emplace_back(text);
