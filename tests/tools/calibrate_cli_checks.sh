@@ -91,6 +91,60 @@ border)
   [ $rc -eq 2 ] || fail "--edge ditch: exit $rc, expected 2"
   has "$out.stderr" "--edge 'ditch'"
   pass ;;
+next_steps)
+  # Every calibration command ends with what to do next, in the technician's terms, by its result.
+  run calibrate rate --mass 93 --time 60 --gate 60 --target-rate 380 --width 12 --speed 12
+  has "$out.stdout" "next: set the gate to 58.84 (it is at 60.00)"
+  has "$out.stdout" "      spread calibrate tray TRAYS.csv --width 12"
+  run calibrate tray "$example" --width 6 --tray-area 0.25 --rate-kg-ha 400
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "next: the spread is uneven at 6.00 m: drive bouts of at most 2.74 m, or change the setting"
+  has "$out.stdout" "      lookup_builder scenes/default.toml --output table.sqlite"
+  has "$out.stdout" "next: the trays did not catch the rate set"
+  run calibrate tray "$example" --width 3.5
+  has "$out.stdout" "next: repeat the tray test to narrow the interval, or drive bouts of at most 2.74 m (within the target)"
+  run calibrate tray "$example"
+  has "$out.stdout" "next: the spread is even at 2.50 m: keep this setting and drive bouts of 2.50 m"
+  run calibrate tray "$src/scenes/field/quick_check_5trays.csv" --quick-check --json
+  has "$out.stdout" '"what": "these few trays cannot tell: lay a row of trays across the whole throw'
+  rm -f "$work/next.sqlite"
+  run calibrate pattern --tables "$work/urea.sqlite" --material Urea --rpm 600 --trays "$example"       --output "$work/next.sqlite" --fit friction,drag --samples 128 --name field --width 3.5
+  [ $rc -eq 0 ] || fail "pattern exit $rc"
+  # The tag keeps the product's name, and the next step charts it.
+  has "$out.stdout" "wrote 'Urea (field)'"
+  has "$out.stdout" "      spread chart --tables $work/next.sqlite --material 'Urea (field)' --widths 3.5"
+  # The bout width the guidance offers moves the gate.
+  has "$out.stdout" "at 2.50 m the gate meters 28.6 % less for the same rate: its opening × 2.50/3.50"
+  # Charting the product when the table holds its calibrated version says so.
+  run chart --tables "$work/next.sqlite" --material Urea --widths 3
+  has "$out.stdout" "note: this table also holds 'Urea (field)', calibrated to a tray test of this spreader"
+  has "$out.stdout" "next: the gate meters for a width"
+  run chart --tables "$work/next.sqlite" --material 'Urea (field)' --widths 3 --json
+  has "$out.stdout" '"calibrated_versions": []'
+  # Where a table comes from, in the help of the command that needs one.
+  run calibrate pattern --help
+  has "$out.stdout" "made by lookup_builder from its scene"
+  pass ;;
+machine_scales)
+  # The drop points of the chart and the border also on the machine's own drop-point scale.
+  scales=$src/scenes/field/default_scales.toml
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 3,4 --scales "$scales"
+  [ $rc -eq 0 ] || fail "exit $rc"
+  has "$out.stdout" "4.0 m    734 rpm, scale D+0.3 towards E (+5.0 deg)"
+  has "$out.stdout" "3.0 m    682 rpm, scale beyond H, which is +60.0 deg (+70.0 deg)"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 4 --scales "$scales" --json
+  has "$out.stdout" '"drop_point_mark": "D+0.3 towards E"'
+  run border --tables "$work/urea.sqlite" --material Urea --rpm 600 --width 4 --scales "$scales"
+  [ $rc -eq 0 ] || fail "border exit $rc"
+  has "$out.stdout" "(scale "
+  printf '[drop_point_scale]\nmarks = ["A"]\nturn_deg = [0]\n' > "$work/one_mark.toml"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 4 --scales "$work/one_mark.toml"
+  [ $rc -eq 2 ] || fail "a one-mark scale: exit $rc, expected 2"
+  has "$out.stderr" "drop_point_scale.marks: a scale needs at least two marks"
+  run chart --tables "$work/urea.sqlite" --material Urea --widths 4 --scales "$work/none.toml"
+  [ $rc -eq 2 ] || fail "no scales file: exit $rc, expected 2"
+  has "$out.stderr" "cannot open the scales file"
+  pass ;;
 name_date)
   # The calibrated material's default name carries SOURCE_DATE_EPOCH's date (reproducible), not the clock's.
   rm -f "$work/named.sqlite"
@@ -121,11 +175,11 @@ assert width["bout_width_m"] < 13 and width["meets_target"], width
 PY
   rm -f "$work/guidance.pdf"
   run predict --tables "$dem" --material Urea --rpm 600 --width 13 --report "$work/guidance.pdf"
-  has "$out.stdout" "the CV at 13.00 m is above the target 15 %; predicted from the table, one setting at a time:"
+  has "$out.stdout" "predicted for this material and setting, the CV at 13.00 m is 23.6 %, above the target 15 %; predicted, one setting at a time:"
   has "$out.stdout" "disc speed 750 rpm: CV"
   # The same lines on the report's page.
   pdftotext "$work/guidance.pdf" "$work/guidance.txt" || fail "pdftotext"
-  has "$work/guidance.txt" "the CV at 13.00 m is above the target 15 %"
+  has "$work/guidance.txt" "the CV at 13.00 m is 23.6 %, above the target 15 %"
   has "$work/guidance.txt" "disc speed 750 rpm: CV"
   run predict --tables "$dem" --material Urea --rpm 600 --width 7 --json
   has "$out.stdout" '"adjustments": null'
@@ -243,9 +297,12 @@ rate_warnings)
   hasnt "$out.stdout" "warning"
   run calibrate rate --mass 25 --time 60 --gate 40 --target-rate 5000 --width 24 --speed 12
   has "$out.stdout" "warning: the required gate opening 3840 is far outside the caught opening 40"
+  run calibrate rate --mass 1000 --time 60 --gate 40 --target-rate 50 --width 24 --speed 12
+  has "$out.stdout" "2083.3 kg/ha"
+  has "$out.stdout" "is --mass in grams? it takes kilograms (1 kg, not 1000)"
   run calibrate rate --mass 25000 --time 60 --gate 40 --target-rate 50 --width 24 --speed 12
-  has "$out.stdout" "52083.3 kg/ha"
-  has "$out.stdout" "is --mass in grams?"
+  [ $rc -eq 2 ] || fail "exit $rc"
+  has "$out.stderr" "25000 g is 25 kg"
   run calibrate rate --mass 25 --time 60 --gate 40 --mass2 25.1 --time2 60 --gate2 40.1 --target-rate 50 \
       --width 24 --speed 12 --json
   has "$out.stdout" "0.1 gate units apart"

@@ -2,7 +2,7 @@
 """Runs the commands docs/field-calibration.md shows outside its walkthrough and requires every output
 line it quotes.
 
-Usage: doc_commands.py DOC SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR
+Usage: doc_commands.py DOC SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR [MAIN_TABLE]
 
 Every fenced block of the doc outside "## Walkthrough..." (which tests/tools/doc_walkthrough.py runs on
 the main job's table) is read as doc_walkthrough.py reads its blocks: a line starting with `spread `,
@@ -13,7 +13,10 @@ format, a figure quoted from elsewhere) is not run. A block whose commands read 
 the doc says in its text, just before the block, which `lookup_builder ...` command made that table
 from the source tree (an analytic table: built here in a second or so); a block on the main job's table
 (default.sqlite, out/default.sqlite and what is calibrated from it) is left to the walkthrough's test,
-whose table fixture makes it. Commands run from WORK_DIR, where `scenes` is the source tree's.
+whose table fixture makes it. With MAIN_TABLE (the main job's table, the `capi.fixture.default_scene`
+fixture) only the blocks outside the walkthrough that read out/default.sqlite are run — the setting chart's
+and the border's, which the doc shows on the main job's table — with that file as out/default.sqlite.
+Commands run from WORK_DIR, where `scenes` is the source tree's.
 Prints "PASS: ..." or "FAIL: why" (exit 1).
 """
 import os
@@ -25,6 +28,7 @@ import sys
 import doc_blocks
 
 MAIN_JOB_TABLES = ("default.sqlite", "default-calibrated.sqlite")
+MAIN_TABLE_OUTSIDE_WALKTHROUGH = "out/default.sqlite"
 REFUSAL = re.compile(r"^spread [a-z ]+: error: ")
 
 
@@ -60,7 +64,14 @@ def builder_command_before(prose):
 
 def main():
     doc, spread, builder, source, work = sys.argv[1:6]
+    main_table = sys.argv[6] if len(sys.argv) > 6 else None
     os.makedirs(work, exist_ok=True)
+    if main_table:
+        os.makedirs(os.path.join(work, "out"), exist_ok=True)
+        linked = os.path.join(work, MAIN_TABLE_OUTSIDE_WALKTHROUGH)
+        if os.path.lexists(linked):
+            os.remove(linked)
+        os.symlink(os.path.abspath(main_table), linked)
     if os.path.islink(os.path.join(work, "scenes")):
         os.remove(os.path.join(work, "scenes"))
     os.symlink(os.path.join(source, "scenes"), os.path.join(work, "scenes"))
@@ -73,10 +84,14 @@ def main():
         if not commands:
             continue
         tables = tables_read(commands)
-        if any(os.path.basename(t) in MAIN_JOB_TABLES for t in tables):
+        on_main_table = MAIN_TABLE_OUTSIDE_WALKTHROUGH in tables
+        if main_table and not on_main_table:
             left += 1
             continue
-        for table in set(tables):
+        if not main_table and any(os.path.basename(t) in MAIN_JOB_TABLES for t in tables):
+            left += 1
+            continue
+        for table in set(tables) - ({MAIN_TABLE_OUTSIDE_WALKTHROUGH} if main_table else set()):
             build = builder_command_before(prose)
             if build is None:
                 print(f"FAIL: the block running\n  {commands[0]}\nreads {table} but the doc does not say before it "
@@ -112,8 +127,12 @@ def main():
     if run_blocks == 0:
         print("FAIL: no block of the doc was run")
         return 1
-    print(f"PASS: {run_blocks} blocks run, {checked} quoted lines reproduced; {left} on the main job's table "
-          "left to the walkthrough's test")
+    if main_table:
+        print(f"PASS: {run_blocks} blocks on the main job's table run, {checked} quoted lines reproduced; {left} "
+              "others left to the test without it")
+    else:
+        print(f"PASS: {run_blocks} blocks run, {checked} quoted lines reproduced; {left} on the main job's table "
+              "left to the walkthrough's test and the main-table run")
     return 0
 
 

@@ -138,8 +138,8 @@ TEST(CalibrateCliFiles, GramsInKilogramColumnsAreNamed) {
 }
 
 TEST(CalibrateCliFiles, WidthBeyondTheTraysIsRefused) {
-  expect_one_error_line(spread("calibrate tray '" + kExample + "' --width 500"), "spread calibrate tray",
-                        "--width 500 m is wider than the trays reach (36.00 m");
+  expect_one_error_line(spread("calibrate tray '" + kExample + "' --width 50"), "spread calibrate tray",
+                        "--width 50 m is wider than the trays reach (36.00 m");
 }
 
 TEST(CalibrateCliFiles, RateWithAMissingTraySaysItIsLow) {
@@ -208,4 +208,47 @@ TEST(CalibrateCliFiles, FitAtTheWrongDiscSpeedIsWarned) {
       << r.out;
   EXPECT_NE(r.out.find("this test looks like one at about 597 rpm fitted at --rpm 750"), std::string::npos) << r.out;
 #endif
+}
+
+// The unit slips a technician makes, each refused before any arithmetic with the likely unit named —
+// not a rate of 0.1 kg/ha, a "FAIL 0.0 %" or a number running off the page.
+TEST(CalibrateCliFiles, APassInKilogramsUnderAGramsHeaderIsNamed) {
+  std::vector<std::string> lines = example_lines();
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::size_t last = lines[i].rfind(',');
+    lines[i] = lines[i].substr(0, last + 1) + std::to_string(std::stod(lines[i].substr(last + 1)) / 1000.0);
+  }
+  const CommandRun r = spread("calibrate tray '" + write_file("kgpass.csv", joined(lines, "\n")).string() + "' --width 3.5");
+  expect_one_error_line(r, "spread calibrate tray", "kgpass.csv: pass3_g holds 0.1553 g in the trays read in every pass");
+  EXPECT_NE(r.err.find("kilograms in a grams column? enter it in grams (× 1000)"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(CalibrateCliFiles, ReportNumbersOutsideAFieldAreRefusedWithTheirUnit) {
+  const std::string tray = "calibrate tray '" + kExample + "' --width 3.5 ";
+  expect_one_error_line(spread(tray + "--tray-area 2500 --rate-kg-ha 300"), "spread calibrate tray",
+                        "--tray-area 2500: a collecting tray's area is 0.01-0.5 m²; 2500 cm² is 0.25 m² — give it in m²");
+  expect_one_error_line(spread(tray + "--tray-area 1e-300"), "spread calibrate tray",
+                        "--tray-area 1e-300: a collecting tray's area is 0.01-0.5 m²");
+  expect_one_error_line(spread(tray + "--tray-area 0.25 --rate-kg-ha 1e300"), "spread calibrate tray",
+                        "--rate-kg-ha 1e+300: an application rate is 1-20000 kg/ha");
+  expect_one_error_line(spread(tray + "--tray-area 0.25 --rate-kg-ha " + std::string("1") + std::string(62, '0')),
+                        "spread calibrate tray", "--rate-kg-ha 1e+62: an application rate is 1-20000 kg/ha");
+  expect_one_error_line(spread(tray + "--speed 12000"), "spread calibrate tray", "12000 m/h is 12 km/h");
+  expect_one_error_line(spread("calibrate tray '" + kExample + "' --width 350"), "spread calibrate tray",
+                        "--width 350: a bout width is 1-100 m; 350 cm is 3.5 m");
+}
+
+TEST(CalibrateCliFiles, CatchTestNumbersOutsideAFieldAreRefusedWithTheirUnit) {
+  const std::string rate = "calibrate rate --time 60 --gate 40 ";
+  expect_one_error_line(spread(rate + "--mass 25000 --target-rate 300 --width 24 --speed 12"), "spread calibrate rate",
+                        "--mass 25000: a catch test's mass is 0.1-5000 kg; 25000 g is 25 kg — give it in kg");
+  expect_one_error_line(spread(rate + "--mass 25 --target-rate 0.3 --width 24 --speed 12"), "spread calibrate rate",
+                        "0.3 t/ha is 300 kg/ha");
+  expect_one_error_line(spread(rate + "--mass 25 --target-rate 300 --width 2400 --speed 12"), "spread calibrate rate",
+                        "2400 cm is 24 m");
+  expect_one_error_line(spread(rate + "--mass 25 --target-rate 1e300 --width 24 --speed 12"), "spread calibrate rate",
+                        "--target-rate 1e+300: an application rate is 1-20000 kg/ha");
+  expect_one_error_line(spread(rate + "--mass 25 --target-rate 300 --width 24 --speed 1e-300"), "spread calibrate rate",
+                        "--speed 1e-300: a forward speed is 1-50 km/h");
 }

@@ -14,6 +14,41 @@ std::string positions_text(const std::vector<double>& positions_m) {
 }
 }  // namespace
 
+// The tray test's analysis as --json gives it: every number its page prints.
+json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
+  json curve = json::array();
+  for (std::size_t i = 0; i < a.widths_m.size(); ++i) {
+    curve.push_back({{"bout_width_m", a.widths_m[i]},
+                     {"cv_to_and_fro_percent", finite_or_null(100.0 * a.cv_to_and_fro_curve[i])},
+                     {"cv_racetrack_percent", finite_or_null(100.0 * a.cv_racetrack_curve[i])}});
+  }
+  json out{{"tray_test", t.source},
+           {"trays", t.mass_kg.size()},
+           {"tray_width_m", t.tray_width_m},
+           {"passes", t.mass_columns.size()},
+           {"pass_columns", t.mass_columns},
+           {"padded_trays", t.padded_trays},
+           {"missing_trays_m", t.missing_positions_m()},
+           {"partly_missing_trays_m", t.partly_missing_positions_m()},
+           {"pass_scatter", pass_scatter_json(cal::pass_scatter(t))},
+           {"total_mass_g", 1e3 * a.total_mass_kg},
+           {"throw_width_m", a.throw_width_m},
+           {"cv_target_percent", 100.0 * a.cv_target},
+           {"working_width_to_and_fro_m", a.working_width_to_and_fro_m},
+           {"working_width_racetrack_m", a.working_width_racetrack_m},
+           {"bands_m", {{"to_and_fro", a.bands_to_and_fro_m}, {"racetrack", a.bands_racetrack_m}}},
+           {"cv_curve", curve}};
+  if (a.bout_width_m > 0.0) {
+    out["bout_width_m"] = a.bout_width_m;
+    out["bout_width_requested_m"] = a.requested_bout_width_m;
+    out["cv_to_and_fro_percent"] = finite_or_null(100.0 * a.cv_to_and_fro);
+    out["cv_racetrack_percent"] = finite_or_null(100.0 * a.cv_racetrack);
+  }
+  return out;
+}
+
+std::string passes_text(std::size_t passes) { return std::to_string(passes) + (passes == 1 ? " pass" : " passes"); }
+
 // What the report says about missing readings (empty when there are none).
 std::vector<std::string> missing_notes(const cal::TrayTest& t) {
   const std::vector<double> missing = t.missing_positions_m(), partly = t.partly_missing_positions_m();
@@ -39,14 +74,17 @@ json pass_scatter_json(const cal::PassScatter& p) {
 }
 
 // A CV as printed: NaN is a bout left with less than two trays' weight measured (cv_without_missing.hpp).
-std::string cv_text(double cv) {
+std::string cv_text(double cv, double target) {
   return std::isnan(cv) ? std::string("none (missing trays leave under two trays of the bout measured)")
-                        : format("%.1f %%", 100.0 * cv);
+                        : spread::plot::cv_percent_text(cv, target);
 }
 
 // --width beyond the trays: the CV would describe the ground no tray covered (tray_plausibility.hpp).
 void require_width_within_trays(const cal::TrayTest& t, double width_m) {
-  if (width_m <= 0.0) return;
+  if (width_m == 0.0) return;  // not given
+  if (const std::string range = cal::field_range_problem(cal::kBoutWidthRange, "--width", width_m); !range.empty()) {
+    throw BadInput(range);
+  }
   const std::string problem = cal::bout_width_problem(t.layout, width_m);
   if (!problem.empty()) throw BadInput("--width " + problem);
 }
@@ -89,20 +127,22 @@ cal::CvVerdict bout_verdict(const cal::TrayTest& t, double bout_width_m, double 
                             : cal::cv_verdict(interval.cv, NAN, NAN, cv_target);
 }
 
-// The verdicts a tray test's page opens with: the CV at the bout, then the rate check.
-std::vector<spread::plot::ReportVerdict> tray_verdicts(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
-                                                       double bout_width_m,
-                                                       const std::optional<spread::plot::ReportRate>& rate) {
-  std::vector<spread::plot::ReportVerdict> verdicts;
+// The verdicts of a tray test, computed once for the terminal, --json and the page.
+std::vector<spread::cli::Verdict> tray_verdicts(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
+                                                double bout_width_m,
+                                                const std::optional<spread::plot::ReportRate>& rate) {
+  std::vector<spread::cli::Verdict> verdicts;
   if (bout_width_m > 0.0) {
     const std::string what = a.bout_width_m > 0.0
                                  ? "CV at the " + format("%.2f m", bout_width_m) + " bout, to-and-fro"
-                                 : "CV at " + format("%.2f m", bout_width_m) + " (no bout width given: the working "
-                                   "width in whole trays), to-and-fro";
-    verdicts.push_back(spread::cli::cv_report_verdict(what, bout_verdict(t, bout_width_m, a.cv_target)));
-    if (t.mass_columns.size() < 2) verdicts.back().text += "; one pass shows no repeatability: drive two or more";
+                                 : "CV at " + format("%.2f m", bout_width_m) + " (no bout width given: the widest "
+                                   "whole number of trays within the working width), to-and-fro";
+    verdicts.push_back(spread::cli::cv_verdict(what, bout_verdict(t, bout_width_m, a.cv_target)));
+    verdicts.back().numbers["bout_width_m"] = bout_width_m;
+    verdicts.back().numbers["bout_width_given"] = a.bout_width_m > 0.0;
+    if (t.mass_columns.size() < 2) verdicts.back().shown.text += "; one pass shows no repeatability: drive two or more";
   }
-  if (const auto rate_verdict = spread::cli::rate_report_verdict(rate)) verdicts.push_back(*rate_verdict);
+  if (auto rate_verdict = spread::cli::rate_verdict(rate)) verdicts.push_back(*rate_verdict);
   return verdicts;
 }
 
@@ -114,9 +154,9 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   r.header.time_s = time_s;
   r.header.made_by = spread::cli::command_line();
   char text[256];
-  std::snprintf(text, sizeof text, "%zu trays of %.2f m, %zu pass(es), %.1f g in the trays (mean of the passes), "
-                "throw width %.1f m", t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg,
-                a.throw_width_m);
+  std::snprintf(text, sizeof text, "%zu trays of %.2f m, %s, %.1f g in the trays (mean of the passes), "
+                "throw width %.1f m", t.mass_kg.size(), t.tray_width_m, passes_text(t.mass_columns.size()).c_str(),
+                1e3 * a.total_mass_kg, a.throw_width_m);
   r.summary.emplace_back(text);
   r.tray_mass_kg = t.layout_mass_kg;
   r.trays = t.layout;
@@ -126,10 +166,15 @@ spread::plot::PatternReport tray_report_page(const cal::TrayTest& t, const cal::
   if (bout_width_m > 0.0) {
     r.chart.bout_cv = curve_cv(a, a.cv_to_and_fro_curve, bout_width_m);
     std::snprintf(text, sizeof text, "at W = %.2f m: CV %s to-and-fro, %s racetrack%s", bout_width_m,
-                  cv_text(r.chart.bout_cv).c_str(), cv_text(curve_cv(a, a.cv_racetrack_curve, bout_width_m)).c_str(),
-                  a.bout_width_m > 0.0 ? "" : " (no --width: the working width, in whole trays)");
+                  cv_text(r.chart.bout_cv, a.cv_target).c_str(),
+                  cv_text(curve_cv(a, a.cv_racetrack_curve, bout_width_m), a.cv_target).c_str(),
+                  a.bout_width_m > 0.0 ? "" : " (no bout width given: the working width, in whole trays)");
     r.summary.emplace_back(text);
   }
+  r.chart.cv_target = a.cv_target;
+  r.bout_row_mark = a.bout_width_m > 0.0 ? "driven" : "judged";
+  r.bands_to_and_fro_m = a.bands_to_and_fro_m;
+  r.bands_racetrack_m = a.bands_racetrack_m;
   r.chart_title = "tray test: one pass across the driving direction";
   r.cv_target = a.cv_target;
   r.working_width_to_and_fro_m = a.working_width_to_and_fro_m;

@@ -19,6 +19,7 @@
 #include "libspread/analysis/calibration/calibrated_table.hpp"
 #include "libspread/analysis/calibration/cv_verdict.hpp"
 #include "libspread/analysis/calibration/disc_speed_check.hpp"
+#include "libspread/analysis/calibration/field_ranges.hpp"
 #include "libspread/analysis/calibration/fit_acceptance.hpp"
 #include "libspread/analysis/calibration/pass_scatter.hpp"
 #include "libspread/analysis/calibration/pattern_fit.hpp"
@@ -30,16 +31,20 @@
 #include "libspread/analysis/calibration/tray_csv.hpp"
 #include "libspread/analysis/calibration/tray_cv_interval.hpp"
 #include "libspread/analysis/calibration/tray_plausibility.hpp"
+#include "libspread/analysis/plot/cv_text.hpp"
 #include "libspread/analysis/plot/plot.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "libspread/io/tables/table_reader.hpp"
+#include "tools/spread/chart_json.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/error_exit.hpp"
 #include "tools/spread/output_paths.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/next_steps.hpp"
+#include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"
 
 namespace spread::cli::calibrate {
@@ -128,8 +133,16 @@ std::vector<std::string> missing_notes(const cal::TrayTest& t);
 
 json pass_scatter_json(const cal::PassScatter& p);
 
+// "1 pass", "3 passes" (the page's words; the terminal's "pass(es)" is quoted by scripts).
+std::string passes_text(std::size_t passes);
+
+// The tray test's analysis as --json gives it (calibrate tray's output, calibrate pattern's
+// "tray_test_analysis"): every number of its page.
+json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a);
+
 // A CV as printed: NaN is a bout left with less than two trays' weight measured (cv_without_missing.hpp).
-std::string cv_text(double cv);
+// Above the target it is never rounded onto it (plot/cv_text.hpp).
+std::string cv_text(double cv, double target);
 
 // --width beyond the trays: the CV would describe the ground no tray covered (tray_plausibility.hpp).
 void require_width_within_trays(const cal::TrayTest& t, double width_m);
@@ -151,8 +164,9 @@ std::vector<spread::plot::CvTableRow> tray_cv_table(const cal::TrayTestAnalysis&
 // repeatability (tray_cv_interval.hpp; none from one pass).
 cal::CvVerdict bout_verdict(const cal::TrayTest& t, double bout_width_m, double cv_target);
 
-// The verdicts a tray test's page opens with: the CV at the bout, then the rate check.
-std::vector<spread::plot::ReportVerdict> tray_verdicts(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
+// The verdicts of a tray test, computed once for the terminal, --json and the page: the CV at the bout
+// (`bout_width_m` > 0), then the rate check.
+std::vector<spread::cli::Verdict> tray_verdicts(const cal::TrayTest& t, const cal::TrayTestAnalysis& a,
                                                        double bout_width_m,
                                                        const std::optional<spread::plot::ReportRate>& rate);
 

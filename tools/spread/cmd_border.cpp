@@ -13,12 +13,14 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "libspread/analysis/calibration/machine_scales.hpp"
 #include "libspread/analysis/predict/edge_spreading.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/number_format.hpp"
@@ -42,6 +44,7 @@ struct Options : spread::cli::PredictionArgs {
   double max_over_applied_percent = 5.0;
   double drop_point_range_deg = 90.0;
   bool json = false;
+  std::string scales;  // the machine's scales file; "" = none
 };
 
 std::string strips_text(std::span<const std::pair<double, double>> strips) {
@@ -146,6 +149,8 @@ void run(const Options& o, int& exit_code) {
   edge.max_drop_point_turn_rad = o.drop_point_range_deg * kRadPerDeg;
   pr::PredictionRequest normal = spread::cli::prediction_request(o);
   normal.bout_width_m = o.bout_width_m;
+  std::optional<spread::calibration::DropPointScale> scale;
+  if (!o.scales.empty()) scale = spread::calibration::read_machine_scales(o.scales).drop_point;
 
   pr::Predictor predictor(spread::tables::read_table_file(o.tables));
   if (!predictor.find_material(o.material)) throw BadInput("--material '" + o.material + "' is not in " + o.tables);
@@ -157,6 +162,16 @@ void run(const Options& o, int& exit_code) {
   }
   const pr::EdgeSetting& s = r.setting;
   const char* side_name = edge.side == pr::kRightDisc ? "right" : "left";
+  // A drop point as printed: its turn, and with --scales its mark on the machine's drop-point scale.
+  const auto turn_text = [&](double turn_rad) {
+    const double turn_deg = turn_rad / kRadPerDeg;
+    return format("%+.1f deg", turn_deg) +
+           (scale ? " (scale " + spread::calibration::drop_point_mark(*scale, turn_deg) + ")" : std::string());
+  };
+  const auto mark_json = [&](double turn_rad) {
+    return scale && std::isfinite(turn_rad) ? json(spread::calibration::drop_point_mark(*scale, turn_rad / kRadPerDeg))
+                                            : json(nullptr);
+  };
   if (o.json) {
     json out{{"tables", o.tables},
              {"material", o.material},
@@ -167,6 +182,8 @@ void run(const Options& o, int& exit_code) {
              {"setting", {{"disc", side_name},
                           {"rpm", s.disc.rpm},
                           {"drop_point_turn_deg", s.disc.drop_point_turn_rad / kRadPerDeg},
+                          {"drop_point_mark", mark_json(s.disc.drop_point_turn_rad)},
+                          {"field_side_drop_point_mark", mark_json(s.field_side_drop_point_turn_rad)},
                           {"flow_percent", 100.0 * s.flow_fraction},
                           // null: the field-side disc keeps the field's drop point
                           {"field_side_drop_point_turn_deg",
@@ -182,14 +199,14 @@ void run(const Options& o, int& exit_code) {
                 pr::to_string(edge.kind), side_name, format("%g m", 0.5 * o.bout_width_m).c_str(),
                 format("%g m", r.profile.edge_line_m).c_str());
     std::printf("  the %s disc: %s, drop point turned %s, flow %s of normal (%s)\n", side_name,
-                format("%.0f rpm", s.disc.rpm).c_str(), format("%+.1f deg", s.disc.drop_point_turn_rad / kRadPerDeg).c_str(),
+                format("%.0f rpm", s.disc.rpm).c_str(), turn_text(s.disc.drop_point_turn_rad).c_str(),
                 format("%.0f %%", 100.0 * s.flow_fraction).c_str(),
                 r.profile.meets ? "meets the thresholds" : "NO setting searched meets the thresholds; the closest");
     if (!std::isnan(s.field_side_drop_point_turn_rad)) {
       const char* other_name = edge.side == pr::kRightDisc ? "left" : "right";
       std::printf("  and the %s disc on this pass: drop point turned %s (its speed and flow as the field's: it throws "
                   "over the line at the field's setting)\n",
-                  other_name, format("%+.1f deg", s.field_side_drop_point_turn_rad / kRadPerDeg).c_str());
+                  other_name, turn_text(s.field_side_drop_point_turn_rad).c_str());
     }
     print_profile("with it", r.profile, o.bout_width_m);
     if (!r.profile.meets && edge.kind == pr::EdgeKind::kBorder) {
@@ -233,6 +250,9 @@ spread::cli::CommandRegistration reg{"border", [](CLI::App& app, int& exit_code)
                   "each disc's drop point searched: turns within ± this of the field's setting (degrees)")
       ->capture_default_str();
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  sub->add_option("--scales", options.scales,
+                  "the machine's scales file (TOML): each drop point also on its drop-point scale, e.g. "
+                  "scenes/field/default_scales.toml");
   sub->callback([&exit_code] { run(options, exit_code); });
 }};
 

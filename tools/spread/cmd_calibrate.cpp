@@ -51,12 +51,16 @@ spread::cli::CommandRegistration reg{"calibrate", [](CLI::App& app, int& /*exit_
 
   static PatternOptions pattern;
   auto* p = sub->add_subcommand("pattern", "fit a material to a tray test; write it into a new table file");
-  p->add_option("--tables", pattern.tables, "launch-table file (read only)")->required();
+  p->add_option("--tables", pattern.tables,
+                 "launch-table file of the machine (read only), made by lookup_builder from its scene: "
+                 "lookup_builder scenes/default.toml --output table.sqlite (the DEM takes some minutes)")
+      ->required();
   p->add_option("--material", pattern.material, "material name in the table")->required();
   p->add_option("--rpm", pattern.rpm, "disc speed of the tray test (r/min)")->required();
   p->add_option("--trays", pattern.trays, "tray-test CSV")->required();
   p->add_option("--output", pattern.output, "NEW table file: a copy of --tables plus the calibrated material")->required();
-  p->add_option("--name", pattern.name, "name of the calibrated material (default: 'NAME (calibrated YYYY-MM-DD)')");
+  p->add_option("--name", pattern.name, "tag of the calibrated material, kept with the product's name: 'field' for Urea is 'Urea (field)' "
+                 "(default: 'Urea (calibrated YYYY-MM-DD)')");
   p->add_option("--fit", pattern.fit,
                 "parameters to fit, of friction, drag, offset, speed, elevation (the others keep the table's values); "
                 "default friction,drag,offset on analytic rows, speed,offset on DEM rows");

@@ -109,8 +109,9 @@ std::string fitted_values_line(const cal::PatternFitResult& f) {
       fixed += (fixed.empty() ? "" : ", ") + std::string(p.name) + " " + value + p.suffix;
     }
   }
-  return std::string(f.table_samples ? "fitted to the table's DEM launches: " : "fitted: ") + fitted +
-         " (± one standard error)" + (fixed.empty() ? "" : "; fixed at the table's values: " + fixed) +
+  return std::string(f.table_samples ? "fitted to the machine's simulated throw: " : "fitted: ") + fitted +
+         " (± how closely this tray test fixes each value)" +
+         (fixed.empty() ? "" : "; fixed at the table's values: " + fixed) +
          "; residual rms " + format("%.2f g per tray", 1e3 * f.residual_rms_kg);
 }
 
@@ -187,7 +188,7 @@ void run_pattern(const PatternOptions& o) {
   // Before the fit: the name's date is SOURCE_DATE_EPOCH's when set (a malformed one is refused here).
   const std::string material_name =
       o.name.empty() ? cal::calibrated_material_name(o.material, spread::plot::utc_date(spread::cli::report_time_s()))
-                     : o.name;
+                     : cal::tagged_material_name(o.material, o.name);
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   require_width_within_trays(test, o.width_m);
   const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
@@ -263,6 +264,10 @@ void run_pattern(const PatternOptions& o) {
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);
   const std::optional<std::string> rate_note = missing_rate_note(test, rate);
+  // Once, for the terminal, --json and the page alike (a refused fit has no page; its verdicts still print).
+  const std::vector<spread::cli::Verdict> verdicts = tray_verdicts(test, measured, report_width_m, rate);
+  const std::vector<spread::cli::NextStep> steps = spread::cli::pattern_next_steps(
+      summary.has_value(), summary ? summary->output_path : o.output, material_name, o.width_m);
   std::string report_error;
   if (acceptance.accepted() && !o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
@@ -278,12 +283,13 @@ void run_pattern(const PatternOptions& o) {
       page.chart.second_tray_mass_kg = predicted_kg;
       page.chart.second_label = "predicted, calibrated";
       page.summary.push_back(fitted_values_line(fit));
-      page.verdicts = tray_verdicts(test, measured, report_width_m, rate);
+      page.verdicts = spread::cli::page_verdicts(verdicts);
       page.rate = rate;
       page.notes = warnings;
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
       if (rate_note) page.notes.push_back(*rate_note);
-      for (const std::string& line : guidance.lines) page.notes.push_back(line);
+      for (const std::string& line : guidance.notes) page.notes.push_back(line);
+      for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
     });
@@ -304,6 +310,25 @@ void run_pattern(const PatternOptions& o) {
     report["written"] = written;
     report["rate"] = spread::cli::rate_json(rate);
     report["adjustments"] = spread::cli::setting_guidance_json(guidance);
+    report["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
+    report["verdicts"] = spread::cli::verdicts_json(verdicts);
+    report["next_steps"] = spread::cli::next_steps_json(steps);
+    {
+      // The page's chart overlaps the measured trays, as the tray test's page does.
+      spread::plot::PatternReport chart_page = tray_report_page(test, measured, report_width_m, 0);
+      if (o.report.tray_area_m2 > 0.0) chart_page.chart.tray_area_m2 = o.report.tray_area_m2;
+      report["chart"] = spread::cli::chart_json(chart_page);
+    }
+    if (report_width_m > 0.0) {
+      report["cv_verdict"] = verdicts.front().numbers;
+      report["judged_bout_width_m"] = report_width_m;
+      report["judged_cv_to_and_fro_percent"] =
+          finite_or_null(100.0 * curve_cv(measured, measured.cv_to_and_fro_curve, report_width_m));
+      report["judged_cv_racetrack_percent"] =
+          finite_or_null(100.0 * curve_cv(measured, measured.cv_racetrack_curve, report_width_m));
+    }
+    report["tray_test_analysis"] = tray_json(test, measured);
+    if (!std::isnan(o.report.speed_km_h)) report["speed_km_h"] = o.report.speed_km_h;
     if (!plot_error.empty()) report["plot_error"] = plot_error;
     if (!report_problem.empty() || !report_error.empty()) {
       report["report_error"] = report_problem.empty() ? report_error : report_problem;
@@ -312,6 +337,7 @@ void run_pattern(const PatternOptions& o) {
   } else {
     std::printf("fit of '%s' at %g rpm to %s (%d iterations, %s):\n", o.material.c_str(), o.rpm, o.trays.c_str(),
                 fit.iterations, fit.converged ? "converged" : "NOT converged");
+    spread::cli::print_verdicts(verdicts);
     if (fit.table_samples) {
       std::printf("  launches: the table's DEM row at %g rpm (%zu samples, %d per evaluation), corrected\n",
                   setup.table_row_rpm, setup.table_samples.size(), o.samples);
@@ -354,6 +380,7 @@ void run_pattern(const PatternOptions& o) {
     if (rate_note) std::printf("note: %s\n", rate_note->c_str());
     for (const std::string& advice : guidance.lines) std::printf("%s\n", advice.c_str());
     for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+    spread::cli::print_next_steps(steps);
   }
   if (!report_problem.empty()) throw spread::cli::ReportUsageError(report_problem);
   if (!acceptance.accepted()) {

@@ -5,44 +5,16 @@ namespace spread::cli::calibrate {
 
 namespace {
 
-json tray_json(const cal::TrayTest& t, const cal::TrayTestAnalysis& a) {
-  json curve = json::array();
-  for (std::size_t i = 0; i < a.widths_m.size(); ++i) {
-    curve.push_back({{"bout_width_m", a.widths_m[i]},
-                     {"cv_to_and_fro_percent", finite_or_null(100.0 * a.cv_to_and_fro_curve[i])},
-                     {"cv_racetrack_percent", finite_or_null(100.0 * a.cv_racetrack_curve[i])}});
-  }
-  json out{{"tray_test", t.source},
-           {"trays", t.mass_kg.size()},
-           {"tray_width_m", t.tray_width_m},
-           {"passes", t.mass_columns.size()},
-           {"pass_columns", t.mass_columns},
-           {"padded_trays", t.padded_trays},
-           {"missing_trays_m", t.missing_positions_m()},
-           {"partly_missing_trays_m", t.partly_missing_positions_m()},
-           {"pass_scatter", pass_scatter_json(cal::pass_scatter(t))},
-           {"total_mass_g", 1e3 * a.total_mass_kg},
-           {"throw_width_m", a.throw_width_m},
-           {"cv_target_percent", 100.0 * a.cv_target},
-           {"working_width_to_and_fro_m", a.working_width_to_and_fro_m},
-           {"working_width_racetrack_m", a.working_width_racetrack_m},
-           {"bands_m", {{"to_and_fro", a.bands_to_and_fro_m}, {"racetrack", a.bands_racetrack_m}}},
-           {"cv_curve", curve}};
-  if (a.bout_width_m > 0.0) {
-    out["bout_width_m"] = a.bout_width_m;
-    out["bout_width_requested_m"] = a.requested_bout_width_m;
-    out["cv_to_and_fro_percent"] = finite_or_null(100.0 * a.cv_to_and_fro);
-    out["cv_racetrack_percent"] = finite_or_null(100.0 * a.cv_racetrack);
-  }
-  return out;
-}
-
 void plot_tray(const cal::TrayTest& t, const cal::TrayTestAnalysis& a, const std::string& prefix, double tray_area_m2,
                json& written) {
   spread::plot::TransverseOptions options;
   options.series_label = "measured";
   if (tray_area_m2 > 0.0) options.tray_area_m2 = tray_area_m2;
-  options.bout_width_m = a.bout_width_m > 0.0 ? a.bout_width_m : a.working_width_to_and_fro_m;
+  // The bout the page and the verdict judge, with their CV (missing trays left out, not counted as empty).
+  options.bout_width_m = report_bout_width_m(t, a);
+  if (options.bout_width_m > 0.0) options.bout_cv = curve_cv(a, a.cv_to_and_fro_curve, options.bout_width_m);
+  options.cv_target = a.cv_target;
+  options.missing_trays = t.layout_missing;
   const std::string transverse = prefix + "_transverse.png";
   spread::plot::write_transverse_png(t.layout_mass_kg, t.layout, transverse, "tray test " + t.source, options);
   written["transverse"] = transverse;
@@ -57,7 +29,7 @@ std::vector<std::string> tray_warnings(const cal::TrayTest& t, const cal::TrayTe
   if (a.bout_width_m > 0.0 && a.bout_width_rounded()) {
     char text[256];
     std::snprintf(text, sizeof text,
-                  "--width %.3g m is not a whole number of %.2f m trays: the CVs are at W = %.2f m, the nearest "
+                  "the bout width %.3g m is not a whole number of %.2f m trays: the CVs are at W = %.2f m, the nearest "
                   "width the tray test resolves",
                   a.requested_bout_width_m, t.tray_width_m, a.bout_width_m);
     warnings.emplace_back(text);
@@ -96,20 +68,30 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
       spread::cli::report_rate(o.report, q.mean_kg * q.trays, q.trays * t.tray_width_m, t.tray_width_m);
   const std::vector<std::string> notes = missing_notes(t);
   const std::string high = std::isfinite(q.interval.high) ? format("%.1f %%", 100.0 * q.interval.high) : "unbounded";
-  std::string verdict;
-  switch (q.verdict) {
-    case cal::QuickCheckVerdict::kMeetsTarget:
-      verdict = "meets the target: even the top of the interval is within " + format("%g %%", 100.0 * cv_target);
+  // Once, for the terminal, --json and the page alike: the rule of every report (cv_verdict.hpp) on
+  // McKay's interval, with what it means for so few trays.
+  std::vector<spread::cli::Verdict> verdicts{spread::cli::cv_verdict(
+      "CV of the bout from " + std::to_string(q.trays) + " trays",
+      cal::cv_verdict(q.cv, q.interval.low, q.interval.high, cv_target))};
+  verdicts.front().numbers["trays"] = q.trays;
+  if (auto rate_verdict = spread::cli::rate_verdict(rate)) verdicts.push_back(*rate_verdict);
+  const std::string target = format("%g %%", 100.0 * cv_target);
+  std::string meaning;
+  switch (verdicts.front().shown.level) {
+    case spread::plot::ReportVerdict::Level::kPass:
+      meaning = "even the top of the interval is within " + target;
       break;
-    case cal::QuickCheckVerdict::kFailsTarget:
-      verdict = "fails the target: even the bottom of the interval is above " + format("%g %%", 100.0 * cv_target);
+    case spread::plot::ReportVerdict::Level::kFail:
+      meaning = "even the bottom of the interval is above " + target;
       break;
-    case cal::QuickCheckVerdict::kUndecided:
-      verdict = "undecided: the target " + format("%g %%", 100.0 * cv_target) + " lies inside the interval, " +
-                std::to_string(q.trays) + " trays cannot tell whether the spread meets it; lay a full tray test "
-                "across the throw to know";
+    default:
+      meaning = "the target " + target + " lies inside the interval: " + std::to_string(q.trays) +
+                " trays cannot tell whether the spread meets it; lay a full tray test across the throw to know";
       break;
   }
+  const std::string verdict = verdicts.front().shown.word + ", " + meaning;
+  const std::vector<spread::cli::NextStep> steps = spread::cli::tray_next_steps(
+      verdicts, q.trays * t.tray_width_m, 0.0, true, static_cast<int>(t.mass_columns.size()), true, t.source);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
@@ -123,18 +105,13 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
       page.header.time_s = report_time_s;
       page.header.made_by = spread::cli::command_line();
       char text[160];
-      std::snprintf(text, sizeof text, "%d trays read, %.2f m apart, %zu pass(es), mean %.2f g per tray", q.trays,
-                    t.tray_width_m, t.mass_columns.size(), 1e3 * q.mean_kg);
+      std::snprintf(text, sizeof text, "%d trays read, %.2f m apart, %s, mean %.2f g per tray", q.trays,
+                    t.tray_width_m, passes_text(t.mass_columns.size()).c_str(), 1e3 * q.mean_kg);
       page.summary.emplace_back(text);
       page.summary.push_back(format("CV %.1f %%", 100.0 * q.cv) + "; the bout's CV lies between " +
-                             format("%.1f %%", 100.0 * q.interval.low) + " and " + high + " (95 % interval, McKay)");
+                             format("%.1f %%", 100.0 * q.interval.low) + " and " + high + " (95 % interval)");
       page.summary.push_back("against the target: " + verdict);
-      // First on the page: the quick check's meets / undecided / fails as the verdict every report states
-      // (cv_verdict.hpp: the same rule on McKay's interval).
-      page.verdicts.push_back(spread::cli::cv_report_verdict(
-          "CV of the bout from " + std::to_string(q.trays) + " trays",
-          cal::cv_verdict(q.cv, q.interval.low, q.interval.high, cv_target)));
-      if (const auto rate_verdict = spread::cli::rate_report_verdict(rate)) page.verdicts.push_back(*rate_verdict);
+      page.verdicts = spread::cli::page_verdicts(verdicts);
       for (const std::string& line : spread::cli::rate_lines(rate)) page.summary.push_back(line);
       page.caption = "Trays (mean of the passes)";
       page.columns = {"tray", "position", "mass"};
@@ -145,6 +122,7 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
       for (const std::string& n : notes) page.notes.push_back("missing: " + n);
       page.notes.push_back("a CV from a few trays is itself uncertain: the 95 % interval says how much; MARGINAL "
                            "means these trays cannot tell, a full tray test across the throw can");
+      for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
       spread::plot::write_report_pdf(o.report.path, nullptr, &page);
     });
   }
@@ -155,15 +133,25 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
              {"tray_spacing_m", t.tray_width_m},
              {"passes", t.mass_columns.size()},
              {"missing_trays_m", t.missing_positions_m()},
+             {"tray_positions_m", t.position_m},
+             {"tray_mass_g", [&] {
+                json masses = json::array();  // mean of the passes read; null for a missing tray
+                for (std::size_t i = 0; i < t.mass_kg.size(); ++i) {
+                  masses.push_back(t.missing[i] ? json(nullptr) : json(1e3 * t.mass_kg[i]));
+                }
+                return masses;
+              }()},
              {"mean_g", 1e3 * q.mean_kg},
              {"sd_g", 1e3 * q.sd_kg},
              {"cv_percent", 100.0 * q.cv},
              {"cv_interval_percent", {100.0 * q.interval.low, finite_or_null(100.0 * q.interval.high)}},
              {"confidence_percent", 100.0 * q.interval.confidence},
              {"cv_target_percent", 100.0 * cv_target},
-             {"verdict", cal::to_string(q.verdict)},
+             {"verdict", spread::cli::verdict_key(verdicts.front().shown.level)},
+             {"verdicts", spread::cli::verdicts_json(verdicts)},
              {"rate", spread::cli::rate_json(rate)},
-             {"notes", notes}};
+             {"notes", notes},
+             {"next_steps", spread::cli::next_steps_json(steps)}};
     spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
     spread::cli::throw_report_outcome(report_problem, report_error);
@@ -171,6 +159,7 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
   }
   std::printf("%s: quick check, %d trays read (%.2f m apart), %zu pass(es), mean %.2f g per tray\n", t.source.c_str(),
               q.trays, t.tray_width_m, t.mass_columns.size(), 1e3 * q.mean_kg);
+  spread::cli::print_verdicts(verdicts);
   std::printf("CV %.1f %% over the %d trays; from %d trays the bout's CV lies between %.1f %% and %s (%.0f %% "
               "interval, McKay)\n",
               100.0 * q.cv, q.trays, q.trays, 100.0 * q.interval.low, high.c_str(), 100.0 * q.interval.confidence);
@@ -180,6 +169,7 @@ void run_quick_check(const TrayOptions& o, double cv_target) {
   if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
     std::printf("wrote %s\n", o.report.path.c_str());
   }
+  spread::cli::print_next_steps(steps);
   spread::cli::throw_report_outcome(report_problem, report_error);
 }
 
@@ -204,23 +194,30 @@ void run_tray(const TrayOptions& o) {
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, a.total_mass_kg, report_width_m, t.layout.tray_width_m);
   const std::optional<std::string> rate_note = missing_rate_note(t, rate);
+  // Once, for the terminal, --json and the page alike.
+  const std::vector<spread::cli::Verdict> verdicts = tray_verdicts(t, a, report_width_m, rate);
+  const std::vector<spread::cli::NextStep> steps =
+      spread::cli::tray_next_steps(verdicts, report_width_m, a.working_width_to_and_fro_m, a.bout_width_m > 0.0,
+                                   static_cast<int>(t.mass_columns.size()), false, t.source);
   json written = json::object();
   const std::string plot_error =
       o.plot_prefix.empty() ? std::string() : plot_or_error([&] { plot_tray(t, a, o.plot_prefix, o.report.tray_area_m2, written); });
+  // The page, made whether or not it is written: --json gives its chart's numbers too.
+  spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
+  if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
+  page.header.machine = o.machine;
+  page.header.material = o.material;
+  page.header.rpm = o.rpm;
+  page.header.speed_km_h = o.report.speed_km_h;
+  page.verdicts = spread::cli::page_verdicts(verdicts);
+  page.rate = rate;
+  page.notes = warnings;
+  for (const std::string& n : notes) page.notes.push_back("missing: " + n);
+  if (rate_note) page.notes.push_back(*rate_note);
+  for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     report_error = plot_or_error([&] {
-      spread::plot::PatternReport page = tray_report_page(t, a, report_width_m, time_s);
-      if (o.report.tray_area_m2 > 0.0) page.chart.tray_area_m2 = o.report.tray_area_m2;
-      page.header.machine = o.machine;
-      page.header.material = o.material;
-      page.header.rpm = o.rpm;
-      page.header.speed_km_h = o.report.speed_km_h;
-      page.verdicts = tray_verdicts(t, a, report_width_m, rate);
-      page.rate = rate;
-      page.notes = warnings;
-      for (const std::string& n : notes) page.notes.push_back("missing: " + n);
-      if (rate_note) page.notes.push_back(*rate_note);
       spread::plot::write_report_pdf(o.report.path, &page);
       written["report"] = o.report.path;
     });
@@ -231,7 +228,19 @@ void run_tray(const TrayOptions& o) {
   };
   if (o.json) {
     json out = tray_json(t, a);
-    if (a.bout_width_m > 0.0) out["cv_verdict"] = spread::cli::cv_verdict_json(bout_verdict(t, a.bout_width_m, a.cv_target));
+    out["verdicts"] = spread::cli::verdicts_json(verdicts);
+    out["chart"] = spread::cli::chart_json(page);
+    out["next_steps"] = spread::cli::next_steps_json(steps);
+    // The CV's verdict at the bout judged: --width's, else the widest whole number of trays within the
+    // working width (the page's "judged" row).
+    if (report_width_m > 0.0) {
+      out["cv_verdict"] = verdicts.front().numbers;
+      out["judged_bout_width_m"] = report_width_m;
+      out["judged_cv_to_and_fro_percent"] = finite_or_null(100.0 * curve_cv(a, a.cv_to_and_fro_curve, report_width_m));
+      out["judged_cv_racetrack_percent"] = finite_or_null(100.0 * curve_cv(a, a.cv_racetrack_curve, report_width_m));
+    }
+    if (!std::isnan(o.rpm)) out["rpm"] = o.rpm;
+    if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     out["warnings"] = warnings;
     out["notes"] = notes;
     if (rate_note) out["notes"].push_back(*rate_note);
@@ -247,9 +256,10 @@ void run_tray(const TrayOptions& o) {
   }
   std::printf("%s: %zu trays of %.2f m, %zu pass(es), %.1f g in total, throw width %.1f m\n", t.source.c_str(),
               t.mass_kg.size(), t.tray_width_m, t.mass_columns.size(), 1e3 * a.total_mass_kg, a.throw_width_m);
+  spread::cli::print_verdicts(verdicts);
   if (a.bout_width_m > 0.0) {
-    std::printf("at W = %.2f m: CV %s to-and-fro, %s racetrack\n", a.bout_width_m, cv_text(a.cv_to_and_fro).c_str(),
-                cv_text(a.cv_racetrack).c_str());
+    std::printf("at W = %.2f m: CV %s to-and-fro, %s racetrack\n", a.bout_width_m,
+                cv_text(a.cv_to_and_fro, a.cv_target).c_str(), cv_text(a.cv_racetrack, a.cv_target).c_str());
   }
   for (const std::string& w : warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& n : notes) std::printf("missing: %s\n", n.c_str());
@@ -280,6 +290,7 @@ void run_tray(const TrayOptions& o) {
     std::printf("note: no rate: --tray-area needs a bout width (--width, or a working width of two trays or more)\n");
   }
   for (const auto& [kind, path] : written.items()) std::printf("wrote %s\n", path.get<std::string>().c_str());
+  spread::cli::print_next_steps(steps);
   fail_after_report();
 }
 

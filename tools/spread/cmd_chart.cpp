@@ -12,19 +12,23 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "libspread/analysis/calibration/machine_scales.hpp"
 #include "libspread/analysis/calibration/tray_analysis.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/analysis/predict/setting_chart.hpp"
 #include "libspread/core/strict_number.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
+#include "tools/spread/next_steps.hpp"
 #include "tools/spread/report_args.hpp"
+#include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"
 
 namespace spread::cli::cmd_chart {
@@ -34,9 +38,20 @@ using nlohmann::json;
 using spread::cli::BadInput;
 namespace pr = spread::predict;
 
-// "620 rpm, +15.0°" — the setting of both discs.
+// The machine's drop-point scale, when --scales gives one (calibration/machine_scales.hpp).
+std::optional<spread::calibration::DropPointScale>& drop_point_scale() {
+  static std::optional<spread::calibration::DropPointScale> scale;
+  return scale;
+}
+
+// "620 rpm, +15.0 deg" — the setting of both discs; with the machine's scale "620 rpm, scale E (+15.0 deg)".
 std::string setting_text(const pr::SettingChartRow& row) {
-  return format("%.0f rpm", row.rpm) + format(", %+.1f deg", row.drop_point_turn_rad / kRadPerDeg);
+  const double turn_deg = row.drop_point_turn_rad / kRadPerDeg;
+  if (drop_point_scale()) {
+    return format("%.0f rpm", row.rpm) + ", scale " + spread::calibration::drop_point_mark(*drop_point_scale(), turn_deg) +
+           format(" (%+.1f deg)", turn_deg);
+  }
+  return format("%.0f rpm", row.rpm) + format(", %+.1f deg", turn_deg);
 }
 
 struct Options {
@@ -50,6 +65,7 @@ struct Options {
   double drop_point_step_deg = 5.0;    // their grid step
   bool json = false;
   spread::cli::ReportArgs report;
+  std::string scales;  // the machine's scales file; "" = none
 };
 
 std::vector<double> parse_widths(const std::string& text) {
@@ -113,7 +129,7 @@ std::string reach_note(const pr::SettingChartRow& row, const pr::SettingChart& c
 // The chart page's first lines: the widths by the verdict of their best setting, by the rule of every
 // report (calibration/cv_verdict.hpp) — reached: its 95 % interval within the target (PASS); marginal:
 // the interval reaches over it (MARGINAL); not reachable: no setting meets it (FAIL).
-std::vector<spread::plot::ReportVerdict> chart_verdicts(const pr::SettingChart& chart, double cv_target_percent) {
+std::vector<spread::cli::Verdict> chart_verdicts(const pr::SettingChart& chart, double cv_target_percent) {
   using Level = spread::plot::ReportVerdict::Level;
   struct Group {
     pr::ChartReach reach;
@@ -128,19 +144,45 @@ std::vector<spread::plot::ReportVerdict> chart_verdicts(const pr::SettingChart& 
        "the best setting's 95 % interval reaches over " + target + ": confirm with a tray test"},
       {pr::ChartReach::kNotReached, Level::kFail, "FAIL", "no setting searched keeps the CV within " + target},
   };
-  std::vector<spread::plot::ReportVerdict> verdicts;
+  std::vector<spread::cli::Verdict> verdicts;
   for (const Group& g : groups) {
     std::string widths;
+    json widths_m = json::array();
     for (const pr::SettingChartRow& row : chart.rows) {
-      if (row.reach == g.reach) widths += (widths.empty() ? "" : ", ") + format("%.1f m", row.width_m);
+      if (row.reach != g.reach) continue;
+      widths += (widths.empty() ? "" : ", ") + format("%.1f m", row.width_m);
+      widths_m.push_back(row.width_m);
     }
-    if (!widths.empty()) verdicts.push_back({g.level, g.word, widths + ": " + g.meaning});
+    if (widths.empty()) continue;
+    verdicts.push_back({"widths", {g.level, g.word, widths + ": " + g.meaning},
+                        {{"widths_m", widths_m}, {"cv_target_percent", cv_target_percent}, {"confidence_percent", 95}}});
   }
   return verdicts;
 }
 
+// The calibrated versions of `material` in the table: a calibration keeps the product's name and adds
+// its tag in parentheses ("Urea (calibrated 2026-12-07)", calibration/calibrated_table.hpp). Charting the
+// product itself then is charting the table's uncalibrated pattern, not this spreader's.
+std::vector<std::string> calibrated_versions(const pr::Predictor& predictor, const std::string& material) {
+  std::vector<std::string> names;
+  const std::string prefix = material + " (";
+  for (std::size_t i = 0; i < predictor.material_count(); ++i) {
+    const std::string& name = predictor.material(i).name;
+    if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 && name.back() == ')') {
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
+std::string calibrated_note(const std::string& name) {
+  return "this table also holds '" + name + "', calibrated to a tray test of this spreader: this chart is of "
+         "the uncalibrated material; chart the calibrated one for the settings to use";
+}
+
 void run(const Options& o, int& exit_code) {
   const double cv_target = spread::calibration::cv_target_from_percent(o.cv_target_percent, "--cv-target");
+  if (!o.scales.empty()) drop_point_scale() = spread::calibration::read_machine_scales(o.scales).drop_point;
   const std::vector<double> widths = parse_widths(o.widths);
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
@@ -181,7 +223,20 @@ void run(const Options& o, int& exit_code) {
                                  " and drop point within " + turns_text +
                                  " of the table's (both discs alike) with the lowest to-and-fro CV at each width (target " +
                                  format("%g %%", o.cv_target_percent) + ")";
+  // The page's: the same in the farmer's words (the table is named in its header).
+  std::string page_turns = turns_text;
+  if (const auto at = page_turns.find(" (validated against DEM rows)"); at != std::string::npos) {
+    page_turns.replace(at, std::string(" (validated against DEM rows)").size(), " (where the simulation checked it)");
+  }
+  const std::string page_range_line = "'" + o.material + "': the disc speed of " + format("%.0f", chart.min_rpm) + "-" +
+                                      format("%.0f rpm", chart.max_rpm) + " and drop point within " + page_turns +
+                                      " of the table's (both discs alike) with the lowest to-and-fro CV at each width "
+                                      "(target " + format("%g %%", o.cv_target_percent) + ")";
 
+  // Once, for the terminal, --json and the page alike.
+  const std::vector<spread::cli::Verdict> verdicts = chart_verdicts(chart, o.cv_target_percent);
+  const std::vector<spread::cli::NextStep> steps = spread::cli::chart_next_steps();
+  const std::vector<std::string> calibrated = calibrated_versions(predictor, o.material);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {
     try {
@@ -194,8 +249,8 @@ void run(const Options& o, int& exit_code) {
       page.header.speed_km_h = o.report.speed_km_h;
       page.header.time_s = report_time_s;
       page.header.made_by = spread::cli::command_line();
-      page.summary.push_back(range_line);
-      page.verdicts = chart_verdicts(chart, o.cv_target_percent);
+      page.summary.push_back(page_range_line);
+      page.verdicts = spread::cli::page_verdicts(verdicts);
       page.caption = "Disc speed per working width (CV target " + format("%g %%", o.cv_target_percent) + ")";
       page.columns = {"width", "speed, drop point", "CV to-and-fro", "CV racetrack", "CV within target at"};
       for (const pr::SettingChartRow& row : chart.rows) {
@@ -214,10 +269,12 @@ void run(const Options& o, int& exit_code) {
                                compensation_text(row));
         }
       }
-      page.notes.push_back("± = 95 % interval, 1.96 standard errors over the table's launch samples; the setting is "
+      page.notes.push_back("± = 95 % interval over the table's simulated granules; the setting is "
                            "the one with the lowest predicted to-and-fro CV at the width; the drop point is turned "
                            "from the table's (+ counter-clockwise from above on the left disc, mirrored on the "
                            "right), and the speed spans are at that drop point");
+      for (const std::string& name : calibrated) page.notes.push_back(calibrated_note(name));
+      for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
       spread::plot::write_report_pdf(o.report.path, nullptr, &page);
     } catch (const std::exception& e) {
       report_error = e.what();
@@ -232,6 +289,10 @@ void run(const Options& o, int& exit_code) {
                       {"reach", pr::to_string(row.reach)},
                       {"rpm", number_or_null(row.rpm)},
                       {"drop_point_turn_deg", number_or_null(row.drop_point_turn_rad / kRadPerDeg)},
+                      {"drop_point_mark", drop_point_scale() && std::isfinite(row.drop_point_turn_rad)
+                                              ? json(spread::calibration::drop_point_mark(*drop_point_scale(),
+                                                                                          row.drop_point_turn_rad / kRadPerDeg))
+                                              : json(nullptr)},
                       {"bout_width_m", number_or_null(row.bout_width_m)},
                       {"cv_to_and_fro_percent", number_or_null(100.0 * row.cv_to_and_fro)},
                       {"cv_to_and_fro_se_percent", number_or_null(100.0 * row.cv_to_and_fro_se)},
@@ -277,19 +338,32 @@ void run(const Options& o, int& exit_code) {
                         }()}}},
              {"rows", rows},
              {"scan", scan},
-             {"predictions", chart.predictions}};
+             {"predictions", chart.predictions},
+             {"verdicts", spread::cli::verdicts_json(verdicts)},
+             {"calibrated_versions", calibrated},
+             {"next_steps", spread::cli::next_steps_json(steps)}};
+    if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     spread::cli::add_report_outcome(out, o.report, report_problem, report_error);
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("%s\n", range_line.c_str());
-    std::printf("  %-8s %-20s %-18s %-18s %s\n", "width", "speed, drop point", "CV to-and-fro", "CV racetrack",
-                "CV within target at");
+    spread::cli::print_verdicts(verdicts);
+    // The setting column as wide as its widest cell (a drop point on the machine's scale is longer).
+    int setting_width = 20;
+    for (const pr::SettingChartRow& row : chart.rows) {
+      if (row.reach != pr::ChartReach::kNotReached) {
+        setting_width = std::max(setting_width, static_cast<int>(setting_text(row).size()));
+      }
+    }
+    std::printf("  %-8s %-*s %-18s %-18s %s\n", "width", setting_width, "speed, drop point", "CV to-and-fro",
+                "CV racetrack", "CV within target at");
     for (const pr::SettingChartRow& row : chart.rows) {
       if (row.reach == pr::ChartReach::kNotReached) {
         std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), "not reachable");
         continue;
       }
-      std::printf("  %-8s %-20s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(), setting_text(row).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
+      std::printf("  %-8s %-*s %-18s %-18s %s\n", format("%.1f m", row.width_m).c_str(), setting_width,
+                  setting_text(row).c_str(), cv_text(row.cv_to_and_fro, row.cv_to_and_fro_se).c_str(),
                   cv_text(row.cv_racetrack, row.cv_racetrack_se).c_str(), spans_text(row).c_str());
     }
     std::printf("  (± = 95 %% interval, 1.96 standard errors over the launch samples and, between DEM rows, the "
@@ -315,9 +389,11 @@ void run(const Options& o, int& exit_code) {
       heading = true;
       std::printf("  %-8s %s\n", format("%.1f m", row.width_m).c_str(), compensation_text(row).c_str());
     }
+    for (const std::string& name : calibrated) std::printf("note: %s\n", calibrated_note(name).c_str());
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::printf("wrote %s\n", o.report.path.c_str());
     }
+    spread::cli::print_next_steps(steps);
   }
   spread::cli::throw_report_outcome(report_problem, report_error);
   exit_code = spread::cli::kExitOk;
@@ -340,6 +416,9 @@ spread::cli::CommandRegistration reg{"chart", [](CLI::App& app, int& exit_code) 
   sub->add_option("--drop-point-step", options.drop_point_step_deg, "grid step of the drop points searched (degrees)")
       ->capture_default_str();
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  sub->add_option("--scales", options.scales,
+                  "the machine's scales file (TOML): each drop point also on its drop-point scale, e.g. "
+                  "scenes/field/default_scales.toml");
   spread::cli::add_report_args(*sub, options.report, false);
   sub->callback([&exit_code] { run(options, exit_code); });
 }};

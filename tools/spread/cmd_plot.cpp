@@ -99,7 +99,12 @@ void run(const Options& o, int& exit_code) {
   if (what.count("transverse")) {
     spread::plot::TransverseOptions options;
     options.series_label = "predicted";
-    options.bout_width_m = p.working_width_to_and_fro_m;
+    // The overlap is drawn over whole trays: the widest whole number within the working width. Rounded
+    // to the nearest (11.31 m on 0.5 m trays to 11.5 m) it showed a bout beyond the working width, with
+    // a CV above the target at what the title called the working width.
+    const double trays_within = std::floor(p.working_width_to_and_fro_m / p.trays.tray_width_m + 1e-9);
+    options.bout_width_m = trays_within >= 2.0 ? trays_within * p.trays.tray_width_m : 0.0;
+    options.cv_target = request.cv_target;
     const std::string path = o.out_prefix + "_transverse.png";
     spread::plot::write_transverse_png(p.tray_mass_fraction, p.trays, path,
                                        title.str() + ": transverse distribution per kg discharged", options);

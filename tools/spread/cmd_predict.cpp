@@ -21,10 +21,13 @@
 #include "libspread/physics/flight/flight.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
 #include "spread/spread.h"
+#include "tools/spread/chart_json.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/verdicts.hpp"
+#include "tools/spread/next_steps.hpp"
 #include "tools/spread/number_format.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -225,29 +228,46 @@ spread::cli::SettingGuidance guidance_for(const Options& o, const spread_predict
   return spread::cli::setting_guidance(o.tables, request);
 }
 
+// The predicted CV at the bout width against the target with its 95 % interval over the launch samples
+// (1.96 standard errors, as the text prints it): the rule of every report (calibration/cv_verdict.hpp).
+// None without a bout width.
+std::vector<spread::cli::Verdict> prediction_verdicts(const Options& o, const spread_prediction& r) {
+  if (!(r.bout_width_m > 0.0)) return {};
+  const double cv = r.cv_percent / 100.0, half = 1.96 * r.cv_se_percent / 100.0;
+  const bool interval = std::isfinite(half);
+  spread::cli::Verdict v = spread::cli::cv_verdict(
+      "predicted CV at the " + format("%.2f m", r.bout_width_m) + " bout, to-and-fro",
+      spread::calibration::cv_verdict(cv, interval ? std::max(0.0, cv - half) : NAN, interval ? cv + half : NAN,
+                                      o.cv_target_percent / 100.0));
+  v.numbers["bout_width_m"] = r.bout_width_m;
+  return {v};
+}
+
 // The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
-// their 95 % intervals. Returns the error of writing it ("" when written).
-std::string write_report(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
-                         const CvCurve& curve, std::int64_t time_s, const spread::cli::SettingGuidance& guidance) {
-  try {
+// their 95 % intervals.
+spread::plot::PatternReport report_page(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
+                                        const CvCurve& curve, std::int64_t time_s,
+                                        const spread::cli::SettingGuidance& guidance,
+                                        const std::vector<spread::cli::Verdict>& verdicts) {
     spread::plot::PatternReport page;
     page.header.title = "Spread pattern report: prediction";
     page.header.source = o.tables;
-    page.header.machine = spread::tables::read_table_file(o.tables).machine.name;
+    // The machine's name is read from the table only for a page to write (a second read of the file).
+    if (!o.report.path.empty()) page.header.machine = spread::tables::read_table_file(o.tables).machine.name;
     page.header.material = o.material;
     page.header.rpm = o.rpm;
     if (own_disc_settings(o)) page.header.rpm_text = setting_label(o, r);
     page.header.speed_km_h = o.report.speed_km_h;
     page.header.time_s = time_s;
     page.header.made_by = spread::cli::command_line();
-    page.summary.push_back(std::to_string(r.sample_count) + " launch samples, disc " +
-                           format("%.2f m", r.disc_height_m) + " above ground, effects " +
+    page.summary.push_back(std::to_string(r.sample_count) + " simulated granules, disc " +
+                           format("%.2f m", r.disc_height_m) + " above ground, in the air: " +
                            effects_label(r.effects) + format(", throw width %.1f m", r.throw_width_m) +
                            plus_minus(r.throw_width_se_m));
     if (r.bout_width_m > 0.0) {
       page.summary.push_back("at W = " + format("%.2f m", r.bout_width_m) + ": CV " + format("%.1f %%", r.cv_percent) +
                              plus_minus(r.cv_se_percent) + " to-and-fro, " + format("%.1f %%", r.cv_racetrack_percent) +
-                             plus_minus(r.cv_racetrack_se_percent) + " racetrack (± = 95 % interval over the launch samples)");
+                             plus_minus(r.cv_racetrack_se_percent) + " racetrack (± = 95 % interval over the simulated granules)");
     }
     // Every band, and which is the working width (the headline rule, docs/metrics.md "Effective working
     // width"): the same as the text and JSON outputs. A note under the chart.
@@ -279,23 +299,12 @@ std::string write_report(const Options& o, const spread_prediction& r, const std
         spread::plot::with_bout_width_m(spread::plot::cv_table_widths_m(r.throw_width_m, curve.widths_m),
                                         r.bout_width_m, curve.widths_m),
         curve.widths_m, curve.to_and_fro, curve.racetrack);
-    if (r.bout_width_m > 0.0) {
-      // The predicted CV against the target with its 95 % interval over the launch samples (1.96 standard
-      // errors, as the text prints it): the rule of every report (calibration/cv_verdict.hpp).
-      const double cv = r.cv_percent / 100.0, half = 1.96 * r.cv_se_percent / 100.0;
-      page.verdicts.push_back(spread::cli::cv_report_verdict(
-          "predicted CV at the " + format("%.2f m", r.bout_width_m) + " bout, to-and-fro",
-          spread::calibration::cv_verdict(cv, std::max(0.0, cv - half), cv + half, page.cv_target)));
-    }
+    page.verdicts = spread::cli::page_verdicts(verdicts);
     if (!bands_note.empty()) page.notes.push_back(bands_note);
     page.notes.push_back("a prediction from the launch table: shares of the mass the machine discharges; the rate "
-                         "in kg/ha and its check need a tray test (spread calibrate tray --tray-area)");
-    for (const std::string& line : guidance.lines) page.notes.push_back(line);
-    spread::plot::write_report_pdf(o.report.path, &page);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return {};
+                         "in kg/ha and its check need a tray test with the trays' catching area");
+    for (const std::string& line : guidance.notes) page.notes.push_back(line);
+    return page;
 }
 
 void run(const Options& o, int& exit_code) {
@@ -374,9 +383,20 @@ void run(const Options& o, int& exit_code) {
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
   const spread::cli::SettingGuidance guidance = guidance_for(o, result);
-  const std::string report_error = o.report.path.empty() || !report_problem.empty()
-                                       ? std::string()
-                                       : write_report(o, result, trays, curve, report_time_s, guidance);
+  const std::vector<spread::cli::Verdict> verdicts = prediction_verdicts(o, result);
+  const std::vector<spread::cli::NextStep> steps =
+      spread::cli::predict_next_steps(verdicts, o.tables, o.material, o.bout_width_m);
+  // The page, made whether or not it is written: --json gives its chart's numbers too.
+  spread::plot::PatternReport page = report_page(o, result, trays, curve, report_time_s, guidance, verdicts);
+  for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
+  std::string report_error;
+  if (!o.report.path.empty() && report_problem.empty()) {
+    try {
+      spread::plot::write_report_pdf(o.report.path, &page);
+    } catch (const std::exception& e) {
+      report_error = e.what();
+    }
+  }
   if (o.json) {
     json centres = json::array(), fractions = json::array();
     for (std::size_t k = 0; k < tray_count; ++k) {
@@ -430,6 +450,11 @@ void run(const Options& o, int& exit_code) {
                 {"first_band_width_m", {{"to_and_fro", result.first_band_width_to_and_fro_m},
                                         {"racetrack", result.first_band_width_racetrack_m}}}};
     out["adjustments"] = spread::cli::setting_guidance_json(guidance);
+    out["adjusted_from"] = spread::cli::setting_guidance_present_json(guidance);
+    out["verdicts"] = spread::cli::verdicts_json(verdicts);
+    out["chart"] = spread::cli::chart_json(page);
+    out["next_steps"] = spread::cli::next_steps_json(steps);
+    if (!std::isnan(o.report.speed_km_h)) out["speed_km_h"] = o.report.speed_km_h;
     if (o.compensate_wind) {
       out["wind_compensation"] = {{"present_cv_to_and_fro_percent", number_or_null(present_cv_percent)},
                                   {"present_cv_to_and_fro_se_percent", number_or_null(present_cv_se_percent)},
@@ -461,6 +486,8 @@ void run(const Options& o, int& exit_code) {
               << result.working_width_to_and_fro_m << " m" << plus_minus(result.working_width_to_and_fro_se_m)
               << ", racetrack " << result.working_width_racetrack_m << " m"
               << plus_minus(result.working_width_racetrack_se_m) << "\n";
+    std::cout << std::flush;
+    spread::cli::print_verdicts(verdicts);
     if (o.compensate_wind) {
       std::cout << "  wind compensation: CV at " << result.bout_width_m << " m in this wind " << present_cv_percent
                 << " %" << plus_minus(present_cv_se_percent) << " at the present setting; each disc set apart:\n"
@@ -529,6 +556,8 @@ void run(const Options& o, int& exit_code) {
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
       std::cout << "wrote " << o.report.path << "\n";
     }
+    std::cout << std::flush;
+    spread::cli::print_next_steps(steps);
   }
   spread::cli::throw_report_outcome(report_problem, report_error);
   exit_code = spread::cli::kExitOk;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "libspread/analysis/calibration/field_ranges.hpp"
 #include "libspread/analysis/calibration/tray_rate_check.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
 #include "tools/spread/output_paths.hpp"
@@ -30,19 +31,18 @@ void add_report_args(CLI::App& sub, ReportArgs& args, bool rate) {
 }
 
 std::string check_report_args(const ReportArgs& args) {
-  if (!std::isnan(args.speed_km_h) && !(std::isfinite(args.speed_km_h) && args.speed_km_h > 0.0)) {
-    throw std::invalid_argument("--speed " + format("%g", args.speed_km_h) + ": the forward speed must be > 0 km/h");
-  }
-  if (!std::isnan(args.tray_area_m2) && !(std::isfinite(args.tray_area_m2) && args.tray_area_m2 > 0.0)) {
-    throw std::invalid_argument("--tray-area " + format("%g", args.tray_area_m2) + ": the tray area must be > 0 m²");
-  }
-  if (!std::isnan(args.set_rate_kg_ha)) {
-    if (!(std::isfinite(args.set_rate_kg_ha) && args.set_rate_kg_ha > 0.0)) {
-      throw std::invalid_argument("--rate-kg-ha " + format("%g", args.set_rate_kg_ha) + ": the rate must be > 0 kg/ha");
+  // Before any arithmetic: a number no field holds is a unit or typing slip (calibration/field_ranges.hpp).
+  const auto require = [](const calibration::FieldRange& range, const char* option, double value) {
+    if (std::isnan(value)) return;  // not given
+    if (const std::string problem = calibration::field_range_problem(range, option, value); !problem.empty()) {
+      throw std::invalid_argument(problem);
     }
-    if (std::isnan(args.tray_area_m2)) {
-      throw std::invalid_argument("--rate-kg-ha needs --tray-area (m²): the caught rate is mass per tray area");
-    }
+  };
+  require(calibration::kSpeedRange, "--speed", args.speed_km_h);
+  require(calibration::kTrayAreaRange, "--tray-area", args.tray_area_m2);
+  require(calibration::kRateRange, "--rate-kg-ha", args.set_rate_kg_ha);
+  if (!std::isnan(args.set_rate_kg_ha) && std::isnan(args.tray_area_m2)) {
+    throw std::invalid_argument("--rate-kg-ha needs --tray-area (m²): the caught rate is mass per tray area");
   }
   if (args.path.empty()) return {};
   (void)report_time_s();  // a malformed SOURCE_DATE_EPOCH is refused before the work
@@ -117,43 +117,6 @@ std::vector<std::string> rate_lines(const std::optional<plot::ReportRate>& rate)
                     " (" + format("%g", rate->lowest_percent) + "-" + format("%g %%", rate->highest_percent) + " required)");
   }
   return lines;
-}
-
-plot::ReportVerdict cv_report_verdict(const std::string& what, const calibration::CvVerdict& verdict) {
-  using Level = plot::ReportVerdict::Level;
-  plot::ReportVerdict v;
-  switch (verdict.verdict) {
-    case calibration::Verdict::kPass: v.level = Level::kPass; break;
-    case calibration::Verdict::kMarginal: v.level = Level::kMarginal; break;
-    case calibration::Verdict::kFail: v.level = Level::kFail; break;
-    case calibration::Verdict::kNoCv: v.level = Level::kNone; break;
-  }
-  v.word = calibration::verdict_word(verdict.verdict);
-  v.text = what + ": " + calibration::verdict_detail(verdict);
-  return v;
-}
-
-std::optional<plot::ReportVerdict> rate_report_verdict(const std::optional<plot::ReportRate>& rate) {
-  if (!rate || std::isnan(rate->set_rate_kg_ha)) return std::nullopt;
-  plot::ReportVerdict v;
-  v.level = rate->pass ? plot::ReportVerdict::Level::kPass : plot::ReportVerdict::Level::kFail;
-  v.word = rate->pass ? "PASS" : "FAIL";
-  v.text = "Rate (EN 13739-2): the trays caught " + format("%.1f kg/ha", rate->rate_kg_ha) + ", " +
-           format("%.1f %%", rate->caught_percent) + " of the set " + format("%.1f kg/ha", rate->set_rate_kg_ha) +
-           " (" + format("%g", rate->lowest_percent) + "-" + format("%g %%", rate->highest_percent) + " required)";
-  return v;
-}
-
-nlohmann::json cv_verdict_json(const calibration::CvVerdict& verdict) {
-  const auto percent_or_null = [](double v) {
-    return std::isfinite(v) ? nlohmann::json(100.0 * v) : nlohmann::json(nullptr);
-  };
-  return {{"verdict", calibration::verdict_key(verdict.verdict)},
-          {"cv_percent", percent_or_null(verdict.cv)},
-          {"interval_percent", verdict.has_interval()
-                                   ? nlohmann::json::array({percent_or_null(verdict.low), percent_or_null(verdict.high)})
-                                   : nlohmann::json(nullptr)},
-          {"cv_target_percent", 100.0 * verdict.target}};
 }
 
 void add_report_outcome(nlohmann::json& out, const ReportArgs& args, const std::string& problem,

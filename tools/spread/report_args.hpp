@@ -61,13 +61,6 @@ void throw_report_outcome(const std::string& problem, const std::string& write_e
 // The text report's lines for it (none without a rate).
 std::vector<std::string> rate_lines(const std::optional<plot::ReportRate>& rate);
 
-// A report page's first lines (report_pdf.hpp ReportVerdict): the CV at the driven bout against the
-// target (calibration/cv_verdict.hpp), and EN 13739-2's rate check when there is one.
-plot::ReportVerdict cv_report_verdict(const std::string& what, const calibration::CvVerdict& verdict);
-std::optional<plot::ReportVerdict> rate_report_verdict(const std::optional<plot::ReportRate>& rate);
-// {"verdict": "fail", "cv_percent", "interval_percent": [low, high] or null, "target_percent"}.
-nlohmann::json cv_verdict_json(const calibration::CvVerdict& verdict);
-
 // After the text or JSON report: the folder problem found before the work (exit 2), or the error of
 // writing the PDF (exit 1). Thrown as ReportUsageError / ReportWriteError; the commands map them.
 class ReportUsageError : public Error {

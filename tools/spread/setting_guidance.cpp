@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "libspread/io/tables/table_reader.hpp"
+#include "tools/spread/next_steps.hpp"
 #include "tools/spread/number_format.hpp"
 
 namespace spread::cli {
@@ -21,8 +22,12 @@ SettingGuidance setting_guidance(const std::string& tables, const predict::Predi
   const predict::SettingAdjustments adjustments = predict::setting_adjustments(predictor, request);
   if (!(adjustments.present_cv_to_and_fro > request.cv_target)) return g;
   g.adjustments = adjustments;
-  g.lines.push_back("the CV at " + format("%.2f m", adjustments.present_bout_width_m) + " is above the target " +
-                    format("%g %%", 100.0 * request.cv_target) + "; predicted from the table, one setting at a time:");
+  // The predicted CV itself: on a calibration's page it stands beside the measured one, and "above the
+  // target" without it read as contradicting a measured CV within it.
+  g.lines.push_back("predicted for this material and setting, the CV at " +
+                    format("%.2f m", adjustments.present_bout_width_m) + " is " +
+                    format("%.1f %%", 100.0 * adjustments.present_cv_to_and_fro) + ", above the target " +
+                    format("%g %%", 100.0 * request.cv_target) + "; predicted, one setting at a time:");
   for (const predict::SettingAdjustment& a : adjustments.adjustments) {
     std::string what;
     switch (a.setting) {
@@ -33,10 +38,22 @@ SettingGuidance setting_guidance(const std::string& tables, const predict::Predi
     g.lines.push_back("  " + what + ": CV " + format("%.1f %%", 100.0 * a.cv_to_and_fro) +
                       plus_minus_percent(a.cv_to_and_fro_se) + " to-and-fro" +
                       (a.meets_target ? " (meets the target)" : " (still above the target)"));
+    // Another bout width at the same rate and speed is another mass flow: the gate moves with it.
+    if (a.setting == predict::AdjustedSetting::kBoutWidth) {
+      g.lines.push_back("    at " + format("%.2f m", a.bout_width_m) + " " +
+                        gate_follows_width(adjustments.present_bout_width_m, a.bout_width_m));
+    }
   }
+  g.notes = g.lines;
   g.lines.push_back("  (the drop point too: `spread chart` searches it with the speed; vane settings are not in a "
                     "launch table: a table built for another setting predicts them)");
   return g;
+}
+
+nlohmann::json setting_guidance_present_json(const SettingGuidance& guidance) {
+  if (!guidance.adjustments) return nullptr;
+  return {{"bout_width_m", guidance.adjustments->present_bout_width_m},
+          {"cv_to_and_fro_percent", 100.0 * guidance.adjustments->present_cv_to_and_fro}};
 }
 
 nlohmann::json setting_guidance_json(const SettingGuidance& guidance) {
@@ -51,6 +68,10 @@ nlohmann::json setting_guidance_json(const SettingGuidance& guidance) {
                     {"cv_to_and_fro_percent", number_or_null(100.0 * a.cv_to_and_fro)},
                     {"cv_to_and_fro_se_percent", number_or_null(100.0 * a.cv_to_and_fro_se)},
                     {"meets_target", a.meets_target}});
+    if (a.setting == predict::AdjustedSetting::kBoutWidth) {
+      // The gate's change for the same rate (gate_follows_width), as the text states it.
+      list.back()["gate_change_percent"] = 100.0 * (a.bout_width_m / guidance.adjustments->present_bout_width_m - 1.0);
+    }
   }
   return list;
 }

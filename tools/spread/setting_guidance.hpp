@@ -14,7 +14,8 @@ namespace spread::cli {
 
 struct SettingGuidance {
   std::optional<predict::SettingAdjustments> adjustments;  // none: the CV meets the target
-  std::vector<std::string> lines;
+  std::vector<std::string> lines;  // the terminal's
+  std::vector<std::string> notes;  // the page's: the same without the commands to run
 };
 
 // With the table file `tables` and the present settings `request` (bout width > 0): nothing when the
@@ -24,5 +25,7 @@ SettingGuidance setting_guidance(const std::string& tables, const predict::Predi
 
 // `adjustments` of a command's JSON: a list, or null when there is none.
 nlohmann::json setting_guidance_json(const SettingGuidance& guidance);
+// `adjusted_from` of a command's JSON: the predicted present CV the adjustments start from, or null.
+nlohmann::json setting_guidance_present_json(const SettingGuidance& guidance);
 
 }  // namespace spread::cli

@@ -44,6 +44,12 @@ std::string calibrated_material_name(const std::string& material, const std::str
   return material + " (calibrated " + date_yyyy_mm_dd + ")";
 }
 
+std::string tagged_material_name(const std::string& material, const std::string& tag) {
+  const std::string prefix = material + " (";
+  const bool tagged = tag.size() > prefix.size() && tag.compare(0, prefix.size(), prefix) == 0 && tag.back() == ')';
+  return tagged ? tag : prefix + tag + ")";
+}
+
 CalibratedTableSummary write_calibrated_table(const CalibratedTableRequest& request) {
   check_parameters(request.parameters);
   if (request.output_path.empty()) throw std::invalid_argument("output table: no path given");

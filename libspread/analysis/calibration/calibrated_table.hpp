@@ -45,6 +45,11 @@ std::vector<double> non_analytic_rows(const tables::TableContents& contents, con
 // else today's, UTC), so the same inputs give the same name.
 std::string calibrated_material_name(const std::string& material, const std::string& date_yyyy_mm_dd);
 
+// A name the technician gives the calibrated material, kept as the product's name with that tag:
+// "field" for Urea is "Urea (field)"; "Urea (field)" stays. A chart of "Urea" then finds its calibrated
+// versions by their names (they keep the product's), and a reader sees what was calibrated.
+std::string tagged_material_name(const std::string& material, const std::string& tag);
+
 // Throws std::invalid_argument for an output that exists or is the original, an unknown material, a
 // new name already in the table; tables::TableError for an unreadable original or an output that cannot
 // be written. A failure after the copy removes the partial output.

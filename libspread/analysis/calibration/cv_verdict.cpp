@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "libspread/analysis/plot/cv_text.hpp"
+
 namespace spread::calibration {
 
 const char* verdict_word(Verdict verdict) {
@@ -62,7 +64,8 @@ std::string verdict_detail(const CvVerdict& v) {
                         : v.verdict == Verdict::kFail ? "above"
                                                       : "the interval holds";
   char text[256];
-  std::snprintf(text, sizeof text, "%.1f %%%s, %s the target %g %%", 100.0 * v.cv, interval, meaning, 100.0 * v.target);
+  std::snprintf(text, sizeof text, "%s%s, %s the target %g %%", plot::cv_percent_text(v.cv, v.target).c_str(), interval,
+                meaning, 100.0 * v.target);
   return text;
 }
 

@@ -41,9 +41,9 @@ std::vector<std::string> rate_warnings(const CatchTest& first, const std::option
   if (largest_flow > kLargestMassFlow_kg_s || setting.current_mass_flow_kg_s > kLargestMassFlow_kg_s) {
     std::snprintf(text, sizeof text,
                   "a mass flow of %.4g kg/s (%.0f kg/ha at the current gate) is more than any spreader meters "
-                  "(%.0f kg/s): is --mass in grams? it takes kilograms (25 kg, not 25000)",
+                  "(%.0f kg/s): is --mass in grams? it takes kilograms (%.4g kg, not %.4g)",
                   std::max(largest_flow, setting.current_mass_flow_kg_s), setting.current_rate_kg_ha,
-                  kLargestMassFlow_kg_s);
+                  kLargestMassFlow_kg_s, first.mass_kg / 1000.0, first.mass_kg);
     warnings.emplace_back(text);
   }
   if (second) {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <set>
 
+#include "libspread/analysis/calibration/pass_totals.hpp"
 #include "libspread/analysis/calibration/text_excerpt.hpp"
 #include "libspread/core/strict_number.hpp"
 
@@ -476,6 +477,11 @@ TrayTest parse_tray_csv(std::string_view text, const std::string& source, const 
   }
 
   if (!(test.total_mass_kg() > 0.0)) throw TrayCsvError(source, 0, "no mass in any tray");
+  std::vector<double> kg_per_unit;
+  for (const Column& c : mass_columns) kg_per_unit.push_back(c.to_kg);
+  if (const std::string problem = pass_totals_problem(test, kg_per_unit); !problem.empty()) {
+    throw TrayCsvError(source, 0, problem);
+  }
   return test;
 }
 

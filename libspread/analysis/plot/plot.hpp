@@ -42,7 +42,11 @@ struct TransverseOptions {
   MassUnits units = MassUnits::kKilograms;         // of both series
   // With bout_width_m > 0: the CV the legend states and the band below show. NaN: metrics::cv_at_width of
   // the main series (a caller whose CV leaves missing trays out passes its own).
+  // With missing_trays, a NaN bout_cv is no CV at all (too few trays of the bout were read): the legend
+  // says so rather than count the missing trays as empty.
   double bout_cv = std::numeric_limits<double>::quiet_NaN();
+  // The CV target (fraction) the legend's CV is printed against (cv_text.hpp); NaN: one decimal.
+  double cv_target = std::numeric_limits<double>::quiet_NaN();
   // With bout_width_m > 0: also the bout's mean mass per tray (a line) and the band mean × (1 ± CV).
   bool mean_band = false;
   // > 0 (with kKilograms): the catching area of one tray (m²); the bars are then shown as kg/ha

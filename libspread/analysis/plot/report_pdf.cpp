@@ -14,6 +14,7 @@
 #include <cairo.h>
 
 #include "libspread/analysis/plot/canvas.hpp"
+#include "libspread/analysis/plot/cv_text.hpp"
 #include "libspread/analysis/plot/report_date.hpp"
 #include "libspread/analysis/plot/transverse_drawing.hpp"
 
@@ -31,10 +32,16 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
-std::string cv_cell(double cv) {
-  if (std::isnan(cv)) return "no CV";
-  if (std::isinf(cv)) return "empty";
-  return format("%.1f %%", 100.0 * cv);
+// A table cell's CV: as the verdicts print it (cv_text.hpp), "none" where missing trays leave no CV.
+std::string cv_cell(double cv, double target) { return cv_percent_text(cv, target); }
+
+// "1.00-2.74 m, 3.49-3.50 m", or "none".
+std::string bands_text(const std::vector<std::pair<double, double>>& bands) {
+  std::string text;
+  for (const auto& [lower, upper] : bands) {
+    text += (text.empty() ? "" : ", ") + format("%.2f", lower) + format("-%.2f m", upper);
+  }
+  return text.empty() ? "none" : text;
 }
 
 // Writes `text` from (x, y) on, broken at spaces into lines no wider than `width_pt`; returns the y
@@ -138,7 +145,11 @@ double draw_header(cairo_t* cr, const ReportHeader& h) {
     detail::set_font(cr, kBody_pt, true);
     const double label_pt = detail::draw_text(cr, "Data: ", kMargin_pt, y, 0.0, 0.0);
     detail::set_font(cr, kBody_pt);
-    y = draw_wrapped(cr, h.source, kMargin_pt + label_pt, y, kTextWidth_pt - label_pt);
+    // The file's name, not where it lay on the computer that made the page: a farmer reads no paths (the
+    // footer's command line holds the whole one).
+    const std::size_t slash = h.source.find_last_of("/\\");
+    y = draw_wrapped(cr, slash == std::string::npos ? h.source : h.source.substr(slash + 1), kMargin_pt + label_pt, y,
+                     kTextWidth_pt - label_pt);
   }
   cairo_set_line_width(cr, 0.8);
   cairo_move_to(cr, kMargin_pt, y + 4.0);
@@ -264,11 +275,11 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
   y = draw_lines(cr, r.summary, y) + 4.0;
 
   // The chart, drawn in the PNG's pixel space scaled to the text width.
-  // 0.8 of the text width, centred: the verdicts above it need the room, and the page holds the notes
-  // (a calibration's guidance among them) too.
-  const double scale = 0.8 * kTextWidth_pt / kImageWidth_px;
+  // 0.7 of the text width, centred: the verdicts above it need the room, and the page holds the notes
+  // (a calibration's guidance and the next steps among them) too.
+  const double scale = 0.7 * kTextWidth_pt / kImageWidth_px;
   cairo_save(cr);
-  cairo_translate(cr, kMargin_pt + 0.1 * kTextWidth_pt, y);
+  cairo_translate(cr, kMargin_pt + 0.15 * kTextWidth_pt, y);
   cairo_scale(cr, scale, scale);
   TransverseOptions chart = r.chart;
   chart.mean_band = true;
@@ -279,16 +290,22 @@ void draw_pattern_page(cairo_t* cr, const PatternReport& r) {
   std::vector<std::vector<std::string>> rows;
   for (const CvTableRow& row : r.cv_table) {
     const bool driven = r.chart.bout_width_m > 0.0 && std::abs(row.bout_width_m - r.chart.bout_width_m) < 1e-3;
-    rows.push_back({format("%.1f m", row.bout_width_m) + (driven ? " (driven)" : ""), cv_cell(row.cv_to_and_fro),
-                    cv_cell(row.cv_racetrack)});
+    rows.push_back({format("%.1f m", row.bout_width_m) + (driven ? " (" + r.bout_row_mark + ")" : ""),
+                    cv_cell(row.cv_to_and_fro, r.cv_target), cv_cell(row.cv_racetrack, r.cv_target)});
   }
   y = draw_table(cr, "CV per working width (target " + format("%g %%", 100.0 * r.cv_target) + ")",
                  {"working width", "CV to-and-fro", "CV racetrack"}, rows, y);
   detail::set_font(cr, kBody_pt);
+  // With the bands within the target: the working width ends the widest, and a row of the table between
+  // two bands is above the target however wide the working width.
+  const bool bands = !r.bands_to_and_fro_m.empty() || !r.bands_racetrack_m.empty();
   y = draw_wrapped(cr,
                    "Effective working width (CV <= " + format("%g %%", 100.0 * r.cv_target) + "): " +
                        format("%.2f m", r.working_width_to_and_fro_m) + " to-and-fro, " +
-                       format("%.2f m", r.working_width_racetrack_m) + " racetrack",
+                       format("%.2f m", r.working_width_racetrack_m) + " racetrack" +
+                       (bands ? "; within the target at " + bands_text(r.bands_to_and_fro_m) + " to-and-fro, " +
+                                    bands_text(r.bands_racetrack_m) + " racetrack, above it between"
+                              : std::string()),
                    kMargin_pt, y, kTextWidth_pt);
   y += 6.0;
 

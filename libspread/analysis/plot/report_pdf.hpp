@@ -11,6 +11,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libspread/analysis/metrics/metrics.hpp"
@@ -71,7 +72,12 @@ struct PatternReport {
   double cv_target = 0.15;             // fraction
   double working_width_to_and_fro_m = 0.0;
   double working_width_racetrack_m = 0.0;
+  // The bands of bout widths within the target (lower, upper m), printed under the working widths: the
+  // working width ends the widest, and a table row between two bands is above the target.
+  std::vector<std::pair<double, double>> bands_to_and_fro_m, bands_racetrack_m;
   std::vector<CvTableRow> cv_table;      // the row at chart.bout_width_m is marked "(driven)"
+  // How that row is marked: "driven" for the bout width given, "judged" for one the command chose.
+  std::string bout_row_mark = "driven";
   std::optional<ReportRate> rate;
   std::vector<std::string> notes;      // warnings and remarks, printed in full at the bottom
 };

@@ -9,8 +9,10 @@
 
 #include "libspread/analysis/plot/axes.hpp"
 #include "libspread/analysis/plot/canvas.hpp"
+#include "libspread/analysis/plot/cv_text.hpp"
 #include "libspread/analysis/plot/mass_unit.hpp"
 #include "libspread/analysis/plot/plot.hpp"
+#include "libspread/analysis/plot/transverse_bout.hpp"
 #include "libspread/analysis/plot/transverse_drawing.hpp"
 
 namespace spread::plot {
@@ -63,55 +65,21 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
     throw std::invalid_argument("write_transverse_png: missing_trays has " + std::to_string(options.missing_trays.size()) +
                                 " flags, the layout " + std::to_string(trays.tray_count) + " trays");
   }
-  std::vector<double> bout_kg;
-  std::vector<bool> bout_gap;  // per bout tray: fed by a missing tray
-  metrics::BoutTrays bout;
-  double bout_half_m = 0.0;
-  if (overlapped) {
-    bout = metrics::bout_trays(trays, metrics::bout_tray_count(trays, options.bout_width_m));
-    bout_kg.resize(static_cast<std::size_t>(bout.grid_trays));
-    metrics::overlapped_profile(tray_mass_kg, trays, options.bout_width_m, options.overlap, bout_kg);
-    // The overlap is a sum of shifted (and for to-and-fro mirrored) copies of the pattern, so overlapping
-    // the missing trays' indicator marks every bout tray one of them feeds.
-    bout_gap.assign(bout_kg.size(), false);
-    if (any_missing) {
-      std::vector<double> indicator(options.missing_trays.size()), fed(bout_kg.size());
-      for (std::size_t k = 0; k < indicator.size(); ++k) indicator[k] = options.missing_trays[k] ? 1.0 : 0.0;
-      metrics::overlapped_profile(indicator, trays, options.bout_width_m, options.overlap, fed);
-      for (std::size_t j = 0; j < fed.size(); ++j) bout_gap[j] = fed[j] > 0.0;
-    }
-    bout_half_m = 0.5 * bout.bout_trays * trays.tray_width_m;
-  }
-  // The CV the legend and band show, and the bout's mean per tray: x̄ = Σ w_j P_j / n with the weights of
-  // metrics::cv_at_trays (1, or 1/2 for the two trays a bout edge cuts) — the x̄ of that CV.
-  const double bout_cv = !overlapped ? 0.0
-                         : std::isnan(options.bout_cv)
-                             ? metrics::cv_at_width(tray_mass_kg, trays, options.bout_width_m, options.overlap)
-                             : options.bout_cv;
-  double bout_mean_kg = 0.0, bout_weight = 0.0;
-  for (std::size_t j = 0; j < bout_kg.size(); ++j) {
-    if (bout_gap[j]) continue;
-    const bool cut = bout.cut_edges && (j == 0 || j + 1 == bout_kg.size());
-    bout_mean_kg += (cut ? 0.5 : 1.0) * bout_kg[j];
-    bout_weight += cut ? 0.5 : 1.0;
-  }
-  if (overlapped) bout_mean_kg = bout_weight > 0.0 ? bout_mean_kg / bout_weight : 0.0;
+  // The bout as the legend states it (transverse_bout.hpp): the same numbers a command's --json gives.
+  const detail::OverlappedBout ob = detail::overlapped_bout(tray_mass_kg, trays, options, any_missing);
+  const std::vector<double>& bout_kg = ob.kg;
+  const std::vector<bool>& bout_gap = ob.gap;
+  const metrics::BoutTrays& bout = ob.trays;
+  const double bout_half_m = ob.half_m, bout_cv = ob.cv, bout_mean_kg = ob.mean_kg;
   const bool band = overlapped && options.mean_band && std::isfinite(bout_cv) && bout_mean_kg > 0.0;
 
-  double max_kg = 0.0;
-  for (double m : tray_mass_kg) max_kg = std::max(max_kg, m);
-  for (double m : options.second_tray_mass_kg) max_kg = std::max(max_kg, m);
-  for (double m : bout_kg) max_kg = std::max(max_kg, m);
-  if (band) max_kg = std::max(max_kg, bout_mean_kg * (1.0 + bout_cv));
-  const bool fraction = options.units == MassUnits::kFraction;
   if (!(options.tray_area_m2 >= 0.0) || !std::isfinite(options.tray_area_m2)) {
     throw std::invalid_argument("write_transverse_png: tray_area_m2 must be finite and >= 0");
   }
+  const bool fraction = options.units == MassUnits::kFraction;
   const bool rate = !fraction && options.tray_area_m2 > 0.0;
-  // kg per tray ÷ A (m²) · 10 000 m²/ha.
-  const detail::MassUnit unit = fraction ? detail::MassUnit{"% of the mass", 100.0}
-                                : rate   ? detail::MassUnit{"kg/ha", 1e4 / options.tray_area_m2}
-                                         : detail::mass_unit_for(max_kg);
+  const detail::MassUnit unit = detail::chart_unit(tray_mass_kg, options, ob, band);
+  const double max_kg = detail::chart_max_kg(tray_mass_kg, options, ob, band);
 
   double x_lo = trays.left_edge_m(), x_hi = -trays.left_edge_m();
   x_lo = std::min(x_lo, -bout_half_m);
@@ -220,9 +188,10 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0.0);
     char label[160];
-    std::snprintf(label, sizeof label, "overlapped, %s, W = %.1f m: CV = %.1f %%",
+    std::snprintf(label, sizeof label, "overlapped, %s, W = %.2f m: CV %s",
                   options.overlap == metrics::Overlap::kToAndFro ? "to-and-fro" : "racetrack", 2.0 * bout_half_m,
-                  100.0 * bout_cv);
+                  std::isnan(bout_cv) ? "none (too few trays of the bout read)"
+                                      : cv_percent_text(bout_cv, options.cv_target).c_str());
     legend.push_back({label, kOverlapColour, detail::LegendEntry::Kind::kLine});
   }
   if (band) {
@@ -230,7 +199,7 @@ void draw_transverse(cairo_t* cr, std::span<const double> tray_mass_kg, const me
     std::snprintf(label, sizeof label, "mean of the bout: %.3g %s%s", bout_mean_kg * unit.per_kg, unit.name.c_str(),
                   rate ? "" : " per tray");
     legend.push_back({label, kMeanColour, detail::LegendEntry::Kind::kDashedLine});
-    std::snprintf(label, sizeof label, "mean ± CV (%.1f %%)", 100.0 * bout_cv);
+    std::snprintf(label, sizeof label, "mean ± CV (%s)", cv_percent_text(bout_cv, options.cv_target).c_str());
     legend.push_back({label, Rgb{0.70, 0.85, 0.74}, detail::LegendEntry::Kind::kBox});
   }
   cairo_restore(cr);  // clip
