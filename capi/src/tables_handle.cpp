@@ -79,7 +79,8 @@ extern "C" spread_status spread_open_with_allocator(const char* path, const spre
   *out_tables = nullptr;
   if (path == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_open: path is NULL");
   if (allocator == nullptr || allocator->alloc == nullptr || allocator->free == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "spread_open_with_allocator: the allocator or one of its functions is NULL");
+    return fail(SPREAD_ERROR_NULL_POINTER, "spread_open_with_allocator: %s is NULL",
+                allocator == nullptr ? "allocator" : (allocator->alloc == nullptr ? "allocator->alloc" : "allocator->free"));
   }
   const spread_allocator a = *allocator;
   void* storage = nullptr;
@@ -172,9 +173,8 @@ extern "C" spread_status spread_material_name(const spread_tables* tables, int32
 extern "C" spread_status spread_material_rpm_range(const spread_tables* tables, int32_t index,
                                                    double* out_min_rpm, double* out_max_rpm) {
   if (const spread_status s = check_handle(tables, "spread_material_rpm_range"); s != SPREAD_OK) return s;
-  if (out_min_rpm == nullptr || out_max_rpm == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "spread_material_rpm_range: an output pointer is NULL");
-  }
+  if (out_min_rpm == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_material_rpm_range: out_min_rpm is NULL");
+  if (out_max_rpm == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_material_rpm_range: out_max_rpm is NULL");
   if (!valid_index(tables, index)) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_material_rpm_range: index %d outside [0, %zu)",
                 static_cast<int>(index), tables->predictor.material_count());
@@ -194,8 +194,13 @@ extern "C" spread_status spread_default_disc_height(const spread_tables* tables,
 extern "C" spread_status spread_landing_domain(const spread_tables* tables, int32_t index, double* out_min_height_m,
                                                double* out_max_height_m, double* out_max_wind_m_s) {
   if (const spread_status s = check_handle(tables, "spread_landing_domain"); s != SPREAD_OK) return s;
-  if (out_min_height_m == nullptr || out_max_height_m == nullptr || out_max_wind_m_s == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "spread_landing_domain: an output pointer is NULL");
+  const struct {
+    const char* name;
+    const double* pointer;
+  } outputs[] = {{"out_min_height_m", out_min_height_m}, {"out_max_height_m", out_max_height_m},
+                 {"out_max_wind_m_s", out_max_wind_m_s}};
+  for (const auto& output : outputs) {
+    if (output.pointer == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_landing_domain: %s is NULL", output.name);
   }
   if (!valid_index(tables, index)) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_landing_domain: index %d outside [0, %zu)", static_cast<int>(index),
@@ -219,10 +224,10 @@ extern "C" spread_status spread_transverse_bound(const spread_tables* tables, do
                                                  size_t* out_tray_count) {
   if (const spread_status s = check_handle(tables, "spread_transverse_bound"); s != SPREAD_OK) return s;
   if (out_tray_count == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_transverse_bound: out_tray_count is NULL");
-  if (!std::isfinite(tray_width_m)) return fail(SPREAD_ERROR_NOT_FINITE, "spread_transverse_bound: tray width %g m", tray_width_m);
+  if (!std::isfinite(tray_width_m)) return fail(SPREAD_ERROR_NOT_FINITE, "spread_transverse_bound: tray_width_m is %g", tray_width_m);
   const int capacity = tables->predictor.tray_capacity(tray_width_m);
   if (capacity <= 0) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_transverse_bound: tray width %g m outside [%g, %g] m", tray_width_m,
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_transverse_bound: tray_width_m %g outside [%g, %g] m", tray_width_m,
                 tables->predictor.limits().min_tray_width_m, tables->predictor.limits().max_half_extent_m);
   }
   *out_tray_count = static_cast<size_t>(capacity);

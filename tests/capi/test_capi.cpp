@@ -613,7 +613,7 @@ TEST_F(Capi, PredictEdgeGivesTheLastBoutsProfile) {
   EXPECT_NE(turned_result.max_rate_inside_percent, result.max_rate_inside_percent);
   turned.disc_drop_point_turn_rad[0] = 4.0;  // beyond half a turn
   EXPECT_EQ(spread_predict_edge(tables_, &turned, &edge, &turned_result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
-  EXPECT_NE(std::string(spread_last_error_detail()).find("other disc's drop point 4"), std::string::npos)
+  EXPECT_NE(std::string(spread_last_error_detail()).find("disc_drop_point_turn_rad[0] 4 outside"), std::string::npos)
       << spread_last_error_detail();
   EXPECT_EQ(spread_predict_edge(tables_, &normal, &edge, &result, rate.data(), 3), SPREAD_ERROR_BUFFER_TOO_SMALL);
 }

@@ -178,7 +178,8 @@ typedef struct spread_prediction_def {
   /* --- appended in 0.3 --- */
   uint32_t result_size;        /* sizeof(spread_prediction) of the caller's header; set by _default().
                                   The library writes the result fields of every version it covers whole
-                                  (from 0.3 on the result grows without the definition growing) */
+                                  (from 0.3 on the result grows without the definition growing); below
+                                  0.2's result (every field up to kernel_half_width_m) it is refused */
   uint32_t reserved;           /* fills the padding before the next double; 0 from _default(), never read */
   double drop_point_turn_rad;  /* the drop point (feed position on the disc) turned from the table's, rad,
                                   within [-pi, pi]: counter-clockwise seen from above for the left disc,
@@ -196,8 +197,8 @@ typedef struct spread_prediction_def {
   uint32_t fly_outside_domain; /* 0 (default): a request outside the landing grid's domain is refused with
                                   SPREAD_ERROR_OUTSIDE_DOMAIN, so every answered request costs the
                                   grid's time; 1: it flies every launch sample instead (tens of
-                                  milliseconds, docs/c-api.md "Landing grid"). A definition older than
-                                  0.5 has 0 */
+                                  milliseconds, docs/c-api.md "Landing grid"). Any other value is
+                                  refused (SPREAD_ERROR_OUT_OF_RANGE). A definition older than 0.5 has 0 */
   uint32_t reserved2;          /* fills the struct to a whole double; 0 from _default(), never read */
 } spread_prediction_def;
 
