@@ -301,6 +301,9 @@ BuildSummary SweepWriter::finish() {
   impl_->progress.close();
   if (!impl_->writer) return impl_->summary;  // already finished
   tables::TableWriter& writer = *impl_->writer;
+  // Every table this build leaves lists its runs with the list's checksum, also one it extends that was
+  // written before the list was checked (its rows were each checked by their own checksums when copied).
+  if (writer.list_runs()) impl_->changed = true;
   // The scene that completed this file; a failed build keeps the previous value (its finished runs are
   // kept all the same).
   if (impl_->pending_done == pending_.size()) {

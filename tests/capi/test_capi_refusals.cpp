@@ -68,7 +68,7 @@ const std::map<std::string, spread_status>& cause_status() {
       {"a required pointer is NULL", SPREAD_ERROR_NULL_POINTER},
       {"NaN or infinite", SPREAD_ERROR_NOT_FINITE},
       {"outside its range", SPREAD_ERROR_OUT_OF_RANGE},
-      {"a flag or choice other than 0 or 1", SPREAD_ERROR_OUT_OF_RANGE},
+      {"a flag or choice outside its values", SPREAD_ERROR_OUT_OF_RANGE},
       {"struct_size older than accepted", SPREAD_ERROR_OUT_OF_RANGE},
       {"result smaller than the definition's", SPREAD_ERROR_OUT_OF_RANGE},
       {"rpm outside the table's rows", SPREAD_ERROR_RPM_OUTSIDE_TABLE},
@@ -167,6 +167,10 @@ TEST_F(CapiRefusals, EveryFunctionGivesACauseItsOneStatusAndNamesTheField) {
       {"a required pointer is NULL", "spread_open", [&] { return spread_open(path_.c_str(), nullptr); }, "out_tables"},
       {"a required pointer is NULL", "spread_open_with_allocator",
        [&] { return spread_open_with_allocator(path_.c_str(), nullptr, &opened); }, "allocator"},
+      {"a required pointer is NULL", "spread_open_with_flags",
+       [&] { return spread_open_with_flags(path_.c_str(), 0u, nullptr, nullptr); }, "out_tables"},
+      {"a required pointer is NULL", "spread_table_flags", [&] { return spread_table_flags(tables_, nullptr); },
+       "out_flags"},
       {"a required pointer is NULL", "spread_material_count", [&] { return spread_material_count(tables_, nullptr); },
        "out_count"},
       {"a required pointer is NULL", "spread_material_name", [&] { return spread_material_name(tables_, 0, nullptr); },
@@ -264,16 +268,18 @@ TEST_F(CapiRefusals, EveryFunctionGivesACauseItsOneStatusAndNamesTheField) {
       {"outside its range", "spread_trajectory",
        trajectory([](spread_trajectory_def& t) { t.air_viscosity_pa_s = 0.0; }), "air_viscosity_pa_s 0 outside (0, 1]"},
       // Flags and choices
-      {"a flag or choice other than 0 or 1", "spread_predict", predict(flag_7), "fly_outside_domain 7"},
-      {"a flag or choice other than 0 or 1", "spread_workspace_predict", workspace_predict(flag_7),
+      {"a flag or choice outside its values", "spread_predict", predict(flag_7), "fly_outside_domain 7"},
+      {"a flag or choice outside its values", "spread_workspace_predict", workspace_predict(flag_7),
        "fly_outside_domain 7"},
-      {"a flag or choice other than 0 or 1", "spread_compensate_wind", compensate(flag_7), "fly_outside_domain 7"},
-      {"a flag or choice other than 0 or 1", "spread_predict_edge", predict_edge(flag_7), "fly_outside_domain 7"},
-      {"a flag or choice other than 0 or 1", "spread_find_edge_setting", find_edge(flag_7), "fly_outside_domain 7"},
-      {"a flag or choice other than 0 or 1", "spread_predict_edge",
+      {"a flag or choice outside its values", "spread_compensate_wind", compensate(flag_7), "fly_outside_domain 7"},
+      {"a flag or choice outside its values", "spread_predict_edge", predict_edge(flag_7), "fly_outside_domain 7"},
+      {"a flag or choice outside its values", "spread_find_edge_setting", find_edge(flag_7), "fly_outside_domain 7"},
+      {"a flag or choice outside its values", "spread_predict_edge",
        predict_edge([](spread_prediction_def&) {}, [](spread_edge_def& e) { e.side = 2; }), "edge->side 2"},
-      {"a flag or choice other than 0 or 1", "spread_find_edge_setting",
+      {"a flag or choice outside its values", "spread_find_edge_setting",
        find_edge([](spread_prediction_def&) {}, [](spread_edge_def& e) { e.kind = 7u; }), "edge->kind 7"},
+      {"a flag or choice outside its values", "spread_open_with_flags",
+       [&] { return spread_open_with_flags(path_.c_str(), 0x80u, nullptr, &opened); }, "flags 0x80"},
       // Versions
       {"struct_size older than accepted", "spread_predict",
        predict([](spread_prediction_def& d) { d.struct_size = 8u; }), "def->struct_size 8"},
@@ -330,7 +336,7 @@ TEST_F(CapiRefusals, EveryFunctionGivesACauseItsOneStatusAndNamesTheField) {
   EXPECT_EQ(statuses.size(), cause_status().size());
   // Every function of spread.h that can refuse an argument (spread_close, spread_workspace_free,
   // spread_status_str and the version functions cannot).
-  EXPECT_EQ(functions.size(), 15u);
+  EXPECT_EQ(functions.size(), 17u);
 }
 
 // A definition whose result_size is below the smallest result written for it is refused, and not one byte

@@ -117,6 +117,34 @@ TEST(LookupBuilder, LandingDataIsStoredAndAddedToATableWithout) {
   EXPECT_EQ(spread::testing::file_bytes(file.path()), built) << "a rerun with nothing to do changed the file";
 }
 
+// Every table a build leaves lists its runs with the list's checksum; a legacy table (its runs without a
+// checked list), which readers refuse unless they accept legacy files, is listed by the next run of the
+// builder even when no run is left to compute, and is then left as it is.
+TEST(LookupBuilder, ALegacyTableIsListedByTheNextBuild) {
+  const scene::Scene scene = default_scene({"sweep.samples_per_run=32"});
+  TempPath file("legacy");
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(scene, options);
+  ASSERT_TRUE(tables::read_table_file(file.path()).runs_listed);
+  spread::testing::raw_exec(file.path(), "DELETE FROM meta WHERE key IN ('runs_manifest', 'runs_manifest_checksum')");
+  try {
+    tables::read_table_file(file.path());
+    ADD_FAILURE() << "a table without a list of its runs was read";
+  } catch (const tables::TableError& e) {
+    EXPECT_EQ(e.kind(), tables::TableErrorKind::kWrongVersion) << e.what();
+    EXPECT_NE(std::string(e.what()).find("rebuild it with lookup_builder"), std::string::npos) << e.what();
+  }
+  tables::ReadOptions legacy;
+  legacy.legacy_files = true;
+  EXPECT_FALSE(tables::read_table_file(file.path(), nullptr, legacy).runs_listed);
+  EXPECT_EQ(build_tables(scene, options).runs_written, 0);
+  EXPECT_TRUE(tables::read_table_file(file.path()).runs_listed);
+  const std::vector<char> listed = spread::testing::file_bytes(file.path());
+  build_tables(scene, options);
+  EXPECT_EQ(spread::testing::file_bytes(file.path()), listed) << "a rerun with nothing to do changed the file";
+}
+
 TEST(LookupBuilder, DemSweepKeysAreValidatedByName) {
   // The DEM source itself is tested in test_lookup_dem.cpp; bad budgets are scene errors naming the key.
   for (const char* bad : {"sweep.batch_s=0", "sweep.convergence_tolerance=-1", "sweep.particle_budget=-5"}) {

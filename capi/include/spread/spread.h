@@ -127,7 +127,8 @@ typedef struct spread_tables spread_tables; /* opaque */
 /* Opens a launch-table file read-only, checks it (application id, format version, integrity, records),
  * reads it into memory and allocates all prediction workspace. On success *out_tables is a new handle;
  * on failure *out_tables is set to NULL (when out_tables is not NULL) and the status says why:
- * SPREAD_ERROR_FILE_MISSING / _NOT_OURS / _CORRUPT / _WRONG_VERSION / _EMPTY / _IO / _OUT_OF_MEMORY. */
+ * SPREAD_ERROR_FILE_MISSING / _NOT_OURS / _CORRUPT / _WRONG_VERSION (also a legacy table, whose runs carry
+ * no checked list: see SPREAD_OPEN_LEGACY_FILES) / _EMPTY / _IO / _OUT_OF_MEMORY. */
 SPREAD_API spread_status spread_open(const char* path, spread_tables** out_tables);
 
 /* Destroys a handle. NULL is a no-op. Its workspaces must not be used afterwards (they may still be
@@ -536,6 +537,29 @@ SPREAD_API void spread_workspace_free(spread_workspace* workspace);
 SPREAD_API spread_status spread_workspace_predict(spread_workspace* workspace, const spread_prediction_def* def,
                                                   spread_prediction* result, double* transverse_mass_fraction,
                                                   size_t transverse_capacity);
+
+/* ---------------------------------------------------------------------------------------------------
+ * Opening with flags, and what the file held (appended in 0.6)
+ * ------------------------------------------------------------------------------------------------- */
+/* Read a legacy table: one whose runs carry no checked list of them (meta runs_manifest with its
+ * checksum, docs/table-format.md "Checksums") — written before 0.6, or with runs deleted together with
+ * their list, which no reader can tell apart. Without this flag such a table is refused with
+ * SPREAD_ERROR_FILE_WRONG_VERSION, the detail saying so; rerunning lookup_builder on it lists its runs. */
+#define SPREAD_OPEN_LEGACY_FILES 0x1u
+
+/* spread_open_with_allocator with SPREAD_OPEN_* flags (other bits: SPREAD_ERROR_OUT_OF_RANGE). allocator
+ * NULL: malloc and free, as spread_open. */
+SPREAD_API spread_status spread_open_with_flags(const char* path, uint32_t flags, const spread_allocator* allocator,
+                                                spread_tables** out_tables);
+
+/* SPREAD_TABLE_* bits of spread_table_flags: what spread_open found in the file. */
+#define SPREAD_TABLE_RUNS_UNCHECKED 0x1u       /* a legacy table read with SPREAD_OPEN_LEGACY_FILES: its runs
+                                                  were not checked against a list of them */
+#define SPREAD_TABLE_LANDING_DATA_DERIVED 0x2u /* the file holds no current landing data for a material, so
+                                                  spread_open flew its landing grid itself (tens of times
+                                                  slower to open, docs/c-api.md "Landing grid"); rerun
+                                                  lookup_builder on the file to store it */
+SPREAD_API spread_status spread_table_flags(const spread_tables* tables, uint32_t* out_flags);
 
 #ifdef __cplusplus
 } /* extern "C" */
