@@ -180,11 +180,14 @@ extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread
   }
 }
 
-extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const spread_prediction_def* def,
-                                                  const spread_edge_def* edge, spread_edge_setting* setting,
-                                                  spread_edge_result* result, double* rate_percent,
-                                                  size_t rate_capacity) {
-  constexpr const char* kFunction = "spread_find_edge_setting";
+namespace {
+
+// spread_find_edge_setting and spread_find_edge_setting_within: at most `max_predictions` (INT_MAX: the
+// whole search); *finished (when not NULL) whether the search ran to its end.
+spread_status find_edge_setting(const char* kFunction, spread_tables* tables, const spread_prediction_def* def,
+                                const spread_edge_def* edge, int max_predictions, spread_edge_setting* setting,
+                                spread_edge_result* result, double* rate_percent, size_t rate_capacity,
+                                int32_t* finished) {
   if (setting == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: setting is NULL", kFunction);
   pr::PredictionRequest field;
   if (const spread_status s = check_common(kFunction, tables, def, edge, result, field); s != SPREAD_OK) return s;
@@ -209,7 +212,9 @@ extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const s
                 kFunction, edge->flow_fraction);
   }
   try {
-    const pr::EdgeResult found = pr::find_edge_setting(tables->predictor, field, edge_request(*edge), &tables->memory);
+    pr::EdgeRequest request = edge_request(*edge);
+    request.max_predictions = max_predictions;
+    const pr::EdgeResult found = pr::find_edge_setting(tables->predictor, field, request, &tables->memory);
     if (found.status != pr::PredictStatus::kOk) {
       // Every refusal is found above; this is the library disagreeing with those checks.
       return fail(SPREAD_ERROR_INTERNAL, "%s: the search refused a checked request (%s)", kFunction,
@@ -224,10 +229,39 @@ extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const s
     setting->field_side_drop_point_turn_rad = found.setting.field_side_drop_point_turn_rad;
     setting->predictions = found.predictions;
     setting->reserved = 0;
+    if (finished != nullptr) *finished = found.finished ? 1 : 0;
     return SPREAD_OK;
   } catch (const std::bad_alloc&) {
     return fail(SPREAD_ERROR_OUT_OF_MEMORY, "%s: out of memory", kFunction);
   } catch (const std::exception& e) {
     return fail(SPREAD_ERROR_INTERNAL, "%s: %.400s", kFunction, e.what());
   }
+}
+
+}  // namespace
+
+extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const spread_prediction_def* def,
+                                                  const spread_edge_def* edge, spread_edge_setting* setting,
+                                                  spread_edge_result* result, double* rate_percent,
+                                                  size_t rate_capacity) {
+  return find_edge_setting("spread_find_edge_setting", tables, def, edge, std::numeric_limits<int>::max(), setting,
+                           result, rate_percent, rate_capacity, nullptr);
+}
+
+extern "C" spread_status spread_find_edge_setting_within(spread_tables* tables, const spread_prediction_def* def,
+                                                         const spread_edge_def* edge, int32_t max_predictions,
+                                                         spread_edge_setting* setting, spread_edge_result* result,
+                                                         double* rate_percent, size_t rate_capacity,
+                                                         int32_t* out_finished) {
+  constexpr const char* kFunction = "spread_find_edge_setting_within";
+  if (out_finished == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: out_finished is NULL", kFunction);
+  if (max_predictions != 0 && max_predictions < pr::kEdgeMinPredictions) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "%s: max_predictions %d below the %d every search makes (the field's, the normal pass, the "
+                "answer's profile); 0: no limit",
+                kFunction, static_cast<int>(max_predictions), pr::kEdgeMinPredictions);
+  }
+  return find_edge_setting(kFunction, tables, def, edge,
+                           max_predictions == 0 ? std::numeric_limits<int>::max() : static_cast<int>(max_predictions),
+                           setting, result, rate_percent, rate_capacity, out_finished);
 }

@@ -681,6 +681,77 @@ TEST_F(Capi, FindEdgeSettingIsTheLibrarysSearch) {
       << spread_last_error_detail();
 }
 
+// spread_find_edge_setting_within: without a limit (0, or a budget the whole search's count fits) the answer is
+// spread_find_edge_setting's bit for bit and finished; with a budget of a few predictions it stops there
+// with a usable setting — one spread_predict_edge confirms; with the three fixed predictions alone the
+// normal setting at its best flow — and says it did not finish; a budget below those three is refused.
+TEST_F(Capi, FindEdgeSettingWithinABudget) {
+  spread_prediction_def d = def("can", 650.0);
+  d.bout_width_m = 18.0;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.gap_m = 3.0;
+  spread_edge_setting whole{};
+  spread_edge_result whole_result{};
+  std::vector<double> whole_rate(2000), rate(2000);
+  ASSERT_EQ(spread_find_edge_setting(tables_, &d, &edge, &whole, &whole_result, whole_rate.data(), whole_rate.size()),
+            SPREAD_OK);
+  for (int32_t budget : {0, 1000000}) {
+    spread_edge_setting setting{};
+    spread_edge_result result{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, budget, &setting, &result, rate.data(), rate.size(),
+                                              &finished),
+              SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 1) << budget;
+    EXPECT_EQ(std::memcmp(&setting, &whole, sizeof setting), 0) << budget;
+    EXPECT_EQ(std::memcmp(&result, &whole_result, sizeof result), 0) << budget;
+    EXPECT_EQ(std::memcmp(rate.data(), whole_rate.data(), sizeof(double) * static_cast<std::size_t>(result.tray_count)), 0);
+  }
+  // The normal setting's profile: what a search that finds nothing better answers.
+  spread_edge_result normal{};
+  ASSERT_EQ(spread_predict_edge(tables_, &d, &edge, &normal, nullptr, 0), SPREAD_OK);
+  for (int32_t budget : {3, 5, 10, 40}) {
+    SCOPED_TRACE(budget);
+    spread_edge_setting setting{};
+    spread_edge_result result{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, budget, &setting, &result, nullptr, 0, &finished),
+              SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 0);
+    EXPECT_LE(setting.predictions, budget);
+    EXPECT_GE(setting.predictions, 3);
+    // The setting found, given to spread_predict_edge, gives the same profile.
+    spread_prediction_def at = d;
+    at.disc_rpm[1] = setting.disc_rpm;
+    at.disc_drop_point_turn_rad[1] = setting.disc_drop_point_turn_rad;
+    at.disc_drop_point_turn_rad[0] = setting.field_side_drop_point_turn_rad;
+    spread_edge_def with_flow = edge;
+    with_flow.flow_fraction = setting.flow_fraction;
+    spread_edge_result confirmed{};
+    ASSERT_EQ(spread_predict_edge(tables_, &at, &with_flow, &confirmed, nullptr, 0), SPREAD_OK) << spread_last_error_detail();
+    EXPECT_DOUBLE_EQ(confirmed.mass_beyond_percent, result.mass_beyond_percent);
+    EXPECT_DOUBLE_EQ(confirmed.missing_inside_m, result.missing_inside_m);
+    if (budget == 3) {
+      // Nothing but the fixed predictions: the normal setting at its best flow.
+      EXPECT_EQ(setting.disc_rpm, 650.0);
+      EXPECT_EQ(setting.disc_drop_point_turn_rad, 0.0);
+      EXPECT_TRUE(std::isnan(setting.field_side_drop_point_turn_rad));
+      EXPECT_LT(setting.flow_fraction, 1.0);
+      EXPECT_LT(result.mass_beyond_percent, normal.mass_beyond_percent);
+    }
+  }
+  spread_edge_setting setting{};
+  spread_edge_result result{};
+  int32_t finished = 0;
+  EXPECT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, 2, &setting, &result, nullptr, 0, &finished),
+            SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("max_predictions 2"), std::string::npos);
+  EXPECT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, 10, &setting, &result, nullptr, 0, nullptr),
+            SPREAD_ERROR_NULL_POINTER);
+}
+
 TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {
   spread_trajectory_def t = spread_trajectory_def_default();
   EXPECT_EQ(t.reserved, 0u);

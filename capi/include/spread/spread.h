@@ -430,6 +430,21 @@ SPREAD_API spread_status spread_find_edge_setting(spread_tables* tables, const s
                                                   spread_edge_result* result, double* rate_percent,
                                                   size_t rate_capacity);
 
+/* (appended in 0.6) spread_find_edge_setting within a budget a control loop can schedule: at most
+ * max_predictions predictions (0: no limit; otherwise at least 3: the field's, the normal pass and the
+ * answer's profile). *out_finished 1: the budget covered the whole search, whose answer is then
+ * spread_find_edge_setting's bit for bit; 0: the settings beyond the budget were not flown, and *setting,
+ * *result and `rate` are the best of those that were — never worse by the search's own ranking than the
+ * normal setting at its best flow (setting->predictions says how many were made). Each prediction costs
+ * about what one of spread_predict_edge's does, so a budget sets the call's time (docs/c-api.md "Border
+ * and edge": 10 predictions, under 10 ms). The errors of spread_find_edge_setting, and
+ * SPREAD_ERROR_OUT_OF_RANGE for a budget of 1 or 2 or below 0. */
+SPREAD_API spread_status spread_find_edge_setting_within(spread_tables* tables, const spread_prediction_def* def,
+                                                         const spread_edge_def* edge, int32_t max_predictions,
+                                                         spread_edge_setting* setting, spread_edge_result* result,
+                                                         double* rate_percent, size_t rate_capacity,
+                                                         int32_t* out_finished);
+
 /* ---------------------------------------------------------------------------------------------------
  * Single trajectory (no table needed)
  * ------------------------------------------------------------------------------------------------- */
