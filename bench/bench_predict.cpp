@@ -296,6 +296,30 @@ void BM_CompensateWindCApiFile(benchmark::State& state) {
   spread_close(tables);
 }
 
+// spread_compensate_wind_within on the same request in a 5 m/s crosswind, range(0) = the budget in
+// predictions (0: none): what a control loop's call costs at each budget. Counters: the CV at the answer
+// and whether the search finished.
+void BM_CompensateWindWithinCApiFile(benchmark::State& state) {
+  spread_tables* tables = open_bench_table(state);
+  if (tables == nullptr) return;
+  spread_prediction_def def = capi_request();
+  def.rpm = 600.0;
+  def.bout_width_m = 11.0;
+  def.cv_target_percent = 10.0;
+  def.wind_m_s[0] = 5.0;
+  spread_prediction result{};
+  int32_t finished = 0;
+  for (auto _ : state) {
+    const spread_status status =
+        spread_compensate_wind_within(tables, &def, static_cast<int32_t>(state.range(0)), &result, nullptr, 0, &finished);
+    if (status != SPREAD_OK) state.SkipWithError(spread_last_error_detail());
+    benchmark::DoNotOptimize(status);
+  }
+  state.counters["cv_percent"] = result.cv_percent;
+  state.counters["finished"] = finished;
+  spread_close(tables);
+}
+
 // spread_predict_edge on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 11 m bouts, border
 // spreading with the right disc at 462.5 rpm, -5 degrees, 58 % of its flow and the left disc's drop point
 // turned -90 degrees (the setting `spread border` finds there on the main job's table).
@@ -538,6 +562,10 @@ BENCHMARK(BM_PredictCApiFileDiscs)
     ->ArgNames({"wind", "discs"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CompensateWindWithinCApiFile)
+    ->Arg(3)->Arg(5)->Arg(8)->Arg(20)->Arg(0)
+    ->ArgName("budget")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictEdgeCApiFile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FindEdgeSettingCApiFile)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_FindEdgeSettingWithinCApiFile)

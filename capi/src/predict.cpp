@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <numbers>
 #include <string_view>
@@ -166,15 +167,18 @@ extern "C" spread_status spread_workspace_predict(spread_workspace* workspace, c
                       });
 }
 
-extern "C" spread_status spread_compensate_wind(spread_tables* tables, const spread_prediction_def* def,
-                                                spread_prediction* result, double* transverse_mass_fraction,
-                                                size_t transverse_capacity) {
+namespace {
+
+// spread_compensate_wind and spread_compensate_wind_within: at most `max_predictions` (INT_MAX: the whole
+// search); *finished (when not NULL) whether the search ran to its end.
+spread_status compensate_wind(const char* kFunction, spread_tables* tables, const spread_prediction_def* def,
+                              int max_predictions, spread_prediction* result, double* transverse_mass_fraction,
+                              size_t transverse_capacity, int32_t* finished) {
   using spread::capi::fail;
-  if (tables == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_compensate_wind: the handle is NULL");
+  if (tables == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: the handle is NULL", kFunction);
   if (!spread::capi::live(tables)) {
-    return fail(SPREAD_ERROR_BAD_HANDLE, "spread_compensate_wind: not a live spread_tables handle (closed?)");
+    return fail(SPREAD_ERROR_BAD_HANDLE, "%s: not a live spread_tables handle (closed?)", kFunction);
   }
-  constexpr const char* kFunction = "spread_compensate_wind";
   if (def == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: def is NULL", kFunction);
   if (result == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: result is NULL", kFunction);
   spread::predict::PredictionRequest request;
@@ -200,9 +204,41 @@ extern "C" spread_status spread_compensate_wind(spread_tables* tables, const spr
     return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: def->bout_width_m %g: the bout width to compensate at must be > 0",
                 kFunction, def->bout_width_m);
   }
+  spread::predict::WindCompensationLimits limits;
+  limits.max_predictions = max_predictions;
   return predict_with(kFunction, predictor, tables->prediction, def, result, transverse_mass_fraction,
                       transverse_capacity,
                       [&](const spread::predict::PredictionRequest& checked, spread::predict::Prediction& out) {
-                        return spread::predict::compensate_wind(predictor, checked, out, predictor.own_workspace()).status;
+                        const spread::predict::WindCompensation found =
+                            spread::predict::compensate_wind(predictor, checked, out, predictor.own_workspace(), limits);
+                        if (finished != nullptr) *finished = found.finished ? 1 : 0;
+                        return found.status;
                       });
+}
+
+}  // namespace
+
+extern "C" spread_status spread_compensate_wind(spread_tables* tables, const spread_prediction_def* def,
+                                                spread_prediction* result, double* transverse_mass_fraction,
+                                                size_t transverse_capacity) {
+  return compensate_wind("spread_compensate_wind", tables, def, std::numeric_limits<int>::max(), result,
+                         transverse_mass_fraction, transverse_capacity, nullptr);
+}
+
+extern "C" spread_status spread_compensate_wind_within(spread_tables* tables, const spread_prediction_def* def,
+                                                       int32_t max_predictions, spread_prediction* result,
+                                                       double* transverse_mass_fraction, size_t transverse_capacity,
+                                                       int32_t* out_finished) {
+  using spread::capi::fail;
+  constexpr const char* kFunction = "spread_compensate_wind_within";
+  if (out_finished == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: out_finished is NULL", kFunction);
+  if (max_predictions != 0 && max_predictions < spread::predict::kWindMinPredictions) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "%s: max_predictions %d below the %d every compensation may make (the present setting's, the "
+                "answer's and the present setting's again); 0: no limit",
+                kFunction, static_cast<int>(max_predictions), spread::predict::kWindMinPredictions);
+  }
+  return compensate_wind(kFunction, tables, def,
+                         max_predictions == 0 ? std::numeric_limits<int>::max() : static_cast<int>(max_predictions),
+                         result, transverse_mass_fraction, transverse_capacity, out_finished);
 }

@@ -15,6 +15,7 @@
 #include "capi/src/abi_layout.hpp"
 #include "capi/src/fault_seam.hpp"
 #include "libspread/analysis/predict/edge_spreading.hpp"
+#include "libspread/analysis/predict/wind_compensation.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 #include "spread/spread.h"
 #include "tests/capi/capi_test_files.hpp"
@@ -525,6 +526,56 @@ TEST_F(Capi, CompensateWindAnswersAPerDiscSetting) {
   spread_prediction_def outside = d;
   outside.rpm = 950.0;
   EXPECT_EQ(spread_compensate_wind(tables_, &outside, &compensated, nullptr, 0), SPREAD_ERROR_RPM_OUTSIDE_TABLE);
+}
+
+// spread_compensate_wind_within: without a limit (0, or a budget above the search's count) the answer is
+// spread_compensate_wind's bit for bit and finished; within a few predictions (the library's count says
+// how many were made, and the C answer is the library's) it is never above the present setting's CV, and
+// not finished; a budget below the three fixed predictions is refused.
+TEST_F(Capi, CompensateWindWithinABudget) {
+  spread_prediction_def d = def("can", 650.0);
+  d.bout_width_m = 12.0;
+  d.wind_m_s[0] = 3.0;
+  spread_prediction present{}, whole{};
+  ASSERT_EQ(spread_predict(tables_, &d, &present, nullptr, 0), SPREAD_OK);
+  ASSERT_EQ(spread_compensate_wind(tables_, &d, &whole, nullptr, 0), SPREAD_OK);
+  for (int32_t budget : {0, 1000000}) {
+    spread_prediction within{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_compensate_wind_within(tables_, &d, budget, &within, nullptr, 0, &finished), SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 1) << budget;
+    EXPECT_EQ(std::memcmp(&within, &whole, sizeof within), 0) << budget;
+  }
+  spread::predict::Predictor predictor(spread::tables::read_table_file(path_));
+  spread::predict::PredictionRequest request;
+  request.material = "can";
+  request.rpm = 650.0;
+  request.bout_width_m = 12.0;
+  request.wind_x_m_s = 3.0;
+  for (int32_t budget : {3, 6, 12, 24}) {
+    SCOPED_TRACE(budget);
+    spread_prediction within{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_compensate_wind_within(tables_, &d, budget, &within, nullptr, 0, &finished), SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 0);
+    EXPECT_LE(within.cv_percent, present.cv_percent);
+    spread::predict::WindCompensationLimits limits;
+    limits.max_predictions = budget;
+    spread::predict::Prediction out;
+    const spread::predict::WindCompensation found =
+        spread::predict::compensate_wind(predictor, request, out, predictor.own_workspace(), limits);
+    EXPECT_LE(found.predictions, budget);
+    EXPECT_FALSE(found.finished);
+    EXPECT_EQ(found.discs[0].rpm, within.disc_rpm[0]);
+    EXPECT_EQ(found.discs[1].drop_point_turn_rad, within.disc_drop_point_turn_rad[1]);
+  }
+  spread_prediction within{};
+  int32_t finished = 0;
+  EXPECT_EQ(spread_compensate_wind_within(tables_, &d, 2, &within, nullptr, 0, &finished), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("max_predictions 2"), std::string::npos);
+  EXPECT_EQ(spread_compensate_wind_within(tables_, &d, 10, &within, nullptr, 0, nullptr), SPREAD_ERROR_NULL_POINTER);
 }
 
 // spread_predict_edge: the profile of the last bout is the library's (the setting `spread border` finds

@@ -340,6 +340,20 @@ SPREAD_API spread_status spread_compensate_wind(spread_tables* tables, const spr
                                                 spread_prediction* result, double* transverse_mass_fraction,
                                                 size_t transverse_capacity);
 
+/* (appended in 0.6) spread_compensate_wind within a budget a control loop can schedule: at most
+ * max_predictions predictions (0: no limit; otherwise at least 3: the present setting's, the answer's and
+ * the present setting's again should the answer come out higher). A setting of the search the budget
+ * leaves no prediction for is not flown (the search goes on with the settings it has), the answer is the
+ * best of those flown, never above the present setting's CV, and *out_finished is 1 when the whole search
+ * ran (the answer then spread_compensate_wind's, bit for bit), 0 when the budget cut it. Each prediction
+ * costs about what spread_predict's does without standard errors, so the budget sets the call's time
+ * (docs/c-api.md "Wind compensation"). The errors of spread_compensate_wind, and SPREAD_ERROR_OUT_OF_RANGE
+ * for a budget of 1 or 2 or below 0. */
+SPREAD_API spread_status spread_compensate_wind_within(spread_tables* tables, const spread_prediction_def* def,
+                                                       int32_t max_predictions, spread_prediction* result,
+                                                       double* transverse_mass_fraction, size_t transverse_capacity,
+                                                       int32_t* out_finished);
+
 /* ---------------------------------------------------------------------------------------------------
  * Border and edge spreading (0.4): the last bout along a field edge (docs/c-api.md "Border and edge")
  * ------------------------------------------------------------------------------------------------- */
