@@ -11,6 +11,17 @@
 // (flights = 0).
 // BM_PredictDomainWorst: the same sweep, every request timed alone in each iteration; prints the slowest
 // (label) and its least time (counter worst_ms).
+// BM_PredictDomainSweep/<registers>: spread_predict over the whole legal domain of the table, not one
+// material at one rpm: every material; the disc speed on each row and at a quarter, half and three
+// quarters between neighbouring rows; both discs alike, or the right disc set apart (0.38 of a row gap
+// slower, or faster where that leaves the rows: on rows of its own where there are, its drop point
+// turned 10°); the disc at the landing grid's lowest, the stored and the highest height; still air, a
+// 5 m/s and the grid's strongest crosswind; the automatic and the widest legal kernel (10 m); 0.1 and
+// 0.5 m trays. Each request timed alone in every iteration (the thread's CPU time and the wall clock); the
+// label names the slowest request by its least CPU time over the iterations (worst_cpu_ms; worst_wall_ms
+// its least wall time), p99_cpu_ms and median_cpu_ms those of the sweep's requests.
+// registers: the widest registers the kernels may take, 0 the portable path (baseline x86-64), 1 AVX,
+// 2 AVX-512 (skipped on a processor without it).
 // BM_PredictOutsideDomain/<height_m>/<wind_m_s>: a request outside the domain that opts in to flying every
 // launch sample (fly_outside_domain), at 0.5 m trays: what the opt-in costs.
 // BM_TrajectoryWorstCase/<case>: spread_trajectory on the inputs that take longest: 0 = dust (1 µm,
@@ -24,14 +35,19 @@
 #include <benchmark/benchmark.h>
 
 #include <malloc.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "bench/predict_loop.hpp"
+#include "libspread/core/cpu_features.hpp"
+#include "libspread/io/tables/table_reader.hpp"
 #include "spread/spread.h"
 
 namespace {
@@ -155,6 +171,142 @@ void BM_PredictDomainWorst(benchmark::State& state) {
   spread_close(tables);
 }
 BENCHMARK(BM_PredictDomainWorst)->Iterations(10)->Unit(benchmark::kMillisecond);
+
+struct SweepRequest {
+  spread_prediction_def def;
+  std::string name;
+};
+
+// The requests of BM_PredictDomainSweep on `tables`, opened from the file `contents` were read from; the
+// material names belong to the handle.
+std::vector<SweepRequest> domain_sweep(spread_tables* tables, const spread::tables::TableContents& contents) {
+  std::vector<SweepRequest> out;
+  int32_t materials = 0;
+  spread_material_count(tables, &materials);
+  double stored_height_m = 0.0;
+  spread_default_disc_height(tables, &stored_height_m);
+  for (int32_t m = 0; m < materials; ++m) {
+    const char* material = nullptr;
+    double min_rpm = 0.0, max_rpm = 0.0, min_height_m = 0.0, max_height_m = 0.0, max_wind_m_s = 0.0;
+    spread_material_name(tables, m, &material);
+    spread_material_rpm_range(tables, m, &min_rpm, &max_rpm);
+    if (spread_landing_domain(tables, m, &min_height_m, &max_height_m, &max_wind_m_s) != SPREAD_OK) continue;
+    // The material's rows, as the file lists them.
+    std::vector<double> rows;
+    for (const auto& run : contents.runs) {
+      if (run.material == material) rows.push_back(run.rpm);
+    }
+    std::sort(rows.begin(), rows.end());
+    if (rows.empty()) continue;
+    std::vector<double> speeds;
+    for (std::size_t r = 0; r + 1 < rows.size(); ++r) {
+      for (double f : {0.0, 0.25, 0.5, 0.75}) speeds.push_back(rows[r] + f * (rows[r + 1] - rows[r]));
+    }
+    speeds.push_back(rows.back());
+    const double gap = rows.size() > 1 ? rows[1] - rows[0] : 0.0;
+    for (double rpm : speeds) {
+      for (int discs = 0; discs < 2; ++discs) {
+        for (double height : {min_height_m, stored_height_m, max_height_m}) {
+          for (double wind : {0.0, 5.0, max_wind_m_s}) {
+            for (double kernel : {0.0, 10.0}) {
+              for (double tray : {0.1, 0.5}) {
+                SweepRequest q;
+                q.def = spread_prediction_def_default();
+                q.def.material = material;
+                q.def.rpm = rpm;
+                q.def.disc_height_m = height;
+                q.def.wind_m_s[0] = std::min(wind, max_wind_m_s);
+                if (kernel > 0.0) q.def.kernel_half_width_m = kernel;
+                q.def.tray_width_m = tray;
+                double right_rpm = rpm;
+                if (discs != 0) {
+                  right_rpm = rpm - 0.38 * gap >= min_rpm ? rpm - 0.38 * gap : rpm + 0.38 * gap;
+                  q.def.disc_rpm[1] = right_rpm;
+                  q.def.disc_drop_point_turn_rad[1] = 10.0 * 3.14159265358979323846 / 180.0;
+                }
+                char name[256];
+                std::snprintf(name, sizeof name, "%s %.1f rpm%s, disc %.2f m, wind %.1f m/s, kernel %s, trays %.1f m",
+                              material, rpm,
+                              discs != 0 ? (std::string(", right disc ") + std::to_string(static_cast<int>(std::lround(right_rpm))) +
+                                            " rpm turned 10 deg").c_str()
+                                         : "",
+                              height, q.def.wind_m_s[0], kernel > 0.0 ? "10 m" : "automatic", tray);
+                q.name = name;
+                out.push_back(q);
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+void BM_PredictDomainSweep(benchmark::State& state) {
+  const auto registers = static_cast<spread::Registers>(state.range(0));
+  if (registers == spread::Registers::kAvx512 && !spread::detail::cpu_features().avx512f) {
+    state.SkipWithError("the processor has no AVX-512");
+    return;
+  }
+  if (registers == spread::Registers::kAvx && !spread::detail::cpu_features().avx) {
+    state.SkipWithError("the processor has no AVX");
+    return;
+  }
+  // Limited before the table is opened: an object that chooses its registers at construction keeps them.
+  spread::limit_registers(registers);
+  spread_prediction_def unused;
+  spread_tables* tables = open_bench_table(state, unused);
+  if (tables == nullptr) {
+    spread::limit_registers(spread::Registers::kAvx512);
+    return;
+  }
+  const std::vector<SweepRequest> requests = domain_sweep(tables, spread::tables::read_table_file(table_path()));
+  size_t capacity = 0;
+  spread_transverse_bound(tables, 0.1, &capacity);
+  std::vector<double> trays(capacity);
+  spread_prediction result{};
+  for (const SweepRequest& q : requests) {
+    if (spread_predict(tables, &q.def, &result, trays.data(), trays.size()) != SPREAD_OK) {
+      state.SkipWithError((q.name + ": " + spread_last_error_detail()).c_str());
+      spread_close(tables);
+      spread::limit_registers(spread::Registers::kAvx512);
+      return;
+    }
+  }
+  // The thread's CPU time as well as the wall clock: on a machine shared with other jobs a request can be
+  // preempted in every iteration, which the wall clock counts and the CPU time does not; the slowest is
+  // named by its CPU time, and its wall time reported beside it.
+  const auto thread_cpu_ms = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+  };
+  std::vector<double> least_ms(requests.size(), 1e300), least_cpu_ms(requests.size(), 1e300);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < requests.size(); ++i) {
+      const double cpu_start = thread_cpu_ms();
+      const auto start = std::chrono::steady_clock::now();
+      spread_predict(tables, &requests[i].def, &result, trays.data(), trays.size());
+      const auto end = std::chrono::steady_clock::now();
+      least_cpu_ms[i] = std::min(least_cpu_ms[i], thread_cpu_ms() - cpu_start);
+      least_ms[i] = std::min(least_ms[i], std::chrono::duration<double, std::milli>(end - start).count());
+    }
+  }
+  const auto worst = std::max_element(least_cpu_ms.begin(), least_cpu_ms.end());
+  const auto worst_index = static_cast<std::size_t>(worst - least_cpu_ms.begin());
+  std::vector<double> sorted = least_cpu_ms;
+  std::sort(sorted.begin(), sorted.end());
+  state.counters["worst_cpu_ms"] = *worst;
+  state.counters["worst_wall_ms"] = least_ms[worst_index];
+  state.counters["p99_cpu_ms"] = sorted[sorted.size() * 99 / 100];
+  state.counters["median_cpu_ms"] = sorted[sorted.size() / 2];
+  state.counters["requests"] = static_cast<double>(requests.size());
+  state.SetLabel("slowest: " + requests[worst_index].name);
+  spread_close(tables);
+  spread::limit_registers(spread::Registers::kAvx512);
+}
+BENCHMARK(BM_PredictDomainSweep)->DenseRange(0, 2)->ArgName("registers")->Iterations(5)->Unit(benchmark::kMillisecond);
 
 void BM_PredictOutsideDomain(benchmark::State& state) {
   spread_prediction_def def;

@@ -296,6 +296,30 @@ void BM_CompensateWindCApiFile(benchmark::State& state) {
   spread_close(tables);
 }
 
+// spread_compensate_wind_within on the same request in a 5 m/s crosswind, range(0) = the budget in
+// predictions (0: none): what a control loop's call costs at each budget. Counters: the CV at the answer
+// and whether the search finished.
+void BM_CompensateWindWithinCApiFile(benchmark::State& state) {
+  spread_tables* tables = open_bench_table(state);
+  if (tables == nullptr) return;
+  spread_prediction_def def = capi_request();
+  def.rpm = 600.0;
+  def.bout_width_m = 11.0;
+  def.cv_target_percent = 10.0;
+  def.wind_m_s[0] = 5.0;
+  spread_prediction result{};
+  int32_t finished = 0;
+  for (auto _ : state) {
+    const spread_status status =
+        spread_compensate_wind_within(tables, &def, static_cast<int32_t>(state.range(0)), &result, nullptr, 0, &finished);
+    if (status != SPREAD_OK) state.SkipWithError(spread_last_error_detail());
+    benchmark::DoNotOptimize(status);
+  }
+  state.counters["cv_percent"] = result.cv_percent;
+  state.counters["finished"] = finished;
+  spread_close(tables);
+}
+
 // spread_predict_edge on a real table file (SPREAD_BENCH_TABLE): Urea at 600 rpm, 11 m bouts, border
 // spreading with the right disc at 462.5 rpm, -5 degrees, 58 % of its flow and the left disc's drop point
 // turned -90 degrees (the setting `spread border` finds there on the main job's table).
@@ -343,6 +367,33 @@ void BM_FindEdgeSettingCApiFile(benchmark::State& state) {
   state.counters["turn_deg"] = setting.disc_drop_point_turn_rad * 180.0 / std::numbers::pi;
   state.counters["flow"] = setting.flow_fraction;
   state.counters["predictions"] = setting.predictions;
+  state.counters["meets"] = result.meets;
+  spread_close(tables);
+}
+
+// spread_find_edge_setting_within on the same border search (edge line at 4.5 m), range(0) = the budget in
+// predictions (0: none): what a control loop's call costs at each budget. Counters: the predictions made,
+// whether the search finished, and the mass over the line at the answer (percent of the pass's).
+void BM_FindEdgeSettingWithinCApiFile(benchmark::State& state) {
+  spread_tables* tables = open_bench_table(state);
+  if (tables == nullptr) return;
+  spread_prediction_def def = capi_request();
+  def.rpm = 600.0;
+  def.bout_width_m = 12.0;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.gap_m = 1.5;
+  spread_edge_setting setting{};
+  spread_edge_result result{};
+  int32_t finished = 0;
+  for (auto _ : state) {
+    const spread_status status = spread_find_edge_setting_within(
+        tables, &def, &edge, static_cast<int32_t>(state.range(0)), &setting, &result, nullptr, 0, &finished);
+    if (status != SPREAD_OK) state.SkipWithError(spread_last_error_detail());
+    benchmark::DoNotOptimize(status);
+  }
+  state.counters["predictions"] = setting.predictions;
+  state.counters["finished"] = finished;
+  state.counters["beyond_percent"] = result.mass_beyond_percent;
   state.counters["meets"] = result.meets;
   spread_close(tables);
 }
@@ -511,8 +562,16 @@ BENCHMARK(BM_PredictCApiFileDiscs)
     ->ArgNames({"wind", "discs"})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompensateWindCApiFile)->Arg(3)->Arg(5)->ArgName("wind")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CompensateWindWithinCApiFile)
+    ->Arg(3)->Arg(5)->Arg(8)->Arg(20)->Arg(0)
+    ->ArgName("budget")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PredictEdgeCApiFile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FindEdgeSettingCApiFile)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_FindEdgeSettingWithinCApiFile)
+    ->Arg(3)->Arg(5)->Arg(10)->Arg(50)
+    ->ArgName("budget")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LandingGridError)->DenseRange(0, 2)->ArgName("material")->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_GridSampleLandings)->Arg(0)->Arg(3)->ArgName("wind")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PredictLandingGrid)

@@ -183,9 +183,14 @@ bool store_landing_data(tables::TableWriter& writer) {
 
 struct SweepWriter::Impl {
   Impl(std::ostream* out, bool terminal, int total) : progress(out, terminal, total) {}
-  // The table's own writer lock, held for the build: a second builder (or any TableWriter) of the same
-  // table is refused, and nothing writes the table while this build replaces it.
+  // The table's own writer lock, held for the build of a table that exists: a second builder (or any
+  // TableWriter) of the same table is refused, and nothing writes the table while this build replaces it.
+  // A fresh build takes none: the lock would create the file, and a build killed before its rename would
+  // leave that empty file at the table's path. Its staging file's lock (the TableWriter's, beside the path)
+  // keeps a second fresh build of the same path out, and the table's first state is the renamed staging
+  // file, still locked by this build's writer.
   std::optional<tables::WriterLock> table_lock;
+  bool fresh = false;  // no table at the path when the build began
   std::optional<tables::TableWriter> writer;  // on the staging file
   std::string staging_path;
   Progress progress;
@@ -207,8 +212,11 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
   // The table as it is, checked before anything is written: ours, of this version, whole (a table left
   // with a rollback journal by an older builder is rolled back here), and no other writer on it.
   const bool table_exists = file_identity(path) != "absent";
-  if (table_exists) tables::TableWriter check(path);
-  impl_->table_lock.emplace(path);
+  if (table_exists) {
+    { tables::TableWriter check(path); }  // closed (its lock released) before the build's own lock
+    impl_->table_lock.emplace(path);
+  }
+  impl_->fresh = !table_exists;
   impl_->writer.emplace(impl_->staging_path);
   tables::TableWriter& writer = *impl_->writer;
   const std::string base = file_identity(path);
@@ -293,6 +301,9 @@ BuildSummary SweepWriter::finish() {
   impl_->progress.close();
   if (!impl_->writer) return impl_->summary;  // already finished
   tables::TableWriter& writer = *impl_->writer;
+  // Every table this build leaves lists its runs with the list's checksum, also one it extends that was
+  // written before the list was checked (its rows were each checked by their own checksums when copied).
+  if (writer.list_runs()) impl_->changed = true;
   // The scene that completed this file; a failed build keeps the previous value (its finished runs are
   // kept all the same).
   if (impl_->pending_done == pending_.size()) {
@@ -305,6 +316,13 @@ BuildSummary SweepWriter::finish() {
     impl_->writer.reset();
     std::remove(impl_->staging_path.c_str());
     return impl_->summary;
+  }
+  // A fresh build holds no lock on the path: a table that appeared there meanwhile (written by another
+  // program) is not replaced; this build's table stays in its staging file.
+  if (impl_->fresh && file_identity(path) != "absent") {
+    throw tables::TableError(tables::TableErrorKind::kIo,
+                             path + ": a table appeared there during this build; it is left as it is and the new table "
+                                    "stays in " + impl_->staging_path);
   }
   writer.erase_meta(kStagingBaseKey);
   sync_path(impl_->staging_path, O_RDONLY);

@@ -4,12 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <string_view>
 
 #include "capi/src/abi_layout.hpp"
 #include "capi/src/error_detail.hpp"
-#include "capi/src/predict_status.hpp"
+#include "capi/src/prediction_request.hpp"
 #include "capi/src/tables_handle.hpp"
 #include "libspread/analysis/predict/edge_spreading.hpp"
 
@@ -52,24 +53,37 @@ spread_status check_edge(const char* function, const spread_edge_def& e, double 
   return SPREAD_OK;
 }
 
-// The checks both functions share: the handle, the definitions' versions and domains, a two-disc machine
-// and a bout width.
+// The checks both functions share: the handle, the definitions' versions and domains (the field's setting
+// refused as spread_predict refuses it, with the same status and the field named), a two-disc machine and a
+// bout width. On success `field` is the field's request: both discs alike at rpm and drop_point_turn_rad.
 spread_status check_common(const char* function, spread_tables* tables, const spread_prediction_def* def,
-                           const spread_edge_def* edge, const void* result) {
-  if (tables == nullptr || def == nullptr || edge == nullptr || result == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "%s: tables, def, edge or result is NULL", function);
-  }
+                           const spread_edge_def* edge, const void* result, pr::PredictionRequest& field) {
+  if (tables == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: the handle is NULL", function);
   if (!spread::capi::live(tables)) {
     return fail(SPREAD_ERROR_BAD_HANDLE, "%s: not a live spread_tables handle (closed?)", function);
   }
-  if (def->struct_size < spread::capi::kPredictionDefV4Size || edge->struct_size < sizeof(spread_edge_def)) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: def->struct_size %u or edge->struct_size %u older than 0.4 (%zu, %zu)",
-                function, static_cast<unsigned>(def->struct_size), static_cast<unsigned>(edge->struct_size),
-                spread::capi::kPredictionDefV4Size, sizeof(spread_edge_def));
+  if (def == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: def is NULL", function);
+  if (edge == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: edge is NULL", function);
+  if (result == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: result is NULL", function);
+  if (const spread_status s = spread::capi::read_request(function, *def, field); s != SPREAD_OK) return s;
+  if (def->struct_size < spread::capi::kPredictionDefV4Size) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: def->struct_size %u older than 0.4 (%zu): no per-disc fields", function,
+                static_cast<unsigned>(def->struct_size), spread::capi::kPredictionDefV4Size);
   }
-  if (def->material == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: def->material is NULL", function);
-  if (tables->predictor.machine().disc_count < 2) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: the machine has one disc (no edge-side disc to set apart)", function);
+  if (edge->struct_size < sizeof(spread_edge_def)) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: edge->struct_size %u is smaller than the first published %zu", function,
+                static_cast<unsigned>(edge->struct_size), sizeof(spread_edge_def));
+  }
+  // The field's setting: each disc's own fields belong to the last pass.
+  for (std::size_t d = 0; d < 2; ++d) {
+    field.disc_rpm[d] = std::numeric_limits<double>::quiet_NaN();
+    field.disc_drop_point_turn_rad[d] = std::numeric_limits<double>::quiet_NaN();
+  }
+  const pr::Predictor& predictor = tables->predictor;
+  if (const spread_status s = spread::capi::check_request(function, predictor, *def, field); s != SPREAD_OK) return s;
+  if (predictor.machine().disc_count < 2) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: the table's machine has one disc (no edge-side disc to set apart)",
+                function);
   }
   if (!(def->bout_width_m > 0.0)) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE,
@@ -78,23 +92,6 @@ spread_status check_common(const char* function, spread_tables* tables, const sp
                 function, def->bout_width_m);
   }
   return check_edge(function, *edge, def->bout_width_m);
-}
-
-// The field: both discs at rpm and drop_point_turn_rad.
-pr::PredictionRequest field_request(const spread_prediction_def& def) {
-  pr::PredictionRequest field;
-  field.material = std::string_view(def.material, std::strlen(def.material));
-  field.rpm = def.rpm;
-  field.drop_point_turn_rad = def.drop_point_turn_rad;
-  field.disc_height_m = def.disc_height_m;
-  field.wind_x_m_s = def.wind_m_s[0];
-  field.wind_y_m_s = def.wind_m_s[1];
-  field.cv_target = def.cv_target_percent / 100.0;
-  field.effects = def.effects;
-  field.bout_width_m = def.bout_width_m;
-  field.tray_width_m = def.tray_width_m;
-  field.kernel_half_width_m = def.kernel_half_width_m;
-  return field;
 }
 
 pr::EdgeRequest edge_request(const spread_edge_def& edge) {
@@ -138,54 +135,75 @@ extern "C" spread_status spread_predict_edge(spread_tables* tables, const spread
                                              const spread_edge_def* edge, spread_edge_result* result,
                                              double* rate_percent, size_t rate_capacity) {
   constexpr const char* kFunction = "spread_predict_edge";
-  if (const spread_status s = check_common(kFunction, tables, def, edge, result); s != SPREAD_OK) return s;
+  pr::PredictionRequest field;
+  if (const spread_status s = check_common(kFunction, tables, def, edge, result, field); s != SPREAD_OK) return s;
   const int side = edge->side, other = 1 - side;
   if (!std::isnan(def->disc_rpm[other])) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE,
-                "spread_predict_edge: disc_rpm[%d] %g set: the disc away from the edge runs at the field's speed "
-                "(rpm; only its drop point may change on the last pass)",
-                other, def->disc_rpm[other]);
+                "%s: disc_rpm[%d] %g set: the disc away from the edge runs at the field's speed (rpm; only its drop "
+                "point may change on the last pass)",
+                kFunction, other, def->disc_rpm[other]);
   }
   try {
-    const pr::PredictionRequest field = field_request(*def);
     pr::EdgeSetting setting;
     setting.disc.rpm = std::isnan(def->disc_rpm[side]) ? def->rpm : def->disc_rpm[side];
     setting.disc.drop_point_turn_rad =
         std::isnan(def->disc_drop_point_turn_rad[side]) ? def->drop_point_turn_rad : def->disc_drop_point_turn_rad[side];
     setting.flow_fraction = edge->flow_fraction;
     setting.field_side_drop_point_turn_rad = def->disc_drop_point_turn_rad[other];  // NaN: the field's
+    // The last pass as the library predicts it (each disc its own setting), refused as spread_predict
+    // refuses it: only the disc fields of the definition can be at fault here, the field's passed above.
+    pr::PredictionRequest pass = field;
+    pass.rpm = 0.0;
+    pass.drop_point_turn_rad = 0.0;
+    pass.disc_rpm[static_cast<std::size_t>(side)] = setting.disc.rpm;
+    pass.disc_drop_point_turn_rad[static_cast<std::size_t>(side)] = setting.disc.drop_point_turn_rad;
+    pass.disc_rpm[static_cast<std::size_t>(other)] = def->rpm;
+    pass.disc_drop_point_turn_rad[static_cast<std::size_t>(other)] =
+        std::isnan(def->disc_drop_point_turn_rad[other]) ? def->drop_point_turn_rad : def->disc_drop_point_turn_rad[other];
+    if (const spread_status s = spread::capi::check_request(kFunction, tables->predictor, *def, pass); s != SPREAD_OK) {
+      return s;
+    }
     pr::EdgeProfile profile(&tables->memory);
     const pr::PredictStatus status =
         pr::edge_profile(tables->predictor, field, edge_request(*edge), setting, profile, &tables->memory);
     if (status != pr::PredictStatus::kOk) {
-      return fail(spread::capi::status_of(status),
-                  "spread_predict_edge: %s: the field's rpm %g, drop_point_turn_rad %g, the edge-side disc's "
-                  "%g rpm, %g rad, or the other disc's drop point %g rad (bounds: docs/c-api.md)",
-                  spread_status_str(spread::capi::status_of(status)), def->rpm, def->drop_point_turn_rad,
-                  setting.disc.rpm, setting.disc.drop_point_turn_rad, def->disc_drop_point_turn_rad[other]);
+      // Every refusal is found above; this is the library disagreeing with those checks.
+      return fail(SPREAD_ERROR_INTERNAL, "%s: the edge profile refused a checked request (%s)", kFunction,
+                  pr::to_string(status));
     }
     return write_profile(kFunction, profile, result, rate_percent, rate_capacity);
   } catch (const std::bad_alloc&) {
-    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "spread_predict_edge: out of memory");
+    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "%s: out of memory", kFunction);
   } catch (const std::exception& e) {
-    return fail(SPREAD_ERROR_INTERNAL, "spread_predict_edge: %.400s", e.what());
+    return fail(SPREAD_ERROR_INTERNAL, "%s: %.400s", kFunction, e.what());
   }
 }
 
-extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const spread_prediction_def* def,
-                                                  const spread_edge_def* edge, spread_edge_setting* setting,
-                                                  spread_edge_result* result, double* rate_percent,
-                                                  size_t rate_capacity) {
-  constexpr const char* kFunction = "spread_find_edge_setting";
+namespace {
+
+// spread_find_edge_setting and spread_find_edge_setting_within: at most `max_predictions` (INT_MAX: the
+// whole search); *finished (when not NULL) whether the search ran to its end.
+spread_status find_edge_setting(const char* kFunction, spread_tables* tables, const spread_prediction_def* def,
+                                const spread_edge_def* edge, int max_predictions, spread_edge_setting* setting,
+                                spread_edge_result* result, double* rate_percent, size_t rate_capacity,
+                                int32_t* finished) {
   if (setting == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: setting is NULL", kFunction);
-  if (const spread_status s = check_common(kFunction, tables, def, edge, result); s != SPREAD_OK) return s;
+  pr::PredictionRequest field;
+  if (const spread_status s = check_common(kFunction, tables, def, edge, result, field); s != SPREAD_OK) return s;
   // The search sets each disc apart itself: a value given here would be dropped.
   for (int disc = 0; disc < 2; ++disc) {
-    if (!std::isnan(def->disc_rpm[disc]) || !std::isnan(def->disc_drop_point_turn_rad[disc])) {
-      return fail(SPREAD_ERROR_OUT_OF_RANGE,
-                  "%s: disc_rpm[%d] %g or disc_drop_point_turn_rad[%d] %g set: the search chooses each disc's "
-                  "setting on the last pass (give the field's in rpm and drop_point_turn_rad)",
-                  kFunction, disc, def->disc_rpm[disc], disc, def->disc_drop_point_turn_rad[disc]);
+    const struct {
+      const char* name;
+      double value;
+    } own[] = {{"disc_rpm", def->disc_rpm[disc]}, {"disc_drop_point_turn_rad", def->disc_drop_point_turn_rad[disc]}};
+    for (const auto& f : own) {
+      if (!std::isnan(f.value)) {
+        return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                    "%s: %s[%d] %g set: the search chooses each disc's setting on the last pass (give the field's in "
+                    "rpm and drop_point_turn_rad, leave this NaN)",
+                    kFunction, f.name, disc, f.value);
+      }
     }
   }
   if (edge->flow_fraction != 1.0) {
@@ -194,11 +212,13 @@ extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const s
                 kFunction, edge->flow_fraction);
   }
   try {
-    const pr::PredictionRequest field = field_request(*def);
-    const pr::EdgeResult found = pr::find_edge_setting(tables->predictor, field, edge_request(*edge), &tables->memory);
+    pr::EdgeRequest request = edge_request(*edge);
+    request.max_predictions = max_predictions;
+    const pr::EdgeResult found = pr::find_edge_setting(tables->predictor, field, request, &tables->memory);
     if (found.status != pr::PredictStatus::kOk) {
-      return fail(spread::capi::status_of(found.status), "%s: %s: the field's rpm %g, drop_point_turn_rad %g (bounds: docs/c-api.md)",
-                  kFunction, spread_status_str(spread::capi::status_of(found.status)), def->rpm, def->drop_point_turn_rad);
+      // Every refusal is found above; this is the library disagreeing with those checks.
+      return fail(SPREAD_ERROR_INTERNAL, "%s: the search refused a checked request (%s)", kFunction,
+                  pr::to_string(found.status));
     }
     if (const spread_status s = write_profile(kFunction, found.profile, result, rate_percent, rate_capacity); s != SPREAD_OK) {
       return s;
@@ -209,10 +229,39 @@ extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const s
     setting->field_side_drop_point_turn_rad = found.setting.field_side_drop_point_turn_rad;
     setting->predictions = found.predictions;
     setting->reserved = 0;
+    if (finished != nullptr) *finished = found.finished ? 1 : 0;
     return SPREAD_OK;
   } catch (const std::bad_alloc&) {
     return fail(SPREAD_ERROR_OUT_OF_MEMORY, "%s: out of memory", kFunction);
   } catch (const std::exception& e) {
     return fail(SPREAD_ERROR_INTERNAL, "%s: %.400s", kFunction, e.what());
   }
+}
+
+}  // namespace
+
+extern "C" spread_status spread_find_edge_setting(spread_tables* tables, const spread_prediction_def* def,
+                                                  const spread_edge_def* edge, spread_edge_setting* setting,
+                                                  spread_edge_result* result, double* rate_percent,
+                                                  size_t rate_capacity) {
+  return find_edge_setting("spread_find_edge_setting", tables, def, edge, std::numeric_limits<int>::max(), setting,
+                           result, rate_percent, rate_capacity, nullptr);
+}
+
+extern "C" spread_status spread_find_edge_setting_within(spread_tables* tables, const spread_prediction_def* def,
+                                                         const spread_edge_def* edge, int32_t max_predictions,
+                                                         spread_edge_setting* setting, spread_edge_result* result,
+                                                         double* rate_percent, size_t rate_capacity,
+                                                         int32_t* out_finished) {
+  constexpr const char* kFunction = "spread_find_edge_setting_within";
+  if (out_finished == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: out_finished is NULL", kFunction);
+  if (max_predictions != 0 && max_predictions < pr::kEdgeMinPredictions) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE,
+                "%s: max_predictions %d below the %d every search makes (the field's, the normal pass, the "
+                "answer's profile); 0: no limit",
+                kFunction, static_cast<int>(max_predictions), pr::kEdgeMinPredictions);
+  }
+  return find_edge_setting(kFunction, tables, def, edge,
+                           max_predictions == 0 ? std::numeric_limits<int>::max() : static_cast<int>(max_predictions),
+                           setting, result, rate_percent, rate_capacity, out_finished);
 }

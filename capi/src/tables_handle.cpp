@@ -73,13 +73,22 @@ bool valid_index(const spread_tables* tables, int32_t index) {
 
 }  // namespace
 
-extern "C" spread_status spread_open_with_allocator(const char* path, const spread_allocator* allocator,
-                                                    spread_tables** out_tables) {
-  if (out_tables == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_open: out_tables is NULL");
+namespace {
+
+// spread_open, spread_open_with_allocator and spread_open_with_flags: `function` names the entry point in
+// the detail; a NULL allocator is refused here (spread_open_with_flags passes the default for NULL).
+spread_status open_table(const char* function, const char* path, const spread_allocator* allocator, uint32_t flags,
+                         spread_tables** out_tables) {
+  if (out_tables == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: out_tables is NULL", function);
   *out_tables = nullptr;
-  if (path == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_open: path is NULL");
+  if (path == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "%s: path is NULL", function);
   if (allocator == nullptr || allocator->alloc == nullptr || allocator->free == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "spread_open_with_allocator: the allocator or one of its functions is NULL");
+    return fail(SPREAD_ERROR_NULL_POINTER, "%s: %s is NULL", function,
+                allocator == nullptr ? "allocator" : (allocator->alloc == nullptr ? "allocator->alloc" : "allocator->free"));
+  }
+  if ((flags & ~uint32_t{SPREAD_OPEN_LEGACY_FILES}) != 0) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: flags 0x%x has bits outside SPREAD_OPEN_LEGACY_FILES", function,
+                static_cast<unsigned>(flags));
   }
   const spread_allocator a = *allocator;
   void* storage = nullptr;
@@ -87,25 +96,45 @@ extern "C" spread_status spread_open_with_allocator(const char* path, const spre
     spread::capi::detail::fault_point();
     storage = a.alloc(a.user, sizeof(spread_tables), alignof(spread_tables));
     if (storage == nullptr) throw std::bad_alloc();
-    *out_tables = new (storage) spread_tables(path, a);  // a file without runs is TableError kEmpty
+    *out_tables = new (storage) spread_tables(path, a, flags);  // a file without runs is TableError kEmpty
     return SPREAD_OK;
   } catch (const spread::tables::TableError& e) {
     if (storage != nullptr) a.free(a.user, storage, sizeof(spread_tables));
     return fail(status_of(e.kind()), "%s", e.what());
   } catch (const std::bad_alloc&) {
     if (storage != nullptr) a.free(a.user, storage, sizeof(spread_tables));
-    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "spread_open: %s: out of memory", path);
+    return fail(SPREAD_ERROR_OUT_OF_MEMORY, "%s: %s: out of memory", function, path);
   } catch (const std::exception& e) {
     if (storage != nullptr) a.free(a.user, storage, sizeof(spread_tables));
-    return fail(SPREAD_ERROR_INTERNAL, "spread_open: %s: %s", path, e.what());
+    return fail(SPREAD_ERROR_INTERNAL, "%s: %s: %s", function, path, e.what());
   } catch (...) {
     if (storage != nullptr) a.free(a.user, storage, sizeof(spread_tables));
-    return fail(SPREAD_ERROR_INTERNAL, "spread_open: %s: unknown exception", path);
+    return fail(SPREAD_ERROR_INTERNAL, "%s: %s: unknown exception", function, path);
   }
 }
 
+}  // namespace
+
+extern "C" spread_status spread_open_with_allocator(const char* path, const spread_allocator* allocator,
+                                                    spread_tables** out_tables) {
+  return open_table("spread_open_with_allocator", path, allocator, 0u, out_tables);
+}
+
 extern "C" spread_status spread_open(const char* path, spread_tables** out_tables) {
-  return spread_open_with_allocator(path, &spread::capi::default_allocator(), out_tables);
+  return open_table("spread_open", path, &spread::capi::default_allocator(), 0u, out_tables);
+}
+
+extern "C" spread_status spread_open_with_flags(const char* path, uint32_t flags, const spread_allocator* allocator,
+                                                spread_tables** out_tables) {
+  return open_table("spread_open_with_flags", path, allocator != nullptr ? allocator : &spread::capi::default_allocator(),
+                    flags, out_tables);
+}
+
+extern "C" spread_status spread_table_flags(const spread_tables* tables, uint32_t* out_flags) {
+  if (const spread_status s = check_handle(tables, "spread_table_flags"); s != SPREAD_OK) return s;
+  if (out_flags == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_table_flags: out_flags is NULL");
+  *out_flags = tables->table_flags;
+  return SPREAD_OK;
 }
 
 extern "C" void spread_close(spread_tables* tables) {
@@ -172,9 +201,8 @@ extern "C" spread_status spread_material_name(const spread_tables* tables, int32
 extern "C" spread_status spread_material_rpm_range(const spread_tables* tables, int32_t index,
                                                    double* out_min_rpm, double* out_max_rpm) {
   if (const spread_status s = check_handle(tables, "spread_material_rpm_range"); s != SPREAD_OK) return s;
-  if (out_min_rpm == nullptr || out_max_rpm == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "spread_material_rpm_range: an output pointer is NULL");
-  }
+  if (out_min_rpm == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_material_rpm_range: out_min_rpm is NULL");
+  if (out_max_rpm == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_material_rpm_range: out_max_rpm is NULL");
   if (!valid_index(tables, index)) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_material_rpm_range: index %d outside [0, %zu)",
                 static_cast<int>(index), tables->predictor.material_count());
@@ -194,8 +222,13 @@ extern "C" spread_status spread_default_disc_height(const spread_tables* tables,
 extern "C" spread_status spread_landing_domain(const spread_tables* tables, int32_t index, double* out_min_height_m,
                                                double* out_max_height_m, double* out_max_wind_m_s) {
   if (const spread_status s = check_handle(tables, "spread_landing_domain"); s != SPREAD_OK) return s;
-  if (out_min_height_m == nullptr || out_max_height_m == nullptr || out_max_wind_m_s == nullptr) {
-    return fail(SPREAD_ERROR_NULL_POINTER, "spread_landing_domain: an output pointer is NULL");
+  const struct {
+    const char* name;
+    const double* pointer;
+  } outputs[] = {{"out_min_height_m", out_min_height_m}, {"out_max_height_m", out_max_height_m},
+                 {"out_max_wind_m_s", out_max_wind_m_s}};
+  for (const auto& output : outputs) {
+    if (output.pointer == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_landing_domain: %s is NULL", output.name);
   }
   if (!valid_index(tables, index)) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_landing_domain: index %d outside [0, %zu)", static_cast<int>(index),
@@ -219,10 +252,10 @@ extern "C" spread_status spread_transverse_bound(const spread_tables* tables, do
                                                  size_t* out_tray_count) {
   if (const spread_status s = check_handle(tables, "spread_transverse_bound"); s != SPREAD_OK) return s;
   if (out_tray_count == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_transverse_bound: out_tray_count is NULL");
-  if (!std::isfinite(tray_width_m)) return fail(SPREAD_ERROR_NOT_FINITE, "spread_transverse_bound: tray width %g m", tray_width_m);
+  if (!std::isfinite(tray_width_m)) return fail(SPREAD_ERROR_NOT_FINITE, "spread_transverse_bound: tray_width_m is %g", tray_width_m);
   const int capacity = tables->predictor.tray_capacity(tray_width_m);
   if (capacity <= 0) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_transverse_bound: tray width %g m outside [%g, %g] m", tray_width_m,
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_transverse_bound: tray_width_m %g outside [%g, %g] m", tray_width_m,
                 tables->predictor.limits().min_tray_width_m, tables->predictor.limits().max_half_extent_m);
   }
   *out_tray_count = static_cast<size_t>(capacity);

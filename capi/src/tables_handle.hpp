@@ -52,16 +52,30 @@ inline predict::PredictorLimits controller_limits() {
 }  // namespace spread::capi
 
 struct spread_tables {
-  // The file is read with the samples going straight into a block from the caller's allocator.
-  spread_tables(const char* path, const spread_allocator& allocator)
-      : memory(allocator),
-        predictor(spread::tables::read_table_file(path, &memory), spread::capi::controller_limits(), &memory) {}
+  // The file is read with the samples going straight into a block from the caller's allocator; `flags`
+  // are spread_open_with_flags' SPREAD_OPEN_* bits.
+  spread_tables(const char* path, const spread_allocator& allocator, std::uint32_t flags)
+      : memory(allocator), predictor(read(path, flags), spread::capi::controller_limits(), &memory) {
+    for (std::size_t m = 0; m < predictor.material_count(); ++m) {
+      if (!predictor.landing_data_from_table(m)) table_flags |= SPREAD_TABLE_LANDING_DATA_DERIVED;
+    }
+  }
   std::uint64_t tag = spread::capi::kTablesTag;  // first member: read before anything else
   spread::capi::CallerMemory memory;  // before the predictor: it outlives the predictor's buffers
+  std::uint32_t table_flags = 0;      // SPREAD_TABLE_* bits (spread_table_flags); before the predictor
   spread::predict::Predictor predictor;
   // spread_predict's result before it is copied out (one thread at a time per handle): over a kilobyte with
   // its bands, kept here rather than on the caller's stack (spread.h: under 8 KiB, unoptimised too).
   spread::predict::Prediction prediction;
+
+ private:
+  spread::tables::TableContents read(const char* path, std::uint32_t flags) {
+    spread::tables::ReadOptions options;
+    options.legacy_files = (flags & SPREAD_OPEN_LEGACY_FILES) != 0;
+    spread::tables::TableContents contents = spread::tables::read_table_file(path, &memory, options);
+    if (!contents.runs_listed) table_flags |= SPREAD_TABLE_RUNS_UNCHECKED;
+    return contents;
+  }
 };
 
 struct spread_workspace {

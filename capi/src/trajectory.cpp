@@ -1,7 +1,9 @@
 // spread_trajectory: one flight with the prediction's integrator settings. Inputs are checked here so
 // that every bad input has its status code (the flight module would throw std::invalid_argument).
+#include <array>
 #include <cmath>
-#include <initializer_list>
+#include <cstddef>
+#include <cstdio>
 
 #include "capi/src/error_detail.hpp"
 #include "capi/src/fault_seam.hpp"
@@ -15,18 +17,6 @@ void put(const spread::Vec3& v, double (&out)[3]) {
   out[0] = v.x();
   out[1] = v.y();
   out[2] = v.z();
-}
-
-bool all_finite(const spread_trajectory_def& d) {
-  for (double v : {d.diameter_m, d.density_kg_m3, d.ground_z_m, d.air_density_kg_m3, d.air_viscosity_pa_s}) {
-    if (!std::isfinite(v)) return false;
-  }
-  for (int i = 0; i < 3; ++i) {
-    for (double v : {d.position_m[i], d.velocity_m_s[i], d.spin_rad_s[i], d.wind_m_s[i]}) {
-      if (!std::isfinite(v)) return false;
-    }
-  }
-  return true;
 }
 
 // The physical domain of a single flight. Beyond it the inputs are finite but absurd (a launch at
@@ -44,43 +34,69 @@ struct TrajectoryDomain {
   double max_abs_wind_m_s = 100.0;       // each component, as predict::PredictorLimits
 };
 
-bool within(double value, double low, double high) { return value >= low && value <= high; }
+// Each input with its name as the definition spells it and its range; `low_open`: the range excludes
+// its lower end.
+struct Field {
+  const char* name;
+  int index;  // the component of an array field, -1 a scalar
+  double value, low, high;
+  bool low_open;
+};
 
-bool in_domain(const spread_trajectory_def& d) {
+// NaN or infinite inputs first (SPREAD_ERROR_NOT_FINITE, whatever their range), then the domain
+// (SPREAD_ERROR_OUT_OF_RANGE), each refusal naming the field, its value and its range.
+spread_status check_fields(const spread_trajectory_def& d) {
+  using spread::capi::fail;
   constexpr TrajectoryDomain k;
-  if (!within(d.diameter_m, k.min_diameter_m, k.max_diameter_m) ||
-      !within(d.density_kg_m3, k.min_density_kg_m3, k.max_density_kg_m3) ||
-      !within(d.ground_z_m, -k.max_abs_position_m, k.max_abs_position_m) ||
-      !within(d.air_density_kg_m3, 0.0, k.max_air_density_kg_m3) ||
-      !(d.air_viscosity_pa_s > 0.0 && d.air_viscosity_pa_s <= k.max_air_viscosity_pa_s) ||
-      d.position_m[2] < d.ground_z_m) {
-    return false;
-  }
+  constexpr const char* kFunction = "spread_trajectory";
+  // On the stack: spread_trajectory does not allocate.
+  std::array<Field, 17> fields{};
+  std::size_t n = 0;
+  fields[n++] = {"diameter_m", -1, d.diameter_m, k.min_diameter_m, k.max_diameter_m, false};
+  fields[n++] = {"density_kg_m3", -1, d.density_kg_m3, k.min_density_kg_m3, k.max_density_kg_m3, false};
+  fields[n++] = {"ground_z_m", -1, d.ground_z_m, -k.max_abs_position_m, k.max_abs_position_m, false};
+  fields[n++] = {"air_density_kg_m3", -1, d.air_density_kg_m3, 0.0, k.max_air_density_kg_m3, false};
+  fields[n++] = {"air_viscosity_pa_s", -1, d.air_viscosity_pa_s, 0.0, k.max_air_viscosity_pa_s, true};
   for (int i = 0; i < 3; ++i) {
-    if (!within(d.position_m[i], -k.max_abs_position_m, k.max_abs_position_m) ||
-        !within(d.velocity_m_s[i], -k.max_abs_speed_m_s, k.max_abs_speed_m_s) ||
-        !within(d.spin_rad_s[i], -k.max_abs_spin_rad_s, k.max_abs_spin_rad_s) ||
-        !within(d.wind_m_s[i], -k.max_abs_wind_m_s, k.max_abs_wind_m_s)) {
-      return false;
+    fields[n++] = {"position_m", i, d.position_m[i], -k.max_abs_position_m, k.max_abs_position_m, false};
+    fields[n++] = {"velocity_m_s", i, d.velocity_m_s[i], -k.max_abs_speed_m_s, k.max_abs_speed_m_s, false};
+    fields[n++] = {"spin_rad_s", i, d.spin_rad_s[i], -k.max_abs_spin_rad_s, k.max_abs_spin_rad_s, false};
+    fields[n++] = {"wind_m_s", i, d.wind_m_s[i], -k.max_abs_wind_m_s, k.max_abs_wind_m_s, false};
+  }
+  char name[40];
+  const auto named = [&](const Field& f) {
+    if (f.index < 0) return f.name;
+    std::snprintf(name, sizeof name, "%s[%d]", f.name, f.index);
+    return static_cast<const char*>(name);
+  };
+  for (const Field& f : fields) {
+    if (!std::isfinite(f.value)) return fail(SPREAD_ERROR_NOT_FINITE, "%s: def->%s is %g", kFunction, named(f), f.value);
+  }
+  for (const Field& f : fields) {
+    const bool above_low = f.low_open ? f.value > f.low : f.value >= f.low;
+    if (!above_low || f.value > f.high) {
+      return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: def->%s %g outside %s%g, %g]", kFunction, named(f), f.value,
+                  f.low_open ? "(" : "[", f.low, f.high);
     }
   }
-  return true;
+  if (d.position_m[2] < d.ground_z_m) {
+    return fail(SPREAD_ERROR_OUT_OF_RANGE, "%s: def->position_m[2] %g is below def->ground_z_m %g (launched below the ground)",
+                kFunction, d.position_m[2], d.ground_z_m);
+  }
+  return SPREAD_OK;
 }
 
 }  // namespace
 
 extern "C" spread_status spread_trajectory(const spread_trajectory_def* def, spread_landing* out_landing) {
   using spread::capi::fail;
-  if (def == nullptr || out_landing == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_trajectory: def or out_landing is NULL");
+  if (def == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_trajectory: def is NULL");
+  if (out_landing == nullptr) return fail(SPREAD_ERROR_NULL_POINTER, "spread_trajectory: out_landing is NULL");
   if (def->struct_size < spread::capi::kTrajectoryDefV1Size) {
     return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_trajectory: def->struct_size %u is smaller than the first published %zu",
                 static_cast<unsigned>(def->struct_size), spread::capi::kTrajectoryDefV1Size);
   }
-  if (!all_finite(*def)) return fail(SPREAD_ERROR_NOT_FINITE, "spread_trajectory: an input is NaN or infinite");
-  if (!in_domain(*def)) {
-    return fail(SPREAD_ERROR_OUT_OF_RANGE, "spread_trajectory: an input is outside its physical domain (spread.h lists "
-                                           "the bounds per field; launched below the ground?)");
-  }
+  if (const spread_status s = check_fields(*def); s != SPREAD_OK) return s;
   if ((def->effects & ~uint32_t{SPREAD_EFFECT_ALL}) != 0) {
     return fail(SPREAD_ERROR_UNKNOWN_EFFECT, "spread_trajectory: effects 0x%x has bits outside SPREAD_EFFECT_ALL",
                 static_cast<unsigned>(def->effects));

@@ -15,6 +15,7 @@
 #include "capi/src/abi_layout.hpp"
 #include "capi/src/fault_seam.hpp"
 #include "libspread/analysis/predict/edge_spreading.hpp"
+#include "libspread/analysis/predict/wind_compensation.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 #include "spread/spread.h"
 #include "tests/capi/capi_test_files.hpp"
@@ -527,6 +528,56 @@ TEST_F(Capi, CompensateWindAnswersAPerDiscSetting) {
   EXPECT_EQ(spread_compensate_wind(tables_, &outside, &compensated, nullptr, 0), SPREAD_ERROR_RPM_OUTSIDE_TABLE);
 }
 
+// spread_compensate_wind_within: without a limit (0, or a budget above the search's count) the answer is
+// spread_compensate_wind's bit for bit and finished; within a few predictions (the library's count says
+// how many were made, and the C answer is the library's) it is never above the present setting's CV, and
+// not finished; a budget below the three fixed predictions is refused.
+TEST_F(Capi, CompensateWindWithinABudget) {
+  spread_prediction_def d = def("can", 650.0);
+  d.bout_width_m = 12.0;
+  d.wind_m_s[0] = 3.0;
+  spread_prediction present{}, whole{};
+  ASSERT_EQ(spread_predict(tables_, &d, &present, nullptr, 0), SPREAD_OK);
+  ASSERT_EQ(spread_compensate_wind(tables_, &d, &whole, nullptr, 0), SPREAD_OK);
+  for (int32_t budget : {0, 1000000}) {
+    spread_prediction within{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_compensate_wind_within(tables_, &d, budget, &within, nullptr, 0, &finished), SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 1) << budget;
+    EXPECT_EQ(std::memcmp(&within, &whole, sizeof within), 0) << budget;
+  }
+  spread::predict::Predictor predictor(spread::tables::read_table_file(path_));
+  spread::predict::PredictionRequest request;
+  request.material = "can";
+  request.rpm = 650.0;
+  request.bout_width_m = 12.0;
+  request.wind_x_m_s = 3.0;
+  for (int32_t budget : {3, 6, 12, 24}) {
+    SCOPED_TRACE(budget);
+    spread_prediction within{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_compensate_wind_within(tables_, &d, budget, &within, nullptr, 0, &finished), SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 0);
+    EXPECT_LE(within.cv_percent, present.cv_percent);
+    spread::predict::WindCompensationLimits limits;
+    limits.max_predictions = budget;
+    spread::predict::Prediction out;
+    const spread::predict::WindCompensation found =
+        spread::predict::compensate_wind(predictor, request, out, predictor.own_workspace(), limits);
+    EXPECT_LE(found.predictions, budget);
+    EXPECT_FALSE(found.finished);
+    EXPECT_EQ(found.discs[0].rpm, within.disc_rpm[0]);
+    EXPECT_EQ(found.discs[1].drop_point_turn_rad, within.disc_drop_point_turn_rad[1]);
+  }
+  spread_prediction within{};
+  int32_t finished = 0;
+  EXPECT_EQ(spread_compensate_wind_within(tables_, &d, 2, &within, nullptr, 0, &finished), SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("max_predictions 2"), std::string::npos);
+  EXPECT_EQ(spread_compensate_wind_within(tables_, &d, 10, &within, nullptr, 0, nullptr), SPREAD_ERROR_NULL_POINTER);
+}
+
 // spread_predict_edge: the profile of the last bout is the library's (the setting `spread border` finds
 // meets its thresholds through the C API too), an edge on the left mirrors one on the right, and the
 // definitions out of their domain are refused with the field named.
@@ -613,7 +664,7 @@ TEST_F(Capi, PredictEdgeGivesTheLastBoutsProfile) {
   EXPECT_NE(turned_result.max_rate_inside_percent, result.max_rate_inside_percent);
   turned.disc_drop_point_turn_rad[0] = 4.0;  // beyond half a turn
   EXPECT_EQ(spread_predict_edge(tables_, &turned, &edge, &turned_result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
-  EXPECT_NE(std::string(spread_last_error_detail()).find("other disc's drop point 4"), std::string::npos)
+  EXPECT_NE(std::string(spread_last_error_detail()).find("disc_drop_point_turn_rad[0] 4 outside"), std::string::npos)
       << spread_last_error_detail();
   EXPECT_EQ(spread_predict_edge(tables_, &normal, &edge, &result, rate.data(), 3), SPREAD_ERROR_BUFFER_TOO_SMALL);
 }
@@ -679,6 +730,77 @@ TEST_F(Capi, FindEdgeSettingIsTheLibrarysSearch) {
   EXPECT_EQ(spread_find_edge_setting(tables_, &d, &gap, &setting, &result, nullptr, 0), SPREAD_ERROR_OUT_OF_RANGE);
   EXPECT_NE(std::string(spread_last_error_detail()).find("spread_find_edge_setting: edge->gap_m 9"), std::string::npos)
       << spread_last_error_detail();
+}
+
+// spread_find_edge_setting_within: without a limit (0, or a budget the whole search's count fits) the answer is
+// spread_find_edge_setting's bit for bit and finished; with a budget of a few predictions it stops there
+// with a usable setting — one spread_predict_edge confirms; with the three fixed predictions alone the
+// normal setting at its best flow — and says it did not finish; a budget below those three is refused.
+TEST_F(Capi, FindEdgeSettingWithinABudget) {
+  spread_prediction_def d = def("can", 650.0);
+  d.bout_width_m = 18.0;
+  spread_edge_def edge = spread_edge_def_default();
+  edge.gap_m = 3.0;
+  spread_edge_setting whole{};
+  spread_edge_result whole_result{};
+  std::vector<double> whole_rate(2000), rate(2000);
+  ASSERT_EQ(spread_find_edge_setting(tables_, &d, &edge, &whole, &whole_result, whole_rate.data(), whole_rate.size()),
+            SPREAD_OK);
+  for (int32_t budget : {0, 1000000}) {
+    spread_edge_setting setting{};
+    spread_edge_result result{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, budget, &setting, &result, rate.data(), rate.size(),
+                                              &finished),
+              SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 1) << budget;
+    EXPECT_EQ(std::memcmp(&setting, &whole, sizeof setting), 0) << budget;
+    EXPECT_EQ(std::memcmp(&result, &whole_result, sizeof result), 0) << budget;
+    EXPECT_EQ(std::memcmp(rate.data(), whole_rate.data(), sizeof(double) * static_cast<std::size_t>(result.tray_count)), 0);
+  }
+  // The normal setting's profile: what a search that finds nothing better answers.
+  spread_edge_result normal{};
+  ASSERT_EQ(spread_predict_edge(tables_, &d, &edge, &normal, nullptr, 0), SPREAD_OK);
+  for (int32_t budget : {3, 5, 10, 40}) {
+    SCOPED_TRACE(budget);
+    spread_edge_setting setting{};
+    spread_edge_result result{};
+    int32_t finished = -1;
+    ASSERT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, budget, &setting, &result, nullptr, 0, &finished),
+              SPREAD_OK)
+        << spread_last_error_detail();
+    EXPECT_EQ(finished, 0);
+    EXPECT_LE(setting.predictions, budget);
+    EXPECT_GE(setting.predictions, 3);
+    // The setting found, given to spread_predict_edge, gives the same profile.
+    spread_prediction_def at = d;
+    at.disc_rpm[1] = setting.disc_rpm;
+    at.disc_drop_point_turn_rad[1] = setting.disc_drop_point_turn_rad;
+    at.disc_drop_point_turn_rad[0] = setting.field_side_drop_point_turn_rad;
+    spread_edge_def with_flow = edge;
+    with_flow.flow_fraction = setting.flow_fraction;
+    spread_edge_result confirmed{};
+    ASSERT_EQ(spread_predict_edge(tables_, &at, &with_flow, &confirmed, nullptr, 0), SPREAD_OK) << spread_last_error_detail();
+    EXPECT_DOUBLE_EQ(confirmed.mass_beyond_percent, result.mass_beyond_percent);
+    EXPECT_DOUBLE_EQ(confirmed.missing_inside_m, result.missing_inside_m);
+    if (budget == 3) {
+      // Nothing but the fixed predictions: the normal setting at its best flow.
+      EXPECT_EQ(setting.disc_rpm, 650.0);
+      EXPECT_EQ(setting.disc_drop_point_turn_rad, 0.0);
+      EXPECT_TRUE(std::isnan(setting.field_side_drop_point_turn_rad));
+      EXPECT_LT(setting.flow_fraction, 1.0);
+      EXPECT_LT(result.mass_beyond_percent, normal.mass_beyond_percent);
+    }
+  }
+  spread_edge_setting setting{};
+  spread_edge_result result{};
+  int32_t finished = 0;
+  EXPECT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, 2, &setting, &result, nullptr, 0, &finished),
+            SPREAD_ERROR_OUT_OF_RANGE);
+  EXPECT_NE(std::string(spread_last_error_detail()).find("max_predictions 2"), std::string::npos);
+  EXPECT_EQ(spread_find_edge_setting_within(tables_, &d, &edge, 10, &setting, &result, nullptr, 0, nullptr),
+            SPREAD_ERROR_NULL_POINTER);
 }
 
 TEST(CapiAbi, ReservedFieldsAreZeroedAndNeverRead) {

@@ -117,6 +117,34 @@ TEST(LookupBuilder, LandingDataIsStoredAndAddedToATableWithout) {
   EXPECT_EQ(spread::testing::file_bytes(file.path()), built) << "a rerun with nothing to do changed the file";
 }
 
+// Every table a build leaves lists its runs with the list's checksum; a legacy table (its runs without a
+// checked list), which readers refuse unless they accept legacy files, is listed by the next run of the
+// builder even when no run is left to compute, and is then left as it is.
+TEST(LookupBuilder, ALegacyTableIsListedByTheNextBuild) {
+  const scene::Scene scene = default_scene({"sweep.samples_per_run=32"});
+  TempPath file("legacy");
+  BuildOptions options;
+  options.output_path = file.path();
+  build_tables(scene, options);
+  ASSERT_TRUE(tables::read_table_file(file.path()).runs_listed);
+  spread::testing::raw_exec(file.path(), "DELETE FROM meta WHERE key IN ('runs_manifest', 'runs_manifest_checksum')");
+  try {
+    tables::read_table_file(file.path());
+    ADD_FAILURE() << "a table without a list of its runs was read";
+  } catch (const tables::TableError& e) {
+    EXPECT_EQ(e.kind(), tables::TableErrorKind::kWrongVersion) << e.what();
+    EXPECT_NE(std::string(e.what()).find("rebuild it with lookup_builder"), std::string::npos) << e.what();
+  }
+  tables::ReadOptions legacy;
+  legacy.legacy_files = true;
+  EXPECT_FALSE(tables::read_table_file(file.path(), nullptr, legacy).runs_listed);
+  EXPECT_EQ(build_tables(scene, options).runs_written, 0);
+  EXPECT_TRUE(tables::read_table_file(file.path()).runs_listed);
+  const std::vector<char> listed = spread::testing::file_bytes(file.path());
+  build_tables(scene, options);
+  EXPECT_EQ(spread::testing::file_bytes(file.path()), listed) << "a rerun with nothing to do changed the file";
+}
+
 TEST(LookupBuilder, DemSweepKeysAreValidatedByName) {
   // The DEM source itself is tested in test_lookup_dem.cpp; bad budgets are scene errors naming the key.
   for (const char* bad : {"sweep.batch_s=0", "sweep.convergence_tolerance=-1", "sweep.particle_budget=-5"}) {
@@ -353,6 +381,68 @@ void kill_builds_at_random(int kills) {
 }
 
 TEST(LookupBuilderKills, TenRandomKillsLeaveTheTableWhole) { kill_builds_at_random(10); }
+
+// A fresh build (no table at its path yet) killed (SIGKILL) at a random moment, again and again: the path
+// holds nothing until the build's first complete table takes it by rename — never an empty or partial
+// file, which readers would refuse ("empty file") and a later build would have to judge. Each kill lands
+// anywhere from the spawn to past the end of a build as timed here; the assertions do not depend on where.
+TEST(LookupBuilderKills, KilledFreshBuildsLeaveNoFileAtTheTablesPath) {
+  using Clock = std::chrono::steady_clock;
+  TempPath table("killed_fresh.sqlite");
+  const std::string staging = table.path() + ".building";
+  const std::string scene_path = std::string(SPREAD_SOURCE_DIR) + "/scenes/default.toml";
+  std::vector<std::string> args = {LOOKUP_BUILDER_EXE, scene_path, "--output", table.path(),
+                                   "--set", "sweep.source=\"analytic\"", "--set", "sweep.samples_per_run=2000"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t quiet;
+  posix_spawn_file_actions_init(&quiet);
+  posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
+  const auto fresh_build = [&] {
+    std::filesystem::remove(table.path());
+    std::filesystem::remove(staging);
+    pid_t pid = 0;
+    EXPECT_EQ(posix_spawn(&pid, LOOKUP_BUILDER_EXE, &quiet, nullptr, argv.data(), environ), 0);
+    return pid;
+  };
+  const Clock::time_point start = Clock::now();
+  pid_t pid = fresh_build();
+  ASSERT_GT(pid, 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the first build failed";
+  const double build_s = std::chrono::duration<double>(Clock::now() - start).count();
+  const std::size_t runs = tables::read_table_file(table.path()).runs.size();
+  ASSERT_GT(runs, 0u);
+  std::mt19937 random(2);
+  std::uniform_real_distribution<double> fraction(0.0, 1.0);
+  int absent = 0, whole = 0;
+  for (int k = 0; k < 30; ++k) {
+    pid = fresh_build();
+    ASSERT_GT(pid, 0);
+    std::this_thread::sleep_for(std::chrono::duration<double>(1.1 * build_s * fraction(random)));
+    kill(pid, SIGKILL);
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    if (!std::filesystem::exists(table.path())) {
+      ++absent;
+      continue;
+    }
+    EXPECT_GT(std::filesystem::file_size(table.path()), 0u) << "kill " << k << ": an empty file at the table's path";
+    try {
+      EXPECT_EQ(tables::read_table_file(table.path()).runs.size(), runs) << "kill " << k;
+      ++whole;
+    } catch (const tables::TableError& e) {
+      ADD_FAILURE() << "kill " << k << ": a file at the table's path that does not open: " << e.what();
+    }
+  }
+  posix_spawn_file_actions_destroy(&quiet);
+  std::filesystem::remove(staging);
+  EXPECT_GT(absent, 0) << "no kill landed before the table was complete (a build takes " << build_s << " s)";
+  RecordProperty("kills_before_the_table", absent);
+  RecordProperty("kills_after_it", whole);
+}
 TEST(LookupBuilderKills, HundredRandomKillsLeaveTheTableWhole) { kill_builds_at_random(100); }
 
 }  // namespace

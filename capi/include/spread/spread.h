@@ -127,7 +127,8 @@ typedef struct spread_tables spread_tables; /* opaque */
 /* Opens a launch-table file read-only, checks it (application id, format version, integrity, records),
  * reads it into memory and allocates all prediction workspace. On success *out_tables is a new handle;
  * on failure *out_tables is set to NULL (when out_tables is not NULL) and the status says why:
- * SPREAD_ERROR_FILE_MISSING / _NOT_OURS / _CORRUPT / _WRONG_VERSION / _EMPTY / _IO / _OUT_OF_MEMORY. */
+ * SPREAD_ERROR_FILE_MISSING / _NOT_OURS / _CORRUPT / _WRONG_VERSION (also a legacy table, whose runs carry
+ * no checked list: see SPREAD_OPEN_LEGACY_FILES) / _EMPTY / _IO / _OUT_OF_MEMORY. */
 SPREAD_API spread_status spread_open(const char* path, spread_tables** out_tables);
 
 /* Destroys a handle. NULL is a no-op. Its workspaces must not be used afterwards (they may still be
@@ -178,7 +179,8 @@ typedef struct spread_prediction_def {
   /* --- appended in 0.3 --- */
   uint32_t result_size;        /* sizeof(spread_prediction) of the caller's header; set by _default().
                                   The library writes the result fields of every version it covers whole
-                                  (from 0.3 on the result grows without the definition growing) */
+                                  (from 0.3 on the result grows without the definition growing); below
+                                  0.2's result (every field up to kernel_half_width_m) it is refused */
   uint32_t reserved;           /* fills the padding before the next double; 0 from _default(), never read */
   double drop_point_turn_rad;  /* the drop point (feed position on the disc) turned from the table's, rad,
                                   within [-pi, pi]: counter-clockwise seen from above for the left disc,
@@ -196,8 +198,8 @@ typedef struct spread_prediction_def {
   uint32_t fly_outside_domain; /* 0 (default): a request outside the landing grid's domain is refused with
                                   SPREAD_ERROR_OUTSIDE_DOMAIN, so every answered request costs the
                                   grid's time; 1: it flies every launch sample instead (tens of
-                                  milliseconds, docs/c-api.md "Landing grid"). A definition older than
-                                  0.5 has 0 */
+                                  milliseconds, docs/c-api.md "Landing grid"). Any other value is
+                                  refused (SPREAD_ERROR_OUT_OF_RANGE). A definition older than 0.5 has 0 */
   uint32_t reserved2;          /* fills the struct to a whole double; 0 from _default(), never read */
 } spread_prediction_def;
 
@@ -315,7 +317,11 @@ SPREAD_API spread_status spread_transverse_bound(const spread_tables* tables, do
  * over trays is 1 - lost_mass_fraction). If transverse_capacity < result->tray_count the call returns
  * SPREAD_ERROR_BUFFER_TOO_SMALL, writes nothing to the buffer, but fills *result (so tray_count says how
  * many are needed). Input errors: SPREAD_ERROR_NULL_POINTER, _NOT_FINITE, _OUT_OF_RANGE, _UNKNOWN_MATERIAL,
- * _RPM_OUTSIDE_TABLE, _UNKNOWN_EFFECT. Does not allocate. Not re-entrant on one handle (see top). */
+ * _RPM_OUTSIDE_TABLE, _UNKNOWN_EFFECT. Does not allocate. Not re-entrant on one handle (see top).
+ * Time (docs/c-api.md "Worst-case time", bench_capi DomainSweep over every material, speed, height, wind,
+ * kernel and tray width the grid answers): the median request 1.3-2.2 ms on one core of a 2-core AMD EPYC
+ * (Zen 4); the slowest about 3 ms with AVX or AVX-512 registers and 4 ms on the portable path, set by each
+ * disc at its own speed between rows with the 10 m kernel on 0.1 m trays. */
 SPREAD_API spread_status spread_predict(spread_tables* tables, const spread_prediction_def* def,
                                         spread_prediction* result, double* transverse_mass_fraction,
                                         size_t transverse_capacity);
@@ -335,6 +341,20 @@ SPREAD_API spread_status spread_predict(spread_tables* tables, const spread_pred
 SPREAD_API spread_status spread_compensate_wind(spread_tables* tables, const spread_prediction_def* def,
                                                 spread_prediction* result, double* transverse_mass_fraction,
                                                 size_t transverse_capacity);
+
+/* (appended in 0.6) spread_compensate_wind within a budget a control loop can schedule: at most
+ * max_predictions predictions (0: no limit; otherwise at least 3: the present setting's, the answer's and
+ * the present setting's again should the answer come out higher). A setting of the search the budget
+ * leaves no prediction for is not flown (the search goes on with the settings it has), the answer is the
+ * best of those flown, never above the present setting's CV, and *out_finished is 1 when the whole search
+ * ran (the answer then spread_compensate_wind's, bit for bit), 0 when the budget cut it. Each prediction
+ * costs about what spread_predict's does without standard errors, so the budget sets the call's time
+ * (docs/c-api.md "Wind compensation"). The errors of spread_compensate_wind, and SPREAD_ERROR_OUT_OF_RANGE
+ * for a budget of 1 or 2 or below 0. */
+SPREAD_API spread_status spread_compensate_wind_within(spread_tables* tables, const spread_prediction_def* def,
+                                                       int32_t max_predictions, spread_prediction* result,
+                                                       double* transverse_mass_fraction, size_t transverse_capacity,
+                                                       int32_t* out_finished);
 
 /* ---------------------------------------------------------------------------------------------------
  * Border and edge spreading (0.4): the last bout along a field edge (docs/c-api.md "Border and edge")
@@ -429,6 +449,21 @@ SPREAD_API spread_status spread_find_edge_setting(spread_tables* tables, const s
                                                   const spread_edge_def* edge, spread_edge_setting* setting,
                                                   spread_edge_result* result, double* rate_percent,
                                                   size_t rate_capacity);
+
+/* (appended in 0.6) spread_find_edge_setting within a budget a control loop can schedule: at most
+ * max_predictions predictions (0: no limit; otherwise at least 3: the field's, the normal pass and the
+ * answer's profile). *out_finished 1: the budget covered the whole search, whose answer is then
+ * spread_find_edge_setting's bit for bit; 0: the settings beyond the budget were not flown, and *setting,
+ * *result and `rate` are the best of those that were — never worse by the search's own ranking than the
+ * normal setting at its best flow (setting->predictions says how many were made). Each prediction costs
+ * about what one of spread_predict_edge's does, so a budget sets the call's time (docs/c-api.md "Border
+ * and edge": 10 predictions, under 10 ms). The errors of spread_find_edge_setting, and
+ * SPREAD_ERROR_OUT_OF_RANGE for a budget of 1 or 2 or below 0. */
+SPREAD_API spread_status spread_find_edge_setting_within(spread_tables* tables, const spread_prediction_def* def,
+                                                         const spread_edge_def* edge, int32_t max_predictions,
+                                                         spread_edge_setting* setting, spread_edge_result* result,
+                                                         double* rate_percent, size_t rate_capacity,
+                                                         int32_t* out_finished);
 
 /* ---------------------------------------------------------------------------------------------------
  * Single trajectory (no table needed)
@@ -537,6 +572,29 @@ SPREAD_API void spread_workspace_free(spread_workspace* workspace);
 SPREAD_API spread_status spread_workspace_predict(spread_workspace* workspace, const spread_prediction_def* def,
                                                   spread_prediction* result, double* transverse_mass_fraction,
                                                   size_t transverse_capacity);
+
+/* ---------------------------------------------------------------------------------------------------
+ * Opening with flags, and what the file held (appended in 0.6)
+ * ------------------------------------------------------------------------------------------------- */
+/* Read a legacy table: one whose runs carry no checked list of them (meta runs_manifest with its
+ * checksum, docs/table-format.md "Checksums") — written before 0.6, or with runs deleted together with
+ * their list, which no reader can tell apart. Without this flag such a table is refused with
+ * SPREAD_ERROR_FILE_WRONG_VERSION, the detail saying so; rerunning lookup_builder on it lists its runs. */
+#define SPREAD_OPEN_LEGACY_FILES 0x1u
+
+/* spread_open_with_allocator with SPREAD_OPEN_* flags (other bits: SPREAD_ERROR_OUT_OF_RANGE). allocator
+ * NULL: malloc and free, as spread_open. */
+SPREAD_API spread_status spread_open_with_flags(const char* path, uint32_t flags, const spread_allocator* allocator,
+                                                spread_tables** out_tables);
+
+/* SPREAD_TABLE_* bits of spread_table_flags: what spread_open found in the file. */
+#define SPREAD_TABLE_RUNS_UNCHECKED 0x1u       /* a legacy table read with SPREAD_OPEN_LEGACY_FILES: its runs
+                                                  were not checked against a list of them */
+#define SPREAD_TABLE_LANDING_DATA_DERIVED 0x2u /* the file holds no current landing data for a material, so
+                                                  spread_open flew its landing grid itself (tens of times
+                                                  slower to open, docs/c-api.md "Landing grid"); rerun
+                                                  lookup_builder on the file to store it */
+SPREAD_API spread_status spread_table_flags(const spread_tables* tables, uint32_t* out_flags);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -398,6 +398,18 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   EdgeDisc inner_normal(memory), disc(memory);
   search.pass_at(search.normal_field_side_, search.normal_disc_, inner_normal, disc);
   search.profile(inner_normal, disc, 1.0, result.normal_profile);
+  // The budget: a grid point is flown only while one prediction is left after it for the answer's profile;
+  // the points left out are skipped, so the search ends with the best of those flown (finished false).
+  const int budget = std::max(edge.max_predictions, kEdgeMinPredictions);
+  const bool limited = edge.max_predictions < std::numeric_limits<int>::max();
+  const auto affordable = [&] {
+    if (search.predictions_ + 2 <= budget) return true;
+    result.finished = false;
+    return false;
+  };
+  // The normal setting's edge-side disc, judged against each field-side drop point under a budget.
+  EdgeDisc normal_disc(memory);
+  if (limited) normal_disc = disc;
 
   // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within the turns the table
   // validates (a disc set outside them keeps its drop point).
@@ -422,9 +434,25 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
   std::pmr::vector<EdgeDisc> inners(memory);
   // Grid points outside a disc's range are skipped (not clamped onto its end: no setting is flown twice).
   const auto outside = [](double t, double low, double high) { return !TurnRange{low, high}.contains(t); };
+  // A budget that may end the search early (short of every point of both grids and the finer grid's 120,
+  // counted before any is flown): the search keeps its order, and each setting flown is judged as soon as
+  // it can be, so that the answer is the best of what the budget bought and never worse than the normal
+  // setting at its best flow. A budget the whole search fits runs it exactly as without one.
+  bool whole = true;
+  if (limited) {
+    int points = 0;
+    for (int j = -turns; j <= turns; ++j) points += j != 0 && !outside(field_base_turn + j * step_rad, field_low, field_high);
+    for (int i = 0; i <= speeds; ++i) {
+      for (int j = -turns; j <= turns; ++j) points += j == 0 || !outside(base_turn + j * step_rad, turn_low, turn_high);
+    }
+    whole = search.predictions_ + points + 120 + 1 <= budget;
+    // Not the search spread_find_edge_setting runs (its ties may fall elsewhere), even should every point fit.
+    if (!whole) result.finished = false;
+  }
   for (int j = -turns; j <= turns; ++j) {
     const double t = j == 0 ? field_base_turn : field_base_turn + j * step_rad;
     if (j != 0 && outside(t, field_low, field_high)) continue;
+    if (j != 0 && !affordable()) continue;
     EdgeDisc d(memory);
     if (j != 0 && !search.disc_at(field_side, DiscSetting{search.normal_field_side_.rpm, t}, d)) continue;
     inner_turns.push_back(t);
@@ -444,12 +472,16 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
       best_inner = i;
     }
   };
+  if (!whole) {
+    // Each field-side drop point flown, against the edge-side disc at the normal setting.
+    for (std::size_t k = 0; k < inners.size(); ++k) judge(k, search.normal_disc_, normal_disc);
+  }
   for (int i = 0; i <= speeds; ++i) {
     for (int j = -turns; j <= turns; ++j) {
       if (j != 0 && outside(base_turn + j * step_rad, turn_low, turn_high)) continue;
       const DiscSetting setting{std::clamp(min_rpm + (max_rpm - min_rpm) * i / speeds, min_rpm, max_rpm),
                                 base_turn + j * step_rad};
-      if (!search.disc_at(edge.side, setting, disc)) continue;
+      if (!affordable() || !search.disc_at(edge.side, setting, disc)) continue;
       for (std::size_t k = 0; k < inners.size(); ++k) judge(k, setting, disc);
     }
   }
@@ -463,7 +495,7 @@ EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& norm
       const double turn = coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad;
       if (j != 0 && outside(turn, turn_low, turn_high)) continue;
       const DiscSetting setting{std::clamp(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, min_rpm, max_rpm), turn};
-      if (!search.disc_at(edge.side, setting, disc)) continue;
+      if (!affordable() || !search.disc_at(edge.side, setting, disc)) continue;
       judge(coarse_inner, setting, disc);
     }
   }

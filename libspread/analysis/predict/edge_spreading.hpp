@@ -67,7 +67,15 @@ struct EdgeRequest {
   // The edge-side disc's drop point searched: turns within ± this of the field's setting (±90°, as the
   // setting chart; up to π).
   double max_drop_point_turn_rad = 1.5707963267948966;
+  // find_edge_setting's budget: at most this many predictions (at least kEdgeMinPredictions: the field's,
+  // the normal pass and the answer's profile). A budget that covers the whole search's count (its grid
+  // points and the finer grid's 120, reckoned before any is flown) runs it unchanged. Any other runs the
+  // same order and judges each setting as soon as it is flown, the normal setting's edge-side disc against
+  // every field-side drop point flown first; the points beyond the budget are not flown, and the answer is
+  // the best of what was (EdgeResult::finished false).
+  int max_predictions = std::numeric_limits<int>::max();
 };
+inline constexpr int kEdgeMinPredictions = 3;
 
 inline constexpr double kEdgeGridStep_rpm = 25.0;
 inline constexpr double kEdgeGridStep_deg = 10.0;
@@ -120,6 +128,7 @@ struct EdgeResult {
   EdgeProfile profile;            // at that setting
   EdgeProfile normal_profile;     // the same pass with the edge-side disc at the normal setting
   int predictions = 0;
+  bool finished = true;           // false: the budget (EdgeRequest::max_predictions) did not cover the whole search
 };
 
 // `normal`: the setting of the field (rpm, drop point or each disc's own), bout width (> 0), wind, height,

@@ -55,8 +55,13 @@ class WindSearch {
     cv_ = cv_of(disc_trays_[0], disc_trays_[1]);
   }
 
-  // Disc `d` at `setting`, the other as it stands: the CV, and that disc's trays in candidate_.
+  // Disc `d` at `setting`, the other as it stands: the CV, and that disc's trays in candidate_. Beyond the
+  // budget (predictions kept for the answer and its fall-back), not flown: infinity, which no setting keeps.
   double try_disc(int d, const DiscSetting& setting) {
+    if (predictions_ + 1 + (kWindMinPredictions - 1) > budget_) {
+      finished_ = false;
+      return std::numeric_limits<double>::infinity();
+    }
     DiscSetting discs[2] = {current_[0], current_[1]};
     discs[d] = setting;
     set(discs);
@@ -91,6 +96,8 @@ class WindSearch {
   DiscSetting current_[2];
   double cv_ = 0.0;
   int predictions_ = 0;
+  int budget_ = std::numeric_limits<int>::max();
+  bool finished_ = true;
 
   void set(const DiscSetting (&discs)[2]) {
     request_.disc_rpm = {discs[0].rpm, discs[1].rpm};
@@ -163,6 +170,7 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
   const double scale = slowest_rpm > 0.0 ? std::max(1.0, std::max(range[0].high_rpm, range[1].high_rpm) / slowest_rpm) : 1.0;
   search.current_[0] = present[0];
   search.current_[1] = present[1];
+  search.budget_ = std::max(limits.max_predictions, kWindMinPredictions);
   search.start(scale * reach_m + out.kernel_half_width_m + 0.5 * request.bout_width_m, out.kernel_half_width_m);
 
   // The disc the wind comes from first (a wind towards +x comes from the left): the search is the mirror
@@ -210,6 +218,7 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
   result.discs[kLeftDisc] = out.discs[kLeftDisc];
   result.discs[kRightDisc] = out.discs[kRightDisc];
   result.cv = comparable(out.cv_to_and_fro);
+  result.finished = search.finished_;
   return result;
 }
 

@@ -18,6 +18,8 @@
 // the answer is never worse than the present setting.
 // No allocation: the predictions go into the caller's Prediction and workspace, the trays into the
 // workspace's search buffer (PredictorWorkspace::search_buffer).
+#include <limits>
+
 #include "libspread/analysis/predict/predictor.hpp"
 
 namespace spread::predict {
@@ -28,7 +30,14 @@ struct WindCompensationLimits {
   double max_drop_point_turn_rad = 1.5707963267948966;  // 90°
   double speed_tolerance_rpm = 2.0;
   double drop_point_tolerance_rad = 0.008726646259971648;  // 0.5°
+  // The budget: at most this many predictions (at least kWindMinPredictions: the present setting's, the
+  // answer's and the present setting's again should the answer come out higher). A setting the budget
+  // leaves no prediction for is not flown (it ranks as no better); the search goes on in its order with
+  // the settings it has, so the answer is the best of those flown (WindCompensation::finished false).
+  // Unlimited, the whole search.
+  int max_predictions = std::numeric_limits<int>::max();
 };
+inline constexpr int kWindMinPredictions = 3;
 
 inline constexpr int kWindSpeedSteps = 3;                          // grid speeds per disc, over its range
 inline constexpr double kWindTurnStep_rad = 0.17453292519943295;  // 10°
@@ -40,6 +49,7 @@ struct WindCompensation {
   double present_cv = 0.0;                    // to-and-fro CV at the bout in the wind, present setting
   double cv = 0.0;                            // the same at the compensated setting (`out` has it ± SE)
   int predictions = 0;
+  bool finished = true;                       // false: the budget left settings of the search unflown
 };
 
 // `request`: the present setting (rpm, drop point, or each disc's own), the wind, the bout width (> 0)

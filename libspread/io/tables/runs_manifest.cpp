@@ -4,6 +4,8 @@
 #include <map>
 #include <sstream>
 
+#include "libspread/io/tables/row_checksum.hpp"
+
 namespace spread::tables::detail {
 
 namespace {
@@ -38,6 +40,12 @@ std::string runs_manifest(Connection& db) {
     out += query.column_text(0) + "\t" + rpm + "\t" + query.column_text(2) + "\n";
   }
   return out;
+}
+
+std::string manifest_checksum(const std::string& manifest) {
+  Crc64 crc;
+  crc.text(manifest);
+  return crc.hex();
 }
 
 std::string manifest_problem(const std::string& stored, const std::string& actual) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -186,7 +187,8 @@ std::vector<Run> read_runs(Connection& db, std::pmr::vector<LaunchSample>* pool,
 
 }  // namespace
 
-TableContents read_table_file(const std::string& path, std::pmr::memory_resource* sample_memory) {
+TableContents read_table_file(const std::string& path, std::pmr::memory_resource* sample_memory,
+                              const ReadOptions& options) {
   const detail::TableFileInfo file = detail::inspect_table_file(path, /*allow_missing=*/false);
   if (file.empty) raise(TableErrorKind::kNotOurs, path, "empty file (0 bytes), not a table file");
   if (file.wal && file.wal_has_content) {
@@ -218,7 +220,9 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
                          .landing_data = {},
                          .pooled_samples = std::pmr::vector<LaunchSample>(
                              sample_memory != nullptr ? sample_memory : std::pmr::get_default_resource()),
-                         .pooled_offset = {}};
+                         .pooled_offset = {},
+                         .drop_point_turn_validated_rad = {},
+                         .runs_listed = true};
   const std::optional<Machine> machine = detail::read_machine_row(db);
   if (!machine) raise(TableErrorKind::kCorrupt, path, "the `machine` row is missing");
   contents.machine = *machine;
@@ -230,11 +234,35 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
     contents.runs = read_runs(db, nullptr, nullptr);
   }
   {
-    // Runs deleted or added outside the writer (tables written before the list existed carry none).
-    Statement manifest(db, std::string("SELECT value FROM meta WHERE key = '") + detail::kRunsManifestKey + "'");
-    if (manifest.step()) {
-      const std::string problem = detail::manifest_problem(manifest.column_text(0), detail::runs_manifest(db));
+    // Runs deleted or added outside the writer: the list of runs, itself checked by its checksum, names
+    // them. A table with runs and no checked list is a legacy table (written before the list was checked)
+    // or one whose list went with its runs; only a caller who accepts legacy tables reads it.
+    const auto meta = [&](const char* key) -> std::optional<std::string> {
+      Statement query(db, "SELECT value FROM meta WHERE key = ?");
+      query.bind(1, std::string(key));
+      if (!query.step()) return std::nullopt;
+      return query.column_text(0);
+    };
+    const std::optional<std::string> manifest = meta(detail::kRunsManifestKey);
+    const std::optional<std::string> checksum = meta(detail::kRunsManifestChecksumKey);
+    if (manifest && checksum && *checksum != detail::manifest_checksum(*manifest)) {
+      raise(TableErrorKind::kCorrupt, path,
+            "the table's list of runs (meta `runs_manifest`) does not match its checksum (edited outside the writer?)");
+    }
+    if (manifest) {
+      const std::string problem = detail::manifest_problem(*manifest, detail::runs_manifest(db));
       if (!problem.empty()) raise(TableErrorKind::kCorrupt, path, problem);
+    }
+    if (!contents.runs.empty() && !(manifest && checksum)) {
+      if (!options.legacy_files) {
+        raise(TableErrorKind::kWrongVersion, path,
+              std::string("runs without a checked list of them (meta `runs_manifest` ") +
+                  (manifest ? "without its checksum" : "missing") +
+                  "): a table written before libspread 0.6, or one whose runs were deleted with their list; rebuild "
+                  "it with lookup_builder (which lists its runs), or open it as a legacy file to read its runs "
+                  "unchecked (C API: SPREAD_OPEN_LEGACY_FILES)");
+      }
+      contents.runs_listed = false;
     }
   }
   {

@@ -30,6 +30,19 @@ struct TableContents {
   // about the disc axis was checked against DEM rows built at the turned drop point (meta key
   // kDropPointTurnValidatedKey, in degrees; docs/table-format.md). Empty: the table states none.
   std::optional<std::array<double, 2>> drop_point_turn_validated_rad;
+  // Whether the runs were checked against the table's list of them (runs_manifest.hpp); false only for a
+  // legacy table read with ReadOptions::legacy_files.
+  bool runs_listed = true;
+};
+
+// How read_table_file treats a table with runs but no checked list of them (no `runs_manifest`, or none
+// with its checksum): written before the list was checked — or with runs deleted together with the list,
+// which a reader cannot tell apart.
+struct ReadOptions {
+  // false: refused (TableError kWrongVersion, naming this option); true: read with the runs unchecked
+  // against a list (TableContents::runs_listed false; a list present without its checksum still has to
+  // match the runs).
+  bool legacy_files = false;
 };
 
 inline constexpr const char* kDropPointTurnValidatedKey = "drop_point_turn_validated_deg";
@@ -40,6 +53,7 @@ std::optional<std::array<double, 2>> parse_drop_point_turn_validated(const std::
 
 // sample_memory: nullptr, every Run::samples its own vector; otherwise the samples pooled in one block
 // from it (TableContents::pooled_samples).
-TableContents read_table_file(const std::string& path, std::pmr::memory_resource* sample_memory = nullptr);
+TableContents read_table_file(const std::string& path, std::pmr::memory_resource* sample_memory = nullptr,
+                              const ReadOptions& options = {});
 
 }  // namespace spread::tables

@@ -3,6 +3,7 @@
 #include <sqlite3.h>
 
 #include <ctime>
+#include <utility>
 
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
@@ -51,6 +52,26 @@ void check_existing_file_is_ours(const std::string& path, const detail::TableFil
     throw TableError(TableErrorKind::kCorrupt,
                      path + ": damaged table file (PRAGMA quick_check: " + verdict + "); refusing to write into it");
   }
+}
+
+// The list of the runs the file holds and its checksum (runs_manifest.hpp), inside the caller's
+// transaction; true when they changed.
+bool store_runs_list(Connection& db) {
+  const std::string manifest = detail::runs_manifest(db);
+  const std::pair<const char*, std::string> entries[] = {{detail::kRunsManifestKey, manifest},
+                                                         {detail::kRunsManifestChecksumKey, detail::manifest_checksum(manifest)}};
+  bool changed = false;
+  for (const auto& [key, value] : entries) {
+    Statement stored(db, "SELECT value FROM meta WHERE key = ?");
+    stored.bind(1, std::string(key));
+    if (stored.step() && stored.column_text(0) == value) continue;
+    Statement upsert(db, "INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
+    upsert.bind(1, std::string(key));
+    upsert.bind(2, value);
+    upsert.step();
+    changed = true;
+  }
+  return changed;
 }
 
 // Commits on success, rolls back when an exception leaves the scope.
@@ -289,8 +310,16 @@ void TableWriter::write_run(const Run& run, bool replace) {
   }
   insert.bind(parameter, run_checksum(run, sample_count, blob, kSampleLayout, record_bytes));
   insert.step();
-  write_meta(detail::kRunsManifestKey, detail::runs_manifest(db));  // in the run's transaction
+  store_runs_list(db);  // in the run's transaction
   transaction.commit();
+}
+
+bool TableWriter::list_runs() {
+  Connection& db = *impl_->connection;
+  Transaction transaction(db);  // the list and its checksum together
+  const bool changed = store_runs_list(db);
+  transaction.commit();
+  return changed;
 }
 
 void TableWriter::write_landing_data(const LandingData& landing) {

@@ -72,6 +72,11 @@ class TableWriter {
   // written.
   void write_run(const Run& run, bool replace = false);
 
+  // Lists the runs the file holds now, with the list's checksum (runs_manifest.hpp): write_run keeps the
+  // list so; this lists the runs of a table written before the list was checked. True when the stored
+  // list changed.
+  bool list_runs();
+
   // Inserts or replaces the material's landing data (landing_data.hpp). One transaction.
   void write_landing_data(const LandingData& landing);
 
