@@ -130,7 +130,7 @@ machine_scales)
   scales=$src/scenes/field/default_scales.toml
   run chart --tables "$work/urea.sqlite" --material Urea --widths 3,4 --scales "$scales"
   [ $rc -eq 0 ] || fail "exit $rc"
-  has "$out.stdout" "4.0 m    734 rpm, scale D+0.3 towards E (+5.0 deg)"
+  has "$out.stdout" "4.0 m    735 rpm, scale D+0.3 towards E (+5.0 deg)"
   has "$out.stdout" "3.0 m    682 rpm, scale beyond H, which is +60.0 deg (+70.0 deg)"
   run chart --tables "$work/urea.sqlite" --material Urea --widths 4 --scales "$scales" --json
   has "$out.stdout" '"drop_point_mark": "D+0.3 towards E"'
