@@ -319,9 +319,9 @@ SPREAD_API spread_status spread_transverse_bound(const spread_tables* tables, do
  * many are needed). Input errors: SPREAD_ERROR_NULL_POINTER, _NOT_FINITE, _OUT_OF_RANGE, _UNKNOWN_MATERIAL,
  * _RPM_OUTSIDE_TABLE, _UNKNOWN_EFFECT. Does not allocate. Not re-entrant on one handle (see top).
  * Time (docs/c-api.md "Worst-case time", bench_capi DomainSweep over every material, speed, height, wind,
- * kernel and tray width the grid answers): the median request 1.3-2.2 ms on one core of a 2-core AMD EPYC
- * (Zen 4); the slowest about 3 ms with AVX or AVX-512 registers and 4 ms on the portable path, set by each
- * disc at its own speed between rows with the 10 m kernel on 0.1 m trays. */
+ * kernel and tray width the grid answers): the median request 1.6-2.5 ms on one core of a 2-core AMD EPYC
+ * (Zen 4); the slowest about 3.5 ms with AVX or AVX-512 registers and 4.3 ms on the portable path, set by
+ * each disc at its own speed between rows (whose standard errors hold the interpolation's own error). */
 SPREAD_API spread_status spread_predict(spread_tables* tables, const spread_prediction_def* def,
                                         spread_prediction* result, double* transverse_mass_fraction,
                                         size_t transverse_capacity);
