@@ -33,7 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   lcm::LCM& lcm = shared_lcm();
   if (!lcm.good()) spread::fuzz::fail(kHarness, "memq:// LCM instance not usable");
   const lcm_link::LcmChannels channels = lcm_link::channels_with_prefix("FUZZ_");
-  spread::firmware::ManualClock clock;
+  spread::ManualClock clock;
   const spread::firmware::EcuParameters parameters;
   spread::firmware::Ecu ecu(clock, parameters);
   lcm_link::LcmEcuLink ecu_link(lcm, ecu, channels);
@@ -46,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (data[0] % 3 == 2) channel = &channels.heartbeat;
   const std::int64_t sequence_before = ecu.status().last_command_sequence;
   lcm.publish(*channel, payload, payload_size);
-  ecu_link.pump(spread::firmware::Nanoseconds::zero());  // delivers to every subscriber on the instance
+  ecu_link.pump(spread::Nanoseconds::zero());  // delivers to every subscriber on the instance
 
   const lcm_link::LcmLinkCounters& counters = ecu_link.counters();
   if (counters.commands_accepted > counters.commands_received) spread::fuzz::fail(kHarness, "accepted more than received");
@@ -57,7 +57,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   clock.advance(std::chrono::milliseconds(50));
   ecu.step(0.05);
   ecu_link.after_step(ecu.status());
-  tractor.handle(spread::firmware::Nanoseconds::zero());
+  tractor.handle(spread::Nanoseconds::zero());
   spread::fuzz::check_ecu_status(kHarness, ecu);
   return 0;
 }

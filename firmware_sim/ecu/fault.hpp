@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "firmware_sim/ecu/clock.hpp"
+#include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
 

@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "firmware_sim/ecu/clock.hpp"
 #include "firmware_sim/lcm/lcm_channels.hpp"
+#include "libspread/core/clock.hpp"
 #include "spread/command_t.hpp"
 #include "spread/heartbeat_t.hpp"
 #include "spread/status_t.hpp"
