@@ -250,11 +250,11 @@ int main(int argc, char** argv) {
     LoopIoGroup io;
 
     std::unique_ptr<lcm::LCM> lcm;
-    std::unique_ptr<lcm_link::LcmEcuLink> lcm_io;
+    std::unique_ptr<LcmEcuLink> lcm_io;
     if (!no_lcm) {
       lcm = std::make_unique<lcm::LCM>(lcm_url);
       if (!lcm->good()) throw std::runtime_error("LCM: cannot create an instance for URL '" + lcm_url + "'");
-      lcm_io = std::make_unique<lcm_link::LcmEcuLink>(*lcm, ecu, lcm_link::channels_from(channel_prefix, command_channel, status_channel, heartbeat_channel));
+      lcm_io = std::make_unique<LcmEcuLink>(*lcm, ecu, lcm_link::channels_from(channel_prefix, command_channel, status_channel, heartbeat_channel));
       lcm_io->attach_loop(&loop);
       io.add(*lcm_io);
     }

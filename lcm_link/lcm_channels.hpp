@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-namespace spread::firmware::lcm_link {
+namespace spread::lcm_link {
 
 inline constexpr std::string_view kDefaultChannelPrefix = "SPREAD_";
 
@@ -32,4 +32,4 @@ inline LcmChannels channels_from(std::string_view prefix, const std::string& com
   return channels;
 }
 
-}  // namespace spread::firmware::lcm_link
+}  // namespace spread::lcm_link

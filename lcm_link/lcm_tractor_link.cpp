@@ -1,11 +1,11 @@
-#include "firmware_sim/lcm/lcm_tractor_link.hpp"
+#include "lcm_link/lcm_tractor_link.hpp"
 
 #include <chrono>
 #include <stdexcept>
 
-#include "firmware_sim/lcm/lcm_payload.hpp"
+#include "lcm_link/lcm_payload.hpp"
 
-namespace spread::firmware::lcm_link {
+namespace spread::lcm_link {
 
 LcmTractorLink::LcmTractorLink(lcm::LCM& lcm, LcmChannels channels) : lcm_(lcm), channels_(std::move(channels)) {
   if (!lcm_.good()) throw std::runtime_error("LCM: the LCM instance could not be created (check the LCM URL)");
@@ -71,4 +71,4 @@ bool LcmTractorLink::wait_for(const std::function<bool()>& predicate, Nanosecond
   return true;
 }
 
-}  // namespace spread::firmware::lcm_link
+}  // namespace spread::lcm_link

@@ -8,13 +8,13 @@
 #include <optional>
 #include <string>
 
-#include "firmware_sim/lcm/lcm_channels.hpp"
+#include "lcm_link/lcm_channels.hpp"
 #include "libspread/core/clock.hpp"
 #include "spread/command_t.hpp"
 #include "spread/heartbeat_t.hpp"
 #include "spread/status_t.hpp"
 
-namespace spread::firmware::lcm_link {
+namespace spread::lcm_link {
 
 class LcmTractorLink {
  public:
@@ -56,4 +56,4 @@ class LcmTractorLink {
   std::uint64_t undecodable_ = 0;
 };
 
-}  // namespace spread::firmware::lcm_link
+}  // namespace spread::lcm_link

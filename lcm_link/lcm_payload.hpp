@@ -17,7 +17,7 @@ class status_t;
 class heartbeat_t;
 }  // namespace spread
 
-namespace spread::firmware::lcm_link {
+namespace spread::lcm_link {
 
 enum class DecodeOutcome { kDecoded, kWrongFingerprint, kUndecodable };
 
@@ -166,4 +166,4 @@ DecodeOutcome decode_checked(const void* data, std::uint32_t size, Message& out)
   return DecodeOutcome::kDecoded;
 }
 
-}  // namespace spread::firmware::lcm_link
+}  // namespace spread::lcm_link
