@@ -216,11 +216,12 @@ void BM_CanRequestAnswered(benchmark::State& state) {
   tc.device_class = isobus::kDeviceClassNonSpecific;
   tc.function = isobus::kFunctionTaskController;
   const auto tc_name = isobus::name_to_bytes(isobus::encode_name(tc));
-  processor.handle_frame(isobus::can::make_frame(isobus::encode_id({6, can::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
+  using isobus::can::make_frame;
+  processor.handle_frame(make_frame(isobus::encode_id({6, can::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
   const auto status = isobus::encode_tc_status(true);
-  processor.handle_frame(isobus::can::make_frame(isobus::encode_id({3, isobus::kProcessDataPgn, 0xFF, 0x81}), status.data(), 8));
+  processor.handle_frame(make_frame(isobus::encode_id({3, isobus::kProcessDataPgn, 0xFF, 0x81}), status.data(), 8));
   const isobus::ProcessDataBytes b = isobus::encode_process_data({2, 0, 390, 0});
-  const can_frame request = isobus::can::make_frame(isobus::encode_id({3, isobus::kProcessDataPgn, 0x80, 0x81}), b.data(), 8);
+  const can_frame request = make_frame(isobus::encode_id({3, isobus::kProcessDataPgn, 0x80, 0x81}), b.data(), 8);
   for (auto _ : state) processor.handle_frame(request);
   state.counters["answers"] = static_cast<double>(sink.sent);
 }
