@@ -14,18 +14,19 @@
 #include <string>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/can/candump_log.hpp"
-#include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
-#include "firmware_sim/isobus/iso_name.hpp"
 #include "firmware_sim/lcm/lcm_ecu_link.hpp"
+#include "isobus/can/candump_log.hpp"
+#include "isobus/can/unix_can_bus.hpp"
+#include "isobus/iso_name.hpp"
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
 #include "firmware_sim/ecu/capi_spread_predictor.hpp"
 #endif
 
 namespace {
 
+using namespace spread;  // the clock (core)
 using namespace spread::firmware;
 
 std::atomic<bool> g_stop{false};
@@ -219,10 +220,10 @@ int main(int argc, char** argv) {
     }
 
     // Replay runs on simulated time starting at the log's first timestamp, so answers are reproducible.
-    std::optional<can::CandumpLog> replay_log;
+    std::optional<isobus::can::CandumpLog> replay_log;
     std::unique_ptr<Clock> clock;
     if (!replay_path.empty()) {
-      replay_log = can::read_candump_file(replay_path);
+      replay_log = isobus::can::read_candump_file(replay_path);
       for (const auto& e : replay_log->errors) std::cerr << "firmware_sim: " << replay_path << ": " << e << "\n";
       const Nanoseconds start = replay_log->records.empty() ? Nanoseconds::zero() : replay_log->records.front().time;
       clock = std::make_unique<ManualClock>(start);
@@ -249,17 +250,17 @@ int main(int argc, char** argv) {
     LoopIoGroup io;
 
     std::unique_ptr<lcm::LCM> lcm;
-    std::unique_ptr<lcm_link::LcmEcuLink> lcm_io;
+    std::unique_ptr<LcmEcuLink> lcm_io;
     if (!no_lcm) {
       lcm = std::make_unique<lcm::LCM>(lcm_url);
       if (!lcm->good()) throw std::runtime_error("LCM: cannot create an instance for URL '" + lcm_url + "'");
-      lcm_io = std::make_unique<lcm_link::LcmEcuLink>(*lcm, ecu, lcm_link::channels_from(channel_prefix, command_channel, status_channel, heartbeat_channel));
+      lcm_io = std::make_unique<LcmEcuLink>(*lcm, ecu, lcm_link::channels_from(channel_prefix, command_channel, status_channel, heartbeat_channel));
       lcm_io->attach_loop(&loop);
       io.add(*lcm_io);
     }
 
     std::ofstream record_file;
-    std::unique_ptr<can::CandumpWriter> recorder;
+    std::unique_ptr<isobus::can::CandumpWriter> recorder;
     if (!record_path.empty()) {
       record_file.open(record_path);
       if (!record_file) throw std::runtime_error("cannot write candump log '" + record_path + "'");
@@ -268,30 +269,30 @@ int main(int argc, char** argv) {
           replay_log ? Nanoseconds::zero()
                      : std::chrono::duration_cast<Nanoseconds>(std::chrono::system_clock::now().time_since_epoch()) -
                            clock->now();
-      recorder = std::make_unique<can::CandumpWriter>(record_file, *clock, can::can_bus_log_name(can_interface),
+      recorder = std::make_unique<isobus::can::CandumpWriter>(record_file, *clock, isobus::can::can_bus_log_name(can_interface),
                                                       epoch_offset);
     }
 
     can::CanEcuSettings can_settings;
     can_settings.address = static_cast<std::uint8_t>(can_address);
     can_settings.name = name_value;
-    can::CanFramePort can_port;
+    isobus::can::CanFramePort can_port;
     std::unique_ptr<can::CanPortIo> can_io;
     if (!can_interface.empty()) {
-      can_port = can::open_can_bus(can_interface);
+      can_port = isobus::can::open_can_bus(can_interface);
       can_io = std::make_unique<can::CanPortIo>(can_port, ecu, *clock, can_settings, recorder.get());
       can_io->processor().start_address_claim();
       io.add(*can_io);
     }
 
     // Replay answers go to stdout as candump lines (and to --record with the received frames).
-    std::unique_ptr<can::CandumpWriter> replay_answers;
-    std::unique_ptr<can::TeeSink> replay_tx;
+    std::unique_ptr<isobus::can::CandumpWriter> replay_answers;
+    std::unique_ptr<isobus::can::TeeSink> replay_tx;
     std::unique_ptr<can::CanEcuProcessor> replay_processor;
     std::unique_ptr<can::CandumpReplayIo> replay_io;
     if (replay_log) {
-      replay_answers = std::make_unique<can::CandumpWriter>(std::cout, *clock, "can0");
-      replay_tx = std::make_unique<can::TeeSink>(*replay_answers, recorder.get());
+      replay_answers = std::make_unique<isobus::can::CandumpWriter>(std::cout, *clock, "can0");
+      replay_tx = std::make_unique<isobus::can::TeeSink>(*replay_answers, recorder.get());
       replay_processor = std::make_unique<can::CanEcuProcessor>(ecu, *clock, *replay_tx, can_settings);
       replay_io = std::make_unique<can::CandumpReplayIo>(*replay_log, *replay_processor, *clock, recorder.get());
       io.add(*replay_io);

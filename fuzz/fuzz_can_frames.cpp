@@ -12,17 +12,19 @@
 #include <cstring>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/can/isobus_id.hpp"
-#include "firmware_sim/can/process_data.hpp"
-#include "firmware_sim/can/speed_messages.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
 #include "fuzz/ecu_invariants.hpp"
 #include "fuzz/fuzz_input.hpp"
+#include "isobus/isobus_id.hpp"
+#include "isobus/process_data.hpp"
+#include "isobus/speed_messages.hpp"
 
 namespace {
 
 constexpr const char* kHarness = "fuzz_can_frames";
-namespace can = spread::firmware::can;
+namespace can = spread::isobus::can;
+namespace iso = spread::isobus;
+namespace ecu_can = spread::firmware::can;
 
 // Checks every answer instead of sending it anywhere.
 class CheckingSink final : public can::CanFrameSink {
@@ -32,13 +34,13 @@ class CheckingSink final : public can::CanFrameSink {
     if ((frame.can_id & CAN_EFF_FLAG) == 0 || (frame.can_id & (CAN_RTR_FLAG | CAN_ERR_FLAG)) != 0) {
       spread::fuzz::fail(kHarness, "answer is not an extended data frame");
     }
-    const can::IsobusId id = can::decode_id(frame.can_id & CAN_EFF_MASK);
+    const iso::IsobusId id = iso::decode_id(frame.can_id & CAN_EFF_MASK);
     // A request (PGN 0xEA00) has 3 data bytes (ISO 11783-3): the ECU asks for every address claim once its
     // own stands.
-    const bool request = id.pgn == can::kRequestPgn && frame.len == 3;
+    const bool request = id.pgn == ecu_can::kRequestPgn && frame.len == 3;
     if (frame.len != 8 && !request) spread::fuzz::fail(kHarness, "answer with DLC " + std::to_string(frame.len));
     // The one message allowed from elsewhere: cannot-claim, from the null address, after losing 0x80.
-    const bool cannot_claim = id.pgn == can::kAddressClaimedPgn && id.source == can::kNullAddress;
+    const bool cannot_claim = id.pgn == iso::kAddressClaimedPgn && id.source == iso::kNullAddress;
     if (id.source != own_address_ && !cannot_claim) {
       spread::fuzz::fail(kHarness, "answer not sent from the ECU's own address");
     }
@@ -51,16 +53,16 @@ class CheckingSink final : public can::CanFrameSink {
 
 void check_codecs(const can_frame& frame) {
   const std::uint32_t id29 = frame.can_id & CAN_EFF_MASK;
-  if (can::encode_id(can::decode_id(id29)) != id29) spread::fuzz::fail(kHarness, "29-bit id does not round-trip");
-  can::ProcessDataBytes bytes{};
+  if (iso::encode_id(iso::decode_id(id29)) != id29) spread::fuzz::fail(kHarness, "29-bit id does not round-trip");
+  iso::ProcessDataBytes bytes{};
   std::memcpy(bytes.data(), frame.data, bytes.size());
-  if (can::encode_process_data(can::decode_process_data(bytes)) != bytes) {
+  if (iso::encode_process_data(iso::decode_process_data(bytes)) != bytes) {
     spread::fuzz::fail(kHarness, "process data bytes do not round-trip");
   }
-  if (const auto pdack = can::decode_pdack(bytes)) {
+  if (const auto pdack = iso::decode_pdack(bytes)) {
     if (pdack->acknowledged_command > 0xF) spread::fuzz::fail(kHarness, "PDACK command above 4 bits");
   }
-  if (const auto speed = can::decode_speed(bytes)) {
+  if (const auto speed = iso::decode_speed(bytes)) {
     if (!(speed->speed_m_s >= 0.0 && speed->speed_m_s <= 64.255)) spread::fuzz::fail(kHarness, "speed out of range");
   }
 }
@@ -69,26 +71,26 @@ void check_codecs(const can_frame& frame) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   spread::fuzz::FuzzInput input(data, size);
-  spread::firmware::ManualClock clock;
+  spread::ManualClock clock;
   const spread::firmware::EcuParameters parameters;
   spread::firmware::Ecu ecu(clock, parameters);
-  const can::CanEcuSettings settings;
+  const ecu_can::CanEcuSettings settings;
   CheckingSink sink(settings.address);
-  can::CanEcuProcessor processor(ecu, clock, sink, settings);
+  ecu_can::CanEcuProcessor processor(ecu, clock, sink, settings);
   processor.start_address_claim();
   // Let the claim stand (250 ms, ISO 11783-5) so that the inputs reach the process-data handler.
   clock.advance(std::chrono::milliseconds(250));
   processor.service();
   // A partner task controller at 0x81 (its claim with a TC's NAME, then its status), so that the inputs'
   // process data from 0x81 reach the handler past the partner check; the inputs may still take it away.
-  spread::firmware::isobus::IsoName tc;
+  iso::IsoName tc;
   tc.self_configurable = true;
-  tc.device_class = spread::firmware::isobus::kDeviceClassNonSpecific;
-  tc.function = spread::firmware::isobus::kFunctionTaskController;
-  const auto tc_name = spread::firmware::isobus::name_to_bytes(spread::firmware::isobus::encode_name(tc));
-  processor.handle_frame(can::make_frame(can::encode_id({6, can::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
+  tc.device_class = spread::isobus::kDeviceClassNonSpecific;
+  tc.function = spread::isobus::kFunctionTaskController;
+  const auto tc_name = spread::isobus::name_to_bytes(spread::isobus::encode_name(tc));
+  processor.handle_frame(can::make_frame(iso::encode_id({6, iso::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
   const std::uint8_t status[8] = {0xFE, 0xFF, 0xFF, 0xFF, 0x01, 0xFF, 0xFF, 0xFF};
-  processor.handle_frame(can::make_frame(can::encode_id({3, can::kProcessDataPgn, 0xFF, 0x81}), status, 8));
+  processor.handle_frame(can::make_frame(iso::encode_id({3, iso::kProcessDataPgn, 0xFF, 0x81}), status, 8));
   while (input.remaining() > 0) {
     const can_frame frame = input.take<can_frame>();
     check_codecs(frame);

@@ -1,4 +1,4 @@
-// Fuzz harness: the candump log reader (firmware_sim/can/candump_log), used to replay recorded bus
+// Fuzz harness: the candump log reader (isobus/can/candump_log), used to replay recorded bus
 // traffic into the ECU. Input: log text. Checked: no crash; every line is a record or an error; a
 // parsed frame formats back to a line that parses to the same frame.
 #include <cstddef>
@@ -7,13 +7,13 @@
 #include <sstream>
 #include <string>
 
-#include "firmware_sim/can/candump_log.hpp"
 #include "fuzz/fuzz_input.hpp"
+#include "isobus/can/candump_log.hpp"
 
 namespace {
 
 constexpr const char* kHarness = "fuzz_candump";
-namespace can = spread::firmware::can;
+namespace can = spread::isobus::can;
 
 bool same_frame(const can_frame& a, const can_frame& b) {
   return a.can_id == b.can_id && a.len == b.len && std::memcmp(a.data, b.data, a.len) == 0;

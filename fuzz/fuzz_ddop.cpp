@@ -1,4 +1,4 @@
-// Fuzz harness: the device descriptor object pool reader (firmware_sim/isobus/ddop), as a task controller
+// Fuzz harness: the device descriptor object pool reader (isobus/ddop), as a task controller
 // meets a pool from an unknown implement. Input: the pool's bytes.
 // Checked: a pool the reader accepts is written back byte for byte (reader and writer are each other's
 // inverse), and what it refuses comes with a reason.
@@ -6,12 +6,12 @@
 #include <cstdint>
 #include <span>
 
-#include "firmware_sim/isobus/ddop.hpp"
 #include "fuzz/fuzz_input.hpp"
+#include "isobus/ddop.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   constexpr const char* kHarness = "fuzz_ddop";
-  namespace iso = spread::firmware::isobus;
+  namespace iso = spread::isobus;
   const std::span<const std::uint8_t> bytes(data, size);
   const iso::DdopParseResult result = iso::parse_ddop(bytes);
   if (!result.pool) {

@@ -1,4 +1,4 @@
-// Fuzz harness: the ISO 11783-10 task-controller server (firmware_sim/isobus/tc_server).
+// Fuzz harness: the ISO 11783-10 task-controller server (isobus/tc_server).
 // Input: 1 flag byte (bit 0: a well-behaved client 0x80 first connects with the spreader's 8-section pool
 // through a real TP session, so the records below also reach the active state), then records of 11 bytes:
 //   kind (bits 0-2: 0 TP.CM, 1 TP.DT, 2 ETP.CM, 3 ETP.DT, 4 PGN 0xCB00, 5 working-set master, 6 set_value,
@@ -16,14 +16,14 @@
 #include <string>
 #include <vector>
 
-#include "firmware_sim/isobus/spreader_ddop.hpp"
-#include "firmware_sim/isobus/tc_server.hpp"
+#include "firmware_sim/can/spreader_ddop.hpp"
 #include "fuzz/fuzz_input.hpp"
+#include "isobus/tc_server.hpp"
 
 namespace {
 
 constexpr const char* kHarness = "fuzz_tc_server";
-namespace iso = spread::firmware::isobus;
+namespace iso = spread::isobus;
 constexpr std::uint8_t kTc = 0xF7;
 constexpr std::uint8_t kClient = 0x80;
 constexpr std::uint8_t kOther = 0x90;
@@ -57,8 +57,8 @@ void check(iso::TcServer& tc, std::vector<iso::TransportFrame>& frames, std::chr
 
 // A well-behaved client connects: working-set master, version, label, pool by TP, activate.
 void connect(iso::TcServer& tc, std::chrono::nanoseconds now) {
-  iso::SpreaderDescription d;
-  const std::vector<std::uint8_t> pool = iso::write_ddop(iso::make_spreader_ddop(d));
+  spread::firmware::can::SpreaderDescription d;
+  const std::vector<std::uint8_t> pool = iso::write_ddop(spread::firmware::can::make_spreader_ddop(d));
   iso::TransportProtocol client_tp(kClient);
   auto single = [&](std::uint32_t pgn, std::uint8_t dst, const iso::TcFrame& data) {
     tc.handle_frame(pgn, kClient, dst, data, now);

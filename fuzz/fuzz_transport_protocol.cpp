@@ -1,4 +1,4 @@
-// Fuzz harness: ISO 11783-3 TP / ISO 11783-6 ETP reassembly (firmware_sim/isobus/transport_protocol).
+// Fuzz harness: ISO 11783-3 TP / ISO 11783-6 ETP reassembly (isobus/transport_protocol).
 // Input: 1 flag byte (bit 0: we send a 100-byte TP message to 0x81, bit 1: a 2000-byte ETP message to 0x82,
 // bit 2: a 30-byte BAM), then records of 12 bytes: PGN selector (low 2 bits: TP.CM, TP.DT, ETP.CM, ETP.DT),
 // source, destination, 8 data bytes, milliseconds the clock advances after the frame.
@@ -11,13 +11,13 @@
 #include <cstdint>
 #include <string>
 
-#include "firmware_sim/isobus/transport_protocol.hpp"
 #include "fuzz/fuzz_input.hpp"
+#include "isobus/transport_protocol.hpp"
 
 namespace {
 
 constexpr const char* kHarness = "fuzz_transport_protocol";
-namespace iso = spread::firmware::isobus;
+namespace iso = spread::isobus;
 constexpr std::uint8_t kOwn = 0x80;
 constexpr iso::TransportLimits kLimits{8192, 8, 16};
 

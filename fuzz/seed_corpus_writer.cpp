@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "firmware_sim/can/candump_log.hpp"
-#include "firmware_sim/isobus/spreader_ddop.hpp"
-#include "firmware_sim/isobus/tc_messages.hpp"
-#include "firmware_sim/isobus/transport_protocol.hpp"
+#include "firmware_sim/can/spreader_ddop.hpp"
+#include "isobus/can/candump_log.hpp"
+#include "isobus/tc_messages.hpp"
+#include "isobus/transport_protocol.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 #include "spread/command_t.hpp"
@@ -85,7 +85,7 @@ void can_seeds(const fs::path& source, const fs::path& out) {
   const fs::path log = source / "tests/firmware/data/process_data_session.log";
   fs::create_directories(out / "candump");
   fs::copy_file(log, out / "candump" / "process_data_session.log", fs::copy_options::overwrite_existing);
-  const auto records = spread::firmware::can::read_candump_file(log.string()).records;
+  const auto records = spread::isobus::can::read_candump_file(log.string()).records;
   std::vector<std::uint8_t> session;
   for (std::size_t i = 0; i < records.size(); ++i) {
     std::vector<std::uint8_t> one;
@@ -101,7 +101,7 @@ void can_seeds(const fs::path& source, const fs::path& out) {
 // milliseconds to advance. A real sender session talks to the node under test (0x80); every frame that
 // reaches 0x80 is recorded.
 void transport_seeds(const fs::path& out) {
-  namespace iso = spread::firmware::isobus;
+  namespace iso = spread::isobus;
   auto selector = [](std::uint32_t pgn) -> std::uint8_t {
     if (pgn == iso::kTpConnectionManagementPgn) return 0;
     if (pgn == iso::kTpDataTransferPgn) return 1;
@@ -157,7 +157,7 @@ void transport_seeds(const fs::path& out) {
 // of kind, destination, 8 data bytes, milliseconds to advance. Seeds: the handshake without a pool, and an
 // active client reporting values, sending client task messages, deactivating and activating again.
 void tc_server_seeds(const fs::path& out) {
-  namespace iso = spread::firmware::isobus;
+  namespace iso = spread::isobus;
   constexpr std::uint8_t kTc = 0xF7;
   auto record = [](std::vector<std::uint8_t>& bytes, std::uint8_t op, std::uint8_t destination,
                    const std::array<std::uint8_t, 8>& data, std::uint8_t advance_ms) {
@@ -192,13 +192,13 @@ void tc_server_seeds(const fs::path& out) {
 
 // fuzz_ddop input: a pool's bytes. The spreader's pool for 1, 8 and 16 sections.
 void ddop_seeds(const fs::path& out) {
-  namespace iso = spread::firmware::isobus;
+  namespace iso = spread::isobus;
   for (const int sections : {1, 8, 16}) {
-    iso::SpreaderDescription d;
+    spread::firmware::can::SpreaderDescription d;
     d.section_count = sections;
     d.name = 0xA00A8000001234ull;
     write_bytes(out / "ddop" / ("spreader_" + std::to_string(sections) + ".bin"),
-                iso::write_ddop(iso::make_spreader_ddop(d)));
+                iso::write_ddop(spread::firmware::can::make_spreader_ddop(d)));
   }
 }
 

@@ -4,8 +4,8 @@
 Usage: check_layers.py --root SOURCE_DIR [--layers FILE] [--links BUILD_DIR/layer_links.txt]
 
 A module lives in its layer's folder, libspread/LAYER/MODULE (a module named like its layer is the layer's
-folder itself: libspread/core). Every #include "…" in libspread/, capi/, firmware_sim/, tools/ and
-lookup_builder/ that names a folder of the table (libspread/LAYER/MODULE/…, capi/…, lookup_builder/…, a
+folder itself: libspread/core). Every #include "…" in libspread/, capi/, isobus/, lcm_link/, firmware_sim/, tools/
+and lookup_builder/ that names a folder of the table (libspread/LAYER/MODULE/…, capi/…, lookup_builder/…, a
 `header` line) is a use of that unit; so is every link between our targets the build recorded
 (cmake/SpreadLayers.cmake). A module may use the modules of lower layers and those before it in its own layer;
 a program what its line lists. Exits 1 naming each use against the table (file and line, or the two targets),
@@ -16,7 +16,7 @@ import os
 import re
 import sys
 
-SCANNED = ("libspread", "capi", "firmware_sim", "tools", "lookup_builder")
+SCANNED = ("libspread", "capi", "isobus", "lcm_link", "firmware_sim", "tools", "lookup_builder")
 SOURCE_SUFFIXES = (".c", ".cpp", ".h", ".hpp")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 

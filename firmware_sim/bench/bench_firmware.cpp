@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/can/isobus_id.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
+#include "isobus/isobus_id.hpp"
 #include "tests/firmware/analytic_predictor.hpp"
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
 #include <unistd.h>
@@ -37,6 +37,7 @@
 
 namespace {
 
+using namespace spread;  // the clock (core)
 using namespace spread::firmware;
 using SteadyTime = std::chrono::steady_clock;
 
@@ -202,7 +203,7 @@ BENCHMARK(BM_LoopStepManualSteady)->Unit(benchmark::kMicrosecond)->Iterations(10
 void BM_CanRequestAnswered(benchmark::State& state) {
   ManualClock clock;
   Ecu ecu(clock, EcuParameters{});
-  class CountingSink final : public can::CanFrameSink {
+  class CountingSink final : public isobus::can::CanFrameSink {
    public:
     bool send(const can_frame&) override { return ++sent > 0; }
     std::uint64_t sent = 0;
@@ -215,11 +216,12 @@ void BM_CanRequestAnswered(benchmark::State& state) {
   tc.device_class = isobus::kDeviceClassNonSpecific;
   tc.function = isobus::kFunctionTaskController;
   const auto tc_name = isobus::name_to_bytes(isobus::encode_name(tc));
-  processor.handle_frame(can::make_frame(can::encode_id({6, can::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
+  using isobus::can::make_frame;
+  processor.handle_frame(make_frame(isobus::encode_id({6, can::kAddressClaimedPgn, 0xFF, 0x81}), tc_name.data(), 8));
   const auto status = isobus::encode_tc_status(true);
-  processor.handle_frame(can::make_frame(can::encode_id({3, can::kProcessDataPgn, 0xFF, 0x81}), status.data(), 8));
-  const can::ProcessDataBytes b = can::encode_process_data({2, 0, 390, 0});
-  const can_frame request = can::make_frame(can::encode_id({3, can::kProcessDataPgn, 0x80, 0x81}), b.data(), 8);
+  processor.handle_frame(make_frame(isobus::encode_id({3, isobus::kProcessDataPgn, 0xFF, 0x81}), status.data(), 8));
+  const isobus::ProcessDataBytes b = isobus::encode_process_data({2, 0, 390, 0});
+  const can_frame request = make_frame(isobus::encode_id({3, isobus::kProcessDataPgn, 0x80, 0x81}), b.data(), 8);
   for (auto _ : state) processor.handle_frame(request);
   state.counters["answers"] = static_cast<double>(sink.sent);
 }

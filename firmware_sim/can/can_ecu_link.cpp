@@ -5,14 +5,18 @@
 #include <limits>
 #include <thread>
 
-#include "firmware_sim/can/ddi.hpp"
-#include "firmware_sim/can/isobus_id.hpp"
 #include "firmware_sim/can/fault_dtc.hpp"
-#include "firmware_sim/can/speed_messages.hpp"
-#include "firmware_sim/isobus/spreader_ddop.hpp"
+#include "firmware_sim/can/spreader_ddop.hpp"
 #include "firmware_sim/ecu/metering.hpp"
+#include "isobus/ddi.hpp"
+#include "isobus/isobus_id.hpp"
+#include "isobus/speed_messages.hpp"
 
 namespace spread::firmware::can {
+// The ECU's side of the bus is written in the protocol's and the bus's own terms.
+using namespace isobus;
+using namespace isobus::can;
+
 namespace {
 
 std::int32_t to_int32(double value) {
@@ -74,7 +78,7 @@ struct PoolBytes {
 // The pool of the machine as set: its sections divide `working_width_m` evenly, as the ECU's section
 // control does (side_geometry), so a TC switching by position uses the sections the ECU works with.
 PoolBytes make_pool(const Ecu& ecu, const CanEcuSettings& settings, double working_width_m) {
-  isobus::SpreaderDescription d;
+  SpreaderDescription d;
   d.name = settings.name;
   // The pool's serial number is the unit's: the NAME's identity number, which differs between units.
   d.serial_number = "SIM-" + std::to_string(isobus::decode_name(settings.name).identity_number);
@@ -82,8 +86,8 @@ PoolBytes make_pool(const Ecu& ecu, const CanEcuSettings& settings, double worki
   d.maximum_width_m = ecu.parameters().width_max_m;
   d.working_width_m = std::min(working_width_m, d.maximum_width_m);
   d.products = ecu.material_names();
-  if (d.products.size() > isobus::kMaxListedProducts) d.products.resize(isobus::kMaxListedProducts);
-  const isobus::Ddop pool = isobus::make_spreader_ddop(d);
+  if (d.products.size() > kMaxListedProducts) d.products.resize(kMaxListedProducts);
+  const isobus::Ddop pool = make_spreader_ddop(d);
   const auto& device = std::get<isobus::DeviceObject>(pool.objects.front());
   return {isobus::write_ddop(pool), isobus::write_ddop(pool, 3), device.structure_label, device.localization_label};
 }
@@ -630,10 +634,10 @@ void CanEcuProcessor::handle_process_data(const can_frame& frame, std::uint8_t s
   // element, is accepted for every DDI as well, for tools that address the machine as a whole.
   // ISO 11783-10 PDACK: an element the pool does not have is "invalid element number"; an element it has
   // that does not carry the DDI is "DDI not supported by element".
-  const auto element = isobus::element_for_ddi(m.ddi);
+  const auto element = element_for_ddi(m.ddi);
   if (m.element != 0 && (!element || m.element != *element)) {
     ecu_.record_fault(Fault::kCanUnknownDdi);
-    nack(isobus::spreader_has_element(m.element, ecu_.parameters().section_count) ? kPdackDdiNotSupported
+    nack(spreader_has_element(m.element, ecu_.parameters().section_count) ? kPdackDdiNotSupported
                                                                                   : kPdackInvalidElement);
     return;
   }

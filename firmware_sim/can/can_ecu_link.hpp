@@ -6,16 +6,16 @@
 #include <cstdint>
 #include <optional>
 
-#include "firmware_sim/can/can_frame_port.hpp"
-#include "firmware_sim/can/candump_log.hpp"
-#include "firmware_sim/can/measurement_triggers.hpp"
-#include "firmware_sim/can/network_link.hpp"
-#include "firmware_sim/can/process_data.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
-#include "firmware_sim/isobus/iso_name.hpp"
-#include "firmware_sim/isobus/tc_client.hpp"
-#include "firmware_sim/isobus/tc_partner.hpp"
-#include "firmware_sim/isobus/transport_protocol.hpp"
+#include "isobus/can/can_frame_port.hpp"
+#include "isobus/can/candump_log.hpp"
+#include "isobus/iso_name.hpp"
+#include "isobus/measurement_triggers.hpp"
+#include "isobus/network_link.hpp"
+#include "isobus/process_data.hpp"
+#include "isobus/tc_client.hpp"
+#include "isobus/tc_partner.hpp"
+#include "isobus/transport_protocol.hpp"
 
 namespace spread::firmware::can {
 
@@ -67,13 +67,13 @@ inline constexpr std::size_t kSpeedSourceCount = 3;
 
 class CanEcuProcessor {
  public:
-  CanEcuProcessor(Ecu& ecu, const Clock& clock, CanFrameSink& tx, const CanEcuSettings& settings = {});
+  CanEcuProcessor(Ecu& ecu, const Clock& clock, isobus::can::CanFrameSink& tx, const CanEcuSettings& settings = {});
 
   // Reports a read that did not yield a frame: truncated/oversized records are malformed input.
-  void handle_read_outcome(ReadOutcome outcome);
+  void handle_read_outcome(isobus::can::ReadOutcome outcome);
   void handle_frame(const can_frame& frame);
   // Starts the ISO 11783-5 address claim (a live bus). Until its claim stands the ECU sends nothing else
-  // and ignores process data; see NetworkLink for the mode without a claim (replay).
+  // and ignores process data; see isobus::NetworkLink for the mode without a claim (replay).
   void start_address_claim();
   // Timers of the network layer (claim settle time, delayed cannot-claim); called by the loop I/O.
   void service();
@@ -81,13 +81,13 @@ class CanEcuProcessor {
   // and the work state was switched off when the address was lost. The ECU core reads it to keep metering
   // closed (metering must not continue without a bus address).
   bool has_address() const { return network_.has_address(); }
-  const NetworkLink& network() const { return network_; }
+  const isobus::NetworkLink& network() const { return network_; }
   // The task-controller client: connection state, the TC's address, why the last connection ended.
   const isobus::TaskControllerClient& task_controller_client() const { return tc_client_; }
   // The partner TC: the only node whose process data and TC status the ECU takes.
   const isobus::TaskControllerPartner& task_controller_partner() const { return partner_; }
   const isobus::TransportProtocol& transport() const { return transport_; }
-  const MeasurementTriggers& measurement_triggers() const { return triggers_; }
+  const isobus::MeasurementTriggers& measurement_triggers() const { return triggers_; }
 
   const CanLinkCounters& counters() const { return counters_; }
   const CanEcuSettings& settings() const { return settings_; }
@@ -108,7 +108,7 @@ class CanEcuProcessor {
   void handle_speed(const can_frame& frame, SpeedSource source);
   std::optional<std::int32_t> actual_value(std::uint16_t ddi, const EcuStatus& status) const;
   // Applies a set-value; returns the PDACK error bits (0 = accepted).
-  std::uint8_t apply_set_value(const ProcessData& message);
+  std::uint8_t apply_set_value(const isobus::ProcessData& message);
   void send(std::uint32_t pgn, std::uint8_t destination, std::uint8_t priority, const std::uint8_t* data);
   // Sends what the TC client and the transport protocol have queued.
   void flush_isobus(Nanoseconds now);
@@ -119,7 +119,7 @@ class CanEcuProcessor {
 
   Ecu& ecu_;
   const Clock& clock_;
-  CanFrameSink& tx_;
+  isobus::can::CanFrameSink& tx_;
   CanEcuSettings settings_;
   CanLinkCounters counters_;
   struct SpeedReading {
@@ -128,12 +128,12 @@ class CanEcuProcessor {
     TravelDirection direction = TravelDirection::kUnknown;
   };
   std::array<SpeedReading, kSpeedSourceCount> speeds_{};
-  NetworkLink network_;
+  isobus::NetworkLink network_;
   isobus::TransportProtocol transport_;
   isobus::TaskControllerClient tc_client_;
   isobus::TaskControllerPartner partner_;
   std::optional<Nanoseconds> next_dm1_;
-  MeasurementTriggers triggers_;
+  isobus::MeasurementTriggers triggers_;
   std::optional<Nanoseconds> last_measurement_time_;
   bool tc_was_connected_ = false;
   // Our address was lost or changed, or the TC refused us: the working set must connect again (working-set
@@ -148,8 +148,8 @@ class CanEcuProcessor {
 // Loop I/O over a frame port: reads every pending frame each tick (recording rx and tx when asked).
 class CanPortIo final : public LoopIo {
  public:
-  CanPortIo(CanFramePort& port, Ecu& ecu, const Clock& clock, const CanEcuSettings& settings = {},
-            CanFrameSink* recorder = nullptr);
+  CanPortIo(isobus::can::CanFramePort& port, Ecu& ecu, const Clock& clock, const CanEcuSettings& settings = {},
+            isobus::can::CanFrameSink* recorder = nullptr);
   void pump(Nanoseconds max_wait) override;
   void after_step(const EcuStatus&) override { processor_.service(); }
   // -1 once the bus has gone away: a closed socket is always "readable" and would make the loop spin.
@@ -159,10 +159,10 @@ class CanPortIo final : public LoopIo {
   bool bus_closed() const { return bus_closed_; }
 
  private:
-  CanFramePort& port_;
+  isobus::can::CanFramePort& port_;
   bool bus_closed_ = false;
-  CanFrameSink* recorder_;
-  TeeSink tx_;
+  isobus::can::CanFrameSink* recorder_;
+  isobus::can::TeeSink tx_;
   CanEcuProcessor processor_;
 };
 
@@ -170,8 +170,8 @@ class CanPortIo final : public LoopIo {
 // time offset from the first record (replay start = the clock's time at construction).
 class CandumpReplayIo final : public LoopIo {
  public:
-  CandumpReplayIo(const CandumpLog& log, CanEcuProcessor& processor, const Clock& clock,
-                  CanFrameSink* recorder = nullptr);
+  CandumpReplayIo(const isobus::can::CandumpLog& log, CanEcuProcessor& processor, const Clock& clock,
+                  isobus::can::CanFrameSink* recorder = nullptr);
   void pump(Nanoseconds max_wait) override;
   void after_step(const EcuStatus&) override {}
   bool finished() const { return next_ >= log_.records.size(); }
@@ -179,10 +179,10 @@ class CandumpReplayIo final : public LoopIo {
   Nanoseconds span() const;
 
  private:
-  const CandumpLog& log_;
+  const isobus::can::CandumpLog& log_;
   CanEcuProcessor& processor_;
   const Clock& clock_;
-  CanFrameSink* recorder_;
+  isobus::can::CanFrameSink* recorder_;
   Nanoseconds start_;
   std::size_t next_ = 0;
 };

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "firmware_sim/ecu/fault.hpp"
-#include "firmware_sim/isobus/dm1.hpp"
+#include "isobus/dm1.hpp"
 
 namespace spread::firmware::can {
 

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "firmware_sim/ecu/clock.hpp"
 #include "firmware_sim/ecu/disc_speed_model.hpp"
 #include "firmware_sim/ecu/ecu_command.hpp"
 #include "firmware_sim/ecu/ecu_parameters.hpp"
@@ -17,6 +16,7 @@
 #include "firmware_sim/ecu/rpm_for_width_solver.hpp"
 #include "firmware_sim/ecu/section_planner.hpp"
 #include "firmware_sim/ecu/spread_predictor.hpp"
+#include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
 

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <cstdint>
 
-#include "firmware_sim/ecu/clock.hpp"
 #include "firmware_sim/ecu/rpm_for_width_solver.hpp"
+#include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
 

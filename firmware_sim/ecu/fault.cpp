@@ -2,36 +2,6 @@
 
 namespace spread::firmware {
 
-std::string_view fault_name(Fault fault) {
-  switch (fault) {
-    case Fault::kLcmUndecodable: return "lcm_undecodable";
-    case Fault::kLcmWrongFingerprint: return "lcm_wrong_fingerprint";
-    case Fault::kCanMalformedFrame: return "can_malformed_frame";
-    case Fault::kCanUnknownDdi: return "can_unknown_ddi";
-    case Fault::kCanUnsupportedCommand: return "can_unsupported_command";
-    case Fault::kSetpointOutOfRange: return "setpoint_out_of_range";
-    case Fault::kNotANumber: return "not_a_number";
-    case Fault::kUnknownMaterial: return "unknown_material";
-    case Fault::kUnknownMode: return "unknown_mode";
-    case Fault::kStaleSequence: return "stale_sequence";
-    case Fault::kAutomaticUnavailable: return "automatic_unavailable";
-    case Fault::kWidthOutOfReach: return "width_out_of_reach";
-    case Fault::kCommandTimeout: return "command_timeout";
-    case Fault::kLoopOverrun: return "loop_overrun";
-    case Fault::kPredictionFailed: return "prediction_failed";
-    case Fault::kReplayParseError: return "replay_parse_error";
-    case Fault::kCanNotSettable: return "can_not_settable";
-    case Fault::kDiscNotAtSpeed: return "disc_not_at_speed";
-    case Fault::kSpeedUnavailable: return "speed_unavailable";
-    case Fault::kDrivingReverse: return "driving_reverse";
-    case Fault::kTaskControllerLost: return "task_controller_lost";
-    case Fault::kSequenceJump: return "sequence_jump";
-    case Fault::kNoBusAddress: return "no_bus_address";
-    case Fault::kCanNotFromTaskController: return "can_not_from_task_controller";
-  }
-  return "unknown_fault";
-}
-
 bool is_state_fault(Fault fault) {
   switch (fault) {
     case Fault::kWidthOutOfReach:

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "firmware_sim/ecu/clock.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
 

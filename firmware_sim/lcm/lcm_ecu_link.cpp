@@ -5,9 +5,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "firmware_sim/lcm/lcm_payload.hpp"
+#include "lcm_link/lcm_payload.hpp"
 
-namespace spread::firmware::lcm_link {
+namespace spread::firmware {
+// The messages, their channels and their checked decoding are the link's (lcm_link/).
+using namespace lcm_link;
+
 namespace {
 
 std::int64_t to_microseconds(Nanoseconds t) {
@@ -169,4 +172,4 @@ void LcmEcuLink::after_step(const EcuStatus& s) {
   }
 }
 
-}  // namespace spread::firmware::lcm_link
+}  // namespace spread::firmware

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
-#include "firmware_sim/lcm/lcm_channels.hpp"
+#include "lcm_link/lcm_channels.hpp"
 #include "spread/command_t.hpp"
 #include "spread/heartbeat_t.hpp"
 #include "spread/status_t.hpp"
 
-namespace spread::firmware::lcm_link {
+namespace spread::firmware {
 
 struct LcmLinkCounters {
   std::uint64_t commands_received = 0;   // payloads on the command channel
@@ -27,7 +27,7 @@ struct LcmLinkCounters {
 class LcmEcuLink final : public LoopIo {
  public:
   // Throws std::runtime_error when `lcm` is not usable (bad URL, no multicast route, ...).
-  LcmEcuLink(lcm::LCM& lcm, Ecu& ecu, LcmChannels channels, std::string node_name = "firmware_sim");
+  LcmEcuLink(lcm::LCM& lcm, Ecu& ecu, lcm_link::LcmChannels channels, std::string node_name = "firmware_sim");
   ~LcmEcuLink() override;
   LcmEcuLink(const LcmEcuLink&) = delete;
   LcmEcuLink& operator=(const LcmEcuLink&) = delete;
@@ -40,7 +40,7 @@ class LcmEcuLink final : public LoopIo {
   int wait_fd() const override { return lcm_.getFileno(); }
 
   const LcmLinkCounters& counters() const { return counters_; }
-  const LcmChannels& channels() const { return channels_; }
+  const lcm_link::LcmChannels& channels() const { return channels_; }
 
  private:
   void on_command(const lcm::ReceiveBuffer* buffer, const std::string& channel);
@@ -49,7 +49,7 @@ class LcmEcuLink final : public LoopIo {
 
   lcm::LCM& lcm_;
   Ecu& ecu_;
-  LcmChannels channels_;
+  lcm_link::LcmChannels channels_;
   std::string node_name_;
   lcm::Subscription* subscription_ = nullptr;
   const FixedRateLoop* loop_ = nullptr;
@@ -65,4 +65,4 @@ class LcmEcuLink final : public LoopIo {
 // Fills an EcuCommand viewing `message` (valid while `message` lives).
 EcuCommand to_ecu_command(const spread::command_t& message);
 
-}  // namespace spread::firmware::lcm_link
+}  // namespace spread::firmware

@@ -5,12 +5,14 @@
 #include <map>
 #include <set>
 
-#include "firmware_sim/can/ddi.hpp"
-#include "firmware_sim/isobus/ddop.hpp"
-#include "firmware_sim/isobus/spreader_ddop.hpp"
+#include "firmware_sim/can/spreader_ddop.hpp"
+#include "isobus/ddi.hpp"
+#include "isobus/ddop.hpp"
 
-namespace spread::firmware::isobus {
+namespace spread::firmware::can {
 namespace {
+
+using namespace isobus;
 
 std::vector<std::uint8_t> spreader_bytes(int sections = 8) {
   SpreaderDescription d;
@@ -258,4 +260,4 @@ TEST(Ddop, UnknownTagAndTrailingGarbageAreRefused) {
 }
 
 }  // namespace
-}  // namespace spread::firmware::isobus
+}  // namespace spread::firmware::can

@@ -1,5 +1,5 @@
 // The spreader's device descriptor object pool read back by a decoder written here from the object layouts
-// of ISO 11783-10 Annex B, not through firmware_sim/isobus/ddop.cpp: what a task controller built from the
+// of ISO 11783-10 Annex B, not through isobus/ddop.cpp: what a task controller built from the
 // standard would see. Layouts (little endian; "text" = a length byte and that many bytes):
 //   DVC  tag, object ID u16, designator text, software version text, NAME 8 bytes, serial number text,
 //        structure label 7 bytes, localisation label 7 bytes, [version 4: extended structure label text]
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "firmware_sim/isobus/ddop.hpp"
-#include "firmware_sim/isobus/spreader_ddop.hpp"
+#include "firmware_sim/can/spreader_ddop.hpp"
+#include "isobus/ddop.hpp"
 
 namespace {
 
@@ -123,11 +123,11 @@ std::vector<StdObject> decode(const std::vector<std::uint8_t>& b, int version) {
 }
 
 std::vector<std::uint8_t> spreader_pool(std::uint8_t version) {
-  spread::firmware::isobus::SpreaderDescription d;
+  spread::firmware::can::SpreaderDescription d;
   d.section_count = 8;
   d.working_width_m = 24.0;
   d.boom_offset_x_m = -1.0;
-  return spread::firmware::isobus::write_ddop(spread::firmware::isobus::make_spreader_ddop(d), version);
+  return spread::isobus::write_ddop(spread::firmware::can::make_spreader_ddop(d), version);
 }
 
 TEST(DdopStandardReader, VersionFourPoolHasTheExtendedLabelAndAnElementTreeByParentId) {

@@ -14,22 +14,25 @@
 #include <string>
 #include <vector>
 
-#include "firmware_sim/can/can_bus_relay.hpp"
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/can/isobus_id.hpp"
-#include "firmware_sim/can/network_link.hpp"
-#include "firmware_sim/can/process_data.hpp"
-#include "firmware_sim/can/speed_messages.hpp"
-#include "firmware_sim/can/unix_can_bus.hpp"
 #include "firmware_sim/ecu/ecu.hpp"
-#include "firmware_sim/isobus/iso_name.hpp"
-#include "firmware_sim/isobus/tc_partner.hpp"
-#include "firmware_sim/isobus/dm1.hpp"
-#include "firmware_sim/isobus/tc_server.hpp"
+#include "isobus/can/can_bus_relay.hpp"
+#include "isobus/can/unix_can_bus.hpp"
+#include "isobus/dm1.hpp"
+#include "isobus/iso_name.hpp"
+#include "isobus/isobus_id.hpp"
+#include "isobus/network_link.hpp"
+#include "isobus/process_data.hpp"
+#include "isobus/speed_messages.hpp"
+#include "isobus/tc_partner.hpp"
+#include "isobus/tc_server.hpp"
 #include "tests/firmware/analytic_predictor.hpp"
 
 namespace spread::firmware::can {
 namespace {
+
+using namespace isobus;
+using namespace isobus::can;
 
 using namespace std::chrono_literals;
 namespace iso = isobus;

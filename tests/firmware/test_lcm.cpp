@@ -15,11 +15,13 @@
 #include "firmware_sim/ecu/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 #include "firmware_sim/lcm/lcm_ecu_link.hpp"
-#include "firmware_sim/lcm/lcm_payload.hpp"
-#include "firmware_sim/lcm/lcm_tractor_link.hpp"
+#include "lcm_link/lcm_payload.hpp"
+#include "lcm_link/lcm_tractor_link.hpp"
 
-namespace spread::firmware::lcm_link {
+namespace spread::firmware {
 namespace {
+
+using namespace lcm_link;
 
 using namespace std::chrono_literals;
 
@@ -417,4 +419,4 @@ TEST(Udpm, EndToEndInPrivateNetworkNamespace) {
 }
 
 }  // namespace
-}  // namespace spread::firmware::lcm_link
+}  // namespace spread::firmware

@@ -5,15 +5,17 @@
 
 #include <algorithm>
 
-#include "firmware_sim/can/ddi.hpp"
-#include "firmware_sim/can/process_data.hpp"
-#include "firmware_sim/isobus/spreader_ddop.hpp"
-#include "firmware_sim/isobus/tc_client.hpp"
-#include "firmware_sim/isobus/tc_server.hpp"
+#include "firmware_sim/can/spreader_ddop.hpp"
+#include "isobus/ddi.hpp"
+#include "isobus/process_data.hpp"
+#include "isobus/tc_client.hpp"
+#include "isobus/tc_server.hpp"
 #include "tools/spread_tractor/section_pattern.hpp"
 
-namespace spread::firmware::isobus {
+namespace spread::firmware::can {
 namespace {
+
+using namespace isobus;
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
@@ -533,4 +535,4 @@ TEST(TcServer, MeasurementCommandsUseOnlyTheTriggersThePoolOffers) {
 }
 
 }  // namespace
-}  // namespace spread::firmware::isobus
+}  // namespace spread::firmware::can

@@ -14,14 +14,14 @@
 #include <cstdio>
 #include <iostream>
 
-#include "firmware_sim/can/can_bus_relay.hpp"
+#include "isobus/can/can_bus_relay.hpp"
 
 namespace {
 volatile sig_atomic_t g_stop = 0;
 extern "C" void on_signal(int) { g_stop = 1; }
 
-using spread::firmware::can::CanBusRelay;
-using spread::firmware::can::CanBusRelayCounters;
+using spread::isobus::can::CanBusRelay;
+using spread::isobus::can::CanBusRelayCounters;
 
 // Malformed input: datagrams of another size than a can_frame (empty ones included) and DLC > 8.
 unsigned long long malformed(const CanBusRelayCounters& c) {
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   double duration_s = 0.0;
   bool verbose = false;
   bool paced = false;
-  std::uint32_t bit_rate = spread::firmware::can::kIsobusBitRate;
+  std::uint32_t bit_rate = spread::isobus::can::kIsobusBitRate;
   double status_interval_s = 0.0;
   app.add_option("path", path, "socket path to serve the bus at (a dead server's socket file is replaced)")->required();
   app.add_flag("--paced", paced,
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   sigaction(SIGTERM, &action, nullptr);
 
   try {
-    spread::firmware::can::CanBusTiming timing;
+    spread::isobus::can::CanBusTiming timing;
     timing.paced = paced || bitrate_option->count() > 0;
     timing.bit_rate = bit_rate;
     CanBusRelay bus(path, timing);

@@ -2,19 +2,19 @@
 
 #include <cstdio>
 
-#include "firmware_sim/can/frame_description.hpp"
+#include "isobus/frame_description.hpp"
 
 namespace spread::tractor {
 
 void write_as_applied_header(std::ostream& out) { out << "time_s,source,element,ddi,ddi_name,value_raw,value\n"; }
 
-void write_as_applied_line(std::ostream& out, const firmware::isobus::AsAppliedRecord& r, double time_s) {
+void write_as_applied_line(std::ostream& out, const isobus::AsAppliedRecord& r, double time_s) {
   char head[64];
   std::snprintf(head, sizeof head, "%.3f,0x%02X,%u,%u,", time_s, r.source, unsigned{r.element}, unsigned{r.ddi});
   // Neither the names nor the formatted values contain commas; quoted anyway so that a spreadsheet
   // keeps "250.00 kg/ha" in one cell whatever a later DDI name holds.
-  out << head << '"' << firmware::can::ddi_name(r.ddi) << "\"," << r.value << ",\""
-      << firmware::can::format_ddi_value(r.ddi, r.value) << "\"\n";
+  out << head << '"' << isobus::ddi_name(r.ddi) << "\"," << r.value << ",\""
+      << isobus::format_ddi_value(r.ddi, r.value) << "\"\n";
 }
 
 }  // namespace spread::tractor

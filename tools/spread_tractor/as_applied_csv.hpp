@@ -6,11 +6,11 @@
 #include <ostream>
 #include <string>
 
-#include "firmware_sim/isobus/tc_server.hpp"
+#include "isobus/tc_server.hpp"
 
 namespace spread::tractor {
 
 void write_as_applied_header(std::ostream& out);
-void write_as_applied_line(std::ostream& out, const firmware::isobus::AsAppliedRecord& record, double time_s);
+void write_as_applied_line(std::ostream& out, const isobus::AsAppliedRecord& record, double time_s);
 
 }  // namespace spread::tractor

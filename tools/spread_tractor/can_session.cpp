@@ -5,23 +5,24 @@
 #include <stdexcept>
 #include <thread>
 
-#include "firmware_sim/can/candump_log.hpp"
-#include "firmware_sim/can/frame_description.hpp"
-#include "firmware_sim/can/isobus_id.hpp"
-#include "firmware_sim/can/network_link.hpp"
-#include "firmware_sim/can/process_data.hpp"
-#include "firmware_sim/can/unix_can_bus.hpp"
-#include "firmware_sim/can/speed_messages.hpp"
-#include "firmware_sim/isobus/address_claim.hpp"
-#include "firmware_sim/isobus/iso_name.hpp"
-#include "firmware_sim/isobus/tc_messages.hpp"
-#include "firmware_sim/isobus/tc_partner.hpp"
+#include "isobus/address_claim.hpp"
+#include "isobus/can/candump_log.hpp"
+#include "isobus/can/unix_can_bus.hpp"
+#include "isobus/frame_description.hpp"
+#include "isobus/iso_name.hpp"
+#include "isobus/isobus_id.hpp"
+#include "isobus/network_link.hpp"
+#include "isobus/process_data.hpp"
+#include "isobus/speed_messages.hpp"
+#include "isobus/tc_messages.hpp"
+#include "isobus/tc_partner.hpp"
 #include "tools/spread_tractor/sessions.hpp"
 
 namespace spread::tractor {
 namespace {
 
-using namespace firmware::can;
+using namespace isobus;
+using namespace isobus::can;
 using Clock = std::chrono::steady_clock;
 
 bool parse_int(std::string_view text, long long& value) {
@@ -44,12 +45,12 @@ bool parse_int(std::string_view text, long long& value) {
 // The tractor acts as the ECU's task controller, and the ECU takes process data only from a node whose
 // address claim carries a TC's NAME (ISO 11783-1: industry group 2, device class 0, function 130).
 std::uint64_t task_controller_name() {
-  firmware::isobus::IsoName name;
+  isobus::IsoName name;
   name.self_configurable = true;
-  name.device_class = firmware::isobus::kDeviceClassNonSpecific;
-  name.function = firmware::isobus::kFunctionTaskController;
+  name.device_class = isobus::kDeviceClassNonSpecific;
+  name.function = isobus::kFunctionTaskController;
   name.identity_number = 0x81;
-  return firmware::isobus::encode_name(name);
+  return isobus::encode_name(name);
 }
 
 // Prints what reaches us for `wait`. With a network link (the session's address claim, ISO 11783-5), every
@@ -125,7 +126,7 @@ int run_can_session(const CanSessionOptions& o) {
   // Our own claim first, as a task controller (ISO 11783-5, the same network code as the ECU's): it stands
   // after 250 ms uncontested (§4.4.2); a lower NAME on our address moves us (the NAME is
   // self-configurable), and until a claim stands we send nothing else.
-  firmware::SteadyClock clock;
+  SteadyClock clock;
   NetworkLink network(clock, port, task_controller_name(), static_cast<std::uint8_t>(o.own_address));
   network.start();
   drain(port, std::chrono::milliseconds(260), &network);
@@ -141,7 +142,7 @@ int run_can_session(const CanSessionOptions& o) {
   // Every claim once more (ours answers the request), then the TC status: the ECU learns our NAME even if
   // it joined after our first claim, and the status that follows makes us its partner TC (ISO 11783-10).
   network.request_address_claims();
-  const auto first_status = firmware::isobus::encode_tc_status(true);
+  const auto first_status = isobus::encode_tc_status(true);
   port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, network.address()}),
                        first_status.data(), 8));
   auto send_pd = [&](ProcessDataCommand command, std::uint16_t ddi, std::int32_t value) {
@@ -165,7 +166,7 @@ int run_can_session(const CanSessionOptions& o) {
     // As the task controller: its status every 2 s (ISO 11783-10), which keeps the work state it set alive.
     const bool may_send = network.has_address();
     if (Clock::now() >= next_tc_status) {
-      const auto status = firmware::isobus::encode_tc_status(true);
+      const auto status = isobus::encode_tc_status(true);
       if (may_send) {
         port.send(make_frame(encode_id({kProcessDataPriority, kProcessDataPgn, kGlobalAddress, network.address()}),
                              status.data(), 8));

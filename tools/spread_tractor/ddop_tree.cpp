@@ -4,13 +4,13 @@
 #include <map>
 #include <vector>
 
-#include "firmware_sim/can/frame_description.hpp"
-#include "firmware_sim/isobus/iso_name.hpp"
+#include "isobus/frame_description.hpp"
+#include "isobus/iso_name.hpp"
 
 namespace spread::tractor {
 namespace {
 
-using namespace firmware::isobus;
+using namespace isobus;
 
 const char* element_type_name(ElementType type) {
   switch (type) {
@@ -74,8 +74,8 @@ class TreeWriter {
       if (!d) continue;
       out_ += "DVC " + std::to_string(d->id) + " \"" + d->designator + "\" software " + d->software_version +
               ", serial " + d->serial_number + "\n    " + describe_name(d->working_set_master_name) +
-              "\n    structure label " + firmware::isobus::label_hex(d->structure_label) + ", localisation label " +
-              firmware::isobus::label_hex(d->localization_label) +
+              "\n    structure label " + isobus::label_hex(d->structure_label) + ", localisation label " +
+              isobus::label_hex(d->localization_label) +
               (d->extended_structure_label.empty() ? std::string()
                                                    : ", extended structure label " +
                                                          hex_bytes(d->extended_structure_label)) +
@@ -99,11 +99,11 @@ class TreeWriter {
         if (c == by_id_.end()) continue;
         if (const auto* p = std::get_if<DeviceProcessData>(c->second)) {
           out_ += inner + "DPD " + std::to_string(p->id) + " DDI " + std::to_string(p->ddi) + " " +
-                  firmware::can::ddi_name(p->ddi) + " \"" + p->designator + "\" (" +
+                  isobus::ddi_name(p->ddi) + " \"" + p->designator + "\" (" +
                   properties_text(p->properties, p->triggers) + ")" + unit_of(p->presentation_id) + "\n";
         } else if (const auto* t = std::get_if<DeviceProperty>(c->second)) {
           out_ += inner + "DPT " + std::to_string(t->id) + " DDI " + std::to_string(t->ddi) + " " +
-                  firmware::can::ddi_name(t->ddi) + " \"" + t->designator + "\" = " +
+                  isobus::ddi_name(t->ddi) + " \"" + t->designator + "\" = " +
                   presented(t->value, t->presentation_id) + "\n";
         }
       }

@@ -4,10 +4,10 @@
 // properties are shown through their value presentation, as a terminal would show them.
 #include <string>
 
-#include "firmware_sim/isobus/ddop.hpp"
+#include "isobus/ddop.hpp"
 
 namespace spread::tractor {
 
-std::string describe_ddop_tree(const firmware::isobus::Ddop& pool);
+std::string describe_ddop_tree(const isobus::Ddop& pool);
 
 }  // namespace spread::tractor

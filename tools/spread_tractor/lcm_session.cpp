@@ -5,7 +5,7 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "firmware_sim/lcm/lcm_tractor_link.hpp"
+#include "lcm_link/lcm_tractor_link.hpp"
 #include "tools/spread_tractor/sessions.hpp"
 #include "tools/spread_tractor/status_line.hpp"
 
@@ -52,9 +52,9 @@ int run_lcm_session(const LcmSessionOptions& o) {
     std::cerr << "spread-tractor: error: cannot create an LCM instance for URL '" << o.url << "'\n";
     return kExitFailure;
   }
-  const firmware::lcm_link::LcmChannels channels =
-      firmware::lcm_link::channels_from(o.channel_prefix, o.command_channel, o.status_channel, o.heartbeat_channel);
-  firmware::lcm_link::LcmTractorLink link(lcm, channels);
+  const lcm_link::LcmChannels channels =
+      lcm_link::channels_from(o.channel_prefix, o.command_channel, o.status_channel, o.heartbeat_channel);
+  lcm_link::LcmTractorLink link(lcm, channels);
   Clock::time_point last_print{};
   bool printed_any = false;
   link.on_status = [&](const spread::status_t& s) {

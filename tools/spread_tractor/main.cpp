@@ -8,7 +8,7 @@
 #include <csignal>
 #include <iostream>
 
-#include "firmware_sim/lcm/lcm_channels.hpp"
+#include "lcm_link/lcm_channels.hpp"
 #include "tools/spread_tractor/sessions.hpp"
 
 namespace {
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   LcmSessionOptions lcm_options;
-  lcm_options.channel_prefix = std::string(spread::firmware::lcm_link::kDefaultChannelPrefix);
+  lcm_options.channel_prefix = std::string(spread::lcm_link::kDefaultChannelPrefix);
   auto* lcm = app.add_subcommand("lcm", "send command_t set-points and print status_t (omit set-points to monitor)");
   lcm->add_option("--lcm-url", lcm_options.url, "LCM URL (default: LCM's default udpm)");
   lcm->add_option("--channel-prefix", lcm_options.channel_prefix, "channel prefix")->capture_default_str();

@@ -1,5 +1,5 @@
 // spread-tractor tc: a task controller on a bus (ISO 11783-10 server role) with the tractor's speed
-// broadcast beside it. The protocol lives in firmware_sim/isobus/tc_server.*; this file is the I/O loop:
+// broadcast beside it. The protocol lives in isobus/tc_server.*; this file is the I/O loop:
 // address claim, frames in and out, set-points on activation, periodic value requests, output and the log.
 #include <array>
 #include <cmath>
@@ -11,15 +11,15 @@
 #include <optional>
 #include <string>
 
-#include "firmware_sim/can/ddi.hpp"
-#include "firmware_sim/can/frame_description.hpp"
-#include "firmware_sim/can/isobus_id.hpp"
-#include "firmware_sim/can/network_link.hpp"
-#include "firmware_sim/can/speed_messages.hpp"
-#include "firmware_sim/can/unix_can_bus.hpp"
-#include "firmware_sim/ecu/clock.hpp"
-#include "firmware_sim/isobus/iso_name.hpp"
-#include "firmware_sim/isobus/tc_server.hpp"
+#include "isobus/can/unix_can_bus.hpp"
+#include "isobus/ddi.hpp"
+#include "isobus/frame_description.hpp"
+#include "isobus/iso_name.hpp"
+#include "isobus/isobus_id.hpp"
+#include "isobus/network_link.hpp"
+#include "isobus/speed_messages.hpp"
+#include "isobus/tc_server.hpp"
+#include "libspread/core/clock.hpp"
 #include "tools/spread_tractor/as_applied_csv.hpp"
 #include "tools/spread_tractor/ddop_tree.hpp"
 #include "tools/spread_tractor/section_pattern.hpp"
@@ -28,9 +28,9 @@
 namespace spread::tractor {
 namespace {
 
-using namespace firmware::can;
-namespace iso = firmware::isobus;
-using firmware::Nanoseconds;
+using namespace isobus;
+using namespace isobus::can;
+namespace iso = isobus;
 
 // ISO 11783-1 NAME function table: industry group 2 (agriculture), device class 0 (non-specific system),
 // function 130 = task controller. Self-configurable, so a second TC on the bus does not silence this one.
@@ -109,7 +109,7 @@ int run_tc_session(const TcSessionOptions& o) {
                 << "' is not SECONDS:PATTERN (seconds >= 0 after activation, a pattern of 1 to 16 characters 0/1)\n";
       return kExitUsage;
     }
-    later.push_back({firmware::from_seconds(seconds), *value, text.substr(colon + 1)});
+    later.push_back({from_seconds(seconds), *value, text.substr(colon + 1)});
   }
   std::size_t next_later = 0;
   Nanoseconds activated_at{};
@@ -127,17 +127,17 @@ int run_tc_session(const TcSessionOptions& o) {
   }
 
   CanFramePort port = open_can_bus(o.interface);
-  firmware::SteadyClock clock;
+  SteadyClock clock;
   NetworkLink network(clock, port, task_controller_name(), static_cast<std::uint8_t>(o.preferred_address));
   iso::TcServerConfig config;
   config.max_pool_bytes = o.max_pool_bytes;
   iso::TcServer tc(config);
 
   const Nanoseconds start = clock.now();
-  auto since_start = [&](Nanoseconds t) { return firmware::to_seconds(t - start); };
-  const Nanoseconds end = start + firmware::from_seconds(o.duration_s);
-  const Nanoseconds connect_deadline = start + firmware::from_seconds(o.connect_timeout_s);
-  const Nanoseconds request_interval = firmware::from_seconds(o.request_interval_s);
+  auto since_start = [&](Nanoseconds t) { return to_seconds(t - start); };
+  const Nanoseconds end = start + from_seconds(o.duration_s);
+  const Nanoseconds connect_deadline = start + from_seconds(o.connect_timeout_s);
+  const Nanoseconds request_interval = from_seconds(o.request_interval_s);
   Nanoseconds next_speed = start;
   Nanoseconds next_request = start;
   std::uint32_t distance_mm = 0;
@@ -178,7 +178,7 @@ int run_tc_session(const TcSessionOptions& o) {
 
     if (network.has_address() && o.speed_m_s >= 0.0 && now >= next_speed) {
       const auto bytes = encode_speed(o.speed_m_s, distance_mm, Direction::kForward);
-      distance_mm += static_cast<std::uint32_t>(std::lround(o.speed_m_s * 1000.0 * firmware::to_seconds(kSpeedInterval)));
+      distance_mm += static_cast<std::uint32_t>(std::lround(o.speed_m_s * 1000.0 * to_seconds(kSpeedInterval)));
       if (!port.send(make_frame(encode_id({kSpeedPriority, kGroundBasedSpeedPgn, kGlobalAddress, network.address()}),
                                 bytes.data(), 8))) {
         ++send_failures;
