@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 
 namespace spread::predict {
 
@@ -67,7 +68,8 @@ InterpolatedFigures figures_of(const InterpolationErrorInput& in, std::span<cons
   InterpolatedFigures f;
   const metrics::ThrowExtent extent = metrics::throw_extent(trays, in.trays, 0.99);
   f.throw_width_m = extent.right_m - extent.left_m;
-  *s.widths = metrics::working_widths(trays, in.trays, in.cv_target, s.scratch);
+  // Constructed in place (no temporary of over half a kilobyte on the stack, also unoptimised).
+  ::new (static_cast<void*>(s.widths)) metrics::WorkingWidths(metrics::working_widths(trays, in.trays, in.cv_target, s.scratch));
   const metrics::WorkingWidth* widths[2] = {&s.widths->to_and_fro, &s.widths->racetrack};
   const metrics::Overlap overlaps[2] = {metrics::Overlap::kToAndFro, metrics::Overlap::kRacetrack};
   for (int o = 0; o < 2; ++o) {

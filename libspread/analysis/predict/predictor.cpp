@@ -936,6 +936,11 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   // bookkeeping is off the stack by the time the standard errors' passes run).
   const Landed landed = land_discs(w, rows, disc_rows, settings, per_disc, height_m, air, effects, fly_right_disc);
   measure(request, landed, per_disc, fly_right_disc, effects, height_m, settings, out, w);
+  // After measure() has returned: its frame is off the stack (the C API's stack budget holds unoptimised too).
+  if (request.standard_errors && request.interpolation_error) {
+    const bool mirrored = two_discs && !fly_right_disc && out.kernel_half_width_m > 0.0;
+    add_interpolation_error(request, landed, mirrored, out, w);
+  }
   return PredictStatus::kOk;
 }
 
@@ -1260,9 +1265,6 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
     p.bout_width_m = 0.0;
     p.cv_to_and_fro = p.cv_racetrack = p.cv_to_and_fro_se = p.cv_racetrack_se = nan;
   }
-  if (request.standard_errors && request.interpolation_error) {
-    add_interpolation_error(request, landed, mirrored, kernel_m, p, w);
-  }
   p.mean_radius_m = w.radial_mean_m_;
   p.radial_width_m = w.radial_width_m_;
   p.tray_mass_fraction = tray_mass;
@@ -1273,7 +1275,7 @@ void Predictor::measure(const PredictionRequest& request, const Landed& landed, 
 }
 
 void Predictor::add_interpolation_error(const PredictionRequest& request, const Landed& landed, bool mirrored,
-                                        double kernel_half_width_m, Prediction& p, PredictorWorkspace& w) const {
+                                        Prediction& p, PredictorWorkspace& w) const {
   InterpolationErrorInput in;
   in.x_m = std::span(w.landing_x_m_).first(landed.landings);
   in.weight = std::span(w.landing_weight_).first(landed.landings);
@@ -1283,7 +1285,7 @@ void Predictor::add_interpolation_error(const PredictionRequest& request, const 
   if (!interpolates_by_cells(in)) return;
   in.mirrored = mirrored;
   in.trays = p.trays;
-  in.kernel_half_width_m = kernel_half_width_m;
+  in.kernel_half_width_m = p.kernel_half_width_m;
   in.upper_weight = landed.upper_weight;
   in.cv_target = request.cv_target;
   in.bout_trays = p.bout_width_m > 0.0 ? static_cast<int>(std::lround(p.bout_width_m / p.trays.tray_width_m)) : 0;

@@ -440,9 +440,9 @@ class Predictor {
                flight::EffectSet effects, double height_m, const DiscSetting (&settings)[2], Prediction& out,
                PredictorWorkspace& w) const;
   // Between DEM rows: the interpolation's own error (interpolation_error.hpp) into p.interpolation_se and,
-  // in quadrature, into p's standard errors. The last step of measure().
-  void add_interpolation_error(const PredictionRequest& request, const Landed& landed, bool mirrored,
-                               double kernel_half_width_m, Prediction& p, PredictorWorkspace& w) const;
+  // in quadrature, into p's standard errors. After measure(), from its trays, kernel and bands.
+  void add_interpolation_error(const PredictionRequest& request, const Landed& landed, bool mirrored, Prediction& p,
+                               PredictorWorkspace& w) const;
   // True when runs a and b (neighbours) interpolate sample by sample: both from the analytic builder
   // (sample k is the same granule in every row) and of equal count.
   bool pairwise(std::size_t run_a, std::size_t run_b) const;
