@@ -38,12 +38,18 @@ spread::tables::TableContents rows_at(const spread::tables::TableContents& all, 
   return out;
 }
 
-Prediction predict(Predictor& predictor, const std::string& material, double rpm) {
+// The cases' request: both discs at `rpm`, the CV at the 11 m bout, the working width at 15 %.
+PredictionRequest request_at(const std::string& material, double rpm) {
   PredictionRequest request;
   request.material = material;
   request.rpm = rpm;
   request.bout_width_m = kBoutWidthM;
   request.cv_target = kCvTarget;
+  return request;
+}
+
+Prediction predict(Predictor& predictor, const std::string& material, double rpm) {
+  const PredictionRequest request = request_at(material, rpm);
   Prediction p;
   EXPECT_EQ(predictor.predict(request, p), PredictStatus::kOk) << material << " at " << rpm;
   return p;
@@ -141,12 +147,8 @@ TEST_F(BetweenRows, TheInterpolationsOwnErrorIsWhereTheAnswerInterpolates) {
 // Discs at their own speeds, each between its own rows: each disc's rows give their parts and the rows'
 // own figures are predicted with each disc at its row.
 TEST_F(BetweenRows, DiscsApartEachBetweenTheirRows) {
-  PredictionRequest request;
-  request.material = "DAP";
-  request.rpm = 0.0;
+  PredictionRequest request = request_at("DAP", 0.0);
   request.disc_rpm = {664.0, 525.0};
-  request.bout_width_m = kBoutWidthM;
-  request.cv_target = kCvTarget;
   Prediction p;
   ASSERT_EQ(table_->predict(request, p), PredictStatus::kOk);
   EXPECT_GT(p.interpolation_se.cv[0], 0.0);
@@ -157,11 +159,7 @@ TEST_F(BetweenRows, DiscsApartEachBetweenTheirRows) {
 
 // A search's predictions (no standard errors) pay nothing for it and give the same figures.
 TEST_F(BetweenRows, WithoutStandardErrorsNothingIsAdded) {
-  PredictionRequest request;
-  request.material = "Urea";
-  request.rpm = 664.0;
-  request.bout_width_m = kBoutWidthM;
-  request.cv_target = kCvTarget;
+  PredictionRequest request = request_at("Urea", 664.0);
   Prediction with, without;
   ASSERT_EQ(table_->predict(request, with), PredictStatus::kOk);
   request.standard_errors = false;
@@ -171,18 +169,10 @@ TEST_F(BetweenRows, WithoutStandardErrorsNothingIsAdded) {
   EXPECT_EQ(with.throw_width_m, without.throw_width_m);
 }
 
-}  // namespace
-
-namespace {
-
 // A caller that opts out gets the launch samples' standard errors alone, the same figures, and the
 // interpolation's part is exactly what it left out.
 TEST_F(BetweenRows, OptingOutLeavesTheSamplesErrorAlone) {
-  PredictionRequest request;
-  request.material = "AMS standard";
-  request.rpm = 700.0;
-  request.bout_width_m = kBoutWidthM;
-  request.cv_target = kCvTarget;
+  PredictionRequest request = request_at("AMS standard", 700.0);
   Prediction with, without;
   ASSERT_EQ(table_->predict(request, with), PredictStatus::kOk);
   request.interpolation_error = false;
