@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "libspread/analysis/predict/predictor.hpp"
 #include "libspread/io/tables/table_reader.hpp"
@@ -38,8 +39,9 @@ spread::tables::TableContents rows_at(const spread::tables::TableContents& all, 
   return out;
 }
 
-// The cases' request: both discs at `rpm`, the CV at the 11 m bout, the working width at 15 %.
-PredictionRequest request_at(const std::string& material, double rpm) {
+// The cases' request: both discs at `rpm`, the CV at the 11 m bout, the working width at 15 % (the
+// request views `material`, which must outlive it).
+PredictionRequest request_at(std::string_view material, double rpm) {
   PredictionRequest request;
   request.material = material;
   request.rpm = rpm;
