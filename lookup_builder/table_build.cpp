@@ -21,6 +21,7 @@
 #include "libspread/analysis/predict/predictor.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 #include "libspread/io/tables/table_writer.hpp"
+#include "libspread/io/tables/machine_schema.hpp"
 #include "libspread/io/tables/writer_lock.hpp"
 #include "lookup_builder/progress.hpp"
 #include "lookup_builder/run_source.hpp"
@@ -71,20 +72,22 @@ std::string show(double value) {
 
 // Where the file's machine row and this scene's machine differ, as "machine.<field>: file X, scene Y".
 void machine_differences(const tables::Machine& file, const tables::Machine& scene, std::vector<std::string>& out) {
-  auto real = [&out](const char* field, double a, double b) {
-    if (a != b) out.push_back(std::string("machine.") + field + ": file " + show(a) + ", scene " + show(b));
-  };
-  auto integer = [&out](const char* field, int a, int b) {
-    if (a != b) out.push_back(std::string("machine.") + field + ": file " + std::to_string(a) + ", scene " + std::to_string(b));
-  };
-  if (file.name != scene.name) out.push_back("machine.name: file \"" + file.name + "\", scene \"" + scene.name + "\"");
-  real("disc_radius_m", file.disc_radius_m, scene.disc_radius_m);
-  real("disc_height_m", file.disc_height_m, scene.disc_height_m);
-  real("disc_spacing_m", file.disc_spacing_m, scene.disc_spacing_m);
-  integer("disc_count", file.disc_count, scene.disc_count);
-  integer("vane_count", file.vane_count, scene.vane_count);
-  real("cone_angle_rad", file.cone_angle_rad, scene.cone_angle_rad);
-  integer("rotation_sense", file.rotation_sense, scene.rotation_sense);
+  for (const tables::MachineColumn& c : tables::kMachineColumns) {
+    const std::string field = "machine." + std::string(c.name);
+    switch (c.kind) {
+      case tables::MachineColumn::Kind::kText:
+        if (file.*c.text != scene.*c.text) out.push_back(field + ": file \"" + file.*c.text + "\", scene \"" + scene.*c.text + "\"");
+        break;
+      case tables::MachineColumn::Kind::kReal:
+        if (file.*c.real != scene.*c.real) out.push_back(field + ": file " + show(file.*c.real) + ", scene " + show(scene.*c.real));
+        break;
+      case tables::MachineColumn::Kind::kInteger:
+        if (file.*c.integer != scene.*c.integer) {
+          out.push_back(field + ": file " + std::to_string(file.*c.integer) + ", scene " + std::to_string(scene.*c.integer));
+        }
+        break;
+    }
+  }
 }
 
 void material_differences(const tables::Material& file, const tables::Material& scene, std::vector<std::string>& out) {

@@ -14,7 +14,8 @@ packages=(build-essential cmake pkg-config ninja-build
   liblcm-dev liblcm-bin libgtest-dev libgmock-dev libbenchmark-dev libopenmpi-dev openmpi-bin
   python3 python3-scipy iproute2 util-linux clang libclang-rt-14-dev abigail-tools
   zlib1g-dev  # libz.a, which static SQLite needs: the package test links a C program with cc -static
-  poppler-utils)  # pdftoppm and pdftotext: the PDF report tests (tests/tools/test_report_cli.cpp)
+  poppler-utils  # pdftoppm and pdftotext: the PDF report tests (tests/tools/test_report_cli.cpp)
+  strace)  # counts the opens of a table file per command (tests/tools/table_opened_once.sh)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -60,6 +60,13 @@ struct spread_tables {
       if (!predictor.landing_data_from_table(m)) table_flags |= SPREAD_TABLE_LANDING_DATA_DERIVED;
     }
   }
+  // The same handle over contents already read (in-tree tools: spread::capi::open_contents).
+  spread_tables(spread::tables::TableContents contents, const spread_allocator& allocator)
+      : memory(allocator), predictor(flag(std::move(contents)), spread::capi::controller_limits(), &memory) {
+    for (std::size_t m = 0; m < predictor.material_count(); ++m) {
+      if (!predictor.landing_data_from_table(m)) table_flags |= SPREAD_TABLE_LANDING_DATA_DERIVED;
+    }
+  }
   std::uint64_t tag = spread::capi::kTablesTag;  // first member: read before anything else
   spread::capi::CallerMemory memory;  // before the predictor: it outlives the predictor's buffers
   std::uint32_t table_flags = 0;      // SPREAD_TABLE_* bits (spread_table_flags); before the predictor
@@ -72,7 +79,9 @@ struct spread_tables {
   spread::tables::TableContents read(const char* path, std::uint32_t flags) {
     spread::tables::ReadOptions options;
     options.legacy_files = (flags & SPREAD_OPEN_LEGACY_FILES) != 0;
-    spread::tables::TableContents contents = spread::tables::read_table_file(path, &memory, options);
+    return flag(spread::tables::read_table_file(path, &memory, options));
+  }
+  spread::tables::TableContents flag(spread::tables::TableContents contents) {
     if (!contents.runs_listed) table_flags |= SPREAD_TABLE_RUNS_UNCHECKED;
     return contents;
   }

@@ -4,7 +4,6 @@
 // a row fails the build: the static_assert in run_schema.hpp.)
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,37 +15,12 @@
 #include "libspread/io/tables/table_schema.hpp"
 #include "libspread/io/tables/table_writer.hpp"
 #include "lookup_builder/run_message.hpp"
+#include "schema_text.hpp"
 #include "table_fixtures.hpp"
 #include "tests/support/temp_path.hpp"
 
 namespace spread::tables {
 namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// The column names (and, with types, "name TYPE") of one CREATE TABLE statement.
-std::vector<std::string> create_columns(const std::string& table, bool with_types) {
-  const std::string sql = detail::kSchemaSql;
-  const std::size_t begin = sql.find("CREATE TABLE " + table + " (");
-  EXPECT_NE(begin, std::string::npos) << table;
-  std::istringstream body(sql.substr(begin, sql.find(");", begin) - begin));
-  std::vector<std::string> out;
-  std::string line;
-  std::getline(body, line);  // "CREATE TABLE ..."
-  while (std::getline(body, line)) {
-    std::istringstream words(line);
-    std::string name, type;
-    words >> name >> type;
-    if (name.empty() || name == "UNIQUE") continue;
-    out.push_back(with_types ? name + " " + type : name);
-  }
-  return out;
-}
 
 std::vector<std::string> schema_columns(bool with_types) {
   std::vector<std::string> out;
@@ -64,15 +38,7 @@ TEST(RunSchema, TheCreateStatementIsTheSchemas) {
 TEST(RunSchema, TheDocsListTheSchemasColumnsInItsOrder) {
   const std::string doc = read_text(std::string(SPREAD_SOURCE_DIR) + "/docs/table-format.md");
   // The column table of `runs`: its rows' first cells, in order.
-  const std::size_t section = doc.find("### `runs`");
-  ASSERT_NE(section, std::string::npos);
-  std::istringstream lines(doc.substr(section, doc.find("\n### ", section + 1) - section));
-  std::vector<std::string> rows;
-  std::string line;
-  while (std::getline(lines, line)) {
-    if (line.rfind("| `", 0) == 0) rows.push_back(line.substr(3, line.find('`', 3) - 3));
-  }
-  EXPECT_EQ(rows, schema_columns(false));
+  EXPECT_EQ(doc_table_rows(doc, "### `runs`"), schema_columns(false));
   // The checksum's order.
   const std::size_t order = doc.find("\n| runs | ");
   ASSERT_NE(order, std::string::npos);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory_resource>
 
+#include "libspread/io/tables/machine_schema.hpp"
 #include "libspread/io/tables/sample_codec.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 #include "libspread/io/tables/table_writer.hpp"
@@ -45,14 +46,15 @@ TEST(TableRoundTrip, EverythingWrittenIsReadBack) {
   const TableContents contents = read_table_file(file.path());
 
   const Machine expected_machine = spread::testing::sample_machine();
-  EXPECT_EQ(contents.machine.name, expected_machine.name);
-  EXPECT_EQ(contents.machine.disc_radius_m, expected_machine.disc_radius_m);
-  EXPECT_EQ(contents.machine.disc_height_m, expected_machine.disc_height_m);
-  EXPECT_EQ(contents.machine.disc_spacing_m, expected_machine.disc_spacing_m);
-  EXPECT_EQ(contents.machine.disc_count, expected_machine.disc_count);
-  EXPECT_EQ(contents.machine.vane_count, expected_machine.vane_count);
-  EXPECT_EQ(contents.machine.cone_angle_rad, expected_machine.cone_angle_rad);
-  EXPECT_EQ(contents.machine.rotation_sense, expected_machine.rotation_sense);
+  for (const MachineColumn& c : kMachineColumns) {  // every column the schema lists
+    switch (c.kind) {
+      case MachineColumn::Kind::kText: EXPECT_EQ(contents.machine.*c.text, expected_machine.*c.text) << c.name; break;
+      case MachineColumn::Kind::kReal: EXPECT_EQ(contents.machine.*c.real, expected_machine.*c.real) << c.name; break;
+      case MachineColumn::Kind::kInteger:
+        EXPECT_EQ(contents.machine.*c.integer, expected_machine.*c.integer) << c.name;
+        break;
+    }
+  }
 
   ASSERT_EQ(contents.materials.size(), 2u);
   EXPECT_EQ(contents.materials[0].name, "A");

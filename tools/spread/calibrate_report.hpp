@@ -43,6 +43,7 @@
 #include "tools/spread/output_paths.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/table_session.hpp"
 #include "tools/spread/next_steps.hpp"
 #include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"

@@ -25,6 +25,7 @@
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/number_format.hpp"
 #include "tools/spread/prediction_args.hpp"
+#include "tools/spread/table_session.hpp"
 
 namespace spread::cli::cmd_border {
 namespace {
@@ -152,7 +153,8 @@ void run(const Options& o, int& exit_code) {
   std::optional<spread::calibration::DropPointScale> scale;
   if (!o.scales.empty()) scale = spread::calibration::read_machine_scales(o.scales).drop_point;
 
-  pr::Predictor predictor(spread::tables::read_table_file(o.tables));
+  spread::cli::TableSession session(o.tables);
+  pr::Predictor& predictor = session.predictor();
   if (!predictor.find_material(o.material)) throw BadInput("--material '" + o.material + "' is not in " + o.tables);
   if (predictor.machine().disc_count < 2) throw BadInput(o.tables + ": a one-disc machine has no edge-side disc to set apart");
   const pr::EdgeResult r = pr::find_edge_setting(predictor, normal, edge);

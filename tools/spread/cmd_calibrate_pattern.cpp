@@ -191,7 +191,8 @@ void run_pattern(const PatternOptions& o) {
                      : cal::tagged_material_name(o.material, o.name);
   const cal::TrayTest test = cal::read_tray_csv(o.trays);
   require_width_within_trays(test, o.width_m);
-  const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
+  const spread::cli::TableSession session(o.tables);
+  const spread::tables::TableContents& contents = session.contents();
   const std::vector<double> dem_rpm = cal::non_analytic_rows(contents, o.material);
   const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm, o.allow_analytic);
   cal::PatternFitOptions options;
@@ -259,7 +260,9 @@ void run_pattern(const PatternOptions& o) {
     request.cv_target = cv_target;
     request.bout_width_m = o.width_m;
     request.tray_width_m = test.tray_width_m;
-    guidance = spread::cli::setting_guidance(summary->output_path, request);
+    // The calibrated table just written: its own file, read once.
+    spread::cli::TableSession calibrated(summary->output_path);
+    guidance = spread::cli::setting_guidance(calibrated.predictor(), request);
   }
   const std::optional<spread::plot::ReportRate> rate =
       spread::cli::report_rate(o.report, measured.total_mass_kg, report_width_m, test.layout.tray_width_m);

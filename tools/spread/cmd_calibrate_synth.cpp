@@ -11,7 +11,8 @@ void run_synth(const SynthOptions& o) {
   if (!(o.tray_width_m > 0.0) || !(o.half_width_m >= 2.5 * o.tray_width_m)) {
     throw BadInput("--tray-width must be > 0 and --half-width at least 2.5 tray widths");
   }
-  const spread::tables::TableContents contents = spread::tables::read_table_file(o.tables);
+  const spread::cli::TableSession session(o.tables);
+  const spread::tables::TableContents& contents = session.contents();
   const cal::PatternSetup setup = cal::pattern_setup_from_table(contents, o.material, o.rpm);
   cal::PatternParameters truth = cal::parameters_of(setup.material);
   if (!std::isnan(o.friction)) {

@@ -30,6 +30,7 @@
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/verdicts.hpp"
 #include "tools/spread/number_format.hpp"
+#include "tools/spread/table_session.hpp"
 
 namespace spread::cli::cmd_chart {
 namespace {
@@ -187,7 +188,8 @@ void run(const Options& o, int& exit_code) {
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
 
-  pr::Predictor predictor(spread::tables::read_table_file(o.tables));
+  spread::cli::TableSession session(o.tables);
+  pr::Predictor& predictor = session.predictor();
   if (!predictor.find_material(o.material)) {
     std::string known;
     for (std::size_t i = 0; i < predictor.material_count(); ++i) known += " " + predictor.material(i).name;

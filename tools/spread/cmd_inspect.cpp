@@ -11,6 +11,7 @@
 #include "libspread/io/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/error_exit.hpp"
+#include "tools/spread/table_session.hpp"
 
 namespace spread::cli::cmd_inspect {
 namespace {
@@ -134,7 +135,8 @@ spread::cli::CommandRegistration reg{"inspect", [](CLI::App& app, int& exit_code
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   sub->callback([&exit_code] {
     try {
-      const auto contents = spread::tables::read_table_file(options.file);
+      const spread::cli::TableSession session(options.file, "");
+      const spread::tables::TableContents& contents = session.contents();
       if (options.json) {
         std::cout << to_json(contents, options.file).dump(2) << "\n";
       } else {

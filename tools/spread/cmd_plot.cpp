@@ -19,6 +19,7 @@
 #include "libspread/analysis/predict/predictor.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
+#include "tools/spread/table_session.hpp"
 
 namespace spread::cli::cmd_plot {
 namespace {
@@ -72,7 +73,8 @@ void run(const Options& o, int& exit_code) {
 
   spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
 
-  spread::predict::Predictor predictor(spread::tables::read_table_file(o.tables));
+  spread::cli::TableSession session(o.tables);
+  spread::predict::Predictor& predictor = session.predictor();
   spread::predict::Prediction p;
   const auto status = predictor.predict(request, p);
   if (status != spread::predict::PredictStatus::kOk) throw BadInput(refusal(status, o, predictor));

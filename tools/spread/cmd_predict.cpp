@@ -26,11 +26,11 @@
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/table_session.hpp"
 #include "tools/spread/verdicts.hpp"
 #include "tools/spread/next_steps.hpp"
 #include "tools/spread/number_format.hpp"
 #include "libspread/analysis/plot/report_pdf.hpp"
-#include "libspread/io/tables/table_reader.hpp"
 #include "libspread/analysis/predict/width_stability.hpp"
 
 namespace spread::cli::cmd_predict {
@@ -50,11 +50,6 @@ struct Options : spread::cli::PredictionArgs {
   bool json = false;
   spread::cli::ReportArgs report;
 };
-
-struct TablesCloser {
-  void operator()(spread_tables* t) const { spread_close(t); }
-};
-using TablesHandle = std::unique_ptr<spread_tables, TablesCloser>;
 
 std::uint32_t parse_effects(const std::string& text) {
   if (text == "table") return SPREAD_EFFECTS_AS_TABLE;
@@ -211,7 +206,7 @@ std::string setting_label(const Options& o, const spread_prediction& r) {
 
 // The guidance when the CV at --width is above the target (setting_guidance.hpp): the same table and
 // conditions through the Predictor, the C API's own engine.
-spread::cli::SettingGuidance guidance_for(const Options& o, const spread_prediction& r) {
+spread::cli::SettingGuidance guidance_for(const Options& o, const spread_prediction& r, spread::cli::TableSession& session) {
   if (!(o.bout_width_m > 0.0) || !(r.cv_percent > o.cv_target_percent)) return {};
   if (o.compensate_wind) return {};  // the setting shown is the search's already
   if (own_disc_settings(o)) {
@@ -225,7 +220,7 @@ spread::cli::SettingGuidance guidance_for(const Options& o, const spread_predict
                                          : spread::flight::parse_effects(o.effects);
   request.bout_width_m = o.bout_width_m;
   request.kernel_half_width_m = o.kernel_half_width_m;
-  return spread::cli::setting_guidance(o.tables, request);
+  return spread::cli::setting_guidance(session.predictor(), request);
 }
 
 // The predicted CV at the bout width against the target with its 95 % interval over the launch samples
@@ -245,15 +240,15 @@ std::vector<spread::cli::Verdict> prediction_verdicts(const Options& o, const sp
 
 // The report's pattern page of a prediction: the trays as shares of the discharged mass, the CVs with
 // their 95 % intervals.
-spread::plot::PatternReport report_page(const Options& o, const spread_prediction& r, const std::vector<double>& trays,
+spread::plot::PatternReport report_page(const Options& o, const std::string& machine_name, const spread_prediction& r,
+                                        const std::vector<double>& trays,
                                         const CvCurve& curve, std::int64_t time_s,
                                         const spread::cli::SettingGuidance& guidance,
                                         const std::vector<spread::cli::Verdict>& verdicts) {
     spread::plot::PatternReport page;
     page.header.title = "Spread pattern report: prediction";
     page.header.source = o.tables;
-    // The machine's name is read from the table only for a page to write (a second read of the file).
-    if (!o.report.path.empty()) page.header.machine = spread::tables::read_table_file(o.tables).machine.name;
+    page.header.machine = machine_name;
     page.header.material = o.material;
     page.header.rpm = o.rpm;
     if (own_disc_settings(o)) page.header.rpm_text = setting_label(o, r);
@@ -333,27 +328,23 @@ void run(const Options& o, int& exit_code) {
     def.disc_drop_point_turn_rad[d] = spread::cli::disc_drop_point_turn_rad(o, d);
   }
 
-  spread_tables* raw = nullptr;
-  const spread_status opened = spread_open(o.tables.c_str(), &raw);
-  if (opened != SPREAD_OK) {
-    // The status, then what exactly (the C API's detail names the row, run or column at fault).
-    throw_status(opened, "--tables '" + o.tables + "': " + spread_status_str(opened) + ": " + spread_last_error_detail());
-  }
-  TablesHandle tables(raw);
+  // The table read once; the C API's handle over it (the guidance and --stability use the same contents).
+  spread::cli::TableSession session(o.tables);
+  spread_tables* const tables = session.capi();
 
   size_t capacity = 0;
-  spread_status status = spread_transverse_bound(tables.get(), def.tray_width_m, &capacity);
+  spread_status status = spread_transverse_bound(tables, def.tray_width_m, &capacity);
   std::vector<double> trays(status == SPREAD_OK ? capacity : 0);
   spread_prediction result{};
-  if (status == SPREAD_OK) status = spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
+  if (status == SPREAD_OK) status = spread_predict(tables, &def, &result, trays.data(), trays.size());
   // --compensate-wind: the present setting's CV in this wind, then the prediction at the compensated setting.
   const double present_cv_percent = result.cv_percent, present_cv_se_percent = result.cv_se_percent;
   const auto predict_once = [&] {
-    return o.compensate_wind ? spread_compensate_wind(tables.get(), &def, &result, trays.data(), trays.size())
-                             : spread_predict(tables.get(), &def, &result, trays.data(), trays.size());
+    return o.compensate_wind ? spread_compensate_wind(tables, &def, &result, trays.data(), trays.size())
+                             : spread_predict(tables, &def, &result, trays.data(), trays.size());
   };
   if (status == SPREAD_OK && o.compensate_wind) status = predict_once();
-  if (status != SPREAD_OK) throw_status(status, explain(status, o, tables.get()));
+  if (status != SPREAD_OK) throw_status(status, explain(status, o, tables));
 
   // --repeat K: the median wall time of K further predictions (the first, above, warmed the caches).
   double median_us = std::numeric_limits<double>::quiet_NaN();
@@ -377,17 +368,17 @@ void run(const Options& o, int& exit_code) {
     request.kernel_half_width_m = o.kernel_half_width_m;
     request.effects = o.effects == "table" ? spread::predict::kTableEffects : def.effects;
     request.fly_outside_domain = o.fly_outside_domain;
-    stability = spread::predict::width_stability(spread::tables::read_table_file(o.tables), request, o.stability);
+    stability = spread::predict::width_stability(session.contents(), request, o.stability);
   }
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
-  const spread::cli::SettingGuidance guidance = guidance_for(o, result);
+  const spread::cli::SettingGuidance guidance = guidance_for(o, result, session);
   const std::vector<spread::cli::Verdict> verdicts = prediction_verdicts(o, result);
   const std::vector<spread::cli::NextStep> steps =
       spread::cli::predict_next_steps(verdicts, o.tables, o.material, o.bout_width_m);
   // The page, made whether or not it is written: --json gives its chart's numbers too.
-  spread::plot::PatternReport page = report_page(o, result, trays, curve, report_time_s, guidance, verdicts);
+  spread::plot::PatternReport page = report_page(o, session.machine().name, result, trays, curve, report_time_s, guidance, verdicts);
   for (const std::string& n : spread::cli::next_steps_notes(steps)) page.notes.push_back(n);
   std::string report_error;
   if (!o.report.path.empty() && report_problem.empty()) {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "libspread/io/tables/table_reader.hpp"
 #include "tools/spread/next_steps.hpp"
 #include "tools/spread/number_format.hpp"
 
@@ -16,9 +15,8 @@ std::string plus_minus_percent(double standard_error) {
 
 }  // namespace
 
-SettingGuidance setting_guidance(const std::string& tables, const predict::PredictionRequest& request) {
+SettingGuidance setting_guidance(predict::Predictor& predictor, const predict::PredictionRequest& request) {
   SettingGuidance g;
-  predict::Predictor predictor(tables::read_table_file(tables));
   const predict::SettingAdjustments adjustments = predict::setting_adjustments(predictor, request);
   if (!(adjustments.present_cv_to_and_fro > request.cv_target)) return g;
   g.adjustments = adjustments;

@@ -18,10 +18,10 @@ struct SettingGuidance {
   std::vector<std::string> notes;  // the page's: the same without the commands to run
 };
 
-// With the table file `tables` and the present settings `request` (bout width > 0): nothing when the
+// With the table's Predictor and the present settings `request` (bout width > 0): nothing when the
 // predicted to-and-fro CV there meets the request's target, else the adjustments. Throws as
-// predict::setting_adjustments and tables::read_table_file.
-SettingGuidance setting_guidance(const std::string& tables, const predict::PredictionRequest& request);
+// predict::setting_adjustments.
+SettingGuidance setting_guidance(predict::Predictor& predictor, const predict::PredictionRequest& request);
 
 // `adjustments` of a command's JSON: a list, or null when there is none.
 nlohmann::json setting_guidance_json(const SettingGuidance& guidance);

@@ -124,11 +124,14 @@ struct EdgeDisc {
 // At most this many bouts judged (a throw of 100 m over 1 m bouts is already far beyond any spreader).
 constexpr int kMaxJudgedBouts = 256;
 
-// The profile's figures with the field-side disc `inner` and the edge-side disc at flow f (strips only when
-// `strips`): the judged span tray by tray, each tray's inside part [a, b] split at the bouts' ends.
-void evaluate(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, double flow, const EdgeRequest& edge,
-              EdgeProfile& out, bool strips) {
-  const double w = frame.trays.tray_width_m, left_m = frame.trays.left_edge_m(), bout_m = frame.bout_width_m;
+// Per judged bout: the length above the over limit, and above it by more than the tolerance (flooded).
+struct BoutTally {
+  std::array<double, kMaxJudgedBouts> over_m{}, flooded_m{};
+  int bouts = 0;
+};
+
+// The figures reset, and the pass's mass beyond the line with the edge-side disc at flow f.
+void start_figures(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, double flow, EdgeProfile& out) {
   const double pass_mass = inner.mass + flow * disc.mass;
   out.mass_beyond_fraction =
       pass_mass > 0.0 ? (frame.fixed_beyond + inner.beyond + flow * disc.beyond) / pass_mass : 0.0;
@@ -141,16 +144,62 @@ void evaluate(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, d
   out.under_applied_last_bout_m = 0.0;
   out.under_applied_m.clear();
   out.over_applied_m.clear();
-  // Per bout: the length above the over limit, and above it by more than the tolerance (flooded).
-  std::array<double, kMaxJudgedBouts> over_m{}, flooded_m{};
-  const int bouts = std::min(frame.judged_bouts, kMaxJudgedBouts);
-  const auto strip = [](std::pmr::vector<std::pair<double, double>>& list, double from, double to) {
-    if (!list.empty() && std::abs(list.back().second - from) < 1e-9) {
-      list.back().second = to;
-    } else {
-      list.emplace_back(from, to);
+}
+
+// An over-applied stretch [a, b] at rate r, split at the bouts' ends into the tally.
+void tally_over(double a, double b, double r, double over_limit, double tolerance, double bout_m, BoutTally& tally) {
+  double from = a;
+  while (from < b) {
+    const int bout = bout_of(from + 1e-12, bout_m);
+    const double bout_end = bout == 0 ? b : -(bout - 0.5) * bout_m;
+    const double to = std::min(b, bout_end);
+    if (bout < tally.bouts) {
+      tally.over_m[static_cast<std::size_t>(bout)] += to - from;
+      if (r > over_limit + tolerance) tally.flooded_m[static_cast<std::size_t>(bout)] += to - from;
     }
-  };
+    from = to;
+  }
+}
+
+// The bouts' tallies, the limits, and the verdict. The last bout is only [−W/2, line] wide; every bout is
+// allowed the same length.
+void finish_figures(const Frame& frame, const EdgeRequest& edge, const BoutTally& tally, EdgeProfile& out) {
+  out.mean_rate_last_bout /= frame.line_m + 0.5 * frame.bout_width_m;
+  out.most_flooded_m = *std::max_element(tally.flooded_m.begin(), tally.flooded_m.begin() + tally.bouts);
+  out.most_over_applied_bout = 0;
+  out.most_over_applied_m = tally.over_m[0];
+  for (int j = 1; j < tally.bouts; ++j) {
+    if (tally.over_m[static_cast<std::size_t>(j)] > out.most_over_applied_m) {
+      out.most_over_applied_m = tally.over_m[static_cast<std::size_t>(j)];
+      out.most_over_applied_bout = j;
+    }
+  }
+  out.judged_from_m = frame.judged_from_m;
+  out.over_limit = frame.over_limit;
+  out.under_limit = frame.under_limit;
+  const bool not_over = out.most_over_applied_m <= edge.max_over_applied_fraction * frame.bout_width_m + 1e-9 &&
+                        out.max_excess <= edge.rate_tolerance;
+  out.meets = edge.kind == EdgeKind::kBorder ? out.mass_beyond_fraction <= edge.max_beyond_fraction && not_over
+                                             : out.rate_at_edge >= edge.min_edge_rate && not_over;
+}
+
+// Appends [from, to] to a list of stretches, joined to the last one when they meet.
+void add_stretch(std::pmr::vector<std::pair<double, double>>& list, double from, double to) {
+  if (!list.empty() && std::abs(list.back().second - from) < 1e-9) {
+    list.back().second = to;
+  } else {
+    list.emplace_back(from, to);
+  }
+}
+
+// The profile's figures with the field-side disc `inner` and the edge-side disc at flow f (strips only when
+// `strips`): the judged span tray by tray, each tray's inside part [a, b] split at the bouts' ends.
+void evaluate(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, double flow, const EdgeRequest& edge,
+              EdgeProfile& out, bool strips) {
+  const double w = frame.trays.tray_width_m, left_m = frame.trays.left_edge_m(), bout_m = frame.bout_width_m;
+  start_figures(frame, inner, disc, flow, out);
+  BoutTally tally;
+  tally.bouts = std::min(frame.judged_bouts, kMaxJudgedBouts);
   const double last_from_m = -0.5 * bout_m, edge_strip_from_m = frame.line_m - w;
   for (int k = frame.first_judged; k < frame.end_inside; ++k) {
     const auto i = static_cast<std::size_t>(k);
@@ -173,41 +222,11 @@ void evaluate(const Frame& frame, const EdgeDisc& inner, const EdgeDisc& disc, d
       if (under) out.under_applied_last_bout_m += inside_m;
     }
     if (b > edge_strip_from_m) out.rate_at_edge += r * (b - std::max(a, edge_strip_from_m)) / w;
-    if (over) {
-      // Split [a, b] at the bouts' ends.
-      double from = a;
-      while (from < b) {
-        const int bout = bout_of(from + 1e-12, bout_m);
-        const double bout_end = bout == 0 ? b : -(bout - 0.5) * bout_m;
-        const double to = std::min(b, bout_end);
-        if (bout < bouts) {
-          over_m[static_cast<std::size_t>(bout)] += to - from;
-          if (r > over_limit + edge.rate_tolerance) flooded_m[static_cast<std::size_t>(bout)] += to - from;
-        }
-        from = to;
-      }
-    }
-    if (strips && under) strip(out.under_applied_m, a, b);
-    if (strips && over) strip(out.over_applied_m, a, b);
+    if (over) tally_over(a, b, r, over_limit, edge.rate_tolerance, bout_m, tally);
+    if (strips && under) add_stretch(out.under_applied_m, a, b);
+    if (strips && over) add_stretch(out.over_applied_m, a, b);
   }
-  out.mean_rate_last_bout /= frame.line_m - last_from_m;
-  out.most_flooded_m = *std::max_element(flooded_m.begin(), flooded_m.begin() + bouts);
-  out.most_over_applied_bout = 0;
-  out.most_over_applied_m = over_m[0];
-  for (int j = 1; j < bouts; ++j) {
-    if (over_m[static_cast<std::size_t>(j)] > out.most_over_applied_m) {
-      out.most_over_applied_m = over_m[static_cast<std::size_t>(j)];
-      out.most_over_applied_bout = j;
-    }
-  }
-  out.judged_from_m = frame.judged_from_m;
-  out.over_limit = frame.over_limit;
-  out.under_limit = frame.under_limit;
-  // The last bout is only [−W/2, line] wide; every bout is allowed the same length.
-  const bool not_over = out.most_over_applied_m <= edge.max_over_applied_fraction * bout_m + 1e-9 &&
-                        out.max_excess <= edge.rate_tolerance;
-  out.meets = edge.kind == EdgeKind::kBorder ? out.mass_beyond_fraction <= edge.max_beyond_fraction && not_over
-                                             : out.rate_at_edge >= edge.min_edge_rate && not_over;
+  finish_figures(frame, edge, tally, out);
 }
 
 // Lower is better: the settings that meet the thresholds first (by the kind's aim), then the rest by how
@@ -384,125 +403,184 @@ PredictStatus edge_profile(Predictor& predictor, const PredictionRequest& normal
   return PredictStatus::kOk;
 }
 
-EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
-                             std::pmr::memory_resource* memory) {
-  EdgeResult result;
-  EdgeSearch search(predictor, normal, edge, memory);
-  if (!search.start()) {
-    result.status = search.status_;
-    return result;
+namespace {
+
+// The drop points a disc's search may use: within ± the request's turn of its own and within the turns the
+// table validates (a disc set outside them keeps its drop point).
+struct TurnWindow {
+  double base_rad = 0.0, low_rad = 0.0, high_rad = 0.0;
+  TurnWindow(double base, double max_turn_rad, const TurnRange& valid)
+      : base_rad(base), low_rad(std::max(valid.low_rad, base - max_turn_rad)),
+        high_rad(std::min(valid.high_rad, base + max_turn_rad)) {
+    if (low_rad > high_rad) low_rad = high_rad = base_rad;
   }
-  const std::optional<std::size_t> material = predictor.find_material(normal.material);
-  const double min_rpm = predictor.min_rpm(*material), max_rpm = predictor.max_rpm(*material);
-  const int field_side = search.field_side_index();
-  EdgeDisc inner_normal(memory), disc(memory);
-  search.pass_at(search.normal_field_side_, search.normal_disc_, inner_normal, disc);
-  search.profile(inner_normal, disc, 1.0, result.normal_profile);
-  // The budget: a grid point is flown only while one prediction is left after it for the answer's profile;
-  // the points left out are skipped, so the search ends with the best of those flown (finished false).
-  const int budget = std::max(edge.max_predictions, kEdgeMinPredictions);
-  const bool limited = edge.max_predictions < std::numeric_limits<int>::max();
-  const auto affordable = [&] {
-    if (search.predictions_ + 2 <= budget) return true;
-    result.finished = false;
-    return false;
-  };
-  // The normal setting's edge-side disc, judged against each field-side drop point under a budget.
-  EdgeDisc normal_disc(memory);
-  if (limited) normal_disc = disc;
+  // Grid points outside are skipped (not clamped onto its end: no setting is flown twice).
+  bool outside(double turn_rad) const { return !TurnRange{low_rad, high_rad}.contains(turn_rad); }
+};
 
-  // Drop points within ±max_drop_point_turn_rad of the field's for that disc, and within the turns the table
-  // validates (a disc set outside them keeps its drop point).
-  const TurnRange valid = predictor.drop_point_turn_range();
-  const auto turn_range = [&](double base_rad, double& low, double& high) {
-    low = std::max(valid.low_rad, base_rad - edge.max_drop_point_turn_rad);
-    high = std::min(valid.high_rad, base_rad + edge.max_drop_point_turn_rad);
-    if (low > high) low = high = base_rad;
-  };
-  const double base_turn = search.normal_disc_.drop_point_turn_rad;
-  const double field_base_turn = search.normal_field_side_.drop_point_turn_rad;
-  double turn_low = 0.0, turn_high = 0.0, field_low = 0.0, field_high = 0.0;
-  turn_range(base_turn, turn_low, turn_high);
-  turn_range(field_base_turn, field_low, field_high);
-  const double step_rad = kEdgeGridStep_deg * kPi / 180.0;
-  const int turns = static_cast<int>(std::floor(edge.max_drop_point_turn_rad / step_rad + 1e-9));
-  const int speeds = std::max(1, static_cast<int>(std::ceil((max_rpm - min_rpm) / kEdgeGridStep_rpm - 1e-9)));
+// find_edge_setting's stages over one context: the normal setting's pass (start), whether the budget holds
+// the whole search (count_whole), the field-side disc's drop points (field_side_discs), the edge-side
+// disc's speed × drop point grid judged against each (coarse_grid), a finer grid around the best
+// (fine_grid), and the answer's profile (answer). Each setting flown is judged as soon as it can be.
+class EdgeGridSearch {
+ public:
+  EdgeGridSearch(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                 std::pmr::memory_resource* memory, EdgeResult& result)
+      : predictor_(predictor), normal_(normal), edge_(edge), memory_(memory), result_(result),
+        search_(predictor, normal, edge, memory), inner_normal_(memory), disc_(memory), normal_disc_(memory),
+        inner_turns_(memory), inners_(memory),
+        step_rad_(kEdgeGridStep_deg * kPi / 180.0),
+        turns_(static_cast<int>(std::floor(edge.max_drop_point_turn_rad / step_rad_ + 1e-9))) {}
 
-  // The field-side disc's drop points on its grid (index `turns`: the field's own), then the edge-side disc's
-  // speed × drop point grid; every pair is judged from the two discs' trays (each disc flown once per setting).
-  std::pmr::vector<double> inner_turns(memory);
-  std::pmr::vector<EdgeDisc> inners(memory);
-  // Grid points outside a disc's range are skipped (not clamped onto its end: no setting is flown twice).
-  const auto outside = [](double t, double low, double high) { return !TurnRange{low, high}.contains(t); };
+  bool start() {
+    if (!search_.start()) {
+      result_.status = search_.status_;
+      return false;
+    }
+    const std::optional<std::size_t> material = predictor_.find_material(normal_.material);
+    min_rpm_ = predictor_.min_rpm(*material);
+    max_rpm_ = predictor_.max_rpm(*material);
+    speeds_ = std::max(1, static_cast<int>(std::ceil((max_rpm_ - min_rpm_) / kEdgeGridStep_rpm - 1e-9)));
+    search_.pass_at(search_.normal_field_side_, search_.normal_disc_, inner_normal_, disc_);
+    search_.profile(inner_normal_, disc_, 1.0, result_.normal_profile);
+    // The budget: a grid point is flown only while one prediction is left after it for the answer's
+    // profile; the points left out are skipped, so the search ends with the best of those flown (finished
+    // false). The normal setting's edge-side disc is then judged against each field-side drop point.
+    budget_ = std::max(edge_.max_predictions, kEdgeMinPredictions);
+    limited_ = edge_.max_predictions < std::numeric_limits<int>::max();
+    if (limited_) normal_disc_ = disc_;
+    const TurnRange valid = predictor_.drop_point_turn_range();
+    edge_window_.emplace(search_.normal_disc_.drop_point_turn_rad, edge_.max_drop_point_turn_rad, valid);
+    field_window_.emplace(search_.normal_field_side_.drop_point_turn_rad, edge_.max_drop_point_turn_rad, valid);
+    return true;
+  }
+
   // A budget that may end the search early (short of every point of both grids and the finer grid's 120,
   // counted before any is flown): the search keeps its order, and each setting flown is judged as soon as
   // it can be, so that the answer is the best of what the budget bought and never worse than the normal
   // setting at its best flow. A budget the whole search fits runs it exactly as without one.
-  bool whole = true;
-  if (limited) {
+  void count_whole() {
+    if (!limited_) return;
     int points = 0;
-    for (int j = -turns; j <= turns; ++j) points += j != 0 && !outside(field_base_turn + j * step_rad, field_low, field_high);
-    for (int i = 0; i <= speeds; ++i) {
-      for (int j = -turns; j <= turns; ++j) points += j == 0 || !outside(base_turn + j * step_rad, turn_low, turn_high);
+    for (int j = -turns_; j <= turns_; ++j) points += j != 0 && !field_window_->outside(field_window_->base_rad + j * step_rad_);
+    for (int i = 0; i <= speeds_; ++i) {
+      for (int j = -turns_; j <= turns_; ++j) points += j == 0 || !edge_window_->outside(edge_window_->base_rad + j * step_rad_);
     }
-    whole = search.predictions_ + points + 120 + 1 <= budget;
+    whole_ = search_.predictions_ + points + 120 + 1 <= budget_;
     // Not the search spread_find_edge_setting runs (its ties may fall elsewhere), even should every point fit.
-    if (!whole) result.finished = false;
+    if (!whole_) result_.finished = false;
   }
-  for (int j = -turns; j <= turns; ++j) {
-    const double t = j == 0 ? field_base_turn : field_base_turn + j * step_rad;
-    if (j != 0 && outside(t, field_low, field_high)) continue;
-    if (j != 0 && !affordable()) continue;
-    EdgeDisc d(memory);
-    if (j != 0 && !search.disc_at(field_side, DiscSetting{search.normal_field_side_.rpm, t}, d)) continue;
-    inner_turns.push_back(t);
-    inners.push_back(j == 0 ? inner_normal : std::move(d));
-  }
-  double best_score = std::numeric_limits<double>::infinity();
-  EdgeSetting best;
-  std::size_t best_inner = 0;
-  const auto judge = [&](std::size_t i, const DiscSetting& setting, const EdgeDisc& d) {
-    double flow = 1.0;
-    double s = search.best_flow(inners[i], d, flow);
-    if (inner_turns[i] != field_base_turn) s += kFieldSideChangedPenalty;
-    if (s < best_score) {
-      best_score = s;
-      best = EdgeSetting{setting, flow, inner_turns[i] == field_base_turn ? std::numeric_limits<double>::quiet_NaN()
-                                                                          : inner_turns[i]};
-      best_inner = i;
-    }
-  };
-  if (!whole) {
-    // Each field-side drop point flown, against the edge-side disc at the normal setting.
-    for (std::size_t k = 0; k < inners.size(); ++k) judge(k, search.normal_disc_, normal_disc);
-  }
-  for (int i = 0; i <= speeds; ++i) {
-    for (int j = -turns; j <= turns; ++j) {
-      if (j != 0 && outside(base_turn + j * step_rad, turn_low, turn_high)) continue;
-      const DiscSetting setting{std::clamp(min_rpm + (max_rpm - min_rpm) * i / speeds, min_rpm, max_rpm),
-                                base_turn + j * step_rad};
-      if (!affordable() || !search.disc_at(edge.side, setting, disc)) continue;
-      for (std::size_t k = 0; k < inners.size(); ++k) judge(k, setting, disc);
+
+  // The field-side disc's drop points on its grid (index `turns`: the field's own), each flown once.
+  void field_side_discs() {
+    const double base = field_window_->base_rad;
+    for (int j = -turns_; j <= turns_; ++j) {
+      const double t = j == 0 ? base : base + j * step_rad_;
+      if (j != 0 && field_window_->outside(t)) continue;
+      if (j != 0 && !affordable()) continue;
+      EdgeDisc d(memory_);
+      if (j != 0 && !search_.disc_at(search_.field_side_index(), DiscSetting{search_.normal_field_side_.rpm, t}, d)) continue;
+      inner_turns_.push_back(t);
+      inners_.push_back(j == 0 ? inner_normal_ : std::move(d));
     }
   }
+
+  // The edge-side disc's speed × drop point grid; every pair with a field-side drop point is judged from
+  // the two discs' trays.
+  void coarse_grid() {
+    if (!whole_) {
+      // Each field-side drop point flown, against the edge-side disc at the normal setting.
+      for (std::size_t k = 0; k < inners_.size(); ++k) judge(k, search_.normal_disc_, normal_disc_);
+    }
+    const double base = edge_window_->base_rad;
+    for (int i = 0; i <= speeds_; ++i) {
+      for (int j = -turns_; j <= turns_; ++j) {
+        if (j != 0 && edge_window_->outside(base + j * step_rad_)) continue;
+        const DiscSetting setting{std::clamp(min_rpm_ + (max_rpm_ - min_rpm_) * i / speeds_, min_rpm_, max_rpm_),
+                                  base + j * step_rad_};
+        if (!affordable() || !search_.disc_at(edge_.side, setting, disc_)) continue;
+        for (std::size_t k = 0; k < inners_.size(); ++k) judge(k, setting, disc_);
+      }
+    }
+  }
+
   // A finer grid around the best edge-side setting, the field-side disc as found: a tenth of each step, over
   // one step each way.
-  const EdgeSetting coarse = best;
-  const std::size_t coarse_inner = best_inner;
-  for (int i = -5; i <= 5; ++i) {
-    for (int j = -5; j <= 5; ++j) {
-      if (i == 0 && j == 0) continue;
-      const double turn = coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad;
-      if (j != 0 && outside(turn, turn_low, turn_high)) continue;
-      const DiscSetting setting{std::clamp(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, min_rpm, max_rpm), turn};
-      if (!affordable() || !search.disc_at(edge.side, setting, disc)) continue;
-      judge(coarse_inner, setting, disc);
+  void fine_grid() {
+    const EdgeSetting coarse = best_;
+    const std::size_t coarse_inner = best_inner_;
+    for (int i = -5; i <= 5; ++i) {
+      for (int j = -5; j <= 5; ++j) {
+        if (i == 0 && j == 0) continue;
+        const double turn = coarse.disc.drop_point_turn_rad + j * 0.1 * step_rad_;
+        if (j != 0 && edge_window_->outside(turn)) continue;
+        const DiscSetting setting{std::clamp(coarse.disc.rpm + i * 0.1 * kEdgeGridStep_rpm, min_rpm_, max_rpm_), turn};
+        if (!affordable() || !search_.disc_at(edge_.side, setting, disc_)) continue;
+        judge(coarse_inner, setting, disc_);
+      }
     }
   }
-  search.disc_at(edge.side, best.disc, disc);
-  result.setting = best;
-  search.profile(inners[best_inner], disc, best.flow_fraction, result.profile);
-  result.predictions = search.predictions_;
+
+  void answer() {
+    search_.disc_at(edge_.side, best_.disc, disc_);
+    result_.setting = best_;
+    search_.profile(inners_[best_inner_], disc_, best_.flow_fraction, result_.profile);
+    result_.predictions = search_.predictions_;
+  }
+
+ private:
+  bool affordable() {
+    if (search_.predictions_ + 2 <= budget_) return true;
+    result_.finished = false;
+    return false;
+  }
+  // The pair (field-side drop point i, edge-side disc at `setting`) at its best flow, kept when it scores
+  // lower than the best so far; a changed field-side drop point pays kFieldSideChangedPenalty.
+  void judge(std::size_t i, const DiscSetting& setting, const EdgeDisc& d) {
+    double flow = 1.0;
+    double s = search_.best_flow(inners_[i], d, flow);
+    const double field_base = field_window_->base_rad;
+    if (inner_turns_[i] != field_base) s += kFieldSideChangedPenalty;
+    if (s < best_score_) {
+      best_score_ = s;
+      best_ = EdgeSetting{setting, flow,
+                          inner_turns_[i] == field_base ? std::numeric_limits<double>::quiet_NaN() : inner_turns_[i]};
+      best_inner_ = i;
+    }
+  }
+
+  Predictor& predictor_;
+  const PredictionRequest& normal_;
+  const EdgeRequest& edge_;
+  std::pmr::memory_resource* memory_;
+  EdgeResult& result_;
+  EdgeSearch search_;
+  EdgeDisc inner_normal_, disc_, normal_disc_;
+  std::pmr::vector<double> inner_turns_;
+  std::pmr::vector<EdgeDisc> inners_;
+  double step_rad_ = 0.0;
+  int turns_ = 0, speeds_ = 1;
+  double min_rpm_ = 0.0, max_rpm_ = 0.0;
+  int budget_ = 0;
+  bool limited_ = false, whole_ = true;
+  std::optional<TurnWindow> edge_window_, field_window_;
+  double best_score_ = std::numeric_limits<double>::infinity();
+  EdgeSetting best_;
+  std::size_t best_inner_ = 0;
+};
+
+}  // namespace
+
+EdgeResult find_edge_setting(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
+                             std::pmr::memory_resource* memory) {
+  EdgeResult result;
+  EdgeGridSearch search(predictor, normal, edge, memory, result);
+  if (!search.start()) return result;
+  search.count_whole();
+  search.field_side_discs();
+  search.coarse_grid();
+  search.fine_grid();
+  search.answer();
   return result;
 }
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <new>
 
+#include "libspread/analysis/predict/mirror_fold.hpp"
+
 namespace spread::predict {
 
 namespace {
@@ -37,14 +39,7 @@ void part_trays(const InterpolationErrorInput& in, RowPart part, const Interpola
     const double scale = disc_mass / part_mass;
     for (std::size_t k = 0; k < s.part_trays.size(); ++k) s.part_trays[k] += scale * s.disc_trays[k];
   }
-  if (in.mirrored) {
-    const std::size_t count = s.part_trays.size();
-    for (std::size_t k = 0; k < count / 2; ++k) {
-      const double sum = s.part_trays[k] + s.part_trays[count - 1 - k];
-      s.part_trays[k] = sum;
-      s.part_trays[count - 1 - k] = sum;
-    }
-  }
+  if (in.mirrored) fold_mirror(s.part_trays);
 }
 
 // The part's working width read as the answer's: the upper end of its band that overlaps the answer's

@@ -133,26 +133,15 @@ class WindSearch {
 
 }  // namespace
 
-WindCompensation compensate_wind(const Predictor& predictor, const PredictionRequest& request, Prediction& out,
-                                 PredictorWorkspace& workspace, const WindCompensationLimits& limits) {
-  WindCompensation result;
-  if (!(request.bout_width_m > 0.0) || predictor.machine().disc_count < 2) {
-    result.status = PredictStatus::kOutOfRange;
-    return result;
-  }
-  const DiscSetting present[2] = {disc_setting(request, kLeftDisc), disc_setting(request, kRightDisc)};
-  // The caller's `out` stays unchanged on a refusal: a refused predict() leaves its output alone.
-  WindSearch search(predictor, request, out, workspace);
-  result.status = search.predict_present(present);
-  if (result.status != PredictStatus::kOk) return result;
-  const double present_cv = comparable(out.cv_to_and_fro);
+namespace {
 
-  // Each disc's range: its speed within the material's rows and ± max_speed_offset_rpm, its drop point within
-  // ± max_drop_point_turn_rad and the table's validated turns (a disc outside them keeps its own).
-  const std::optional<std::size_t> material = predictor.find_material(request.material);
-  const double min_rpm = predictor.min_rpm(*material), max_rpm = predictor.max_rpm(*material);
+// Each disc's range: its speed within the material's rows and ± max_speed_offset_rpm, its drop point within
+// ± max_drop_point_turn_rad and the table's validated turns (a disc outside them keeps its own).
+void disc_ranges(const Predictor& predictor, std::string_view material, const DiscSetting (&present)[2],
+                 const WindCompensationLimits& limits, DiscRange (&range)[2]) {
+  const std::optional<std::size_t> index = predictor.find_material(material);
+  const double min_rpm = predictor.min_rpm(*index), max_rpm = predictor.max_rpm(*index);
   const TurnRange valid = predictor.drop_point_turn_range();
-  DiscRange range[2];
   for (int d = 0; d < 2; ++d) {
     const DiscSetting& p = present[d];
     range[d].low_rpm = std::max(min_rpm, p.rpm - limits.max_speed_offset_rpm);
@@ -161,22 +150,23 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
     range[d].high_rad = std::min(valid.high_rad, p.drop_point_turn_rad + limits.max_drop_point_turn_rad);
     if (range[d].low_rad > range[d].high_rad) range[d].low_rad = range[d].high_rad = p.drop_point_turn_rad;
   }
-  // Trays wide enough for the fastest speed searched (launch speed is ωR), the present kernel.
+}
+
+// The half-width (m) of the search's trays: wide enough for the fastest speed searched (launch speed is
+// ωR), the present landings scaled, with the kernel and half a bout.
+double search_half_width_m(const Prediction& present_prediction, const DiscSetting (&present)[2],
+                           const DiscRange (&range)[2], double bout_width_m) {
   double reach_m = 0.0;
-  for (double x : out.landing_x_m) {
+  for (double x : present_prediction.landing_x_m) {
     if (std::isfinite(x)) reach_m = std::max(reach_m, std::abs(x));
   }
   const double slowest_rpm = std::min(present[0].rpm, present[1].rpm);
   const double scale = slowest_rpm > 0.0 ? std::max(1.0, std::max(range[0].high_rpm, range[1].high_rpm) / slowest_rpm) : 1.0;
-  search.current_[0] = present[0];
-  search.current_[1] = present[1];
-  search.budget_ = std::max(limits.max_predictions, kWindMinPredictions);
-  search.start(scale * reach_m + out.kernel_half_width_m + 0.5 * request.bout_width_m, out.kernel_half_width_m);
+  return scale * reach_m + present_prediction.kernel_half_width_m + 0.5 * bout_width_m;
+}
 
-  // The disc the wind comes from first (a wind towards +x comes from the left): the search is the mirror
-  // image of itself for the mirror-image wind.
-  const int first = request.wind_x_m_s >= 0.0 ? kLeftDisc : kRightDisc;
-  const int order[2] = {first, 1 - first};
+// Each disc in turn over its grid of speeds × drop points, keeping the lowest CV.
+void grid_stage(WindSearch& search, const DiscRange (&range)[2], const int (&order)[2]) {
   for (const int d : order) {
     const DiscRange& r = range[d];
     const int turns = std::max(1, static_cast<int>(std::ceil((r.high_rad - r.low_rad) / kWindTurnStep_rad - 1e-9)));
@@ -188,6 +178,11 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
       }
     }
   }
+}
+
+// Rounds of golden sections, each disc's speed then its drop point, within one grid step of its best.
+void refine_stage(WindSearch& search, const DiscRange (&range)[2], const int (&order)[2],
+                  const WindCompensationLimits& limits) {
   for (int round = 0; round < kWindRefineRounds; ++round) {
     for (const int d : order) {
       const DiscRange& r = range[d];
@@ -201,6 +196,35 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
                     std::min(r.high_rad, c2.drop_point_turn_rad + turn_step), limits.drop_point_tolerance_rad);
     }
   }
+}
+
+}  // namespace
+
+WindCompensation compensate_wind(const Predictor& predictor, const PredictionRequest& request, Prediction& out,
+                                 PredictorWorkspace& workspace, const WindCompensationLimits& limits) {
+  WindCompensation result;
+  if (!(request.bout_width_m > 0.0) || predictor.machine().disc_count < 2) {
+    result.status = PredictStatus::kOutOfRange;
+    return result;
+  }
+  const DiscSetting present[2] = {disc_setting(request, kLeftDisc), disc_setting(request, kRightDisc)};
+  // The caller's `out` stays unchanged on a refusal: a refused predict() leaves its output alone.
+  WindSearch search(predictor, request, out, workspace);
+  result.status = search.predict_present(present);
+  if (result.status != PredictStatus::kOk) return result;
+  const double present_cv = comparable(out.cv_to_and_fro);
+  DiscRange range[2];
+  disc_ranges(predictor, request.material, present, limits, range);
+  search.current_[0] = present[0];
+  search.current_[1] = present[1];
+  search.budget_ = std::max(limits.max_predictions, kWindMinPredictions);
+  search.start(search_half_width_m(out, present, range, request.bout_width_m), out.kernel_half_width_m);
+  // The disc the wind comes from first (a wind towards +x comes from the left): the search is the mirror
+  // image of itself for the mirror-image wind.
+  const int first = request.wind_x_m_s >= 0.0 ? kLeftDisc : kRightDisc;
+  const int order[2] = {first, 1 - first};
+  grid_stage(search, range, order);
+  refine_stage(search, range, order, limits);
 
   // The answer, with its standard errors. The search compared settings on one layout and kernel; the answer
   // is predicted on its own (its trays fitted, the automatic kernel): should that put it above the present

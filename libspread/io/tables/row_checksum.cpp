@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstring>
 
+#include "libspread/io/tables/machine_schema.hpp"
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/run_schema.hpp"
 
@@ -93,14 +94,13 @@ std::string Crc64::hex() const {
 
 std::string machine_checksum(const Machine& m) {
   Crc64 crc;
-  crc.text(m.name);
-  crc.real(m.disc_radius_m);
-  crc.real(m.disc_height_m);
-  crc.real(m.disc_spacing_m);
-  crc.integer(m.disc_count);
-  crc.integer(m.vane_count);
-  crc.real(m.cone_angle_rad);
-  crc.integer(m.rotation_sense);
+  for (const MachineColumn& c : kMachineColumns) {
+    switch (c.kind) {
+      case MachineColumn::Kind::kText: crc.text(m.*c.text); break;
+      case MachineColumn::Kind::kReal: crc.real(m.*c.real); break;
+      case MachineColumn::Kind::kInteger: crc.integer(m.*c.integer); break;
+    }
+  }
   return crc.hex();
 }
 

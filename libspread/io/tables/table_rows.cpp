@@ -1,5 +1,6 @@
 #include "libspread/io/tables/table_rows.hpp"
 
+#include "libspread/io/tables/machine_schema.hpp"
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
 
@@ -27,19 +28,20 @@ void verify_checksum(Connection& db, const std::string& row, const std::string& 
 }
 
 std::optional<Machine> read_machine_row(Connection& db) {
-  Statement query(db,
-                  "SELECT name, disc_radius_m, disc_height_m, disc_spacing_m, disc_count, vane_count, "
-                  "cone_angle_rad, rotation_sense, checksum FROM machine WHERE id = 1");
+  std::string columns;
+  for (const MachineColumn& c : kMachineColumns) columns += std::string(columns.empty() ? "" : ", ") + std::string(c.name);
+  Statement query(db, "SELECT " + columns + ", checksum FROM machine WHERE id = 1");
   if (!query.step()) return std::nullopt;
   Machine m;
-  m.name = query.column_text(0);
-  m.disc_radius_m = required_double(query, 1, db, "machine.disc_radius_m");
-  m.disc_height_m = required_double(query, 2, db, "machine.disc_height_m");
-  m.disc_spacing_m = required_double(query, 3, db, "machine.disc_spacing_m");
-  m.disc_count = static_cast<int>(query.column_int(4));
-  m.vane_count = static_cast<int>(query.column_int(5));
-  m.cone_angle_rad = required_double(query, 6, db, "machine.cone_angle_rad");
-  m.rotation_sense = static_cast<int>(query.column_int(7));
+  int column = 0;
+  for (const MachineColumn& c : kMachineColumns) {
+    switch (c.kind) {
+      case MachineColumn::Kind::kText: m.*c.text = query.column_text(column); break;
+      case MachineColumn::Kind::kReal: m.*c.real = required_double(query, column, db, "machine." + std::string(c.name)); break;
+      case MachineColumn::Kind::kInteger: m.*c.integer = static_cast<int>(query.column_int(column)); break;
+    }
+    ++column;
+  }
   const std::string problem = machine_problem(m);
   if (!problem.empty()) raise(TableErrorKind::kCorrupt, db.path(), "the `machine` row has an impossible value: " + problem);
   verify_checksum(db, "the `machine` row", query.column_text(8), machine_checksum(m));

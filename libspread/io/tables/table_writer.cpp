@@ -13,6 +13,7 @@
 #include "libspread/io/tables/sqlite_connection.hpp"
 #include "libspread/io/tables/table_file.hpp"
 #include "libspread/io/tables/table_rows.hpp"
+#include "libspread/io/tables/machine_schema.hpp"
 #include "libspread/io/tables/table_schema.hpp"
 #include "libspread/io/tables/writer_lock.hpp"
 
@@ -157,18 +158,21 @@ void TableWriter::write_machine(const Machine& machine) {
   if (!problem.empty()) throw std::invalid_argument(path() + ": refusing to write " + problem);
   Connection& db = *impl_->connection;
   Transaction transaction(db);
-  Statement insert(db,
-                   "INSERT OR REPLACE INTO machine (id, name, disc_radius_m, disc_height_m, disc_spacing_m, "
-                   "disc_count, vane_count, cone_angle_rad, rotation_sense, checksum) VALUES (1, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  insert.bind(1, machine.name);
-  insert.bind(2, machine.disc_radius_m);
-  insert.bind(3, machine.disc_height_m);
-  insert.bind(4, machine.disc_spacing_m);
-  insert.bind(5, static_cast<std::int64_t>(machine.disc_count));
-  insert.bind(6, static_cast<std::int64_t>(machine.vane_count));
-  insert.bind(7, machine.cone_angle_rad);
-  insert.bind(8, static_cast<std::int64_t>(machine.rotation_sense));
-  insert.bind(9, machine_checksum(machine));
+  std::string columns = "id", values = "1";
+  for (const MachineColumn& c : kMachineColumns) {
+    columns += ", " + std::string(c.name);
+    values += ", ?";
+  }
+  Statement insert(db, "INSERT OR REPLACE INTO machine (" + columns + ", checksum) VALUES (" + values + ", ?)");
+  int parameter = 1;
+  for (const MachineColumn& c : kMachineColumns) {
+    switch (c.kind) {
+      case MachineColumn::Kind::kText: insert.bind(parameter++, machine.*c.text); break;
+      case MachineColumn::Kind::kReal: insert.bind(parameter++, machine.*c.real); break;
+      case MachineColumn::Kind::kInteger: insert.bind(parameter++, static_cast<std::int64_t>(machine.*c.integer)); break;
+    }
+  }
+  insert.bind(parameter, machine_checksum(machine));
   insert.step();
   transaction.commit();
 }
