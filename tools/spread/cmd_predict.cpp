@@ -50,6 +50,7 @@ struct Options : spread::cli::PredictionArgs {
   bool fly_outside_domain = false;
   bool size_classes = false;
   std::string size_class_mm;  // class boundaries (mm); given: --size-classes
+  std::string size_class_png;  // the fine and coarse halves' patterns; given: --size-classes
   bool json = false;
   spread::cli::ReportArgs report;
 };
@@ -317,7 +318,7 @@ constexpr const char* kDefaultSizeClassMm = "2,2.5,3.15,4,5";
 // predicted (the same setting, effects and trays).
 std::optional<spread::size_classes::SizeClassPatterns> size_classes_for(const Options& o, const spread_prediction& r,
                                                                          std::uint32_t effects) {
-  if (!o.size_classes && o.size_class_mm.empty()) return std::nullopt;
+  if (!o.size_classes && o.size_class_mm.empty() && o.size_class_png.empty()) return std::nullopt;
   if (o.compensate_wind) throw BadInput("--size-classes: not with --compensate-wind (give the discs' own settings instead)");
   if (!(r.bout_width_m > 0.0)) throw BadInput("--size-classes: no bout width meets the target; give one with --width");
   const std::vector<double> boundaries =
@@ -404,6 +405,7 @@ void run(const Options& o, int& exit_code) {
   }
 
   const std::optional<spread::size_classes::SizeClassPatterns> classes = size_classes_for(o, result, def.effects);
+  if (classes && !o.size_class_png.empty()) spread::cli::write_size_halves_png(*classes, o.size_class_png);
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
@@ -615,6 +617,8 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
   sub->add_option("--size-class-mm", options.size_class_mm,
                   std::string("class boundaries in mm, comma-separated (implies --size-classes; default ") +
                       kDefaultSizeClassMm + ")");
+  sub->add_option("--size-class-png", options.size_class_png,
+                  "PNG of the fine and coarse halves' patterns across the bout (implies --size-classes)");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);
   sub->callback([&exit_code] { run(options, exit_code); });

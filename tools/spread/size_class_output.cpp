@@ -1,10 +1,12 @@
 #include "tools/spread/size_class_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <sstream>
 
+#include "libspread/analysis/plot/plot.hpp"
 #include "tools/spread/error_exit.hpp"
 #include "tools/spread/number_format.hpp"
 
@@ -77,6 +79,15 @@ void print_class_trays(const size_classes::SizeClassPatterns& p) {
   }
 }
 
+// A class's trays on a wider layout of the same tray width: both even counts about the centre line, so
+// the class's trays sit in the middle.
+std::vector<double> on_layout(const ClassPattern& c, int tray_count) {
+  std::vector<double> out(static_cast<std::size_t>(tray_count), 0.0);
+  const auto offset = static_cast<std::size_t>((tray_count - c.trays.tray_count) / 2);
+  for (std::size_t k = 0; k < c.tray_mass_fraction.size(); ++k) out[offset + k] = c.tray_mass_fraction[k];
+  return out;
+}
+
 json class_json(const ClassPattern& c) {
   return {{"lower_mm", c.lower_mm},
           {"upper_mm", number_or_null(c.upper_mm)},
@@ -121,6 +132,24 @@ void print_size_classes(const size_classes::SizeClassPatterns& p) {
   print_class_line("fine half " + class_label(p.fine), p.fine);
   print_class_line("coarse half " + class_label(p.coarse), p.coarse);
   print_class_trays(p);
+}
+
+void write_size_halves_png(const size_classes::SizeClassPatterns& p, const std::string& path) {
+  if (p.fine.tray_mass_fraction.empty() || p.coarse.tray_mass_fraction.empty())
+    throw BadInput("--size-class-png: the fine or the coarse half has no prediction");
+  metrics::TrayLayout trays = p.fine.trays;
+  trays.tray_count = std::max(p.fine.trays.tray_count, p.coarse.trays.tray_count);
+  const std::vector<double> fine = on_layout(p.fine, trays.tray_count), coarse = on_layout(p.coarse, trays.tray_count);
+  plot::TransverseOptions options;
+  options.units = plot::MassUnits::kFraction;
+  options.series_label = "fine half (< " + format("%.2f mm)", p.sizes.d50_mm);
+  options.second_tray_mass_kg = coarse;
+  options.second_label = "coarse half (>= " + format("%.2f mm)", p.sizes.d50_mm);
+  options.bout_width_m = p.bout_width_m;
+  plot::write_transverse_png(fine, trays, path,
+                             "size segregation: SGN " + format("%.0f", p.sizes.size_guide_number) + ", UI " +
+                                 format("%.0f", p.sizes.uniformity_index) + ", bout " + format("%.2f m", p.bout_width_m),
+                             options);
 }
 
 json size_classes_json(const size_classes::SizeClassPatterns& p) {

@@ -16,6 +16,10 @@ namespace spread::cli {
 std::vector<double> parse_size_class_boundaries_mm(const std::string& text);
 
 void print_size_classes(const size_classes::SizeClassPatterns& patterns);
+// A PNG of the fine and the coarse half's patterns across the driving direction (each tray's share of the
+// discharged mass; the fine half with its profile overlapped at the bout), on the wider of the two
+// layouts. Throws as plot::write_transverse_png does (and without plots, plot::kWithoutPlots).
+void write_size_halves_png(const size_classes::SizeClassPatterns& patterns, const std::string& path);
 nlohmann::json size_classes_json(const size_classes::SizeClassPatterns& patterns);
 
 }  // namespace spread::cli
