@@ -53,6 +53,25 @@ TEST(ParameterSchema, DocsListEveryMaterialQuantity) {
   }
 }
 
+// The sieve lists follow the quantities in the same table: unit, no default (given together or not at
+// all), meaning.
+TEST(ParameterSchema, DocsListTheSieveLists) {
+  const std::string doc = spread::testing::read_source_file("docs/scene-format.md");
+  std::size_t previous = doc.find("\n| `" + std::string(kMaterialQuantities.back().name) + "` |");
+  ASSERT_NE(previous, std::string::npos);
+  for (const MaterialList& list : kMaterialSieveLists) {
+    const std::string key(list.name);
+    const std::vector<std::string> cells = doc_row(doc, key);
+    ASSERT_EQ(cells.size(), 4u) << key << ": no row | `key` | unit | default | meaning | in docs/scene-format.md";
+    EXPECT_EQ(cells[1], list.unit) << key;
+    EXPECT_EQ(cells[2], "(none)") << key;
+    EXPECT_EQ(cells[3].rfind(std::string(list.meaning), 0), 0u) << key << ": the doc's meaning should start with \"" << list.meaning << "\"";
+    const std::size_t at = doc.find("\n| `" + key + "` |");
+    EXPECT_GT(at, previous) << key << ": rows out of the schema's order";
+    previous = at;
+  }
+}
+
 // The text of the section headed `heading` (up to the next "## " heading); empty when there is none.
 std::string doc_section(const std::string& doc, const std::string& heading) {
   const std::size_t at = doc.find("\n## " + heading);
@@ -103,6 +122,7 @@ TEST(ParameterSchema, DocsListEverySectionKey) {
   ASSERT_FALSE(doc.empty());
   expect_doc_rows(doc, "`[machine]`", scene::kMachineKeys);
   expect_doc_rows(doc, "`[inlet]`", scene::kInletKeys);
+  expect_doc_rows(doc, "`[products]`", scene::kProductsKeys);
   expect_doc_rows(doc, "`[simulate]`", scene::kSimulateKeys);
   expect_doc_rows(doc, "`[air]`", scene::kAirKeys);
   expect_doc_rows(doc, "`[numerics]`", scene::kNumericsKeys);

@@ -33,6 +33,10 @@ expect option_drum_inf 2 "spread drum: error: --sweep-froude: 'inf' is not a num
   drum "$src/scenes/drum.toml" --sweep-froude 0.1,inf
 expect option_verify 2 "spread verify: error: unknown case 'nonsense'" verify nonsense
 expect option_wind 2 "spread predict: error: --wind" predict --tables "$table" --material Urea --rpm 600 --wind 3
+expect option_size_classes 2 "spread predict: error: --size-class-mm: class boundaries in mm, > 0 and increasing" \
+  predict --tables "$table" --material Urea --rpm 600 --size-class-mm 3,2
+expect option_size_classes_wind 2 "spread predict: error: --size-classes: not with --compensate-wind" \
+  predict --tables "$table" --material Urea --rpm 600 --width 20 --wind 2,0 --compensate-wind --size-classes
 # A good input whose output cannot be written (kind io): exit 1, and the text report is still printed.
 expect report_write 1 "spread predict: error: --report: cannot write PDF '/proc/none.pdf'" \
   predict --tables "$table" --material Urea --rpm 600 --report /proc/none.pdf

@@ -1,8 +1,8 @@
 #!/bin/sh
 # Every `spread` command that works from a launch table reads the file once (tools/spread/table_session.hpp):
 # each command below runs under strace, and the opens of the table file are counted — the kernel's record,
-# not the program's own. `predict` runs with its guidance (the CV at 24 m is above the target) and
-# --stability, which once read the file again each.
+# not the program's own. `predict` runs with its guidance (the CV at 24 m is above the target), --stability
+# and --size-classes, which once read the file again each.
 # Usage: table_opened_once.sh SPREAD SOURCE_DIR WORK_DIR. Prints "PASS" (exit 0) or "FAIL: …" (exit 1).
 set -u
 spread=$1 src=$2 work=$3
@@ -24,7 +24,7 @@ opened_once() {
   [ "$checks" -eq 1 ] && [ "$connections" -eq 1 ] ||
     { echo "FAIL: $name read $table $connections times ($checks header checks):"; cat "$work/$name.opens"; exit 1; }
 }
-opened_once predict "one setting at a time" predict --tables "$table" --material Urea --rpm 520 --width 24 --stability 3
+opened_once predict "one setting at a time" predict --tables "$table" --material Urea --rpm 520 --width 24 --stability 3 --size-classes
 opened_once plot "_transverse.png" plot --tables "$table" --material Urea --rpm 520 --what transverse --out "$work/plot"
 opened_once chart "disc speed" chart --tables "$table" --material Urea --widths 12,18
 opened_once border "border" border --tables "$table" --material Urea --rpm 520 --width 18

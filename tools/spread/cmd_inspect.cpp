@@ -1,12 +1,14 @@
 // spread inspect FILE [--json]: what a launch-table file holds — machine, materials with their rpm
 // rows and sample counts, provenance and statistics of every run. A file that cannot be used gets one
 // clear message per TableErrorKind (exit 2).
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "libspread/analysis/predict/landing_grid.hpp"
+#include "libspread/analysis/size_classes/launch_sizes.hpp"
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/table_reader.hpp"
 #include "tools/spread/command_registry.hpp"
@@ -53,6 +55,16 @@ json parse_or_text(const std::string& text) {
   return parsed.is_discarded() ? json(text) : parsed;
 }
 
+// The size guide number and uniformity index of a material's launch samples, its rows pooled: the sheet's
+// figures for a sieve material (to within sampling), what a sieve test would give for a lognormal one.
+spread::size_classes::LaunchSizes material_sizes(const spread::tables::TableContents& c, const std::string& material) {
+  std::vector<spread::tables::LaunchSample> samples;
+  for (const auto& run : c.runs) {
+    if (run.material == material) samples.insert(samples.end(), run.samples.begin(), run.samples.end());
+  }
+  return spread::size_classes::launch_sizes(samples);
+}
+
 json to_json(const spread::tables::TableContents& c, const std::string& path) {
   json out;
   out["file"] = path;
@@ -77,6 +89,10 @@ json to_json(const spread::tables::TableContents& c, const std::string& path) {
     }
     json entry = {{"name", mat.name}};
     for (const auto& q : spread::tables::kMaterialQuantities) entry[std::string(q.name)] = mat.*q.member;
+    const spread::size_classes::LaunchSizes sizes = material_sizes(c, mat.name);
+    entry["size_guide_number"] = sizes.size_guide_number;
+    entry["uniformity_index"] = sizes.uniformity_index;
+    entry["d50_mm"] = sizes.d50_mm;
     entry["rpm"] = rpm;
     entry["sample_counts"] = counts;
     materials.push_back(std::move(entry));
@@ -115,6 +131,9 @@ void print_text(const spread::tables::TableContents& c, const std::string& path)
   for (const auto& mat : c.materials) {
     std::cout << "material \"" << mat.name << "\": " << mat.density_kg_m3 << " kg/m3, d " << mat.diameter_mean_m
               << " m (sd " << mat.diameter_sd_m << "), mu_wall " << mat.friction_wall << "\n";
+    const spread::size_classes::LaunchSizes sizes = material_sizes(c, mat.name);
+    std::cout << "  launched granules by mass: SGN " << std::lround(sizes.size_guide_number) << ", UI "
+              << std::lround(sizes.uniformity_index) << " (d50 " << sizes.d50_mm << " mm)\n";
     for (const auto& run : c.runs) {
       if (run.material != mat.name) continue;
       std::cout << "  " << std::setw(7) << run.rpm << " rpm  " << std::setw(6) << run.samples.size()

@@ -1,5 +1,5 @@
 // spread predict --tables FILE --material NAME --rpm N [--height M] [--wind VX,VY] [--cv-target PCT]
-//                [--width W] [--tray-width W] [--effects LIST] [--repeat K] [--json]
+//                [--width W] [--tray-width W] [--effects LIST] [--repeat K] [--size-classes] [--json]
 // Goes through the C API (spread.h) on purpose: the CLI is the C API's first user (dogfooding), so what
 // it prints is what an integrator gets. Bad input → a message naming it on stderr and exit code 2.
 #include <algorithm>
@@ -26,6 +26,7 @@
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/size_class_output.hpp"
 #include "tools/spread/table_session.hpp"
 #include "tools/spread/verdicts.hpp"
 #include "tools/spread/next_steps.hpp"
@@ -47,6 +48,9 @@ struct Options : spread::cli::PredictionArgs {
   int stability = 0;
   bool compensate_wind = false;
   bool fly_outside_domain = false;
+  bool size_classes = false;
+  std::string size_class_mm;  // class boundaries (mm); given: --size-classes
+  std::string size_class_png;  // the fine and coarse halves' patterns; given: --size-classes
   bool json = false;
   spread::cli::ReportArgs report;
 };
@@ -302,6 +306,27 @@ spread::plot::PatternReport report_page(const Options& o, const std::string& mac
     return page;
 }
 
+// ISO 565's R 20 main sieve series from 2 to 5 mm: the sizes a fertiliser's sieve analysis reports.
+constexpr const char* kDefaultSizeClassMm = "2,2.5,3.15,4,5";
+
+// --size-classes: each size class of the table's launch samples predicted alone at the bout just
+// predicted (the same setting, effects and trays).
+std::optional<spread::size_classes::SizeClassPatterns> size_classes_for(const Options& o, const spread_prediction& r,
+                                                                         std::uint32_t effects,
+                                                                         const spread::cli::TableSession& session) {
+  if (!o.size_classes && o.size_class_mm.empty() && o.size_class_png.empty()) return std::nullopt;
+  if (o.compensate_wind) throw BadInput("--size-classes: not with --compensate-wind (give the discs' own settings instead)");
+  if (!(r.bout_width_m > 0.0)) throw BadInput("--size-classes: no bout width meets the target; give one with --width");
+  const std::vector<double> boundaries =
+      spread::cli::parse_size_class_boundaries_mm(o.size_class_mm.empty() ? kDefaultSizeClassMm : o.size_class_mm);
+  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+  request.bout_width_m = r.bout_width_m;
+  request.kernel_half_width_m = o.kernel_half_width_m;
+  request.effects = o.effects == "table" ? spread::predict::kTableEffects : effects;
+  request.fly_outside_domain = o.fly_outside_domain;
+  return spread::size_classes::size_class_patterns(session.contents(), request, boundaries);
+}
+
 void run(const Options& o, int& exit_code) {
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
@@ -370,6 +395,9 @@ void run(const Options& o, int& exit_code) {
     request.fly_outside_domain = o.fly_outside_domain;
     stability = spread::predict::width_stability(session.contents(), request, o.stability);
   }
+
+  const std::optional<spread::size_classes::SizeClassPatterns> classes = size_classes_for(o, result, def.effects, session);
+  if (classes && !o.size_class_png.empty()) spread::cli::write_size_halves_png(*classes, o.size_class_png);
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
   const CvCurve curve = cv_curve_of(result, trays);
@@ -460,6 +488,7 @@ void run(const Options& o, int& exit_code) {
                                 {"lowest_m", stability->lowest_m},
                                 {"highest_m", stability->highest_m}};
     }
+    if (classes) out["size_classes"] = spread::cli::size_classes_json(*classes);
     if (o.repeat > 0) {
       out["repeat"] = o.repeat;
       out["time_per_prediction_us"] = median_us;
@@ -542,6 +571,7 @@ void run(const Options& o, int& exit_code) {
               << result.kernel_half_width_m << " m)\n";
     std::cout << "  mean radius R " << result.mean_radius_m << " m, radial width xi " << result.radial_width_m
               << " m (one disc)\n";
+    if (classes) spread::cli::print_size_classes(*classes);
     for (const std::string& line : guidance.lines) std::cout << "  " << line << "\n";
     if (o.repeat > 0) std::cout << "  median time per prediction " << median_us << " us over " << o.repeat << "\n";
     if (!o.report.path.empty() && report_problem.empty() && report_error.empty()) {
@@ -573,6 +603,14 @@ spread::cli::CommandRegistration reg{"predict", [](CLI::App& app, int& exit_code
                   "N bootstrap resamples of the table's launch samples: how often the working width leaves its ±")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--repeat", options.repeat, "time K more predictions and report the median")->check(CLI::NonNegativeNumber);
+  sub->add_flag("--size-classes", options.size_classes,
+                "each size class of the launched granules alone at the bout: mass share, mean landing radius, CV, "
+                "pattern; and the launched SGN and UI (docs/products.md)");
+  sub->add_option("--size-class-mm", options.size_class_mm,
+                  std::string("class boundaries in mm, comma-separated (implies --size-classes; default ") +
+                      kDefaultSizeClassMm + ")");
+  sub->add_option("--size-class-png", options.size_class_png,
+                  "PNG of the fine and coarse halves' patterns across the bout (implies --size-classes)");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   spread::cli::add_report_args(*sub, options.report, false);
   sub->callback([&exit_code] { run(options, exit_code); });

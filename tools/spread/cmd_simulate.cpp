@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/core/sieve_analysis.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/drum_command.hpp"
 
@@ -106,6 +107,13 @@ int run(const SimulateState& s) {
               {"effects", r.effects},
               {"module_time_s", module_time},
               {"outputs", outputs}};
+  // A material given by its sieve analysis: the sheet's size guide number and uniformity index
+  // (docs/products.md).
+  const spread::scene::Material* material = scene.find_material(cfg.materials[0].name);
+  if (material != nullptr && !material->sieve.empty()) {
+    out["size_guide_number"] = spread::size_guide_number(material->sieve);
+    out["uniformity_index"] = spread::uniformity_index(material->sieve);
+  }
   if (s.monolithic) {
     out["monolithic_flight_particle_steps"] = monolithic.flight_particle_steps;
     out["monolithic_landed"] = monolithic.landings.size();

@@ -25,6 +25,10 @@ std::string Scene::provenance_text() const {
     out += "# overrides applied after the text above:\n";
     for (const std::string& o : overrides) out += "# --set " + o + "\n";
   }
+  if (!product_notes.empty()) {
+    if (!out.empty() && out.back() != '\n') out += '\n';
+    for (const std::string& note : product_notes) out += note + "\n";
+  }
   return out;
 }
 
@@ -89,6 +93,13 @@ std::string Scene::run_inputs_text(const Material& material, double rpm) const {
   t.add("material.name", material.name);
   for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
     t.add(("material." + std::string(q.name)).c_str(), material.*q.member);
+  }
+  // A sieve material's analysis, element by element; none for a lognormal one, whose text (and so every
+  // table built before sieve feeds existed) is unchanged.
+  for (const tables::MaterialList& list : tables::kMaterialSieveLists) {
+    const std::vector<double>& values = material.sieve.*list.member;
+    for (std::size_t i = 0; i < values.size(); ++i)
+      t.add(("material." + std::string(list.name) + "[" + std::to_string(i) + "]").c_str(), values[i]);
   }
   t.add("rpm", rpm);
   add_inputs(t, "air", air, kAirKeys, RunInput::kAlways);

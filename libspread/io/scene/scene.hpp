@@ -117,6 +117,13 @@ struct Sweep {
   double working_width_ci_m = 0.5;         // m
 };
 
+// A product library: [[products]] entries with the keys of a [[materials]] entry (scenes/products.toml,
+// docs/products.md). A material entry's `product = "NAME"` starts from that product's values; the
+// entry's own keys replace them (its size keys replace the product's sizes as a whole).
+struct Products {
+  std::string file;  // relative paths are taken from the scene file's directory; "" = no library
+};
+
 struct Outputs {
   std::string directory = ".";
   int vtk_every_steps = 0;            // 0 = no VTK output
@@ -130,7 +137,11 @@ struct Scene {
   std::vector<std::string> overrides; // "key=value" as given, in order
   Machine machine;
   Inlet inlet;
-  std::vector<Material> materials;    // in file order, names unique
+  Products products;
+  std::vector<Material> materials;    // in file order, names unique, products resolved
+  // One comment line per material taken from a product: its values as resolved, so that the provenance
+  // (provenance_text) says what the library gave, whatever the library file holds later.
+  std::vector<std::string> product_notes;
   std::string simulate_material;      // [simulate] material; default = first material
   Air air;
   EffectSet effects = effect::kDefault;

@@ -77,6 +77,12 @@ inline constexpr std::array<Key<Scene>, 1> kSimulateKeys{{
     {"material", &Scene::simulate_material, "–", kAnyValue, 0, "material of a `simulate` run", {}, RunInput::kNone},
 }};
 
+inline constexpr std::array<Key<Products>, 1> kProductsKeys{{
+    {"file", &Products::file, "–", kAnyValue, 0, "product library (TOML)", {}, RunInput::kNone},
+}};
+// The `[[materials]]` key that names a product of the library (the values it gives are the run's inputs).
+inline constexpr std::string_view kMaterialProductKey = "product";
+
 inline constexpr std::array<Key<Air>, 3> kAirKeys{{
     {"density_kg_m3", &Air::density_kg_m3, "kg/m³", kNonNegative, 0, "air density"},
     {"viscosity_pa_s", &Air::viscosity_pa_s, "Pa·s", kPositive, 0, "dynamic viscosity"},

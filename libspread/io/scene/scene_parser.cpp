@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <set>
 
+#include "libspread/io/scene/material_entry.hpp"
+#include "libspread/io/scene/product_library.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "libspread/io/scene/scene_key.hpp"
 #include "libspread/io/scene/scene_keys.hpp"
@@ -29,14 +31,35 @@ void read_section(const TomlDocument& doc, const std::string& name, Owner& owner
   s.finish();
 }
 
+// Each entry from the schema's defaults, or from the library product it names (`product`), its own keys
+// replacing the product's values.
 void read_materials(const TomlDocument& doc, Scene& scene) {
+  std::vector<Material> library;
+  std::string library_path;
   for (TomlSection& s : doc.array_of_tables("materials")) {
-    Material m;
-    m.name = s.string("name").value_or("");
-    for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
-      // A required quantity left out reads as 0, which its bounds (> 0) then refuse naming the key.
-      m.*q.member = s.number(std::string(q.name)).value_or(std::isnan(q.scene_default) ? 0.0 : q.scene_default);
+    const std::string key(kMaterialProductKey);
+    const std::optional<std::string> product = s.string(key);
+    const Material* base = nullptr;
+    if (product) {
+      if (scene.products.file.empty()) s.fail(key, "names a product, but the scene names no library ([products] file)");
+      if (library.empty()) {
+        library_path = product_library_path(scene.source_name, scene.products.file);
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(library_path, ec)) {
+          throw SceneError(scene.source_name + ": products.file: no such library file: " + library_path +
+                           " (relative paths are relative to the scene file)");
+        }
+        library = read_product_library(library_path);
+      }
+      for (const Material& p : library) base = p.name == *product ? &p : base;
+      if (base == nullptr) {
+        std::string known;
+        for (const Material& p : library) known += (known.empty() ? "\"" : ", \"") + p.name + "\"";
+        s.fail(key, "no product \"" + *product + "\" in " + library_path + " (products: " + known + ")");
+      }
+      scene.product_notes.push_back(product_note(scene.materials.size(), *base, scene.products.file));
     }
+    Material m = read_material_entry(s, base);
     s.finish();
     scene.materials.push_back(std::move(m));
   }
@@ -194,9 +217,10 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name,
   scene.text = toml_text;
   scene.overrides = overrides;
   const TomlDocument doc(toml_text, source_name, overrides);
-  doc.check_top_level_keys({"machine", "inlet", "materials", "simulate", "air", "effects", "numerics", "sweep", "outputs"});
+  doc.check_top_level_keys({"machine", "inlet", "products", "materials", "simulate", "air", "effects", "numerics", "sweep", "outputs"});
   read_section(doc, "machine", scene.machine, kMachineKeys);
   read_section(doc, "inlet", scene.inlet, kInletKeys);
+  read_section(doc, "products", scene.products, kProductsKeys);
   read_materials(doc, scene);
   read_section(doc, "simulate", scene, kSimulateKeys);
   read_section(doc, "air", scene.air, kAirKeys);

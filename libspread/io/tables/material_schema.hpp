@@ -7,6 +7,7 @@
 #include <array>
 #include <limits>
 #include <string_view>
+#include <vector>
 
 #include "libspread/core/effect_registry.hpp"
 #include "libspread/io/tables/table_format.hpp"
@@ -66,6 +67,22 @@ inline constexpr std::array<MaterialQuantity, 9> kMaterialQuantities{{
      {0.0, false, material_schema_detail::L::kMaxFriction, false},
      {0.0, false, material_schema_detail::L::kMaxFriction, false}, effect::kRolling,
      "rolling resistance coefficient μ_r"},
+}};
+
+// The size distribution as a spec sheet gives it (SieveAnalysis, libspread/core/sieve_analysis.hpp): two
+// lists of a `[[materials]]` entry, given together and instead of the lognormal's diameter_mean_m and
+// diameter_sd_m. Not table columns: a sieve material's row holds the analysis's number mean and sd.
+struct MaterialList {
+  std::string_view name;
+  std::vector<double> SieveAnalysis::* member;
+  std::string_view unit;
+  std::string_view meaning;
+};
+inline constexpr std::array<MaterialList, 2> kMaterialSieveLists{{
+    {"sieve_mm", &SieveAnalysis::sieve_mm, "mm",
+     "sieve feed: N + 1 sieve apertures, strictly increasing; the first is the product's bottom, the last its top"},
+    {"sieve_retained_pct", &SieveAnalysis::retained_pct, "%",
+     "sieve feed: N mass fractions, the mass % between consecutive sieves; each >= 0, sum 100 (± 0.5)"},
 }};
 
 }  // namespace spread::tables

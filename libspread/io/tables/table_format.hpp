@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "libspread/core/error.hpp"
+#include "libspread/core/sieve_analysis.hpp"
 
 namespace spread::tables {
 
@@ -59,6 +60,11 @@ struct Material {
   double youngs_modulus_pa = 0.0;
   double poisson_ratio = 0.0;
   double rolling_friction = 0.0;
+  // The feed's sizes as a sieve analysis (a scene's `sieve_mm` and `sieve_retained_pct`); empty: the
+  // lognormal above. Not a column of the file: a sieve material's row holds the analysis's number mean and
+  // sd in diameter_mean_m and diameter_sd_m, the analysis itself is in its runs' scene_text and inputs_hash,
+  // and its launch records carry each granule's diameter (docs/products.md "In the table").
+  SieveAnalysis sieve;
 };
 
 // Provenance and content of one (material, rpm) run.

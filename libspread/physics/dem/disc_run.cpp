@@ -32,10 +32,10 @@ Collector disc_collector(const SimulationConfig& cfg) {
 }
 
 EngineParams disc_engine_params(const SimulationConfig& cfg) {
-  const LognormalDiameter dist(cfg.inlet.diameter_mean_m, cfg.inlet.diameter_sd_m);
+  const auto [min_m, max_m] = inlet_diameter_range_m(cfg.inlet);
   EngineParams ep = cfg.engine;
-  ep.min_particle_radius_m = 0.5 * dist.min_m();
-  ep.max_particle_radius_m = 0.5 * dist.max_m();
+  ep.min_particle_radius_m = 0.5 * min_m;
+  ep.max_particle_radius_m = 0.5 * max_m;
   return ep;
 }
 

@@ -23,7 +23,7 @@ inline constexpr double kFallenBelowApex_m = 0.5;
 Collector disc_collector(const SimulationConfig& cfg);
 
 // cfg.engine with the radius range of the inlet's diameter law, [d_min/2, d_max/2]
-// (LognormalDiameter's truncation).
+// (inlet_diameter_range_m: the lognormal's truncation, or the sieve analysis's intervals with mass).
 EngineParams disc_engine_params(const SimulationConfig& cfg);
 
 class DiscRun {

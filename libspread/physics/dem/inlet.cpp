@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "libspread/core/unit_uniform.hpp"
 
@@ -16,12 +17,27 @@ double LognormalDiameter::min_m() const { return std::exp(m - 3.0 * s); }
 double LognormalDiameter::max_m() const { return std::exp(m + 3.0 * s); }
 double LognormalDiameter::mean_cube_m3() const { return std::exp(3.0 * m + 4.5 * s * s); }
 
+std::pair<double, double> inlet_diameter_range_m(const InletParams& params) {
+  if (!params.sieve.empty()) {
+    const SieveNumberDistribution sieve(params.sieve);
+    return {sieve.min_m(), sieve.max_m()};
+  }
+  const LognormalDiameter dist(params.diameter_mean_m, params.diameter_sd_m);
+  return {dist.min_m(), dist.max_m()};
+}
+
 Inlet::Inlet(const InletParams& params, double density_kg_m3)
     : params_(params), dist_(params.diameter_mean_m, params.diameter_sd_m), rng_(params.seed) {
   if (!(params.radius_m > 0.0)) throw std::invalid_argument("inlet: radius_m must be > 0");
   if (!(params.mass_rate_kg_s > 0.0)) throw std::invalid_argument("inlet: mass flow must be > 0");
   if (!(params.batch_interval_s > 0.0)) throw std::invalid_argument("inlet: batch_interval_s must be > 0");
-  rate_per_s_ = params.mass_rate_kg_s / (density_kg_m3 * kPi / 6.0 * dist_.mean_cube_m3());
+  if (!params.sieve.empty()) {
+    const std::string problem = sieve_problem(params.sieve);
+    if (!problem.empty()) throw std::invalid_argument("inlet: " + problem);
+    sieve_.emplace(params.sieve);
+  }
+  const double mean_cube_m3 = sieve_ ? sieve_->mean_cube_m3() : dist_.mean_cube_m3();
+  rate_per_s_ = params.mass_rate_kg_s / (density_kg_m3 * kPi / 6.0 * mean_cube_m3);
 }
 
 // Own distributions (std:: ones differ between standard libraries): 53-bit uniform, Box–Muller.
@@ -31,6 +47,17 @@ double Inlet::normal() {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
 }
 
+// A sieve analysis: one uniform through its inverse number distribution. The lognormal: Box–Muller,
+// redrawn outside its truncation.
+double Inlet::next_diameter_m() {
+  if (sieve_) return sieve_->diameter_m(uniform());
+  double d;
+  do {
+    d = std::exp(dist_.m + dist_.s * normal());
+  } while (d < dist_.min_m() * (1 - 1e-12) || d > dist_.max_m() * (1 + 1e-12));
+  return d;
+}
+
 std::size_t Inlet::release_due(DemEngine& engine, double t_s) {
   if (t_s + 1e-15 < next_batch_s_) return 0;
   next_batch_s_ += params_.batch_interval_s;
@@ -38,10 +65,7 @@ std::size_t Inlet::release_due(DemEngine& engine, double t_s) {
   const double due = rate_per_s_ * t_s;
   std::size_t added = 0;
   while (static_cast<double>(released_) + 1.0 <= due + 1e-9) {
-    double d;
-    do {
-      d = std::exp(dist_.m + dist_.s * normal());
-    } while (d < dist_.min_m() * (1 - 1e-12) || d > dist_.max_m() * (1 + 1e-12));
+    const double d = next_diameter_m();
     const double r = 0.5 * d;
     const double reach = std::max(0.0, params_.radius_m - r);
     bool placed = false;
@@ -50,7 +74,7 @@ std::size_t Inlet::release_due(DemEngine& engine, double t_s) {
       const double rr = reach * std::sqrt(uniform()), a = 2.0 * kPi * uniform();
       // Release volume: the inlet circle times a slab of 4 largest diameters above it, so a batch of
       // several particles finds room without overlaps (the seed's inlet mesh spaces them the same way).
-      const double dz = 4.0 * dist_.max_m() * uniform();
+      const double dz = 4.0 * max_diameter_m() * uniform();
       const Vec3 pos = params_.centre_m + Vec3(rr * std::cos(a), rr * std::sin(a), dz);
       if (engine.overlaps_particle(pos, r)) continue;
       engine.add_particle(pos, Vec3(0.0, 0.0, -params_.release_speed_m_s), r, params_.material);

@@ -1,9 +1,14 @@
 #pragma once
-// Inlet (seed Sect. 3.2): lognormal diameters with a given arithmetic mean and standard deviation, a
-// particle rate set from the mass feed rate through the lognormal moments, and release at random
-// points of the inlet circle without overlapping particles already there.
+// Inlet (seed Sect. 3.2): lognormal diameters with a given arithmetic mean and standard deviation, or
+// those of a sieve analysis (libspread/core/sieve_analysis.hpp), a particle rate set from the mass feed
+// rate through the distribution's E[d³], and release at random points of the inlet circle without
+// overlapping particles already there.
 #include <cstdint>
+#include <optional>
 #include <random>
+#include <utility>
+
+#include "libspread/core/sieve_analysis.hpp"
 
 #include "libspread/physics/dem/engine.hpp"
 
@@ -16,6 +21,7 @@ struct InletParams {
   double mass_rate_kg_s = 0.11;
   double diameter_mean_m = 3e-3;    // arithmetic mean of the lognormal
   double diameter_sd_m = 0.0;       // arithmetic sd; 0 = one size
+  SieveAnalysis sieve;              // non-empty: diameters from this analysis instead of the lognormal
   double release_speed_m_s = 0.5;   // downwards, as the granules leave the metering opening
   int material = 0;
   std::uint64_t seed = 1;
@@ -32,6 +38,10 @@ struct LognormalDiameter {
   double mean_cube_m3() const;  // E[d³] = exp(3m + 9s²/2) (untruncated moment)
 };
 
+// The smallest and largest diameter (m) the inlet releases: the lognormal's truncation, or the bottom and
+// top of the sieve analysis's intervals with mass.
+std::pair<double, double> inlet_diameter_range_m(const InletParams& params);
+
 class Inlet {
  public:
   Inlet(const InletParams& params, double density_kg_m3);
@@ -46,8 +56,11 @@ class Inlet {
  private:
   double uniform();
   double normal();
+  double next_diameter_m();
+  double max_diameter_m() const { return sieve_ ? sieve_->max_m() : dist_.max_m(); }
   InletParams params_;
   LognormalDiameter dist_;
+  std::optional<SieveNumberDistribution> sieve_;
   double rate_per_s_ = 0.0;
   std::mt19937_64 rng_;
   double next_batch_s_ = 0.0;

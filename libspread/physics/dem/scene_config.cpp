@@ -89,6 +89,7 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   c.inlet.mass_rate_kg_s = in.mass_flow_kg_s;
   c.inlet.diameter_mean_m = sm->diameter_mean_m;
   c.inlet.diameter_sd_m = sm->diameter_sd_m;
+  c.inlet.sieve = sm->sieve;
   c.inlet.material = 0;
   c.inlet.seed = s.numerics.seed;
   const double surface_z = c.disc.z_apex_m + std::tan(m.cone_angle_rad) * in.offset_m;

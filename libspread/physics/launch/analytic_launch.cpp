@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
 
+#include "libspread/core/sieve_analysis.hpp"
 #include "libspread/core/unit_uniform.hpp"
 #include "libspread/physics/launch/patterson_reece.hpp"
 
@@ -83,6 +85,13 @@ std::vector<tables::LaunchSample> analytic_launch_samples(const scene::Machine& 
   const double ratio = material.diameter_sd_m / material.diameter_mean_m;
   const double sigma_ln = std::sqrt(std::log1p(ratio * ratio));
   const double mu_ln = std::log(material.diameter_mean_m) - 0.5 * sigma_ln * sigma_ln;
+  // A sieve material: its number distribution's inverse at the same quasi-random coordinate.
+  std::optional<SieveNumberDistribution> sieve;
+  if (!material.sieve.empty()) {
+    const std::string problem = sieve_problem(material.sieve);
+    if (!problem.empty()) fail("material " + material.name + ": " + problem);
+    sieve.emplace(material.sieve);
+  }
 
   std::mt19937_64 rng(seed);
   std::array<double, 4> shift{};
@@ -102,8 +111,8 @@ std::vector<tables::LaunchSample> analytic_launch_samples(const scene::Machine& 
     const double feed_radius = std::hypot(feed_x, feed_y);
     const double feed_angle = std::atan2(feed_y, feed_x);
 
-    const double z_score = inverse_normal_cdf(std::clamp(u[2], 1e-12, 1.0 - 1e-12));
-    const double diameter = std::exp(mu_ln + sigma_ln * z_score);
+    const double diameter = sieve ? sieve->diameter_m(u[2])
+                                  : std::exp(mu_ln + sigma_ln * inverse_normal_cdf(std::clamp(u[2], 1e-12, 1.0 - 1e-12)));
     const double mass = material.density_kg_m3 * kPi * diameter * diameter * diameter / 6.0;
 
     const double r0 = std::max(feed_radius, machine.vane_start_radius_m);
