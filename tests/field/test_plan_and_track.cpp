@@ -38,8 +38,8 @@ TEST(FieldPlan, HeadlandRoundAndTramlinesAtTheBoutWidth) {
   EXPECT_EQ(passes[0].kind, PassKind::kHeadland);
   EXPECT_TRUE(passes[0].outermost);
   EXPECT_NEAR(path_length_m(passes[0].path), 2.0 * (216.0 + 96.0), 1e-9);
-  // Clockwise: the boundary on the driver's right.
-  EXPECT_LT(signed_area_m2(Ring(passes[0].path.begin(), passes[0].path.end() - 1)), 0.0);
+  // Counter-clockwise: the boundary on the driver's right.
+  EXPECT_GT(signed_area_m2(Ring(passes[0].path.begin(), passes[0].path.end() - 1)), 0.0);
   const double expected_y[] = {36.0, 60.0, 84.0};
   for (int j = 0; j < 3; ++j) {
     const Pass& t = passes[static_cast<std::size_t>(j) + 1];

@@ -82,7 +82,7 @@ AsApplied spread_passes(const Boundary& boundary, const std::vector<Pass>& passe
     const StampPattern& pattern = patterns[static_cast<std::size_t>(passes[i].setting)];
     for (Step step : steps[i]) {
       out.spread_length_m += step.mass_kg;
-      step.mass_kg *= kg_per_m * passes[i].flow_fraction;
+      step.mass_kg *= kg_per_m * passes[i].flow_fraction * pattern.metered_fraction;
       out.metered_kg += step.mass_kg;
       out.not_landed_kg += step.mass_kg * (1.0 - pattern.landed_fraction);
       stamp(out.grid, pattern, step);

@@ -41,7 +41,8 @@ int longest_edge(const Ring& ring) {
   return best;
 }
 
-// Headland rounds, outermost first, each driven clockwise and closed.
+// Headland rounds, outermost first, each driven counter-clockwise (the field on the driver's left, the
+// boundary on the right: the right-hand vector of heading f is (f_y, −f_x)) and closed.
 std::vector<Pass> headland_passes(const Boundary& boundary, const PlanSettings& s) {
   std::vector<Pass> passes;
   for (int k = 1; k <= s.headland_passes; ++k) {
@@ -53,7 +54,6 @@ std::vector<Pass> headland_passes(const Boundary& boundary, const PlanSettings& 
           << "field is narrower than " << 2.0 * offset_m << " m; plan fewer headland passes";
       refuse_plan(out.str());
     }
-    std::reverse(round.begin(), round.end());
     round.push_back(round.front());
     Pass pass;
     pass.kind = PassKind::kHeadland;

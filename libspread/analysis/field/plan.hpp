@@ -2,8 +2,8 @@
 // A spreading plan from a boundary: headland passes round the field, then tramlines across what the
 // headland leaves, parallel to a chosen edge at the bout width W (the tramlines a drill leaves for the
 // sprayer and the spreader).
-//   - Headland pass k (1 = outermost) follows the boundary offset inward by (k − ½) W, driven clockwise so
-//     that the boundary is on the driver's right (the side border and edge settings are found for,
+//   - Headland pass k (1 = outermost) follows the boundary offset inward by (k − ½) W, driven
+//     counter-clockwise so that the boundary is on the driver's right (the side border and edge settings are found for,
 //     predict::EdgeRequest::side).
 //   - Tramline j lies (H + j + ½) W from the reference edge's line, H the headland passes, inside the
 //     boundary offset inward by H W; a line that the field's shape cuts in several pieces gives a pass

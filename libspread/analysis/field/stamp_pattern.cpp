@@ -72,4 +72,32 @@ StampPattern stamp_pattern_of_disc(const predict::Prediction& prediction, int di
                                     : bin(prediction, split, prediction.landing_x_m.size(), cell_m);
 }
 
+double disc_share(const predict::Prediction& prediction, int disc) {
+  const std::size_t split = prediction.left_landing_count;
+  const std::size_t first = disc == predict::kLeftDisc ? 0 : split;
+  const std::size_t end = disc == predict::kLeftDisc ? split : prediction.landing_mass_fraction.size();
+  double share = 0.0;
+  for (std::size_t i = first; i < end; ++i) share += prediction.landing_mass_fraction[i];
+  return share;
+}
+
+StampPattern combine_discs(const StampPattern& field_side, double field_share, const StampPattern& edge_side,
+                           double edge_share, double edge_flow_fraction) {
+  StampPattern out;
+  out.cell_m = field_side.cell_m;
+  out.metered_fraction = field_share + edge_flow_fraction * edge_share;
+  if (!(out.metered_fraction > 0.0)) return out;
+  const auto add = [&](const StampPattern& from, double scale) {
+    for (std::size_t i = 0; i < from.size(); ++i) {
+      out.x_m.push_back(from.x_m[i]);
+      out.y_m.push_back(from.y_m[i]);
+      out.fraction.push_back(from.fraction[i] * scale);
+      out.landed_fraction += from.fraction[i] * scale;
+    }
+  };
+  add(field_side, 1.0 / out.metered_fraction);
+  add(edge_side, edge_flow_fraction / out.metered_fraction);
+  return out;
+}
+
 }  // namespace spread::field
