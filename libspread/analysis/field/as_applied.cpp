@@ -84,7 +84,7 @@ AsApplied spread_passes(const Boundary& boundary, const std::vector<Pass>& passe
       out.spread_length_m += step.mass_kg;
       step.mass_kg *= kg_per_m * passes[i].flow_fraction * pattern.metered_fraction;
       out.metered_kg += step.mass_kg;
-      out.not_landed_kg += step.mass_kg * (1.0 - pattern.landed_fraction);
+      out.not_landed_kg += step.mass_kg * std::max(0.0, 1.0 - pattern.landed_fraction);  // rounding: Σ may pass 1
       stamp(out.grid, pattern, step);
       if (++done % kProgressSteps == 0 && settings.progress) settings.progress(done, total);
     }
