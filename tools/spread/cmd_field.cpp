@@ -1,6 +1,6 @@
 // spread field --tables FILE --material NAME --rpm R --boundary FIELD.geojson --bout W --rate KG_HA
 //              [--track TRACK.csv | --headland N --reference-edge I] [--border] [--field-wind E,N]
-//              [--cell M] [--compare] [--compare-bout W2] [--grid OUT.csv] [--json]
+//              [--cell M] [--compare] [--compare-bout W2] [--grid OUT.csv] [--map OUT.png] [--json]
 //              [--drop-point-turn DEG] [--left-/--right-...] [--height M]
 // The whole field (libspread/analysis/field, docs/field.md): the boundary (GeoJSON, longitude/latitude
 // projected to its UTM zone with PROJ, or metres in a named CRS), a plan of headland rounds and tramlines at
@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libspread/analysis/field/as_applied.hpp"
+#include "libspread/analysis/field/field_map_plot.hpp"
 #include "libspread/analysis/field/field_summary.hpp"
 #include "libspread/analysis/field/geojson_boundary.hpp"
 #include "libspread/analysis/field/machine_settings.hpp"
@@ -51,6 +52,7 @@ struct Options : spread::cli::PredictionArgs {
   bool compare = false;
   double compare_bout_m = 18.0;
   std::string grid;
+  std::string map;
   bool json = false;
 };
 
@@ -95,7 +97,7 @@ void progress(std::size_t done, std::size_t total) {
 }
 
 Row run_one(const Options& o, pr::Predictor& predictor, const fd::Boundary& boundary, bool border, double bout_width_m,
-            spread::cli::WindXY wind, fd::AsApplied* keep) {
+            spread::cli::WindXY wind, fd::AsApplied* keep, std::vector<fd::Pass>* keep_passes = nullptr) {
   pr::PredictionRequest request = spread::cli::prediction_request(o);
   request.bout_width_m = bout_width_m;
   request.tray_width_m = o.cell_m;
@@ -123,6 +125,7 @@ Row run_one(const Options& o, pr::Predictor& predictor, const fd::Boundary& boun
   row.summary = fd::summarise(applied, boundary, o.rate_kg_ha);
   row.steps = applied.steps;
   if (keep) *keep = std::move(applied);
+  if (keep_passes) *keep_passes = m.passes;
   return row;
 }
 
@@ -196,7 +199,8 @@ void run(const Options& o, int& exit_code) {
   if (o.border && predictor.machine().disc_count < 2) throw BadInput("--border: a one-disc machine has no edge-side disc");
 
   fd::AsApplied applied;
-  std::vector<Row> rows{run_one(o, predictor, boundary, o.border, o.bout_width_m, wind, &applied)};
+  std::vector<fd::Pass> passes;
+  std::vector<Row> rows{run_one(o, predictor, boundary, o.border, o.bout_width_m, wind, &applied, &passes)};
   if (o.compare) {
     rows.clear();
     const bool windy = wind.x_m_s != 0.0 || wind.y_m_s != 0.0;
@@ -211,17 +215,25 @@ void run(const Options& o, int& exit_code) {
     }
   }
   if (!o.grid.empty()) fd::write_rate_grid_csv(o.grid, applied.grid, fd::inside_mask(applied.grid, boundary.ring), boundary.crs);
+  if (!o.map.empty()) {
+    const Row& first = rows.front();
+    fd::write_field_map_png(o.map, applied.grid, boundary, passes, o.rate_kg_ha,
+                            o.material + format(" at %g rpm", o.rpm) + format(", %g m bouts", first.bout_width_m) +
+                                (first.border ? ", border mode" : "") + format(": field CV %.1f %%", 100.0 * first.summary.cv));
+  }
   if (o.json) {
     json list = json::array();
     for (const Row& r : rows) list.push_back(row_json(r));
     json out{{"boundary", o.boundary}, {"crs", boundary.crs}, {"boundary_area_ha", boundary.area_m2 / 1e4},
              {"cell_m", o.cell_m}, {"target_rate_kg_ha", o.rate_kg_ha}, {"runs", list}};
     if (!o.grid.empty()) out["grid_csv"] = o.grid;
+    if (!o.map.empty()) out["map_png"] = o.map;
     std::cout << out.dump(2) << "\n";
   } else {
     print_summary(o, boundary, rows.front());
     if (o.compare) print_table(rows);
     if (!o.grid.empty()) std::printf("rate grid: %s (%s)\n", o.grid.c_str(), boundary.crs.c_str());
+    if (!o.map.empty()) std::printf("map: %s\n", o.map.c_str());
   }
   exit_code = spread::cli::kExitOk;
 }
@@ -244,6 +256,7 @@ spread::cli::CommandRegistration reg{"field", [](CLI::App& app, int& exit_code) 
   sub->add_flag("--compare", options.compare, "a table of strategies: border off/on, --bout and --compare-bout, calm and --field-wind");
   sub->add_option("--compare-bout", options.compare_bout_m, "the second bout width of --compare (m)")->capture_default_str();
   sub->add_option("--grid", options.grid, "write the as-applied grid as CSV (cell centres in the boundary's CRS, kg/ha)");
+  sub->add_option("--map", options.map, "draw the as-applied map (PNG): rate of the target, boundary, passes, legend");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   sub->callback([&exit_code] { run(options, exit_code); });
 }};
