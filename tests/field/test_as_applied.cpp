@@ -5,12 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
 #include <vector>
 
 #include "libspread/analysis/field/as_applied.hpp"
 #include "libspread/analysis/field/field_summary.hpp"
 #include "libspread/analysis/field/machine_settings.hpp"
 #include "libspread/analysis/field/plan.hpp"
+#include "libspread/analysis/field/rate_grid_csv.hpp"
 #include "libspread/analysis/field/stamp_pattern.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
@@ -127,6 +132,39 @@ TEST(FieldAsApplied, APassSpreadTwiceDoublesItsCells) {
   }
   EXPECT_GT(largest, 0.0);
   EXPECT_NEAR(twice.metered_kg, 2.0 * once.metered_kg, 1e-12 * once.metered_kg);
+}
+
+TEST(FieldAsApplied, TheGridCsvHoldsTheAppliedMass) {
+  // The CSV a GIS reads: its inside cells' rates times the cell area give back the applied mass (to the
+  // file's 0.001 kg/ha), and the CRS is stated.
+  const Setting& s = setting();
+  const Boundary field = make_boundary({{0, 0}, {100, 0}, {120, 150}, {0, 130}}, "local", "test");
+  PlanSettings plan;
+  plan.bout_width_m = kBout_m;
+  const AsApplied run = spread_passes(field, plan_field(field, plan), {&s.pattern, 1}, run_settings());
+  const FieldSummary f = summarise(run, field, kRate_kg_ha);
+  const std::string path = (std::filesystem::temp_directory_path() / "field_grid_test.csv").string();
+  write_rate_grid_csv(path, run.grid, inside_mask(run.grid, field.ring), field.crs);
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_NE(line.find("in local"), std::string::npos) << line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x_m,y_m,rate_kg_ha,inside");
+  double applied_kg = 0.0;
+  std::size_t inside = 0;
+  double x = 0, y = 0, rate = 0;
+  int flag = 0;
+  while (std::getline(in, line)) {
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%d", &x, &y, &rate, &flag), 4) << line;
+    if (flag) {
+      applied_kg += rate * 0.25 / 1e4;
+      ++inside;
+    }
+  }
+  std::filesystem::remove(path);
+  EXPECT_EQ(inside, f.cells_inside);
+  EXPECT_NEAR(applied_kg, f.applied_kg, 1e-6 * f.applied_kg + 0.0005 * 0.25 / 1e4 * static_cast<double>(inside));
 }
 
 TEST(FieldAsApplied, SameInputsSameMap) {

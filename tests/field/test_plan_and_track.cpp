@@ -7,6 +7,7 @@
 
 #include "libspread/analysis/field/boundary.hpp"
 #include "libspread/analysis/field/plan.hpp"
+#include "libspread/analysis/field/projection.hpp"
 #include "libspread/analysis/field/track_csv.hpp"
 #include "libspread/core/error.hpp"
 
@@ -71,6 +72,23 @@ TEST(FieldTrack, PassesSplitWhereTheFeedIsShut) {
   ASSERT_EQ(passes.size(), 2u);
   EXPECT_NEAR(path_length_m(passes[0].path), 8.0, 1e-12);
   EXPECT_NEAR(path_length_m(passes[1].path), 4.0, 1e-12);
+}
+
+TEST(FieldTrack, LongitudeLatitudeIsProjectedIntoTheBoundarysCrs) {
+  // A boundary in UTM 32N (EPSG:32632) and a track logged in longitude/latitude due north along 9° E, its
+  // central meridian, 0.001° of latitude a fix: the pass lies at easting 500,000 m and is as long as the
+  // meridian arc, 0.9996 · M(52°) · 0.002° (M = 6,375,150 m: WGS 84's meridian radius at 52°).
+  const Ring lon_lat = {{8.99, 51.99}, {9.01, 51.99}, {9.01, 52.01}, {8.99, 52.01}};
+  const Boundary field = make_boundary(lon_lat_to(lon_lat, "EPSG:32632", "test"), "EPSG:32632", "test");
+  const std::string csv = "time_s,lon_deg,lat_deg,speed_m_s,heading_deg\n0,9,51.999,4,0\n28,9,52.000,4,0\n56,9,52.001,4,0\n";
+  const auto passes = parse_track_csv(csv, "track.csv", field);
+  ASSERT_EQ(passes.size(), 1u);
+  EXPECT_NEAR(passes[0].path[1].x_m, 500000.0, 1e-3);
+  const double pi = 3.14159265358979323846;
+  EXPECT_NEAR(path_length_m(passes[0].path), 0.9996 * 6375150.0 * 0.002 * pi / 180.0, 0.05);
+  // The same track refused for a field in local metres.
+  const Boundary local = rectangle(100.0, 100.0);
+  EXPECT_NE(error_of([&] { parse_track_csv(csv, "track.csv", local); }).find("local metres"), std::string::npos);
 }
 
 TEST(FieldTrack, RefusesAJump) {
