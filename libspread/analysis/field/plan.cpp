@@ -83,6 +83,13 @@ std::vector<double> crossings(const Ring& ring, Point origin, Point d) {
 std::vector<Pass> tramline_passes(const Boundary& boundary, const PlanSettings& s) {
   const Ring inner = s.headland_passes > 0 ? offset_inward(boundary.ring, s.headland_passes * s.bout_width_m)
                                            : boundary.ring;
+  if (signed_area_m2(inner) <= 0.0 || first_self_intersection(inner).first >= 0) {
+    std::ostringstream out;
+    out << "the field inside " << s.headland_passes << " headland round(s) (" << s.headland_passes * s.bout_width_m
+        << " m inside the boundary) folds over itself: part of the field is narrower than "
+        << 2.0 * s.headland_passes * s.bout_width_m << " m; plan fewer headland passes";
+    refuse_plan(out.str());
+  }
   const int e = s.reference_edge >= 0 ? s.reference_edge : longest_edge(boundary.ring);
   const Point a = boundary.ring[static_cast<std::size_t>(e)];
   const Point d = unit(boundary.ring[(static_cast<std::size_t>(e) + 1) % boundary.ring.size()] - a);

@@ -22,7 +22,7 @@ struct RateGrid {
 
 // A grid of cell_m cells covering [min, max] in x and y plus margin_m all round, edges at multiples of
 // cell_m. Throws spread::Error (kArgument) when it would exceed kMaxGridCells.
-inline constexpr double kMaxGridCells = 2e8;  // 1.6 GB of doubles: 50,000 ha at 0.5 m
+inline constexpr double kMaxGridCells = 5e7;  // 400 MB of doubles: 1,250 ha with its margin at 0.5 m cells
 RateGrid grid_covering(double min_x_m, double min_y_m, double max_x_m, double max_y_m, double margin_m, double cell_m);
 
 // One step of the machine: the discs' midpoint at (x_m, y_m) heading along the unit vector
