@@ -65,6 +65,7 @@ struct Row {
   double tray_cv = 0.0;  // the tray test's to-and-fro CV at this bout (fraction)
   bool border_meets = false;
   std::size_t steps = 0;
+  std::string map;  // its map's PNG ("": none)
 };
 
 void check(const Options& o) {
@@ -97,7 +98,7 @@ void progress(std::size_t done, std::size_t total) {
 }
 
 Row run_one(const Options& o, pr::Predictor& predictor, const fd::Boundary& boundary, bool border, double bout_width_m,
-            spread::cli::WindXY wind, fd::AsApplied* keep, std::vector<fd::Pass>* keep_passes = nullptr) {
+            spread::cli::WindXY wind, fd::AsApplied* keep, const std::string& map) {
   pr::PredictionRequest request = spread::cli::prediction_request(o);
   request.bout_width_m = bout_width_m;
   request.tray_width_m = o.cell_m;
@@ -124,8 +125,15 @@ Row run_one(const Options& o, pr::Predictor& predictor, const fd::Boundary& boun
   fd::AsApplied applied = fd::spread_passes(boundary, m.passes, m.stamps, run);
   row.summary = fd::summarise(applied, boundary, o.rate_kg_ha);
   row.steps = applied.steps;
+  if (!map.empty()) {
+    fd::write_field_map_png(map, applied.grid, boundary, m.passes, o.rate_kg_ha,
+                            o.material + format(" at %g rpm", o.rpm) + format(", %g m bouts", bout_width_m) +
+                                (border ? ", border mode" : "") +
+                                (wind.x_m_s != 0.0 || wind.y_m_s != 0.0 ? ", wind" : "") +
+                                format(": field CV %.1f %%", 100.0 * row.summary.cv));
+    row.map = map;
+  }
   if (keep) *keep = std::move(applied);
-  if (keep_passes) *keep_passes = m.passes;
   return row;
 }
 
@@ -150,7 +158,8 @@ json row_json(const Row& r) {
           {"beyond_boundary_percent", 100.0 * s.beyond_fraction},
           {"not_landed_kg", s.not_landed_kg},
           {"border_setting_meets", r.border_meets},
-          {"steps", r.steps}};
+          {"steps", r.steps},
+          {"map_png", r.map}};
 }
 
 void print_row(const Row& r) {
@@ -189,6 +198,15 @@ void print_summary(const Options& o, const fd::Boundary& boundary, const Row& r)
   if (r.border && !r.border_meets) std::printf("warning: no border setting meets the border thresholds; the closest is used\n");
 }
 
+// --map as given for one run; with --compare each run's map beside it: am_bach.png → am_bach_border_10m_wind.png.
+std::string map_path(const Options& o, bool border, double bout_width_m, bool windy) {
+  if (o.map.empty() || !o.compare) return o.map;
+  const std::size_t dot = o.map.rfind('.');
+  const std::string stem = dot == std::string::npos ? o.map : o.map.substr(0, dot);
+  const std::string ext = dot == std::string::npos ? ".png" : o.map.substr(dot);
+  return stem + (border ? "_border_" : "_normal_") + format("%gm_", bout_width_m) + (windy ? "wind" : "calm") + ext;
+}
+
 void run(const Options& o, int& exit_code) {
   check(o);
   const spread::cli::WindXY wind = spread::cli::parse_wind(o.field_wind);
@@ -198,42 +216,36 @@ void run(const Options& o, int& exit_code) {
   if (!predictor.find_material(o.material)) throw BadInput("--material '" + o.material + "' is not in " + o.tables);
   if (o.border && predictor.machine().disc_count < 2) throw BadInput("--border: a one-disc machine has no edge-side disc");
 
-  fd::AsApplied applied;
-  std::vector<fd::Pass> passes;
-  std::vector<Row> rows{run_one(o, predictor, boundary, o.border, o.bout_width_m, wind, &applied, &passes)};
-  if (o.compare) {
-    rows.clear();
-    const bool windy = wind.x_m_s != 0.0 || wind.y_m_s != 0.0;
-    for (const double bout : {o.bout_width_m, o.compare_bout_m}) {
-      for (const bool with_wind : windy ? std::vector<bool>{false, true} : std::vector<bool>{false}) {
-        for (const bool border : {false, true}) {
-          if (border && predictor.machine().disc_count < 2) continue;
-          rows.push_back(run_one(o, predictor, boundary, border, bout, with_wind ? wind : spread::cli::WindXY{},
-                                 rows.empty() ? &applied : nullptr));
-        }
+  fd::AsApplied applied;  // the first run's: --grid
+  std::vector<Row> rows;
+  const bool windy = wind.x_m_s != 0.0 || wind.y_m_s != 0.0;
+  const auto add = [&](bool border, double bout_width_m, bool with_wind) {
+    rows.push_back(run_one(o, predictor, boundary, border, bout_width_m, with_wind ? wind : spread::cli::WindXY{},
+                           rows.empty() ? &applied : nullptr, map_path(o, border, bout_width_m, with_wind)));
+  };
+  if (!o.compare) add(o.border, o.bout_width_m, windy);
+  for (const double bout : o.compare ? std::vector<double>{o.bout_width_m, o.compare_bout_m} : std::vector<double>{}) {
+    for (const bool with_wind : windy ? std::vector<bool>{false, true} : std::vector<bool>{false}) {
+      for (const bool border : {false, true}) {
+        if (!border || predictor.machine().disc_count == 2) add(border, bout, with_wind);
       }
     }
   }
   if (!o.grid.empty()) fd::write_rate_grid_csv(o.grid, applied.grid, fd::inside_mask(applied.grid, boundary.ring), boundary.crs);
-  if (!o.map.empty()) {
-    const Row& first = rows.front();
-    fd::write_field_map_png(o.map, applied.grid, boundary, passes, o.rate_kg_ha,
-                            o.material + format(" at %g rpm", o.rpm) + format(", %g m bouts", first.bout_width_m) +
-                                (first.border ? ", border mode" : "") + format(": field CV %.1f %%", 100.0 * first.summary.cv));
-  }
   if (o.json) {
     json list = json::array();
     for (const Row& r : rows) list.push_back(row_json(r));
     json out{{"boundary", o.boundary}, {"crs", boundary.crs}, {"boundary_area_ha", boundary.area_m2 / 1e4},
              {"cell_m", o.cell_m}, {"target_rate_kg_ha", o.rate_kg_ha}, {"runs", list}};
     if (!o.grid.empty()) out["grid_csv"] = o.grid;
-    if (!o.map.empty()) out["map_png"] = o.map;
     std::cout << out.dump(2) << "\n";
   } else {
     print_summary(o, boundary, rows.front());
     if (o.compare) print_table(rows);
     if (!o.grid.empty()) std::printf("rate grid: %s (%s)\n", o.grid.c_str(), boundary.crs.c_str());
-    if (!o.map.empty()) std::printf("map: %s\n", o.map.c_str());
+    for (const Row& r : rows) {
+      if (!r.map.empty()) std::printf("map: %s\n", r.map.c_str());
+    }
   }
   exit_code = spread::cli::kExitOk;
 }
@@ -256,7 +268,8 @@ spread::cli::CommandRegistration reg{"field", [](CLI::App& app, int& exit_code) 
   sub->add_flag("--compare", options.compare, "a table of strategies: border off/on, --bout and --compare-bout, calm and --field-wind");
   sub->add_option("--compare-bout", options.compare_bout_m, "the second bout width of --compare (m)")->capture_default_str();
   sub->add_option("--grid", options.grid, "write the as-applied grid as CSV (cell centres in the boundary's CRS, kg/ha)");
-  sub->add_option("--map", options.map, "draw the as-applied map (PNG): rate of the target, boundary, passes, legend");
+  sub->add_option("--map", options.map, "draw the as-applied map (PNG): rate of the target, boundary, passes, legend; "
+                                        "with --compare one per run beside it (NAME_border_10m_calm.png)");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
   sub->callback([&exit_code] { run(options, exit_code); });
 }};
