@@ -12,6 +12,7 @@
 // Bad input → a message naming it on stderr, exit code 2, before any work.
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -90,11 +91,15 @@ std::vector<fd::Pass> passes_for(const Options& o, const fd::Boundary& boundary,
   return fd::plan_field(boundary, plan);
 }
 
-// The progress line of a long run, on stderr (stdout keeps the answer).
-void progress(std::size_t done, std::size_t total) {
-  if (total < 20 * fd::kProgressSteps) return;
-  std::fprintf(stderr, "spread field: %3.0f %% (%zu of %zu steps)\n", 100.0 * static_cast<double>(done) / static_cast<double>(total),
-               done, total);
+// The progress line of a long run, on stderr (stdout keeps the answer): every tenth of its steps.
+std::function<void(std::size_t, std::size_t)> progress_lines() {
+  return [printed = -1](std::size_t done, std::size_t total) mutable {
+    if (total < 20 * fd::kProgressSteps) return;
+    const int tenth = static_cast<int>(10 * done / total);
+    if (tenth <= printed) return;
+    printed = tenth;
+    std::fprintf(stderr, "spread field: %d %% (%zu of %zu steps)\n", 10 * tenth, done, total);
+  };
 }
 
 Row run_one(const Options& o, pr::Predictor& predictor, const fd::Boundary& boundary, bool border, double bout_width_m,
@@ -121,7 +126,7 @@ Row run_one(const Options& o, pr::Predictor& predictor, const fd::Boundary& boun
   run.target_rate_kg_ha = o.rate_kg_ha;
   run.bout_width_m = bout_width_m;
   run.step_m = o.cell_m;
-  run.progress = progress;
+  run.progress = progress_lines();
   fd::AsApplied applied = fd::spread_passes(boundary, m.passes, m.stamps, run);
   row.summary = fd::summarise(applied, boundary, o.rate_kg_ha);
   row.steps = applied.steps;
