@@ -10,7 +10,7 @@
 //     numbers mean nothing, its time is the stamping's at that width.
 // The prediction and its stamp are made once, outside the timing (a field run reuses them at every step).
 // Counters: steps (0.5 m pieces stamped), stamp_cells (cells of the stamp), field_cv, beyond_pct.
-// Run: build/bench/bench_field [--benchmark_filter=...]
+// Run: SPREAD_BENCH_TABLE=X.sqlite taskset -c 1 build/bench/bench_field [--benchmark_filter=...] (docs/field.md "Speed")
 #include <benchmark/benchmark.h>
 
 #include <cmath>
