@@ -10,6 +10,8 @@ find_package(tomlplusplus REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(PkgConfig REQUIRED)
+# PROJ (libproj-dev): the field module projects boundaries in longitude/latitude to metres.
+pkg_check_modules(PROJ REQUIRED IMPORTED_TARGET proj)
 if(SPREAD_WITH_PLOTS)
   pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 endif()

@@ -13,6 +13,7 @@ packages=(build-essential cmake pkg-config ninja-build
   libeigen3-dev libsqlite3-dev sqlite3 libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libcairo2-dev
   liblcm-dev liblcm-bin libgtest-dev libgmock-dev libbenchmark-dev libopenmpi-dev openmpi-bin
   python3 python3-scipy iproute2 util-linux clang libclang-rt-14-dev abigail-tools
+  libproj-dev  # PROJ: field boundaries in longitude/latitude projected to metres (libspread/analysis/field)
   zlib1g-dev  # libz.a, which static SQLite needs: the package test links a C program with cc -static
   poppler-utils  # pdftoppm and pdftotext: the PDF report tests (tests/tools/test_report_cli.cpp)
   strace)  # counts the opens of a table file per command (tests/tools/table_opened_once.sh)

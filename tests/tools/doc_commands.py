@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Runs the commands docs/field-calibration.md shows outside its walkthrough and requires every output
-line it quotes.
+"""Runs the commands docs/field-calibration.md (or another doc given, as docs/field.md) shows outside its
+walkthrough and requires every output line it quotes.
 
 Usage: doc_commands.py DOC SPREAD LOOKUP_BUILDER SOURCE_DIR WORK_DIR [MAIN_TABLE]
 

@@ -29,5 +29,7 @@ opened_once plot "_transverse.png" plot --tables "$table" --material Urea --rpm 
 opened_once chart "disc speed" chart --tables "$table" --material Urea --widths 12,18
 opened_once border "border" border --tables "$table" --material Urea --rpm 520 --width 18
 opened_once inspect "launch table" inspect "$table"
+opened_once field "field CV" field --tables "$table" --material Urea --rpm 520 --bout 10 --rate 200 \
+  --boundary "$src/scenes/field/field_am_bach.geojson"
 opened_once synth "wrote" calibrate synth --tables "$table" --material Urea --rpm 520 --output "$work/synth.csv"
-echo "PASS: predict, plot, chart, border, inspect and calibrate synth each opened the table once"
+echo "PASS: predict, plot, chart, border, inspect, field and calibrate synth each opened the table once"

@@ -1,0 +1,141 @@
+// The as-applied map's PNG (field_map_plot.hpp), on the plot module's canvas and colour map.
+#include "libspread/analysis/field/field_map_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "libspread/analysis/field/field_summary.hpp"
+#include "libspread/analysis/plot/canvas.hpp"
+#include "libspread/analysis/plot/colour_map.hpp"
+
+namespace spread::field {
+namespace {
+
+namespace pd = spread::plot::detail;
+
+constexpr double kTopShare = 1.5;  // the colour map's top: 150 % of the target
+constexpr int kMargin = 60, kLegend = 110;
+
+struct Frame {
+  int block = 1;            // cells per pixel
+  int width = 0, height = 0;  // the map's pixels
+  double px_per_m = 1.0;
+  const RateGrid* grid = nullptr;
+  double x(double x_m) const { return kMargin + (x_m - grid->x0_m) * px_per_m; }
+  double y(double y_m) const { return kMargin + height - (y_m - grid->y0_m) * px_per_m; }  // north up
+};
+
+pd::Rgb cell_colour(double share, bool inside) {
+  const pd::Rgb c = pd::colour_at(std::clamp(share / kTopShare, 0.0, 1.0));
+  if (inside) return c;
+  return {0.55 + 0.45 * c.r * 0.5, 0.55 + 0.45 * c.g * 0.5, 0.55 + 0.45 * c.b * 0.5};  // faded towards grey
+}
+
+// The cells, a block per pixel, into an image surface painted onto the canvas.
+void draw_cells(cairo_t* cr, const Frame& f, const std::vector<std::uint8_t>& inside, double target_rate_kg_ha) {
+  const RateGrid& g = *f.grid;
+  cairo_surface_t* image = cairo_image_surface_create(CAIRO_FORMAT_RGB24, f.width, f.height);
+  unsigned char* data = cairo_image_surface_get_data(image);
+  const int stride = cairo_image_surface_get_stride(image);
+  const double to_share = 1e4 / g.cell_area_m2() / target_rate_kg_ha;
+  for (int py = 0; py < f.height; ++py) {
+    for (int px = 0; px < f.width; ++px) {
+      double mass = 0.0;
+      int cells = 0, in = 0;
+      for (int by = 0; by < f.block; ++by) {
+        const int iy = (f.height - 1 - py) * f.block + by;
+        for (int bx = 0; bx < f.block; ++bx) {
+          const int ix = px * f.block + bx;
+          if (ix >= g.nx || iy >= g.ny) continue;
+          const std::size_t i = static_cast<std::size_t>(iy) * g.nx + ix;
+          mass += g.mass_kg[i];
+          in += inside[i];
+          ++cells;
+        }
+      }
+      const pd::Rgb c = cell_colour(cells ? mass / cells * to_share : 0.0, 2 * in >= cells && cells > 0);
+      auto* pixel = reinterpret_cast<std::uint32_t*>(data + py * stride) + px;
+      *pixel = (static_cast<std::uint32_t>(c.r * 255.0) << 16) | (static_cast<std::uint32_t>(c.g * 255.0) << 8) |
+               static_cast<std::uint32_t>(c.b * 255.0);
+    }
+  }
+  cairo_surface_mark_dirty(image);
+  cairo_save(cr);
+  cairo_translate(cr, kMargin, kMargin);
+  cairo_set_source_surface(cr, image, 0, 0);
+  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+  cairo_paint(cr);
+  cairo_restore(cr);
+  cairo_surface_destroy(image);
+}
+
+void draw_lines(cairo_t* cr, const Frame& f, const Boundary& boundary, const std::vector<Pass>& passes) {
+  cairo_set_source_rgba(cr, 0.3, 0.3, 0.3, 0.6);
+  cairo_set_line_width(cr, 0.8);
+  for (const Pass& pass : passes) {
+    for (std::size_t k = 0; k < pass.path.size(); ++k) {
+      const double x = f.x(pass.path[k].x_m), y = f.y(pass.path[k].y_m);
+      k == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
+    }
+    cairo_stroke(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 2.0);
+  for (std::size_t k = 0; k < boundary.ring.size(); ++k) {
+    const double x = f.x(boundary.ring[k].x_m), y = f.y(boundary.ring[k].y_m);
+    k == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
+  }
+  cairo_close_path(cr);
+  cairo_stroke(cr);
+}
+
+// A vertical colour bar, 0–150 % of the target, with the 80 % and 120 % marks.
+void draw_legend(cairo_t* cr, const Frame& f, double target_rate_kg_ha) {
+  const double left = kMargin + f.width + 30, top = kMargin, bar_h = std::max(200, f.height / 2), bar_w = 20;
+  for (int k = 0; k < static_cast<int>(bar_h); ++k) {
+    const pd::Rgb c = pd::colour_at(1.0 - k / bar_h);
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    cairo_rectangle(cr, left, top + k, bar_w, 1.0);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  pd::set_font(cr, 12);
+  for (const double share : {0.0, 0.5, kUnderFraction, 1.0, kOverFraction, kTopShare}) {
+    const double y = top + bar_h * (1.0 - share / kTopShare);
+    cairo_move_to(cr, left + bar_w, y);
+    cairo_line_to(cr, left + bar_w + 5, y);
+    cairo_stroke(cr);
+    pd::draw_text(cr, std::to_string(static_cast<int>(std::lround(100 * share))) + " %", left + bar_w + 8, y, 0.0, 0.5);
+  }
+  pd::draw_text(cr, "of " + std::to_string(static_cast<int>(std::lround(target_rate_kg_ha))) + " kg/ha", left,
+                top + bar_h + 18, 0.0, 0.5);
+}
+
+}  // namespace
+
+void write_field_map_png(const std::string& path, const RateGrid& grid, const Boundary& boundary,
+                         const std::vector<Pass>& passes, double target_rate_kg_ha, const std::string& title) {
+  Frame f;
+  f.grid = &grid;
+  f.block = std::max(1, (std::max(grid.nx, grid.ny) + kMapMaxPixels - 1) / kMapMaxPixels);
+  f.width = (grid.nx + f.block - 1) / f.block;
+  f.height = (grid.ny + f.block - 1) / f.block;
+  f.px_per_m = 1.0 / (grid.cell_m * f.block);
+  pd::Canvas canvas(f.width + 2 * kMargin + kLegend, f.height + 2 * kMargin);
+  cairo_t* cr = canvas.cr();
+  draw_cells(cr, f, inside_mask(grid, boundary.ring), target_rate_kg_ha);
+  draw_lines(cr, f, boundary, passes);
+  draw_legend(cr, f, target_rate_kg_ha);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  pd::set_font(cr, 15, true);
+  pd::draw_text(cr, title, kMargin, kMargin / 2.0, 0.0, 0.5);
+  pd::set_font(cr, 12);
+  pd::draw_text(cr, "north up; 100 m", kMargin, kMargin + f.height + 25, 0.0, 0.5);
+  cairo_move_to(cr, kMargin + 110, kMargin + f.height + 25);
+  cairo_line_to(cr, kMargin + 110 + 100.0 * f.px_per_m, kMargin + f.height + 25);
+  cairo_stroke(cr);
+  canvas.write_png(path);
+}
+
+}  // namespace spread::field

@@ -1,0 +1,285 @@
+// spread field --tables FILE --material NAME --rpm R --boundary FIELD.geojson --bout W --rate KG_HA
+//              [--track TRACK.csv | --headland N --reference-edge I] [--border] [--field-wind E,N]
+//              [--cell M] [--compare] [--compare-bout W2] [--grid OUT.csv] [--map OUT.png] [--json]
+//              [--drop-point-turn DEG] [--left-/--right-...] [--height M]
+// The whole field (libspread/analysis/field, docs/field.md): the boundary (GeoJSON, longitude/latitude
+// projected to its UTM zone with PROJ, or metres in a named CRS), a plan of headland rounds and tramlines at
+// the bout width or a recorded track, each position spread with the machine's ground pattern at its
+// setting, and the as-applied map's numbers: field CV, the area under 80 %, within 80–120 % and over 120 %
+// of the target rate, the mass beyond the boundary. --compare runs the strategies a user weighs — border
+// mode off and on, the bout width and --compare-bout, calm and --field-wind — and prints them as one table.
+// A wind over a field has a direction in the field: --field-wind (east, north), not the machine's --wind.
+// Bad input → a message naming it on stderr, exit code 2, before any work.
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "libspread/analysis/field/as_applied.hpp"
+#include "libspread/analysis/field/field_map_plot.hpp"
+#include "libspread/analysis/field/field_summary.hpp"
+#include "libspread/analysis/field/geojson_boundary.hpp"
+#include "libspread/analysis/field/machine_settings.hpp"
+#include "libspread/analysis/field/plan.hpp"
+#include "libspread/analysis/field/projection.hpp"
+#include "libspread/analysis/field/rate_grid_csv.hpp"
+#include "libspread/analysis/field/track_csv.hpp"
+#include "tools/spread/command_registry.hpp"
+#include "tools/spread/number_format.hpp"
+#include "tools/spread/prediction_args.hpp"
+#include "tools/spread/table_session.hpp"
+
+namespace spread::cli::cmd_field {
+namespace {
+
+using nlohmann::json;
+using spread::cli::BadInput;
+namespace fd = spread::field;
+namespace pr = spread::predict;
+
+struct Options : spread::cli::PredictionArgs {
+  std::string boundary;
+  std::string track;
+  double bout_width_m = 0.0;
+  double rate_kg_ha = 0.0;
+  int headland = 1;
+  int reference_edge = -1;
+  double cell_m = 0.5;
+  bool border = false;
+  std::string field_wind = "0,0";
+  bool compare = false;
+  double compare_bout_m = 18.0;
+  std::string grid;
+  std::string map;
+  bool json = false;
+};
+
+// One field run: its strategy and numbers.
+struct Row {
+  bool border = false;
+  double bout_width_m = 0.0;
+  double wind_east_m_s = 0.0, wind_north_m_s = 0.0;
+  fd::FieldSummary summary;
+  double tray_cv = 0.0;  // the tray test's to-and-fro CV at this bout (fraction)
+  bool border_meets = false;
+  std::size_t steps = 0;
+  std::string map;  // its map's PNG ("": none)
+};
+
+void check(const Options& o) {
+  if (o.boundary.empty()) throw BadInput("--boundary is required: the field's GeoJSON file");
+  if (!(o.bout_width_m > 0.0 && o.bout_width_m <= 100.0)) throw BadInput("--bout is required: the bout width in (0, 100] m");
+  if (!(o.rate_kg_ha > 0.0) || !std::isfinite(o.rate_kg_ha)) throw BadInput("--rate is required: the target rate (kg/ha) > 0");
+  if (!(o.cell_m >= 0.1 && o.cell_m <= 5.0)) throw BadInput("--cell " + format("%g", o.cell_m) + ": a cell of 0.1 to 5 m");
+  if (o.wind != "0,0") {
+    throw BadInput("--wind: a wind over a field has a direction in the field; give --field-wind EAST,NORTH (m/s)");
+  }
+  if (o.compare && !(o.compare_bout_m > 0.0 && o.compare_bout_m <= 100.0)) {
+    throw BadInput("--compare-bout " + format("%g", o.compare_bout_m) + ": a bout width in (0, 100] m");
+  }
+}
+
+std::vector<fd::Pass> passes_for(const Options& o, const fd::Boundary& boundary, double bout_width_m) {
+  if (!o.track.empty()) return fd::read_track_csv(o.track, boundary);
+  fd::PlanSettings plan;
+  plan.bout_width_m = bout_width_m;
+  plan.headland_passes = o.headland;
+  plan.reference_edge = o.reference_edge;
+  return fd::plan_field(boundary, plan);
+}
+
+// The progress line of a long run, on stderr (stdout keeps the answer): every tenth of its steps.
+std::function<void(std::size_t, std::size_t)> progress_lines() {
+  return [printed = -1](std::size_t done, std::size_t total) mutable {
+    if (total < 20 * fd::kProgressSteps) return;
+    const int tenth = static_cast<int>(10 * done / total);
+    if (tenth <= printed) return;
+    printed = tenth;
+    std::fprintf(stderr, "spread field: %d %% (%zu of %zu steps)\n", 10 * tenth, done, total);
+  };
+}
+
+Row run_one(const Options& o, pr::Predictor& predictor, const fd::Boundary& boundary, bool border, double bout_width_m,
+            spread::cli::WindXY wind, fd::AsApplied* keep, const std::string& map) {
+  pr::PredictionRequest request = spread::cli::prediction_request(o);
+  request.bout_width_m = bout_width_m;
+  request.tray_width_m = o.cell_m;
+  Row row;
+  row.border = border;
+  row.bout_width_m = bout_width_m;
+  row.wind_east_m_s = wind.x_m_s;
+  row.wind_north_m_s = wind.y_m_s;
+  pr::Prediction tray;
+  const pr::PredictStatus status = predictor.predict(request, tray);
+  if (status != pr::PredictStatus::kOk) throw BadInput(std::string("the setting is refused: ") + pr::to_string(status));
+  row.tray_cv = tray.cv_to_and_fro;
+  fd::FieldConditions conditions;
+  conditions.border = border;
+  conditions.wind_east_m_s = wind.x_m_s;
+  conditions.wind_north_m_s = wind.y_m_s;
+  const fd::MachineStamps m = fd::machine_stamps(predictor, request, passes_for(o, boundary, bout_width_m), conditions, o.cell_m);
+  row.border_meets = m.border_meets;
+  fd::RunSettings run;
+  run.target_rate_kg_ha = o.rate_kg_ha;
+  run.bout_width_m = bout_width_m;
+  run.step_m = o.cell_m;
+  run.progress = progress_lines();
+  fd::AsApplied applied = fd::spread_passes(boundary, m.passes, m.stamps, run);
+  row.summary = fd::summarise(applied, boundary, o.rate_kg_ha);
+  row.steps = applied.steps;
+  if (!map.empty()) {
+    fd::write_field_map_png(map, applied.grid, boundary, m.passes, o.rate_kg_ha,
+                            o.material + format(" at %g rpm", o.rpm) + format(", %g m bouts", bout_width_m) +
+                                (border ? ", border mode" : "") +
+                                (wind.x_m_s != 0.0 || wind.y_m_s != 0.0 ? ", wind" : "") +
+                                format(": field CV %.1f %%", 100.0 * row.summary.cv));
+    row.map = map;
+  }
+  if (keep) *keep = std::move(applied);
+  return row;
+}
+
+json row_json(const Row& r) {
+  const fd::FieldSummary& s = r.summary;
+  const double area = s.field_area_m2 > 0.0 ? s.field_area_m2 : 1.0;
+  return {{"border", r.border},
+          {"bout_width_m", r.bout_width_m},
+          {"wind_east_m_s", r.wind_east_m_s},
+          {"wind_north_m_s", r.wind_north_m_s},
+          {"field_cv_percent", 100.0 * s.cv},
+          {"tray_cv_to_and_fro_percent", 100.0 * r.tray_cv},
+          {"mean_rate_kg_ha", s.mean_rate_kg_ha},
+          {"under_80_percent_area_ha", s.under_area_m2 / 1e4},
+          {"within_80_120_percent_area_ha", s.within_area_m2 / 1e4},
+          {"over_120_percent_area_ha", s.over_area_m2 / 1e4},
+          {"under_80_percent_area_percent", 100.0 * s.under_area_m2 / area},
+          {"over_120_percent_area_percent", 100.0 * s.over_area_m2 / area},
+          {"metered_kg", s.metered_kg},
+          {"applied_kg", s.applied_kg},
+          {"beyond_boundary_kg", s.beyond_kg},
+          {"beyond_boundary_percent", 100.0 * s.beyond_fraction},
+          {"not_landed_kg", s.not_landed_kg},
+          {"border_setting_meets", r.border_meets},
+          {"steps", r.steps},
+          {"map_png", r.map}};
+}
+
+void print_row(const Row& r) {
+  const fd::FieldSummary& s = r.summary;
+  const double area = s.field_area_m2;
+  const std::string wind = format("%.1f", r.wind_east_m_s) + "," + format("%.1f", r.wind_north_m_s);
+  std::printf("%-7s %6s %12s %8s %8s %8s %9s %9s %10s %8s\n", r.border ? "border" : "normal",
+              format("%g", r.bout_width_m).c_str(), wind.c_str(),
+              format("%.1f", 100.0 * s.cv).c_str(), format("%.1f", 100.0 * r.tray_cv).c_str(),
+              format("%.1f", 100.0 * s.under_area_m2 / area).c_str(), format("%.1f", 100.0 * s.within_area_m2 / area).c_str(),
+              format("%.1f", 100.0 * s.over_area_m2 / area).c_str(), format("%.1f", s.beyond_kg).c_str(),
+              format("%.2f", 100.0 * s.beyond_fraction).c_str());
+}
+
+void print_table(const std::vector<Row>& rows) {
+  std::printf("%-7s %6s %12s %8s %8s %8s %9s %9s %10s %8s\n", "mode", "bout_m", "wind_E,N_m/s", "fieldCV%", "trayCV%",
+              "<80%", "80-120%", ">120%", "beyond_kg", "beyond%");
+  for (const Row& r : rows) print_row(r);
+}
+
+void print_summary(const Options& o, const fd::Boundary& boundary, const Row& r) {
+  const fd::FieldSummary& s = r.summary;
+  std::printf("field %s: %s in %s, %zu cells of %s inside\n", o.boundary.c_str(), format("%.2f ha", boundary.area_m2 / 1e4).c_str(),
+              boundary.crs.c_str(), s.cells_inside, format("%g m", o.cell_m).c_str());
+  std::printf("field CV %s (the tray test at %s: %s to-and-fro); mean rate %s of %s\n", format("%.1f %%", 100.0 * s.cv).c_str(),
+              format("%g m", r.bout_width_m).c_str(), format("%.1f %%", 100.0 * r.tray_cv).c_str(),
+              format("%.0f kg/ha", s.mean_rate_kg_ha).c_str(), format("%.0f kg/ha", o.rate_kg_ha).c_str());
+  std::printf("area under 80 %%: %s (%s); 80-120 %%: %s (%s); over 120 %%: %s (%s)\n",
+              format("%.2f ha", s.under_area_m2 / 1e4).c_str(), format("%.1f %%", 100.0 * s.under_area_m2 / s.field_area_m2).c_str(),
+              format("%.2f ha", s.within_area_m2 / 1e4).c_str(), format("%.1f %%", 100.0 * s.within_area_m2 / s.field_area_m2).c_str(),
+              format("%.2f ha", s.over_area_m2 / 1e4).c_str(), format("%.1f %%", 100.0 * s.over_area_m2 / s.field_area_m2).c_str());
+  std::printf("metered %s; in the field %s; beyond the boundary %s (%s of metered); not landed %s\n",
+              format("%.1f kg", s.metered_kg).c_str(), format("%.1f kg", s.applied_kg).c_str(),
+              format("%.1f kg", s.beyond_kg).c_str(), format("%.2f %%", 100.0 * s.beyond_fraction).c_str(),
+              format("%.1f kg", s.not_landed_kg).c_str());
+  if (r.border && !r.border_meets) std::printf("warning: no border setting meets the border thresholds; the closest is used\n");
+}
+
+// --map as given for one run; with --compare each run's map beside it: am_bach.png → am_bach_border_10m_wind.png.
+std::string map_path(const Options& o, bool border, double bout_width_m, bool windy) {
+  if (o.map.empty() || !o.compare) return o.map;
+  const std::size_t dot = o.map.rfind('.');
+  const std::string stem = dot == std::string::npos ? o.map : o.map.substr(0, dot);
+  const std::string ext = dot == std::string::npos ? ".png" : o.map.substr(dot);
+  return stem + (border ? "_border_" : "_normal_") + format("%gm_", bout_width_m) + (windy ? "wind" : "calm") + ext;
+}
+
+void run(const Options& o, int& exit_code) {
+  check(o);
+  const spread::cli::WindXY wind = spread::cli::parse_wind(o.field_wind);
+  const fd::ProjectedRing projected = fd::project_to_metres(fd::read_geojson_boundary(o.boundary));
+  const fd::Boundary boundary = fd::make_boundary(projected.ring, projected.crs, o.boundary);
+  spread::cli::TableSession session(o.tables);
+  pr::Predictor& predictor = session.predictor();
+  if (!predictor.find_material(o.material)) throw BadInput("--material '" + o.material + "' is not in " + o.tables);
+  if (o.border && predictor.machine().disc_count < 2) throw BadInput("--border: a one-disc machine has no edge-side disc");
+
+  fd::AsApplied applied;  // the first run's: --grid
+  std::vector<Row> rows;
+  const bool windy = wind.x_m_s != 0.0 || wind.y_m_s != 0.0;
+  const auto add = [&](bool border, double bout_width_m, bool with_wind) {
+    rows.push_back(run_one(o, predictor, boundary, border, bout_width_m, with_wind ? wind : spread::cli::WindXY{},
+                           rows.empty() ? &applied : nullptr, map_path(o, border, bout_width_m, with_wind)));
+  };
+  if (!o.compare) add(o.border, o.bout_width_m, windy);
+  for (const double bout : o.compare ? std::vector<double>{o.bout_width_m, o.compare_bout_m} : std::vector<double>{}) {
+    for (const bool with_wind : windy ? std::vector<bool>{false, true} : std::vector<bool>{false}) {
+      for (const bool border : {false, true}) {
+        if (!border || predictor.machine().disc_count == 2) add(border, bout, with_wind);
+      }
+    }
+  }
+  if (!o.grid.empty()) fd::write_rate_grid_csv(o.grid, applied.grid, fd::inside_mask(applied.grid, boundary.ring), boundary.crs);
+  if (o.json) {
+    json list = json::array();
+    for (const Row& r : rows) list.push_back(row_json(r));
+    json out{{"boundary", o.boundary}, {"crs", boundary.crs}, {"boundary_area_ha", boundary.area_m2 / 1e4},
+             {"cell_m", o.cell_m}, {"target_rate_kg_ha", o.rate_kg_ha}, {"runs", list}};
+    if (!o.grid.empty()) out["grid_csv"] = o.grid;
+    std::cout << out.dump(2) << "\n";
+  } else {
+    print_summary(o, boundary, rows.front());
+    if (o.compare) print_table(rows);
+    if (!o.grid.empty()) std::printf("rate grid: %s (%s)\n", o.grid.c_str(), boundary.crs.c_str());
+    for (const Row& r : rows) {
+      if (!r.map.empty()) std::printf("map: %s\n", r.map.c_str());
+    }
+  }
+  exit_code = spread::cli::kExitOk;
+}
+
+spread::cli::CommandRegistration reg{"field", [](CLI::App& app, int& exit_code) {
+  static Options options;
+  auto* sub = app.add_subcommand("field", "the whole field: the as-applied map of a plan or a recorded track, field CV, "
+                                          "over- and under-applied area, mass beyond the boundary");
+  spread::cli::add_prediction_args(*sub, options);
+  sub->add_option("--boundary", options.boundary, "the field's boundary: GeoJSON Polygon (longitude/latitude, or metres with a crs member)");
+  sub->add_option("--track", options.track, "a recorded track (CSV: time_s, x_m,y_m or lon_deg,lat_deg, speed_m_s, heading_deg[, spreading]) instead of a plan");
+  sub->add_option("--bout", options.bout_width_m, "bout width (m): the tramlines' spacing and the metered flow's width");
+  sub->add_option("--rate", options.rate_kg_ha, "target rate (kg/ha)");
+  sub->add_option("--headland", options.headland, "headland rounds of the plan (0: tramlines to the boundary)")->capture_default_str();
+  sub->add_option("--reference-edge", options.reference_edge, "tramlines parallel to this edge of the boundary (vertex i to i+1; -1: the longest)")
+      ->capture_default_str();
+  sub->add_option("--cell", options.cell_m, "cell of the rate grid and step along the passes (m)")->capture_default_str();
+  sub->add_flag("--border", options.border, "border mode on the outermost round (the border setting of `spread border`, boundary on the right)");
+  sub->add_option("--field-wind", options.field_wind, "wind over the field, EAST,NORTH (m/s)")->capture_default_str();
+  sub->add_flag("--compare", options.compare, "a table of strategies: border off/on, --bout and --compare-bout, calm and --field-wind");
+  sub->add_option("--compare-bout", options.compare_bout_m, "the second bout width of --compare (m)")->capture_default_str();
+  sub->add_option("--grid", options.grid, "write the as-applied grid as CSV (cell centres in the boundary's CRS, kg/ha)");
+  sub->add_option("--map", options.map, "draw the as-applied map (PNG): rate of the target, boundary, passes, legend; "
+                                        "with --compare one per run beside it (NAME_border_10m_calm.png)");
+  sub->add_flag("--json", options.json, "machine-readable output on stdout");
+  sub->callback([&exit_code] { run(options, exit_code); });
+}};
+
+}  // namespace
+}  // namespace spread::cli::cmd_field
