@@ -75,7 +75,11 @@ std::vector<ShippedScene> shipped_scenes() {
   std::vector<ShippedScene> scenes;
   for (const auto& entry : std::filesystem::directory_iterator(SPREAD_SOURCE_DIR "/scenes")) {
     if (entry.path().extension() != ".toml") continue;
-    const bool drum = toml::parse_file(entry.path().string()).contains("drum");
+    const toml::table root = toml::parse_file(entry.path().string());
+    // A product library (scenes/products.toml) is not a scene: a scene takes its entries as materials,
+    // and tests/scene/test_product_library.cpp checks each makes a valid one.
+    if (root.contains("products") && !root.contains("machine")) continue;
+    const bool drum = root.contains("drum");
     scenes.push_back({entry.path(), drum ? read_drum_scene : read_spreader_scene});
   }
   std::sort(scenes.begin(), scenes.end());
@@ -101,10 +105,11 @@ toml::table with_value(toml::table root, const std::vector<std::string>& path, d
   return root;
 }
 
-void expect_refused(Reader read, const std::string& text, const std::vector<std::string>& overrides,
-                    const NumericKey& key, const std::string& how) {
+// `name`: the scene file's path, so that the files it names (a product library) are found beside it.
+void expect_refused(Reader read, const std::string& text, const std::string& name,
+                    const std::vector<std::string>& overrides, const NumericKey& key, const std::string& how) {
   try {
-    read(text, "scene.toml", overrides);
+    read(text, name, overrides);
     ADD_FAILURE() << key.override_key << " = " << how << " was accepted";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find(key.message_key), std::string::npos)
@@ -129,14 +134,14 @@ TEST(SceneNonFinite, EveryNumericKeyOfEveryShippedSceneRefusesNanAndInf) {
     ASSERT_GT(keys.size(), 15u) << "the walk found too few numeric keys";
     for (const NumericKey& key : keys) {
       for (const char* literal : {"nan", "inf", "-inf", "+inf", "-nan"}) {
-        expect_refused(read, text, {key.override_key + "=" + literal}, key, std::string("--set ") + literal);
+        expect_refused(read, text, file.string(), {key.override_key + "=" + literal}, key, std::string("--set ") + literal);
         ++checked;
       }
       for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
                          -std::numeric_limits<double>::infinity()}) {
         std::ostringstream edited;
         edited << with_value(root, key.path, bad);
-        expect_refused(read, edited.str(), {}, key, "in the file: " + std::to_string(bad));
+        expect_refused(read, edited.str(), file.string(), {}, key, "in the file: " + std::to_string(bad));
         ++checked;
       }
     }
