@@ -41,30 +41,32 @@ std::shared_ptr<const TriangleMesh> load_disc_stl(const scene::Scene& s) {
 }
 }  // namespace
 
-SimulationConfig config_from_scene(const scene::Scene& s, const std::string& material_name) {
-  const std::string name = material_name.empty() ? s.simulate_material : material_name;
-  const scene::Material* sm = name.empty() ? (s.materials.empty() ? nullptr : &s.materials.front()) : s.find_material(name);
-  if (!sm) throw scene::SceneError(s.source_name + ": simulate.material: unknown material '" + name + "'");
-  SimulationConfig c;
+namespace {
+
+// The granule's material and the rigid disc's. The disc has no values of its own: it repeats the granule's
+// restitution, wall friction and rolling friction, so the particle–disc pair's means are exactly the
+// granule's values (½(x + x) = x).
+std::vector<Material> materials_of(const scene::Material& sm) {
   Material particle;
-  particle.name = sm->name;
-  particle.density_kg_m3 = sm->density_kg_m3;
-  particle.youngs_modulus_pa = sm->youngs_modulus_pa;
-  particle.poisson_ratio = sm->poisson_ratio;
-  particle.restitution = sm->restitution;
-  particle.friction_particle = sm->friction_particle;
-  particle.friction_wall = sm->friction_wall;
-  particle.rolling_friction = sm->rolling_friction;
+  particle.name = sm.name;
+  particle.density_kg_m3 = sm.density_kg_m3;
+  particle.youngs_modulus_pa = sm.youngs_modulus_pa;
+  particle.poisson_ratio = sm.poisson_ratio;
+  particle.restitution = sm.restitution;
+  particle.friction_particle = sm.friction_particle;
+  particle.friction_wall = sm.friction_wall;
+  particle.rolling_friction = sm.rolling_friction;
   Material steel;
   steel.name = "disc";
   steel.rigid = true;
-  steel.restitution = sm->restitution;
-  steel.friction_wall = sm->friction_wall;
-  steel.rolling_friction = sm->rolling_friction;
-  // The rigid disc has no values of its own: it repeats the granule's restitution, wall friction and
-  // rolling friction, so the particle–disc pair's means are exactly the granule's values (½(x + x) = x).
-  c.materials = {particle, steel};
+  steel.restitution = sm.restitution;
+  steel.friction_wall = sm.friction_wall;
+  steel.rolling_friction = sm.rolling_friction;
+  return {particle, steel};
+}
 
+// The disc, its speed and its height.
+void disc_of(const scene::Scene& s, SimulationConfig& c) {
   const scene::Machine& m = s.machine;
   c.disc.radius_m = m.disc_radius_m;
   c.disc.cone_angle_rad = m.cone_angle_rad;
@@ -83,21 +85,28 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   c.rpm = m.rpm * (m.rotation_sense < 0 ? -1.0 : 1.0);
   c.disc_material = 1;
   c.disc_height_m = m.disc_height_m;
+}
 
+// The feed: where it falls onto the disc, how much, and the granules' sizes.
+void inlet_of(const scene::Scene& s, const scene::Material& sm, SimulationConfig& c) {
+  const scene::Machine& m = s.machine;
   const scene::Inlet& in = s.inlet;
   c.inlet.radius_m = in.radius_m;
   c.inlet.mass_rate_kg_s = in.mass_flow_kg_s;
-  c.inlet.diameter_mean_m = sm->diameter_mean_m;
-  c.inlet.diameter_sd_m = sm->diameter_sd_m;
-  c.inlet.sieve = sm->sieve;
+  c.inlet.diameter_mean_m = sm.diameter_mean_m;
+  c.inlet.diameter_sd_m = sm.diameter_sd_m;
+  c.inlet.sieve = sm.sieve;
   c.inlet.material = 0;
   c.inlet.seed = s.numerics.seed;
   const double surface_z = c.disc.z_apex_m + std::tan(m.cone_angle_rad) * in.offset_m;
   c.inlet.centre_m = Vec3(in.offset_m * std::cos(in.angle_rad), in.offset_m * std::sin(in.angle_rad),
                           surface_z + in.drop_height_m);
+}
 
-  EngineParams& ep = c.engine;
-  // The engine honours every DEM effect (wall_contact too); the disc scene refuses to run without walls.
+// The engine's effects, contact law, integrator and step. The engine honours every DEM effect
+// (wall_contact too); the disc scene refuses to run without walls.
+EngineParams engine_params_of(const scene::Scene& s, const scene::Material& sm) {
+  EngineParams ep;
   ep.effects = s.effects & effect::kDemEffects;
   if (!s.has(effect::kWallContact))
     throw scene::SceneError(s.source_name + ": effects.enabled: the disc DEM needs 'wall_contact' (nothing would hold the particles)");
@@ -111,16 +120,22 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   if (n.contact_model == scene::ContactModel::kLinear) {
     // The scene gives no spring constant: pick k_n so the linear contact lasts as long as the Hertz one
     // of a mean particle on the disc at rim speed + 5 m/s.
-    const double r = 0.5 * sm->diameter_mean_m;
-    const double mass = sm->density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
+    const scene::Machine& m = s.machine;
+    const double r = 0.5 * sm.diameter_mean_m;
+    const double mass = sm.density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
     const double v = std::abs(m.rpm) * 2.0 * kPi / 60.0 * m.disc_radius_m + 5.0;
-    const double e_star = sm->youngs_modulus_pa / (1.0 - sm->poisson_ratio * sm->poisson_ratio);
+    const double e_star = sm.youngs_modulus_pa / (1.0 - sm.poisson_ratio * sm.poisson_ratio);
     const double tc = hertz_contact_time_s(mass, r, e_star, v);
     ep.linear.normal_stiffness_n_m = mass * (kPi / tc) * (kPi / tc);
   }
+  return ep;
+}
+
+// The run's length, the collector, and the flight after launch.
+void flight_of(const scene::Scene& s, SimulationConfig& c) {
+  const scene::Numerics& n = s.numerics;
   c.duration_s = n.duration_s;
   c.collector_radius_m = n.collector_radius_m;
-
   c.flight_effects = s.effects & effect::kFlightEffects;
   c.air.density_kg_m3 = s.air.density_kg_m3;
   c.air.viscosity_pa_s = s.air.viscosity_pa_s;
@@ -128,7 +143,21 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   c.flight_settings.scheme = n.flight_scheme == scene::FlightScheme::kRk4 ? flight::Scheme::kRk4 : flight::Scheme::kDormandPrince45;
   c.flight_settings.dt_s = n.flight_dt_s;
   c.flight_settings.rel_tol = n.flight_tolerance;
-  c.flight_threads = ep.threads;
+  c.flight_threads = c.engine.threads;
+}
+
+}  // namespace
+
+SimulationConfig config_from_scene(const scene::Scene& s, const std::string& material_name) {
+  const std::string name = material_name.empty() ? s.simulate_material : material_name;
+  const scene::Material* sm = name.empty() ? (s.materials.empty() ? nullptr : &s.materials.front()) : s.find_material(name);
+  if (!sm) throw scene::SceneError(s.source_name + ": simulate.material: unknown material '" + name + "'");
+  SimulationConfig c;
+  c.materials = materials_of(*sm);
+  disc_of(s, c);
+  inlet_of(s, *sm, c);
+  c.engine = engine_params_of(s, *sm);
+  flight_of(s, c);
   return c;
 }
 
