@@ -11,6 +11,7 @@
 
 #include <string>
 
+#include "bench/bench_registers.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/run_source.hpp"
 
@@ -18,6 +19,7 @@ namespace {
 using namespace spread;
 
 void BM_TableRow(benchmark::State& state, const std::string& material_name, double rpm) {
+  state.SetLabel("registers: " + bench::limit_registers_from_env());
   const scene::Scene scene = scene::load_scene_file(SPREAD_SOURCE_DIR "/scenes/default.toml", {});
   const scene::Material* material = scene.find_material(material_name);
   if (material == nullptr) {
