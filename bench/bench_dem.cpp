@@ -3,6 +3,7 @@
 //
 //   taskset -c 1 build/bench/bench_dem                          # 0.4 s simulated (a few minutes)
 //   SPREAD_BENCH_DEM_DURATION=0.1 taskset -c 1 build/bench/bench_dem
+//   SPREAD_BENCH_REGISTERS=baseline taskset -c 1 build/bench/bench_dem    # the portable path (bench_registers.hpp)
 //
 // Counters: on-disc particle-steps per second, wall times, and the saving of the partitioned scheme
 // (launched particles fly at their own step in the flight module) over the monolithic one (launched
@@ -14,6 +15,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "bench/bench_registers.hpp"
 #include "bench/case1_config.hpp"
 #include "libspread/analysis/accuracy/monolithic_reference.hpp"
 #include "libspread/physics/dem/simulate.hpp"
@@ -27,6 +29,8 @@ double duration_s() {
 }
 
 void BM_DemCase1(benchmark::State& state) {
+  const std::string registers = "registers: " + bench::limit_registers_from_env();
+  state.SetLabel(registers);
   const bool mesh = state.range(0) != 0;
   for (auto _ : state) {
     dem::SimulationConfig c = bench::case1_config(duration_s());
@@ -53,7 +57,7 @@ void BM_DemCase1(benchmark::State& state) {
     // Eq. 49 needs T_c, T_f and N_fc of launched particles: with none launched (a run shorter than the
     // residence time, ~0.11 s on Case 1) they do not exist — the counters are left out, not NaN.
     if (part.launches.empty()) {
-      state.SetLabel("C_r n/a: nothing launched within " + std::to_string(c.duration_s) +
+      state.SetLabel(registers + "; C_r n/a: nothing launched within " + std::to_string(c.duration_s) +
                      " s (T_c, T_f, N_fc need launched particles)");
       continue;
     }

@@ -151,7 +151,7 @@ BuildSummary build_tables_mpi(const scene::Scene& scene, const BuildOptions& opt
     }
     if (!failure.empty()) return;
     try {
-      writer->finished(job, *run, seconds);
+      writer->finished(job, *run, RunCost{seconds, -1.0});
     } catch (const std::exception& e) {
       failure = job.label() + ": writing: " + e.what();
       stop = true;

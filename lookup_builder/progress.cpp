@@ -58,14 +58,18 @@ void Progress::started(const std::string& label) {
   if (terminal_) redraw();
 }
 
-void Progress::finished(const std::string& label, const std::string& detail, double seconds) {
+void Progress::finished(const std::string& label, const std::string& detail, double seconds, double cpu_s,
+                        double cpu_s_per_1000) {
   if (out_ == nullptr) return;
   std::lock_guard lock(mutex_);
   ++done_;
   ++finished_now_;
   std::erase(running_, label);
-  char timing[32];
-  std::snprintf(timing, sizeof timing, "%.2f s", seconds);
+  char timing[96];
+  if (cpu_s >= 0.0 && cpu_s_per_1000 >= 0.0)
+    std::snprintf(timing, sizeof timing, "%.2f s (CPU %.2f s, %.2f s per 1000 launches)", seconds, cpu_s, cpu_s_per_1000);
+  else
+    std::snprintf(timing, sizeof timing, "%.2f s", seconds);
   if (terminal_) {
     redraw();
   } else {

@@ -17,8 +17,10 @@ class Progress {
 
   void skipped(const std::string& label);
   void started(const std::string& label);
-  // detail: e.g. "812 samples (dem, converged at 0.25 s)".
-  void finished(const std::string& label, const std::string& detail, double seconds);
+  // detail: e.g. "812 samples (dem, converged at 0.25 s)"; cpu_s and cpu_s_per_1000: the run's CPU time and
+  // that per 1,000 launches (< 0: not measured, not shown).
+  void finished(const std::string& label, const std::string& detail, double seconds, double cpu_s = -1.0,
+                double cpu_s_per_1000 = -1.0);
   void failed(const std::string& label, const std::string& message);
   // Ends the updating line on a terminal.
   void close();

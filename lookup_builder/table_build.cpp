@@ -281,7 +281,7 @@ SweepWriter::~SweepWriter() = default;
 
 void SweepWriter::started(const SweepJob& job) { impl_->progress.started(job.label()); }
 
-void SweepWriter::finished(const SweepJob& job, const tables::Run& run, double seconds) {
+void SweepWriter::finished(const SweepJob& job, const tables::Run& run, const RunCost& cost) {
   try {
     impl_->writer->write_run(run, impl_->rebuild);  // one transaction: a kill loses at most the run in progress
   } catch (const tables::RunExistsError&) {
@@ -293,7 +293,7 @@ void SweepWriter::finished(const SweepJob& job, const tables::Run& run, double s
   }
   ++impl_->summary.runs_written;
   ++impl_->pending_done;
-  impl_->progress.finished(job.label(), run_detail(run), seconds);
+  impl_->progress.finished(job.label(), run_detail(run), cost.wall_s, cost.cpu_s, cpu_s_per_1000_launches(cost, run.samples.size()));
 }
 
 void SweepWriter::failed(const SweepJob& job, const std::string& message) {
@@ -346,12 +346,14 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
   const RunSource source = make_run_source(scene, threads_per_run);  // refuses unavailable sources before any write
   SweepWriter writer(scene, options);
   const std::vector<SweepJob>& pending = writer.pending();
-  using Clock = std::chrono::steady_clock;
+  // One DEM thread per run: its CPU time is the worker thread's; runs one at a time: the process's.
+  const bool one_at_a_time = options.jobs == 1 || pending.size() <= 1;
+  const CpuClock cpu_clock = threads_per_run == 1 ? CpuClock::kThread : one_at_a_time ? CpuClock::kProcess : CpuClock::kNone;
 
-  if (options.jobs == 1 || pending.size() <= 1) {
+  if (one_at_a_time) {
     for (const SweepJob& job : pending) {
       writer.started(job);
-      const auto start = Clock::now();
+      const RunTimer timer(cpu_clock);
       tables::Run run;
       try {
         run = source(*job.material, job.rpm);
@@ -360,7 +362,7 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
         writer.finish();
         throw;
       }
-      writer.finished(job, run, std::chrono::duration<double>(Clock::now() - start).count());
+      writer.finished(job, run, timer.stop());
     }
     return writer.finish();
   }
@@ -371,7 +373,7 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
   struct Done {
     const SweepJob* job;
     tables::Run run;
-    double seconds;
+    RunCost cost;
   };
   std::mutex mutex;
   std::condition_variable ready;
@@ -386,12 +388,12 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
     workers.emplace_back([&] {
       for (std::size_t i; !stop && (i = next++) < pending.size();) {
         writer.started(pending[i]);
-        const auto start = Clock::now();
+        const RunTimer timer(cpu_clock);
         try {
           tables::Run run = source(*pending[i].material, pending[i].rpm);
-          const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+          const RunCost cost = timer.stop();
           std::lock_guard lock(mutex);
-          queue.push_back({&pending[i], std::move(run), seconds});
+          queue.push_back({&pending[i], std::move(run), cost});
         } catch (...) {
           std::lock_guard lock(mutex);
           if (!error) {
@@ -417,7 +419,7 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
     lock.unlock();
     if (write_error) continue;
     try {
-      writer.finished(*done.job, done.run, done.seconds);
+      writer.finished(*done.job, done.run, done.cost);
     } catch (...) {
       write_error = std::current_exception();
       stop = true;

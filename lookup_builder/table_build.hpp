@@ -12,6 +12,7 @@
 
 #include "libspread/io/scene/scene.hpp"
 #include "libspread/io/tables/table_format.hpp"
+#include "lookup_builder/run_cost.hpp"
 
 namespace spread::lookup {
 
@@ -60,7 +61,7 @@ class SweepWriter {
   ~SweepWriter();
   const std::vector<SweepJob>& pending() const { return pending_; }
   void started(const SweepJob& job);
-  void finished(const SweepJob& job, const tables::Run& run, double seconds);
+  void finished(const SweepJob& job, const tables::Run& run, const RunCost& cost);
   void failed(const SweepJob& job, const std::string& message);
   BuildSummary finish();
 

@@ -6,7 +6,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${OUT:-$root/out}
-"$root/tools/setup.sh" "$root/build" lookup_builder spread
+"$root/tools/setup.sh" --main-job "$root/build" lookup_builder spread
 mkdir -p "$out"
 bin=$root/build
 # A fresh table each time (an existing file would be extended, not rebuilt), swapped in when complete.

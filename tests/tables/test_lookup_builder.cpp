@@ -250,8 +250,8 @@ TEST(LookupBuilderConflicts, ARunAlreadyWrittenIsSkippedNotFatal) {
   ASSERT_EQ(writer.pending().size(), 1u);
   const SweepJob& job = writer.pending().front();
   const tables::Run run = analytic_run(scene, *job.material, job.rpm);
-  writer.finished(job, run, 0.0);
-  EXPECT_NO_THROW(writer.finished(job, run, 0.0));
+  writer.finished(job, run, RunCost{});
+  EXPECT_NO_THROW(writer.finished(job, run, RunCost{}));
   const BuildSummary summary = writer.finish();
   EXPECT_EQ(summary.runs_written, 1);
   EXPECT_EQ(summary.runs_skipped, 1);

@@ -11,5 +11,8 @@ spread_launcher=()
 if [ "${SPREAD_CCACHE:-1}" != 0 ] && command -v ccache >/dev/null; then
   export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
   export CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
+  # The physics libraries compile with a precompiled header (cmake/SpreadPrecompiledHeaders.cmake): ccache
+  # caches their files only with these.
+  export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
   spread_launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi

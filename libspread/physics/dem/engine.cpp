@@ -69,6 +69,12 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
     }
   }
   wall_scratch_.resize(static_cast<std::size_t>(params_.threads) * (kWallSlots + 2));
+  if (!(params_.mesh_skin_m >= 0.0) || !std::isfinite(params_.mesh_skin_m))
+    throw std::invalid_argument("dem: mesh_skin_m must be >= 0 (0: half the largest particle radius)");
+  // Half the largest radius: measured on bench_dem's Case-1 mesh disc (docs/dem.md "Mesh walls"), between
+  // lists rebuilt too often (a smaller skin) and too many triangles tested each step (a larger one).
+  if (params_.has(effect::kWallContact))
+    mesh_near_.configure(walls_.mesh_count(), params_.mesh_skin_m > 0.0 ? params_.mesh_skin_m : 0.5 * params_.max_particle_radius_m);
   // A group's surface stays where it is when it does not turn, or when it turns about its own z axis and
   // consists only of surfaces of revolution about that axis and planes normal to it. Analytic pieces only:
   // mesh and bead queries are built for contact radii, not for radius + skin.

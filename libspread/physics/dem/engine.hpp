@@ -20,6 +20,7 @@
 #include "libspread/core/vec3.hpp"
 #include "libspread/physics/dem/gear_predictor_corrector.hpp"
 #include "libspread/physics/dem/material.hpp"
+#include "libspread/physics/dem/mesh_near_list.hpp"
 #include "libspread/physics/dem/neighbor_list.hpp"
 #include "libspread/physics/dem/particles.hpp"
 #include "libspread/physics/dem/wall_set.hpp"
@@ -48,6 +49,7 @@ struct EngineParams {
   double min_particle_radius_m = 0.0;  // smallest radius to be added (sets t_c); required
   double max_particle_radius_m = 0.0;  // largest (0: = min)
   double skin_m = 0.0;                 // pair-list skin; 0: the largest radius
+  double mesh_skin_m = 0.0;            // mesh walls' near-list skin (mesh_near_list.hpp); 0: half the largest radius
   Vec3 gravity_m_s2 = Vec3(0.0, 0.0, -kStandardGravity_m_s2);
   int threads = 1;                     // OpenMP threads; results are identical for any count
   PeriodicZ periodic_z;                // periodic boundary along z (period >= 2 (2 r_max + skin)); off by default
@@ -230,6 +232,8 @@ class DemEngine {
   // (drifted_in_pass_ too): nothing has moved, added or renumbered a particle since.
   bool touch_rows_kept_ = false;
   std::vector<WallContact> wall_scratch_;  // (kWallSlots + 2) per thread: no per-particle construction
+  // Per particle and mesh wall, the triangles near it (mesh_near_list.hpp); off without mesh walls.
+  MeshNearLists mesh_near_;
   // Wall list: per particle, bit g set when wall group g was within radius + half the near list's inner
   // skin at the last near-list build (WallSet::groups_within; 0: no wall, the wall test is skipped until the
   // next build; the others are not looked at). Used only when every wall group's surface is fixed in space

@@ -19,6 +19,7 @@ void DemEngine::maintain_lists() {
   const auto t0 = Clock::now();
   if (!params_.has(effect::kParticleContact)) {
     if (inactive_ > 0) {
+      mesh_near_.compact(p_.active);
       p_.compact();
       touch_rows_kept_ = false;
       inactive_ = 0;
@@ -54,6 +55,7 @@ void DemEngine::maintain_lists() {
   if (lists_dirty_) {
     if (inactive_ > 0) {
       // Compaction renumbers the slots; the pair history follows the particle ids.
+      mesh_near_.compact(p_.active);
       p_.compact();
       touch_rows_kept_ = false;
       inactive_ = 0;

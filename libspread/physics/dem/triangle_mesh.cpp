@@ -241,6 +241,9 @@ MeshCollider::MeshCollider(TriangleMesh mesh, double max_particle_radius_m, doub
           }
     }
   }
+  bounds_.reserve(mesh_.triangles.size());
+  for (const auto& t : mesh_.triangles)
+    bounds_.push_back(triangle_bound(mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]));
 }
 
 namespace {
@@ -316,7 +319,23 @@ int local_minima(const TriangleMesh& mesh, const MeshContact* cand, const std::u
   return nout;
 }
 
+// The cheap test lets a triangle through when its bound is below r² and a hair more: the bound and the
+// exact distance round differently, and the hair (10⁻⁶ r²) is far above either's rounding.
+double cull_distance2_m2(double radius_m) { return radius_m * radius_m * (1.0 + 1e-6); }
+
 }  // namespace
+
+bool MeshCollider::cell_range(const Vec3& centre, double reach_m, int l[3], int h[3]) const {
+  const int n[3] = {nx_, ny_, nz_};
+  for (int d = 0; d < 3; ++d) {
+    l[d] = static_cast<int>(std::floor((centre[d] - reach_m - lo_[d]) / cell_m_));
+    h[d] = static_cast<int>(std::floor((centre[d] + reach_m - lo_[d]) / cell_m_));
+    if (h[d] < 0 || l[d] >= n[d]) return false;
+    l[d] = std::max(l[d], 0);
+    h[d] = std::min(h[d], n[d] - 1);
+  }
+  return true;
+}
 
 int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, int max_out) const {
   if (mesh_.triangles.empty()) return 0;
@@ -325,14 +344,8 @@ int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, i
   std::uint32_t cand_v[kMaxCandidates][2];
   int ncand = 0;
   int l[3], h[3];
-  const int n[3] = {nx_, ny_, nz_};
-  for (int d = 0; d < 3; ++d) {
-    l[d] = static_cast<int>(std::floor((centre[d] - radius_m - lo_[d]) / cell_m_));
-    h[d] = static_cast<int>(std::floor((centre[d] + radius_m - lo_[d]) / cell_m_));
-    if (h[d] < 0 || l[d] >= n[d]) return 0;
-    l[d] = std::max(l[d], 0);
-    h[d] = std::min(h[d], n[d] - 1);
-  }
+  if (!cell_range(centre, radius_m, l, h)) return 0;
+  const double cull_m2 = cull_distance2_m2(radius_m);
   for (int iz = l[2]; iz <= h[2]; ++iz)
     for (int iy = l[1]; iy <= h[1]; ++iy)
       for (int ix = l[0]; ix <= h[0]; ++ix) {
@@ -341,11 +354,70 @@ int MeshCollider::query(const Vec3& centre, double radius_m, MeshContact* out, i
           const std::uint32_t ti = cell_items_[k];
           bool seen = false;
           for (int c = 0; c < ncand && !seen; ++c) seen = cand[c].triangle == ti;
-          if (seen || ncand == kMaxCandidates) continue;
+          if (seen || ncand == kMaxCandidates || distance2_lower_bound_m2(bounds_[ti], centre) > cull_m2) continue;
           if (triangle_contact(mesh_, ti, centre, radius_m, cand[ncand], cand_v[ncand])) ++ncand;
         }
       }
   return local_minima(mesh_, cand, cand_v, ncand, out, max_out);
+}
+
+namespace {
+
+// query_listed with room for kRoom candidates; −1 when more touch.
+template <int kRoom>
+int listed_contacts(const TriangleMesh& mesh, const std::vector<TriangleBound>& bounds, const Vec3& centre, double radius_m,
+                    const std::uint32_t* triangles, int count, MeshContact* out, int max_out) {
+  MeshContact cand[kRoom];
+  std::uint32_t cand_v[kRoom][2];
+  int ncand = 0;
+  const double cull_m2 = cull_distance2_m2(radius_m);
+  for (int k = 0; k < count; ++k) {
+    const std::uint32_t ti = triangles[k];
+    if (distance2_lower_bound_m2(bounds[ti], centre) > cull_m2) continue;
+    if (ncand == kRoom) return -1;
+    if (triangle_contact(mesh, ti, centre, radius_m, cand[ncand], cand_v[ncand])) ++ncand;
+  }
+  if (ncand == 1 && max_out >= 1) {  // the usual case on a face: local_minima would keep it as it is
+    out[0] = cand[0];
+    return 1;
+  }
+  return local_minima(mesh, cand, cand_v, ncand, out, max_out);
+}
+
+}  // namespace
+
+int MeshCollider::query_listed(const Vec3& centre, double radius_m, const std::uint32_t* triangles, int count,
+                               MeshContact* out, int max_out) const {
+  // Room for four candidates covers a granule on a face, an edge or a vane's foot; its scratch is built on
+  // every call. More (up to query()'s 48, which a list of MeshNear::kCapacity cannot exceed): again.
+  const int n = listed_contacts<4>(mesh_, bounds_, centre, radius_m, triangles, count, out, max_out);
+  return n >= 0 ? n : listed_contacts<48>(mesh_, bounds_, centre, radius_m, triangles, count, out, max_out);
+}
+
+int MeshCollider::triangles_within(const Vec3& centre, double reach_m, std::uint32_t* triangles, int capacity) const {
+  if (mesh_.triangles.empty()) return 0;
+  int l[3], h[3];
+  if (!cell_range(centre, reach_m, l, h)) return 0;
+  const double reach2 = reach_m * reach_m;
+  int count = 0;
+  for (int iz = l[2]; iz <= h[2]; ++iz)
+    for (int iy = l[1]; iy <= h[1]; ++iy)
+      for (int ix = l[0]; ix <= h[0]; ++ix) {
+        const std::size_t cell = (static_cast<std::size_t>(iz) * ny_ + iy) * nx_ + ix;
+        for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+          const std::uint32_t ti = cell_items_[k];
+          if (std::find(triangles, triangles + count, ti) != triangles + count) continue;
+          const auto& t = mesh_.triangles[ti];
+          Feature f;
+          int fv[2];
+          const Vec3 q = closest_point_on_triangle(centre, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]], f, fv);
+          if ((centre - q).squaredNorm() >= reach2) continue;
+          if (count == capacity) return capacity + 1;
+          triangles[count++] = ti;
+        }
+      }
+  std::sort(triangles, triangles + count);
+  return count;
 }
 
 }  // namespace spread::dem

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>  // cross products
 
 #include "libspread/core/vec3.hpp"
+#include "libspread/physics/dem/triangle_bound.hpp"
 
 namespace spread::dem {
 
@@ -65,8 +66,16 @@ class MeshCollider {
   // vertices with a normal within 45° (a fan of triangles around a vertex); any contact whose normal
   // matches an accepted one within 0.26° is dropped (the same patch seen through another triangle).
   int query(const Vec3& centre, double radius_m, MeshContact* out, int max_out) const;
+  // query() over the given triangles only (ascending, no repeats): the same contacts, to the bit, when they
+  // include every triangle within radius_m of the centre (mesh_near_list.hpp).
+  int query_listed(const Vec3& centre, double radius_m, const std::uint32_t* triangles, int count, MeshContact* out,
+                   int max_out) const;
+  // The triangles whose closest point lies within reach_m of the centre, ascending, into triangles (at most
+  // capacity); returns their count, or capacity + 1 when there are more.
+  int triangles_within(const Vec3& centre, double reach_m, std::uint32_t* triangles, int capacity) const;
 
   const TriangleMesh& mesh() const { return mesh_; }
+  std::size_t triangle_count() const { return mesh_.triangles.size(); }
   bool empty() const { return mesh_.triangles.empty(); }
 
  private:
@@ -76,6 +85,10 @@ class MeshCollider {
   int nx_ = 0, ny_ = 0, nz_ = 0;
   std::vector<std::uint32_t> cell_start_;  // CSR over cells
   std::vector<std::uint32_t> cell_items_;
+  std::vector<TriangleBound> bounds_;  // per triangle, the cheap test before the exact one
+
+  // The grid cells a box of half-width reach_m about the centre overlaps (inclusive); false when none.
+  bool cell_range(const Vec3& centre, double reach_m, int lo[3], int hi[3]) const;
 };
 
 }  // namespace spread::dem

@@ -95,7 +95,7 @@ void DemEngine::wall_particle(std::size_t i, std::uint64_t groups, const typenam
                               std::uint64_t& dropped) {
   const std::size_t material_count = materials_.size();
   const double r = p_.radius_m[i];
-  int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2, groups);
+  int nc = walls_.collect(p_.position(i), r, wc, kWallSlots + 2, groups, mesh_near_.of(i, p_.id[i]));
   if (nc > kWallSlots) { dropped += static_cast<std::uint64_t>(nc - kWallSlots); nc = kWallSlots; }
   const std::size_t base = i * kWallSlots;
   // Slots are filled from the front, so an empty first slot means no wall history to carry: most
@@ -138,6 +138,7 @@ void DemEngine::wall_forces() {
   const typename V::Law::Coeffs* const wall_coeffs = coeffs_table<typename V::Law>(wall_coeffs_);
   WallContact* const scratch = wall_scratch_.data();  // kWallSlots + 2 per thread
   std::uint64_t dropped = 0;
+  mesh_near_.resize(n);  // particles added since the last pass: no mesh list yet
   const bool listed = walls_near_.size() == n;
   const std::uint64_t* const walls_near = listed ? walls_near_.data() : nullptr;
   if (listed && sums_cleared_) {

@@ -7,13 +7,43 @@ namespace spread::dem {
 
 void WallSet::set_time(double t_s) {
   poses_.resize(groups.size());
+  first_mesh_.resize(groups.size());
+  std::size_t meshes = 0;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    first_mesh_[g] = meshes;
+    meshes += groups[g].meshes.size();
+  }
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const double angle = groups[g].initial_angle_rad + groups[g].angular_velocity_rad_s * t_s;
     poses_[g] = {std::cos(angle), std::sin(angle)};
   }
 }
 
-int WallSet::collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out, std::uint64_t group_mask) const {
+std::size_t WallSet::mesh_count() const {
+  std::size_t meshes = 0;
+  for (const auto& g : groups) meshes += g.meshes.size();
+  return meshes;
+}
+
+int WallSet::mesh_contacts(const MeshCollider& mesh, std::size_t list, const Vec3& local, double radius_m, MeshNearOfParticle near,
+                           MeshContact* out, int max_out) const {
+  if (near.lists == nullptr) return mesh.query(local, radius_m, out, max_out);
+  MeshNear& l = near.lists[list];
+  // Complete while the centre is within the skin of where the list was made (a hair less, and a hair more
+  // reach, so that rounding in the distances cannot drop a triangle).
+  const double dx = local.x() - l.origin_m[0], dy = local.y() - l.origin_m[1], dz = local.z() - l.origin_m[2];
+  const double keep_m = (1.0 - 1e-9) * near.skin_m;
+  if (l.owner != near.owner || !(dx * dx + dy * dy + dz * dz <= keep_m * keep_m)) {
+    l.owner = near.owner;
+    l.origin_m[0] = local.x(); l.origin_m[1] = local.y(); l.origin_m[2] = local.z();
+    l.count = mesh.triangles_within(local, (1.0 + 1e-9) * (radius_m + near.skin_m), l.triangle, MeshNear::kCapacity);
+  }
+  if (l.count == MeshNear::kOverflow) return mesh.query(local, radius_m, out, max_out);
+  return mesh.query_listed(local, radius_m, l.triangle, l.count, out, max_out);
+}
+
+int WallSet::collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out, std::uint64_t group_mask,
+                     MeshNearOfParticle near) const {
   int n = 0;
   for (std::size_t g = 0; g < groups.size() && n < max_out; ++g) {
     if (g < 64 && ((group_mask >> g) & 1u) == 0) continue;
@@ -44,7 +74,7 @@ int WallSet::collect(const Vec3& centre_m, double radius_m, WallContact* out, in
     }
     for (std::size_t m = 0; m < grp.meshes.size() && n < max_out; ++m) {
       MeshContact mc[8];
-      const int k = grp.meshes[m].query(local, radius_m, mc, 8);
+      const int k = mesh_contacts(grp.meshes[m], first_mesh_[g] + m, local, radius_m, near, mc, 8);
       for (int i = 0; i < k && n < max_out; ++i)
         emit(mc[i].point, mc[i].normal, mc[i].distance_m,
              wall_feature_key(static_cast<int>(g), true, (static_cast<std::uint32_t>(m) << 20) + mc[i].triangle), grp.material);

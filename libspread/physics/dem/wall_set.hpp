@@ -9,6 +9,7 @@
 
 #include "libspread/core/vec3.hpp"
 #include "libspread/physics/dem/analytic_wall.hpp"
+#include "libspread/physics/dem/mesh_near_list.hpp"
 #include "libspread/physics/dem/sphere_wall.hpp"
 #include "libspread/physics/dem/triangle_mesh.hpp"
 
@@ -43,8 +44,12 @@ class WallSet {
   void set_time(double t_s);
   // Contacts of a sphere at time set_time(); at most max_out, returns the count. group_mask: bit g set to
   // look at group g (groups past 63 always looked at); the contacts of the groups looked at come in the
-  // same order as with all of them.
-  int collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out, std::uint64_t group_mask = ~0ull) const;
+  // same order as with all of them. near: the particle's mesh lists (mesh_near_list.hpp), read and rebuilt
+  // here; the contacts are the same with or without them.
+  int collect(const Vec3& centre_m, double radius_m, WallContact* out, int max_out, std::uint64_t group_mask = ~0ull,
+              MeshNearOfParticle near = {}) const;
+  // The mesh walls of every group, numbered as the mesh lists are.
+  std::size_t mesh_count() const;
   // Bit g set when group g has a surface within radius_m of the centre (groups past 63: bit 63).
   std::uint64_t groups_within(const Vec3& centre_m, double radius_m) const;
   // Largest surface speed of any moving wall piece (m/s), for the time-step estimate.
@@ -53,6 +58,11 @@ class WallSet {
  private:
   struct Pose { double c = 1.0, s = 0.0; };
   std::vector<Pose> poses_;
+  std::vector<std::size_t> first_mesh_;  // per group, the number of its first mesh over all groups
+  // Mesh m of group g's contacts of a sphere in the group frame, through the particle's list when it has
+  // one (rebuilt when the centre has left its skin).
+  int mesh_contacts(const MeshCollider& mesh, std::size_t list, const Vec3& local, double radius_m, MeshNearOfParticle near,
+                    MeshContact* out, int max_out) const;
 };
 
 // Bead contacts: index = kBeadKeyFlag | (bead index over the group's bead walls), beads < 2^22.
