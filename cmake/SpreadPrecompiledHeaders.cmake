@@ -8,8 +8,9 @@
 # shared 2-core AMD EPYC under load): 260 s user + 48 s sys without, 235 s user + 55 s sys with (-6 % CPU;
 # most of their time is code generation, pair_pass.cpp alone 57 s).
 #
-# Used on the physics libraries the main job builds file by file (dem, flight, drum, launch; the others
-# compile as unity files, SpreadUnityBuild.cmake). With ccache (tools/ci/ccache.sh) the files that use the
+# Used on the physics libraries the main job builds file by file (dem, drum, launch; the others compile as
+# unity files, SpreadUnityBuild.cmake). Not on flight: its objects are the C API's too, and the pre-linked
+# libspreadc.a takes them as $<TARGET_OBJECTS>, which would carry the precompiled header (not an object). With ccache (tools/ci/ccache.sh) the files that use the
 # header are cached only with CCACHE_SLOPPINESS pch_defines,time_macros, which tools/ci/ccache.sh sets.
 function(spread_precompile_eigen target)
   target_precompile_headers(${target} PRIVATE <Eigen/Core> <Eigen/Geometry> <algorithm> <cmath> <cstdint> <string>

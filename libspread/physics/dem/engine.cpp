@@ -19,6 +19,42 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
       pair_table_(materials_, overrides, params.contact_law, params.linear),
       walls_(std::move(walls)),
       params_(params) {
+  check_params();
+  if (params_.threads < 1) params_.threads = 1;
+  for (const auto& g : walls_.groups)
+    if (g.material < 0 || static_cast<std::size_t>(g.material) >= materials_.size())
+      throw std::invalid_argument("dem: wall group '" + g.name + "' refers to an unknown material");
+  p_.with_spin = params_.has(effect::kRotation);
+  if (params_.integrator == Integrator::kGear4 || params_.integrator == Integrator::kGear5 ||
+      params_.integrator == Integrator::kGear6)
+    gear_ = GearPredictorCorrector(4 + static_cast<int>(params_.integrator) - static_cast<int>(Integrator::kGear4));
+  skin_m_ = params_.skin_m > 0.0 ? params_.skin_m : params_.max_particle_radius_m;
+  if (params_.periodic_z.enabled) {
+    const PeriodicZ& pz = params_.periodic_z;
+    const double cutoff = 2.0 * params_.max_particle_radius_m + skin_m_;
+    if (!std::isfinite(pz.min_m) || !std::isfinite(pz.max_m) || !(pz.length_m() >= 2.0 * cutoff)) {
+      std::ostringstream os;
+      os << "dem: periodic_z: period max_m - min_m = " << pz.length_m() << " m must be finite and at least twice the "
+         << "pair-search cut-off 2 r_max + skin = " << cutoff << " m";
+      throw std::invalid_argument(os.str());
+    }
+  }
+  wall_scratch_.resize(static_cast<std::size_t>(params_.threads) * (kWallSlots + 2));
+  if (!(params_.mesh_skin_m >= 0.0) || !std::isfinite(params_.mesh_skin_m))
+    throw std::invalid_argument("dem: mesh_skin_m must be >= 0 (0: half the largest particle radius)");
+  // Half the largest radius: measured on bench_dem's Case-1 mesh disc (docs/dem.md "Mesh walls"), between
+  // lists rebuilt too often (a smaller skin) and too many triangles tested each step (a larger one).
+  if (params_.has(effect::kWallContact))
+    mesh_near_.configure(walls_.mesh_count(), params_.mesh_skin_m > 0.0 ? params_.mesh_skin_m : 0.5 * params_.max_particle_radius_m);
+  // Without wall_contact no wall is ever looked at, so there is no wall list to keep.
+  walls_fixed_in_space_ = params_.has(effect::kWallContact) && walls_stay_in_place();
+  const StepChoice step = choose_time_step(materials_, pair_table_, params_, walls_.max_surface_speed_m_s());
+  contact_time_s_ = step.contact_time_s;
+  stable_bound_s_ = step.stable_bound_s;
+  dt_s_ = step.dt_s;
+}
+
+void DemEngine::check_params() {
   if (materials_.empty()) throw std::invalid_argument("dem: at least one material is needed");
   if (materials_.size() > 65535) throw std::invalid_argument("dem: too many materials");
   if (!(params_.min_particle_radius_m > 0.0))
@@ -49,50 +85,23 @@ DemEngine::DemEngine(std::vector<Material> materials, std::vector<PairOverride> 
       throw std::invalid_argument("dem: effect '" + std::string(e.name) + "' needs the '" + effect::to_string(missing) +
                                   "' effect");
   }
-  if (params_.threads < 1) params_.threads = 1;
-  for (const auto& g : walls_.groups)
-    if (g.material < 0 || static_cast<std::size_t>(g.material) >= materials_.size())
-      throw std::invalid_argument("dem: wall group '" + g.name + "' refers to an unknown material");
-  p_.with_spin = params_.has(effect::kRotation);
-  if (params_.integrator == Integrator::kGear4 || params_.integrator == Integrator::kGear5 ||
-      params_.integrator == Integrator::kGear6)
-    gear_ = GearPredictorCorrector(4 + static_cast<int>(params_.integrator) - static_cast<int>(Integrator::kGear4));
-  skin_m_ = params_.skin_m > 0.0 ? params_.skin_m : params_.max_particle_radius_m;
-  if (params_.periodic_z.enabled) {
-    const PeriodicZ& pz = params_.periodic_z;
-    const double cutoff = 2.0 * params_.max_particle_radius_m + skin_m_;
-    if (!std::isfinite(pz.min_m) || !std::isfinite(pz.max_m) || !(pz.length_m() >= 2.0 * cutoff)) {
-      std::ostringstream os;
-      os << "dem: periodic_z: period max_m - min_m = " << pz.length_m() << " m must be finite and at least twice the "
-         << "pair-search cut-off 2 r_max + skin = " << cutoff << " m";
-      throw std::invalid_argument(os.str());
-    }
-  }
-  wall_scratch_.resize(static_cast<std::size_t>(params_.threads) * (kWallSlots + 2));
-  if (!(params_.mesh_skin_m >= 0.0) || !std::isfinite(params_.mesh_skin_m))
-    throw std::invalid_argument("dem: mesh_skin_m must be >= 0 (0: half the largest particle radius)");
-  // Half the largest radius: measured on bench_dem's Case-1 mesh disc (docs/dem.md "Mesh walls"), between
-  // lists rebuilt too often (a smaller skin) and too many triangles tested each step (a larger one).
-  if (params_.has(effect::kWallContact))
-    mesh_near_.configure(walls_.mesh_count(), params_.mesh_skin_m > 0.0 ? params_.mesh_skin_m : 0.5 * params_.max_particle_radius_m);
+}
+
+bool DemEngine::walls_stay_in_place() const {
   // A group's surface stays where it is when it does not turn, or when it turns about its own z axis and
   // consists only of surfaces of revolution about that axis and planes normal to it. Analytic pieces only:
   // mesh and bead queries are built for contact radii, not for radius + skin.
-  // Without wall_contact no wall is ever looked at, so there is no wall list to keep.
-  walls_fixed_in_space_ = params_.has(effect::kWallContact);
+  bool fixed = true;
   for (const auto& g : walls_.groups) {
-    if (!g.meshes.empty() || !g.bead_walls.empty()) { walls_fixed_in_space_ = false; continue; }
+    if (!g.meshes.empty() || !g.bead_walls.empty()) { fixed = false; continue; }
     if (g.angular_velocity_rad_s == 0.0) continue;
     bool symmetric = true;
     for (const auto& piece : g.pieces)
       symmetric = symmetric && (piece.kind == PieceKind::kRevolution ||
                                 (piece.kind == PieceKind::kPlane && piece.normal.x() == 0.0 && piece.normal.y() == 0.0));
-    walls_fixed_in_space_ = walls_fixed_in_space_ && symmetric;
+    fixed = fixed && symmetric;
   }
-  const StepChoice step = choose_time_step(materials_, pair_table_, params_, walls_.max_surface_speed_m_s());
-  contact_time_s_ = step.contact_time_s;
-  stable_bound_s_ = step.stable_bound_s;
-  dt_s_ = step.dt_s;
+  return fixed;
 }
 
 std::uint32_t DemEngine::add_particle(const Vec3& pos, const Vec3& vel, double radius, int material, const Vec3& spin) {

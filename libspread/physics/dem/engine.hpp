@@ -187,6 +187,10 @@ class DemEngine {
   void update_pair_coeffs();
   // Pair list and wall list rebuilt when needed (list_upkeep.cpp).
   void maintain_lists();
+  // Construction's parts: every parameter and effect checked (the force variant chosen), and whether the
+  // walls stay where they are (walls_fixed_in_space_).
+  void check_params();
+  bool walls_stay_in_place() const;
   void narrow_wall_list();
   double inner_skin_m() const;  // the near list's skin (m)
   // The integrator families (integrators.cpp).
