@@ -8,6 +8,8 @@ set -u
 spread=$1 src=$2 work=$3
 command -v strace >/dev/null || { echo "FAIL: strace is not installed (tools/setup.sh installs it)"; exit 1; }
 rm -rf "$work" && mkdir -p "$work"
+# Under the sanitizers: LeakSanitizer cannot run under ptrace (strace); the other checks still do.
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 table=$work/urea.sqlite
 cp "$src/fuzz/corpus/capi_open/default_small.sqlite" "$table"
 # opened_once NAME EXPECTED_STDOUT_TEXT ARGS...: the command succeeds, prints the text, and reads the table
