@@ -9,6 +9,7 @@
 #include "libspread/analysis/field/geojson_boundary.hpp"
 #include "libspread/analysis/field/projection.hpp"
 #include "libspread/core/error.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace spread::field {
 namespace {
@@ -18,16 +19,7 @@ std::string polygon(const std::string& ring, const std::string& crs_member = "")
          ring + "]}}";
 }
 
-// The message of the spread::Error that `f` throws ("" when none).
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using spread::testing::error_of;
 
 Boundary boundary_of(const std::string& text) {
   const SourceRing source = parse_geojson_boundary(text, "field.geojson");

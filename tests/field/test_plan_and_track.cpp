@@ -10,6 +10,7 @@
 #include "libspread/analysis/field/projection.hpp"
 #include "libspread/analysis/field/track_csv.hpp"
 #include "libspread/core/error.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace spread::field {
 namespace {
@@ -18,15 +19,7 @@ Boundary rectangle(double width_m, double length_m) {
   return make_boundary({{0, 0}, {width_m, 0}, {width_m, length_m}, {0, length_m}}, "local", "test");
 }
 
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using spread::testing::error_of;
 
 TEST(FieldPlan, HeadlandRoundAndTramlinesAtTheBoutWidth) {
   // 240 m wide (along the longest edge, the x axis), 120 m deep: one headland round 12 m inside, then
