@@ -55,6 +55,9 @@ inline constexpr flight::EffectSet kTableEffects = 1u << 31;
 enum class ReturnPassSettings : std::uint8_t {
   kSame,     // each disc keeps its setting (a machine set once for the field)
   kSwapped,  // the discs swap settings (a controller that compensates the wind for each heading)
+  // The tray test's rule whatever the wind: the outgoing pattern mirrored (a search that reads only the
+  // landings, or a comparison with a tray test driven in wind).
+  kOutgoingMirrored,
 };
 
 struct PredictionRequest {

@@ -3,7 +3,8 @@
 // (w_x, w_y) in the outgoing machine frame is (−w_x, −w_y) in the returning one. The field gets the return
 // pass's pattern in its own frame laid down mirrored (metrics::cv_at_trays with a return pattern). Three
 // cases, cheapest first:
-//   - still air: the return pass is the outgoing pattern, each bout mirror-symmetric (the tray-test rule);
+//   - still air (or asked for: ReturnPassSettings::kOutgoingMirrored): the return pass is the outgoing
+//     pattern, each bout mirror-symmetric (the tray test's rule);
 //   - a lateral wind only (w_y = 0) on two discs whose settings on the way back are the outgoing ones
 //     mirrored (alike discs that keep their settings, or discs that swap them): the machine is its own
 //     mirror image (docs/design.md §3), so its pattern in the wind −w_x is its pattern in w_x mirrored, and
@@ -23,7 +24,7 @@ namespace spread::predict {
 ReturnPass Predictor::return_pass_of(const Context& c) const {
   const double wind_x_m_s = c.air.wind_m_s.x(), wind_y_m_s = c.air.wind_m_s.y();
   const bool windy = (c.effects & flight::kWind) != 0 && (wind_x_m_s != 0.0 || wind_y_m_s != 0.0);
-  if (!windy) return ReturnPass::kOutgoing;
+  if (!windy || c.request.return_pass == ReturnPassSettings::kOutgoingMirrored) return ReturnPass::kOutgoing;
   const bool swapped = c.request.return_pass == ReturnPassSettings::kSwapped;
   const bool mirror_settings = swapped || c.settings[kLeftDisc] == c.settings[kRightDisc];
   if (c.two_discs && wind_y_m_s == 0.0 && mirror_settings) return ReturnPass::kRacetrack;
