@@ -13,25 +13,15 @@
 #include <gtest/gtest.h>
 
 #include "libspread/analysis/metrics/metrics.hpp"
+#include "tests/metrics/test_patterns.hpp"
 #include "libspread/core/unit_uniform.hpp"
 
 namespace sm = spread::metrics;
 
 namespace {
 
-sm::TrayLayout layout(int count, double width_m = 0.5) {
-  sm::TrayLayout trays;
-  trays.tray_width_m = width_m;
-  trays.tray_count = count;
-  return trays;
-}
-
-std::vector<double> random_pattern(int count, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::vector<double> p(static_cast<std::size_t>(count));
-  for (double& v : p) v = 0.1 + spread::unit_uniform(rng());
-  return p;
-}
+using spread::metrics::testing::layout;
+using spread::metrics::testing::random_pattern;
 
 std::vector<double> mirrored(const std::vector<double>& p) { return {p.rbegin(), p.rend()}; }
 
