@@ -34,7 +34,8 @@ const std::string& table_path() {
 }
 
 // Requests that reach the widest paths: narrow trays over the widest layout (4,000 trays), a high disc and
-// a lateral wind (both discs fly), the widest bout a request may ask for.
+// a lateral wind (both discs fly), the widest bout a request may ask for, a wind along the track (the
+// return pass of a to-and-fro field flown as well: two bouts).
 std::vector<spread_prediction_def> requests() {
   std::vector<spread_prediction_def> defs;
   for (int k = 0; k < 4; ++k) {
@@ -49,6 +50,7 @@ std::vector<spread_prediction_def> requests() {
   defs[2].bout_width_m = 1000.0;
   defs[2].tray_width_m = 0.1;
   defs[3].wind_m_s[0] = -3.0;
+  defs[3].wind_m_s[1] = 2.0;
   defs[3].cv_target_percent = 5.0;
   return defs;
 }

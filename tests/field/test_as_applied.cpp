@@ -17,6 +17,7 @@
 #include "libspread/analysis/field/plan.hpp"
 #include "libspread/analysis/field/rate_grid_csv.hpp"
 #include "libspread/analysis/field/stamp_pattern.hpp"
+#include "libspread/analysis/metrics/metrics.hpp"
 #include "tests/predict/synthetic_table.hpp"
 
 namespace spread::field {
@@ -91,6 +92,51 @@ TEST(FieldAsApplied, StraightPassesWithoutEndsGiveTheTrayTestCv) {
   EXPECT_NEAR(f.cv * std::sqrt(n / (n - 1.0)), tray_cv, 2e-3 * tray_cv);
   // Every kilogram inside lands at the target rate on average (each bout gets one pass's landed mass).
   EXPECT_NEAR(f.mean_rate_kg_ha, kRate_kg_ha * s.pattern.landed_fraction, 1e-6 * kRate_kg_ha);
+}
+
+TEST(FieldAsApplied, StraightPassesInWindGiveTheTrayTestCvWithItsReturnPass) {
+  // The same field in wind, each pass stamped with the pattern of its own heading (machine_stamps: the wind
+  // turned into the machine frame, one prediction per heading). The tray test's to-and-fro CV must be
+  // the field's with the return pass meeting the wind from the other side (return_pass.cpp) — not the
+  // outgoing pattern mirrored, which lays the drift down towards the wind on every other pass.
+  Setting& s = setting();
+  const Boundary field = make_boundary({{0, 0}, {180, 0}, {180, 200}, {0, 200}}, "local", "test");
+  std::vector<Pass> passes;
+  for (int k = -4; k < 14; ++k) {
+    const double x = (k + 0.5) * kBout_m;
+    passes.push_back(k % 2 == 0 ? straight(x, -80.0, 280.0) : straight(x, 280.0, -80.0));
+  }
+  struct Wind {
+    double east_m_s, north_m_s;
+    predict::ReturnPass read_as;
+  };
+  for (const Wind wind : {Wind{3.0, 0.0, predict::ReturnPass::kRacetrack}, Wind{2.5, 1.5, predict::ReturnPass::kFlown}}) {
+    SCOPED_TRACE("wind east " + std::to_string(wind.east_m_s) + " north " + std::to_string(wind.north_m_s));
+    predict::PredictionRequest r;
+    r.material = "can";
+    r.rpm = 650.0;
+    r.bout_width_m = kBout_m;
+    FieldConditions conditions;
+    conditions.wind_east_m_s = wind.east_m_s;
+    conditions.wind_north_m_s = wind.north_m_s;
+    const MachineStamps stamps = machine_stamps(s.predictor, r, passes, conditions, 0.5);
+    const FieldSummary f = summarise(spread_passes(field, stamps.passes, stamps.stamps, run_settings()), field, kRate_kg_ha);
+    // The pass heading north meets the wind as the tray test's outgoing pass: x east, y north.
+    r.wind_x_m_s = wind.east_m_s;
+    r.wind_y_m_s = wind.north_m_s;
+    predict::Prediction tray_test;
+    ASSERT_EQ(s.predictor.predict(r, tray_test), predict::PredictStatus::kOk);
+    EXPECT_EQ(tray_test.return_pass, wind.read_as);
+    const double n = kBout_m / 0.5;
+    EXPECT_NEAR(f.cv * std::sqrt(n / (n - 1.0)), tray_test.cv_to_and_fro, 5e-3 * tray_test.cv_to_and_fro)
+        << "field " << f.cv << ", tray test " << tray_test.cv_to_and_fro;
+    // The outgoing pattern mirrored on every other pass is another field: over six times further off
+    // (on this table's patterns 13 % and 5 % above the field's CV).
+    const auto outgoing = tray_test.tray_mass_fraction;
+    const double mirrored = metrics::cv_at_trays(outgoing, tray_test.trays, static_cast<int>(n), metrics::Overlap::kToAndFro);
+    EXPECT_GT(std::abs(mirrored - f.cv * std::sqrt(n / (n - 1.0))), 0.03 * tray_test.cv_to_and_fro)
+        << "mirrored outgoing pattern " << mirrored;
+  }
 }
 
 TEST(FieldAsApplied, AppliedAndBeyondMakeTheMeteredMass) {

@@ -13,26 +13,14 @@
 
 #include "libspread/core/unit_uniform.hpp"
 #include "libspread/analysis/metrics/metrics.hpp"
+#include "tests/metrics/test_patterns.hpp"
 
 namespace sm = spread::metrics;
 
 namespace {
 
-sm::TrayLayout layout(int count, double width_m = 0.5) {
-  sm::TrayLayout trays;
-  trays.tray_width_m = width_m;
-  trays.tray_count = count;
-  return trays;
-}
-
-// Deterministic pseudo-random pattern in [0.1, 1.1) kg per tray (own mapping from the raw 64-bit draws,
-// independent of the standard library's distributions).
-std::vector<double> random_pattern(int count, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::vector<double> p(static_cast<std::size_t>(count));
-  for (double& v : p) v = 0.1 + spread::unit_uniform(rng());
-  return p;
-}
+using spread::metrics::testing::layout;
+using spread::metrics::testing::random_pattern;
 
 // Independent reference: the overlapped distribution on the pattern's own tray grid over one whole
 // period, 2n consecutive trays starting at an arbitrary grid index (racetrack repeats every n trays,

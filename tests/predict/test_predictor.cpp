@@ -168,7 +168,9 @@ TEST(Predictor, WindAlongTheDrivingDirectionKeepsTheMirrorTrick) {
   r.wind_y_m_s = 3.0;
   Prediction out;
   ASSERT_EQ(p.predict(r, out), PredictStatus::kOk);
-  EXPECT_EQ(out.flights, 256);
+  // One disc flown and mirrored, for the outgoing pass and for the return pass in the tailwind.
+  EXPECT_EQ(out.flights, 2 * 256);
+  EXPECT_EQ(out.return_pass, ReturnPass::kFlown);
   const auto t = copy(out.tray_mass_fraction);
   for (std::size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], t[t.size() - 1 - k], 1e-15);
   // Wind bit off: the wind is ignored.

@@ -39,14 +39,19 @@ TEST(WindCompensation, LowersTheCvWithinTheLimitsAndIsThePredictorsOwn) {
     EXPECT_NE(found.discs[kLeftDisc], found.discs[kRightDisc]);
     EXPECT_LT(found.predictions, 250);
     EXPECT_TRUE(std::isfinite(out.cv_to_and_fro_se));
-    // The answer is a prediction at that setting like any other.
+    // The answer is a prediction at that setting like any other, the discs swapping settings on the return
+    // pass (which meets the wind from the other side).
     PredictionRequest at = windy(wind_x_m_s);
+    at.return_pass = ReturnPassSettings::kSwapped;
     at.rpm = 0.0;
     at.disc_rpm = {found.discs[kLeftDisc].rpm, found.discs[kRightDisc].rpm};
     at.disc_drop_point_turn_rad = {found.discs[kLeftDisc].drop_point_turn_rad, found.discs[kRightDisc].drop_point_turn_rad};
     Prediction again;
     ASSERT_EQ(predictor.predict(at, again), PredictStatus::kOk);
     EXPECT_EQ(again.cv_to_and_fro, out.cv_to_and_fro);
+    // Swapped with the heading in a lateral wind, the return pass lands as the outgoing one: racetrack.
+    EXPECT_EQ(out.return_pass, ReturnPass::kRacetrack);
+    EXPECT_EQ(out.cv_to_and_fro, out.cv_racetrack);
     EXPECT_EQ(again.cv_to_and_fro_se, out.cv_to_and_fro_se);
   }
   // A wind from the other side asks for the mirror-image answer.

@@ -116,7 +116,11 @@ void run(const Options& o, int& exit_code) {
     std::vector<double> widths;
     for (int n = 2; n <= p.trays.tray_count; ++n) widths.push_back(n * p.trays.tray_width_m);
     std::vector<double> to_and_fro(widths.size()), racetrack(widths.size());
-    spread::metrics::cv_curve(p.tray_mass_fraction, p.trays, widths, spread::metrics::Overlap::kToAndFro, to_and_fro);
+    // To-and-fro with the return pass as it meets the wind (the outgoing pattern itself in still air).
+    for (std::size_t i = 0; i < widths.size(); ++i) {
+      to_and_fro[i] = spread::metrics::cv_at_trays(p.tray_mass_fraction, p.return_tray_mass_fraction, p.trays,
+                                                   static_cast<int>(i) + 2, {});
+    }
     spread::metrics::cv_curve(p.tray_mass_fraction, p.trays, widths, spread::metrics::Overlap::kRacetrack, racetrack);
     const std::string path = o.out_prefix + "_cv.png";
     spread::plot::write_cv_curve_png(widths, to_and_fro, racetrack, request.cv_target, path, title.str() + ": CV(W)");

@@ -145,15 +145,53 @@ struct CvCurve {
   std::vector<double> widths_m, to_and_fro, racetrack;
 };
 
-CvCurve cv_curve_of(const spread_prediction& r, const std::vector<double>& trays) {
+// The return pass of a to-and-fro field in wind (docs/metrics.md "To-and-fro in wind"): it meets the wind
+// from the other side, so its pattern is not the outgoing one mirrored. The C API's answer already reads
+// its figures so; the curve needs the pattern itself, from the Predictor (the C API's own engine) on the
+// same request: the present setting kept on the return pass, or the compensated one swapped.
+struct ReturnPassInWind {
+  spread::predict::ReturnPass read_as = spread::predict::ReturnPass::kOutgoing;
+  std::vector<double> trays;  // on the C API's trays; empty: the outgoing pattern
+};
+
+ReturnPassInWind return_pass_in_wind(const Options& o, const spread_prediction& r, spread::cli::TableSession& session) {
+  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+  if (request.wind_x_m_s == 0.0 && request.wind_y_m_s == 0.0) return {};
+  request.effects = o.effects == "table" ? spread::predict::kTableEffects
+                    : o.effects == "all" ? spread::flight::kAllEffects
+                                         : spread::flight::parse_effects(o.effects);
+  request.bout_width_m = o.bout_width_m;
+  request.kernel_half_width_m = o.kernel_half_width_m;
+  request.fly_outside_domain = o.fly_outside_domain;
+  request.standard_errors = false;
+  if (o.compensate_wind) {
+    request.rpm = 0.0;
+    request.drop_point_turn_rad = 0.0;
+    request.disc_rpm = {r.disc_rpm[0], r.disc_rpm[1]};
+    request.disc_drop_point_turn_rad = {r.disc_drop_point_turn_rad[0], r.disc_drop_point_turn_rad[1]};
+    request.return_pass = spread::predict::ReturnPassSettings::kSwapped;
+  }
+  spread::predict::Prediction p;
+  if (session.predictor().predict(request, p) != spread::predict::PredictStatus::kOk ||
+      p.trays.tray_count != r.tray_count) {
+    return {};
+  }
+  ReturnPassInWind back;
+  back.read_as = p.return_pass;
+  if (p.return_pass != spread::predict::ReturnPass::kOutgoing) back.trays.assign(p.return_tray_mass_fraction.begin(), p.return_tray_mass_fraction.end());
+  return back;
+}
+
+CvCurve cv_curve_of(const spread_prediction& r, const std::vector<double>& trays, const ReturnPassInWind& back) {
   spread::metrics::TrayLayout layout;
   layout.tray_width_m = r.tray_width_m;
   layout.tray_count = r.tray_count;
   const std::span<const double> mass(trays.data(), static_cast<std::size_t>(r.tray_count));
+  const std::span<const double> return_mass = back.trays.empty() ? mass : std::span<const double>(back.trays);
   CvCurve curve;
   for (int n = 2; n <= r.tray_count; ++n) {
     curve.widths_m.push_back(n * r.tray_width_m);
-    curve.to_and_fro.push_back(spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kToAndFro));
+    curve.to_and_fro.push_back(spread::metrics::cv_at_trays(mass, return_mass, layout, n, {}));
     curve.racetrack.push_back(spread::metrics::cv_at_trays(mass, layout, n, spread::metrics::Overlap::kRacetrack));
   }
   return curve;
@@ -400,7 +438,8 @@ void run(const Options& o, int& exit_code) {
   if (classes && !o.size_class_png.empty()) spread::cli::write_size_halves_png(*classes, o.size_class_png);
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
-  const CvCurve curve = cv_curve_of(result, trays);
+  const ReturnPassInWind return_pass = return_pass_in_wind(o, result, session);
+  const CvCurve curve = cv_curve_of(result, trays, return_pass);
   const spread::cli::SettingGuidance guidance = guidance_for(o, result, session);
   const std::vector<spread::cli::Verdict> verdicts = prediction_verdicts(o, result);
   const std::vector<spread::cli::NextStep> steps =
@@ -477,7 +516,11 @@ void run(const Options& o, int& exit_code) {
     if (o.compensate_wind) {
       out["wind_compensation"] = {{"present_cv_to_and_fro_percent", number_or_null(present_cv_percent)},
                                   {"present_cv_to_and_fro_se_percent", number_or_null(present_cv_se_percent)},
-                                  {"meets_target", result.cv_percent <= o.cv_target_percent}};
+                                  {"meets_target", result.cv_percent <= o.cv_target_percent},
+                                  {"return_pass", "discs swap settings"}};
+    }
+    if (return_pass.read_as != spread::predict::ReturnPass::kOutgoing) {
+      out["to_and_fro_return_pass"] = return_pass.read_as == spread::predict::ReturnPass::kRacetrack ? "as racetrack" : "flown";
     }
     if (stability) {
       out["width_stability"] = {{"resamples", stability->resamples},
@@ -515,7 +558,14 @@ void run(const Options& o, int& exit_code) {
                 << format("%+.1f deg", result.disc_drop_point_turn_rad[0] / spread::cli::kRadPerDeg) << "; right "
                 << result.disc_rpm[1] << " rpm, drop point "
                 << format("%+.1f deg", result.disc_drop_point_turn_rad[1] / spread::cli::kRadPerDeg) << " ("
-                << (result.cv_percent <= o.cv_target_percent ? "meets" : "does not meet") << " the target)\n";
+                << (result.cv_percent <= o.cv_target_percent ? "meets" : "does not meet") << " the target)\n"
+                << "    on the way back the wind comes from the other side: swap the discs' settings on the return pass\n";
+    }
+    if (return_pass.read_as == spread::predict::ReturnPass::kRacetrack) {
+      std::cout << "  to-and-fro in this wind: the return pass, meeting the wind from the other side, lands where the"
+                   " outgoing one does (as racetrack)\n";
+    } else if (return_pass.read_as == spread::predict::ReturnPass::kFlown) {
+      std::cout << "  to-and-fro in this wind: the return pass flown in the wind from the other side, CVs over two bouts\n";
     }
     if (result.bout_width_m > 0.0) {
       std::cout << "  CV at " << result.bout_width_m << " m: to-and-fro " << result.cv_percent << " %"

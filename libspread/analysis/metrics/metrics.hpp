@@ -128,6 +128,25 @@ double cv_at_trays(std::span<const double> tray_mass_kg, const TrayLayout& trays
 void cv_gradient(std::span<const double> tray_mass_kg, const TrayLayout& trays, int bout_tray_count,
                  Overlap overlap, std::span<double> gradient_per_kg, std::span<double> scratch);
 
+// To-and-fro with a return pass of its own. The return pass meets a wind from the other side (a wind from
+// the left on the way out comes from the right on the way back), so in wind its pattern is not the
+// outgoing one: `return_tray_mass_kg` is the return pass's pattern in its own machine frame (on the same
+// layout), laid down mirrored on the odd passes. The overlapped distribution then repeats every two bouts
+// instead of being symmetric about every bout edge, so the CV is taken over both bouts with the variance
+// pooled: x̄ = Σ w_j P_j / 2n, s² = Σ w_j (P_j − x̄)² / (2(n − 1)) — the one-bout CV when the return
+// pattern is the outgoing one. A return span at the outgoing span's address IS the outgoing pattern (the
+// one-pattern functions above, bit for bit). The gradient goes to each pattern's own trays
+// (return_gradient_per_kg may be empty: left out); scratch as above, for two bouts.
+double cv_at_trays(std::span<const double> tray_mass_kg, std::span<const double> return_tray_mass_kg,
+                   const TrayLayout& trays, int bout_tray_count, std::span<double> scratch);
+void cv_gradient(std::span<const double> tray_mass_kg, std::span<const double> return_tray_mass_kg,
+                 const TrayLayout& trays, int bout_tray_count, std::span<double> gradient_per_kg,
+                 std::span<double> return_gradient_per_kg, std::span<double> scratch);
+// The two bouts' overlapped distribution (the bout centred on an outgoing pass, then the one centred on the
+// return pass beside it): window_mass_kg.size() must be 2 · bout_trays(...).grid_trays.
+void overlapped_profile(std::span<const double> tray_mass_kg, std::span<const double> return_tray_mass_kg,
+                        const TrayLayout& trays, double bout_width_m, std::span<double> window_mass_kg);
+
 // The overlapped distribution itself: mass per grid tray (kg) over the trays the bout touches, summed over
 // all passes. bout_mass_kg.size() must be bout_trays(trays, bout_tray_count(trays, W)).grid_trays; entry j
 // is grid tray first_tray + j (with cut_edges, entries 0 and grid_trays - 1 straddle the bout edges).
@@ -172,6 +191,9 @@ struct WorkingWidth {
 };
 WorkingWidth working_width(std::span<const double> tray_mass_kg, const TrayLayout& trays, Overlap overlap,
                            double cv_target);
+// The to-and-fro working width with a return pass of its own (cv_at_trays with return_tray_mass_kg).
+WorkingWidth working_width(std::span<const double> tray_mass_kg, std::span<const double> return_tray_mass_kg,
+                           const TrayLayout& trays, double cv_target);
 // The same rule on a CV(W) curve already sampled at increasing widths (plots, measured tray tests):
 // `trays_below` is left 0. Throws std::invalid_argument when the sizes differ or widths do not increase.
 WorkingWidth working_width_on_curve(std::span<const double> widths_m, std::span<const double> cv,
@@ -202,6 +224,12 @@ inline constexpr int kExactWidthEvaluations = 64;
 std::size_t working_widths_scratch_size(int tray_count);
 WorkingWidths working_widths(std::span<const double> tray_mass_kg, const TrayLayout& trays, double cv_target,
                              std::span<double> scratch);
+// Both, to-and-fro with a return pass of its own (cv_at_trays with return_tray_mass_kg): the window of two
+// bouts holds Σ P² = Σ_{d even} (R_pp + R_rr)(d·n) + 2 Σ_{d odd > 0} [C_pr(T − 1 + d·n) + C_pr(T − 1 − d·n)]
+// (R_pp, R_rr the patterns' autocorrelations, C_pr(s) = Σ_x p(x) r(s − x)), all from one FFT pair; the
+// racetrack width is the outgoing pattern's. Same scratch.
+WorkingWidths working_widths(std::span<const double> tray_mass_kg, std::span<const double> return_tray_mass_kg,
+                             const TrayLayout& trays, double cv_target, std::span<double> scratch);
 
 // working_width(...).width_m. Returns 0 when no width meets the target (also for zero mass or fewer than
 // 2 trays).

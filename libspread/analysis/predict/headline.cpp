@@ -81,6 +81,12 @@ void Predictor::report_cvs(Context& c) const {
   p.mean_radius_m = c.w.radial_mean_m_;
   p.radial_width_m = c.w.radial_width_m_;
   p.tray_mass_fraction = std::span(c.w.tray_mass_).first(static_cast<std::size_t>(c.trays.tray_count));
+  // The return pass as the field gets it: the outgoing pattern's own span in still air, the outgoing
+  // pattern mirrored where it lands as the outgoing one (return_pass.cpp), the flown one otherwise.
+  p.return_pass = c.return_pass;
+  p.return_tray_mass_fraction = c.return_pass == ReturnPass::kOutgoing
+                                    ? p.tray_mass_fraction
+                                    : std::span<const double>(std::span(c.w.return_tray_mass_).first(p.tray_mass_fraction.size()));
   p.landing_x_m = std::span(c.w.landing_x_m_).first(landings);
   p.left_landing_count = n;
   p.landing_y_m = std::span(c.w.landing_y_m_).first(landings);

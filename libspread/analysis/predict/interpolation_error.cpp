@@ -64,13 +64,18 @@ InterpolatedFigures figures_of(const InterpolationErrorInput& in, std::span<cons
   const metrics::ThrowExtent extent = metrics::throw_extent(trays, in.trays, 0.99);
   f.throw_width_m = extent.right_m - extent.left_m;
   // Constructed in place (no temporary of over half a kilobyte on the stack, also unoptimised).
-  ::new (static_cast<void*>(s.widths)) metrics::WorkingWidths(metrics::working_widths(trays, in.trays, in.cv_target, s.scratch));
+  // To-and-fro as the answer reads it (return_pass.cpp): with the flown return pass, or as racetrack.
+  const std::span<const double> return_trays = in.return_trays.empty() ? trays : in.return_trays;
+  ::new (static_cast<void*>(s.widths))
+      metrics::WorkingWidths(metrics::working_widths(trays, return_trays, in.trays, in.cv_target, s.scratch));
+  if (in.to_and_fro_as_racetrack) s.widths->to_and_fro = s.widths->racetrack;
   const metrics::WorkingWidth* widths[2] = {&s.widths->to_and_fro, &s.widths->racetrack};
-  const metrics::Overlap overlaps[2] = {metrics::Overlap::kToAndFro, metrics::Overlap::kRacetrack};
   for (int o = 0; o < 2; ++o) {
     f.working_width_m[o] = matching_width(*widths[o], in.headline_lower_m[o], in.headline_upper_m[o]);
-    f.cv[o] = in.bout_trays > 0 ? metrics::cv_at_trays(trays, in.trays, in.bout_trays, overlaps[o], s.scratch)
-                                : std::numeric_limits<double>::quiet_NaN();
+    const bool to_and_fro = o == 0 && !in.to_and_fro_as_racetrack;
+    f.cv[o] = in.bout_trays <= 0 ? std::numeric_limits<double>::quiet_NaN()
+              : to_and_fro       ? metrics::cv_at_trays(trays, return_trays, in.trays, in.bout_trays, s.scratch)
+                                 : metrics::cv_at_trays(trays, in.trays, in.bout_trays, metrics::Overlap::kRacetrack, s.scratch);
   }
   return f;
 }

@@ -56,6 +56,11 @@ struct InterpolationErrorInput {
   double upper_weight = 0.0;       // t: the upper row's share (the discs' mean when they differ)
   double cv_target = 0.15;         // fraction
   int bout_trays = 0;              // where the answer's CVs are read; 0: none
+  // The return pass of a to-and-fro field where it was flown (Prediction::return_tray_mass_fraction), held
+  // at the answer's: the rows' own patterns are re-binned for the outgoing pass only. Empty: the outgoing
+  // pattern (still air), or to-and-fro read as racetrack (to_and_fro_as_racetrack).
+  std::span<const double> return_trays;
+  bool to_and_fro_as_racetrack = false;
   // The answer's headline bands [lower_m, upper_m] (to-and-fro, racetrack); lower > upper: none.
   double headline_lower_m[2] = {1.0, 1.0}, headline_upper_m[2] = {0.0, 0.0};
 };

@@ -21,7 +21,7 @@ void Predictor::measure_pattern(Context& c) const {
   Prediction& p = c.out;
   std::construct_at(&p);  // reset in place: no temporary Prediction on the stack, also unoptimised
   p.trays = c.trays;
-  p.flights = c.landed.flights;
+  p.flights = c.landed.flights + c.return_flights;
   p.disc_height_m = c.height_m;
   p.lost_mass_fraction = c.lost_mass_fraction;
   p.sample_count = c.landed.samples;
@@ -36,8 +36,17 @@ void Predictor::measure_pattern(Context& c) const {
   // Both working widths in O(T log T) (metrics::working_widths): the whole-tray scan is O(T²), 0.13 s at
   // 4,000 trays of 5 cm. In the workspace, as the bookkeeping of the standard errors: the bands make them
   // hundreds of bytes, and the C API's stack budget holds in an unoptimised build too.
-  ::new (static_cast<void*>(&w.widths_)) metrics::WorkingWidths(
-      metrics::working_widths(tray_mass, c.trays, c.request.cv_target, std::span(w.metrics_scratch_)));
+  // To-and-fro with the return pass where it is flown (return_pass.cpp), as racetrack where it lands as
+  // the outgoing pass does.
+  const std::span<double> scratch(w.metrics_scratch_);
+  if (c.return_pass == ReturnPass::kFlown) {
+    ::new (static_cast<void*>(&w.widths_)) metrics::WorkingWidths(
+        metrics::working_widths(tray_mass, c.return_trays, c.trays, c.request.cv_target, scratch));
+  } else {
+    ::new (static_cast<void*>(&w.widths_))
+        metrics::WorkingWidths(metrics::working_widths(tray_mass, c.trays, c.request.cv_target, scratch));
+    if (c.return_pass == ReturnPass::kRacetrack) w.widths_.to_and_fro = w.widths_.racetrack;
+  }
   // The standard errors to compute, in this order: the CVs at the requested bout, each band's, the throw
   // width's (all share passes over the landings: uncertainty.cpp).
   c.se_task_count = 0;
@@ -49,15 +58,22 @@ void Predictor::measure_pattern(Context& c) const {
   }
 }
 
-void Predictor::request_bout_cvs(Context& c) const {
+double Predictor::bout_cv(const Context& c, metrics::Overlap overlap, int bout_trays) const {
   const std::span<const double> tray_mass = std::span(c.w.tray_mass_).first(static_cast<std::size_t>(c.trays.tray_count));
+  const std::span<double> scratch(c.w.metrics_scratch_);
+  // To-and-fro with the return pass: the outgoing pattern's own span (the one-pattern CV, bit for bit)
+  // unless the return pass was flown.
+  return overlap == metrics::Overlap::kToAndFro ? metrics::cv_at_trays(tray_mass, c.return_trays, c.trays, bout_trays, scratch)
+                                                : metrics::cv_at_trays(tray_mass, c.trays, bout_trays, overlap, scratch);
+}
+
+void Predictor::request_bout_cvs(Context& c) const {
   c.request_bout_trays = c.request.bout_width_m > 0.0 ? metrics::bout_tray_count(c.trays, c.request.bout_width_m) : 0;
   if (c.request_bout_trays == 0) return;
   for (int o = 0; o < 2; ++o) {
-    c.request_cv[o] =
-        metrics::cv_at_trays(tray_mass, c.trays, c.request_bout_trays, kOverlaps[o], std::span(c.w.metrics_scratch_));
+    c.request_cv[o] = bout_cv(c, c.overlap(o), c.request_bout_trays);
     if (std::isfinite(c.request_cv[o])) {
-      c.w.se_tasks_[c.se_task_count++] = {&c.request_cv_se[o], kOverlaps[o], c.request_bout_trays, nullptr};
+      c.w.se_tasks_[c.se_task_count++] = {&c.request_cv_se[o], c.overlap(o), c.request_bout_trays, nullptr};
     }
   }
 }
@@ -91,12 +107,12 @@ void Predictor::copy_bands(Context& c) const {
       band.lowest_cv_se = nan;
       band.lowest_cv_bout_width_m = in.lowest_cv_trays * tray_width_m;
       band.limited_by_layout = in.limited_by_layout;
-      w.se_tasks_[c.se_task_count++] = {&band.cv_se, kOverlaps[o], in.trays_below, nullptr};
+      w.se_tasks_[c.se_task_count++] = {&band.cv_se, c.overlap(o), in.trays_below, nullptr};
       if (in.lowest_cv_trays != in.trays_below) {
-        w.se_tasks_[c.se_task_count++] = {&band.lowest_cv_se, kOverlaps[o], in.lowest_cv_trays, nullptr};
+        w.se_tasks_[c.se_task_count++] = {&band.lowest_cv_se, c.overlap(o), in.lowest_cv_trays, nullptr};
       }
       if (!in.limited_by_layout && std::isfinite(in.cv_above) && in.cv_above > in.cv_below) {
-        w.se_tasks_[c.se_task_count++] = {&band.upper_se_m, kOverlaps[o], in.trays_below, &in};
+        w.se_tasks_[c.se_task_count++] = {&band.upper_se_m, c.overlap(o), in.trays_below, &in};
       }
       queue_gap_peak(c, o, b);
       if (o == 0 && c.request_bout_trays == 0) {
@@ -120,13 +136,12 @@ void Predictor::queue_gap_peak(Context& c, int o, int b) const {
   band.gap_peak_cv = std::numeric_limits<double>::quiet_NaN();
   band.gap_peak_cv_se = std::numeric_limits<double>::quiet_NaN();
   if (!c.request.standard_errors || b == 0 || (b >= kMaxBands - 1 && ww.band_count != ww.stored_bands())) return;
-  const std::span<const double> tray_mass = std::span(c.w.tray_mass_).first(static_cast<std::size_t>(c.trays.tray_count));
   const int first = ww.bands[b - 1].trays_below + 1;
   const int last = static_cast<int>(std::ceil(ww.bands[b].lower_m / c.trays.tray_width_m - 1e-9)) - 1;
   int peak_trays = first;
   double peak = -std::numeric_limits<double>::infinity();
   for (int gap_trays = first; gap_trays <= last; ++gap_trays) {
-    const double cv = metrics::cv_at_trays(tray_mass, c.trays, gap_trays, kOverlaps[o], std::span(c.w.metrics_scratch_));
+    const double cv = bout_cv(c, c.overlap(o), gap_trays);
     if (!(cv <= peak)) {
       peak = cv;
       peak_trays = gap_trays;
@@ -134,7 +149,7 @@ void Predictor::queue_gap_peak(Context& c, int o, int b) const {
   }
   if (last < first) return;
   band.gap_peak_cv = peak;
-  if (std::isfinite(peak)) c.w.se_tasks_[c.se_task_count++] = {&band.gap_peak_cv_se, kOverlaps[o], peak_trays, nullptr};
+  if (std::isfinite(peak)) c.w.se_tasks_[c.se_task_count++] = {&band.gap_peak_cv_se, c.overlap(o), peak_trays, nullptr};
 }
 
 }  // namespace spread::predict

@@ -2,6 +2,7 @@
 // What a prediction answers (Prediction): the throw width, the working widths and their bands, the CVs,
 // R̄ and ξ, each with its standard error, and views of the trays and landings it was read from.
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 
@@ -48,6 +49,15 @@ struct PredictedBand {
 inline constexpr int kMaxBands = metrics::kMaxWidthBands;
 // Two-sided 95 % normal quantile: the intervals the tools print and the headline rule's confidence.
 inline constexpr double kConfidence95 = 1.96;
+
+// How the to-and-fro figures were read (docs/metrics.md "To-and-fro in wind"). The return pass meets the
+// wind from the other side; its pattern in its own machine frame is laid down mirrored.
+enum class ReturnPass : std::uint8_t {
+  kOutgoing,    // still air: the return pass is the outgoing pattern (each bout mirror-symmetric)
+  kRacetrack,   // a lateral wind on discs that are (or on the way back become) mirror images: the return
+                // pass lands where the outgoing one does, so to-and-fro overlaps as racetrack does
+  kFlown,       // the return pass flown in its own wind and settings; CVs over two bouts
+};
 
 struct Prediction {
   double throw_width_m = 0.0;               // 99 % of the mass
@@ -103,6 +113,10 @@ struct Prediction {
   double kernel_half_width_m = 0.0;         // as used
   // Views into the predictor's workspace, valid until the next predict():
   std::span<const double> tray_mass_fraction;  // per tray, of the machine's total discharged mass
+  // The return pass's pattern in its own machine frame on the same trays (what to-and-fro lays down
+  // mirrored on every other pass): tray_mass_fraction itself (the same span) in still air.
+  std::span<const double> return_tray_mass_fraction;
+  ReturnPass return_pass = ReturnPass::kOutgoing;
   // Landings of the whole machine in the machine frame (both discs; the left disc's first), with the
   // fraction of the total mass each stands for. Not-landed granules have x = y = NaN.
   std::span<const double> landing_x_m, landing_y_m, landing_mass_fraction;

@@ -5,6 +5,7 @@
 // own. Lives on predict()'s stack: a few hundred bytes, the bulky parts stay in the workspace.
 #include <cstddef>
 #include <limits>
+#include <span>
 
 #include "libspread/analysis/metrics/metrics.hpp"
 #include "libspread/analysis/predict/predictor.hpp"
@@ -16,6 +17,12 @@ namespace spread::predict {
 inline constexpr metrics::Overlap kOverlaps[2] = {metrics::Overlap::kToAndFro, metrics::Overlap::kRacetrack};
 
 struct Predictor::Context {
+  // The overlap the figures of overlap o (0 to-and-fro, 1 racetrack) are read with: to-and-fro reads as
+  // racetrack where the return pass lands as the outgoing one (ReturnPass::kRacetrack).
+  metrics::Overlap overlap(int o) const {
+    return o == 1 || return_pass == ReturnPass::kRacetrack ? metrics::Overlap::kRacetrack : metrics::Overlap::kToAndFro;
+  }
+
   Context(const PredictionRequest& request_in, Prediction& out_in, PredictorWorkspace& w_in)
       : request(request_in), out(out_in), w(w_in) {}
 
@@ -44,6 +51,12 @@ struct Predictor::Context {
   // mass is the left disc's folded (fold_mirror), so only the left disc's landings are binned.
   bool mirrored = false;
   double lost_mass_fraction = 0.0;
+
+  // return_pass_of, fly_return_pass, align_return_pass
+  ReturnPass return_pass = ReturnPass::kOutgoing;
+  int return_tray_count = 0;           // the return pass's own layout (kFlown), before alignment
+  int return_flights = 0;
+  std::span<const double> return_trays;  // on `trays`: the outgoing pattern's own span unless kFlown/kRacetrack
 
   // measure_pattern
   metrics::ThrowExtent extent;

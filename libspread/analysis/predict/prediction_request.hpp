@@ -49,6 +49,17 @@ struct RequestProblem {
 
 inline constexpr flight::EffectSet kTableEffects = 1u << 31;
 
+// The discs' settings on the return pass of a to-and-fro field. The return pass is driven the other way,
+// so it meets the wind from the other side: the wind (w_x, w_y) of the way out is (−w_x, −w_y) in the
+// machine's own frame on the way back.
+enum class ReturnPassSettings : std::uint8_t {
+  kSame,     // each disc keeps its setting (a machine set once for the field)
+  kSwapped,  // the discs swap settings (a controller that compensates the wind for each heading)
+  // The tray test's rule whatever the wind: the outgoing pattern mirrored (a search that reads only the
+  // landings, or a comparison with a tray test driven in wind).
+  kOutgoingMirrored,
+};
+
 struct PredictionRequest {
   std::string_view material;
   double rpm = 0.0;                                              // r/min
@@ -82,6 +93,9 @@ struct PredictionRequest {
   // (PredictorLimits::refuse_outside_domain): fly every launch sample instead, at the cost of one flight
   // per sample and disc (tens of milliseconds; docs/c-api.md "Landing grid").
   bool fly_outside_domain = false;
+  // The to-and-fro figures in wind come from the outgoing pass and the return pass
+  // (metrics::cv_at_trays with a return pattern): see ReturnPassSettings.
+  ReturnPassSettings return_pass = ReturnPassSettings::kSame;
   // False: no standard errors (all NaN) — for a search that compares many settings, at about half the
   // cost. The headline rule then takes a band as established when its lowest CV meets the target, with
   // no confidence test.

@@ -216,8 +216,13 @@ PredictStatus Predictor::predict(const PredictionRequest& request, Prediction& o
   // and those after it write it).
   Context c{request, out, w};
   if (const PredictStatus s = check_request(c); s != PredictStatus::kOk) return s;
+  c.return_pass = return_pass_of(c);
+  if (c.return_pass == ReturnPass::kFlown) {
+    if (const PredictStatus s = fly_return_pass(c); s != PredictStatus::kOk) return s;
+  }
   land_discs(c);
   bin_transverse(c);
+  align_return_pass(c);
   measure_pattern(c);
   sample_standard_errors(c);
   choose_headline(c);

@@ -14,7 +14,9 @@
 //      landing read off its material's landing grid (landing_grid.hpp), otherwise flown (flight::fly_many,
 //      default_flight_settings()); machine frame: the left disc centre at x = −s/2, the right disc its
 //      mirror image (docs/design.md §3), flown itself in a lateral wind or at its own setting;
-//   3. transverse pattern (transverse.cpp): kernel, trays fitted to the landings;
+//   3. transverse pattern (transverse.cpp): kernel, trays fitted to the landings; in a wind that the return
+//      pass of a to-and-fro field meets otherwise than as the outgoing one's mirror image, that pass first
+//      (return_pass.cpp: stages 2–3 for the return pass's own wind and settings);
 //   4. metrics (pattern_metrics.cpp): throw width, effective working widths (to-and-fro, racetrack) and
 //      their bands, CV at the bout width;
 //   5. uncertainty (uncertainty.cpp): standard errors over the launch samples;
@@ -183,6 +185,9 @@ class Predictor {
   //   land_discs (landings.cpp): launch samples at each disc's setting, flights or landing-grid reads,
   //     the machine frame, which landings each launch sample owns;
   //   bin_transverse (transverse.cpp): the kernel, the tray layout and the transverse pattern;
+  //   return_pass_of, fly_return_pass, align_return_pass (return_pass.cpp): how the to-and-fro figures are
+  //     read in wind, and where the return pass is flown, its pattern (landed and binned before the
+  //     outgoing pass, whose landings the standard errors need) on the outgoing pass's trays;
   //   measure_pattern (pattern_metrics.cpp): the throw width, the working widths and their bands, and the
   //     standard errors they need;
   //   sample_standard_errors (uncertainty.cpp): those standard errors over the launch samples;
@@ -194,6 +199,9 @@ class Predictor {
   PredictStatus check_request(Context& c) const;
   void land_discs(Context& c) const;
   void bin_transverse(Context& c) const;
+  ReturnPass return_pass_of(const Context& c) const;
+  PredictStatus fly_return_pass(Context& c) const;
+  void align_return_pass(Context& c) const;
   void measure_pattern(Context& c) const;
   void sample_standard_errors(Context& c) const;
   void choose_headline(Context& c) const;
@@ -250,6 +258,8 @@ class Predictor {
   void copy_bands(Context& c) const;
   void queue_gap_peak(Context& c, int overlap, int band) const;
   void request_bout_cvs(Context& c) const;
+  // The CV at `bout_trays` trays of one overlap, to-and-fro with the return pass (return_pass.cpp).
+  double bout_cv(const Context& c, metrics::Overlap overlap, int bout_trays) const;
   // The headline's part (headline.cpp): the CVs reported, R̄ and ξ, and the views into the workspace.
   void report_cvs(Context& c) const;
 

@@ -18,8 +18,10 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
       landing_y_m_(memory),
       landing_weight_(memory),
       tray_mass_(memory),
+      return_tray_mass_(memory),
       gradients_(memory),
       gradient_scratch_(memory),
+      return_gradient_(memory),
       metrics_scratch_(memory),
       chunk_landing_x_m_(memory),
       chunk_landing_y_m_(memory),
@@ -45,8 +47,10 @@ PredictorWorkspace::PredictorWorkspace(const Predictor& predictor, std::pmr::mem
   const int widest = predictor.tray_capacity(limits.min_tray_width_m);
   tray_capacity_ = static_cast<std::size_t>(widest);
   tray_mass_.resize(tray_capacity_);
+  return_tray_mass_.resize(tray_capacity_);
   gradients_.resize(tray_capacity_);
   gradient_scratch_.resize(tray_capacity_);
+  return_gradient_.resize(tray_capacity_);
   // The widest bout a request may ask for, in the narrowest trays, plus its cut edge tray: cv_gradient's
   // scratch, at the metrics scratch's end.
   const auto widest_bout = static_cast<std::size_t>(std::ceil(limits.max_bout_width_m / limits.min_tray_width_m)) + 2;
@@ -66,8 +70,8 @@ std::size_t PredictorWorkspace::bytes() const {
   return samples_.size() * sizeof(tables::LaunchSample) + granules_.size() * sizeof(flight::Granule) +
          launches_.size() * sizeof(flight::State) + landings_.size() * sizeof(flight::Landing) +
          sizeof(double) * (sample_weight_kg_.size() + landing_x_m_.size() + landing_y_m_.size() +
-                           landing_weight_.size() + tray_mass_.size() + gradients_.size() +
-                           gradient_scratch_.size() + metrics_scratch_.size() + chunk_landing_x_m_.size() +
+                           landing_weight_.size() + tray_mass_.size() + return_tray_mass_.size() + gradients_.size() +
+                           gradient_scratch_.size() + return_gradient_.size() + metrics_scratch_.size() + chunk_landing_x_m_.size() +
                            chunk_landing_y_m_.size() + search_buffer_.size()) +
          sizeof(LandingGrid::StencilBlock) * stencil_block_.size() +
          sizeof(tables::LaunchSample) * cell_target_.size();

@@ -51,9 +51,11 @@ class PredictorWorkspace {
   std::pmr::vector<flight::Landing> landings_;
   std::pmr::vector<double> landing_x_m_, landing_y_m_, landing_weight_;  // machine frame, both discs
   std::pmr::vector<double> tray_mass_;
+  std::pmr::vector<double> return_tray_mass_;  // the return pass's pattern (return_pass.cpp)
   // Per tray, for the standard errors: the gradient being made for a pass (InfluencePass keeps its prefix
   // sums), and one more for the width gradients' second CV.
   std::pmr::vector<double> gradients_, gradient_scratch_;
+  std::pmr::vector<double> return_gradient_;  // a flown return pass's share of a gradient (uncertainty.cpp)
   // metrics::working_widths' scratch, also the bout buffer of cv_at_trays / cv_gradient (up to the widest
   // requested bout at the narrowest trays, its last cv_scratch_size_ values), so that no bout is built on
   // the stack, and during the standard errors' passes the gradients' prefix sums (before that tail).

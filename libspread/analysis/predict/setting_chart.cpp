@@ -51,8 +51,8 @@ class Search {
     const Prediction& p = at(rpm, turn_rad, 0.0, false);
     for (std::size_t w = 0; w < widths_m.size(); ++w) {
       const int trays = metrics::bout_tray_count(p.trays, widths_m[w]);
-      scratch_.resize(static_cast<std::size_t>(trays) + 1);
-      const double value = metrics::cv_at_trays(p.tray_mass_fraction, p.trays, trays, metrics::Overlap::kToAndFro, scratch_);
+      scratch_.resize(2 * (static_cast<std::size_t>(trays) + 1));  // two bouts with a return pass of its own
+      const double value = metrics::cv_at_trays(p.tray_mass_fraction, p.return_tray_mass_fraction, p.trays, trays, scratch_);
       out[w] = std::isnan(value) ? std::numeric_limits<double>::infinity() : value;
     }
   }

@@ -19,26 +19,48 @@ namespace spread::predict {
 
 namespace {
 
+// What the gradients of the queued estimates are made from, and the buffers they are made in.
+struct GradientInput {
+  std::span<const double> tray_mass;
+  std::span<const double> return_trays;  // the flown return pass (ReturnPass::kFlown); empty otherwise
+  const metrics::TrayLayout& trays;
+  const metrics::ThrowExtent& extent;
+  double cv_target = 0.0;
+  std::span<double> scratch, return_gradient, cv_scratch;
+};
+
+// ∂CV/∂(outgoing tray) at `bout_trays` trays. To-and-fro with a flown return pass the CV depends on both
+// patterns, and each launch sample lands in both: its return landing is taken as its outgoing one
+// mirrored (x → −x; exact for mirror-image discs in a lateral wind, to first order in the difference
+// otherwise), so the return pattern's gradient joins the outgoing one folded: g_k + g'_{T−1−k}.
+void cv_gradient_of(const GradientInput& in, metrics::Overlap overlap, int bout_trays, std::span<double> grad) {
+  if (overlap == metrics::Overlap::kRacetrack || in.return_trays.empty()) {
+    metrics::cv_gradient(in.tray_mass, in.trays, bout_trays, overlap, grad, in.cv_scratch);
+    return;
+  }
+  metrics::cv_gradient(in.tray_mass, in.return_trays, in.trays, bout_trays, grad, in.return_gradient, in.cv_scratch);
+  const std::size_t t = grad.size();
+  for (std::size_t k = 0; k < t; ++k) grad[k] += in.return_gradient[t - 1 - k];
+}
+
 // The gradient over trays of one queued estimate: the CV at `trays` trays, or (width_band set) that
 // band's interpolated upper end W* = (n + (t − c_n)/(c_{n+1} − c_n))·w, whose gradient combines the
 // gradients of the two CVs around the crossing, or (throw_width) the throw width. False: the estimate has
 // no derivative (no density at a quantile).
 bool estimate_gradient(metrics::Overlap overlap, int trays_at, const metrics::WidthBand* width_band, bool throw_width,
-                       std::span<const double> tray_mass, const metrics::TrayLayout& trays,
-                       const metrics::ThrowExtent& extent, double cv_target, std::span<double> grad,
-                       std::span<double> scratch, std::span<double> cv_scratch) {
-  if (throw_width) return throw_width_gradient(tray_mass, trays, extent, 0.99, grad);
+                       const GradientInput& in, std::span<double> grad) {
+  if (throw_width) return throw_width_gradient(in.tray_mass, in.trays, in.extent, 0.99, grad);
   if (width_band == nullptr) {
-    metrics::cv_gradient(tray_mass, trays, trays_at, overlap, grad, cv_scratch);
+    cv_gradient_of(in, overlap, trays_at, grad);
     return true;
   }
-  const metrics::WidthBand& in = *width_band;
-  const double span = in.cv_above - in.cv_below;
-  const double d_below = -trays.tray_width_m * (in.cv_above - cv_target) / (span * span);
-  const double d_above = -trays.tray_width_m * (cv_target - in.cv_below) / (span * span);
-  metrics::cv_gradient(tray_mass, trays, in.trays_below, overlap, grad, cv_scratch);
-  metrics::cv_gradient(tray_mass, trays, in.trays_below + 1, overlap, scratch, cv_scratch);
-  for (std::size_t k = 0; k < grad.size(); ++k) grad[k] = d_below * grad[k] + d_above * scratch[k];
+  const metrics::WidthBand& band = *width_band;
+  const double span = band.cv_above - band.cv_below;
+  const double d_below = -in.trays.tray_width_m * (band.cv_above - in.cv_target) / (span * span);
+  const double d_above = -in.trays.tray_width_m * (in.cv_target - band.cv_below) / (span * span);
+  cv_gradient_of(in, overlap, band.trays_below, grad);
+  cv_gradient_of(in, overlap, band.trays_below + 1, in.scratch);
+  for (std::size_t k = 0; k < grad.size(); ++k) grad[k] = d_below * grad[k] + d_above * in.scratch[k];
   return true;
 }
 
@@ -65,7 +87,15 @@ void Predictor::sample_standard_errors(Context& c) const {
                                        pass_scratch};
   const SampleInfluence& pass_influence = c.mirrored ? left_influence : influence;
   const std::span<double> grad = std::span(w.gradients_).first(tray_count);
-  const std::span<double> scratch = std::span(w.gradient_scratch_).first(tray_count);
+  const bool flown_return = c.return_pass == ReturnPass::kFlown;
+  const GradientInput gradient_input{tray_mass,
+                                     flown_return ? c.return_trays : std::span<const double>{},
+                                     c.trays,
+                                     c.extent,
+                                     c.request.cv_target,
+                                     std::span(w.gradient_scratch_).first(tray_count),
+                                     std::span(w.return_gradient_).first(flown_return ? tray_count : 0),
+                                     cv_scratch};
   // Without standard errors (a search comparing settings) the passes are skipped: about half the cost.
   const std::size_t task_count = c.request.standard_errors ? c.se_task_count : 0;
   const std::size_t per_pass = InfluencePass::capacity(pass_influence);
@@ -78,8 +108,7 @@ void Predictor::sample_standard_errors(Context& c) const {
     InfluencePass pass(pass_influence, count);
     for (std::size_t g = 0; g < count; ++g) {
       const PredictorWorkspace::SeTask& task = w.se_tasks_[first + g];
-      if (!estimate_gradient(task.overlap, task.trays, task.width_band, task.throw_width, tray_mass, c.trays, c.extent,
-                             c.request.cv_target, grad, scratch, cv_scratch)) {
+      if (!estimate_gradient(task.overlap, task.trays, task.width_band, task.throw_width, gradient_input, grad)) {
         pass.set_gradient(g, {});  // no density at a quantile: NaN
         continue;
       }
@@ -107,6 +136,8 @@ void Predictor::add_interpolation_error(Context& c) const {
   in.kernel_half_width_m = p.kernel_half_width_m;
   in.upper_weight = c.landed.upper_weight;
   in.cv_target = c.request.cv_target;
+  in.return_trays = c.return_pass == ReturnPass::kFlown ? c.return_trays : std::span<const double>{};
+  in.to_and_fro_as_racetrack = c.return_pass == ReturnPass::kRacetrack;
   in.bout_trays = p.bout_width_m > 0.0 ? static_cast<int>(std::lround(p.bout_width_m / p.trays.tray_width_m)) : 0;
   const PredictedBand* const bands[2] = {p.bands_to_and_fro, p.bands_racetrack};
   for (int o = 0; o < 2; ++o) {

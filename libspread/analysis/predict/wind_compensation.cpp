@@ -32,10 +32,16 @@ class WindSearch {
     request_.standard_errors = false;
   }
 
+  // The present setting as a machine set once drives the field: its discs keep their settings on the
+  // return pass (ReturnPassSettings::kSame), which meets the wind from the other side.
   PredictStatus predict_present(const DiscSetting (&present)[2]) {
     set(present);
     ++predictions_;
-    return predictor_.predict(request_, out_, workspace_);
+    request_.return_pass = ReturnPassSettings::kSame;
+    const PredictStatus status = predictor_.predict(request_, out_, workspace_);
+    // The search's own predictions read only the landings: no return pass flown for them.
+    request_.return_pass = ReturnPassSettings::kOutgoingMirrored;
+    return status;
   }
 
   // The layout (covering `extent_m` each side, within the predictor's limits and the buffer) and kernel of
@@ -115,9 +121,14 @@ class WindSearch {
                                           out_.landing_mass_fraction.subspan(first, end - first), layout_, kernel_m_,
                                           trays);
   }
+  // The field's CV with the compensation applied on every heading: on the way back the wind comes from the
+  // other side and the discs swap settings, so (the machine being its own mirror image) the return pass
+  // lands as the outgoing one does — the racetrack overlap, exactly for a lateral wind. A wind along the
+  // track makes the return pass differ by its along-track part alone, which the ranking leaves out; the
+  // answer is predicted with its return pass flown (compensate_wind).
   double cv_of(std::span<const double> left, std::span<const double> right) {
     for (std::size_t k = 0; k < pattern_.size(); ++k) pattern_[k] = left[k] + right[k];
-    const double cv = metrics::cv_at_trays(pattern_, layout_, bout_trays_, metrics::Overlap::kToAndFro, scratch_);
+    const double cv = metrics::cv_at_trays(pattern_, layout_, bout_trays_, metrics::Overlap::kRacetrack, scratch_);
     return comparable(cv);
   }
 
@@ -229,11 +240,15 @@ WindCompensation compensate_wind(const Predictor& predictor, const PredictionReq
   // The answer, with its standard errors. The search compared settings on one layout and kernel; the answer
   // is predicted on its own (its trays fitted, the automatic kernel): should that put it above the present
   // setting, the present setting is the answer — never worse than doing nothing.
+  // The answer on the field: the discs swap settings with the heading (ReturnPassSettings::kSwapped); the
+  // present setting kept on both headings (kSame).
   search.request().standard_errors = request.standard_errors;
+  search.request().return_pass = ReturnPassSettings::kSwapped;
   search.set(search.current_);
   predictor.predict(search.request(), out, workspace);
   result.predictions = search.predictions_ + 1;
   if (comparable(out.cv_to_and_fro) > present_cv) {
+    search.request().return_pass = ReturnPassSettings::kSame;
     search.set(present);
     predictor.predict(search.request(), out, workspace);
     ++result.predictions;

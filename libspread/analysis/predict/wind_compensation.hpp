@@ -1,7 +1,14 @@
 #pragma once
 // Wind compensation: the per-disc settings that bring the CV at a bout width back towards the target in a
-// crosswind. A wind across the driving direction carries the whole pattern downwind, so the passes no
-// longer overlap as in still air. A twin-disc spreader answers with each disc's own speed and drop point:
+// crosswind. A wind across the driving direction carries every pass's pattern downwind — on the ground the
+// same way whichever way the pass is driven, so the field's passes still overlap at the bout width, but
+// each pattern is bent out of shape (the upwind side shortened, the downwind side stretched). A twin-disc
+// spreader answers with each disc's own speed and drop point, set for the heading: the setting found is
+// the outgoing pass's, and on the return pass, which meets the wind from the other side, the discs swap
+// settings (the left disc takes the right disc's and the right the left's: ReturnPassSettings::kSwapped).
+// The CVs are the field's (docs/metrics.md "To-and-fro in wind"): the present setting kept on both
+// headings (kSame), the answer swapped with the heading — for a lateral wind the racetrack overlap of the
+// outgoing pattern. Each disc's speed and drop point:
 // here each disc's speed and drop-point turn (the right disc's in its own mirrored frame) are searched on
 // their own, within the limits below and the drop-point turns the table validates
 // (Predictor::drop_point_turn_range).
@@ -46,8 +53,9 @@ inline constexpr int kWindRefineRounds = 2;
 struct WindCompensation {
   PredictStatus status = PredictStatus::kOk;  // of the present setting's request (kOk: searched)
   DiscSetting discs[2];                       // the compensated setting (kLeftDisc, kRightDisc)
-  double present_cv = 0.0;                    // to-and-fro CV at the bout in the wind, present setting
-  double cv = 0.0;                            // the same at the compensated setting (`out` has it ± SE)
+  double present_cv = 0.0;                    // to-and-fro CV at the bout in the wind, present setting kept
+  double cv = 0.0;                            // the same with the compensated setting, swapped on the return
+                                              // pass (`out` has it ± SE)
   int predictions = 0;
   bool finished = true;                       // false: the budget left settings of the search unflown
 };
