@@ -4,6 +4,7 @@
 // requests out of the domain are refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "libspread/analysis/predict/edge_spreading.hpp"
@@ -61,6 +62,38 @@ TEST(EdgeSpreading, BorderAndEdgeSettingsMeetTheirThresholds) {
     EXPECT_EQ(l.setting.disc.rpm, r.setting.disc.rpm) << to_string(kind);
     EXPECT_EQ(l.setting.flow_fraction, r.setting.flow_fraction);
     EXPECT_NEAR(l.profile.mass_beyond_fraction, p.mass_beyond_fraction, 1e-12);
+  }
+}
+
+// In wind the passes before the last are to and fro, every other one driven the other way and meeting the
+// wind from the other side (docs/metrics.md "To-and-fro in wind"): in a crosswind on alike discs they land
+// as the normal pass does, with a wind along the track the return pass is flown. The profile judged is then
+// not the tray test's mirror rule's, and a setting is found in both.
+TEST(EdgeSpreading, ThePassesBeforeTheLastMeetTheWindFromBothSides) {
+  Predictor predictor(testing::synthetic_contents());
+  EdgeRequest edge;
+  edge.kind = EdgeKind::kBorder;
+  for (const double wind_y_m_s : {0.0, 2.0}) {
+    PredictionRequest windy = field(18.0);
+    windy.wind_x_m_s = 3.0;
+    windy.wind_y_m_s = wind_y_m_s;
+    PredictionRequest mirror_rule = windy;
+    mirror_rule.return_pass = ReturnPassSettings::kOutgoingMirrored;
+    const EdgeResult r = find_edge_setting(predictor, windy, edge);
+    ASSERT_EQ(r.status, PredictStatus::kOk) << wind_y_m_s;
+    EdgeProfile by_return_pass, by_mirror_rule;
+    ASSERT_EQ(edge_profile(predictor, windy, edge, r.setting, by_return_pass), PredictStatus::kOk);
+    ASSERT_EQ(edge_profile(predictor, mirror_rule, edge, r.setting, by_mirror_rule), PredictStatus::kOk);
+    ASSERT_EQ(by_return_pass.rate.size(), r.profile.rate.size());
+    double largest_difference = 0.0;
+    for (std::size_t k = 0; k < r.profile.rate.size(); ++k) {
+      largest_difference = std::max(largest_difference, std::abs(by_return_pass.rate[k] - r.profile.rate[k]));
+    }
+    EXPECT_LT(largest_difference, 1e-12) << wind_y_m_s;  // in wind the search's sums round apart by an ulp
+    EXPECT_NE(by_return_pass.rate, by_mirror_rule.rate) << wind_y_m_s;
+    // The last pass is the same pass either way: its mass beyond the line does not depend on the others.
+    EXPECT_EQ(by_return_pass.mass_beyond_fraction, by_mirror_rule.mass_beyond_fraction);
+    for (double rate : by_return_pass.rate) EXPECT_TRUE(std::isfinite(rate));
   }
 }
 

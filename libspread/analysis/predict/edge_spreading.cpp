@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <utility>
 
 namespace spread::predict {
 
@@ -58,10 +59,28 @@ int bout_of(double x_m, double bout_width_m) {
   return x_m >= -0.5 * bout_width_m ? 0 : static_cast<int>(std::ceil((-x_m - 0.5 * bout_width_m) / bout_width_m - 1e-12));
 }
 
+// The passes before the last one, to and fro: pass k lies k bouts in from it and every odd pass is driven the
+// other way. In still air an odd pass is the normal pattern mirrored; in wind it meets the wind from the
+// other side (docs/metrics.md "To-and-fro in wind"): where the return pass lands as the outgoing one does
+// (ReturnPass::kRacetrack) it is the normal pattern itself, otherwise the return pass's own landings
+// (`back`, in its machine frame) mirrored.
+struct PassLandings {
+  std::span<const double> x_m, mass_fraction;
+  double mirror = 1.0;  // −1: the pass is driven the other way, its machine frame mirrored onto the field
+};
+PassLandings pass_landings(const Prediction& normal, std::span<const double> back_x_m,
+                           std::span<const double> back_mass_fraction, int k) {
+  if (k % 2 == 0) return {normal.landing_x_m, normal.landing_mass_fraction, 1.0};
+  if (normal.return_pass == ReturnPass::kRacetrack) return {normal.landing_x_m, normal.landing_mass_fraction, 1.0};
+  if (normal.return_pass == ReturnPass::kFlown) return {back_x_m, back_mass_fraction, -1.0};
+  return {normal.landing_x_m, normal.landing_mass_fraction, -1.0};
+}
+
 // `reach_scale`: how much further than the normal setting a setting searched can throw (the fastest speed
-// searched over the field's: launch speed is ωR).
-void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_width_m, double tray_width_m,
-                double reach_scale, std::pmr::memory_resource* memory, Frame& f) {
+// searched over the field's: launch speed is ωR). `back_*`: the return pass's landings where it was flown.
+void make_frame(const Prediction& normal, std::span<const double> back_x_m, std::span<const double> back_mass_fraction,
+                const EdgeRequest& edge, double bout_width_m, double tray_width_m, double reach_scale,
+                std::pmr::memory_resource* memory, Frame& f) {
   f.bout_width_m = bout_width_m;
   f.line_m = 0.5 * bout_width_m - edge.gap_m;
   f.kernel_m = normal.kernel_half_width_m;
@@ -84,16 +103,19 @@ void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_w
   f.target_per_tray = landed * tray_width_m / bout_width_m;
   f.fixed.assign(static_cast<std::size_t>(f.trays.tray_count), 0.0);
   const double half_extent_m = -f.trays.left_edge_m();
-  // The passes before: pass k at −kW, mirrored for odd k (to-and-fro), while it still reaches the layout.
+  // The passes before: pass k at −kW, to and fro (pass_landings), while it still reaches the layout.
   const int passes = static_cast<int>(std::ceil((half_extent_m + reach_m) / bout_width_m)) + 1;
-  std::pmr::vector<double> x(normal.landing_x_m.size(), 0.0, memory);
+  std::pmr::vector<double> x(std::max(normal.landing_x_m.size(), back_x_m.size()), 0.0, memory);
+  const auto place = [&](int k) {
+    const PassLandings pass = pass_landings(normal, back_x_m, back_mass_fraction, k);
+    const std::span<double> placed = std::span(x).first(pass.x_m.size());
+    for (std::size_t i = 0; i < placed.size(); ++i) placed[i] = pass.mirror * orient * pass.x_m[i] - k * bout_width_m;
+    return std::pair{std::span<const double>(placed), pass.mass_fraction};
+  };
   for (int k = 1; k <= passes; ++k) {
-    const double mirror = k % 2 == 1 ? -1.0 : 1.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      x[i] = mirror * orient * normal.landing_x_m[i] - k * bout_width_m;
-      f.fixed_beyond += beyond(x[i], normal.landing_mass_fraction[i], f.line_m, f.kernel_m);
-    }
-    metrics::accumulate_transverse_kernel(x, normal.landing_mass_fraction, f.trays, f.kernel_m, f.fixed);
+    const auto [placed, mass] = place(k);
+    for (std::size_t i = 0; i < placed.size(); ++i) f.fixed_beyond += beyond(placed[i], mass[i], f.line_m, f.kernel_m);
+    metrics::accumulate_transverse_kernel(placed, mass, f.trays, f.kernel_m, f.fixed);
   }
   const double left_m = f.trays.left_edge_m(), w = f.trays.tray_width_m;
   f.first_judged = std::max(0, static_cast<int>(std::floor((f.judged_from_m - left_m) / w + 1e-9)));
@@ -102,9 +124,8 @@ void make_frame(const Prediction& normal, const EdgeRequest& edge, double bout_w
   // the same passes continued past the edge (pass −k at +kW).
   std::pmr::vector<double> interior(f.fixed.size(), 0.0, memory);
   for (int k = -passes; k <= passes; ++k) {
-    const double mirror = k % 2 != 0 ? -1.0 : 1.0;
-    for (std::size_t i = 0; i < x.size(); ++i) x[i] = mirror * orient * normal.landing_x_m[i] - k * bout_width_m;
-    metrics::accumulate_transverse_kernel(x, normal.landing_mass_fraction, f.trays, f.kernel_m, interior);
+    const auto [placed, mass] = place(k);
+    metrics::accumulate_transverse_kernel(placed, mass, f.trays, f.kernel_m, interior);
   }
   for (double& v : interior) v /= f.target_per_tray;
   f.interior = std::move(interior);
@@ -270,7 +291,8 @@ class EdgeSearch {
  public:
   EdgeSearch(Predictor& predictor, const PredictionRequest& normal, const EdgeRequest& edge,
              std::pmr::memory_resource* memory)
-      : predictor_(predictor), normal_(normal), edge_(edge), frame_(memory), x_(memory), w_(memory) {}
+      : predictor_(predictor), normal_(normal), edge_(edge), frame_(memory), x_(memory), w_(memory),
+        back_x_(memory), back_mass_(memory) {}
 
   // The normal prediction and the frame; false with status_ set when refused.
   bool start() {
@@ -283,15 +305,33 @@ class EdgeSearch {
     status_ = predictor_.predict(r, prediction_);
     ++predictions_;
     if (status_ != PredictStatus::kOk) return false;
+    if (prediction_.return_pass == ReturnPass::kFlown && !fly_return_pass(r)) return false;
     normal_disc_ = disc_setting(normal_, edge_.side);
     normal_field_side_ = disc_setting(normal_, field_side_index());
     const double max_rpm = predictor_.max_rpm(*predictor_.find_material(normal_.material));
     const double slowest_rpm = std::min(normal_disc_.rpm, normal_field_side_.rpm);
-    make_frame(prediction_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m,
+    make_frame(prediction_, back_x_, back_mass_, edge_, normal_.bout_width_m, prediction_.trays.tray_width_m,
                slowest_rpm > 0.0 ? std::max(1.0, max_rpm / slowest_rpm) : 1.0, frame_.fixed.get_allocator().resource(),
                frame_);
     kernel_m_ = prediction_.kernel_half_width_m;
     return true;
+  }
+  // The return pass of the passes before the last (driven the other way, it meets the wind from the other
+  // side, the discs at the field's setting): its landings kept, then the normal prediction again, whose
+  // views the search reads.
+  bool fly_return_pass(const PredictionRequest& normal) {
+    PredictionRequest back = normal;
+    back.wind_x_m_s = -normal.wind_x_m_s;
+    back.wind_y_m_s = -normal.wind_y_m_s;
+    back.return_pass = ReturnPassSettings::kOutgoingMirrored;  // its landings alone are read
+    status_ = predictor_.predict(back, prediction_);
+    ++predictions_;
+    if (status_ != PredictStatus::kOk) return false;
+    back_x_.assign(prediction_.landing_x_m.begin(), prediction_.landing_x_m.end());
+    back_mass_.assign(prediction_.landing_mass_fraction.begin(), prediction_.landing_mass_fraction.end());
+    status_ = predictor_.predict(normal, prediction_);
+    ++predictions_;
+    return status_ == PredictStatus::kOk;
   }
   int field_side_index() const { return edge_.side == kRightDisc ? kLeftDisc : kRightDisc; }
   // This pass with the field-side disc at `field_side` and the edge-side one at `edge_side` (full flow): one
@@ -378,6 +418,7 @@ class EdgeSearch {
   Frame frame_;
   double kernel_m_ = 0.0;
   std::pmr::vector<double> x_, w_;
+  std::pmr::vector<double> back_x_, back_mass_;  // the return pass's landings where it is flown
   EdgeProfile scratch_;  // best_flow's evaluations (figures only: its vectors stay empty)
 };
 
