@@ -115,6 +115,30 @@ void BM_EffectiveWorkingWidth(benchmark::State& state) {
 }
 BENCHMARK(BM_EffectiveWorkingWidth)->Unit(benchmark::kMicrosecond);
 
+// Both working widths by the O(T log T) search, the to-and-fro one with the outgoing pattern mirrored (still
+// air: one FFT pair) against a return pass of its own (wind: the racetrack FFT pair and the two-pattern
+// pair), at 0.5 m and at 0.05 m trays (T = 100 and 1,000 over ±25 m). Arg: 0 one pattern, 1 with the
+// return pass; the second arg the tray width in cm.
+void BM_WorkingWidthsWithReturnPass(benchmark::State& state) {
+  const Landings l = make_landings(512);
+  const double tray_width_m = 0.01 * static_cast<double>(state.range(1));
+  const sm::TrayLayout trays = sm::tray_layout_covering(25.0, tray_width_m);
+  std::vector<double> out(static_cast<std::size_t>(trays.tray_count), 0.0), back(out.size(), 0.0);
+  sm::accumulate_transverse_kernel(l.x_m, l.mass_kg, trays, 1.0, out);
+  std::vector<double> shifted(l.x_m);  // the return pass: its own pattern, shifted by its own wind
+  for (double& x : shifted) x = -x - 0.8;
+  sm::accumulate_transverse_kernel(shifted, l.mass_kg, trays, 1.0, back);
+  std::vector<double> scratch(sm::working_widths_scratch_size(trays.tray_count));
+  const bool own_return = state.range(0) != 0;
+  for (auto _ : state) {
+    const sm::WorkingWidths w = own_return ? sm::working_widths(out, back, trays, 0.15, scratch)
+                                           : sm::working_widths(out, trays, 0.15, scratch);
+    benchmark::DoNotOptimize(w.to_and_fro.width_m);
+  }
+  state.counters["trays"] = trays.tray_count;
+}
+BENCHMARK(BM_WorkingWidthsWithReturnPass)->Args({0, 50})->Args({1, 50})->Args({0, 5})->Args({1, 5})->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();
