@@ -27,6 +27,7 @@ test_packages=(sqlite3 liblcm-dev liblcm-bin libgtest-dev libgmock-dev libbenchm
   zlib1g-dev  # libz.a, which static SQLite needs: the package test links a C program with cc -static
   poppler-utils  # pdftoppm and pdftotext: the PDF report tests (tests/tools/test_report_cli.cpp)
   strace)  # counts the opens of a table file per command (tests/tools/table_opened_once.sh)
+setup_started=$SECONDS
 packages=("${main_job_packages[@]}")
 [ "$profile" = main-job ] || packages+=("${test_packages[@]}")
 missing=()
@@ -40,6 +41,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}" ||
     { "${sudo_cmd[@]}" apt-get update && "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"; }
 fi
+
+packages_s=$((SECONDS - setup_started))
 
 # -O2 with line tables (-g1): backtraces and perf name functions and lines, and the build takes about a
 # third less time than with full debug information (-g). For gdb's variables, configure a build of your own
@@ -63,4 +66,7 @@ if [ "$profile" = main-job ] && [ ${#options[@]} -gt 0 ]; then
 elif [ "$profile" = full ]; then
   rm -f "$marker"
 fi
+configure_s=$((SECONDS - setup_started - packages_s))
 cmake --build "$build" -j2 "${targets[@]}"
+echo "setup: wall times: packages ${packages_s} s (${#missing[@]} of ${#packages[@]} to install), configure ${configure_s} s," \
+  "build $((SECONDS - setup_started - packages_s - configure_s)) s" >&2
