@@ -12,6 +12,10 @@
 #include "libspread/physics/dem/pair_kicks.hpp"
 #include "libspread/physics/dem/pair_pass_context.hpp"
 
+// The contact laws' templates take eight-lane values here, inlined into the AVX-512 pass only (lanes.hpp).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace spread::dem::pairs {
 
 // One touching pair's contact (T = double), or two pairs' side by side (T = Lanes2) with the same
@@ -278,3 +282,5 @@ __attribute__((noinline)) SPREAD_CONTACT_FLATTEN double pair_pass_portable(PairP
 }
 
 }  // namespace spread::dem::pairs
+
+#pragma GCC diagnostic pop
