@@ -59,19 +59,21 @@ inline constexpr std::size_t kNormals = NormalModels::size, kDampings = DampingM
                              kCohesions = CohesionModels::size;
 inline constexpr std::size_t kProductSize = kNormals * kDampings * kTangentials * kRollings * kCohesions * kSpinModels;
 
-// Position in the product → combination (spin fastest, then cohesion, rolling, tangential, damping, normal).
+// Position in the product → combination (spin fastest, then rolling, tangential, damping, normal; the add-on
+// family cohesion slowest, so that a new model's variants come after every variant there was, whose positions
+// stay as they were).
 constexpr ForceVariant product_variant(std::size_t i) {
   ForceVariant v;
   v.spin = static_cast<SpinModel>(i % kSpinModels);
   i /= kSpinModels;
-  v.law.cohesion = static_cast<CohesionModel>(i % kCohesions);
-  i /= kCohesions;
   v.law.rolling = static_cast<RollingModel>(i % kRollings);
   i /= kRollings;
   v.law.tangential = static_cast<TangentialModel>(i % kTangentials);
   i /= kTangentials;
   v.law.damping = static_cast<DampingModel>(i % kDampings);
-  v.law.normal = static_cast<NormalModel>(i / kDampings);
+  i /= kDampings;
+  v.law.normal = static_cast<NormalModel>(i % kNormals);
+  v.law.cohesion = static_cast<CohesionModel>(i / kNormals);
   return v;
 }
 
