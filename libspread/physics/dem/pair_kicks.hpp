@@ -107,7 +107,6 @@ SPREAD_UNROLL(3)
   }
 }
 
-#if defined(__x86_64__) || defined(__i386__)
 // kick_twice_and_drift for particles [i, i + 8), a particle a lane: lane by lane the same operations in the
 // same order (the same bits), eight particles an instruction (one at a time they took about a quarter of the
 // pass's samples; in registers about 18 time-stamp ticks a particle, docs/drum.md). total_f[c], total_t[c]:
@@ -178,7 +177,6 @@ SPREAD_UNROLL(8)
     moved2 = lanes::select(moved2 < d2, d2, moved2);  // std::max(moved2, d2), lane by lane
   }
 }
-#endif
 
 }  // namespace spread::dem::pairs
 

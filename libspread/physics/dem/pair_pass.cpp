@@ -2,7 +2,8 @@
 // looks only at the near list's pairs): the engine's side of the pass. DemEngine::particle_forces fills the
 // pass's context by name (pair_pass_context.hpp), gives it the batched pass's rows and the next step's drift
 // where they apply, and runs the pass for the processor (pair_pass below): the portable stages
-// (pair_pass_stages.hpp), the AVX-512 ones (pair_pass_avx512.hpp), the integrator's kicks and drift inside
+// (pair_pass_stages.hpp), the batched pass over lanes (pair_pass_batched.hpp) at each register width
+// (pair_pass_widths.hpp), the AVX-512 stages (pair_pass_avx512.hpp), the integrator's kicks and drift inside
 // the pass (pair_kicks.hpp). The stored form's results are gathered here (gather_stored_pair_forces).
 #include <algorithm>
 #include <cstdint>
@@ -22,6 +23,7 @@
 #include "libspread/physics/dem/pair_pass_avx512.hpp"
 #include "libspread/physics/dem/pair_pass_context.hpp"
 #include "libspread/physics/dem/pair_pass_stages.hpp"
+#include "libspread/physics/dem/pair_pass_widths.hpp"
 
 namespace spread::dem {
 
@@ -30,24 +32,30 @@ using detail::kMinParallelItems;
 namespace {
 using namespace pairs;
 
-// Where the processor has AVX-512: the stored form is the particle-by-particle pass compiled for it (the
-// law's lanes two doubles wide, 32 vector registers instead of 16, less of a contact's state spilled), the
-// direct form the batched pass (eight pairs a register; on several threads, a range of particles each).
-// The same bits either way
-// (DemPairPass.WidestRegistersGiveIdenticalStates; docs/drum.md "Where the time goes"). Returns the largest
+// The pass for the processor. The direct form: the batched pass, eight pairs a register where the processor
+// has AVX-512 (on several threads, a range of particles each), four in AVX2 registers where it has AVX2, else
+// four in pairs of SSE2 registers (pair_pass_widths.hpp). The stored form: the particle-by-particle pass,
+// compiled for AVX-512 where the processor has it (the law's lanes two doubles wide, 32 vector registers
+// instead of 16, less of a contact's state spilled). The same bits every way
+// (DemPairPass.EveryRegisterWidthGivesTheSameBits; docs/drum.md "Where the time goes"). Returns the largest
 // squared move since the near list's build where the pass drifted the particles (a.drift_dt_s), else 0.
 template <class V, PairForm kForm>
 double pair_pass(PairPassArrays<typename V::Law> a, long long count, int threads) {
+  if constexpr (!kForm.store_pairs) {
 #if defined(__x86_64__) || defined(__i386__)
-  if (cpu_has_avx512f()) {
-    if constexpr (!kForm.store_pairs) {
+    if (cpu_has_avx512f()) {
       if (threads > 1 && count >= kMinParallelItems) return pair_pass_batched_threads_avx512<V, kForm>(a, count, threads);
       return pair_pass_batched_avx512<V, kForm>(a, count);
     }
-    return pair_pass_avx512<V, kForm>(a, count, threads);
-  }
+    if (cpu_has_avx2()) return pair_pass_batched_avx2<V, kForm>(a, count);
 #endif
-  return pair_pass_portable<V, kForm>(a, 0, count, threads);
+    return pair_pass_batched_portable<V, kForm>(a, count);
+  } else {
+#if defined(__x86_64__) || defined(__i386__)
+    if (cpu_has_avx512f()) return pair_pass_avx512<V, kForm>(a, count, threads);
+#endif
+    return pair_pass_portable<V, kForm>(a, 0, count, threads);
+  }
 }
 
 #if defined(__x86_64__) || defined(__i386__)

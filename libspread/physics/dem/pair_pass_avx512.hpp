@@ -1,8 +1,9 @@
 #pragma once
 // The pair pass where the processor has AVX-512: the particle-by-particle pass compiled for it (the stored
-// form), and the batched pass (the direct form): the touching pairs of many particles staged, the law over
-// eight at a time in one register, the sums in pair order afterwards (the same bits as the portable pass);
-// on several threads pair_pass_batched_threads_avx512, the sums still added in pair order.
+// form), the batched pass's stage 1 eight near entries a register from the touch rows (stage_batch; the
+// batched pass itself, written over the lanes, is pair_pass_batched.hpp, its entry per width
+// pair_pass_widths.hpp), and the batched pass on several threads (pair_pass_batched_threads_avx512, the sums
+// still added in pair order).
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -19,6 +20,7 @@
 #include "libspread/physics/dem/lane_rows.hpp"
 #include "libspread/physics/dem/pair_kicks.hpp"
 #include "libspread/physics/dem/pair_pass_context.hpp"
+#include "libspread/physics/dem/pair_pass_batched.hpp"
 #include "libspread/physics/dem/pair_pass_stages.hpp"
 
 #pragma GCC diagnostic push
@@ -37,145 +39,6 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_avx51
   return moved2;
 }
 
-// The batched pass (one thread, sums added directly): the touching pairs of consecutive particles are
-// staged, the law runs over them eight at a time in AVX-512 lanes — pairs of different first bodies
-// side by side — and the results are added in pair order afterwards. A pair's law reads only the state
-// and its own history, never a sum, so computing all of a batch's forces before adding any changes no
-// sum: each is added to in the same order as in pass_particle (the same bits).
-struct PairBatch {
-  // Staged pairs. The batch is about 45 KB with the results and the kicks' totals, most of L1 (48 KB); 128
-  // pairs took the same time on the drum, 64 more (docs/drum.md).
-  static constexpr std::uint32_t kPairs = 256;
-  static constexpr std::uint32_t kSlots = kPairs + 8;
-  alignas(64) double d[3][kSlots];  // pair vector from j to i (m)
-  alignas(64) double dist2[kSlots];  // |d|² (m²)
-  alignas(64) double f[3][kSlots], t_i[3][kSlots], t_j[3][kSlots];
-  std::uint32_t k[kSlots], i[kSlots], j[kSlots];  // pair index, first body, second body
-  std::uint32_t e[kSlots];                          // near entry (the rows' stage 1 only)
-  std::uint32_t particle_end[kPairs];  // the staged pairs of the window's p-th particle end at particle_end[p]
-  // The pairs' share of the p-th particle's sums, partners' share + own share (N, N m): stage 3 of the drift
-  // form, which kicks and drifts the batch's particles eight at a time after their sums.
-  alignas(64) double total_f[3][kPairs], total_t[3][kPairs];
-};
-
-// Staged pairs [q, q + valid) one at a time (materials differ, or sizes within a material). noinline: one
-// copy of the one-pair law per variant, not one inside each batched pass.
-template <class V, PairForm kForm>
-__attribute__((noinline)) SPREAD_CONTACT_FLATTEN void staged_pairs_alone(const PairPassArrays<typename V::Law>& a, PairBatch& s,
-                                                                         std::uint32_t q, std::uint32_t valid) {
-  for (std::uint32_t l = 0; l < valid; ++l) {
-    const FirstBody<typename V::Law> b = first_body<V>(a, s.i[q + l]);
-    const PairOut<double> r = one_pair_out<V, kForm>(a, b, s.k[q + l], s.dist2[q + l]);
-SPREAD_UNROLL(3)
-    for (int c = 0; c < 3; ++c) {
-      s.f[c][q + l] = (&r.f.x)[c];
-      s.t_i[c][q + l] = (&r.t_i.x)[c];
-      s.t_j[c][q + l] = (&r.t_j.x)[c];
-    }
-  }
-}
-
-// Staged pairs [q, q + 8): one material pair whose table entry holds (both materials of one size), eight
-// pairs in lanes; otherwise each alone. Lanes past `valid` repeat pair q and are not written back.
-template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void eight_pairs(const PairPassArrays<typename V::Law>& a, PairBatch& s, std::uint32_t q,
-                                       std::uint32_t valid) {
-  using Law = typename V::Law;
-  using lanes::Lanes8;
-  std::uint32_t* const j = s.j + q;
-SPREAD_UNROLL(8)
-  for (int l = 0; l < 8; ++l) {
-    j[l] = a.partner[s.k[q + l]];
-    // Stage 3 adds into j's sums, which a later particle finished a step ago: likely out of L2 by now.
-    __builtin_prefetch(a.sums + j[l], 1);
-  }
-  bool one_entry = true;
-  std::size_t entry = 0;
-  if (a.material_count > 1) {
-    const std::uint16_t mi = a.material[s.i[q]], mj = a.material[j[0]];
-SPREAD_UNROLL(8)
-    for (int l = 1; l < 8; ++l) one_entry &= (a.material[s.i[q + l]] == mi) & (a.material[j[l]] == mj);
-    entry = static_cast<std::size_t>(mi) * a.material_count + mj;
-  }
-  if (!one_entry || !a.coeffs[entry].uniform) {
-    staged_pairs_alone<V, kForm>(a, s, q, valid);
-    return;
-  }
-  const std::uint32_t* i = s.i + q;
-  // Each body's v, ω, r, I: from its law row where the pass has them, else lane by lane from the arrays.
-  Lanes8 body_i[8], body_j[8];
-  if (a.law_rows != nullptr) {
-    const double* rows_i[8];
-    const double* rows_j[8];
-SPREAD_UNROLL(8)
-    for (int l = 0; l < 8; ++l) {
-      rows_i[l] = a.law_rows + 8 * static_cast<std::size_t>(i[l]);
-      rows_j[l] = a.law_rows + 8 * static_cast<std::size_t>(j[l]);
-    }
-    load_rows8x8(rows_i, body_i);
-    load_rows8x8(rows_j, body_j);
-  } else {
-    const double* const arrays[8] = {a.vx, a.vy, a.vz, a.wx, a.wy, a.wz, a.radius, a.inertia};
-SPREAD_UNROLL(8)
-    for (int c = 0; c < 8; ++c) {
-      const bool needed = c < 3 || (c < 6 && V::kRotation) || c == 6 || (c == 7 && Law::kRolling);
-      body_i[c] = needed ? gather_lanes8(arrays[c], i) : splat<Lanes8>(0.0);
-      body_j[c] = needed ? gather_lanes8(arrays[c], j) : splat<Lanes8>(0.0);
-    }
-  }
-  const V3<Lanes8> v_rel{body_i[0] - body_j[0], body_i[1] - body_j[1], body_i[2] - body_j[2]};
-  V3<Lanes8> wi = lanes::zero3<Lanes8>(), wj = lanes::zero3<Lanes8>();
-  if constexpr (V::kRotation) {
-    wi = V3<Lanes8>{body_i[3], body_i[4], body_i[5]};
-    wj = V3<Lanes8>{body_j[3], body_j[4], body_j[5]};
-  }
-  Lanes8 inertia_eff = splat<Lanes8>(0.0);
-  if constexpr (Law::kRolling) inertia_eff = body_i[7] * body_j[7] / (body_i[7] + body_j[7]);
-  double* hist[8];
-SPREAD_UNROLL(8)
-  for (int l = 0; l < 8; ++l) hist[l] = a.history + static_cast<std::size_t>(s.k[q + l]) * kHistoryDoubles;
-  Lanes8 h_in[kHistoryDoubles];
-  load_rows8(hist, h_in);
-  LawHistory<Lanes8> h{{h_in[0], h_in[1], h_in[2]}, h_in[3]};
-  const PairOut<Lanes8> r = pair_contact<V>(
-      V3<Lanes8>{load_lanes8(s.d[0] + q), load_lanes8(s.d[1] + q), load_lanes8(s.d[2] + q)}, load_lanes8(s.dist2 + q),
-      body_i[6], body_j[6], v_rel, wi, wj, inertia_eff, a.params[entry], a.coeffs[entry],
-      a.dt_s, h);
-  const Lanes8 h_out[kHistoryDoubles] = {h.elastic.x, h.elastic.y, h.elastic.z, h.overlap_m};
-  store_histories8(h_out, hist, valid);
-  const V3<Lanes8>* outs[3] = {&r.f, &r.t_i, &r.t_j};
-  double(*slots[3])[PairBatch::kSlots] = {s.f, s.t_i, s.t_j};
-SPREAD_UNROLL(3)
-  for (int o = 0; o < 3; ++o) {
-    store_lanes8(slots[o][0] + q, outs[o]->x);
-    store_lanes8(slots[o][1] + q, outs[o]->y);
-    store_lanes8(slots[o][2] + q, outs[o]->z);
-  }
-}
-
-// Stage 1 of the batched pass: the touching pairs of particles [i0, i1) staged in s, as many particles
-// from i0 on as fit (a particle's whole list must fit beside the touching pairs staged before it), or
-// those up to `limit` only. Sets s's per-particle ends; returns i1 (i0 when i0's list alone outgrows the
-// batch) and the staged pair count in n.
-template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE long long stage_touching(const PairPassArrays<typename V::Law>& a, PairBatch& s, long long i0, long long limit,
-                                               std::uint32_t& n) {
-  n = 0;
-  std::uint32_t particles = 0;
-  long long i1 = i0;
-  for (; i1 < limit && particles < PairBatch::kPairs; ++i1) {
-    const PairRange range = pairs_of(a, static_cast<std::size_t>(i1));
-    if (n + (range.end - range.begin) > PairBatch::kPairs) break;
-    const FirstBody<typename V::Law> b = first_body<V>(a, static_cast<std::size_t>(i1));
-    double* const d[3] = {s.d[0] + n, s.d[1] + n, s.d[2] + n};
-    const std::uint32_t touching = touching_in_chunk<V, kForm>(a, b, range, range.begin, range.end, s.k + n, s.dist2 + n, d);
-    for (std::uint32_t q = n; q < n + touching; ++q) s.i[q] = static_cast<std::uint32_t>(i1);
-    n += touching;
-    s.particle_end[particles++] = n;
-  }
-  return i1;
-}
-
 // Stage 1 eight near entries a register, where the pass has the near list's bodies and the touch rows (not
 // along a periodic axis): the touching pairs of particles [i0, i1) staged in s, as many particles from i0 on
 // as have at most a batch of near entries in all, or those up to `limit` only; the same pairs, vectors and
@@ -191,7 +54,9 @@ SPREAD_CONTACT_INLINE long long stage_touching(const PairPassArrays<typename V::
 #define SPREAD_ROWS_CALLER SPREAD_CONTACT_INLINE
 #else
 #define SPREAD_ROWS_STAGE __attribute__((target("avx512f"))) SPREAD_CONTACT_INLINE
-#define SPREAD_ROWS_CALLER __attribute__((target("avx512f"))) SPREAD_CONTACT_INLINE
+// Not forced inline: the generic batched pass (batched_pass, pair_pass_widths.hpp) calls it, and a function
+// of the default target may not force in one of AVX-512's; flatten in the AVX-512 pass inlines it there.
+#define SPREAD_ROWS_CALLER __attribute__((target("avx512f"))) inline
 #endif
 template <class V, PairForm kForm>
 SPREAD_ROWS_STAGE long long stage_touching_rows(const PairPassArrays<typename V::Law>& a,
@@ -269,109 +134,6 @@ SPREAD_ROWS_CALLER long long stage_batch(const PairPassArrays<typename V::Law>& 
   return stage_touching<V, kForm>(a, s, i0, limit, n);
 }
 
-// Stage 2: the law over the n staged pairs, eight at a time; the last group's spare lanes repeat its first
-// pair.
-template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void staged_law(const PairPassArrays<typename V::Law>& a, PairBatch& s, std::uint32_t n) {
-  constexpr std::uint32_t kAhead = 16;  // pairs: two groups
-  for (std::uint32_t p = 0; p < std::min(kAhead, n); ++p)
-    __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
-  for (std::uint32_t q = 0; q < n; q += 8) {
-    const std::uint32_t valid = std::min<std::uint32_t>(8, n - q);
-SPREAD_UNROLL(8)
-    for (std::uint32_t l = valid; l < 8; ++l) {
-      s.k[q + l] = s.k[q];
-      s.i[q + l] = s.i[q];
-      s.dist2[q + l] = s.dist2[q];
-SPREAD_UNROLL(3)
-      for (int c = 0; c < 3; ++c) s.d[c][q + l] = s.d[c][q];
-    }
-    // The histories (32 bytes per listed pair, megabytes in all) of two groups ahead.
-    for (std::uint32_t p = q + kAhead; p < std::min(q + kAhead + 8, n); ++p)
-      __builtin_prefetch(a.history + static_cast<std::size_t>(s.k[p]) * kHistoryDoubles, 1);
-    eight_pairs<V, kForm>(a, s, q, valid);
-  }
-}
-
-// Stage 3: the sums of particles [i0, i1), in pair order. The drift form kicks and drifts the particles
-// once their sums are complete, eight a register (the rest one at a time): a particle's kick reads only its
-// own sums and arrays, and stage 3 of the particles after it in the batch writes neither.
-template <class V, PairForm kForm>
-SPREAD_CONTACT_INLINE void staged_sums(const PairPassArrays<typename V::Law>& a, PairBatch& s, long long i0, long long i1,
-                                       double& moved2) {
-  std::uint32_t q = 0;
-  const auto particles = static_cast<std::uint32_t>(i1 - i0);
-  for (std::uint32_t p = 0; p < particles; ++p) {
-    double sum_f[3] = {0.0, 0.0, 0.0}, sum_t[3] = {0.0, 0.0, 0.0};
-    for (; q < s.particle_end[p]; ++q) {
-      a.held[s.k[q]] = 1;
-      if (a.near_held != nullptr) a.near_held[s.e[q]] = 1;
-      PairSum& sj = a.sums[s.j[q]];
-SPREAD_UNROLL(3)
-      for (int c = 0; c < 3; ++c) {
-        sum_f[c] += s.f[c][q];
-        sj.f[c] -= s.f[c][q];
-      }
-      if constexpr (V::kRotation)
-SPREAD_UNROLL(3)
-        for (int c = 0; c < 3; ++c) {
-          sum_t[c] += s.t_i[c][q];
-          sj.t[c] += s.t_j[c][q];
-        }
-    }
-    if constexpr (kForm.drift) {
-      PairSum& si = a.sums[static_cast<std::size_t>(i0 + p)];
-SPREAD_UNROLL(3)
-      for (int c = 0; c < 3; ++c) {
-        s.total_f[c][p] = si.f[c] + sum_f[c];
-        if constexpr (V::kRotation) s.total_t[c][p] = si.t[c] + sum_t[c];
-      }
-      si = PairSum{};
-    } else {
-      finish_sums<V, kForm>(a, static_cast<std::size_t>(i0 + p), sum_f, sum_t, moved2);
-    }
-  }
-  if constexpr (kForm.drift) {
-    lanes::Lanes8 moved8 = splat<lanes::Lanes8>(0.0);
-    std::uint32_t p = 0;
-    for (; p + 8 <= particles; p += 8) {
-      const double* const total_f[3] = {s.total_f[0] + p, s.total_f[1] + p, s.total_f[2] + p};
-      const double* const total_t[3] = {s.total_t[0] + p, s.total_t[1] + p, s.total_t[2] + p};
-      kick_twice_and_drift8<V::kRotation>(a, static_cast<std::size_t>(i0 + p), total_f, total_t, moved8);
-    }
-SPREAD_UNROLL(8)
-    for (int l = 0; l < 8; ++l) moved2 = std::max(moved2, moved8[l]);
-    for (; p < particles; ++p) {
-      const double total_f[3] = {s.total_f[0][p], s.total_f[1][p], s.total_f[2][p]};
-      double total_t[3] = {0.0, 0.0, 0.0};
-      if constexpr (V::kRotation) for (int c = 0; c < 3; ++c) total_t[c] = s.total_t[c][p];
-      kick_twice_and_drift<V::kRotation>(a, static_cast<std::size_t>(i0 + p), total_f, total_t, moved2);
-    }
-  }
-}
-
-template <class V, PairForm kForm>
-__attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_batched_avx512(PairPassArrays<typename V::Law> a,
-                                                                                         long long count) {
-  static_assert(!kForm.store_pairs, "the batched pass adds the sums directly");
-  PairBatch s;
-  double moved2 = 0.0;
-  long long i0 = 0;
-  while (i0 < count) {
-    std::uint32_t n = 0;
-    const long long i1 = stage_batch<V, kForm>(a, s, i0, count, n);
-    if (i1 == i0) {  // a list longer than the batch: that particle alone, by the portable pass
-      moved2 = std::max(moved2, pair_pass_portable<V, kForm>(a, i0, i0 + 1, 1));
-      ++i0;
-      continue;
-    }
-    staged_law<V, kForm>(a, s, n);
-    staged_sums<V, kForm>(a, s, i0, i1, moved2);
-    i0 = i1;
-  }
-  return moved2;
-}
-
 // Until `turn` reaches t: a short spin, then the core given up between looks (with more threads than cores
 // the thread awaited may need this one's core).
 inline void wait_for_turn(const std::atomic<int>& turn, int t) {
@@ -425,7 +187,7 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_batch
       kept_start.assign(1, range_start[t]);
       bool my_turn = t == 0;
       auto sum_kept = [&] {
-        for (std::size_t b = 0; b < kept; ++b) staged_sums<V, kForm>(a, kept_batches[b], kept_start[b], kept_start[b + 1], moved2);
+        for (std::size_t b = 0; b < kept; ++b) staged_sums<V, kForm, lanes::Lanes8>(a, kept_batches[b], kept_start[b], kept_start[b + 1], moved2);
         kept = 0;
       };
       PairBatch own;
@@ -447,9 +209,9 @@ __attribute__((target("avx512f"))) SPREAD_CONTACT_FLATTEN double pair_pass_batch
           i0 += 1;
           continue;
         }
-        staged_law<V, kForm>(a, s, n);
+        staged_law<V, kForm, lanes::Lanes8>(a, s, n);
         if (my_turn) {
-          staged_sums<V, kForm>(a, s, i0, i1, moved2);
+          staged_sums<V, kForm, lanes::Lanes8>(a, s, i0, i1, moved2);
         } else {
           ++kept;
           kept_start.resize(kept + 1);
