@@ -71,6 +71,23 @@ def strip_preprocessor(code):
     return "\n".join(lines)
 
 
+def without_template_heads(head):
+    """The head with its template parameter lists blanked: `template <class T> T f(...)` is a function, not a
+    class (nested angle brackets counted)."""
+    out, i = [], 0
+    for m in re.finditer(r"\btemplate\s*<", head):
+        if m.start() < i:
+            continue
+        out.append(head[i:m.start()])
+        depth, j = 1, m.end()
+        while j < len(head) and depth > 0:
+            depth += {"<": 1, ">": -1}.get(head[j], 0)
+            j += 1
+        i = j
+    out.append(head[i:])
+    return " ".join(out)
+
+
 def functions(text):
     """(first line, last line, name) of every function body at namespace or class scope."""
     code = strip_preprocessor(strip_comments_and_strings(text))
@@ -85,7 +102,7 @@ def functions(text):
         elif c == "{":
             head = code[statement_start:i]
             in_function = any(isinstance(s, tuple) for s in stack)
-            if not in_function and "(" in head and not SCOPE_KEYWORDS.search(head.split("(")[0]) and \
+            if not in_function and "(" in head and not SCOPE_KEYWORDS.search(without_template_heads(head).split("(")[0]) and \
                     not re.search(r"=\s*$", head) and not head.rstrip().endswith(","):
                 first = code.count("\n", 0, statement_start + len(head) - len(head.lstrip())) + 1
                 names = [n for n in NAME.findall(head) if n not in NOT_NAMES]

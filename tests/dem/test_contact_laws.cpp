@@ -199,8 +199,8 @@ TEST(DemContactLawGolden, ADifferentSubModelChangesTheHistory) {
 TEST(DemContactLaws, NamedLawsAreTheScenesSubModels) {
   EXPECT_EQ(HertzThornton::kLaw, kHertzThorntonLaw);
   EXPECT_EQ(LinearSpringDashpot::kLaw, kLinearSpringDashpotLaw);
-  EXPECT_EQ(to_string(kHertzThorntonLaw), "normal hertz, damping hertz, tangential thornton, rolling none");
-  EXPECT_EQ(to_string(kLinearSpringDashpotLaw), "normal linear, damping linear_viscous, tangential linear, rolling none");
+  EXPECT_EQ(to_string(kHertzThorntonLaw), "normal hertz, damping hertz, tangential thornton, rolling none, cohesion none");
+  EXPECT_EQ(to_string(kLinearSpringDashpotLaw), "normal linear, damping linear_viscous, tangential linear, rolling none, cohesion none");
 }
 
 TEST(DemContactLaws, OnlyTheScenesVariantsAreCompiledOfTheValidProduct) {

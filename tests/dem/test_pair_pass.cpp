@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "libspread/core/cpu_features.hpp"
 #include "libspread/physics/dem/engine.hpp"
@@ -153,6 +155,45 @@ TEST(DemPairPass, WidestRegistersGiveIdenticalStates) {
       expect_widest_gives_the_portable_bits([&] { return dense_block(1, uniform, periodic); }, 60);
     }
   if (!cpu_has_avx512f()) GTEST_SKIP() << "no AVX-512 here: the portable pass was compared with itself";
+}
+
+// The batched pass at every register width — four lanes in pairs of SSE2 registers (the portable pass), four
+// in AVX2 registers, eight in AVX-512 registers — gives the bits of the particle-by-particle pass (two threads
+// storing the pairs' results on the baseline registers): 60 steps of a dense block, every state compared, with
+// radii varied (each pair alone) and one radius (pairs in lanes), along a periodic axis too.
+TEST(DemPairPass, EveryRegisterWidthGivesTheSameBits) {
+  for (const bool uniform : {false, true})
+    for (const bool periodic : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "uniform " << uniform << ", periodic " << periodic);
+      DemEngine by_particle = dense_block(2, uniform, periodic);
+      {
+        const RegistersLimited baseline(Registers::kBaseline);
+        for (int s = 0; s < 60; ++s) by_particle.step();
+      }
+      expect_threads_share_pairs(by_particle);
+      for (const Registers registers : {Registers::kBaseline, Registers::kAvx2, Registers::kAvx512}) {
+        SCOPED_TRACE(testing::Message() << "registers " << static_cast<int>(registers));
+        const RegistersLimited limit(registers);
+        DemEngine batched = dense_block(1, uniform, periodic);
+        for (int s = 0; s < 60; ++s) batched.step();
+        EXPECT_GT(expect_identical_states(batched, by_particle), 100u);
+      }
+    }
+  if (!cpu_has_avx2() || !cpu_has_avx512f()) GTEST_SKIP() << "no AVX2 or no AVX-512 here: a width was compared with the portable pass";
+}
+
+// SPREAD_REGISTERS limits the registers for the whole program (ctest dem.registers.environment_limits_the_width
+// runs this with SPREAD_REGISTERS=avx2; unset, nothing is limited).
+TEST(DemRegisters, TheEnvironmentLimitsTheWidth) {
+  const char* env = std::getenv("SPREAD_REGISTERS");
+  if (env != nullptr && std::string(env) == "avx2") {
+    EXPECT_TRUE(registers_allowed(Registers::kAvx2));
+    EXPECT_FALSE(registers_allowed(Registers::kAvx512));
+    EXPECT_FALSE(cpu_has_avx512f());
+  } else {
+    EXPECT_TRUE(env == nullptr || std::string(env).empty()) << "run with SPREAD_REGISTERS unset or avx2";
+    EXPECT_TRUE(registers_allowed(Registers::kAvx512));
+  }
 }
 
 // steps(n) gives each step's opening kick and drift to the previous step's pair pass (velocity Verlet): the

@@ -7,6 +7,8 @@
 # Usage: bench/peers/lammps_drum/compare.sh [build-dir] [rounds] [steps]
 #   build-dir  a build with bench_drum (default: build, as tools/setup.sh makes it)
 #   rounds     alternations per case (default 3); steps: timed steps per run (default 1000)
+# SPREAD_REGISTERS=avx2 (or baseline) in the environment limits our side's registers (libspread/core/
+# cpu_features.hpp): the figures of a processor without AVX-512 on one with it.
 # Needs /usr/bin/lmp (Debian: apt-get install -y --no-install-recommends lammps) and mpirun (openmpi-bin).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)

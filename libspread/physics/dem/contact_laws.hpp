@@ -1,6 +1,6 @@
 #pragma once
 // Contact laws composed from sub-models (HOOMD/LAMMPS GRANULAR style, docs/design.md §7): ComposedLaw<Normal,
-// Damping, Tangential, Rolling> puts one model of each list below together into an evaluator with an
+// Damping, Tangential, Rolling, Cohesion> puts one model of each list below together into an evaluator with an
 // inline kernel over the lane types (one contact, or two in lanes) and per-pair coefficients derived once
 // per material pair (Coeffs: each sub-model's own, R* and M*). The force passes are templates over the
 // law, instantiated for the combinations force_variants.hpp generates from these lists, so no contact
@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <utility>
 
+#include "libspread/physics/dem/cohesion_models.hpp"
 #include "libspread/physics/dem/contact_kernel.hpp"
 #include "libspread/physics/dem/contact_law.hpp"
 #include "libspread/physics/dem/damping_models.hpp"
@@ -40,6 +41,7 @@ using NormalModels = SubModels<NormalNone, NormalLinear, NormalHertz>;
 using DampingModels = SubModels<DampingNone, DampingLinearViscous, DampingHertz>;
 using TangentialModels = SubModels<TangentialNone, TangentialLinear, TangentialThornton>;
 using RollingModels = SubModels<RollingNone, RollingConstantTorque>;
+using CohesionModels = SubModels<CohesionNone>;
 
 namespace detail {
 template <class List, std::size_t... I>
@@ -51,13 +53,15 @@ constexpr bool ids_are_positions() {
   return ids_are_positions<List>(std::make_index_sequence<List::size>{});
 }
 static_assert(ids_are_positions<NormalModels>() && ids_are_positions<DampingModels>() &&
-              ids_are_positions<TangentialModels>() && ids_are_positions<RollingModels>(),
+              ids_are_positions<TangentialModels>() && ids_are_positions<RollingModels>() &&
+              ids_are_positions<CohesionModels>(),
               "each sub-model list must be in its enum's order (contact_law.hpp)");
 }  // namespace detail
 
-template <class Normal, class Damping, class Tangential, class Rolling>
+template <class Normal, class Damping, class Tangential, class Rolling, class Cohesion = CohesionNone>
 struct ComposedLaw {
-  static constexpr ContactLaw kLaw{Normal::kId, Damping::kId, Tangential::kId, Rolling::kId};
+  static constexpr ContactLaw kLaw{.normal = Normal::kId, .damping = Damping::kId, .tangential = Tangential::kId,
+                                   .rolling = Rolling::kId, .cohesion = Cohesion::kId};
   static constexpr bool kRolling = Rolling::kActive;
   using RollingModel = Rolling;
 
@@ -70,6 +74,7 @@ struct ComposedLaw {
     typename Normal::Coeffs normal;
     typename Damping::Coeffs damping;
     typename Tangential::Coeffs tangential;
+    [[no_unique_address]] typename Cohesion::Coeffs cohesion;
     bool uniform = false;   // engine table only: true when the entry holds for every particle pair of these materials
   };
 
@@ -82,6 +87,7 @@ struct ComposedLaw {
     c.normal = Normal::coeffs(p, s);
     c.damping = Damping::coeffs(p, s);
     c.tangential = Tangential::coeffs(p, s);
+    if constexpr (Cohesion::kActive) c.cohesion = Cohesion::coeffs(p, s);
     return c;
   }
 
@@ -107,6 +113,8 @@ struct ComposedLaw {
       out.tangential_n = lanes::zero3<T>();
       out.force_n = f_n * normal;
     }
+    // The attraction after the cap: friction and rolling resistance take the repulsive F_n.
+    if constexpr (Cohesion::kActive) out.force_n = out.force_n - Cohesion::force(c.cohesion, delta_m) * normal;
     h.overlap_m = delta_m;
     return out;
   }

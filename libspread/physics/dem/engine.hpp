@@ -103,6 +103,11 @@ struct EngineStats {
   double collector_s = 0.0;
 };
 
+namespace pairs {
+template <class Law>
+struct PairPassArrays;  // the pair pass's context (pair_pass_context.hpp)
+}  // namespace pairs
+
 class DemEngine {
  public:
   // Throws std::invalid_argument naming the bad parameter (materials, radii, a dt above the bound, a contact
@@ -175,6 +180,16 @@ class DemEngine {
   // energy monitor). All add in the same order, so the results are bit-identical.
   template <class V>
   void particle_forces();
+  // particle_forces' stages (pair_pass.cpp): the pass's context filled by name, the batched pass's rows, the
+  // next step's drift handed to the pass, and the stored form's pass and gather.
+  template <class V>
+  pairs::PairPassArrays<typename V::Law> pair_pass_arrays();
+  template <class V>
+  void pair_pass_rows(pairs::PairPassArrays<typename V::Law>& a);
+  template <class Law>
+  void pair_pass_drift(pairs::PairPassArrays<Law>& a, bool measure_near);
+  template <class V>
+  void run_stored_pair_pass(pairs::PairPassArrays<typename V::Law>& a);
   // Whether threads share the particles' pairs: more than one thread, and particles and listed pairs
   // enough to share. The pair pass then takes consecutive ranges of particles, one a thread, and the
   // opening kick and drift (kick_drift_pass) take the same particles, so that each thread finds them in

@@ -28,7 +28,7 @@ void DemEngine::compute_forces() {
   stats_.forces_s += seconds_since(t0);
 }
 
-effect::EffectSet DemEngine::pass_effects() const { return kForceVariants[force_variant_].effects; }
+effect::EffectSet DemEngine::pass_effects() const { return kForceVariants[force_variant_].effects(); }
 
 void DemEngine::clear_forces() {
   const std::size_t n = p_.size();

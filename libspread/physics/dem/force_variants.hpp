@@ -1,17 +1,21 @@
 #pragma once
-// The force pass's instantiations, generated from the sub-model lists (contact_laws.hpp) and the registry
-// bits: every combination normal × damping × tangential × rolling × subset of the pass-shaping effects
-// (kPassEffects) that contact_law_conflict accepts and a scene can reach. The engine picks one by its position once (find_force_variant); each pass file builds
-// its table of instantiations from the same list (engine_detail.hpp), so adding a sub-model or widening
-// reachable_from_scenes never means writing a table by hand.
+// The force pass's instantiations, generated from the sub-model families (contact_laws.hpp) and the pass's
+// own family (spin): one choice per family, each with an explicit none, and of the valid product
+// (contact_law_conflict) only what a scene reaches. The engine picks one by its position once
+// (find_force_variant); each pass file builds its table of instantiations from the same list
+// (engine_detail.hpp), so adding a sub-model or widening the reach never means writing a table by hand.
 //
-// The full valid product is 16 laws (8 without rolling) and 24 variants (rolling only with rotation),
-// each a wall pass, a pair pass in 4 forms and a coefficient table; the scenes reach 6 of them: the
-// two scene laws (kHertzThorntonLaw, kLinearSpringDashpotLaw), each without rotation, with rotation, and
-// with rotation and rolling resistance. Only those are compiled.
+// The product is 3 · 3 · 3 · 2 · 1 (normal, damping, tangential, rolling, cohesion) · 2 (spin) = 108
+// entries, 24 valid; the scenes reach 6: the two scene laws (kHertzThorntonLaw, kLinearSpringDashpotLaw),
+// each without spin, with spin, and with spin and rolling resistance. Only those are compiled, each a wall
+// pass, a pair pass in its forms and a coefficient table. An add-on family's model (cohesion) other than none
+// is compiled with the combinations it names (kCompiledWith): a cohesion model named with one adds one
+// variant, where a pass-shaping bit of its own doubled them all.
 #include <array>
-#include <bit>
 #include <cstddef>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
 
 #include "libspread/core/effect_registry.hpp"
 #include "libspread/physics/dem/contact_law.hpp"
@@ -19,63 +23,89 @@
 
 namespace spread::dem {
 
-// The DEM effects that change a pass's instantiation (a template parameter): rotation (spin state and
-// contact moments). The others do not shape a pass: particle_contact and wall_contact decide whether a
-// pass runs at all (force_dispatch.cpp), and rolling is the law's rolling sub-model.
+// The DEM effects that change a pass's instantiation: rotation (spin state and contact moments), the pass's
+// spin family (SpinModel). The others do not shape a pass: particle_contact and wall_contact decide whether
+// a pass runs at all (force_dispatch.cpp), and rolling is the law's rolling sub-model.
 inline constexpr effect::EffectSet kPassEffects = effect::kRotation;
 // The DEM effects that decide whether a pass runs at all (force_dispatch.cpp) or which law runs (rolling: the
 // law's rolling model), rather than shaping a pass.
 inline constexpr effect::EffectSet kRunEffects = effect::kParticleContact | effect::kWallContact | effect::kRolling;
 // A DEM row of the registry in neither set would be accepted by the engine and never evaluated.
 static_assert((kPassEffects | kRunEffects) == effect::kDemEffects && (kPassEffects & kRunEffects) == 0,
-              "each DEM effect of the registry either shapes the passes (kPassEffects, read in a pass as V::has(bit)) "
-              "or decides which pass or law runs (kRunEffects)");
+              "each DEM effect of the registry either shapes the passes (kPassEffects: a family of the pass, "
+              "ForceVariant, with an explicit none) or decides which pass or law runs (kRunEffects)");
+
+// The pass's own family, from the rotation effect: no spin state, or rigid-body spin (contact moments).
+enum class SpinModel : std::uint8_t { kNone, kRigid };
+inline constexpr std::size_t kSpinModels = 2;
 
 struct ForceVariant {
   ContactLaw law;
-  effect::EffectSet effects = 0;  // a subset of kPassEffects
-  constexpr bool rotation() const { return (effects & effect::kRotation) != 0; }
+  SpinModel spin = SpinModel::kNone;
+  constexpr bool rotation() const { return spin == SpinModel::kRigid; }
+  // The pass-shaping effects this variant's passes carry (a subset of kPassEffects).
+  constexpr effect::EffectSet effects() const { return rotation() ? effect::kRotation : effect::EffectSet{0}; }
   friend constexpr bool operator==(const ForceVariant&, const ForceVariant&) = default;
 };
+// The variant of a law under the engine's effects (only kPassEffects shape it).
+constexpr ForceVariant force_variant_of(const ContactLaw& law, effect::EffectSet effects) {
+  return ForceVariant{.law = law, .spin = (effects & effect::kRotation) != 0 ? SpinModel::kRigid : SpinModel::kNone};
+}
 
 namespace detail {
 
 inline constexpr std::size_t kNormals = NormalModels::size, kDampings = DampingModels::size,
-                             kTangentials = TangentialModels::size, kRollings = RollingModels::size;
-inline constexpr std::size_t kPassEffectSubsets = std::size_t{1} << std::popcount(kPassEffects);
-inline constexpr std::size_t kProductSize = kNormals * kDampings * kTangentials * kRollings * kPassEffectSubsets;
+                             kTangentials = TangentialModels::size, kRollings = RollingModels::size,
+                             kCohesions = CohesionModels::size;
+inline constexpr std::size_t kProductSize = kNormals * kDampings * kTangentials * kRollings * kCohesions * kSpinModels;
 
-// Subset number k of `mask`: bit j of k becomes the j-th lowest bit of the mask.
-constexpr effect::EffectSet subset_of(effect::EffectSet mask, std::size_t k) {
-  effect::EffectSet set = 0;
-  for (effect::EffectSet rest = mask; rest != 0; rest &= rest - 1, k >>= 1)
-    if ((k & 1) != 0) set |= rest & ~(rest - 1);
-  return set;
-}
-
-// Position in the product → combination (pass-shaping effects fastest, then rolling, tangential, damping,
-// normal).
+// Position in the product → combination (spin fastest, then rolling, tangential, damping, normal; the add-on
+// family cohesion slowest, so that a new model's variants come after every variant there was, whose positions
+// stay as they were).
 constexpr ForceVariant product_variant(std::size_t i) {
   ForceVariant v;
-  v.effects = subset_of(kPassEffects, i % kPassEffectSubsets);
-  i /= kPassEffectSubsets;
+  v.spin = static_cast<SpinModel>(i % kSpinModels);
+  i /= kSpinModels;
   v.law.rolling = static_cast<RollingModel>(i % kRollings);
   i /= kRollings;
   v.law.tangential = static_cast<TangentialModel>(i % kTangentials);
   i /= kTangentials;
   v.law.damping = static_cast<DampingModel>(i % kDampings);
-  v.law.normal = static_cast<NormalModel>(i / kDampings);
+  i /= kDampings;
+  v.law.normal = static_cast<NormalModel>(i % kNormals);
+  v.law.cohesion = static_cast<CohesionModel>(i / kNormals);
   return v;
 }
 
-// What scenes reach: the two named laws, rolling resistance or none (scene_config.cpp, drum_simulation.cpp).
+// What scenes reach without an add-on model: the two named laws, rolling resistance or none, spin or none
+// (scene_config.cpp, drum_simulation.cpp).
 constexpr bool reachable_from_scenes(const ContactLaw& law) {
-  const ContactLaw without_rolling = with_rolling(law, RollingModel::kNone);
-  return without_rolling == kHertzThorntonLaw || without_rolling == kLinearSpringDashpotLaw;
+  const ContactLaw base = with_cohesion(with_rolling(law, RollingModel::kNone), CohesionModel::kNone);
+  return base == kHertzThorntonLaw || base == kLinearSpringDashpotLaw;
+}
+
+// Whether add-on model `id` of `List` is compiled with `base` (none: with every one; another: with those of
+// its kCompiledWith).
+template <class List, std::size_t... I>
+constexpr bool compiled_with(std::size_t id, const BaseCombination& base, std::index_sequence<I...>) {
+  const auto named = [&](const auto& model) {
+    using Model = std::remove_cvref_t<decltype(model)>;
+    if constexpr (!Model::kActive) {
+      return true;
+    } else {
+      for (const BaseCombination& c : Model::kCompiledWith)
+        if (c.law == base.law && c.rotation == base.rotation) return true;
+      return false;
+    }
+  };
+  return ((id == I && named(typename SubModelAt<I, List>::type{})) || ...);
 }
 
 constexpr bool instantiated(const ForceVariant& v) {
-  return contact_law_conflict(v.law, v.rotation()) == nullptr && reachable_from_scenes(v.law);
+  if (contact_law_conflict(v.law, v.rotation()) != nullptr || !reachable_from_scenes(v.law)) return false;
+  const BaseCombination base{.law = with_cohesion(v.law, CohesionModel::kNone), .rotation = v.rotation()};
+  return compiled_with<CohesionModels>(static_cast<std::size_t>(v.law.cohesion), base,
+                                       std::make_index_sequence<CohesionModels::size>{});
 }
 
 constexpr std::size_t count_instantiated() {
@@ -102,19 +132,19 @@ template <std::size_t I>
 using VariantLaw = ComposedLaw<typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.normal), NormalModels>::type,
                                typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.damping), DampingModels>::type,
                                typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.tangential), TangentialModels>::type,
-                               typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.rolling), RollingModels>::type>;
-// Variant I as the one type the passes are templated on: its law and its pass-shaping effects. A new
-// pass-shaping effect is a new bit of kPassEffects, read in a pass as V::has(bit): no pass's signature
-// changes.
+                               typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.rolling), RollingModels>::type,
+                               typename SubModelAt<static_cast<std::size_t>(kForceVariants[I].law.cohesion), CohesionModels>::type>;
+// Variant I as the one type the passes are templated on: its law and its spin. A new pass-shaping effect is
+// a new family of ForceVariant (none first), read in a pass as V::kThatFamily: no pass's signature changes.
 template <std::size_t I>
 struct PassVariant {
   using Law = VariantLaw<I>;
-  static constexpr effect::EffectSet kEffects = kForceVariants[I].effects;
+  static constexpr effect::EffectSet kEffects = kForceVariants[I].effects();
   static constexpr bool has(effect::EffectSet bit) { return (kEffects & bit) != 0; }
-  static constexpr bool kRotation = has(effect::kRotation);
+  static constexpr bool kRotation = kForceVariants[I].rotation();
 };
 
-// Position of (law, effects & kPassEffects) in kForceVariants; throws std::invalid_argument naming the law
+// Position of force_variant_of(law, effects) in kForceVariants; throws std::invalid_argument naming the law
 // when it is invalid (validate_contact_law) or valid but not instantiated (and which are).
 std::size_t find_force_variant(const ContactLaw& law, effect::EffectSet effects);
 

@@ -216,13 +216,17 @@ void DemEngine::kick_drift_pass(double dt_kick, double dt_drift) {
   const std::size_t n = p_.size();
   // x0 is sized at the first build; before it the move is measured by maintain_lists as before.
   const bool measure_near = near_.x0.size() == n;
-  const KickDriftArrays k{p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
-                          p_.wx.data(), p_.wy.data(), p_.wz.data(), p_.fx.data(), p_.fy.data(), p_.fz.data(),
-                          p_.tx.data(), p_.ty.data(), p_.tz.data(), p_.inv_mass_kg.data(), p_.inv_inertia_kg_m2.data(),
-                          p_.active.data(), measure_near ? near_.x0.data() : nullptr,
-                          measure_near ? near_.y0.data() : nullptr, measure_near ? near_.z0.data() : nullptr,
-                          {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()},
-                          params_.periodic_z.enabled ? params_.periodic_z.length_m() : 0.0};
+  const auto near_or_null = [&](const std::vector<double>& v) { return measure_near ? v.data() : nullptr; };
+  const KickDriftArrays k{.x = p_.x.data(), .y = p_.y.data(), .z = p_.z.data(),
+                          .vx = p_.vx.data(), .vy = p_.vy.data(), .vz = p_.vz.data(),
+                          .wx = p_.wx.data(), .wy = p_.wy.data(), .wz = p_.wz.data(),
+                          .fx = p_.fx.data(), .fy = p_.fy.data(), .fz = p_.fz.data(),
+                          .tx = p_.tx.data(), .ty = p_.ty.data(), .tz = p_.tz.data(),
+                          .inv_mass = p_.inv_mass_kg.data(), .inv_inertia = p_.inv_inertia_kg_m2.data(),
+                          .active = p_.active.data(),
+                          .xn = near_or_null(near_.x0), .yn = near_or_null(near_.y0), .zn = near_or_null(near_.z0),
+                          .gravity_m_s2 = {params_.gravity_m_s2.x(), params_.gravity_m_s2.y(), params_.gravity_m_s2.z()},
+                          .period_m = params_.periodic_z.enabled ? params_.periodic_z.length_m() : 0.0};
   // Where the pair pass shares its pairs among threads, each thread takes the particles of one of as many
   // consecutive ranges, so that they stay in its cache for the pair pass. These ranges are equal in
   // particles, the pair pass's equal in listed pairs: the same on an even bed, apart where the density varies.

@@ -101,7 +101,8 @@ void DemEngine::wall_particle(std::size_t i, std::uint64_t groups, const typenam
   // Slots are filled from the front, so an empty first slot means no wall history to carry: most
   // particles of a bed touch no wall, and they skip the slot bookkeeping below.
   if (nc == 0 && p_.wall_key[base] == 0) return;
-  WallBody b{p_.velocity(i), Vec3::Zero(), r, p_.mass_kg[i], p_.inertia_kg_m2[i], p_.material[i]};
+  WallBody b{.v = p_.velocity(i), .w = Vec3::Zero(), .r = r, .m = p_.mass_kg[i], .inertia = p_.inertia_kg_m2[i],
+             .material = p_.material[i]};
   if constexpr (V::kRotation) b.w = Vec3(p_.wx[i], p_.wy[i], p_.wz[i]);
   Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
   // The usual case, a particle resting on the same walls as a step ago: each contact finds its own key
