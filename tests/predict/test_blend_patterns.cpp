@@ -129,18 +129,25 @@ TEST(BlendPatterns, NutrientsTotalAndTheLimitingComponentAddUp) {
     for (double m : c.tray_mass_fraction) components_mass += m;
   EXPECT_NEAR(blend_mass, components_mass, 1e-12);
   EXPECT_GT(blend_mass, 0.95);
+  // The widest common bout: at its whole-tray floor every component meets the target, at the next tray
+  // the limiting one does not, and no wider whole-tray bout suits them all; no component alone goes less far.
   ASSERT_GE(b.limiting_component, 0);
-  double least = INFINITY;
-  for (const ComponentPattern& c : b.components) least = std::min(least, c.first_band_width_m);
-  EXPECT_EQ(b.widest_common_bout_m, least);
-  EXPECT_EQ(b.components[static_cast<std::size_t>(b.limiting_component)].first_band_width_m, least);
-  // Just inside the common bout every component meets the target; just outside the limiting one does not.
-  const double inside = b.widest_common_bout_m - 0.5, outside = b.widest_common_bout_m + 0.5;
-  for (const ComponentPattern& c : b.components)
-    EXPECT_LE(metrics::cv_at_width(c.tray_mass_fraction, b.trays, inside, metrics::Overlap::kToAndFro), 0.15) << c.name;
-  EXPECT_GT(metrics::cv_at_width(b.components[static_cast<std::size_t>(b.limiting_component)].tray_mass_fraction, b.trays,
-                                 outside, metrics::Overlap::kToAndFro),
-            0.15);
+  ASSERT_GT(b.widest_common_bout_m, 0.0);
+  const auto cv = [&](const ComponentPattern& c, double w) {
+    return metrics::cv_at_width(c.tray_mass_fraction, b.trays, w, metrics::Overlap::kToAndFro);
+  };
+  const double w = b.trays.tray_width_m;
+  const double inside = std::floor(b.widest_common_bout_m / w) * w;
+  for (const ComponentPattern& c : b.components) {
+    EXPECT_LE(cv(c, inside), 0.15) << c.name;
+    EXPECT_LE(b.widest_common_bout_m, c.widest_width_m + 1e-9) << c.name;
+  }
+  EXPECT_GT(cv(b.components[static_cast<std::size_t>(b.limiting_component)], inside + w), 0.15);
+  for (double wider = inside + w; wider <= b.trays.tray_count * w; wider += w) {
+    bool all = true;
+    for (const ComponentPattern& c : b.components) all = all && cv(c, wider) <= 0.15;
+    EXPECT_FALSE(all) << wider << " m suits every component";
+  }
 }
 
 // Two identical components of the analytic source get the same launches: the same pattern, shares that do

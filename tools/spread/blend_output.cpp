@@ -41,12 +41,12 @@ void print_blend(const blends::BlendPatterns& b, double cv_target) {
             << format("%g %%", 100.0 * cv_target) << ": " << widest_common_bout_text(b, cv_target) << "\n";
   std::cout << format("  at the %.2f m bout: blend CV ", b.bout_width_m) << format("%.1f %% to-and-fro", 100.0 * b.cv_to_and_fro)
             << format(", %.1f %% racetrack", 100.0 * b.cv_racetrack) << format("; separation index %.3f", b.separation_index) << "\n";
-  std::cout << "  components (mass share, mean landing radius R, CV alone at the bout, first band, CV of its share across the bout):\n";
+  std::cout << "  components (mass share, mean landing radius R, CV alone at the bout, its own widest bout, CV of its share across the bout):\n";
   for (const blends::ComponentPattern& c : b.components) {
     std::cout << "    " << c.name << std::string(c.name.size() < 22 ? 22 - c.name.size() : 1, ' ')
               << format("%5.1f %%", 100.0 * c.mass_fraction) << format("  R %.2f m", c.mean_radius_m)
               << format("  CV %.1f %% to-and-fro", 100.0 * c.cv_to_and_fro) << format(", %.1f %% racetrack", 100.0 * c.cv_racetrack)
-              << format("  first band %.2f m", c.first_band_width_m) << format("  share CV %.3f", c.share_cv) << "  ("
+              << format("  alone to %.2f m", c.widest_width_m) << format("  share CV %.3f", c.share_cv) << "  ("
               << blend_output::nutrients_text(c) << ")\n";
   }
   for (const blends::NutrientPattern& n : b.nutrients) {
@@ -70,7 +70,7 @@ nlohmann::json blend_json(const blends::BlendPatterns& b, double cv_target) {
                           {"mean_radius_m", number_or_null(c.mean_radius_m)},
                           {"cv_to_and_fro_percent", number_or_null(100.0 * c.cv_to_and_fro)},
                           {"cv_racetrack_percent", number_or_null(100.0 * c.cv_racetrack)},
-                          {"first_band_width_m", number_or_null(c.first_band_width_m)},
+                          {"widest_width_m", number_or_null(c.widest_width_m)},
                           {"share_cv", number_or_null(c.share_cv)},
                           {"tray_mass_fraction", c.tray_mass_fraction}});
   }

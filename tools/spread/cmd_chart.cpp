@@ -218,7 +218,7 @@ void run_blend_chart(const Options& o, const spread::tables::Blend& blend, doubl
       continue;
     }
     std::cout << format("  %.0f rpm: widest bout ", rpm) << spread::cli::widest_common_bout_text(b, cv_target)
-              << format("; there blend CV %.1f %%", 100.0 * b.cv_to_and_fro);
+              << format("; at the %.2f m bout", b.bout_width_m) << format(" blend CV %.1f %%", 100.0 * b.cv_to_and_fro);
     for (const spread::blends::NutrientPattern& n : b.nutrients)
       if (n.carried) std::cout << ", " << n.name << format(" %.1f %%", 100.0 * n.cv_to_and_fro);
     std::cout << format(", separation index %.3f", b.separation_index) << "\n";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 namespace spread::blends {
@@ -56,19 +57,62 @@ void place_components(BlendPatterns& b, const std::vector<OwnPrediction>& own) {
   }
 }
 
-// The widest bout every component meets the target at, and the one that limits it.
+// Each component's CV (to-and-fro) at every whole-tray bout from 2 trays to the layout's width.
+std::vector<std::vector<double>> cv_curves(const BlendPatterns& b, std::vector<double>& widths_m) {
+  widths_m.clear();
+  for (int n = 2; n <= b.trays.tray_count; ++n) widths_m.push_back(n * b.trays.tray_width_m);
+  std::vector<std::vector<double>> cv(b.components.size(), std::vector<double>(widths_m.size()));
+  for (std::size_t c = 0; c < b.components.size(); ++c)
+    metrics::cv_curve(b.components[c].tray_mass_fraction, b.trays, widths_m, Overlap::kToAndFro, cv[c]);
+  return cv;
+}
+
+// The widest bout at which every component meets the target: the widest whole-tray bout where all do,
+// extended to where the first of them crosses the target before the next whole tray (linear in CV, as
+// metrics::working_width interpolates a band's end); limited by that component. When no bout suits every
+// component, the one whose lowest CV is highest limits (there is no width).
 void widest_common_bout(BlendPatterns& b, double cv_target) {
+  std::vector<double> widths_m;
+  const std::vector<std::vector<double>> cv = cv_curves(b, widths_m);
+  for (std::size_t c = 0; c < b.components.size(); ++c)
+    b.components[c].widest_width_m = metrics::working_width(b.components[c].tray_mass_fraction, b.trays, Overlap::kToAndFro, cv_target).width_m;
+  const auto all_meet = [&](std::size_t k) {
+    return std::all_of(cv.begin(), cv.end(), [&](const std::vector<double>& curve) { return curve[k] <= cv_target; });
+  };
+  std::size_t k = widths_m.size();
+  while (k > 0 && !all_meet(k - 1)) --k;
   b.widest_common_bout_m = 0.0;
   b.limiting_component = -1;
-  for (std::size_t c = 0; c < b.components.size(); ++c) {
-    ComponentPattern& component = b.components[c];
-    component.first_band_width_m =
-        metrics::working_width(component.tray_mass_fraction, b.trays, Overlap::kToAndFro, cv_target).first_band_upper_m();
-    if (b.limiting_component < 0 || component.first_band_width_m < b.widest_common_bout_m) {
-      b.widest_common_bout_m = component.first_band_width_m;
+  if (k == 0) {
+    double worst = -1.0;
+    for (std::size_t c = 0; c < cv.size(); ++c) {
+      const double lowest = *std::min_element(cv[c].begin(), cv[c].end());
+      if (lowest > worst) {
+        worst = lowest;
+        b.limiting_component = static_cast<int>(c);
+      }
+    }
+    return;
+  }
+  const std::size_t at = k - 1;  // all meet the target here
+  b.widest_common_bout_m = widths_m[at];
+  if (at + 1 == widths_m.size()) {  // up to the layout's width: the component closest to the target limits
+    for (std::size_t c = 0; c < cv.size(); ++c)
+      if (b.limiting_component < 0 || cv[c][at] > cv[static_cast<std::size_t>(b.limiting_component)][at]) b.limiting_component = static_cast<int>(c);
+    return;
+  }
+  double crossing = INFINITY;
+  for (std::size_t c = 0; c < cv.size(); ++c) {
+    if (!(cv[c][at + 1] > cv_target)) continue;
+    const double rise = cv[c][at + 1] - cv[c][at];
+    const double x = std::isfinite(rise) && rise > 0.0 ? (cv_target - cv[c][at]) / rise : 0.0;
+    const double w = widths_m[at] + x * (widths_m[at + 1] - widths_m[at]);
+    if (w < crossing) {
+      crossing = w;
       b.limiting_component = static_cast<int>(c);
     }
   }
+  b.widest_common_bout_m = crossing;
 }
 
 // Each component's share of the applied mass across the bout's trays (to-and-fro overlap): its mass-weighted
@@ -157,7 +201,10 @@ BlendPatterns blend_patterns(predict::Predictor& predictor, const tables::Blend&
   place_components(b, own);
   widest_common_bout(b, request.cv_target);
   b.bout_width_m = request.bout_width_m;
-  if (!(b.bout_width_m > 0.0)) b.bout_width_m = b.widest_common_bout_m;
+  // By default the widest whole-tray bout inside the common one: the CVs are evaluated on whole trays,
+  // where every component meets the target.
+  const double tray_m = b.trays.tray_width_m;
+  if (!(b.bout_width_m > 0.0)) b.bout_width_m = std::floor(b.widest_common_bout_m / tray_m + 1e-9) * tray_m;
   if (!(b.bout_width_m > 0.0))
     b.bout_width_m = metrics::working_width(b.tray_mass_fraction, b.trays, Overlap::kToAndFro, request.cv_target).width_m;
   if (!(b.bout_width_m > 0.0)) b.bout_width_m = b.trays.tray_width_m;  // nothing meets the target: one tray

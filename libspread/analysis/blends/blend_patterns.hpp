@@ -42,7 +42,8 @@ struct ComponentPattern {
   double mean_radius_m = kNaN;           // R̄ of its landings, left disc (Eq. 51)
   double cv_to_and_fro = kNaN;           // the component alone at the bout (fraction)
   double cv_racetrack = kNaN;
-  double first_band_width_m = kNaN;      // the first rise of its CV above the target (to-and-fro)
+  double widest_width_m = kNaN;          // its own working width alone: the widest bout it meets the target at
+                                         // (metrics::working_width, to-and-fro; 0: none)
   double share_cv = kNaN;                // mass-weighted CV of its share of the applied mass across the bout's trays
   std::vector<double> tray_mass_fraction;  // per tray of BlendPatterns::trays, of the blend's discharged mass
 };
@@ -61,8 +62,10 @@ struct BlendPatterns {
   metrics::TrayLayout trays;             // covering every component's layout
   std::vector<ComponentPattern> components;
   std::vector<double> tray_mass_fraction;  // the blend's pattern
-  // The widest bout at which every component meets the target (to-and-fro): the least of the
-  // components' first-band widths, and the component whose CV rises above the target there.
+  // The widest bout at which every component meets the target (to-and-fro): the widest whole-tray bout
+  // where all do, extended (linear in CV) to where the first of them crosses the target before the next
+  // tray; and that component (the limiting one). 0 when no bout suits every component (then the limiting
+  // component is the one whose lowest CV is highest).
   double widest_common_bout_m = 0.0;
   int limiting_component = -1;
   double bout_width_m = 0.0;             // where the CVs below are evaluated
@@ -73,8 +76,8 @@ struct BlendPatterns {
 };
 
 // Predicts each component of `blend` (its rows in the predictor's table) at `request` (whose material is
-// ignored) and evaluates the blend at request.bout_width_m, or, when that is 0, at widest_common_bout_m
-// (the blend total's working width when no common bout exists). Throws std::invalid_argument when a
+// ignored) and evaluates the blend at request.bout_width_m, or, when that is 0, at the widest whole-tray
+// bout within widest_common_bout_m (the blend total's working width when no common bout exists). Throws std::invalid_argument when a
 // component's row is not in the table.
 BlendPatterns blend_patterns(predict::Predictor& predictor, const tables::Blend& blend,
                              const predict::PredictionRequest& request);

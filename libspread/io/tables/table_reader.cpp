@@ -218,7 +218,8 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
   }
   require_tables(db, version);
   // The pool's memory given at construction: a vector's allocator does not follow an assignment.
-  TableContents contents{.machine = {},
+  TableContents contents{.format_version = static_cast<std::int32_t>(version),
+                         .machine = {},
                          .materials = {},
                          .runs = {},
                          .landing_data = {},

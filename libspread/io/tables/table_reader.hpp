@@ -15,6 +15,7 @@
 namespace spread::tables {
 
 struct TableContents {
+  std::int32_t format_version = kFormatVersion;  // the file's user_version (kOldestReadableVersion..kFormatVersion)
   Machine machine;
   std::vector<Material> materials;   // sorted by name
   std::vector<Run> runs;             // sorted by (material, rpm)
