@@ -69,13 +69,13 @@ struct BuiltTable {
   tables::TableContents contents;
 };
 
-void build(const std::string& scene_text, BuiltTable& out) {
-  const scene::Scene scene = scene::parse_scene(scene_text, "blend_test.toml");
+void build(const scene::Scene& scene, BuiltTable& out) {
   lookup::BuildOptions options;
   options.output_path = out.file.path();
   lookup::build_tables(scene, options);
   out.contents = tables::read_table_file(out.file.path());
 }
+void build(const std::string& scene_text, BuiltTable& out) { build(scene::parse_scene(scene_text, "blend_test.toml"), out); }
 
 predict::PredictionRequest request_at(double rpm, double bout_width_m = 0.0) {
   predict::PredictionRequest r;
@@ -241,12 +241,7 @@ MeanAndSe landing_reach(predict::Predictor& predictor, const std::string& materi
 // agree with the other's and with the single product's row, within 4 standard errors.
 TEST(BlendPatternsDem, TwoIdenticalComponentsSpreadAsTheProduct) {
   BuiltTable t;
-  const scene::Scene scene = tiny_scene(tiny_component("u1", 1257, 0.4, 0.5) + tiny_component("u2", 1257, 0.4, 0.5),
-                                        "[\"blend\", \"Urea\"]", 0.03);
-  lookup::BuildOptions options;
-  options.output_path = t.file.path();
-  lookup::build_tables(scene, options);
-  t.contents = tables::read_table_file(t.file.path());
+  build(tiny_scene(tiny_component("u1", 1257, 0.4, 0.5) + tiny_component("u2", 1257, 0.4, 0.5), "[\"blend\", \"Urea\"]", 0.03), t);
   predict::Predictor predictor(t.contents);
   const MeanAndSe u1 = landing_reach(predictor, "blend / u1"), u2 = landing_reach(predictor, "blend / u2"),
                   product = landing_reach(predictor, "Urea");
@@ -264,12 +259,9 @@ TEST(BlendPatternsDem, TwoIdenticalComponentsSpreadAsTheProduct) {
 // single product's row does (mean launch speed within 4 standard errors).
 TEST(BlendPatternsDem, DiluteFeedComponentsLaunchAsTheSingleProducts) {
   BuiltTable t;
-  const scene::Scene scene = tiny_scene(tiny_component("Urea", 1257, 0.4, 0.5) + tiny_component("DAP", 1606, 0.6, 0.5),
-                                        "[\"blend\", \"Urea\", \"DAP\"]", 0.01);
-  lookup::BuildOptions options;
-  options.output_path = t.file.path();
-  lookup::build_tables(scene, options);
-  t.contents = tables::read_table_file(t.file.path());
+  build(tiny_scene(tiny_component("Urea", 1257, 0.4, 0.5) + tiny_component("DAP", 1606, 0.6, 0.5),
+                   "[\"blend\", \"Urea\", \"DAP\"]", 0.01),
+        t);
   for (const char* name : {"Urea", "DAP"}) {
     const MeanAndSe component = launch_speed(t.contents, std::string("blend / ") + name);
     const MeanAndSe product = launch_speed(t.contents, name);

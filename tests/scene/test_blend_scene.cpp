@@ -3,9 +3,12 @@
 // key; the components' values and fractions are the run's inputs, their nutrients are not.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
+#include <utility>
 
 #include "libspread/io/scene/scene.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace spread::scene {
 namespace {
@@ -34,13 +37,13 @@ mass_fraction = 0.35
 k2o_pct = 60
 )toml";
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "scene.toml");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
+// The error parsing the three-component blend with `from` replaced by `to` (once) gives ("" when none).
+std::string error_with(const std::string& from, const std::string& to, const std::string& before = "") {
+  std::string text = kThree;
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return spread::testing::error_of([&] { parse_scene(blend_scene(before + text), "scene.toml"); });
 }
 
 TEST(BlendScene, ComponentsFromProductsAndOwnDefinitions) {
@@ -63,38 +66,23 @@ TEST(BlendScene, ComponentsFromProductsAndOwnDefinitions) {
 }
 
 TEST(BlendScene, MistakesNameTheKey) {
-  std::string bad = kThree;
-  bad.replace(bad.find("mass_fraction = 0.3\n"), 20, "mass_fraction = 0.2\n");
-  EXPECT_NE(error_of(blend_scene(bad)).find("materials[0].components: the mass fractions must sum to 1"), std::string::npos)
-      << error_of(blend_scene(bad));
-  bad = kThree;
-  bad.replace(bad.find("mass_fraction = 0.3\n"), 20, "mass_fraction = -0.3\n");
-  EXPECT_NE(error_of(blend_scene(bad)).find("materials[0].components[0].mass_fraction: must be in (0, 1]"), std::string::npos)
-      << error_of(blend_scene(bad));
-  bad = kThree;
-  bad.replace(bad.find("k2o_pct = 60"), 12, "k2o_pct = 160");
-  EXPECT_NE(error_of(blend_scene(bad)).find("materials[0].components[2].k2o_pct: must be in [0, 100]"), std::string::npos)
-      << error_of(blend_scene(bad));
-  bad = kThree;
-  bad.replace(bad.find("mass_fraction = 0.35\nk2o"), 21, "k2o");
-  EXPECT_NE(error_of(blend_scene(bad)).find("materials[0].components[2].mass_fraction: missing"), std::string::npos)
-      << error_of(blend_scene(bad));
-  bad = kThree;
-  bad.replace(bad.find("density_kg_m3 = 1937"), 20, "density_kg_m3 = -1");
-  EXPECT_NE(error_of(blend_scene(bad)).find("materials[0].components[2].density_kg_m3"), std::string::npos)
-      << error_of(blend_scene(bad));
-  EXPECT_NE(error_of(blend_scene("density_kg_m3 = 1500\n" + kThree)).find("materials[0].density_kg_m3: a blend's quantities are its components'"),
+  const std::pair<std::array<std::string, 2>, std::string> cases[] = {
+      {{"mass_fraction = 0.3\n", "mass_fraction = 0.2\n"}, "materials[0].components: the mass fractions must sum to 1"},
+      {{"mass_fraction = 0.3\n", "mass_fraction = -0.3\n"}, "materials[0].components[0].mass_fraction: must be in (0, 1]"},
+      {{"k2o_pct = 60", "k2o_pct = 160"}, "materials[0].components[2].k2o_pct: must be in [0, 100]"},
+      {{"mass_fraction = 0.35\nk2o", "k2o"}, "materials[0].components[2].mass_fraction: missing"},
+      {{"density_kg_m3 = 1937", "density_kg_m3 = -1"}, "materials[0].components[2].density_kg_m3"},
+      {{"product = \"DAP, granular\"", "product = \"Urea, granular\""}, "components[1].name: component \"Urea, granular\" listed twice"},
+      {{"n_pct = 46\n", "n_pct = 46\ncolour = 1\n"}, "materials[0].components[0].colour: unknown key"},
+  };
+  for (const auto& [edit, expected] : cases) {
+    const std::string message = error_with(edit[0], edit[1]);
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+  EXPECT_NE(error_with("", "", "density_kg_m3 = 1500\n").find("materials[0].density_kg_m3: a blend's quantities are its components'"),
             std::string::npos);
-  EXPECT_NE(error_of(blend_scene("components = []\n")).find("materials[0].components: a blend needs at least one component"),
-            std::string::npos);
-  bad = kThree;
-  bad.replace(bad.find("product = \"DAP, granular\""), 25, "product = \"Urea, granular\"");
-  EXPECT_NE(error_of(blend_scene(bad)).find("components[1].name: component \"Urea, granular\" listed twice"), std::string::npos)
-      << error_of(blend_scene(bad));
-  bad = kThree;
-  bad.replace(bad.find("n_pct = 46\n"), 11, "n_pct = 46\ncolour = 1\n");
-  EXPECT_NE(error_of(blend_scene(bad)).find("materials[0].components[0].colour: unknown key"), std::string::npos)
-      << error_of(blend_scene(bad));
+  const std::string empty = spread::testing::error_of([] { parse_scene(blend_scene("components = []\n"), "scene.toml"); });
+  EXPECT_NE(empty.find("materials[0].components: a blend needs at least one component"), std::string::npos) << empty;
 }
 
 // A component's values and fraction change the run's inputs; its nutrients do not (they change no launch).
