@@ -97,8 +97,17 @@ std::string convergence_to_json(const std::vector<ConvergencePoint>& history) {
   return out.dump();
 }
 
-tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, double rpm,
-                    const DemRunOptions& options) {
+namespace {
+
+// The run of the (material, rpm) and, per launch sample, the index of the material its granule was (a
+// blend's component; 0 for a single material).
+struct DemLaunches {
+  tables::Run run;
+  std::vector<int> material_of_sample;
+};
+
+DemLaunches dem_launches(const scene::Scene& scene, const scene::Material& material, double rpm,
+                         const DemRunOptions& options) {
   scene::Scene at_rpm = scene;
   at_rpm.machine.rpm = rpm;
   dem::SimulationConfig cfg = dem::config_from_scene(at_rpm, material.name);
@@ -157,7 +166,7 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
       // The answer's uncertainty, when the scene asks for it: R̄ and ξ settle long before the working
       // width does where CV(W) meets the target at a shallow angle.
       bool precise = true;
-      if (sweep.working_width_ci_m > 0.0) {
+      if (sweep.working_width_ci_m > 0.0 && !material.is_blend()) {
         tables::Run so_far = run_of(engine.launches());
         const double ci_m = row_working_width_ci_m(scene::table_machine(scene.machine), material, so_far);
         history.back().working_width_ci_m = ci_m;
@@ -218,7 +227,56 @@ tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, 
   if (sweep.working_width_ci_m > 0.0) stats["working_width_ci_target_m"] = sweep.working_width_ci_m;
   run.stats_json = stats.dump();
   run.convergence_json = convergence_to_json(history);
-  return run;
+  DemLaunches out{std::move(run), {}};
+  out.material_of_sample.reserve(launches.size());
+  for (const dem::LaunchRecord& l : launches) out.material_of_sample.push_back(l.material);
+  return out;
+}
+
+}  // namespace
+
+tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, double rpm,
+                    const DemRunOptions& options) {
+  if (material.is_blend()) throw std::invalid_argument("dem_run: " + material.name + " is a blend (dem_blend_runs)");
+  return dem_launches(scene, material, rpm, options).run;
+}
+
+std::vector<tables::Run> dem_blend_runs(const scene::Scene& scene, const scene::Material& blend, double rpm,
+                                        const DemRunOptions& options) {
+  const DemLaunches mixed = dem_launches(scene, blend, rpm, options);
+  return split_blend_run(mixed.run, mixed.material_of_sample, blend);
+}
+
+std::vector<tables::Run> split_blend_run(const tables::Run& mixed, std::span<const int> component_of_sample,
+                                         const scene::Material& blend) {
+  if (component_of_sample.size() != mixed.samples.size())
+    throw std::invalid_argument("split_blend_run: one component index per launch sample is needed");
+  std::vector<tables::Run> runs(blend.components.size());
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    tables::Run& r = runs[k];
+    r = mixed;
+    r.samples.clear();
+    r.material = tables::blend_component_name(blend.name, blend.components[k].material.name);
+  }
+  for (std::size_t i = 0; i < mixed.samples.size(); ++i) {
+    const int k = component_of_sample[i];
+    if (k < 0 || static_cast<std::size_t>(k) >= runs.size())
+      throw std::invalid_argument("split_blend_run: launch " + std::to_string(i) + " has no component of the blend");
+    runs[static_cast<std::size_t>(k)].samples.push_back(mixed.samples[i]);
+  }
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    // The mixed stream's statistics stay (the run's convergence is the stream's); this row's own are named.
+    nlohmann::json stats = nlohmann::json::parse(runs[k].stats_json);
+    stats["blend"] = blend.name;
+    stats["blend_component"] = k;
+    stats["component_launched"] = runs[k].samples.size();
+    runs[k].stats_json = stats.dump();
+    if (runs[k].samples.empty()) {
+      throw std::runtime_error(mixed.material + " @ " + std::to_string(mixed.rpm) + " rpm: no granule of component " +
+                               blend.components[k].material.name + " launched (raise numerics.duration_s or sweep.samples_per_run)");
+    }
+  }
+  return runs;
 }
 
 }  // namespace spread::lookup

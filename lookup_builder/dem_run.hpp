@@ -4,6 +4,7 @@
 // convergence study of seed Fig. 8 made into a stopping rule — or a particle/time budget is reached.
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,17 @@ const char* to_string(DemStop stop);
 // no granule launched within the budget.
 tables::Run dem_run(const scene::Scene& scene, const scene::Material& material, double rpm,
                     const DemRunOptions& options = {});
+
+// A blend's DEM run at `rpm`: the mixed stream fed onto the disc (the components meet there), stopped by the
+// same rules as dem_run on the stream's R̄ and ξ (the working-width rule is a single material's: not
+// applied), then split by component: one run per component, named blend_component_name(), with that
+// component's launches in launch order and the stream's provenance (its stats_json adds "blend",
+// "blend_component" and "component_launched"). std::runtime_error when a component launched nothing.
+std::vector<tables::Run> dem_blend_runs(const scene::Scene& scene, const scene::Material& blend, double rpm,
+                                        const DemRunOptions& options = {});
+// The split itself: sample i of `mixed` goes to component component_of_sample[i]'s run.
+std::vector<tables::Run> split_blend_run(const tables::Run& mixed, std::span<const int> component_of_sample,
+                                         const scene::Material& blend);
 
 // convergence history as stored in Run::convergence_json (a JSON array of objects).
 std::string convergence_to_json(const std::vector<ConvergencePoint>& history);

@@ -53,7 +53,7 @@ void run_worker(const scene::Scene& scene, const RunSource& source) {
     int tag = kResult;
     const auto start = Clock::now();
     try {
-      message = serialise_run(source(*job.material, job.rpm));
+      message = serialise_runs(source(*job.material, job.rpm));
     } catch (const std::exception& e) {
       const std::string what = e.what();
       message.assign(what.begin(), what.end());
@@ -98,7 +98,7 @@ BuildSummary build_tables_mpi(const scene::Scene& scene, const BuildOptions& opt
   // Rank 0's own share, on a thread that never calls MPI (MPI_THREAD_FUNNELED is enough).
   struct Done {
     const SweepJob* job;
-    std::optional<tables::Run> run;
+    std::optional<std::vector<tables::Run>> run;
     std::string error;
     double seconds;
   };
@@ -141,7 +141,7 @@ BuildSummary build_tables_mpi(const scene::Scene& scene, const BuildOptions& opt
     send_job(worker, -1);
     return false;
   };
-  auto record = [&](const SweepJob& job, const std::optional<tables::Run>& run, const std::string& error,
+  auto record = [&](const SweepJob& job, const std::optional<std::vector<tables::Run>>& run, const std::string& error,
                     double seconds) {
     if (!run) {
       if (failure.empty()) failure = job.label() + ": " + error;
@@ -186,11 +186,11 @@ BuildSummary build_tables_mpi(const scene::Scene& scene, const BuildOptions& opt
       if (bytes.size() >= sizeof seconds) std::memcpy(&seconds, bytes.data(), sizeof seconds);
       const std::span<const std::uint8_t> body =
           std::span<const std::uint8_t>(bytes).subspan(std::min(bytes.size(), sizeof seconds));
-      std::optional<tables::Run> run;
+      std::optional<std::vector<tables::Run>> run;
       std::string error;
       if (status.MPI_TAG == kResult) {
         try {
-          run = deserialise_run(body);
+          run = deserialise_runs(body);
         } catch (const std::exception& e) {
           error = std::string("from rank ") + std::to_string(worker) + ": " + e.what();
         }

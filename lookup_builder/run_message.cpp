@@ -128,4 +128,21 @@ tables::Run deserialise_run(std::span<const std::uint8_t> bytes) {
   return run;
 }
 
+// A job's runs: their count, then each serialised run as a length and its bytes.
+std::vector<std::uint8_t> serialise_runs(const std::vector<tables::Run>& runs) {
+  Writer w;
+  w.u64(runs.size());
+  for (const tables::Run& run : runs) w.raw(serialise_run(run));
+  return std::move(w.bytes);
+}
+
+std::vector<tables::Run> deserialise_runs(std::span<const std::uint8_t> bytes) {
+  Reader r(bytes);
+  const std::uint64_t count = r.u64();
+  std::vector<tables::Run> runs;
+  for (std::uint64_t k = 0; k < count; ++k) runs.push_back(deserialise_run(r.raw()));
+  r.finish();
+  return runs;
+}
+
 }  // namespace spread::lookup

@@ -16,4 +16,9 @@ std::vector<std::uint8_t> serialise_run(const tables::Run& run);
 // Throws std::invalid_argument for a buffer that is not a whole serialised run.
 tables::Run deserialise_run(std::span<const std::uint8_t> bytes);
 
+// The runs of one job (one material's run, or a blend's run per component): their count (u64), then
+// each serialised run as u64 length + bytes. Throws std::invalid_argument as deserialise_run.
+std::vector<std::uint8_t> serialise_runs(const std::vector<tables::Run>& runs);
+std::vector<tables::Run> deserialise_runs(std::span<const std::uint8_t> bytes);
+
 }  // namespace spread::lookup

@@ -38,15 +38,30 @@ tables::Run analytic_run(const scene::Scene& scene, const scene::Material& mater
   return run;
 }
 
+std::vector<tables::Run> analytic_blend_runs(const scene::Scene& scene, const scene::Material& blend, double rpm) {
+  std::vector<tables::Run> runs;
+  for (const tables::BlendComponent& component : blend.components) {
+    tables::Run run = analytic_run(scene, component.material, rpm);
+    run.material = tables::blend_component_name(blend.name, component.material.name);
+    run.inputs_hash = scene.run_inputs_hash(blend, rpm);
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
 RunSource make_run_source(const scene::Scene& scene, int threads_per_run) {
   switch (scene.sweep.source) {
     case scene::LaunchSource::kAnalytic:
-      return [&scene](const scene::Material& material, double rpm) { return analytic_run(scene, material, rpm); };
+      return [&scene](const scene::Material& material, double rpm) {
+        if (material.is_blend()) return analytic_blend_runs(scene, material, rpm);
+        return std::vector<tables::Run>{analytic_run(scene, material, rpm)};
+      };
     case scene::LaunchSource::kDem: {
       DemRunOptions options;
       options.threads = threads_per_run;
       return [&scene, options](const scene::Material& material, double rpm) {
-        return dem_run(scene, material, rpm, options);
+        if (material.is_blend()) return dem_blend_runs(scene, material, rpm, options);
+        return std::vector<tables::Run>{dem_run(scene, material, rpm, options)};
       };
     }
   }

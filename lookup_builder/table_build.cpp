@@ -109,6 +109,57 @@ void material_differences(const tables::Material& file, const tables::Material& 
   }
 }
 
+// The `materials` rows of the sweep: each material's own, each blend's components' (named
+// blend_component_name). A blend has no row of its own: `blend_components` holds it.
+std::vector<tables::Material> material_rows(const scene::Scene& scene) {
+  std::vector<tables::Material> rows;
+  for (const scene::Material* m : scene.sweep_materials()) {
+    if (!m->is_blend()) rows.push_back(*m);
+    for (const tables::BlendComponent& c : m->components) {
+      rows.push_back(c.material);
+      rows.back().name = tables::blend_component_name(m->name, c.material.name);
+    }
+  }
+  return rows;
+}
+
+tables::Blend blend_row(const scene::Material& blend) {
+  tables::Blend row{blend.name, {}};
+  for (const tables::BlendComponent& c : blend.components) {
+    row.components.push_back({tables::blend_component_name(blend.name, c.material.name), c.mass_fraction, c.n_pct,
+                              c.p2o5_pct, c.k2o_pct});
+  }
+  return row;
+}
+
+// Whether the file holds the job's runs: its material's, or every component row of its blend.
+bool has_job_runs(tables::TableWriter& writer, const SweepJob& job) {
+  if (!job.material->is_blend()) return writer.has_run(job.material->name, job.rpm);
+  for (const tables::BlendComponent& c : job.material->components) {
+    if (!writer.has_run(tables::blend_component_name(job.material->name, c.material.name), job.rpm)) return false;
+  }
+  return true;
+}
+
+// The scene's material a table row stands for, with the row's values: the material itself, or, for a
+// blend component's row, the blend (whose inputs its runs carry) and the component's values.
+struct RowOwner {
+  const scene::Material* owner = nullptr;  // nullptr: a row of another scene
+  tables::Material values;
+};
+RowOwner row_owner(const scene::Scene& scene, const std::string& row) {
+  if (const scene::Material* m = scene.find_material(row); m != nullptr && !m->is_blend()) return {m, *m};
+  for (const scene::Material& m : scene.materials) {
+    for (const tables::BlendComponent& c : m.components) {
+      if (tables::blend_component_name(m.name, c.material.name) != row) continue;
+      RowOwner owner{&m, c.material};
+      owner.values.name = row;
+      return owner;
+    }
+  }
+  return {};
+}
+
 // Everything in the file that this scene would have written differently: the machine, a material that
 // has runs, or a run (of a material the scene describes) whose source or inputs differ. Runs of
 // materials the scene does not describe are other scenes' rows of the same machine and stay.
@@ -118,13 +169,13 @@ std::vector<std::string> table_conflicts(tables::TableWriter& writer, const scen
   if (machine) machine_differences(*machine, scene::table_machine(scene.machine), out);
   const std::vector<tables::TableWriter::StoredRun> runs = writer.stored_runs();
   for (const tables::Material& stored : writer.stored_materials()) {
-    const scene::Material* mine = scene.find_material(stored.name);
+    const RowOwner mine = row_owner(scene, stored.name);
     const bool has_runs = std::any_of(runs.begin(), runs.end(), [&](const auto& r) { return r.material == stored.name; });
-    if (mine != nullptr && has_runs) material_differences(stored, *mine, out);
+    if (mine.owner != nullptr && has_runs) material_differences(stored, mine.values, out);
   }
   const std::string source = scene::to_string(scene.sweep.source);
   for (const auto& run : runs) {
-    const scene::Material* mine = scene.find_material(run.material);
+    const scene::Material* mine = row_owner(scene, run.material).owner;
     if (mine == nullptr) continue;
     const std::string label = "run " + run.material + " @ " + format_rpm(run.rpm) + " rpm";
     if (run.source != source) {
@@ -262,11 +313,12 @@ SweepWriter::SweepWriter(const scene::Scene& scene, const BuildOptions& options)
     writer.write_meta(tables::kDropPointTurnValidatedKey, validated_turn);
     impl_->changed = true;
   }
-  std::vector<tables::Material> rows;
-  for (const scene::Material* m : scene.sweep_materials()) rows.push_back(*m);
-  writer.write_materials(rows);
+  writer.write_materials(material_rows(scene));
+  for (const scene::Material* m : scene.sweep_materials()) {
+    if (m->is_blend()) writer.write_blend(blend_row(*m));
+  }
   for (const SweepJob& job : all) {
-    if (!options.rebuild && writer.has_run(job.material->name, job.rpm)) {
+    if (!options.rebuild && has_job_runs(writer, job)) {
       ++impl_->summary.runs_skipped;
       impl_->progress.skipped(job.label());
       continue;
@@ -281,19 +333,30 @@ SweepWriter::~SweepWriter() = default;
 
 void SweepWriter::started(const SweepJob& job) { impl_->progress.started(job.label()); }
 
-void SweepWriter::finished(const SweepJob& job, const tables::Run& run, const RunCost& cost) {
-  try {
-    impl_->writer->write_run(run, impl_->rebuild);  // one transaction: a kill loses at most the run in progress
-  } catch (const tables::RunExistsError&) {
-    // Written meanwhile by an earlier, interrupted build of the same inputs: keep the stored run.
+void SweepWriter::finished(const SweepJob& job, const std::vector<tables::Run>& runs, const RunCost& cost) {
+  std::size_t samples = 0;
+  int written = 0;
+  // One transaction per run: a kill loses at most the run in progress (of a blend, the job is redone
+  // while any of its component rows is missing, and the rows already stored are kept).
+  for (const tables::Run& run : runs) {
+    try {
+      impl_->writer->write_run(run, impl_->rebuild);
+    } catch (const tables::RunExistsError&) {
+      continue;  // written meanwhile by an earlier, interrupted build of the same inputs: keep the stored run
+    }
+    samples += run.samples.size();
+    ++written;
+  }
+  ++impl_->pending_done;
+  if (written == 0) {
     ++impl_->summary.runs_skipped;
-    ++impl_->pending_done;
     impl_->progress.skipped(job.label());
     return;
   }
-  ++impl_->summary.runs_written;
-  ++impl_->pending_done;
-  impl_->progress.finished(job.label(), run_detail(run), cost.wall_s, cost.cpu_s, cpu_s_per_1000_launches(cost, run.samples.size()));
+  impl_->summary.runs_written += written;
+  const std::string detail = runs.size() == 1 ? run_detail(runs.front())
+                                              : std::to_string(runs.size()) + " component rows, " + run_detail(runs.front());
+  impl_->progress.finished(job.label(), detail, cost.wall_s, cost.cpu_s, cpu_s_per_1000_launches(cost, samples));
 }
 
 void SweepWriter::failed(const SweepJob& job, const std::string& message) {
@@ -354,7 +417,7 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
     for (const SweepJob& job : pending) {
       writer.started(job);
       const RunTimer timer(cpu_clock);
-      tables::Run run;
+      std::vector<tables::Run> run;
       try {
         run = source(*job.material, job.rpm);
       } catch (const std::exception& e) {
@@ -372,7 +435,7 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
   // already finished are still written.
   struct Done {
     const SweepJob* job;
-    tables::Run run;
+    std::vector<tables::Run> run;
     RunCost cost;
   };
   std::mutex mutex;
@@ -390,7 +453,7 @@ BuildSummary build_tables(const scene::Scene& scene, const BuildOptions& options
         writer.started(pending[i]);
         const RunTimer timer(cpu_clock);
         try {
-          tables::Run run = source(*pending[i].material, pending[i].rpm);
+          std::vector<tables::Run> run = source(*pending[i].material, pending[i].rpm);
           const RunCost cost = timer.stop();
           std::lock_guard lock(mutex);
           queue.push_back({&pending[i], std::move(run), cost});

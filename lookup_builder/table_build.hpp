@@ -61,7 +61,7 @@ class SweepWriter {
   ~SweepWriter();
   const std::vector<SweepJob>& pending() const { return pending_; }
   void started(const SweepJob& job);
-  void finished(const SweepJob& job, const tables::Run& run, const RunCost& cost);
+  void finished(const SweepJob& job, const std::vector<tables::Run>& runs, const RunCost& cost);
   void failed(const SweepJob& job, const std::string& message);
   BuildSummary finish();
 

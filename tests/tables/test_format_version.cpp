@@ -21,6 +21,7 @@ namespace {
 // (table_format.hpp), say what changed in docs/table-format.md, and add the new version's line here.
 const std::vector<std::pair<std::int32_t, std::string>> kVersionFingerprints = {
     {2, "da596ac83ac40dae"},
+    {3, "71da013bf23cf39c"},
 };
 
 // CRC-64/XZ of the schema's statements (white space collapsed: layout changes nothing) and the record layout.

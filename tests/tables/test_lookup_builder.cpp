@@ -249,9 +249,9 @@ TEST(LookupBuilderConflicts, ARunAlreadyWrittenIsSkippedNotFatal) {
   SweepWriter writer(scene, options);
   ASSERT_EQ(writer.pending().size(), 1u);
   const SweepJob& job = writer.pending().front();
-  const tables::Run run = analytic_run(scene, *job.material, job.rpm);
-  writer.finished(job, run, RunCost{});
-  EXPECT_NO_THROW(writer.finished(job, run, RunCost{}));
+  const std::vector<tables::Run> runs{analytic_run(scene, *job.material, job.rpm)};
+  writer.finished(job, runs, RunCost{});
+  EXPECT_NO_THROW(writer.finished(job, runs, RunCost{}));
   const BuildSummary summary = writer.finish();
   EXPECT_EQ(summary.runs_written, 1);
   EXPECT_EQ(summary.runs_skipped, 1);

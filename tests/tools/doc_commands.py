@@ -37,10 +37,12 @@ def blocks_outside_walkthrough(text):
     walkthrough = re.search(r"^## Walkthrough.*?$(.*?)^## ", text, re.S | re.M)
     skip = (walkthrough.start(), walkthrough.end()) if walkthrough else (0, 0)
     out = []
-    for match in re.finditer(r"^```\n(.*?)^```", text, re.S | re.M):
-        if skip[0] <= match.start() < skip[1]:
+    # Every fence with its language tag (```sh, ```toml, ...), so that a tagged block's closing fence is
+    # never taken for the opening of the next; only untagged blocks are commands and their output.
+    for match in re.finditer(r"^```([a-z]*)\n(.*?)^```", text, re.S | re.M):
+        if match.group(1) or skip[0] <= match.start() < skip[1]:
             continue
-        out.append((match.group(1), text[:match.start()]))
+        out.append((match.group(2), text[:match.start()]))
     return out
 
 

@@ -24,6 +24,7 @@
 #include "libspread/analysis/plot/report_pdf.hpp"
 #include "libspread/analysis/predict/setting_chart.hpp"
 #include "libspread/core/strict_number.hpp"
+#include "tools/spread/blend_output.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/next_steps.hpp"
@@ -181,6 +182,50 @@ std::string calibrated_note(const std::string& name) {
          "the uncalibrated material; chart the calibrated one for the settings to use";
 }
 
+// A blend's chart: at each disc speed of its rows (the table's drop point and height), the widest bout at
+// which every component meets the target, the component that limits it, and there the blend's CV, each
+// nutrient's and the separation index (libspread/analysis/blends).
+void run_blend_chart(const Options& o, const spread::tables::Blend& blend, double cv_target, spread::cli::TableSession& session) {
+  if (!o.report.path.empty() || !o.scales.empty())
+    throw BadInput("--material " + o.material + " is a blend: --report and --scales chart a single material");
+  pr::Predictor& predictor = session.predictor();
+  const std::optional<std::size_t> first = predictor.find_material(blend.components.front().material);
+  if (!first) throw BadInput("blend " + blend.name + ": the table has no row \"" + blend.components.front().material + "\"");
+  const spread::cli::WindXY wind = spread::cli::parse_wind(o.wind);
+  json rows = json::array();
+  if (!o.json) std::cout << "blend '" << blend.name << "' of " << o.tables << format(": at CV <= %g %%, per disc speed of its rows", 100.0 * cv_target) << "\n";
+  for (const double rpm : predictor.row_rpm(*first)) {
+    pr::PredictionRequest request;
+    request.material = blend.components.front().material;  // each component's own, in blend_patterns
+    request.rpm = rpm;
+    request.disc_height_m = o.height_m;
+    request.wind_x_m_s = wind.x_m_s;
+    request.wind_y_m_s = wind.y_m_s;
+    request.cv_target = cv_target;
+    request.tray_width_m = o.tray_width_m;
+    const spread::blends::BlendPatterns b = spread::blends::blend_patterns(predictor, blend, request);
+    if (b.status != pr::PredictStatus::kOk) {
+      if (!o.json) std::cout << format("  %.0f rpm: ", rpm) << pr::to_string(b.status) << "\n";
+      rows.push_back({{"rpm", rpm}, {"status", pr::to_string(b.status)}});
+      continue;
+    }
+    if (o.json) {
+      json row = spread::cli::blend_json(b, cv_target);
+      row["rpm"] = rpm;
+      row.erase("tray_mass_fraction");
+      for (json& c : row["components"]) c.erase("tray_mass_fraction");
+      rows.push_back(row);
+      continue;
+    }
+    std::cout << format("  %.0f rpm: widest bout ", rpm) << spread::cli::widest_common_bout_text(b, cv_target)
+              << format("; at the %.2f m bout", b.bout_width_m) << format(" blend CV %.1f %%", 100.0 * b.cv_to_and_fro);
+    for (const spread::blends::NutrientPattern& n : b.nutrients)
+      if (n.carried) std::cout << ", " << n.name << format(" %.1f %%", 100.0 * n.cv_to_and_fro);
+    std::cout << format(", separation index %.3f", b.separation_index) << "\n";
+  }
+  if (o.json) std::cout << json{{"material", o.material}, {"blend_chart", rows}}.dump(2) << "\n";
+}
+
 void run(const Options& o, int& exit_code) {
   const double cv_target = spread::calibration::cv_target_from_percent(o.cv_target_percent, "--cv-target");
   if (!o.scales.empty()) drop_point_scale() = spread::calibration::read_machine_scales(o.scales).drop_point;
@@ -189,6 +234,10 @@ void run(const Options& o, int& exit_code) {
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
 
   spread::cli::TableSession session(o.tables);
+  if (const spread::tables::Blend* blend = session.contents().find_blend(o.material)) {
+    run_blend_chart(o, *blend, cv_target, session);
+    return;
+  }
   pr::Predictor& predictor = session.predictor();
   if (!predictor.find_material(o.material)) {
     std::string known;

@@ -68,7 +68,7 @@ spread::size_classes::LaunchSizes material_sizes(const spread::tables::TableCont
 json to_json(const spread::tables::TableContents& c, const std::string& path) {
   json out;
   out["file"] = path;
-  out["format_version"] = spread::tables::kFormatVersion;
+  out["format_version"] = c.format_version;
   out["record_layout"] = spread::tables::kSampleLayout;
   const auto& m = c.machine;
   out["machine"] = {{"name", m.name},
@@ -120,7 +120,7 @@ json to_json(const spread::tables::TableContents& c, const std::string& path) {
 
 void print_text(const spread::tables::TableContents& c, const std::string& path) {
   const auto& m = c.machine;
-  std::cout << path << ": launch table, format version " << spread::tables::kFormatVersion << "\n"
+  std::cout << path << ": launch table, format version " << c.format_version << "\n"
             << "machine " << m.name << ": R " << m.disc_radius_m << " m, height " << m.disc_height_m << " m, "
             << m.disc_count << " disc(s) " << m.disc_spacing_m << " m apart, " << m.vane_count << " vanes, cone "
             << m.cone_angle_rad << " rad, rotation sense " << (m.rotation_sense > 0 ? "+1" : "-1") << "\n";

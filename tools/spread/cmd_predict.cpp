@@ -26,6 +26,7 @@
 #include "tools/spread/prediction_args.hpp"
 #include "tools/spread/report_args.hpp"
 #include "tools/spread/setting_guidance.hpp"
+#include "tools/spread/blend_output.hpp"
 #include "tools/spread/size_class_output.hpp"
 #include "tools/spread/table_session.hpp"
 #include "tools/spread/verdicts.hpp"
@@ -365,6 +366,28 @@ std::optional<spread::size_classes::SizeClassPatterns> size_classes_for(const Op
   return spread::size_classes::size_class_patterns(session.contents(), request, boundaries);
 }
 
+// A blend's name: each component predicted from its row at the request, the blend evaluated at --width
+// (or at the widest bout every component meets the target).
+void run_blend(const Options& o, const spread::tables::Blend& blend, spread::cli::TableSession& session) {
+  if (o.compensate_wind || o.size_classes || !o.report.path.empty() || o.stability > 0 || o.repeat > 0)
+    throw BadInput("--material " + o.material + " is a blend: --compensate-wind, --size-classes, --report, --stability "
+                   "and --repeat are for a single material (predict a component by its row, \"" +
+                   blend.components.front().material + "\")");
+  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+  request.bout_width_m = o.bout_width_m;
+  request.kernel_half_width_m = o.kernel_half_width_m;
+  request.effects = o.effects == "table" ? spread::predict::kTableEffects : parse_effects(o.effects);
+  request.fly_outside_domain = o.fly_outside_domain;
+  const spread::blends::BlendPatterns b = spread::blends::blend_patterns(session.predictor(), blend, request);
+  if (b.status != spread::predict::PredictStatus::kOk)
+    throw BadInput("blend " + blend.name + ": " + spread::predict::to_string(b.status));
+  if (o.json) {
+    std::cout << json{{"material", o.material}, {"rpm", o.rpm}, {"blend", spread::cli::blend_json(b, request.cv_target)}}.dump(2) << "\n";
+    return;
+  }
+  spread::cli::print_blend(b, request.cv_target);
+}
+
 void run(const Options& o, int& exit_code) {
   const std::string report_problem = spread::cli::check_report_args(o.report);
   const std::int64_t report_time_s = o.report.path.empty() ? 0 : spread::cli::report_time_s();
@@ -393,6 +416,10 @@ void run(const Options& o, int& exit_code) {
 
   // The table read once; the C API's handle over it (the guidance and --stability use the same contents).
   spread::cli::TableSession session(o.tables);
+  if (const spread::tables::Blend* blend = session.contents().find_blend(o.material)) {
+    run_blend(o, *blend, session);
+    return;
+  }
   spread_tables* const tables = session.capi();
 
   size_t capacity = 0;

@@ -35,8 +35,8 @@ std::vector<Material> read_product_library(const std::string& path) {
   return products;
 }
 
-std::string product_note(std::size_t material_index, const Material& product, const std::string& file) {
-  std::string note = "# materials[" + std::to_string(material_index) + "] = product \"" + product.name + "\" of " + file + ":";
+std::string product_note(const std::string& entry, const Material& product, const std::string& file) {
+  std::string note = "# " + entry + " = product \"" + product.name + "\" of " + file + ":";
   for (const tables::MaterialQuantity& q : tables::kMaterialQuantities)
     note += " " + std::string(q.name) + " = " + format_number(product.*q.member) + ";";
   for (const tables::MaterialList& list : tables::kMaterialSieveLists) {

@@ -18,7 +18,8 @@ std::string product_library_path(const std::string& scene_source, const std::str
 // takes the product).
 std::vector<Material> read_product_library(const std::string& path);
 
-// "# materials[i] = product "NAME" of FILE: key = value, …": what the product gave, for the provenance.
-std::string product_note(std::size_t material_index, const Material& product, const std::string& file);
+// "# ENTRY = product "NAME" of FILE: key = value, …": what the product gave, for the provenance. ENTRY is
+// the scene entry that took it: "materials[i]", or "materials[i].components[j]" for a blend's component.
+std::string product_note(const std::string& entry, const Material& product, const std::string& file);
 
 }  // namespace spread::scene

@@ -84,22 +84,39 @@ void add_inputs(CanonicalText& t, const char* section, const Owner& owner, const
 
 }  // namespace
 
+namespace {
+// One material's name, quantities and sieve analysis under `prefix`. A lognormal material has no sieve
+// lines, so its text (and every table built before sieve feeds existed) is unchanged.
+void add_material(CanonicalText& t, const std::string& prefix, const Material& material) {
+  t.add((prefix + "name").c_str(), material.name);
+  for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
+    t.add((prefix + std::string(q.name)).c_str(), material.*q.member);
+  }
+  for (const tables::MaterialList& list : tables::kMaterialSieveLists) {
+    const std::vector<double>& values = material.sieve.*list.member;
+    for (std::size_t i = 0; i < values.size(); ++i)
+      t.add((prefix + std::string(list.name) + "[" + std::to_string(i) + "]").c_str(), values[i]);
+  }
+}
+}  // namespace
+
 std::string Scene::run_inputs_text(const Material& material, double rpm) const {
   // The key rows say which values are a run's inputs (scene_keys.hpp, Key::run_input); the materials'
   // quantities and the effects are inputs of every run.
   CanonicalText t;
   add_inputs(t, "machine", machine, kMachineKeys, RunInput::kAlways);
   add_inputs(t, "inlet", inlet, kInletKeys, RunInput::kAlways);
-  t.add("material.name", material.name);
-  for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
-    t.add(("material." + std::string(q.name)).c_str(), material.*q.member);
-  }
-  // A sieve material's analysis, element by element; none for a lognormal one, whose text (and so every
-  // table built before sieve feeds existed) is unchanged.
-  for (const tables::MaterialList& list : tables::kMaterialSieveLists) {
-    const std::vector<double>& values = material.sieve.*list.member;
-    for (std::size_t i = 0; i < values.size(); ++i)
-      t.add(("material." + std::string(list.name) + "[" + std::to_string(i) + "]").c_str(), values[i]);
+  if (!material.is_blend()) {
+    add_material(t, "material.", material);
+  } else {
+    // A blend's run: every component's quantities and mass fraction (they meet on the disc), not its
+    // nutrient contents (which change no launch).
+    t.add("material.name", material.name);
+    for (std::size_t j = 0; j < material.components.size(); ++j) {
+      const std::string prefix = "material.components[" + std::to_string(j) + "].";
+      add_material(t, prefix, material.components[j].material);
+      t.add((prefix + "mass_fraction").c_str(), material.components[j].mass_fraction);
+    }
   }
   t.add("rpm", rpm);
   add_inputs(t, "air", air, kAirKeys, RunInput::kAlways);

@@ -31,34 +31,86 @@ void read_section(const TomlDocument& doc, const std::string& name, Owner& owner
   s.finish();
 }
 
-// Each entry from the schema's defaults, or from the library product it names (`product`), its own keys
-// replacing the product's values.
-void read_materials(const TomlDocument& doc, Scene& scene) {
+// The product library a scene names, read when an entry first takes a product from it.
+struct LibraryReader {
+  Scene& scene;
   std::vector<Material> library;
-  std::string library_path;
-  for (TomlSection& s : doc.array_of_tables("materials")) {
+  std::string path;
+
+  // The product the entry names (`product`), or nullptr when it names none; its note goes into the
+  // provenance under `entry`.
+  const Material* product_of(TomlSection& s, const std::string& entry) {
     const std::string key(kMaterialProductKey);
     const std::optional<std::string> product = s.string(key);
-    const Material* base = nullptr;
-    if (product) {
-      if (scene.products.file.empty()) s.fail(key, "names a product, but the scene names no library ([products] file)");
-      if (library.empty()) {
-        library_path = product_library_path(scene.source_name, scene.products.file);
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(library_path, ec)) {
-          throw SceneError(scene.source_name + ": products.file: no such library file: " + library_path +
-                           " (relative paths are relative to the scene file)");
-        }
-        library = read_product_library(library_path);
+    if (!product) return nullptr;
+    if (scene.products.file.empty()) s.fail(key, "names a product, but the scene names no library ([products] file)");
+    if (library.empty()) {
+      path = product_library_path(scene.source_name, scene.products.file);
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec)) {
+        throw SceneError(scene.source_name + ": products.file: no such library file: " + path +
+                         " (relative paths are relative to the scene file)");
       }
-      for (const Material& p : library) base = p.name == *product ? &p : base;
-      if (base == nullptr) {
-        std::string known;
-        for (const Material& p : library) known += (known.empty() ? "\"" : ", \"") + p.name + "\"";
-        s.fail(key, "no product \"" + *product + "\" in " + library_path + " (products: " + known + ")");
-      }
-      scene.product_notes.push_back(product_note(scene.materials.size(), *base, scene.products.file));
+      library = read_product_library(path);
     }
+    const Material* base = nullptr;
+    for (const Material& p : library) base = p.name == *product ? &p : base;
+    if (base == nullptr) {
+      std::string known;
+      for (const Material& p : library) known += (known.empty() ? "\"" : ", \"") + p.name + "\"";
+      s.fail(key, "no product \"" + *product + "\" in " + path + " (products: " + known + ")");
+    }
+    scene.product_notes.push_back(product_note(entry, *base, scene.products.file));
+    return base;
+  }
+};
+
+// A blend entry: its name and its components, each read like a material entry (a product, its own keys
+// replacing the product's) with its mass fraction and nutrient contents. The blend has no quantities of
+// its own: a quantity key beside `components` is an error, never silently unused.
+Material read_blend(TomlSection& s, LibraryReader& reader, const std::string& entry) {
+  Material blend;
+  blend.name = s.string("name").value_or("");
+  for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
+    if (s.present(std::string(q.name)))
+      s.fail(std::string(q.name), "a blend's quantities are its components': give it in each [[" + entry + ".components]]");
+  }
+  std::vector<TomlSection> sections = s.tables("components");
+  for (std::size_t j = 0; j < sections.size(); ++j) {
+    TomlSection& c = sections[j];
+    tables::BlendComponent component;
+    const Material* base = reader.product_of(c, entry + ".components[" + std::to_string(j) + "]");
+    component.material = read_material_entry(c, base);
+    component.mass_fraction = c.number("mass_fraction").value_or(0.0);
+    if (!c.present("mass_fraction")) c.fail("mass_fraction", "missing: each component needs its share of the blend's mass");
+    for (const tables::Nutrient& nutrient : tables::kNutrients)
+      component.*nutrient.member = c.number(nutrient.key).value_or(0.0);
+    c.finish();
+    blend.components.push_back(std::move(component));
+  }
+  const std::string problem = tables::blend_problem(blend.components);
+  if (!problem.empty()) {
+    const std::size_t colon = problem.find(": ");
+    s.fail(problem.substr(0, colon), problem.substr(colon + 2));
+  }
+  return blend;
+}
+
+// Each entry from the schema's defaults, or from the library product it names (`product`), its own keys
+// replacing the product's values; an entry with `components` is a blend of them.
+void read_materials(const TomlDocument& doc, Scene& scene) {
+  LibraryReader reader{scene, {}, {}};
+  for (TomlSection& s : doc.array_of_tables("materials")) {
+    const std::string entry = "materials[" + std::to_string(scene.materials.size()) + "]";
+    if (s.present("components")) {
+      if (s.present(std::string(kMaterialProductKey)))
+        s.fail(std::string(kMaterialProductKey), "a blend names its products in its components, not itself");
+      Material blend = read_blend(s, reader, entry);
+      s.finish();
+      scene.materials.push_back(std::move(blend));
+      continue;
+    }
+    const Material* base = reader.product_of(s, entry);
     Material m = read_material_entry(s, base);
     s.finish();
     scene.materials.push_back(std::move(m));
@@ -115,6 +167,19 @@ void check_section(const Scene& scene, const std::string& path, const Owner& own
   check_keys<Owner>(scene.source_name, path, owner, keys, scene.effects);
 }
 
+// One material's quantities (a plain material, or a blend's component) against their scene ranges and
+// effects; `p` is the entry's key prefix ("materials[0]." or "materials[0].components[1].").
+void check_quantities(const Scene& scene, const std::string& p, const Material& mat) {
+  for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
+    const std::string key = p + std::string(q.name);
+    const double value = mat.*q.member;
+    check_within(scene.source_name, key, value, q.scene_bounds);
+    if (q.effect != 0 && !scene.has(q.effect) && value != q.scene_default) {
+      fail_effect_off(scene.source_name, key, format_number(value), q.effect);
+    }
+  }
+}
+
 void validate(Scene& scene) {
   const Checker c{scene.source_name};
   Machine& m = scene.machine;
@@ -166,14 +231,9 @@ void validate(Scene& scene) {
     const std::string p = "materials[" + std::to_string(i) + "].";
     if (mat.name.empty()) c.fail(p + "name", "must be given and not empty");
     if (!names.insert(mat.name).second) c.fail(p + "name", "duplicate material name \"" + mat.name + "\"");
-    for (const tables::MaterialQuantity& q : tables::kMaterialQuantities) {
-      const std::string key = p + std::string(q.name);
-      const double value = mat.*q.member;
-      check_within(scene.source_name, key, value, q.scene_bounds);
-      if (q.effect != 0 && !scene.has(q.effect) && value != q.scene_default) {
-        fail_effect_off(scene.source_name, key, format_number(value), q.effect);
-      }
-    }
+    if (!mat.is_blend()) check_quantities(scene, p, mat);
+    for (std::size_t j = 0; j < mat.components.size(); ++j)
+      check_quantities(scene, p + "components[" + std::to_string(j) + "].", mat.components[j].material);
   }
   check_section(scene, "air", scene.air, kAirKeys);
   if (scene.simulate_material.empty()) {

@@ -215,6 +215,21 @@ std::optional<std::vector<std::string>> TomlSection::strings(const std::string& 
   return values;
 }
 
+std::vector<TomlSection> TomlSection::tables(const std::string& key) {
+  std::vector<TomlSection> sections;
+  const toml::node* node = lookup(table_, used_, key);
+  if (node == nullptr) return sections;
+  const toml::array* array = node->as_array();
+  if (array == nullptr) fail(key, std::string("expected an array of tables, got ") + type_name(*node));
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const std::string element_key = key + "[" + std::to_string(i) + "]";
+    const toml::table* table = array->get(i)->as_table();
+    if (table == nullptr) fail(element_key, std::string("expected a table, got ") + type_name(*array->get(i)));
+    sections.emplace_back(table, key_path(element_key), source_);
+  }
+  return sections;
+}
+
 void TomlSection::finish() const {
   if (table_ == nullptr) return;
   for (auto&& [key, value] : *as_table(table_)) {

@@ -32,6 +32,9 @@ class TomlSection {
   std::optional<std::string> string(const std::string& key);
   std::optional<std::vector<double>> numbers(const std::string& key);
   std::optional<std::vector<std::string>> strings(const std::string& key);
+  // An array of tables inside this one (`[[materials.components]]`, or an array of inline tables), each a
+  // section named "<path>.<key>[i]"; empty when the key is absent.
+  std::vector<TomlSection> tables(const std::string& key);
 
   // Every key of the table must have been asked for.
   void finish() const;

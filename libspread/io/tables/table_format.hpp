@@ -15,8 +15,11 @@
 namespace spread::tables {
 
 inline constexpr std::int32_t kApplicationId = 0x53505244;  // 'SPRD' in PRAGMA application_id
-// PRAGMA user_version. 2: row checksums (row_checksum.hpp) and runs.inputs_hash.
-inline constexpr std::int32_t kFormatVersion = 2;
+// PRAGMA user_version. 2: row checksums (row_checksum.hpp) and runs.inputs_hash. 3: blends
+// (`blend_components`). Writers write kFormatVersion; readers also read kOldestReadableVersion on: a
+// version-2 file is a version-3 file without blends (its tables and records are the same).
+inline constexpr std::int32_t kFormatVersion = 3;
+inline constexpr std::int32_t kOldestReadableVersion = 2;
 
 // One launch-off state. Stored as kSampleFloats little-endian float32 in this order; the layout string
 // kSampleLayout is stored with every run and checked on read.
@@ -49,6 +52,8 @@ struct Machine {
   int rotation_sense = 1;
 };
 
+struct BlendComponent;
+
 struct Material {
   std::string name;
   double density_kg_m3 = 0.0;
@@ -65,7 +70,62 @@ struct Material {
   // sd in diameter_mean_m and diameter_sd_m, the analysis itself is in its runs' scene_text and inputs_hash,
   // and its launch records carry each granule's diameter (docs/products.md "In the table").
   SieveAnalysis sieve;
+  // Non-empty: the material is a blend of these components, fed together onto the disc (docs/products.md
+  // "Blends"); the quantities above are then unused (each component has its own). Not a column of
+  // `materials`: a table stores each component as a material row of its own, named
+  // blend_component_name(), and the blend in `blend_components`.
+  std::vector<BlendComponent> components;
+  bool is_blend() const { return !components.empty(); }
 };
+
+// One component of a blend: a material of its own (its density, friction and sizes) and its share of the
+// blend's mass. Nutrient contents are % of the component's mass (fertiliser grades: N, P as P2O5, K as
+// K2O); 0 when the component carries none of that nutrient.
+struct BlendComponent {
+  Material material;            // never a blend itself
+  double mass_fraction = 0.0;   // in (0, 1]; a blend's fractions sum to 1
+  double n_pct = 0.0;
+  double p2o5_pct = 0.0;
+  double k2o_pct = 0.0;
+};
+// The nutrients a component can carry, in this order everywhere (tables, CLI, C API).
+struct Nutrient {
+  const char* name;                  // as a grade names it
+  const char* key;                   // the scene key, the table column
+  double BlendComponent::* member;
+};
+inline constexpr int kNutrientCount = 3;
+inline constexpr Nutrient kNutrients[kNutrientCount] = {{"N", "n_pct", &BlendComponent::n_pct},
+                                                        {"P2O5", "p2o5_pct", &BlendComponent::p2o5_pct},
+                                                        {"K2O", "k2o_pct", &BlendComponent::k2o_pct}};
+// A blend's fractions may be rounded as a recipe gives them: they must sum to 1 within this.
+inline constexpr double kBlendFractionTolerance = 1e-3;
+
+// The name of a blend component's material row in a table: "<blend> / <component>".
+std::string blend_component_name(const std::string& blend, const std::string& component);
+// "" when the blend's components are usable: at least one, each fraction in (0, 1], the fractions summing
+// to 1 within kBlendFractionTolerance, nutrients in [0, 100] with their sum <= 100, names non-empty and
+// unique, no component a blend itself; otherwise the first problem as "components[i].<key>: <problem>"
+// (or "components: <problem>").
+std::string blend_problem(const std::vector<BlendComponent>& components);
+// One component's own values (name, fraction, nutrients, not a blend): "" or "<key>: <problem>".
+std::string blend_component_problem(const BlendComponent& component);
+
+// A blend as a table holds it (`blend_components`): each component a material row of its own
+// (blend_component_name()), whose runs are the launches of that component from the blend's DEM runs.
+struct BlendRowComponent {
+  std::string material;          // the component's `materials` row
+  double mass_fraction = 0.0;
+  double n_pct = 0.0, p2o5_pct = 0.0, k2o_pct = 0.0;
+};
+struct Blend {
+  std::string name;
+  std::vector<BlendRowComponent> components;  // in the blend's order (`position`)
+};
+// "" or the first problem of a stored blend: its components' fractions and nutrients as blend_problem()
+// checks a scene's ("blend NAME: components[i].<key>: <problem>").
+BlendComponent as_blend_component(const BlendRowComponent& row);
+std::string stored_blend_problem(const Blend& blend);
 
 // Provenance and content of one (material, rpm) run.
 struct Run {

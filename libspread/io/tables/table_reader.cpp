@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "libspread/io/tables/blend_rows.hpp"
 #include "libspread/io/tables/landing_data.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
 #include "libspread/io/tables/run_schema.hpp"
@@ -59,9 +60,12 @@ std::vector<std::string> columns_of(sqlite3* db, const char* table) {
   return out;
 }
 
-// Every file has the first four; landing_data only once a writer stored some (landing_data.hpp).
-constexpr const char* kTables[] = {"machine", "materials", "runs", "meta", detail::kLandingDataTable};
+// Every file has the first four; landing_data only once a writer stored some (landing_data.hpp);
+// blend_components every file of version 3 on (a version-2 file has no blends).
+constexpr const char* kTables[] = {"machine", "materials", "runs", "meta", detail::kLandingDataTable,
+                                   detail::kBlendComponentsTable};
 constexpr std::size_t kRequiredTables = 4;
+constexpr std::size_t kBlendTableIndex = 5;
 
 // The columns each table must have: those of the schema this build writes (table_schema.hpp), read once
 // from an in-memory database made with it, so the check follows the schema without a list of its own.
@@ -82,14 +86,14 @@ const std::vector<std::vector<std::string>>& schema_columns() {
 
 // Every table and every column of the schema present: a damaged schema (a dropped table or column) is a
 // damaged file, named, not an I/O error of the first query that trips over it.
-void require_tables(Connection& db) {
+void require_tables(Connection& db, std::int64_t version) {
   const std::vector<std::vector<std::string>>& expected = schema_columns();
   for (std::size_t t = 0; t < std::size(kTables); ++t) {
     const char* table = kTables[t];
     Statement query(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
     query.bind(1, std::string(table));
     if (!query.step()) {
-      if (t >= kRequiredTables) continue;
+      if (t >= kRequiredTables && !(t == kBlendTableIndex && version >= 3)) continue;
       raise(TableErrorKind::kCorrupt, db.path(), std::string("table `") + table + "` is missing");
     }
     if (t >= expected.size()) continue;
@@ -207,17 +211,19 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
   }
   run_quick_check(db);
   const std::int64_t version = db.pragma_int("user_version");
-  if (version != kFormatVersion) {
+  if (version < kOldestReadableVersion || version > kFormatVersion) {
     raise(TableErrorKind::kWrongVersion, path,
-          "table format version " + std::to_string(version) + ", this build reads version " +
-              std::to_string(kFormatVersion));
+          "table format version " + std::to_string(version) + ", this build reads versions " +
+              std::to_string(kOldestReadableVersion) + " to " + std::to_string(kFormatVersion));
   }
-  require_tables(db);
+  require_tables(db, version);
   // The pool's memory given at construction: a vector's allocator does not follow an assignment.
-  TableContents contents{.machine = {},
+  TableContents contents{.format_version = static_cast<std::int32_t>(version),
+                         .machine = {},
                          .materials = {},
                          .runs = {},
                          .landing_data = {},
+                         .blends = {},
                          .pooled_samples = std::pmr::vector<LaunchSample>(
                              sample_memory != nullptr ? sample_memory : std::pmr::get_default_resource()),
                          .pooled_offset = {},
@@ -279,6 +285,7 @@ TableContents read_table_file(const std::string& path, std::pmr::memory_resource
     }
   }
   contents.landing_data = detail::read_landing_data(db);
+  contents.blends = detail::read_blend_rows(db, contents.materials);
   if (contents.runs.empty()) raise(TableErrorKind::kEmpty, path, "no runs (the table has no launch data)");
   for (const Run& run : contents.runs) {
     bool known = false;

@@ -15,12 +15,15 @@
 namespace spread::tables {
 
 struct TableContents {
+  std::int32_t format_version = kFormatVersion;  // the file's user_version (kOldestReadableVersion..kFormatVersion)
   Machine machine;
   std::vector<Material> materials;   // sorted by name
   std::vector<Run> runs;             // sorted by (material, rpm)
   // Landing data stored with the rows (landing_data.hpp), by material: the reader of it judges whether it
   // is current for them.
   std::vector<LandingData> landing_data;
+  // The blends (`blend_components`), by name: each component a material row of its own above.
+  std::vector<Blend> blends;
   // Read with a sample memory: every run's samples one after the other in one block from that memory,
   // run k's at [pooled_offset[k], pooled_offset[k + 1]), and each Run::samples left empty. A predictor
   // keeps the block as it is; the samples are written once, straight from SQLite's bytes.
@@ -33,6 +36,11 @@ struct TableContents {
   // Whether the runs were checked against the table's list of them (runs_manifest.hpp); false only for a
   // legacy table read with ReadOptions::legacy_files.
   bool runs_listed = true;
+  const Blend* find_blend(const std::string& name) const {
+    for (const Blend& b : blends)
+      if (b.name == name) return &b;
+    return nullptr;
+  }
 };
 
 // How read_table_file treats a table with runs but no checked list of them (no `runs_manifest`, or none

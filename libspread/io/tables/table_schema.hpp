@@ -51,6 +51,17 @@ CREATE TABLE runs (
   checksum TEXT NOT NULL,
   UNIQUE (material, rpm)
 );
+CREATE TABLE blend_components (
+  blend TEXT NOT NULL,
+  position INTEGER NOT NULL,
+  material TEXT NOT NULL UNIQUE,
+  mass_fraction REAL NOT NULL,
+  n_pct REAL NOT NULL,
+  p2o5_pct REAL NOT NULL,
+  k2o_pct REAL NOT NULL,
+  checksum TEXT NOT NULL,
+  UNIQUE (blend, position)
+);
 CREATE TABLE meta (
   key TEXT PRIMARY KEY,
   value TEXT NOT NULL

@@ -5,6 +5,7 @@
 #include <ctime>
 #include <utility>
 
+#include "libspread/io/tables/blend_rows.hpp"
 #include "libspread/io/tables/material_schema.hpp"
 #include "libspread/io/tables/row_checksum.hpp"
 #include "libspread/io/tables/run_schema.hpp"
@@ -206,6 +207,22 @@ void TableWriter::write_materials(const std::vector<Material>& materials) {
   transaction.commit();
 }
 
+void TableWriter::write_blend(const Blend& blend) {
+  const std::string problem = stored_blend_problem(blend);
+  if (!problem.empty()) throw std::invalid_argument(path() + ": refusing to write " + problem);
+  Connection& db = *impl_->connection;
+  for (const BlendRowComponent& c : blend.components) {
+    Statement known(db, "SELECT 1 FROM materials WHERE name = ?");
+    known.bind(1, c.material);
+    if (!known.step())
+      throw std::invalid_argument(path() + ": blend " + blend.name + ": component material \"" + c.material +
+                                  "\" has not been written");
+  }
+  Transaction transaction(db);
+  detail::write_blend_rows(db, blend);
+  transaction.commit();
+}
+
 void TableWriter::write_meta(const std::string& key, const std::string& value) {
   Connection& db = *impl_->connection;
   Statement upsert(db, "INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
@@ -243,7 +260,7 @@ void TableWriter::clear() {
   Connection& db = *impl_->connection;
   Transaction transaction(db);
   db.exec(detail::kLandingDataSql);
-  for (const char* table : {"runs", "materials", "machine", "meta", detail::kLandingDataTable}) {
+  for (const char* table : {"runs", detail::kBlendComponentsTable, "materials", "machine", "meta", detail::kLandingDataTable}) {
     db.exec(std::string("DELETE FROM ") + table);
   }
   transaction.commit();

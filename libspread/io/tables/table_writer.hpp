@@ -53,6 +53,9 @@ class TableWriter {
   // Inserts or updates each material by name; std::invalid_argument (nothing written) when
   // material_problem() objects to any of them.
   void write_materials(const std::vector<Material>& materials);
+  // Replaces the blend's `blend_components` rows; std::invalid_argument (nothing written) when
+  // stored_blend_problem() objects or a component's material row has not been written.
+  void write_blend(const Blend& blend);
   void write_meta(const std::string& key, const std::string& value);
   std::optional<std::string> stored_meta(const std::string& key);
   void erase_meta(const std::string& key);

@@ -46,7 +46,7 @@ namespace {
 // The granule's material and the rigid disc's. The disc has no values of its own: it repeats the granule's
 // restitution, wall friction and rolling friction, so the particle–disc pair's means are exactly the
 // granule's values (½(x + x) = x).
-std::vector<Material> materials_of(const scene::Material& sm) {
+Material particle_material(const scene::Material& sm) {
   Material particle;
   particle.name = sm.name;
   particle.density_kg_m3 = sm.density_kg_m3;
@@ -56,6 +56,11 @@ std::vector<Material> materials_of(const scene::Material& sm) {
   particle.friction_particle = sm.friction_particle;
   particle.friction_wall = sm.friction_wall;
   particle.rolling_friction = sm.rolling_friction;
+  return particle;
+}
+
+std::vector<Material> materials_of(const scene::Material& sm) {
+  const Material particle = particle_material(sm);
   Material steel;
   steel.name = "disc";
   steel.rigid = true;
@@ -63,6 +68,52 @@ std::vector<Material> materials_of(const scene::Material& sm) {
   steel.friction_wall = sm.friction_wall;
   steel.rolling_friction = sm.rolling_friction;
   return {particle, steel};
+}
+
+// A blend: its components' materials in component order (a granule's material index is its component's
+// index), then the disc's. Each component–disc pair is set to exactly the component's own wall friction,
+// restitution and rolling friction (PairOverride), as the single material's disc repeats its values:
+// the mixing rule's means would otherwise give a component a friction that is not its own.
+void blend_materials_of(const scene::Material& blend, SimulationConfig& c) {
+  c.materials.clear();
+  c.overrides.clear();
+  for (const tables::BlendComponent& component : blend.components) c.materials.push_back(particle_material(component.material));
+  const int disc = static_cast<int>(c.materials.size());
+  std::vector<Material> first = materials_of(blend.components.front().material);
+  c.materials.push_back(first.back());
+  for (int k = 0; k < disc; ++k) {
+    const scene::Material& m = blend.components[static_cast<std::size_t>(k)].material;
+    c.overrides.push_back(PairOverride{k, disc, m.restitution, m.friction_wall, m.rolling_friction});
+  }
+  c.disc_material = disc;
+}
+
+// A blend's feed: every component with its mass fraction, sizes and density.
+void blend_inlet_of(const scene::Material& blend, SimulationConfig& c) {
+  c.inlet.components.clear();
+  for (std::size_t k = 0; k < blend.components.size(); ++k) {
+    const tables::BlendComponent& component = blend.components[k];
+    InletComponent in;
+    in.material = static_cast<int>(k);
+    in.density_kg_m3 = component.material.density_kg_m3;
+    in.mass_fraction = component.mass_fraction;
+    in.diameter_mean_m = component.material.diameter_mean_m;
+    in.diameter_sd_m = component.material.diameter_sd_m;
+    in.sieve = component.material.sieve;
+    c.inlet.components.push_back(std::move(in));
+  }
+}
+
+// The material whose mean granule sets the linear law's spring: a blend's heaviest mean granule (the
+// shortest contact time needs the stiffest spring of the same duration).
+const scene::Material& spring_material(const scene::Material& sm) {
+  if (!sm.is_blend()) return sm;
+  const scene::Material* heaviest = &sm.components.front().material;
+  auto mean_mass = [](const scene::Material& m) { return m.density_kg_m3 * std::pow(m.diameter_mean_m, 3); };
+  for (const tables::BlendComponent& component : sm.components) {
+    if (mean_mass(component.material) > mean_mass(*heaviest)) heaviest = &component.material;
+  }
+  return *heaviest;
 }
 
 // The disc, its speed and its height.
@@ -153,10 +204,17 @@ SimulationConfig config_from_scene(const scene::Scene& s, const std::string& mat
   const scene::Material* sm = name.empty() ? (s.materials.empty() ? nullptr : &s.materials.front()) : s.find_material(name);
   if (!sm) throw scene::SceneError(s.source_name + ": simulate.material: unknown material '" + name + "'");
   SimulationConfig c;
-  c.materials = materials_of(*sm);
-  disc_of(s, c);
-  inlet_of(s, *sm, c);
-  c.engine = engine_params_of(s, *sm);
+  if (sm->is_blend()) {
+    disc_of(s, c);
+    blend_materials_of(*sm, c);
+    inlet_of(s, sm->components.front().material, c);
+    blend_inlet_of(*sm, c);
+  } else {
+    c.materials = materials_of(*sm);
+    disc_of(s, c);
+    inlet_of(s, *sm, c);
+  }
+  c.engine = engine_params_of(s, spring_material(*sm));
   flight_of(s, c);
   return c;
 }
