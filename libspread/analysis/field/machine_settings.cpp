@@ -75,6 +75,12 @@ StampPattern stamp_at(predict::Predictor& predictor, predict::PredictionRequest 
 
 }  // namespace
 
+Point wind_in_machine_frame(Point forward, double wind_east_m_s, double wind_north_m_s) {
+  const Point f = bin_forward(heading_bin(forward));
+  const Point w{wind_east_m_s, wind_north_m_s};
+  return {dot(w, {f.y_m, -f.x_m}), dot(w, f)};
+}
+
 MachineStamps machine_stamps(predict::Predictor& predictor, const predict::PredictionRequest& field,
                              std::vector<Pass> passes, const FieldConditions& conditions, double cell_m) {
   MachineStamps out;
@@ -101,12 +107,9 @@ MachineStamps machine_stamps(predict::Predictor& predictor, const predict::Predi
   for (const Pass& pass : out.passes) used[pass.setting] = true;
   for (const auto& [index, _] : used) {
     const int base = windy ? index / kHeadingBins : index;
-    Point wind{0.0, 0.0};
-    if (windy) {
-      const Point f = bin_forward(index % kHeadingBins);
-      const Point w{conditions.wind_east_m_s, conditions.wind_north_m_s};
-      wind = {dot(w, {f.y_m, -f.x_m}), dot(w, f)};
-    }
+    const Point wind = windy ? wind_in_machine_frame(bin_forward(index % kHeadingBins), conditions.wind_east_m_s,
+                                                     conditions.wind_north_m_s)
+                             : Point{0.0, 0.0};
     const bool border = base == 1;
     const predict::PredictionRequest request = border ? border_request(field, *out.border, predict::kRightDisc) : field;
     out.stamps[static_cast<std::size_t>(index)] =

@@ -19,6 +19,10 @@ namespace spread::field {
 
 inline constexpr int kHeadingBins = 16;  // 22.5° apart: a wind's cross and along components within 20 % of its speed
 
+// A wind over the field (east, north; m/s) in the machine frame of a machine heading along the unit vector
+// `forward` (east, north), the heading taken to the nearest of kHeadingBins: (x to the right, y forward).
+Point wind_in_machine_frame(Point forward, double wind_east_m_s, double wind_north_m_s);
+
 struct FieldConditions {
   double wind_east_m_s = 0.0;
   double wind_north_m_s = 0.0;

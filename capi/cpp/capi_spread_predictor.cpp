@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/capi_spread_predictor.hpp"
+#include "capi/cpp/capi_spread_predictor.hpp"
 
 #include <algorithm>
 #include <cmath>

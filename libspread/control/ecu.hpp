@@ -8,14 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "firmware_sim/ecu/disc_speed_model.hpp"
-#include "firmware_sim/ecu/ecu_command.hpp"
-#include "firmware_sim/ecu/ecu_parameters.hpp"
-#include "firmware_sim/ecu/ecu_status.hpp"
-#include "firmware_sim/ecu/fault.hpp"
-#include "firmware_sim/ecu/rpm_for_width_solver.hpp"
-#include "firmware_sim/ecu/section_planner.hpp"
-#include "firmware_sim/ecu/spread_predictor.hpp"
+#include "libspread/control/disc_speed_model.hpp"
+#include "libspread/control/ecu_command.hpp"
+#include "libspread/control/ecu_parameters.hpp"
+#include "libspread/control/ecu_status.hpp"
+#include "libspread/control/fault.hpp"
+#include "libspread/control/gate_response.hpp"
+#include "libspread/control/rpm_for_width_solver.hpp"
+#include "libspread/control/section_planner.hpp"
+#include "libspread/control/spread_predictor.hpp"
 #include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
@@ -133,6 +134,7 @@ class Ecu {
   std::vector<WidthCurve> curves_;  // one per predictor material, sampled at construction
   FaultLog faults_;
   std::array<DiscSpeedModel, 2> discs_;  // kLeftDisc, kRightDisc (a one-disc machine uses the left)
+  std::array<GateResponse, 2> gates_;    // each disc's metering gate
 
   // Commanded state.
   Mode mode_ = Mode::kManual;
