@@ -128,6 +128,7 @@ TEST(ParameterSchema, DocsListEverySectionKey) {
   expect_doc_rows(doc, "`[numerics]`", scene::kNumericsKeys);
   expect_doc_rows(doc, "`[sweep]`", scene::kSweepKeys);
   expect_doc_rows(doc, "`[outputs]`", scene::kOutputsKeys);
+  expect_doc_rows(doc, "`[field]`", scene::kFieldKeys);
 }
 
 // Each section key's range reaches the reader: a value just outside its bounds is refused naming the key.
@@ -161,6 +162,7 @@ TEST(ParameterSchema, SceneRefusesSectionValuesOutsideTheBounds) {
   expect_bounds_enforced("air", scene::kAirKeys);
   expect_bounds_enforced("numerics", scene::kNumericsKeys);
   expect_bounds_enforced("outputs", scene::kOutputsKeys);
+  expect_bounds_enforced("field", scene::kFieldKeys);
 }
 
 // A key that acts with any of several effects names them all when every one is off.

@@ -2,6 +2,7 @@
 //              [--track TRACK.csv | --headland N --reference-edge I] [--border] [--no-section-control]
 //              [--sections N] [--speed KMH] [--look-ahead S] [--gate-travel S] [--field-wind E,N]
 //              [--cell M] [--compare] [--compare-bout W2] [--grid OUT.csv] [--map OUT.png] [--json]
+//       or     --scene SCENE.toml [--set KEY=VALUE ...] with its [field] section, options beside it replacing keys
 // The whole field (libspread/analysis/field, docs/field.md): the boundary (GeoJSON, longitude/latitude
 // projected to its UTM zone with PROJ, or metres in a named CRS), a plan of headland rounds and tramlines at
 // the bout width or a recorded track, driven with the ECU's own logic in the loop (libspread/control, its
@@ -32,6 +33,7 @@
 #include "libspread/analysis/field/projection.hpp"
 #include "libspread/analysis/field/rate_grid_csv.hpp"
 #include "libspread/analysis/field/track_csv.hpp"
+#include "libspread/io/scene/scene.hpp"
 #include "tools/spread/command_registry.hpp"
 #include "tools/spread/number_format.hpp"
 #include "tools/spread/prediction_args.hpp"
@@ -46,6 +48,8 @@ namespace fd = spread::field;
 namespace pr = spread::predict;
 
 struct Options : spread::cli::PredictionArgs {
+  std::string scene;
+  std::vector<std::string> set;
   std::string boundary;
   std::string track;
   double bout_width_m = 0.0;
@@ -88,8 +92,40 @@ struct Row {
   std::string map;  // its map's PNG ("": none)
 };
 
+// A scene's [field] (docs/scene-format.md) for every option not given on the command line; the tables are
+// the scene's sweep.output unless --tables names them.
+void apply_scene(const CLI::App& sub, Options& o) {
+  if (o.scene.empty()) {
+    if (!o.set.empty()) throw BadInput("--set: there is no --scene to set keys of");
+    return;
+  }
+  const spread::scene::Scene scene = spread::scene::load_scene_file(o.scene, o.set);
+  const spread::scene::FieldRun& f = scene.field;
+  const auto unset = [&](const char* option) { return sub.count(option) == 0; };
+  if (unset("--tables")) o.tables = scene.sweep.output;
+  if (unset("--material")) o.material = f.material.empty() ? scene.simulate_material : f.material;
+  if (unset("--rpm")) o.rpm = f.rpm > 0.0 ? f.rpm : scene.machine.rpm;
+  if (unset("--boundary")) o.boundary = f.boundary;
+  if (unset("--track")) o.track = f.track;
+  if (unset("--rate")) o.rate_kg_ha = f.rate_kg_ha;
+  if (unset("--bout")) o.bout_width_m = f.bout_width_m;
+  if (unset("--headland")) o.headland = f.headland_passes;
+  if (unset("--reference-edge")) o.reference_edge = f.reference_edge;
+  if (unset("--field-wind")) o.field_wind = format("%.17g", f.wind_m_s[0]) + "," + format("%.17g", f.wind_m_s[1]);
+  if (unset("--sections")) o.sections = f.section_count;
+  if (unset("--no-section-control")) o.no_section_control = !f.section_control;
+  if (unset("--border")) o.border = f.border;
+  if (unset("--speed")) o.speed_km_h = f.speed_km_h;
+  if (unset("--look-ahead")) o.look_ahead_s = f.look_ahead_s;
+  if (unset("--gate-travel")) o.gate_travel_s = f.gate_travel_s;
+  if (unset("--cell")) o.cell_m = f.cell_m;
+}
+
 void check(const Options& o) {
-  if (o.boundary.empty()) throw BadInput("--boundary is required: the field's GeoJSON file");
+  if (o.tables.empty()) throw BadInput("--tables is required (or a --scene whose sweep.output names them)");
+  if (o.material.empty()) throw BadInput("--material is required (or a --scene naming field.material)");
+  if (!(o.rpm > 0.0)) throw BadInput("--rpm is required: the field's disc speed (or a --scene)");
+  if (o.boundary.empty()) throw BadInput("--boundary is required: the field's GeoJSON file (or a --scene naming field.boundary)");
   if (!(o.bout_width_m > 0.0 && o.bout_width_m <= 100.0)) throw BadInput("--bout is required: the bout width in (0, 100] m");
   if (!(o.rate_kg_ha > 0.0) || !std::isfinite(o.rate_kg_ha)) throw BadInput("--rate is required: the target rate (kg/ha) > 0");
   if (!(o.cell_m >= 0.1 && o.cell_m <= 5.0)) throw BadInput("--cell " + format("%g", o.cell_m) + ": a cell of 0.1 to 5 m");
@@ -133,7 +169,7 @@ std::function<void(std::size_t, std::size_t)> progress_lines() {
 }
 
 Row run_one(const Options& o, pr::Predictor& predictor, firmware::SpreadPredictor& ecu, const fd::Boundary& boundary,
-            const Strategy& strategy, spread::cli::WindXY wind, fd::AsApplied* keep, const std::string& map) {
+            const Strategy& strategy, spread::cli::WindXY wind, fd::MachineRun* keep, const std::string& map) {
   pr::PredictionRequest request = spread::cli::prediction_request(o);
   request.bout_width_m = strategy.bout_width_m;
   request.tray_width_m = o.cell_m;
@@ -176,7 +212,7 @@ Row run_one(const Options& o, pr::Predictor& predictor, firmware::SpreadPredicto
                                 format(": field CV %.1f %%", 100.0 * row.summary.cv));
     row.map = map;
   }
-  if (keep) *keep = std::move(run.applied);
+  if (keep) *keep = std::move(run);
   return row;
 }
 
@@ -282,19 +318,42 @@ void run(const Options& o, int& exit_code) {
   // The ECU's predictions through the C API, as firmware_sim makes them.
   firmware::CapiSpreadPredictor ecu(o.tables);
 
-  fd::AsApplied applied;  // the first run's: --grid
+  // The first run's grid (--grid) and, with --compare and --map, the runs at --bout in calm side by side.
+  std::vector<fd::MachineRun> kept;
+  std::vector<std::string> titles;
   std::vector<Row> rows;
   for (const auto& [strategy, with_wind] : strategies(o, wind.x_m_s != 0.0 || wind.y_m_s != 0.0, two_discs)) {
+    const bool keep = rows.empty() || (o.compare && !o.map.empty() && !with_wind && strategy.bout_width_m == o.bout_width_m);
+    if (keep) kept.emplace_back();
     rows.push_back(run_one(o, predictor, ecu, boundary, strategy, with_wind ? wind : spread::cli::WindXY{},
-                           rows.empty() ? &applied : nullptr, map_path(o, strategy, with_wind)));
+                           keep ? &kept.back() : nullptr, map_path(o, strategy, with_wind)));
+    if (keep) {
+      titles.push_back(std::string(strategy.section_control ? "section control" : "no section control") +
+                       (strategy.border ? ", border mode" : ", no border mode") +
+                       format(": CV %.1f %%", 100.0 * rows.back().summary.cv) +
+                       format(", >120 %% %.1f %%", 100.0 * rows.back().summary.over_area_m2 / rows.back().summary.field_area_m2) +
+                       format(", beyond %.1f kg", rows.back().summary.beyond_kg));
+    }
   }
+  const fd::AsApplied& applied = kept.front().applied;
   if (!o.grid.empty()) fd::write_rate_grid_csv(o.grid, applied.grid, fd::inside_mask(applied.grid, boundary.ring), boundary.crs);
+  std::string side_by_side;
+  if (o.compare && !o.map.empty() && kept.size() > 1) {
+    std::vector<fd::MapPanel> panels;
+    for (std::size_t i = 0; i < kept.size(); ++i) panels.push_back({&kept[i].applied.grid, &kept[i].passes, titles[i]});
+    const std::size_t dot = o.map.rfind('.');
+    side_by_side = (dot == std::string::npos ? o.map : o.map.substr(0, dot)) + "_side_by_side" +
+                   (dot == std::string::npos ? ".png" : o.map.substr(dot));
+    fd::write_field_maps_png(side_by_side, panels, boundary, o.rate_kg_ha,
+                             o.material + format(" at %g rpm", o.rpm) + format(", %g m bouts, calm", o.bout_width_m));
+  }
   if (o.json) {
     json list = json::array();
     for (const Row& r : rows) list.push_back(row_json(r));
     json out{{"boundary", o.boundary}, {"crs", boundary.crs}, {"boundary_area_ha", boundary.area_m2 / 1e4},
              {"cell_m", o.cell_m}, {"target_rate_kg_ha", o.rate_kg_ha}, {"runs", list}};
     if (!o.grid.empty()) out["grid_csv"] = o.grid;
+    if (!side_by_side.empty()) out["maps_side_by_side_png"] = side_by_side;
     std::cout << out.dump(2) << "\n";
   } else {
     print_summary(o, boundary, rows.front());
@@ -303,6 +362,7 @@ void run(const Options& o, int& exit_code) {
     for (const Row& r : rows) {
       if (!r.map.empty()) std::printf("map: %s\n", r.map.c_str());
     }
+    if (!side_by_side.empty()) std::printf("maps side by side: %s\n", side_by_side.c_str());
   }
   exit_code = spread::cli::kExitOk;
 }
@@ -312,6 +372,10 @@ spread::cli::CommandRegistration reg{"field", [](CLI::App& app, int& exit_code) 
   auto* sub = app.add_subcommand("field", "the whole field: the as-applied map of a plan or a recorded track, field CV, "
                                           "over- and under-applied area, mass beyond the boundary");
   spread::cli::add_prediction_args(*sub, options);
+  // A scene's [field] may name them instead.
+  for (const char* option : {"--tables", "--material"}) sub->get_option(option)->required(false);
+  sub->add_option("--scene", options.scene, "a scene whose [field] gives the run (docs/scene-format.md); options given beside it replace its keys");
+  sub->add_option("--set", options.set, "KEY=VALUE: a scene key set (as lookup_builder's --set), e.g. field.border=true");
   sub->add_option("--boundary", options.boundary, "the field's boundary: GeoJSON Polygon (longitude/latitude, or metres with a crs member)");
   sub->add_option("--track", options.track, "a recorded track (CSV: time_s, x_m,y_m or lon_deg,lat_deg, speed_m_s, heading_deg[, spreading]) instead of a plan");
   sub->add_option("--bout", options.bout_width_m, "bout width (m): the tramlines' spacing and the metered flow's width");
@@ -334,7 +398,10 @@ spread::cli::CommandRegistration reg{"field", [](CLI::App& app, int& exit_code) 
   sub->add_option("--map", options.map, "draw the as-applied map (PNG): rate of the target, boundary, passes, legend; "
                                         "with --compare one per run beside it (NAME_sc_border_10m_calm.png)");
   sub->add_flag("--json", options.json, "machine-readable output on stdout");
-  sub->callback([&exit_code] { run(options, exit_code); });
+  sub->callback([&exit_code, sub] {
+    apply_scene(*sub, options);
+    run(options, exit_code);
+  });
 }};
 
 }  // namespace
