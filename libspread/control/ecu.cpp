@@ -613,6 +613,14 @@ void Ecu::supervise_controllers(Nanoseconds now) {
   faults_.set_state(Fault::kTaskControllerLost, tc_lost_ || tc_gone_, now);
 }
 
+// The gates follow what each disc should receive now, at their actuator's speed.
+void Ecu::step_gates(double dt_s) {
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    const auto i = static_cast<std::size_t>(d);
+    gates_[i].step(disc_metering_[i] ? sides_[i].flow_fraction : 0.0, dt_s);
+  }
+}
+
 void Ecu::step(double dt_s) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) return;
   ++steps_;
@@ -677,11 +685,7 @@ void Ecu::step(double dt_s) {
                                  parameters_.disc_count == 2 && disc_metering_[1 - i];
     if (disc_metering_[i] || thrown_by_other) section_actual_mask_ |= sides_[i].sections;
   }
-  // The gates follow what each disc should receive now, at their actuator's speed.
-  for (int d = 0; d < parameters_.disc_count; ++d) {
-    const auto i = static_cast<std::size_t>(d);
-    gates_[i].step(disc_metering_[i] ? sides_[i].flow_fraction : 0.0, dt_s);
-  }
+  step_gates(dt_s);
   mass_flow_kg_s_ =
       metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_setpoint_m_ * flow_share, speed_in_use_m_s_) : 0.0;
   faults_.set_state(Fault::kSpeedUnavailable, work_state_setpoint_ && !speed_valid, now);

@@ -105,6 +105,7 @@ class Ecu {
   bool needs_planning_without_material() const { return predictor_ != nullptr && material_.empty(); }
   const WidthCurve* curve_for(std::string_view material) const;
   void plan_sides();
+  void step_gates(double dt_s);
   double field_rpm_actual() const;
 
   // What one disc does on this pass (section control through the discs, section_planner.hpp).

@@ -223,3 +223,19 @@ TEST(ParameterSchema, TableColumnsAreTheSchemas) {
 
 }  // namespace
 }  // namespace spread::tables
+
+// The [field] section's keys that name something else: a material of the scene, a boundary for a track.
+TEST(ParameterSchema, FieldSectionNamesWhatItCannotRun) {
+  const std::string scene = "[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n";
+  const auto message = [&](const std::string& set) {
+    try {
+      scene::parse_scene(scene, "t", {set});
+    } catch (const scene::SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("field.material=\"v\""), "t: field.material: no material named \"v\"");
+  EXPECT_EQ(message("field.track=\"t.csv\""), "t: field.track: a track is driven in a field: give field.boundary too");
+  EXPECT_EQ(message("field.material=\"u\""), "");
+}
