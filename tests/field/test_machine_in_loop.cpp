@@ -114,6 +114,33 @@ TEST(FieldMachine, SectionControlAndBorderLowerOverlapAndMassBeyond) {
   EXPECT_GT(both.stamps_built, 2u);
 }
 
+TEST(FieldMachine, AWindAcrossTheFieldMovesTheMassDownwind) {
+  // Tramlines north–south in a square, a 4 m/s wind from the west and no compensation: the mass beyond the
+  // east boundary grows; the gates deliver the same.
+  const Boundary field = make_boundary({{0, 0}, {180, 0}, {180, 180}, {0, 180}}, "local", "test");
+  PlanSettings plan;
+  plan.bout_width_m = kBout_m;
+  plan.headland_passes = 0;
+  plan.reference_edge = 3;  // the west edge, from (0, 180) to (0, 0): tramlines run north–south
+  const auto east_of = [&](const AsApplied& run) {
+    double kg = 0.0;
+    for (int iy = 0; iy < run.grid.ny; ++iy) {
+      for (int ix = 0; ix < run.grid.nx; ++ix) {
+        if (run.grid.centre(ix, iy).x_m > 180.0) kg += run.grid.mass_kg[static_cast<std::size_t>(iy) * run.grid.nx + ix];
+      }
+    }
+    return kg;
+  };
+  MachineSettings calm = settings(false, false), westerly = calm;
+  westerly.wind_east_m_s = 4.0;
+  westerly.wind_compensation = false;
+  Tables& t = tables();
+  const MachineRun still = run_machine(field, plan_field(field, plan), *t.ecu, t.predictor, field_request(), calm);
+  const MachineRun windy = run_machine(field, plan_field(field, plan), *t.ecu, t.predictor, field_request(), westerly);
+  EXPECT_GT(east_of(windy.applied), 1.5 * east_of(still.applied));
+  EXPECT_NEAR(windy.applied.metered_kg, still.applied.metered_kg, 1e-9 * still.applied.metered_kg);
+}
+
 TEST(FieldMachine, BadSettingsAreNamed) {
   MachineSettings s = settings(true, false);
   s.section_count = 0;

@@ -226,11 +226,11 @@ TEST(ParameterSchema, TableColumnsAreTheSchemas) {
 
 // The [field] section's keys that name something else: a material of the scene, a boundary for a track.
 TEST(ParameterSchema, FieldSectionNamesWhatItCannotRun) {
-  const std::string scene = "[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n";
+  const std::string text = "[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n";
   const auto message = [&](const std::string& set) {
     try {
-      scene::parse_scene(scene, "t", {set});
-    } catch (const scene::SceneError& e) {
+      spread::scene::parse_scene(text, "t", {set});
+    } catch (const spread::scene::SceneError& e) {
       return std::string(e.what());
     }
     return std::string();

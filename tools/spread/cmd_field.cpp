@@ -330,7 +330,7 @@ void run(const Options& o, int& exit_code) {
     if (keep) {
       titles.push_back(std::string(strategy.section_control ? "section control" : "no section control") +
                        (strategy.border ? ", border mode" : ", no border mode") +
-                       format(": CV %.1f %%", 100.0 * rows.back().summary.cv) +
+                       format("\nfield CV %.1f %%", 100.0 * rows.back().summary.cv) +
                        format(", >120 %% %.1f %%", 100.0 * rows.back().summary.over_area_m2 / rows.back().summary.field_area_m2) +
                        format(", beyond %.1f kg", rows.back().summary.beyond_kg));
     }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "libspread/analysis/field/field_summary.hpp"
 #include "libspread/analysis/plot/canvas.hpp"
@@ -162,7 +163,7 @@ void write_field_maps_png(const std::string& path, const std::vector<MapPanel>& 
     widest = std::max(widest, (p.grid->nx + block - 1) / block);
     tallest = std::max(tallest, (p.grid->ny + block - 1) / block);
   }
-  const int cell_w = widest + kMargin, cell_h = tallest + kMargin + 30;
+  const int cell_w = widest + kMargin / 2, cell_h = tallest + kMargin + 20;
   pd::Canvas canvas(columns * cell_w + kMargin + kLegend, rows * cell_h + kMargin + 20);
   cairo_t* cr = canvas.cr();
   Frame last;
@@ -175,18 +176,28 @@ void write_field_maps_png(const std::string& path, const std::vector<MapPanel>& 
     f.height = (p.grid->ny + block - 1) / block;
     f.px_per_m = 1.0 / (p.grid->cell_m * block);
     f.left = kMargin + static_cast<double>(static_cast<int>(i) % columns) * cell_w;
-    f.top = kMargin + 30 + static_cast<double>(static_cast<int>(i) / columns) * cell_h;
+    f.top = kMargin + 20 + static_cast<double>(static_cast<int>(i) / columns) * cell_h;
     draw_cells(cr, f, inside_mask(*p.grid, boundary.ring), target_rate_kg_ha);
     draw_lines(cr, f, boundary, *p.passes);
+    // The title's lines above the panel, the last one nearest.
     cairo_set_source_rgb(cr, 0, 0, 0);
-    pd::set_font(cr, 13, true);
-    pd::draw_text(cr, p.title, f.left, f.top - 12, 0.0, 0.5);
+    pd::set_font(cr, 12, true);
+    std::vector<std::string> lines;
+    for (std::size_t from = 0;;) {
+      const std::size_t end = p.title.find('\n', from);
+      lines.push_back(p.title.substr(from, end == std::string::npos ? std::string::npos : end - from));
+      if (end == std::string::npos) break;
+      from = end + 1;
+    }
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      pd::draw_text(cr, lines[k], f.left, f.top - 10 - 16.0 * static_cast<double>(lines.size() - 1 - k), 0.0, 0.5);
+    }
     last = f;
   }
   draw_scale(cr, last);
   Frame legend = last;
   legend.left = kMargin + (columns - 1) * cell_w;
-  legend.top = kMargin + 30;
+  legend.top = kMargin + 20;
   draw_legend(cr, legend, target_rate_kg_ha);
   cairo_set_source_rgb(cr, 0, 0, 0);
   pd::set_font(cr, 15, true);

@@ -20,7 +20,8 @@ inline constexpr int kPanelMaxPixels = 450;  // a side-by-side panel
 void write_field_map_png(const std::string& path, const RateGrid& grid, const Boundary& boundary,
                          const std::vector<Pass>& passes, double target_rate_kg_ha, const std::string& title);
 
-// Several runs of one field side by side (two to a row) at one scale, each titled, with one legend: the
+// Several runs of one field side by side (two to a row) at one scale, each titled (its lines split at
+// '\n'), with one legend: the
 // strategies of a comparison. The grids and passes must outlive the call. The same refusals.
 struct MapPanel {
   const RateGrid* grid = nullptr;

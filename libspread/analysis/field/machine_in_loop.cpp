@@ -11,7 +11,7 @@
 #include "libspread/analysis/field/coverage_map.hpp"
 #include "libspread/analysis/field/disc_stamps.hpp"
 #include "libspread/analysis/field/field_summary.hpp"
-#include "libspread/analysis/field/machine_settings.hpp"
+#include "libspread/analysis/field/field_wind.hpp"
 #include "libspread/control/ecu.hpp"
 #include "libspread/control/section_planner.hpp"
 #include "libspread/core/clock.hpp"
