@@ -315,8 +315,9 @@ void run(const Options& o, int& exit_code) {
   if (!predictor.find_material(o.material)) throw BadInput("--material '" + o.material + "' is not in " + o.tables);
   const bool two_discs = predictor.machine().disc_count >= 2;
   if (o.border && !two_discs) throw BadInput("--border: a one-disc machine has no edge-side disc");
-  // The ECU's predictions through the C API, as firmware_sim makes them.
-  firmware::CapiSpreadPredictor ecu(o.tables);
+  // The ECU's predictions through the C API, as firmware_sim makes them, over the session's handle (the
+  // table file is read once).
+  firmware::CapiSpreadPredictor ecu(session.capi());
 
   // The first run's grid (--grid) and, with --compare and --map, the runs at --bout in calm side by side.
   std::vector<fd::MachineRun> kept;
