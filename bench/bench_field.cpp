@@ -10,15 +10,24 @@
 //     numbers mean nothing, its time is the stamping's at that width.
 // The prediction and its stamp are made once, outside the timing (a field run reuses them at every step).
 // Counters: steps (0.5 m pieces stamped), stamp_cells (cells of the stamp), field_cv, beyond_pct.
+//   BM_FieldMachineTenHectares/0, /1: the same field and tables with the ECU in the loop (machine_in_loop.hpp):
+//     8 sections under section control, border mode on the headland round, 12 km/h, the ECU's 50 ms loop,
+//     the discs' lag and the gates' travel; the ECU's predictions over the C API (the synthetic table written
+//     to a file first). Everything a run does is timed: the ECU's width curve and its planner's searches,
+//     every disc state's stamp, the loop steps and the stamping. Counters: loop_steps, stamps (stamped
+//     pieces), disc_states, searches, field_cv, beyond_pct.
 // Run: SPREAD_BENCH_TABLE=X.sqlite taskset -c 1 build/bench/bench_field [--benchmark_filter=...] (docs/field.md "Speed")
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <string>
 
+#include "capi/cpp/capi_spread_predictor.hpp"
 #include "libspread/analysis/field/as_applied.hpp"
+#include "libspread/analysis/field/machine_in_loop.hpp"
 #include "libspread/analysis/field/field_summary.hpp"
 #include "libspread/analysis/field/plan.hpp"
 #include "libspread/analysis/field/stamp_pattern.hpp"
@@ -97,6 +106,51 @@ void BM_FieldTenHectares(benchmark::State& state) {
   state.counters["beyond_pct"] = 100.0 * summary.beyond_fraction;
 }
 BENCHMARK(BM_FieldTenHectares)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_FieldMachineTenHectares(benchmark::State& state) {
+  const bool real_table = state.range(0) == 1;
+  std::string path;
+  if (real_table) {
+    const char* given = std::getenv("SPREAD_BENCH_TABLE");
+    if (given == nullptr) {
+      state.SkipWithError("no table (set SPREAD_BENCH_TABLE to a table with Urea at 600 rpm)");
+      return;
+    }
+    path = given;
+  } else {
+    path = (std::filesystem::temp_directory_path() / "spread_bench_field_machine.sqlite").string();
+    spread::testing::write_synthetic_table(path);
+  }
+  spread::predict::Predictor predictor(spread::tables::read_table_file(path));
+  spread::firmware::CapiSpreadPredictor ecu(path);
+  spread::predict::PredictionRequest field;
+  field.material = real_table ? "Urea" : "can";
+  field.bout_width_m = kBout_m;
+  MachineSettings s;
+  s.target_rate_kg_ha = 200.0;
+  s.bout_width_m = kBout_m;
+  s.rpm = real_table ? 600.0 : 650.0;
+  s.border = true;
+  const double side_m = std::sqrt(1e5);
+  const Boundary boundary = make_boundary({{0, 0}, {side_m, 0}, {side_m, side_m}, {0, side_m}}, "local", "bench");
+  FieldSummary summary;
+  MachineRun last;
+  for (auto _ : state) {
+    PlanSettings plan;
+    plan.bout_width_m = kBout_m;
+    plan.headland_passes = 1;
+    last = run_machine(boundary, plan_field(boundary, plan), ecu, predictor, field, s);
+    summary = summarise(last.applied, boundary, s.target_rate_kg_ha);
+    benchmark::DoNotOptimize(summary);
+  }
+  state.counters["loop_steps"] = static_cast<double>(last.loop_steps);
+  state.counters["stamps"] = static_cast<double>(last.applied.steps);
+  state.counters["disc_states"] = static_cast<double>(last.stamps_built);
+  state.counters["searches"] = static_cast<double>(last.planner_searches);
+  state.counters["field_cv"] = summary.cv;
+  state.counters["beyond_pct"] = 100.0 * summary.beyond_fraction;
+}
+BENCHMARK(BM_FieldMachineTenHectares)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 

@@ -14,14 +14,14 @@
 #include <string>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 #include "firmware_sim/lcm/lcm_ecu_link.hpp"
 #include "isobus/can/candump_log.hpp"
 #include "isobus/can/unix_can_bus.hpp"
 #include "isobus/iso_name.hpp"
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
-#include "firmware_sim/ecu/capi_spread_predictor.hpp"
+#include "capi/cpp/capi_spread_predictor.hpp"
 #endif
 
 namespace {

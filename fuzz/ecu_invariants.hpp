@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "fuzz/fuzz_input.hpp"
 
 namespace spread::fuzz {

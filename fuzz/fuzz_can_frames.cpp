@@ -12,7 +12,7 @@
 #include <cstring>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "fuzz/ecu_invariants.hpp"
 #include "fuzz/fuzz_input.hpp"
 #include "isobus/isobus_id.hpp"

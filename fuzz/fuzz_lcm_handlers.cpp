@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "firmware_sim/lcm/lcm_ecu_link.hpp"
 #include "fuzz/ecu_invariants.hpp"
 #include "fuzz/fuzz_input.hpp"

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "isobus/isobus_id.hpp"
 #include "tests/firmware/analytic_predictor.hpp"
 #ifdef SPREAD_FIRMWARE_HAS_CAPI
@@ -30,7 +30,7 @@
 
 #include <filesystem>
 
-#include "firmware_sim/ecu/capi_spread_predictor.hpp"
+#include "capi/cpp/capi_spread_predictor.hpp"
 #include "libspread/io/scene/scene.hpp"
 #include "lookup_builder/table_build.hpp"
 #endif

@@ -7,7 +7,7 @@
 
 #include "firmware_sim/can/fault_dtc.hpp"
 #include "firmware_sim/can/spreader_ddop.hpp"
-#include "firmware_sim/ecu/metering.hpp"
+#include "libspread/control/metering.hpp"
 #include "isobus/ddi.hpp"
 #include "isobus/isobus_id.hpp"
 #include "isobus/speed_messages.hpp"

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "firmware_sim/ecu/fault.hpp"
+#include "libspread/control/fault.hpp"
 #include "isobus/dm1.hpp"
 
 namespace spread::firmware::can {

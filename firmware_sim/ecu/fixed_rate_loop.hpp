@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "libspread/core/clock.hpp"
 
 namespace spread::firmware {

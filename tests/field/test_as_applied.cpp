@@ -13,7 +13,6 @@
 
 #include "libspread/analysis/field/as_applied.hpp"
 #include "libspread/analysis/field/field_summary.hpp"
-#include "libspread/analysis/field/machine_settings.hpp"
 #include "libspread/analysis/field/plan.hpp"
 #include "libspread/analysis/field/rate_grid_csv.hpp"
 #include "libspread/analysis/field/stamp_pattern.hpp"
@@ -222,65 +221,6 @@ TEST(FieldAsApplied, SameInputsSameMap) {
   const AsApplied a = spread_passes(field, passes, {&s.pattern, 1}, run_settings());
   const AsApplied b = spread_passes(field, passes, {&s.pattern, 1}, run_settings());
   EXPECT_EQ(a.grid.mass_kg, b.grid.mass_kg);
-}
-
-TEST(FieldAsApplied, BorderModeOnTheOutermostPassKeepsTheMassInside) {
-  // The pentagon with a headland round: the border setting on it (predict::find_edge_setting) puts less
-  // over the boundary than the field's setting does, and every kilogram is still accounted for.
-  Setting& s = setting();
-  const Boundary field =
-      make_boundary({{0, 0}, {210, -15}, {260, 120}, {120, 190}, {-20, 110}}, "local", "test");
-  PlanSettings plan;
-  plan.bout_width_m = kBout_m;
-  plan.headland_passes = 1;
-  predict::PredictionRequest request;
-  request.material = "can";
-  request.rpm = 650.0;
-  request.bout_width_m = kBout_m;
-  FieldSummary with[2];
-  for (const bool border : {false, true}) {
-    FieldConditions conditions;
-    conditions.border = border;
-    const MachineStamps m = machine_stamps(s.predictor, request, plan_field(field, plan), conditions, 0.5);
-    EXPECT_EQ(m.border.has_value(), border);
-    const AsApplied run = spread_passes(field, m.passes, m.stamps, run_settings());
-    with[border] = summarise(run, field, kRate_kg_ha);
-    EXPECT_NEAR(with[border].applied_kg + with[border].beyond_kg + with[border].not_landed_kg, run.metered_kg,
-                1e-3 * run.metered_kg);
-  }
-  EXPECT_LT(with[1].beyond_kg, 0.5 * with[0].beyond_kg) << with[1].beyond_kg << " kg against " << with[0].beyond_kg;
-}
-
-TEST(FieldAsApplied, AWindAcrossTheFieldMovesTheMassDownwind) {
-  // Tramlines north–south in a square, a 4 m/s wind from the west: the mass beyond the east boundary
-  // grows, and the run is the same as one without wind when the wind is 0.
-  Setting& s = setting();
-  const Boundary field = make_boundary({{0, 0}, {180, 0}, {180, 180}, {0, 180}}, "local", "test");
-  PlanSettings plan;
-  plan.bout_width_m = kBout_m;
-  plan.headland_passes = 0;
-  plan.reference_edge = 3;  // the west edge, from (0, 180) to (0, 0): tramlines run north–south
-  predict::PredictionRequest request;
-  request.material = "can";
-  request.rpm = 650.0;
-  request.bout_width_m = kBout_m;
-  const auto east_of = [&](const AsApplied& run) {
-    double kg = 0.0;
-    for (int iy = 0; iy < run.grid.ny; ++iy) {
-      for (int ix = 0; ix < run.grid.nx; ++ix) {
-        if (run.grid.centre(ix, iy).x_m > 180.0) kg += run.grid.mass_kg[static_cast<std::size_t>(iy) * run.grid.nx + ix];
-      }
-    }
-    return kg;
-  };
-  FieldConditions calm, westerly;
-  westerly.wind_east_m_s = 4.0;
-  const MachineStamps a = machine_stamps(s.predictor, request, plan_field(field, plan), calm, 0.5);
-  const MachineStamps b = machine_stamps(s.predictor, request, plan_field(field, plan), westerly, 0.5);
-  const AsApplied still = spread_passes(field, a.passes, a.stamps, run_settings());
-  const AsApplied windy = spread_passes(field, b.passes, b.stamps, run_settings());
-  EXPECT_GT(east_of(windy), 1.5 * east_of(still));
-  EXPECT_NEAR(windy.metered_kg, still.metered_kg, 1e-9 * still.metered_kg);
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "firmware_sim/ecu/spread_predictor.hpp"
+#include "libspread/control/spread_predictor.hpp"
 
 namespace spread::firmware::testing {
 

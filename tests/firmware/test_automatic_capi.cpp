@@ -10,8 +10,8 @@
 #include <optional>
 #include <thread>
 
-#include "firmware_sim/ecu/capi_spread_predictor.hpp"
-#include "firmware_sim/ecu/ecu.hpp"
+#include "capi/cpp/capi_spread_predictor.hpp"
+#include "libspread/control/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 
 namespace spread::firmware {

@@ -8,10 +8,10 @@
 #include <iostream>
 #include <limits>
 
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
-#include "firmware_sim/ecu/metering.hpp"
-#include "firmware_sim/ecu/section_planner.hpp"
+#include "libspread/control/metering.hpp"
+#include "libspread/control/section_planner.hpp"
 #include "tests/firmware/analytic_predictor.hpp"
 
 namespace spread::firmware {

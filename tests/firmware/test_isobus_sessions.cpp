@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "firmware_sim/can/can_ecu_link.hpp"
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "isobus/can/can_bus_relay.hpp"
 #include "isobus/can/unix_can_bus.hpp"
 #include "isobus/dm1.hpp"

@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 #include "firmware_sim/ecu/fixed_rate_loop.hpp"
 #include "firmware_sim/lcm/lcm_ecu_link.hpp"
 #include "lcm_link/lcm_payload.hpp"

@@ -128,6 +128,7 @@ TEST(ParameterSchema, DocsListEverySectionKey) {
   expect_doc_rows(doc, "`[numerics]`", scene::kNumericsKeys);
   expect_doc_rows(doc, "`[sweep]`", scene::kSweepKeys);
   expect_doc_rows(doc, "`[outputs]`", scene::kOutputsKeys);
+  expect_doc_rows(doc, "`[field]`", scene::kFieldKeys);
 }
 
 // Each section key's range reaches the reader: a value just outside its bounds is refused naming the key.
@@ -161,6 +162,7 @@ TEST(ParameterSchema, SceneRefusesSectionValuesOutsideTheBounds) {
   expect_bounds_enforced("air", scene::kAirKeys);
   expect_bounds_enforced("numerics", scene::kNumericsKeys);
   expect_bounds_enforced("outputs", scene::kOutputsKeys);
+  expect_bounds_enforced("field", scene::kFieldKeys);
 }
 
 // A key that acts with any of several effects names them all when every one is off.
@@ -221,3 +223,19 @@ TEST(ParameterSchema, TableColumnsAreTheSchemas) {
 
 }  // namespace
 }  // namespace spread::tables
+
+// The [field] section's keys that name something else: a material of the scene, a boundary for a track.
+TEST(ParameterSchema, FieldSectionNamesWhatItCannotRun) {
+  const std::string text = "[[materials]]\nname = \"u\"\ndensity_kg_m3 = 1000\n";
+  const auto message = [&](const std::string& set) {
+    try {
+      spread::scene::parse_scene(text, "t", {set});
+    } catch (const spread::scene::SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("field.material=\"v\""), "t: field.material: no material named \"v\"");
+  EXPECT_EQ(message("field.track=\"t.csv\""), "t: field.track: a track is driven in a field: give field.boundary too");
+  EXPECT_EQ(message("field.material=\"u\""), "");
+}

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "lcm_link/fault_codes.hpp"
+#include "libspread/control/fault_codes.hpp"
 
 namespace spread::tractor {
 
@@ -10,10 +10,10 @@ std::string format_fault_codes(std::int32_t fault_codes) {
   if (fault_codes == 0) return "none";
   std::string out;
   const auto bits = static_cast<std::uint32_t>(fault_codes);
-  for (std::size_t i = 0; i < lcm_link::kFaultCount; ++i) {
+  for (std::size_t i = 0; i < firmware::kFaultCount; ++i) {
     if (((bits >> i) & 1u) == 0) continue;
     if (!out.empty()) out += ',';
-    out += lcm_link::fault_name(static_cast<lcm_link::Fault>(i));
+    out += firmware::fault_name(static_cast<firmware::Fault>(i));
   }
   return out;
 }

@@ -31,6 +31,20 @@ void check(const std::vector<Pass>& passes, std::span<const StampPattern> patter
 
 // The grid: the boundary and every pass, plus the farthest any pattern throws from the machine.
 RateGrid fit_grid(const Boundary& boundary, const std::vector<Pass>& passes, std::span<const StampPattern> patterns) {
+  double reach_m = 0.0;
+  for (const StampPattern& pattern : patterns) reach_m = std::max(reach_m, pattern_reach_m(pattern));
+  return grid_for(boundary, passes, reach_m, patterns[0].cell_m);
+}
+
+}  // namespace
+
+double pattern_reach_m(const StampPattern& pattern) {
+  double reach_m = 0.0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) reach_m = std::max(reach_m, std::hypot(pattern.x_m[i], pattern.y_m[i]));
+  return reach_m;
+}
+
+RateGrid grid_for(const Boundary& boundary, const std::vector<Pass>& passes, double reach_m, double cell_m) {
   double min_x = boundary.min_x_m, max_x = boundary.max_x_m, min_y = boundary.min_y_m, max_y = boundary.max_y_m;
   for (const Pass& pass : passes) {
     for (const Point& p : pass.path) {
@@ -40,14 +54,8 @@ RateGrid fit_grid(const Boundary& boundary, const std::vector<Pass>& passes, std
       max_y = std::max(max_y, p.y_m);
     }
   }
-  double reach_m = 0.0;
-  for (const StampPattern& pattern : patterns) {
-    for (std::size_t i = 0; i < pattern.size(); ++i) reach_m = std::max(reach_m, std::hypot(pattern.x_m[i], pattern.y_m[i]));
-  }
-  return grid_covering(min_x, min_y, max_x, max_y, reach_m + 2.0 * patterns[0].cell_m, patterns[0].cell_m);
+  return grid_covering(min_x, min_y, max_x, max_y, reach_m + 2.0 * cell_m, cell_m);
 }
-
-}  // namespace
 
 void cut_into_steps(const Pass& pass, double step_m, std::vector<Step>& steps) {
   for (std::size_t k = 1; k < pass.path.size(); ++k) {

@@ -40,6 +40,12 @@ struct AsApplied {
 AsApplied spread_passes(const Boundary& boundary, const std::vector<Pass>& passes,
                         std::span<const StampPattern> patterns, const RunSettings& settings);
 
+// The grid a run stamps into: the boundary and every pass, plus `reach_m` (the farthest a stamp throws)
+// and two cells all round.
+RateGrid grid_for(const Boundary& boundary, const std::vector<Pass>& passes, double reach_m, double cell_m);
+// The farthest cell centre of a stamp from the machine (m).
+double pattern_reach_m(const StampPattern& pattern);
+
 // The steps of a pass: its path cut into pieces of at most step_m, each stamped at its midpoint with the
 // piece's direction. Appends to `steps` with each piece's length as mass_kg (scaled by the run).
 void cut_into_steps(const Pass& pass, double step_m, std::vector<Step>& steps);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "libspread/analysis/field/field_summary.hpp"
 #include "libspread/analysis/plot/canvas.hpp"
@@ -21,10 +22,31 @@ struct Frame {
   int block = 1;            // cells per pixel
   int width = 0, height = 0;  // the map's pixels
   double px_per_m = 1.0;
+  double left = kMargin, top = kMargin;  // the map's corner on the canvas
   const RateGrid* grid = nullptr;
-  double x(double x_m) const { return kMargin + (x_m - grid->x0_m) * px_per_m; }
-  double y(double y_m) const { return kMargin + height - (y_m - grid->y0_m) * px_per_m; }  // north up
+  double x(double x_m) const { return left + (x_m - grid->x0_m) * px_per_m; }
+  double y(double y_m) const { return top + height - (y_m - grid->y0_m) * px_per_m; }  // north up
 };
+
+// A grid's frame at most max_pixels a side.
+Frame frame_of(const RateGrid& grid, int max_pixels) {
+  Frame f;
+  f.grid = &grid;
+  f.block = std::max(1, (std::max(grid.nx, grid.ny) + max_pixels - 1) / max_pixels);
+  f.width = (grid.nx + f.block - 1) / f.block;
+  f.height = (grid.ny + f.block - 1) / f.block;
+  f.px_per_m = 1.0 / (grid.cell_m * f.block);
+  return f;
+}
+
+void draw_scale(cairo_t* cr, const Frame& f) {
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  pd::set_font(cr, 12);
+  pd::draw_text(cr, "north up; 100 m", f.left, f.top + f.height + 25, 0.0, 0.5);
+  cairo_move_to(cr, f.left + 110, f.top + f.height + 25);
+  cairo_line_to(cr, f.left + 110 + 100.0 * f.px_per_m, f.top + f.height + 25);
+  cairo_stroke(cr);
+}
 
 pd::Rgb cell_colour(double share, bool inside) {
   const pd::Rgb c = pd::colour_at(std::clamp(share / kTopShare, 0.0, 1.0));
@@ -62,7 +84,7 @@ void draw_cells(cairo_t* cr, const Frame& f, const std::vector<std::uint8_t>& in
   }
   cairo_surface_mark_dirty(image);
   cairo_save(cr);
-  cairo_translate(cr, kMargin, kMargin);
+  cairo_translate(cr, f.left, f.top);
   cairo_set_source_surface(cr, image, 0, 0);
   cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
   cairo_paint(cr);
@@ -92,7 +114,7 @@ void draw_lines(cairo_t* cr, const Frame& f, const Boundary& boundary, const std
 
 // A vertical colour bar, 0–150 % of the target, with the 80 % and 120 % marks.
 void draw_legend(cairo_t* cr, const Frame& f, double target_rate_kg_ha) {
-  const double left = kMargin + f.width + 30, top = kMargin, bar_h = std::max(200, f.height / 2), bar_w = 20;
+  const double left = f.left + f.width + 30, top = f.top, bar_h = std::max(200, f.height / 2), bar_w = 20;
   for (int k = 0; k < static_cast<int>(bar_h); ++k) {
     const pd::Rgb c = pd::colour_at(1.0 - k / bar_h);
     cairo_set_source_rgb(cr, c.r, c.g, c.b);
@@ -116,12 +138,7 @@ void draw_legend(cairo_t* cr, const Frame& f, double target_rate_kg_ha) {
 
 void write_field_map_png(const std::string& path, const RateGrid& grid, const Boundary& boundary,
                          const std::vector<Pass>& passes, double target_rate_kg_ha, const std::string& title) {
-  Frame f;
-  f.grid = &grid;
-  f.block = std::max(1, (std::max(grid.nx, grid.ny) + kMapMaxPixels - 1) / kMapMaxPixels);
-  f.width = (grid.nx + f.block - 1) / f.block;
-  f.height = (grid.ny + f.block - 1) / f.block;
-  f.px_per_m = 1.0 / (grid.cell_m * f.block);
+  const Frame f = frame_of(grid, kMapMaxPixels);
   pd::Canvas canvas(f.width + 2 * kMargin + kLegend, f.height + 2 * kMargin);
   cairo_t* cr = canvas.cr();
   draw_cells(cr, f, inside_mask(grid, boundary.ring), target_rate_kg_ha);
@@ -130,11 +147,61 @@ void write_field_map_png(const std::string& path, const RateGrid& grid, const Bo
   cairo_set_source_rgb(cr, 0, 0, 0);
   pd::set_font(cr, 15, true);
   pd::draw_text(cr, title, kMargin, kMargin / 2.0, 0.0, 0.5);
-  pd::set_font(cr, 12);
-  pd::draw_text(cr, "north up; 100 m", kMargin, kMargin + f.height + 25, 0.0, 0.5);
-  cairo_move_to(cr, kMargin + 110, kMargin + f.height + 25);
-  cairo_line_to(cr, kMargin + 110 + 100.0 * f.px_per_m, kMargin + f.height + 25);
-  cairo_stroke(cr);
+  draw_scale(cr, f);
+  canvas.write_png(path);
+}
+
+void write_field_maps_png(const std::string& path, const std::vector<MapPanel>& panels, const Boundary& boundary,
+                          double target_rate_kg_ha, const std::string& title) {
+  if (panels.empty()) return;
+  const int columns = std::min<int>(2, static_cast<int>(panels.size()));
+  const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
+  // One scale for every panel (the largest grid's), so that the panels compare at a glance.
+  int widest = 0, tallest = 0, block = 1;
+  for (const MapPanel& p : panels) block = std::max(block, frame_of(*p.grid, kPanelMaxPixels).block);
+  for (const MapPanel& p : panels) {
+    widest = std::max(widest, (p.grid->nx + block - 1) / block);
+    tallest = std::max(tallest, (p.grid->ny + block - 1) / block);
+  }
+  const int cell_w = widest + kMargin / 2, cell_h = tallest + kMargin + 20;
+  pd::Canvas canvas(columns * cell_w + kMargin + kLegend, rows * cell_h + kMargin + 20);
+  cairo_t* cr = canvas.cr();
+  Frame last;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    const MapPanel& p = panels[i];
+    Frame f;
+    f.grid = p.grid;
+    f.block = block;
+    f.width = (p.grid->nx + block - 1) / block;
+    f.height = (p.grid->ny + block - 1) / block;
+    f.px_per_m = 1.0 / (p.grid->cell_m * block);
+    f.left = kMargin + static_cast<double>(static_cast<int>(i) % columns) * cell_w;
+    f.top = kMargin + 20 + static_cast<double>(static_cast<int>(i) / columns) * cell_h;
+    draw_cells(cr, f, inside_mask(*p.grid, boundary.ring), target_rate_kg_ha);
+    draw_lines(cr, f, boundary, *p.passes);
+    // The title's lines above the panel, the last one nearest.
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    pd::set_font(cr, 12, true);
+    std::vector<std::string> lines;
+    for (std::size_t from = 0;;) {
+      const std::size_t end = p.title.find('\n', from);
+      lines.push_back(p.title.substr(from, end == std::string::npos ? std::string::npos : end - from));
+      if (end == std::string::npos) break;
+      from = end + 1;
+    }
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      pd::draw_text(cr, lines[k], f.left, f.top - 10 - 16.0 * static_cast<double>(lines.size() - 1 - k), 0.0, 0.5);
+    }
+    last = f;
+  }
+  draw_scale(cr, last);
+  Frame legend = last;
+  legend.left = kMargin + (columns - 1) * cell_w;
+  legend.top = kMargin + 20;
+  draw_legend(cr, legend, target_rate_kg_ha);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  pd::set_font(cr, 15, true);
+  pd::draw_text(cr, title, kMargin, kMargin / 2.0, 0.0, 0.5);
   canvas.write_png(path);
 }
 

@@ -131,6 +131,28 @@ struct Outputs {
   bool pattern_png = false;
 };
 
+// [field]: a field run of `spread field --scene` (docs/field.md): the boundary, the plan and the machine in
+// the loop. No key of it is an input of a table run (the tables are the machine's; the field is where it
+// drives). Relative paths are taken from the scene file's directory.
+struct FieldRun {
+  std::string boundary;                      // GeoJSON Polygon of the field; "" = none (give --boundary)
+  std::string track;                         // recorded track (CSV) instead of a plan; "" = the plan
+  std::string material;                      // "" = the [simulate] material
+  double rpm = 0.0;                          // the field's disc speed (rev/min); 0 = machine.rpm
+  double rate_kg_ha = 200.0;                 // target rate
+  double bout_width_m = 24.0;                // tramline spacing and metered width
+  int headland_passes = 1;                   // headland rounds
+  int reference_edge = -1;                   // tramlines parallel to this boundary edge; −1 = the longest
+  std::array<double, 2> wind_m_s{0.0, 0.0};  // wind over the field (east, north)
+  int section_count = 8;
+  bool section_control = true;
+  bool border = false;                       // border mode on the outermost headland round
+  double speed_km_h = 12.0;
+  double look_ahead_s = 0.5;                 // section control's turn-on and turn-off time
+  double gate_travel_s = 1.0;                // a metering gate from shut to the field's flow
+  double cell_m = 0.5;                       // the rate grid's cell
+};
+
 struct Scene {
   std::string source_name;            // file path (or a label) used in every error message
   std::string text;                   // the TOML text as read
@@ -148,6 +170,7 @@ struct Scene {
   Numerics numerics;
   Sweep sweep;
   Outputs outputs;
+  FieldRun field;
 
   bool has(EffectSet effect) const { return (effects & effect) == effect; }
   const Material* find_material(const std::string& name) const;  // nullptr when absent

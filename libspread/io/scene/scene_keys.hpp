@@ -1,6 +1,6 @@
 #pragma once
 // The keys of the spreader scene's sections, one row each (scene_key.hpp): [machine], [inlet],
-// [simulate], [air], [numerics], [sweep], [outputs]. The materials' rows are the material schema
+// [simulate], [air], [numerics], [sweep], [outputs], [field]. The materials' rows are the material schema
 // (libspread/io/tables/material_schema.hpp), [effects] is the effect registry. docs/scene-format.md lists
 // the same rows in the same order (ParameterSchema.DocsListEverySectionKey).
 #include <array>
@@ -138,6 +138,37 @@ inline constexpr std::array<Key<Outputs>, 4> kOutputsKeys{{
      {}, RunInput::kNone},
     {"launch_csv", &Outputs::launch_csv, "–", kAnyValue, 0, "write the launch states as CSV", {}, RunInput::kNone},
     {"pattern_png", &Outputs::pattern_png, "–", kAnyValue, 0, "write the ground pattern PNG", {}, RunInput::kNone},
+}};
+
+inline constexpr std::array<Key<FieldRun>, 16> kFieldKeys{{
+    {"boundary", &FieldRun::boundary, "–", kAnyValue, 0, "the field's boundary: GeoJSON Polygon", {}, RunInput::kNone},
+    {"track", &FieldRun::track, "–", kAnyValue, 0, "a recorded track (CSV) driven instead of a plan", {},
+     RunInput::kNone},
+    {"material", &FieldRun::material, "–", kAnyValue, 0, "the material spread (\"\": the `[simulate]` material)", {},
+     RunInput::kNone},
+    {"rpm", &FieldRun::rpm, "rev/min", closed(0.0, scene_keys_detail::L::kMaxRpm), 0,
+     "the field's disc speed (0: `machine.rpm`)", {}, RunInput::kNone},
+    {"rate_kg_ha", &FieldRun::rate_kg_ha, "kg/ha", positive_at_most(3000.0), 0, "target rate", {}, RunInput::kNone},
+    {"bout_width_m", &FieldRun::bout_width_m, "m", positive_at_most(100.0), 0,
+     "bout width: the tramlines' spacing and the metered width", {}, RunInput::kNone},
+    {"headland_passes", &FieldRun::headland_passes, "–", closed(0, 10), 0, "headland rounds of the plan", {},
+     RunInput::kNone},
+    {"reference_edge", &FieldRun::reference_edge, "–", closed(-1, 100000), 0,
+     "tramlines parallel to this edge (vertex i to i + 1; −1: the longest)", {}, RunInput::kNone},
+    {"wind_m_s", &FieldRun::wind_m_s, "m/s", closed(-30.0, 30.0), 0, "wind over the field [east, north]", {},
+     RunInput::kNone},
+    {"section_count", &FieldRun::section_count, "–", closed(1, 16), 0, "the machine's sections", {}, RunInput::kNone},
+    {"section_control", &FieldRun::section_control, "–", kAnyValue, 0,
+     "sections off over worked ground and beyond the boundary", {}, RunInput::kNone},
+    {"border", &FieldRun::border, "–", kAnyValue, 0, "border mode on the outermost headland round", {},
+     RunInput::kNone},
+    {"speed_km_h", &FieldRun::speed_km_h, "km/h", positive_at_most(40.0), 0, "ground speed", {}, RunInput::kNone},
+    {"look_ahead_s", &FieldRun::look_ahead_s, "s", closed(0.0, 10.0), 0, "section control's turn-on and turn-off time",
+     {}, RunInput::kNone},
+    {"gate_travel_s", &FieldRun::gate_travel_s, "s", closed(0.0, 10.0), 0,
+     "a metering gate's time from shut to the field's flow", {}, RunInput::kNone},
+    {"cell_m", &FieldRun::cell_m, "m", closed(0.1, 5.0), 0, "the rate grid's cell and the stamps' spacing", {},
+     RunInput::kNone},
 }};
 
 }  // namespace spread::scene

@@ -266,6 +266,12 @@ void validate(Scene& scene) {
   if (sw.output.empty()) c.fail("sweep.output", "must not be empty");
   check_section(scene, "outputs", scene.outputs, kOutputsKeys);
   if (scene.outputs.directory.empty()) c.fail("outputs.directory", "must not be empty");
+  const FieldRun& f = scene.field;
+  check_section(scene, "field", f, kFieldKeys);
+  if (!f.material.empty() && scene.find_material(f.material) == nullptr) {
+    c.fail("field.material", "no material named \"" + f.material + "\"");
+  }
+  if (!f.track.empty() && f.boundary.empty()) c.fail("field.track", "a track is driven in a field: give field.boundary too");
 }
 
 }  // namespace
@@ -277,7 +283,8 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name,
   scene.text = toml_text;
   scene.overrides = overrides;
   const TomlDocument doc(toml_text, source_name, overrides);
-  doc.check_top_level_keys({"machine", "inlet", "products", "materials", "simulate", "air", "effects", "numerics", "sweep", "outputs"});
+  doc.check_top_level_keys(
+      {"machine", "inlet", "products", "materials", "simulate", "air", "effects", "numerics", "sweep", "outputs", "field"});
   read_section(doc, "machine", scene.machine, kMachineKeys);
   read_section(doc, "inlet", scene.inlet, kInletKeys);
   read_section(doc, "products", scene.products, kProductsKeys);
@@ -289,6 +296,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name,
   read_section(doc, "sweep", scene.sweep, kSweepKeys);
   check_sweep_source_keys(doc, scene);
   read_section(doc, "outputs", scene.outputs, kOutputsKeys);
+  read_section(doc, "field", scene.field, kFieldKeys);
   validate(scene);
   return scene;
 }
@@ -299,6 +307,12 @@ Scene load_scene_file(const std::string& path, const std::vector<std::string>& o
   std::string& stl = scene.machine.stl_path;
   if (!stl.empty() && std::filesystem::path(stl).is_relative())
     stl = (std::filesystem::path(path).parent_path() / stl).lexically_normal().string();
+  // The field's files travel with the scene as the disc's does; their content is checked where it is read.
+  for (std::string* field_file : {&scene.field.boundary, &scene.field.track}) {
+    if (!field_file->empty() && std::filesystem::path(*field_file).is_relative()) {
+      *field_file = (std::filesystem::path(path).parent_path() / *field_file).lexically_normal().string();
+    }
+  }
   // Checked here, whatever the launch source: a missing disc file must not wait for the first DEM run
   // (the builder would have created an empty table by then). Its content is checked where it is read.
   if (!stl.empty()) {

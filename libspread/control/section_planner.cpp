@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/section_planner.hpp"
+#include "libspread/control/section_planner.hpp"
 
 #include <algorithm>
 #include <exception>

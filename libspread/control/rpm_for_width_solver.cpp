@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/rpm_for_width_solver.hpp"
+#include "libspread/control/rpm_for_width_solver.hpp"
 
 #include <cmath>
 #include <limits>

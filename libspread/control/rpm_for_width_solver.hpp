@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "firmware_sim/ecu/spread_predictor.hpp"
+#include "libspread/control/spread_predictor.hpp"
 
 namespace spread::firmware {
 

@@ -8,14 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "firmware_sim/ecu/disc_speed_model.hpp"
-#include "firmware_sim/ecu/ecu_command.hpp"
-#include "firmware_sim/ecu/ecu_parameters.hpp"
-#include "firmware_sim/ecu/ecu_status.hpp"
-#include "firmware_sim/ecu/fault.hpp"
-#include "firmware_sim/ecu/rpm_for_width_solver.hpp"
-#include "firmware_sim/ecu/section_planner.hpp"
-#include "firmware_sim/ecu/spread_predictor.hpp"
+#include "libspread/control/disc_speed_model.hpp"
+#include "libspread/control/ecu_command.hpp"
+#include "libspread/control/ecu_parameters.hpp"
+#include "libspread/control/ecu_status.hpp"
+#include "libspread/control/fault.hpp"
+#include "libspread/control/gate_response.hpp"
+#include "libspread/control/rpm_for_width_solver.hpp"
+#include "libspread/control/section_planner.hpp"
+#include "libspread/control/spread_predictor.hpp"
 #include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
@@ -104,6 +105,7 @@ class Ecu {
   bool needs_planning_without_material() const { return predictor_ != nullptr && material_.empty(); }
   const WidthCurve* curve_for(std::string_view material) const;
   void plan_sides();
+  void step_gates(double dt_s);
   double field_rpm_actual() const;
 
   // What one disc does on this pass (section control through the discs, section_planner.hpp).
@@ -133,6 +135,7 @@ class Ecu {
   std::vector<WidthCurve> curves_;  // one per predictor material, sampled at construction
   FaultLog faults_;
   std::array<DiscSpeedModel, 2> discs_;  // kLeftDisc, kRightDisc (a one-disc machine uses the left)
+  std::array<GateResponse, 2> gates_;    // each disc's metering gate
 
   // Commanded state.
   Mode mode_ = Mode::kManual;

@@ -1,12 +1,12 @@
 #pragma once
 // The ECU's fault codes as its messages publish them: bit n of status_t.fault_codes and heartbeat_t.fault_codes
 // is code n, and DM1 reports code n as proprietary SPN base + n (docs/messages.md). The ECU raises and counts
-// them (firmware_sim/ecu/fault.hpp); a tractor reads them by name.
+// them (fault.hpp); a tractor reads them by name (tools/spread_tractor).
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
-namespace spread::lcm_link {
+namespace spread::firmware {
 
 // The numeric values are the bit positions published in status_t.fault_codes and documented in
 // docs/messages.md: append new codes, never renumber.
@@ -71,4 +71,4 @@ constexpr std::string_view fault_name(Fault fault) {
 
 constexpr std::uint32_t fault_bit(Fault fault) { return std::uint32_t{1} << static_cast<unsigned>(fault); }
 
-}  // namespace spread::lcm_link
+}  // namespace spread::firmware

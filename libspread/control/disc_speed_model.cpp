@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/disc_speed_model.hpp"
+#include "libspread/control/disc_speed_model.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/ecu_parameters.hpp"
+#include "libspread/control/ecu_parameters.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -17,6 +17,7 @@ bool positive_finite(double v) { return std::isfinite(v) && v > 0.0; }
 
 void validate(const EcuParameters& p) {
   require(positive_finite(p.disc_time_constant_s), "disc_time_constant_s", "must be > 0 s");
+  require(std::isfinite(p.gate_full_travel_s) && p.gate_full_travel_s >= 0.0, "gate_full_travel_s", "must be >= 0 s");
   require(positive_finite(p.rpm_max), "rpm_max", "must be > 0 r/min");
   require(std::isfinite(p.auto_rpm_min) && p.auto_rpm_min >= 0.0, "auto_rpm_min", "must be >= 0 r/min");
   require(std::isfinite(p.auto_rpm_max) && p.auto_rpm_max > p.auto_rpm_min && p.auto_rpm_max <= p.rpm_max,

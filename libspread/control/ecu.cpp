@@ -1,11 +1,11 @@
-#include "firmware_sim/ecu/ecu.hpp"
+#include "libspread/control/ecu.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
 
-#include "firmware_sim/ecu/metering.hpp"
+#include "libspread/control/metering.hpp"
 
 namespace spread::firmware {
 namespace {
@@ -27,6 +27,7 @@ Ecu::Ecu(const Clock& clock, const EcuParameters& parameters, SpreadPredictor* p
       solver_(parameters.solver),
       faults_(parameters.fault_hold),
       discs_{DiscSpeedModel(parameters.disc_time_constant_s), DiscSpeedModel(parameters.disc_time_constant_s)},
+      gates_{GateResponse(parameters.gate_full_travel_s), GateResponse(parameters.gate_full_travel_s)},
       section_count_(parameters.section_count) {
   material_.reserve(kMaxMaterialNameLength);  // later assignments never allocate
   // Sections start open and the master switch closed, as on a machine just switched on: the work
@@ -612,6 +613,14 @@ void Ecu::supervise_controllers(Nanoseconds now) {
   faults_.set_state(Fault::kTaskControllerLost, tc_lost_ || tc_gone_, now);
 }
 
+// The gates follow what each disc should receive now, at their actuator's speed.
+void Ecu::step_gates(double dt_s) {
+  for (int d = 0; d < parameters_.disc_count; ++d) {
+    const auto i = static_cast<std::size_t>(d);
+    gates_[i].step(disc_metering_[i] ? sides_[i].flow_fraction : 0.0, dt_s);
+  }
+}
+
 void Ecu::step(double dt_s) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) return;
   ++steps_;
@@ -676,6 +685,7 @@ void Ecu::step(double dt_s) {
                                  parameters_.disc_count == 2 && disc_metering_[1 - i];
     if (disc_metering_[i] || thrown_by_other) section_actual_mask_ |= sides_[i].sections;
   }
+  step_gates(dt_s);
   mass_flow_kg_s_ =
       metering_open_ ? mass_flow_kg_s(rate_setpoint_kg_ha_, width_setpoint_m_ * flow_share, speed_in_use_m_s_) : 0.0;
   faults_.set_state(Fault::kSpeedUnavailable, work_state_setpoint_ && !speed_valid, now);
@@ -729,6 +739,7 @@ EcuStatus Ecu::status() const {
     s.disc_rpm_target[i] = sides_[i].rpm_target;
     s.disc_drop_point_turn_rad[i] = sides_[i].drop_point_turn_rad;
     s.disc_flow_fraction[i] = disc_metering_[i] ? sides_[i].flow_fraction : 0.0;
+    s.disc_flow_delivered[i] = gates_[i].opening();
   }
   s.sides_pending = pending_;
   s.border_mode = border_mode_;

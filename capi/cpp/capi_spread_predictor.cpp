@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/capi_spread_predictor.hpp"
+#include "capi/cpp/capi_spread_predictor.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,12 +13,25 @@ CapiSpreadPredictor::CapiSpreadPredictor(const std::string& table_path, double c
   if (!(cv_target_percent > 0.0) || !std::isfinite(cv_target_percent)) {
     throw std::invalid_argument("CapiSpreadPredictor: CV target must be > 0 %");
   }
-  spread_status status = spread_open(table_path.c_str(), &tables_);
+  const spread_status status = spread_open(table_path.c_str(), &tables_);
   if (status != SPREAD_OK) {
     throw std::runtime_error("spread tables '" + table_path + "': " + spread_status_str(status));
   }
+  list_materials("spread tables '" + table_path + "'");
+}
+
+CapiSpreadPredictor::CapiSpreadPredictor(spread_tables* borrowed, double cv_target_percent)
+    : tables_(borrowed), owned_(false), cv_target_percent_(cv_target_percent) {
+  if (!(cv_target_percent > 0.0) || !std::isfinite(cv_target_percent)) {
+    throw std::invalid_argument("CapiSpreadPredictor: CV target must be > 0 %");
+  }
+  if (borrowed == nullptr) throw std::invalid_argument("CapiSpreadPredictor: no tables handle");
+  list_materials("spread tables");
+}
+
+void CapiSpreadPredictor::list_materials(const std::string& where) {
   std::int32_t count = 0;
-  status = spread_material_count(tables_, &count);
+  spread_status status = spread_material_count(tables_, &count);
   for (std::int32_t i = 0; status == SPREAD_OK && i < count; ++i) {
     const char* name = nullptr;
     RpmRange range;
@@ -30,12 +43,14 @@ CapiSpreadPredictor::CapiSpreadPredictor(const std::string& table_path, double c
     }
   }
   if (status != SPREAD_OK) {
-    spread_close(tables_);
-    throw std::runtime_error("spread tables '" + table_path + "': listing materials: " + spread_status_str(status));
+    if (owned_) spread_close(tables_);
+    throw std::runtime_error(where + ": listing materials: " + spread_status_str(status));
   }
 }
 
-CapiSpreadPredictor::~CapiSpreadPredictor() { spread_close(tables_); }
+CapiSpreadPredictor::~CapiSpreadPredictor() {
+  if (owned_) spread_close(tables_);
+}
 
 int CapiSpreadPredictor::find(std::string_view material) const {
   for (std::size_t i = 0; i < names_.size(); ++i) {

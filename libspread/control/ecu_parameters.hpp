@@ -3,7 +3,7 @@
 #include <chrono>
 #include <cstdint>
 
-#include "firmware_sim/ecu/rpm_for_width_solver.hpp"
+#include "libspread/control/rpm_for_width_solver.hpp"
 #include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
@@ -12,6 +12,9 @@ inline constexpr int kMaxSections = 16;  // ISO 11783-11 condensed work state 1-
 
 struct EcuParameters {
   double disc_time_constant_s = 0.8;   // first-order lag of the disc drive [s]
+  // Each metering gate's actuator: from shut to the field's flow in this time (gate_response.hpp); 0: an
+  // ideal gate, the flow follows the command at once.
+  double gate_full_travel_s = 0.0;     // [s]
   double rpm_max = 1200.0;             // highest accepted disc speed set-point [r/min]
   double auto_rpm_min = 300.0;         // automatic mode search range, low end [r/min]
   double auto_rpm_max = 1100.0;        // automatic mode search range, high end [r/min]

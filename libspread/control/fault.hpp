@@ -5,16 +5,12 @@
 #include <cstdint>
 #include <string_view>
 
-#include "lcm_link/fault_codes.hpp"
+#include "libspread/control/fault_codes.hpp"
 #include "libspread/core/clock.hpp"
 
 namespace spread::firmware {
 
-// The codes, their bits and names are published in the ECU's messages: lcm_link/fault_codes.hpp.
-using lcm_link::Fault;
-using lcm_link::fault_bit;
-using lcm_link::fault_name;
-using lcm_link::kFaultCount;
+// The codes, their bits and names are published in the ECU's messages: fault_codes.hpp.
 
 // State faults are active exactly while their condition holds; all others are events.
 bool is_state_fault(Fault fault);

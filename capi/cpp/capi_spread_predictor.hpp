@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "firmware_sim/ecu/spread_predictor.hpp"
+#include "libspread/control/spread_predictor.hpp"
 
 struct spread_tables;
 
@@ -16,6 +16,9 @@ class CapiSpreadPredictor final : public SpreadPredictor {
   // Opens `table_path` read-only; throws std::runtime_error with the C API's status text.
   // cv_target_percent: CV target of the effective working width [%] (> 0).
   explicit CapiSpreadPredictor(const std::string& table_path, double cv_target_percent = 15.0);
+  // Over a handle opened elsewhere (a command's table session, which reads the file once), borrowed: it must
+  // outlive the predictor and is not closed by it. Throws as above when its materials cannot be listed.
+  explicit CapiSpreadPredictor(spread_tables* borrowed, double cv_target_percent = 15.0);
   ~CapiSpreadPredictor() override;
   CapiSpreadPredictor(const CapiSpreadPredictor&) = delete;
   CapiSpreadPredictor& operator=(const CapiSpreadPredictor&) = delete;
@@ -40,8 +43,10 @@ class CapiSpreadPredictor final : public SpreadPredictor {
 
  private:
   int find(std::string_view material) const;  // index or -1
+  void list_materials(const std::string& where);  // names_ and ranges_; closes an owned handle on failure
 
   spread_tables* tables_ = nullptr;
+  bool owned_ = true;
   double cv_target_percent_;
   std::vector<std::string> names_;
   std::vector<RpmRange> ranges_;

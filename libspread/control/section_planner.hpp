@@ -21,8 +21,8 @@
 #include <string_view>
 #include <thread>
 
-#include "firmware_sim/ecu/ecu_parameters.hpp"
-#include "firmware_sim/ecu/spread_predictor.hpp"
+#include "libspread/control/ecu_parameters.hpp"
+#include "libspread/control/spread_predictor.hpp"
 
 namespace spread::firmware {
 

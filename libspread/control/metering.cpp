@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/metering.hpp"
+#include "libspread/control/metering.hpp"
 
 namespace spread::firmware {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "firmware_sim/ecu/ecu_command.hpp"
-#include "firmware_sim/ecu/fault.hpp"
+#include "libspread/control/ecu_command.hpp"
+#include "libspread/control/fault.hpp"
 
 namespace spread::firmware {
 
@@ -44,6 +44,9 @@ struct EcuStatus {
   std::array<double, 2> disc_rpm_target{};           // [r/min]
   std::array<double, 2> disc_drop_point_turn_rad{};  // from the table's drop point [rad]
   std::array<double, 2> disc_flow_fraction{};        // of the field's flow to that disc [-] (0: closed)
+  // What each gate delivers now, of the field's flow to that disc [-]: disc_flow_fraction followed at the
+  // gate's speed (EcuParameters::gate_full_travel_s; equal to it with an ideal gate).
+  std::array<double, 2> disc_flow_delivered{};
   std::uint8_t sides_pending = 0;      // plans still searched: bit d disc d's side, bit 2 the wind's
   BorderMode border_mode = BorderMode::kOff;
   double border_gap_m = 0.0;           // [m]

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "firmware_sim/ecu/ecu_parameters.hpp"
+#include "libspread/control/ecu_parameters.hpp"
 
 namespace spread::firmware {
 

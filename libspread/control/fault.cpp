@@ -1,4 +1,4 @@
-#include "firmware_sim/ecu/fault.hpp"
+#include "libspread/control/fault.hpp"
 
 namespace spread::firmware {
 
