@@ -13,6 +13,7 @@
 
 #include "libspread/analysis/field/as_applied.hpp"
 #include "libspread/analysis/field/field_summary.hpp"
+#include "libspread/analysis/field/field_wind.hpp"
 #include "libspread/analysis/field/plan.hpp"
 #include "libspread/analysis/field/rate_grid_csv.hpp"
 #include "libspread/analysis/field/stamp_pattern.hpp"
@@ -94,8 +95,8 @@ TEST(FieldAsApplied, StraightPassesWithoutEndsGiveTheTrayTestCv) {
 }
 
 TEST(FieldAsApplied, StraightPassesInWindGiveTheTrayTestCvWithItsReturnPass) {
-  // The same field in wind, each pass stamped with the pattern of its own heading (machine_stamps: the wind
-  // turned into the machine frame, one prediction per heading). The tray test's to-and-fro CV must be
+  // The same field in wind, each pass stamped with the pattern of its own heading (the field's wind turned
+  // into that heading's machine frame, wind_in_machine_frame). The tray test's to-and-fro CV must be
   // the field's with the return pass meeting the wind from the other side (return_pass.cpp) — not the
   // outgoing pattern mirrored, which lays the drift down towards the wind on every other pass.
   Setting& s = setting();
@@ -104,6 +105,7 @@ TEST(FieldAsApplied, StraightPassesInWindGiveTheTrayTestCvWithItsReturnPass) {
   for (int k = -4; k < 14; ++k) {
     const double x = (k + 0.5) * kBout_m;
     passes.push_back(k % 2 == 0 ? straight(x, -80.0, 280.0) : straight(x, 280.0, -80.0));
+    passes.back().setting = k % 2 == 0 ? 0 : 1;  // stamps[0] heading north, stamps[1] heading south
   }
   struct Wind {
     double east_m_s, north_m_s;
@@ -115,11 +117,17 @@ TEST(FieldAsApplied, StraightPassesInWindGiveTheTrayTestCvWithItsReturnPass) {
     r.material = "can";
     r.rpm = 650.0;
     r.bout_width_m = kBout_m;
-    FieldConditions conditions;
-    conditions.wind_east_m_s = wind.east_m_s;
-    conditions.wind_north_m_s = wind.north_m_s;
-    const MachineStamps stamps = machine_stamps(s.predictor, r, passes, conditions, 0.5);
-    const FieldSummary f = summarise(spread_passes(field, stamps.passes, stamps.stamps, run_settings()), field, kRate_kg_ha);
+    std::vector<StampPattern> stamps;
+    for (const Point forward : {Point{0.0, 1.0}, Point{0.0, -1.0}}) {
+      const Point machine_wind = wind_in_machine_frame(forward, wind.east_m_s, wind.north_m_s);
+      predict::PredictionRequest heading = r;
+      heading.wind_x_m_s = machine_wind.x_m;
+      heading.wind_y_m_s = machine_wind.y_m;
+      predict::Prediction p;
+      ASSERT_EQ(s.predictor.predict(heading, p), predict::PredictStatus::kOk);
+      stamps.push_back(stamp_pattern(p, 0.5));
+    }
+    const FieldSummary f = summarise(spread_passes(field, passes, stamps, run_settings()), field, kRate_kg_ha);
     // The pass heading north meets the wind as the tray test's outgoing pass: x east, y north.
     r.wind_x_m_s = wind.east_m_s;
     r.wind_y_m_s = wind.north_m_s;
