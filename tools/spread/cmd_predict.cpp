@@ -66,6 +66,17 @@ std::uint32_t parse_effects(const std::string& text) {
   }
 }
 
+// The request the Predictor (the C API's own engine) gets beside the C API's: the options' setting, bout,
+// kernel, effects (the table's, or the bits the C API gets) and the opt-in to fly outside the grid's domain.
+spread::predict::PredictionRequest predictor_request(const Options& o) {
+  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+  request.bout_width_m = o.bout_width_m;
+  request.kernel_half_width_m = o.kernel_half_width_m;
+  request.effects = o.effects == "table" ? spread::predict::kTableEffects : parse_effects(o.effects);
+  request.fly_outside_domain = o.fly_outside_domain;
+  return request;
+}
+
 // An explanation of a refused prediction that names the input and the allowed values.
 std::string explain(spread_status status, const Options& o, spread_tables* tables) {
   std::ostringstream out;
@@ -156,14 +167,8 @@ struct ReturnPassInWind {
 };
 
 ReturnPassInWind return_pass_in_wind(const Options& o, const spread_prediction& r, spread::cli::TableSession& session) {
-  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+  spread::predict::PredictionRequest request = predictor_request(o);
   if (request.wind_x_m_s == 0.0 && request.wind_y_m_s == 0.0) return {};
-  request.effects = o.effects == "table" ? spread::predict::kTableEffects
-                    : o.effects == "all" ? spread::flight::kAllEffects
-                                         : spread::flight::parse_effects(o.effects);
-  request.bout_width_m = o.bout_width_m;
-  request.kernel_half_width_m = o.kernel_half_width_m;
-  request.fly_outside_domain = o.fly_outside_domain;
   request.standard_errors = false;
   if (o.compensate_wind) {
     request.rpm = 0.0;
@@ -257,13 +262,7 @@ spread::cli::SettingGuidance guidance_for(const Options& o, const spread_predict
     note.lines.push_back("setting guidance turns both discs alike: `spread chart` finds the best setting at this width");
     return note;
   }
-  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
-  request.effects = o.effects == "table" ? spread::predict::kTableEffects
-                    : o.effects == "all" ? spread::flight::kAllEffects
-                                         : spread::flight::parse_effects(o.effects);
-  request.bout_width_m = o.bout_width_m;
-  request.kernel_half_width_m = o.kernel_half_width_m;
-  return spread::cli::setting_guidance(session.predictor(), request);
+  return spread::cli::setting_guidance(session.predictor(), predictor_request(o));
 }
 
 // The predicted CV at the bout width against the target with its 95 % interval over the launch samples
@@ -351,18 +350,14 @@ constexpr const char* kDefaultSizeClassMm = "2,2.5,3.15,4,5";
 // --size-classes: each size class of the table's launch samples predicted alone at the bout just
 // predicted (the same setting, effects and trays).
 std::optional<spread::size_classes::SizeClassPatterns> size_classes_for(const Options& o, const spread_prediction& r,
-                                                                         std::uint32_t effects,
                                                                          const spread::cli::TableSession& session) {
   if (!o.size_classes && o.size_class_mm.empty() && o.size_class_png.empty()) return std::nullopt;
   if (o.compensate_wind) throw BadInput("--size-classes: not with --compensate-wind (give the discs' own settings instead)");
   if (!(r.bout_width_m > 0.0)) throw BadInput("--size-classes: no bout width meets the target; give one with --width");
   const std::vector<double> boundaries =
       spread::cli::parse_size_class_boundaries_mm(o.size_class_mm.empty() ? kDefaultSizeClassMm : o.size_class_mm);
-  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
+  spread::predict::PredictionRequest request = predictor_request(o);
   request.bout_width_m = r.bout_width_m;
-  request.kernel_half_width_m = o.kernel_half_width_m;
-  request.effects = o.effects == "table" ? spread::predict::kTableEffects : effects;
-  request.fly_outside_domain = o.fly_outside_domain;
   return spread::size_classes::size_class_patterns(session.contents(), request, boundaries);
 }
 
@@ -373,11 +368,7 @@ void run_blend(const Options& o, const spread::tables::Blend& blend, spread::cli
     throw BadInput("--material " + o.material + " is a blend: --compensate-wind, --size-classes, --report, --stability "
                    "and --repeat are for a single material (predict a component by its row, \"" +
                    blend.components.front().material + "\")");
-  spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
-  request.bout_width_m = o.bout_width_m;
-  request.kernel_half_width_m = o.kernel_half_width_m;
-  request.effects = o.effects == "table" ? spread::predict::kTableEffects : parse_effects(o.effects);
-  request.fly_outside_domain = o.fly_outside_domain;
+  const spread::predict::PredictionRequest request = predictor_request(o);
   const spread::blends::BlendPatterns b = spread::blends::blend_patterns(session.predictor(), blend, request);
   if (b.status != spread::predict::PredictStatus::kOk)
     throw BadInput("blend " + blend.name + ": " + spread::predict::to_string(b.status));
@@ -453,15 +444,10 @@ void run(const Options& o, int& exit_code) {
   // --stability N: the headline under N bootstrap resamples of the table's launch samples.
   std::optional<spread::predict::WidthStability> stability;
   if (o.stability > 0) {
-    spread::predict::PredictionRequest request = spread::cli::prediction_request(o);
-    request.bout_width_m = o.bout_width_m;
-    request.kernel_half_width_m = o.kernel_half_width_m;
-    request.effects = o.effects == "table" ? spread::predict::kTableEffects : def.effects;
-    request.fly_outside_domain = o.fly_outside_domain;
-    stability = spread::predict::width_stability(session.contents(), request, o.stability);
+    stability = spread::predict::width_stability(session.contents(), predictor_request(o), o.stability);
   }
 
-  const std::optional<spread::size_classes::SizeClassPatterns> classes = size_classes_for(o, result, def.effects, session);
+  const std::optional<spread::size_classes::SizeClassPatterns> classes = size_classes_for(o, result, session);
   if (classes && !o.size_class_png.empty()) spread::cli::write_size_halves_png(*classes, o.size_class_png);
 
   const auto tray_count = static_cast<std::size_t>(result.tray_count);
